@@ -1,0 +1,35 @@
+# Two commands do everything on a fresh machine:
+#   make demo   -- set up .venv, then run the main job on the built-in default
+#   make test   -- set up .venv, then run the test suite (fast default; `make test-all` adds slow tests)
+PYTHON ?= python3
+VENV := .venv
+PY := $(VENV)/bin/python
+STAMP := $(VENV)/.installed
+
+.PHONY: demo test test-all lint bench clean
+
+$(STAMP): pyproject.toml
+	$(PYTHON) -m venv $(VENV)
+	$(PY) -m pip install --quiet --upgrade pip
+	# torchvision's wheels need the CUDA build of torch (the CPU-only wheel cannot load its ops);
+	# the default PyPI torch is that build and runs on CPU where there is no GPU.
+	$(PY) -m pip install --quiet -e '.[test]'
+	touch $(STAMP)
+
+demo: $(STAMP)
+	$(VENV)/bin/radaraug demo -o demo_out
+
+test: $(STAMP)
+	$(PY) -m pytest -q
+
+test-all: $(STAMP)
+	$(PY) -m pytest -q -m ''
+
+lint: $(STAMP)
+	$(VENV)/bin/ruff check radaraug tests
+
+bench: $(STAMP)
+	$(VENV)/bin/radaraug bench transforms --out benchmarks/transforms_cpu.json
+
+clean:
+	rm -rf $(VENV) demo_out build *.egg-info

@@ -1,0 +1,494 @@
+"""`RadarConfig`: one validated, immutable description of an FMCW radar and its chirp.
+
+The field names follow Infineon's ``fmcw_single_shape`` keys (``config.json`` of an ifxdaq /
+Radar Fusion GUI recording), so a config read from a real recording round-trips exactly. A few
+fields the recording does not carry (RX positions, ADC delay, ADC bits) have documented defaults.
+
+Timing model (Infineon BGT60 "single shape" chirp): the TX ramp sweeps ``start -> end`` over
+``adc_delay_s + T_adc`` where ``T_adc = num_samples_per_chirp / sample_rate_Hz``; the ADC samples
+only the last ``T_adc`` of it. Hence
+
+* ``slope_Hz_per_s = (end - start) / (adc_delay_s + T_adc)``
+* ``sampled_bandwidth_Hz = slope * T_adc`` (a little less than the nominal bandwidth)
+* range bin spacing ``c / (2 * sampled_bandwidth)``; a target at range ``R`` beats at
+  ``f_b = 2 R slope / c``.
+
+With ``adc_delay_s = 0`` every quantity reduces to the textbook nominal value.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+import math
+import os
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from typing import Any
+
+from radaraug.errors import ConfigError
+
+SPEED_OF_LIGHT = 299_792_458.0
+"""Speed of light in vacuum, m/s."""
+
+_INFINEON_KEYS = (
+    "start_frequency_Hz",
+    "end_frequency_Hz",
+    "sample_rate_Hz",
+    "num_samples_per_chirp",
+    "num_chirps_per_frame",
+    "chirp_repetition_time_s",
+    "frame_repetition_time_s",
+    "rx_antennas",
+    "tx_antennas",
+    "tx_power_level",
+    "if_gain_dB",
+    "hp_cutoff_Hz",
+    "aaf_cutoff_Hz",
+    "mimo_mode",
+)
+_REQUIRED_INFINEON_KEYS = _INFINEON_KEYS[:11]
+
+# Infineon SDK defaults for the IF filters when a recording does not state them.
+DEFAULT_HP_CUTOFF_HZ = 80_000.0
+DEFAULT_AAF_CUTOFF_HZ = 500_000.0
+DEFAULT_ADC_DELAY_S = 3.1e-6
+
+
+def _default_rx_positions(n_rx: int, wavelength: float) -> tuple[tuple[float, float, float], ...]:
+    """L-shaped BGT60TR13C array: RX1-RX3 horizontal, RX2-RX3 vertical, lambda/2 apart.
+
+    Coordinates are metres in the antenna frame: x to the sensor's right, y up, z along
+    boresight. The exact positions in mm are not public; lambda/2 at 60 GHz is what the
+    datasheet drawing implies.
+    """
+    d = wavelength / 2
+    table = {1: (-d, 0.0, 0.0), 2: (0.0, d, 0.0), 3: (0.0, 0.0, 0.0)}
+    return tuple(table.get(i + 1, (d * i, 0.0, 0.0)) for i in range(n_rx))
+
+
+@dataclass(frozen=True)
+class RadarConfig:
+    """Validated, immutable FMCW radar configuration.
+
+    Args:
+        start_frequency_Hz: TX ramp start frequency.
+        end_frequency_Hz: TX ramp end frequency (> start).
+        sample_rate_Hz: ADC sample rate.
+        num_samples_per_chirp: ADC samples per chirp (fast time).
+        num_chirps_per_frame: chirps per frame (slow time).
+        chirp_repetition_time_s: time between chirp starts (PRT).
+        frame_repetition_time_s: time between frame starts.
+        rx_antennas: 1-based RX antenna numbers, in the order of the data's RX axis.
+        tx_antennas: 1-based TX antenna numbers.
+        tx_power_level: Infineon TX power level 0..31.
+        if_gain_dB: total IF gain, 18..60 dB.
+        hp_cutoff_Hz: IF high-pass cutoff; ``None`` when the recording does not state it
+            (then :attr:`effective_hp_cutoff_Hz` uses the SDK default 80 kHz).
+        aaf_cutoff_Hz: anti-alias low-pass cutoff; ``None`` as above (default 500 kHz).
+        mimo_mode: Infineon MIMO mode string ("off" for 1 TX).
+        adc_delay_s: time from ramp start to the first ADC sample (3.1 us on the BGT60).
+        adc_bits: ADC resolution in bits.
+        rx_positions_m: per-RX phase-centre positions (x, y, z) in metres in the antenna frame;
+            ``None`` gives the L-shaped lambda/2 layout of the BGT60TR13C.
+        tx_position_m: TX phase centre in the antenna frame.
+    """
+
+    start_frequency_Hz: float
+    end_frequency_Hz: float
+    sample_rate_Hz: float
+    num_samples_per_chirp: int
+    num_chirps_per_frame: int
+    chirp_repetition_time_s: float
+    frame_repetition_time_s: float
+    rx_antennas: tuple[int, ...] = (1, 2, 3)
+    tx_antennas: tuple[int, ...] = (1,)
+    tx_power_level: int = 31
+    if_gain_dB: float = 33
+    hp_cutoff_Hz: float | None = None
+    aaf_cutoff_Hz: float | None = None
+    mimo_mode: str = "off"
+    adc_delay_s: float = DEFAULT_ADC_DELAY_S
+    adc_bits: int = 12
+    rx_positions_m: tuple[tuple[float, float, float], ...] | None = field(default=None)
+    tx_position_m: tuple[float, float, float] = (0.0, -0.0025, 0.0)
+
+    # ------------------------------------------------------------------ validation
+    def __post_init__(self) -> None:
+        def fail(msg: str) -> None:
+            raise ConfigError(f"invalid RadarConfig: {msg}")
+
+        # Normalise containers to tuples so the object is hashable and truly immutable.
+        for name in ("rx_antennas", "tx_antennas"):
+            value = getattr(self, name)
+            try:
+                value = tuple(int(v) for v in value)
+            except (TypeError, ValueError):
+                fail(f"{name} must be a list of antenna numbers, got {value!r}")
+            object.__setattr__(self, name, value)
+        if self.rx_positions_m is not None:
+            try:
+                pos = tuple(tuple(float(c) for c in p) for p in self.rx_positions_m)
+            except (TypeError, ValueError):
+                fail("rx_positions_m must be a list of (x, y, z) triples")
+            if any(len(p) != 3 for p in pos):
+                fail("rx_positions_m must be a list of (x, y, z) triples")
+            object.__setattr__(self, "rx_positions_m", pos)
+        try:
+            object.__setattr__(self, "tx_position_m", tuple(float(c) for c in self.tx_position_m))
+        except (TypeError, ValueError):
+            fail("tx_position_m must be an (x, y, z) triple")
+
+        for name in (
+            "start_frequency_Hz",
+            "end_frequency_Hz",
+            "sample_rate_Hz",
+            "chirp_repetition_time_s",
+            "frame_repetition_time_s",
+        ):
+            v = getattr(self, name)
+            if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) or v <= 0:
+                fail(f"{name} must be a finite positive number, got {v!r}")
+        for name in ("num_samples_per_chirp", "num_chirps_per_frame", "adc_bits"):
+            v = getattr(self, name)
+            if isinstance(v, bool) or not isinstance(v, int) or v <= 0:
+                fail(f"{name} must be a positive integer, got {v!r}")
+        if self.end_frequency_Hz <= self.start_frequency_Hz:
+            fail(
+                f"end_frequency_Hz ({self.end_frequency_Hz:g}) must exceed start_frequency_Hz "
+                f"({self.start_frequency_Hz:g})"
+            )
+        if self.num_samples_per_chirp < 2 or self.num_chirps_per_frame < 1:
+            fail("need at least 2 samples per chirp and 1 chirp per frame")
+        if not self.rx_antennas:
+            fail("rx_antennas must name at least one antenna")
+        if not self.tx_antennas:
+            fail("tx_antennas must name at least one antenna")
+        if len(set(self.rx_antennas)) != len(self.rx_antennas):
+            fail(f"rx_antennas has duplicates: {self.rx_antennas}")
+        if not 0 <= int(self.tx_power_level) <= 31:
+            fail(f"tx_power_level must be in 0..31, got {self.tx_power_level}")
+        if not 0 <= float(self.if_gain_dB) <= 80:
+            fail(f"if_gain_dB must be in 0..80 dB, got {self.if_gain_dB}")
+        if not math.isfinite(self.adc_delay_s) or self.adc_delay_s < 0:
+            fail(f"adc_delay_s must be >= 0, got {self.adc_delay_s}")
+        for name in ("hp_cutoff_Hz", "aaf_cutoff_Hz"):
+            v = getattr(self, name)
+            if v is not None and (not math.isfinite(v) or v <= 0):
+                fail(f"{name} must be positive or None, got {v!r}")
+        if self.chirp_time_s > self.chirp_repetition_time_s * (1 + 1e-9):
+            fail(
+                f"chirp (ADC delay + {self.num_samples_per_chirp} samples = "
+                f"{self.chirp_time_s * 1e6:.2f} us) is longer than the chirp repetition time "
+                f"({self.chirp_repetition_time_s * 1e6:.2f} us)"
+            )
+        if self.num_chirps_per_frame * self.chirp_repetition_time_s > self.frame_repetition_time_s * (
+            1 + 1e-9
+        ):
+            fail(
+                f"{self.num_chirps_per_frame} chirps x {self.chirp_repetition_time_s * 1e6:.1f} us do "
+                f"not fit in the frame repetition time {self.frame_repetition_time_s * 1e3:.2f} ms"
+            )
+        if self.rx_positions_m is not None and len(self.rx_positions_m) != len(self.rx_antennas):
+            fail(
+                f"rx_positions_m has {len(self.rx_positions_m)} entries for "
+                f"{len(self.rx_antennas)} RX antennas"
+            )
+
+    # ------------------------------------------------------------------ presets
+    @classmethod
+    def bgt60tr13c(cls, **overrides: Any) -> RadarConfig:
+        """The paper's BGT60TR13C setting.
+
+        60 GHz centre, 882.35 MHz nominal bandwidth, 1 MHz ADC, 256 samples (0.256 ms of ADC
+        time), 3 RX. Chirps per frame and chirp repetition time are not in the paper: these are
+        Infineon's people-tracking defaults (64 chirps at 391.55 us, 10 frames/s). IF gain 33 dB
+        and the SDK's default 80 kHz high-pass / 500 kHz anti-alias filters.
+
+        Nominal (ADC delay ignored, as the paper does): slope 3.4467e12 Hz/s, range resolution
+        0.170 m, max range 21.7 m. With the BGT60's 3.1 us ADC delay (the default here) the
+        ramp is slower: slope 3.405e12 Hz/s, sampled bandwidth 871.8 MHz, 0.172 m, 22.0 m.
+        """
+        bandwidth = 882.35e6
+        params: dict[str, Any] = dict(
+            start_frequency_Hz=60e9 - bandwidth / 2,
+            end_frequency_Hz=60e9 + bandwidth / 2,
+            sample_rate_Hz=1e6,
+            num_samples_per_chirp=256,
+            num_chirps_per_frame=64,
+            chirp_repetition_time_s=391.55e-6,
+            frame_repetition_time_s=0.1,
+            rx_antennas=(1, 2, 3),
+            tx_antennas=(1,),
+            tx_power_level=31,
+            if_gain_dB=33,
+            hp_cutoff_Hz=DEFAULT_HP_CUTOFF_HZ,
+            aaf_cutoff_Hz=DEFAULT_AAF_CUTOFF_HZ,
+        )
+        params.update(overrides)
+        return cls(**params)
+
+    def replace(self, **changes: Any) -> RadarConfig:
+        """A copy with some fields changed (validated again)."""
+        return dataclasses.replace(self, **changes)
+
+    # ------------------------------------------------------------------ derived values
+    @property
+    def bandwidth_Hz(self) -> float:
+        """Nominal RF bandwidth ``end - start`` (TX on)."""
+        return self.end_frequency_Hz - self.start_frequency_Hz
+
+    @property
+    def center_frequency_Hz(self) -> float:
+        """Centre of the nominal sweep."""
+        return 0.5 * (self.start_frequency_Hz + self.end_frequency_Hz)
+
+    @property
+    def wavelength_m(self) -> float:
+        """Wavelength at the centre frequency."""
+        return SPEED_OF_LIGHT / self.center_frequency_Hz
+
+    @property
+    def adc_time_s(self) -> float:
+        """Duration of the ADC window of one chirp, ``N / fs``."""
+        return self.num_samples_per_chirp / self.sample_rate_Hz
+
+    @property
+    def chirp_time_s(self) -> float:
+        """Ramp duration: ADC delay plus ADC window."""
+        return self.adc_delay_s + self.adc_time_s
+
+    @property
+    def slope_Hz_per_s(self) -> float:
+        """Chirp slope of the TX ramp."""
+        return self.bandwidth_Hz / self.chirp_time_s
+
+    @property
+    def sampled_bandwidth_Hz(self) -> float:
+        """Bandwidth swept while the ADC samples (``slope * T_adc``)."""
+        return self.slope_Hz_per_s * self.adc_time_s
+
+    @property
+    def sampled_start_frequency_Hz(self) -> float:
+        """RF frequency at the first ADC sample."""
+        return self.start_frequency_Hz + self.slope_Hz_per_s * self.adc_delay_s
+
+    @property
+    def beat_Hz_per_m(self) -> float:
+        """Beat frequency per metre of (one-way) range, ``2 * slope / c``."""
+        return 2 * self.slope_Hz_per_s / SPEED_OF_LIGHT
+
+    @property
+    def range_resolution_m(self) -> float:
+        """Range bin spacing ``c / (2 * sampled_bandwidth)``."""
+        return SPEED_OF_LIGHT / (2 * self.sampled_bandwidth_Hz)
+
+    @property
+    def nominal_range_resolution_m(self) -> float:
+        """Textbook ``c / (2 B)`` with the nominal bandwidth (what the paper quotes)."""
+        return SPEED_OF_LIGHT / (2 * self.bandwidth_Hz)
+
+    @property
+    def num_range_bins(self) -> int:
+        """Positive range bins kept from a real-sampled chirp: ``N // 2``."""
+        return self.num_samples_per_chirp // 2
+
+    @property
+    def max_range_m(self) -> float:
+        """Unambiguous range of real sampling: beat frequency ``fs / 2``."""
+        return (self.sample_rate_Hz / 2) / self.beat_Hz_per_m
+
+    @property
+    def max_velocity_m_s(self) -> float:
+        """Unambiguous radial velocity ``lambda / (4 * PRT)`` (Doppler wraps beyond it)."""
+        return self.wavelength_m / (4 * self.chirp_repetition_time_s)
+
+    @property
+    def velocity_resolution_m_s(self) -> float:
+        """Doppler bin spacing ``lambda / (2 * M * PRT)``."""
+        return self.wavelength_m / (2 * self.num_chirps_per_frame * self.chirp_repetition_time_s)
+
+    @property
+    def doppler_Hz_per_m_s(self) -> float:
+        """Doppler shift per m/s of radial velocity, ``2 / lambda``."""
+        return 2 / self.wavelength_m
+
+    @property
+    def num_rx(self) -> int:
+        """Number of receive channels."""
+        return len(self.rx_antennas)
+
+    @property
+    def frame_rate_Hz(self) -> float:
+        """Frames per second."""
+        return 1 / self.frame_repetition_time_s
+
+    @property
+    def effective_hp_cutoff_Hz(self) -> float:
+        """High-pass cutoff, with the SDK default when the recording does not state it."""
+        return DEFAULT_HP_CUTOFF_HZ if self.hp_cutoff_Hz is None else float(self.hp_cutoff_Hz)
+
+    @property
+    def effective_aaf_cutoff_Hz(self) -> float:
+        """Anti-alias cutoff, with the SDK default when the recording does not state it."""
+        return DEFAULT_AAF_CUTOFF_HZ if self.aaf_cutoff_Hz is None else float(self.aaf_cutoff_Hz)
+
+    @property
+    def rx_positions(self) -> tuple[tuple[float, float, float], ...]:
+        """RX phase centres in metres (the default L layout when not given)."""
+        if self.rx_positions_m is not None:
+            return self.rx_positions_m
+        return tuple(_default_rx_positions(max(self.rx_antennas), self.wavelength_m)[a - 1] for a in self.rx_antennas)
+
+    @property
+    def adc_full_scale_counts(self) -> int:
+        """Largest ADC code, ``2**bits - 1`` (4095 for 12 bits)."""
+        return 2**self.adc_bits - 1
+
+    def range_axis_m(self) -> list[float]:
+        """Range of each kept range bin (``k * range_resolution``), ``N // 2`` values."""
+        return [k * self.range_resolution_m for k in range(self.num_range_bins)]
+
+    def velocity_axis_m_s(self) -> list[float]:
+        """Radial velocity of each Doppler bin after fftshift (zero in the middle).
+
+        Positive velocity means the target moves *away* from the radar (range grows).
+        """
+        m = self.num_chirps_per_frame
+        return [(k - m // 2) * self.velocity_resolution_m_s for k in range(m)]
+
+    # ------------------------------------------------------------------ serialisation
+    def to_dict(self) -> dict[str, Any]:
+        """All fields as plain JSON types."""
+        d = dataclasses.asdict(self)
+        d["rx_antennas"] = list(self.rx_antennas)
+        d["tx_antennas"] = list(self.tx_antennas)
+        d["tx_position_m"] = list(self.tx_position_m)
+        if self.rx_positions_m is not None:
+            d["rx_positions_m"] = [list(p) for p in self.rx_positions_m]
+        return d
+
+    @classmethod
+    def from_dict(cls, data: Mapping[str, Any], *, source: str | None = None) -> RadarConfig:
+        """Build from :meth:`to_dict` output (unknown keys are an error)."""
+        where = f" in {source}" if source else ""
+        if not isinstance(data, Mapping):
+            raise ConfigError(f"radar config{where} must be a JSON object, got {type(data).__name__}")
+        names = {f.name for f in dataclasses.fields(cls)}
+        unknown = set(data) - names
+        if unknown:
+            raise ConfigError(f"unknown radar config keys{where}: {sorted(unknown)}")
+        missing = [n for n in _REQUIRED_INFINEON_KEYS[:7] if n not in data]
+        if missing:
+            raise ConfigError(f"radar config{where} lacks required keys {missing}")
+        try:
+            return cls(**dict(data))
+        except ConfigError as e:
+            raise ConfigError(f"{e}{where}") from None
+        except TypeError as e:
+            raise ConfigError(f"invalid radar config{where}: {e}") from None
+
+    def to_json(self, path: str | os.PathLike | None = None) -> str:
+        """JSON text of :meth:`to_dict`; also written to ``path`` when given."""
+        text = json.dumps(self.to_dict(), indent=2, sort_keys=True)
+        if path is not None:
+            with open(path, "w") as fh:
+                fh.write(text + "\n")
+        return text
+
+    @classmethod
+    def from_json(cls, text_or_path: str | os.PathLike) -> RadarConfig:
+        """Parse JSON text, or read a file: a radaraug config or an Infineon ``config.json``."""
+        source = None
+        text = str(text_or_path)
+        if not text.lstrip().startswith("{"):
+            source = text
+            try:
+                with open(text_or_path) as fh:
+                    text = fh.read()
+            except OSError as e:
+                raise ConfigError(f"cannot read radar config {source}: {e.strerror or e}") from None
+        try:
+            data = json.loads(text)
+        except json.JSONDecodeError as e:
+            raise ConfigError(f"radar config {source or '(text)'} is not valid JSON: {e}") from None
+        # radaraug's own JSON always carries adc_bits; Infineon's never does.
+        if isinstance(data, Mapping) and "adc_bits" not in data:
+            return cls.from_infineon(data, source=source)
+        return cls.from_dict(data, source=source)
+
+    # Infineon ifxdaq / Radar Fusion GUI `config.json`
+    def to_infineon(self) -> dict[str, Any]:
+        """The ``{"device_config": {"fmcw_single_shape": {...}}}`` dict of an Infineon recording.
+
+        Fields Infineon does not store (RX positions, ADC delay/bits) are left out; optional
+        filter cutoffs are written only when set.
+        """
+        shape: dict[str, Any] = {}
+        for key in _INFINEON_KEYS:
+            value = getattr(self, key)
+            if value is None:
+                continue
+            shape[key] = list(value) if isinstance(value, tuple) else value
+        return {"device_config": {"fmcw_single_shape": shape}}
+
+    @classmethod
+    def from_infineon(
+        cls, data: Mapping[str, Any] | str | os.PathLike, *, source: str | None = None, **extra: Any
+    ) -> RadarConfig:
+        """Read an Infineon ``config.json`` (dict or path).
+
+        Accepts the full ``{"device_config": {"fmcw_single_shape": {...}}}`` form or the bare
+        ``fmcw_single_shape`` dict, with numbers spelt as integers (``63500000000``) or in
+        exponent form (``60.5e9``); values are kept exactly as read so that
+        :meth:`to_infineon` returns an equal dict. ``extra`` sets radaraug-only fields
+        (e.g. ``rx_positions_m``).
+        """
+        if not isinstance(data, Mapping):
+            source = str(data)
+            try:
+                with open(data) as fh:
+                    data = json.load(fh)
+            except FileNotFoundError:
+                raise ConfigError(f"radar config {source} does not exist") from None
+            except OSError as e:
+                raise ConfigError(f"cannot read radar config {source}: {e.strerror or e}") from None
+            except json.JSONDecodeError as e:
+                raise ConfigError(f"radar config {source} is not valid JSON: {e}") from None
+        where = source or "(dict)"
+        shape: Any = data
+        if "device_config" in data:
+            dc = data["device_config"]
+            if not isinstance(dc, Mapping) or "fmcw_single_shape" not in dc:
+                kinds = list(dc) if isinstance(dc, Mapping) else type(dc).__name__
+                raise ConfigError(
+                    f"radar config {where}: device_config has no 'fmcw_single_shape' "
+                    f"(found {kinds}); only single-shape FMCW recordings are supported"
+                )
+            shape = dc["fmcw_single_shape"]
+        if not isinstance(shape, Mapping):
+            raise ConfigError(f"radar config {where}: fmcw_single_shape must be an object")
+        missing = [k for k in _REQUIRED_INFINEON_KEYS if k not in shape]
+        if missing:
+            raise ConfigError(f"radar config {where} lacks required keys {missing}")
+        kwargs = {k: shape[k] for k in _INFINEON_KEYS if k in shape}
+        for k in ("num_samples_per_chirp", "num_chirps_per_frame", "tx_power_level"):
+            v = kwargs[k]
+            if isinstance(v, float) and v.is_integer():
+                kwargs[k] = int(v)
+        kwargs.update(extra)
+        try:
+            return cls(**kwargs)
+        except ConfigError as e:
+            raise ConfigError(f"{e} (in {where})") from None
+
+    def describe(self) -> str:
+        """A short human-readable summary with the derived values."""
+        return (
+            f"{self.start_frequency_Hz / 1e9:.3f}-{self.end_frequency_Hz / 1e9:.3f} GHz, "
+            f"{self.num_rx} RX, {self.num_chirps_per_frame} chirps x {self.num_samples_per_chirp} "
+            f"samples @ {self.sample_rate_Hz / 1e6:g} MHz, PRT {self.chirp_repetition_time_s * 1e6:.2f} us, "
+            f"{self.frame_rate_Hz:.2f} frames/s | slope {self.slope_Hz_per_s:.4g} Hz/s, "
+            f"range res {self.range_resolution_m * 100:.2f} cm, max range {self.max_range_m:.2f} m, "
+            f"v res {self.velocity_resolution_m_s:.3f} m/s, v max +-{self.max_velocity_m_s:.2f} m/s"
+        )
