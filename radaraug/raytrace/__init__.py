@@ -1,0 +1,1 @@
+"""Vectorized torch ray tracer: shooting-and-bouncing rays + physical optics."""

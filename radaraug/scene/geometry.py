@@ -1,0 +1,141 @@
+"""Plain-tensor scene geometry: the interface between scene building and the ray tracer.
+
+World frame: metres, right-handed, ``z`` up. The radar's own frame (the antenna frame of
+:class:`radaraug.RadarConfig`): ``x`` to the sensor's right, ``y`` up, ``z`` along boresight.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import torch
+
+
+@dataclass
+class SceneGeometry:
+    """A triangle soup with a material per face.
+
+    Attributes:
+        vertices: ``(V, 3)`` float vertex positions in the world frame, metres.
+        faces: ``(F, 3)`` long vertex indices, counter-clockwise seen from the side the
+            outward normal points to.
+        face_material: ``(F,)`` long index into ``materials``.
+        materials: material names (keys of :data:`radaraug.scene.materials.MATERIALS`).
+        vertex_velocity: ``(V, 3)`` float m/s, or None for a static mesh.
+        object_id: ``(F,)`` long id of the object each face belongs to (0 = room), or None.
+    """
+
+    vertices: torch.Tensor
+    faces: torch.Tensor
+    face_material: torch.Tensor
+    materials: tuple[str, ...]
+    vertex_velocity: torch.Tensor | None = None
+    object_id: torch.Tensor | None = None
+
+    @property
+    def triangles(self) -> torch.Tensor:
+        """``(F, 3, 3)`` vertex coordinates per face."""
+        return self.vertices[self.faces]
+
+    @property
+    def num_faces(self) -> int:
+        """Number of triangles."""
+        return int(self.faces.shape[0])
+
+    def to(self, device: torch.device | str) -> SceneGeometry:
+        """Move every tensor to ``device``."""
+        def mv(t: torch.Tensor | None) -> torch.Tensor | None:
+            return None if t is None else t.to(device)
+
+        return SceneGeometry(
+            mv(self.vertices), mv(self.faces), mv(self.face_material), self.materials,
+            mv(self.vertex_velocity), mv(self.object_id),
+        )
+
+
+@dataclass
+class RadarPose:
+    """Where the radar is and where it looks.
+
+    Attributes:
+        position: ``(3,)`` world position of the antenna-frame origin, metres.
+        rotation: ``(3, 3)`` world-from-radar rotation; its columns are the radar's x (right),
+            y (up) and z (boresight) axes in world coordinates.
+    """
+
+    position: torch.Tensor
+    rotation: torch.Tensor = field(default_factory=lambda: torch.eye(3))
+
+    @classmethod
+    def look_at(
+        cls,
+        position: tuple[float, float, float],
+        target: tuple[float, float, float],
+        up: tuple[float, float, float] = (0.0, 0.0, 1.0),
+        dtype: torch.dtype = torch.float64,
+    ) -> RadarPose:
+        """A pose at ``position`` with boresight toward ``target`` and the sensor's y toward ``up``."""
+        p = torch.tensor(position, dtype=dtype)
+        z = torch.tensor(target, dtype=dtype) - p
+        z = z / z.norm()
+        u = torch.tensor(up, dtype=dtype)
+        x = torch.linalg.cross(z, u)
+        if x.norm() < 1e-9:
+            raise ValueError("look_at: boresight is parallel to 'up'")
+        x = x / x.norm()
+        y = torch.linalg.cross(x, z)
+        return cls(position=p, rotation=torch.stack([x, y, z], dim=1))
+
+    def to_world(self, points_radar: torch.Tensor) -> torch.Tensor:
+        """Radar-frame points ``(..., 3)`` -> world frame."""
+        r = self.rotation.to(points_radar)
+        return points_radar @ r.T + self.position.to(points_radar)
+
+    def to_radar(self, points_world: torch.Tensor) -> torch.Tensor:
+        """World-frame points ``(..., 3)`` -> radar frame."""
+        r = self.rotation.to(points_world)
+        return (points_world - self.position.to(points_world)) @ r
+
+
+@dataclass
+class Ellipsoids:
+    """A set of moving ellipsoids (body segments), possibly at several time instants.
+
+    Shapes: ``S`` segments, any leading dims ``...`` (e.g. time instants).
+
+    Attributes:
+        centers: ``(..., S, 3)`` world positions of the ellipsoid centres, metres.
+        semi_axes: ``(..., S, 3)`` semi-axis lengths along the ellipsoid's local x, y, z, metres.
+        rotations: ``(..., S, 3, 3)`` world-from-local rotations (columns: local axes in world).
+        velocities: ``(..., S, 3)`` velocity of each centre, m/s.
+        material: material name of the surface (for reflectivity), default human skin.
+    """
+
+    centers: torch.Tensor
+    semi_axes: torch.Tensor
+    rotations: torch.Tensor
+    velocities: torch.Tensor
+    material: str = "skin"
+
+    @property
+    def num_segments(self) -> int:
+        """Number of ellipsoids ``S``."""
+        return int(self.centers.shape[-2])
+
+    def to(self, device: torch.device | str) -> Ellipsoids:
+        """Move every tensor to ``device``."""
+        return Ellipsoids(
+            self.centers.to(device), self.semi_axes.to(device), self.rotations.to(device),
+            self.velocities.to(device), self.material,
+        )
+
+    @staticmethod
+    def cat(items: list[Ellipsoids]) -> Ellipsoids:
+        """Concatenate along the segment axis (same leading dims)."""
+        return Ellipsoids(
+            torch.cat([e.centers for e in items], dim=-2),
+            torch.cat([e.semi_axes for e in items], dim=-2),
+            torch.cat([e.rotations for e in items], dim=-3),
+            torch.cat([e.velocities for e in items], dim=-2),
+            items[0].material,
+        )

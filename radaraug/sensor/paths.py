@@ -1,0 +1,77 @@
+"""`Paths`: the interface between the ray tracer and the FMCW receiver.
+
+A set of propagation paths seen by the radar at one instant (a frame's snapshot time),
+with enough information to evaluate them at every chirp of the frame: the receiver
+extrapolates each path's delay linearly over the frame (``tau(t) = delay_s + delay_rate * t``,
+``t`` measured from the frame's first chirp start). That is accurate while a scatterer's
+acceleration over one frame (~25 ms) moves it by much less than a wavelength's fraction that
+matters for Doppler; a walker's limbs are handled by tracing one snapshot per frame.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import torch
+
+
+@dataclass
+class Paths:
+    """Propagation paths of one (or a batch of) snapshot(s).
+
+    Shapes use ``P`` paths and ``RX`` receive channels, with any leading batch dims ``...``.
+
+    Attributes:
+        delay_s: ``(..., P, RX)`` round-trip delay TX -> scatterer(s) -> each RX, seconds,
+            at the snapshot time.
+        delay_rate: ``(..., P, RX)`` time derivative of the delay (s/s); a monostatic point
+            target moving away at radial speed ``v`` has ``2 v / c``.
+        amplitude: ``(..., P, RX)`` complex amplitude in sqrt(W) per watt of transmit power:
+            ``|a|**2`` is the power at the RX port for 1 W at the TX port, including TX and RX
+            antenna gains (pattern), path loss, scattering (RCS / Fresnel / PO) and any
+            scattering phase. The propagation phase ``exp(-j 2 pi f tau)`` is *not* included:
+            the receiver applies it from ``delay_s``.
+        kind: ``(..., P)`` int8 path kind: 0 line-of-sight scattering (single bounce),
+            1 multipath (more than one bounce). Optional.
+        mask: ``(..., P)`` bool, False for padding entries (batched snapshots with different
+            path counts). Optional; None means all valid.
+    """
+
+    delay_s: torch.Tensor
+    delay_rate: torch.Tensor
+    amplitude: torch.Tensor
+    kind: torch.Tensor | None = None
+    mask: torch.Tensor | None = None
+
+    @property
+    def num_paths(self) -> int:
+        """Number of path slots ``P``."""
+        return int(self.delay_s.shape[-2])
+
+    def to(self, device: torch.device | str) -> Paths:
+        """Move every tensor to ``device``."""
+        return Paths(
+            *(t.to(device) if t is not None else None for t in
+              (self.delay_s, self.delay_rate, self.amplitude, self.kind, self.mask))
+        )
+
+    @staticmethod
+    def cat(items: list[Paths]) -> Paths:
+        """Concatenate path sets along the path axis (same batch shape)."""
+        def opt_cat(ts: list[torch.Tensor | None], fill: object, ref: list[torch.Tensor]) -> torch.Tensor | None:
+            if all(t is None for t in ts):
+                return None
+            full = [
+                t if t is not None else torch.full(r.shape[:-1], fill, device=r.device)
+                for t, r in zip(ts, ref)
+            ]
+            return torch.cat(full, dim=-1)
+
+        d = [p.delay_s for p in items]
+        return Paths(
+            delay_s=torch.cat(d, dim=-2),
+            delay_rate=torch.cat([p.delay_rate for p in items], dim=-2),
+            amplitude=torch.cat([p.amplitude for p in items], dim=-2),
+            kind=opt_cat([p.kind for p in items], 0, d),
+            mask=opt_cat([p.mask for p in items], True, d),
+        )
