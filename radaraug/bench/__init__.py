@@ -1,0 +1,1 @@
+"""Benchmarks: each reports figures as a ratio against a baseline run in the same process."""

@@ -1,0 +1,127 @@
+"""The `radaraug` command line.
+
+Sub-commands::
+
+    radaraug info PATH [--json]                 config, shape, duration, labels, plausibility
+    radaraug fit-cdr PATH -o cdr.json           fit CalibratedDR on an empty-room capture
+    radaraug bench transforms [--json]          RD+CDR+clip+colormap chain vs NumPy
+    radaraug demo [-o DIR]                      the main job on the built-in default
+
+Bad input ends with one line ``error: <message>`` and exit status 2, never a traceback.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from collections.abc import Sequence
+from pathlib import Path
+
+from radaraug.errors import RadarAugError
+
+
+def _cmd_info(args: argparse.Namespace) -> int:
+    from radaraug.inspect import summarize_capture
+    from radaraug.io import open_capture
+
+    with open_capture(args.path) as reader:
+        info = summarize_capture(reader, max_frames=args.max_frames)
+    if args.json:
+        print(json.dumps(info, indent=2))
+        return 0
+    print(f"capture      {info['path']}")
+    print(f"radar        {info['summary']}")
+    print(f"shape        {tuple(info['shape'])} (frames, rx, chirps, samples)")
+    print(f"duration     {info['duration_s']:.2f} s ({info['num_frames']} frames)")
+    print(f"labels       {info['labels'] or 'none'}")
+    mid = (2 ** info["config"]["adc_bits"] - 1) / 2
+    print(f"DC offset    {info['dc_offset_counts']} counts (mid-scale {mid})")
+    print(f"noise RMS    {info['slow_time_noise_rms_counts']} counts (slow time)")
+    print(f"clipping     {[f'{v:.2%}' for v in info['clipped_fraction']]}")
+    print(f"noise floor  {info['noise_floor_db']} dBFS (median RD cell, far half of range, off zero Doppler)")
+    s = info["strongest_static_return"]
+    print(f"strongest    {s['level_db']} dBFS at {s['range_m']} m (bin {s['range_bin']}, zero Doppler)")
+    mo = info["motion"]
+    if mo is not None:
+        print(f"motion       {'YES' if mo['motion'] else 'no'} ({mo['explanation']})")
+    return 0
+
+
+def _cmd_fit_cdr(args: argparse.Namespace) -> int:
+    from radaraug.transforms import CalibratedDR
+
+    cdr = CalibratedDR.fit(args.path, max_frames=args.max_frames, progress=True)
+    cdr.save(args.output)
+    print(f"CalibratedDR: m_t = {cdr.mean_db:.2f} dB, s_t = {cdr.std_db:.2f} dB -> {args.output}")
+    return 0
+
+
+def _cmd_bench(args: argparse.Namespace) -> int:
+    if args.what == "transforms":
+        from radaraug.bench.transforms import run_transforms_benchmark
+
+        result = run_transforms_benchmark(
+            batch=args.batch, repeats=args.repeats, device=args.device, out=args.out
+        )
+    else:  # pragma: no cover - argparse restricts choices
+        raise AssertionError(args.what)
+    if args.json:
+        print(json.dumps(result))
+    else:
+        for key, value in result.items():
+            print(f"{key:28s} {value}")
+    return 0
+
+
+def _cmd_demo(args: argparse.Namespace) -> int:
+    from radaraug.demo import run_demo
+
+    run_demo(Path(args.output))
+    return 0
+
+
+def build_parser() -> argparse.ArgumentParser:
+    """The argument parser (exposed for docs and tests)."""
+    p = argparse.ArgumentParser(prog="radaraug", description=__doc__.split("\n")[0])
+    sub = p.add_subparsers(dest="command", required=True)
+
+    info = sub.add_parser("info", help="summarize a capture (radaraug .h5 or Infineon recording folder)")
+    info.add_argument("path")
+    info.add_argument("--json", action="store_true", help="print one JSON object")
+    info.add_argument("--max-frames", type=int, default=256, help="frames used for the statistics")
+    info.set_defaults(func=_cmd_info)
+
+    fit = sub.add_parser("fit-cdr", help="fit CalibratedDR on an empty-room capture")
+    fit.add_argument("path")
+    fit.add_argument("-o", "--output", required=True, help="calibration JSON to write")
+    fit.add_argument("--max-frames", type=int, default=None)
+    fit.set_defaults(func=_cmd_fit_cdr)
+
+    bench = sub.add_parser("bench", help="benchmarks (figures as ratios against a same-process baseline)")
+    bench.add_argument("what", choices=["transforms"])
+    bench.add_argument("--batch", type=int, default=32, help="frames per batch")
+    bench.add_argument("--repeats", type=int, default=5)
+    bench.add_argument("--device", default="cpu")
+    bench.add_argument("--json", action="store_true", help="print the figures as one JSON object")
+    bench.add_argument("--out", default=None, help="also write the JSON figures to this file")
+    bench.set_defaults(func=_cmd_bench)
+
+    demo = sub.add_parser("demo", help="the main job on the built-in default")
+    demo.add_argument("-o", "--output", default="demo_out")
+    demo.set_defaults(func=_cmd_demo)
+    return p
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Entry point of the `radaraug` script."""
+    args = build_parser().parse_args(argv)
+    try:
+        return int(args.func(args) or 0)
+    except RadarAugError as e:
+        print(f"error: {e}", file=sys.stderr)
+        return 2
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())

@@ -1,0 +1,381 @@
+"""Rooms as triangle soups: the paper's box corridor, any mesh file trimesh reads, and merging.
+
+All builders return a :class:`~radaraug.scene.geometry.SceneGeometry` in the world frame
+(metres, right-handed, ``z`` up) with a material name per face (see
+:mod:`radaraug.scene.materials`; ``"name@thickness_m"`` makes a face a slab).
+"""
+
+from __future__ import annotations
+
+import fnmatch
+import math
+import os
+from collections.abc import Callable, Mapping, Sequence
+from pathlib import Path
+
+import numpy as np
+import torch
+
+from radaraug.errors import SceneError
+from radaraug.scene.geometry import SceneGeometry
+from radaraug.scene.materials import Material, get_material
+
+CORRIDOR_SURFACES = ("floor", "ceiling", "left_wall", "right_wall", "near_wall", "far_wall")
+"""Surface names of :func:`corridor`. Left/right as seen looking down the corridor (+x)."""
+
+PAPER_CORRIDOR_MATERIALS: dict[str, str] = {
+    "floor": "floorboard",
+    "ceiling": "ceiling_board",
+    "left_wall": "plasterboard",
+    "right_wall": "plasterboard",
+    "near_wall": "concrete",
+    "far_wall": "concrete",
+}
+"""Default corridor materials: a guess for a typical office corridor (the paper names none)."""
+
+MAX_FACES = 5_000_000  # a guard against a typo in max_edge_m eating all memory
+
+
+def _material_key(value: str | Material, thickness: float | None, where: str) -> str:
+    """Validate a material given as a name or a :class:`Material` and return its scene key."""
+    try:
+        mat = value if isinstance(value, Material) else get_material(value)
+    except SceneError as err:
+        raise SceneError(f"{where}: {err}") from None
+    if isinstance(value, Material):
+        # Custom materials must be registered so the ray tracer can find them by name.
+        try:
+            known = get_material(value.name)
+        except SceneError:
+            raise SceneError(f"{where}: material {value.name!r} is not registered "
+                             f"(radaraug.scene.materials.register_material)") from None
+        if known.with_thickness(value.thickness_m) != value:
+            raise SceneError(f"{where}: material {value.name!r} differs from the registered one")
+    if thickness is not None:
+        mat = mat.with_thickness(thickness)
+    return mat.key
+
+
+def _rectangle(
+    origin: Sequence[float], u: Sequence[float], v: Sequence[float], max_edge_m: float,
+) -> tuple[np.ndarray, np.ndarray]:
+    """A rectangle ``origin + s u + t v`` (s, t in [0, 1]) as a grid of triangles.
+
+    The normal ``u x v`` is the side the faces are counter-clockwise from. Cells are sized so
+    that every triangle edge, including the cell diagonal, is at most ``max_edge_m``.
+    """
+    o, u, v = (np.asarray(x, dtype=np.float64) for x in (origin, u, v))
+    cell = max_edge_m / math.sqrt(2.0)
+    nu = max(1, math.ceil(np.linalg.norm(u) / cell - 1e-9))
+    nv = max(1, math.ceil(np.linalg.norm(v) / cell - 1e-9))
+    s = np.linspace(0.0, 1.0, nu + 1)
+    t = np.linspace(0.0, 1.0, nv + 1)
+    ss, tt = np.meshgrid(s, t, indexing="ij")  # (nu+1, nv+1)
+    verts = o + ss[..., None] * u + tt[..., None] * v
+    idx = np.arange((nu + 1) * (nv + 1)).reshape(nu + 1, nv + 1)
+    p00, p10 = idx[:-1, :-1].ravel(), idx[1:, :-1].ravel()
+    p11, p01 = idx[1:, 1:].ravel(), idx[:-1, 1:].ravel()
+    faces = np.concatenate([np.stack([p00, p10, p11], 1), np.stack([p00, p11, p01], 1)])
+    return verts.reshape(-1, 3), faces
+
+
+def corridor(
+    length_m: float = 20.0,
+    width_m: float = 2.0,
+    height_m: float = 2.7,
+    *,
+    materials: Mapping[str, str | Material] | None = None,
+    thickness_m: Mapping[str, float | None] | None = None,
+    end_walls: bool = True,
+    max_edge_m: float = 0.5,
+    dtype: torch.dtype | None = None,
+    device: torch.device | str | None = None,
+) -> SceneGeometry:
+    """A box corridor along +x: ``x in [0, L]``, ``y in [-W/2, W/2]``, ``z in [0, H]``.
+
+    Every face's normal points into the corridor (counter-clockwise seen from inside). Large
+    surfaces are split into triangles no longer than ``max_edge_m`` so that physical-optics
+    facets stay small compared with the Fresnel zone.
+
+    Args:
+        length_m, width_m, height_m: inner dimensions in metres.
+        materials: material per surface (keys of :data:`CORRIDOR_SURFACES`); missing surfaces
+            take :data:`PAPER_CORRIDOR_MATERIALS` (floorboard floor, ceiling-board ceiling,
+            plasterboard side walls, concrete end walls: a guess, the paper names none).
+        thickness_m: optional slab thickness per surface in metres (None = half-space).
+        end_walls: include the walls at ``x = 0`` (near, behind a radar at the start) and
+            ``x = L`` (far).
+        max_edge_m: longest triangle edge.
+        dtype: vertex dtype (default: torch's default dtype).
+        device: device of the tensors.
+
+    Returns:
+        The corridor with ``object_id`` 0 (room) on every face and no vertex velocities.
+
+    Raises:
+        SceneError: non-positive sizes, unknown surface or material names.
+    """
+    for label, val in (("length_m", length_m), ("width_m", width_m), ("height_m", height_m),
+                       ("max_edge_m", max_edge_m)):
+        if not (isinstance(val, (int, float)) and math.isfinite(val) and val > 0):
+            raise SceneError(f"corridor: {label} must be a positive number, got {val!r}")
+    materials = dict(materials or {})
+    thickness_m = dict(thickness_m or {})
+    for label, given in (("materials", materials), ("thickness_m", thickness_m)):
+        unknown = sorted(set(given) - set(CORRIDOR_SURFACES))
+        if unknown:
+            raise SceneError(f"corridor: unknown surface(s) {unknown} in {label}; "
+                             f"surfaces are {list(CORRIDOR_SURFACES)}")
+    L, W, H = float(length_m), float(width_m), float(height_m)
+    y0, y1 = -W / 2, W / 2
+    # (origin, u, v) with u x v pointing into the corridor.
+    rects = {
+        "floor": ((0, y0, 0), (L, 0, 0), (0, W, 0)),
+        "ceiling": ((0, y0, H), (0, W, 0), (L, 0, 0)),
+        "left_wall": ((0, y1, 0), (L, 0, 0), (0, 0, H)),
+        "right_wall": ((0, y0, 0), (0, 0, H), (L, 0, 0)),
+        "near_wall": ((0, y0, 0), (0, W, 0), (0, 0, H)),
+        "far_wall": ((L, y0, 0), (0, 0, H), (0, W, 0)),
+    }
+    surfaces = [s for s in CORRIDOR_SURFACES if end_walls or s not in ("near_wall", "far_wall")]
+    keys: list[str] = []
+    verts, faces, mats = [], [], []
+    n_vert = 0
+    n_faces = 0
+    for s in surfaces:
+        cell = max_edge_m / math.sqrt(2.0)
+        n_faces += 2 * math.prod(max(1, math.ceil(np.linalg.norm(x) / cell)) for x in rects[s][1:])
+        if n_faces > MAX_FACES:
+            raise SceneError(f"corridor: max_edge_m={max_edge_m} would make more than {MAX_FACES} faces")
+    for s in surfaces:
+        key = _material_key(materials.get(s, PAPER_CORRIDOR_MATERIALS[s]), thickness_m.get(s),
+                            f"corridor surface {s!r}")
+        if key not in keys:
+            keys.append(key)
+        v, f = _rectangle(*rects[s], max_edge_m)
+        verts.append(v)
+        faces.append(f + n_vert)
+        mats.append(np.full(len(f), keys.index(key)))
+        n_vert += len(v)
+    dtype = dtype or torch.get_default_dtype()
+    n = sum(len(f) for f in faces)
+    return SceneGeometry(
+        vertices=torch.as_tensor(np.concatenate(verts), dtype=dtype, device=device),
+        faces=torch.as_tensor(np.concatenate(faces), dtype=torch.long, device=device),
+        face_material=torch.as_tensor(np.concatenate(mats), dtype=torch.long, device=device),
+        materials=tuple(keys),
+        vertex_velocity=None,
+        object_id=torch.zeros(n, dtype=torch.long, device=device),
+    )
+
+
+FaceMaterialFn = Callable[[torch.Tensor, torch.Tensor, Sequence[str]], "str | Sequence[str]"]
+"""``f(centroids (F, 3), unit normals (F, 3), group name per face) -> material name(s)``."""
+
+
+def _read_mesh_parts(path: Path) -> list[tuple[str, str | None, np.ndarray, np.ndarray]]:
+    """``(group name, file material name or None, vertices, faces)`` per part, transforms applied."""
+    import trimesh  # heavy import, only when a mesh file is read
+
+    kwargs = {}
+    if path.suffix.lower() == ".obj":
+        # Keep OBJ groups/objects apart so their names can select materials.
+        kwargs = {"split_groups": True, "split_objects": True, "group_material": False}
+    try:
+        loaded = trimesh.load(str(path), force="scene", process=False, **kwargs)
+    except Exception as err:  # trimesh raises many types for bad files
+        raise SceneError(f"mesh file {path}: cannot be read ({type(err).__name__}: {err})") from None
+    parts = []
+    for node in loaded.graph.nodes_geometry:
+        transform, geom_name = loaded.graph[node]
+        geom = loaded.geometry[geom_name]
+        if not isinstance(geom, trimesh.Trimesh) or len(geom.faces) == 0:
+            continue
+        v = np.asarray(geom.vertices, dtype=np.float64)
+        v = v @ np.asarray(transform)[:3, :3].T + np.asarray(transform)[:3, 3]
+        mat = getattr(getattr(geom, "visual", None), "material", None)
+        mat_name = getattr(mat, "name", None)
+        parts.append((str(geom_name), None if mat_name is None else str(mat_name), v,
+                      np.asarray(geom.faces, dtype=np.int64)))
+    if not parts:
+        raise SceneError(f"mesh file {path}: contains no triangles")
+    return parts
+
+
+def _lookup(table: Mapping[str, str | Material], names: Sequence[str | None]) -> str | Material | None:
+    """First table entry matching any of ``names`` exactly, else by shell-style pattern."""
+    for n in names:
+        if n is not None and n in table:
+            return table[n]
+    for n in names:
+        for pattern, value in table.items():
+            if n is not None and fnmatch.fnmatchcase(n, pattern):
+                return value
+    return None
+
+
+def _call_face_materials(
+    fn: FaceMaterialFn, v: np.ndarray, f: np.ndarray, part_names: list[str], part_of_face: np.ndarray,
+    where: str,
+) -> tuple[list[str], np.ndarray]:
+    """Run a user's per-face material callable once on all faces; ``(keys, index per face)``."""
+    tri = v[f]
+    normals = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
+    normals = normals / np.maximum(np.linalg.norm(normals, axis=1, keepdims=True), 1e-30)
+    groups = tuple(np.asarray(part_names, dtype=object)[part_of_face])
+    try:
+        chosen = fn(torch.as_tensor(tri.mean(axis=1)), torch.as_tensor(normals), groups)
+    except SceneError:
+        raise
+    except Exception as err:
+        raise SceneError(f"{where}: face_materials callable failed ({type(err).__name__}: {err})") from None
+    if isinstance(chosen, (str, Material)):
+        chosen = [chosen]
+    names = np.asarray([c.key if isinstance(c, Material) else str(c) for c in chosen], dtype=object)
+    if len(names) == 1:
+        names = np.repeat(names, len(f))
+    if len(names) != len(f):
+        raise SceneError(f"{where}: face_materials returned {len(names)} names for {len(f)} faces")
+    uniq, inverse = np.unique(names.astype(str), return_inverse=True)
+    keys = [_material_key(str(u), None, where) for u in uniq]
+    # Two spellings of one material (e.g. "wood@0.02" and "wood@0.020") collapse to one key.
+    merged = list(dict.fromkeys(keys))
+    remap = np.asarray([merged.index(k) for k in keys], dtype=np.int64)
+    return merged, remap[inverse.reshape(-1)]
+
+
+def load_mesh(
+    path: str | os.PathLike,
+    *,
+    material: str | Material = "concrete",
+    face_materials: Mapping[str, str | Material] | FaceMaterialFn | None = None,
+    scale: float = 1.0,
+    transform: Sequence[Sequence[float]] | np.ndarray | torch.Tensor | None = None,
+    dtype: torch.dtype | None = None,
+    device: torch.device | str | None = None,
+) -> SceneGeometry:
+    """A room (or object) from any mesh file trimesh reads: OBJ, PLY, STL, GLB/GLTF, OFF, ...
+
+    Args:
+        path: mesh file. Coordinates are taken as metres times ``scale``.
+        material: material of every face not chosen by ``face_materials``.
+        face_materials: either a dict from the file's part names to materials (an OBJ group or
+            object name, a GLB node/mesh name, or a material name from the file's MTL; keys may
+            be shell patterns like ``"wall*"``), or a callable
+            ``f(centroids, normals, groups) -> name or list of F names`` evaluated once on all
+            faces (after scale and transform).
+        scale: factor applied to the file's coordinates (e.g. 0.001 for millimetres).
+        transform: optional 4x4 (or 3x4) world-from-file matrix applied after ``scale``.
+        dtype: vertex dtype (default: torch's default dtype).
+        device: device of the tensors.
+
+    Returns:
+        The mesh, ``object_id`` 0, no vertex velocities.
+
+    Raises:
+        SceneError: missing/unreadable/empty file, bad transform or material names (the message
+            names the file).
+    """
+    path = Path(path)
+    if not path.is_file():
+        raise SceneError(f"mesh file {path}: not found")
+    if not (isinstance(scale, (int, float)) and math.isfinite(scale) and scale > 0):
+        raise SceneError(f"mesh file {path}: scale must be a positive number, got {scale!r}")
+    parts = _read_mesh_parts(path)
+    verts = [v for _, _, v, _ in parts]
+    offsets = np.cumsum([0] + [len(v) for v in verts[:-1]])
+    f = np.concatenate([p[3] + o for p, o in zip(parts, offsets)])
+    part_of_face = np.repeat(np.arange(len(parts)), [len(p[3]) for p in parts])
+    v = np.concatenate(verts) * float(scale)
+    if transform is not None:
+        m = np.asarray(transform.detach().cpu() if isinstance(transform, torch.Tensor) else transform,
+                       dtype=np.float64)
+        if m.shape not in ((4, 4), (3, 4)) or not np.isfinite(m).all():
+            raise SceneError(f"mesh file {path}: transform must be a finite 4x4 or 3x4 matrix, "
+                             f"got shape {m.shape}")
+        v = v @ m[:3, :3].T + m[:3, 3]
+    where = f"mesh file {path}"
+    default_key = _material_key(material, None, where)
+    if face_materials is None:
+        keys, face_material = [default_key], np.zeros(len(f), dtype=np.int64)
+    elif callable(face_materials):
+        keys, face_material = _call_face_materials(face_materials, v, f, [p[0] for p in parts],
+                                                   part_of_face, where)
+    elif isinstance(face_materials, Mapping):
+        part_keys = []
+        for group, mat_name, _, _ in parts:
+            hit = _lookup(face_materials, (group, mat_name))
+            part_keys.append(default_key if hit is None else _material_key(hit, None, f"{where} part {group!r}"))
+        keys = list(dict.fromkeys(part_keys))
+        face_material = np.asarray([keys.index(k) for k in part_keys], dtype=np.int64)[part_of_face]
+    else:
+        raise SceneError(f"{where}: face_materials must be a dict or a callable, got {type(face_materials).__name__}")
+    dtype = dtype or torch.get_default_dtype()
+    return SceneGeometry(
+        vertices=torch.as_tensor(v, dtype=dtype, device=device),
+        faces=torch.as_tensor(f, dtype=torch.long, device=device),
+        face_material=torch.as_tensor(face_material, dtype=torch.long, device=device),
+        materials=tuple(keys),
+        vertex_velocity=None,
+        object_id=torch.zeros(len(f), dtype=torch.long, device=device),
+    )
+
+
+def merge(geoms: Sequence[SceneGeometry]) -> SceneGeometry:
+    """Union of triangle soups.
+
+    Material tables are merged by name; object ids stay distinct: the ids of each geometry are
+    shifted past the largest id of the ones before it (the first keeps its ids, so a room built
+    first keeps id 0). A geometry without ``object_id`` counts as all zeros; if any geometry has
+    vertex velocities, the static ones get zeros. Tensors end on the first geometry's device, at
+    the promoted vertex dtype.
+
+    Raises:
+        SceneError: empty list or a geometry with inconsistent tensor shapes.
+    """
+    geoms = list(geoms)
+    if not geoms:
+        raise SceneError("merge: no geometries given")
+    device = geoms[0].vertices.device
+    dtype = geoms[0].vertices.dtype
+    for g in geoms[1:]:
+        dtype = torch.promote_types(dtype, g.vertices.dtype)
+    keys: list[str] = []
+    verts, faces, mats, ids, vels = [], [], [], [], []
+    n_vert, next_id = 0, 0
+    any_vel = any(g.vertex_velocity is not None for g in geoms)
+    for i, g in enumerate(geoms):
+        if (g.vertices.ndim != 2 or g.vertices.shape[-1] != 3 or g.faces.ndim != 2 or g.faces.shape[-1] != 3
+                or g.face_material.shape != g.faces.shape[:1]):
+            raise SceneError(f"merge: geometry {i} has inconsistent shapes (vertices "
+                             f"{tuple(g.vertices.shape)}, faces {tuple(g.faces.shape)}, face_material "
+                             f"{tuple(g.face_material.shape)})")
+        remap = []
+        for name in g.materials:
+            if name not in keys:
+                keys.append(name)
+            remap.append(keys.index(name))
+        remap_t = torch.tensor(remap, dtype=torch.long, device=device)
+        verts.append(g.vertices.to(device=device, dtype=dtype))
+        faces.append(g.faces.to(device) + n_vert)
+        mats.append(remap_t[g.face_material.to(device)] if len(remap) else g.face_material.to(device))
+        oid = (g.object_id.to(device) if g.object_id is not None
+               else torch.zeros(g.num_faces, dtype=torch.long, device=device))
+        ids.append(oid + next_id)
+        if oid.numel():
+            next_id = int(ids[-1].max()) + 1
+        if any_vel:
+            vels.append(g.vertex_velocity.to(device=device, dtype=dtype) if g.vertex_velocity is not None
+                        else torch.zeros_like(verts[-1]))
+        n_vert += g.vertices.shape[0]
+    return SceneGeometry(
+        vertices=torch.cat(verts),
+        faces=torch.cat(faces),
+        face_material=torch.cat(mats),
+        materials=tuple(keys),
+        vertex_velocity=torch.cat(vels) if any_vel else None,
+        object_id=torch.cat(ids),
+    )
+
+
+__all__ = ["CORRIDOR_SURFACES", "PAPER_CORRIDOR_MATERIALS", "corridor", "load_mesh", "merge"]

@@ -1,0 +1,1 @@
+"""On-the-fly simulation: scenario sampling, the simulated Dataset, offline sharded generation."""
