@@ -1,0 +1,296 @@
+"""Infineon recording folders (ifxdaq / Radar Fusion GUI, ``format.version`` 1.0.0).
+
+Layout::
+
+    <recording>/
+      meta.json                    host metadata (optional)
+      RadarIfxAvian_00/
+        config.json                {"device_config": {"fmcw_single_shape": {...}}}
+        meta.json                  device metadata (optional)
+        format.version             "1.0.0" (optional)
+        radar.npy                  uint16 (frame, rx, chirp, sample) raw ADC counts
+        radar_timestamp.csv        one Unix time per frame (optional)
+        temperature.npy            float32 (n, 1) chip temperature, deg C (optional)
+
+``radar.npy`` is memory-mapped: opening a recording reads only its header.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import warnings
+from collections.abc import Mapping
+from datetime import datetime, timezone
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import torch
+
+from radaraug.config import DEFAULT_ADC_DELAY_S, RadarConfig
+from radaraug.errors import CaptureError, ConfigError
+from radaraug.io.base import CaptureReader, CaptureWarning
+from radaraug.io.counts import as_counts
+
+DEVICE_FOLDER = "RadarIfxAvian_00"
+FORMAT_VERSION = "1.0.0"
+
+
+def find_device_folder(path: str | os.PathLike) -> Path:
+    """The ``RadarIfxAvian_00`` folder of a recording given as the recording folder, the device
+    folder itself, or one of its files (``radar.npy``, ``config.json``)."""
+    p = Path(path)
+    if not p.exists():
+        raise CaptureError(f"{p}: recording does not exist")
+    if p.is_file():
+        if p.name in ("radar.npy", "config.json"):
+            return p.parent
+        raise CaptureError(f"{p}: not an Infineon recording folder")
+    if (p / DEVICE_FOLDER).is_dir():
+        return p / DEVICE_FOLDER
+    if p.name.startswith("RadarIfxAvian_") or (p / "radar.npy").exists():
+        return p
+    raise CaptureError(f"{p}: not an Infineon recording (no {DEVICE_FOLDER}/ folder and no radar.npy inside)")
+
+
+def _read_json(path: Path, *, required: bool) -> dict[str, Any]:
+    if not path.exists():
+        if required:
+            raise CaptureError(f"{path.parent}: Infineon recording has no {path.name}")
+        return {}
+    try:
+        with open(path, encoding="utf-8") as fh:
+            data = json.load(fh)
+    except (OSError, UnicodeDecodeError, json.JSONDecodeError) as e:
+        raise CaptureError(f"{path}: cannot read JSON ({e})") from None
+    if not isinstance(data, dict):
+        raise CaptureError(f"{path}: expected a JSON object, got {type(data).__name__}")
+    return data
+
+
+def _open_npy(path: Path) -> np.memmap | np.ndarray:
+    """Memory-map a .npy file after checking its header against the file size."""
+    if not path.exists():
+        raise CaptureError(f"{path.parent}: Infineon recording has no radar.npy")
+    try:
+        with open(path, "rb") as fh:
+            version = np.lib.format.read_magic(fh)
+            if version == (1, 0):
+                shape, fortran, dtype = np.lib.format.read_array_header_1_0(fh)
+            else:
+                shape, fortran, dtype = np.lib.format.read_array_header_2_0(fh)
+            offset = fh.tell()
+            size = os.fstat(fh.fileno()).st_size
+    except (OSError, ValueError, EOFError) as e:
+        raise CaptureError(f"{path}: not a readable .npy file ({e})") from None
+    if dtype.hasobject:
+        raise CaptureError(f"{path}: holds Python objects, expected uint16 ADC counts")
+    need = offset + int(np.prod(shape, dtype=np.int64)) * dtype.itemsize
+    if size < need:
+        raise CaptureError(
+            f"{path}: truncated .npy file ({size} bytes, its header {shape} {dtype} needs {need})"
+        )
+    if 0 in shape:
+        return np.empty(shape, dtype)
+    try:
+        return np.load(path, mmap_mode="r", allow_pickle=False)
+    except (OSError, ValueError) as e:
+        raise CaptureError(f"{path}: cannot memory-map .npy file ({e})") from None
+
+
+class InfineonRecording(CaptureReader):
+    """An Infineon ifxdaq / Radar Fusion GUI recording folder, read lazily.
+
+    Args:
+        path: the recording folder (holding ``RadarIfxAvian_00/``), the ``RadarIfxAvian_00``
+            folder itself, or its ``radar.npy`` / ``config.json``.
+
+    Attributes:
+        device_folder: the ``RadarIfxAvian_00`` folder.
+        temperature_C: chip temperature per reading (``temperature.npy``), or ``None``.
+
+    ``labels`` is always empty (the format has none): label Infineon recordings through
+    :class:`~radaraug.io.RadarCaptureDataset`'s ``label`` argument. ``attrs`` holds
+    ``format`` ("infineon-ifxdaq"), ``format_version`` and the parsed ``recording_meta``
+    (top-level meta.json) and ``device_meta`` (device meta.json).
+
+    Raises:
+        CaptureError: missing folder, ``config.json`` or ``radar.npy``; unreadable/invalid
+            config (the :class:`~radaraug.errors.ConfigError` is chained); ``radar.npy``
+            truncated, not a .npy, not integer, not 4-D, not matching the config, or empty.
+
+    Warns:
+        CaptureWarning: the timestamp count differs from the frame count (timestamps are then
+            ``None``), or an optional file (temperature) is unreadable.
+    """
+
+    def __init__(self, path: str | os.PathLike) -> None:
+        self.path = Path(path)
+        self._data: np.ndarray | None = None
+        dev = find_device_folder(self.path)
+        self.device_folder = dev
+        config_path = dev / "config.json"
+        config_dict = _read_json(config_path, required=True)
+        try:
+            self.config = RadarConfig.from_infineon(config_dict, source=str(config_path))
+        except ConfigError as e:
+            raise CaptureError(f"{config_path}: invalid radar configuration: {e}") from e
+        self._data = self._load_radar(dev / "radar.npy")
+        self.num_frames = int(self._data.shape[0])
+        self.timestamps = self._load_timestamps(dev / "radar_timestamp.csv")
+        self.temperature_C = self._load_temperature(dev / "temperature.npy")
+        self.labels = {}
+        version_file = dev / "format.version"
+        version = version_file.read_text(errors="replace").strip() if version_file.exists() else None
+        if version is not None and version.split(".")[0] != FORMAT_VERSION.split(".")[0]:
+            warnings.warn(
+                f"{version_file}: format.version {version!r} is not {FORMAT_VERSION}; reading it anyway",
+                CaptureWarning,
+                stacklevel=2,
+            )
+        recording_folder = dev.parent if dev.name == DEVICE_FOLDER else dev
+        self.attrs = {
+            "format": "infineon-ifxdaq",
+            "format_version": version,
+            "recording_meta": _read_json(recording_folder / "meta.json", required=False),
+            "device_meta": _read_json(dev / "meta.json", required=False),
+        }
+
+    def _load_radar(self, path: Path) -> np.ndarray:
+        data = _open_npy(path)
+        if data.dtype.kind not in "ui" or data.dtype.itemsize > 4:
+            raise CaptureError(f"{path}: dtype {data.dtype}, expected uint16 raw ADC counts")
+        if data.ndim != 4:
+            raise CaptureError(f"{path}: shape {data.shape}, expected 4-D (frame, rx, chirp, sample)")
+        c = self.config
+        for axis, name, want in (
+            (1, "rx", c.num_rx),
+            (2, "chirps", c.num_chirps_per_frame),
+            (3, "samples", c.num_samples_per_chirp),
+        ):
+            if data.shape[axis] != want:
+                raise CaptureError(
+                    f"{path}: {data.shape[axis]} {name} (shape {data.shape}) but config.json says {want}"
+                )
+        if data.shape[0] == 0:
+            raise CaptureError(f"{path}: empty capture (0 frames)")
+        return data
+
+    def _load_timestamps(self, path: Path) -> np.ndarray | None:
+        if not path.exists():
+            return None
+        try:
+            lines = [ln.strip() for ln in path.read_text().splitlines()]
+            ts = np.array([float(ln) for ln in lines if ln], dtype=np.float64)
+        except (OSError, UnicodeDecodeError, ValueError) as e:
+            raise CaptureError(f"{path}: cannot parse timestamps ({e})") from None
+        if len(ts) != self.num_frames:
+            warnings.warn(
+                f"{path}: {len(ts)} timestamps for {self.num_frames} frames; timestamps ignored",
+                CaptureWarning,
+                stacklevel=3,
+            )
+            return None
+        return ts
+
+    def _load_temperature(self, path: Path) -> np.ndarray | None:
+        if not path.exists():
+            return None
+        try:
+            return np.load(path, allow_pickle=False).astype(np.float64).reshape(-1)
+        except (OSError, ValueError, EOFError) as e:
+            warnings.warn(f"{path}: unreadable temperature file ignored ({e})", CaptureWarning, stacklevel=3)
+            return None
+
+    def _read_counts(self, start: int, stop: int) -> np.ndarray:
+        if self._data is None:
+            raise CaptureError(f"{self.path}: recording is closed")
+        try:
+            return np.array(self._data[start:stop])
+        except OSError as e:
+            raise CaptureError(f"{self.device_folder / 'radar.npy'}: cannot read frames ({e})") from None
+
+    def close(self) -> None:
+        """Drop the memory map (idempotent)."""
+        self._data = None
+
+    def __reduce__(self) -> tuple[type, tuple[Path]]:
+        return (type(self), (self.path,))
+
+
+def write_infineon_recording(
+    folder: str | os.PathLike,
+    counts: np.ndarray | torch.Tensor,
+    config: RadarConfig,
+    timestamps: np.ndarray | None = None,
+    meta: Mapping[str, Any] | None = None,
+    *,
+    overwrite: bool = False,
+) -> Path:
+    """Write ADC counts as an Infineon recording folder that Infineon's tools and radaraug read.
+
+    Args:
+        folder: recording folder to create (``RadarIfxAvian_00/`` goes inside).
+        counts: integer ADC counts ``(F, rx, chirps, samples)`` (a single frame is allowed).
+        config: radar configuration, written as ``config.json`` via ``to_infineon()``. The
+            format cannot store ``adc_delay_s``, ``adc_bits`` or ``rx_positions_m``: non-default
+            values give a :class:`CaptureWarning` (they read back as defaults).
+        timestamps: optional ``(F,)`` Unix seconds -> ``radar_timestamp.csv``.
+        meta: extra entries for the top-level ``meta.json``.
+        overwrite: replace an existing recording in ``folder``.
+
+    Returns:
+        The recording folder.
+
+    Raises:
+        CaptureError: a recording exists and ``overwrite`` is false, or timestamps do not
+            match the frames.
+        radaraug.errors.InputTensorError: counts of the wrong dtype, shape or range.
+    """
+    folder = Path(folder)
+    dev = folder / DEVICE_FOLDER
+    data = as_counts(counts, config, str(folder))
+    if (dev / "radar.npy").exists() and not overwrite:
+        raise CaptureError(f"{folder}: already holds an Infineon recording (pass overwrite=True)")
+    ts = None
+    if timestamps is not None:
+        ts = np.asarray(timestamps, dtype=np.float64).reshape(-1)
+        if len(ts) != len(data) or not np.all(np.isfinite(ts)):
+            raise CaptureError(f"{folder}: need {len(data)} finite timestamps, got {np.shape(timestamps)}")
+    lost = [
+        name
+        for name, default in (
+            ("adc_delay_s", DEFAULT_ADC_DELAY_S),
+            ("adc_bits", 12),
+            ("rx_positions_m", None),
+        )
+        if getattr(config, name) != default
+    ]
+    if lost:
+        warnings.warn(
+            f"{folder}: the Infineon format cannot store {lost}; they will read back as defaults",
+            CaptureWarning,
+            stacklevel=2,
+        )
+    try:
+        dev.mkdir(parents=True, exist_ok=True)
+        host_meta = {
+            "date_captured": datetime.now(timezone.utc).isoformat(timespec="seconds"),
+            "writer": "radaraug",
+        }
+        host_meta.update(meta or {})
+        (folder / "meta.json").write_text(json.dumps(host_meta, indent=4, sort_keys=True) + "\n")
+        (dev / "config.json").write_text(json.dumps(config.to_infineon(), indent=4, sort_keys=True) + "\n")
+        device_meta = {"adc_resolution": config.adc_bits, "description": "BGT60TR13C FMCW Radar Sensor"}
+        (dev / "meta.json").write_text(json.dumps(device_meta, indent=4, sort_keys=True) + "\n")
+        (dev / "format.version").write_text(FORMAT_VERSION + "\n")
+        np.save(dev / "radar.npy", np.ascontiguousarray(data, dtype=np.uint16))
+        stamp_file = dev / "radar_timestamp.csv"
+        if ts is not None:
+            stamp_file.write_text("".join(f"{t!r}\n" for t in ts.tolist()))
+        elif stamp_file.exists():
+            stamp_file.unlink()  # an overwritten recording must not keep stale timestamps
+    except OSError as e:
+        raise CaptureError(f"{folder}: cannot write Infineon recording ({e})") from None
+    return folder
