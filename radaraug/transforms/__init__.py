@@ -1,0 +1,48 @@
+"""Range-Doppler processing and noise-floor domain randomization as torch transforms.
+
+Typical training pipeline (raw cube -> network image)::
+
+    from radaraug.transforms import (RadarCompose, RangeDoppler, ToDecibels, CalibratedDR,
+                                     CombineRx, ClipNormalize, Colormap)
+    cdr = CalibratedDR.fit("empty_room.h5")
+    pipeline = RadarCompose([RangeDoppler(), ToDecibels(), cdr, CombineRx("mean_power", db=True),
+                             ClipNormalize(-110, -40), Colormap("viridis")])
+
+Units: ``radaraug.units.DB_CONVENTION`` (dBFS: both FFTs divided by their window sums).
+"""
+
+from radaraug.transforms.base import RadarTransform, RandomRadarTransform
+from radaraug.transforms.compose import RadarCompose
+from radaraug.transforms.dr import CalibratedDR, RandomDR
+from radaraug.transforms.image import ClipNormalize, Colormap, Resize
+from radaraug.transforms.spectral import (
+    CombineRx,
+    DopplerFFT,
+    RangeDoppler,
+    RangeFFT,
+    RemoveMean,
+    StaticClutterRemoval,
+    ToDecibels,
+)
+from radaraug.transforms.windows import WINDOWS, get_window, noise_power_gain
+
+__all__ = [
+    "RadarTransform",
+    "RandomRadarTransform",
+    "RadarCompose",
+    "RemoveMean",
+    "StaticClutterRemoval",
+    "RangeFFT",
+    "DopplerFFT",
+    "RangeDoppler",
+    "ToDecibels",
+    "CombineRx",
+    "RandomDR",
+    "CalibratedDR",
+    "ClipNormalize",
+    "Colormap",
+    "Resize",
+    "WINDOWS",
+    "get_window",
+    "noise_power_gain",
+]

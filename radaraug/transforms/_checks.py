@@ -1,0 +1,39 @@
+"""Cheap input checks shared by the transforms (rank, dtype, one finiteness test per call)."""
+
+from __future__ import annotations
+
+import torch
+
+from radaraug.errors import InputTensorError
+
+
+def check_tensor(
+    x: object,
+    what: str,
+    *,
+    min_ndim: int = 3,
+    allow_complex: bool = False,
+    finite: bool = True,
+) -> torch.Tensor:
+    """Raise :class:`InputTensorError` unless ``x`` is a floating tensor of rank >= ``min_ndim``.
+
+    Args:
+        x: the input.
+        what: name of the transform and the layout it expects, for the message.
+        min_ndim: smallest accepted rank.
+        allow_complex: accept complex tensors too.
+        finite: check for NaN/Inf.
+    """
+    if not isinstance(x, torch.Tensor):
+        raise InputTensorError(f"{what}: expected a torch.Tensor, got {type(x).__name__}")
+    if not (x.is_floating_point() or (allow_complex and x.is_complex())):
+        kinds = "a real or complex floating" if allow_complex else "a real floating"
+        hint = " (convert ADC counts with radaraug.units.counts_to_float)" if not x.is_complex() else ""
+        raise InputTensorError(f"{what}: expected {kinds} tensor, got dtype {x.dtype}{hint}")
+    if x.ndim < min_ndim:
+        raise InputTensorError(f"{what}: expected at least {min_ndim} dims, got shape {tuple(x.shape)}")
+    # A sum is NaN/Inf whenever any element is (one cheap reduction, no bool temporary); only a
+    # non-finite sum -- which a huge but finite input can also give -- pays for the exact test.
+    if finite and x.numel() and not bool(torch.isfinite(x.sum())) and not bool(torch.isfinite(x).all()):
+        raise InputTensorError(f"{what}: input holds NaN or Inf values")
+    return x

@@ -1,0 +1,124 @@
+"""Random-number ownership for random transforms: pickling and DataLoader workers.
+
+A random transform draws from, in order of precedence:
+
+1. a ``torch.Generator`` given by the user (``generator=``), used as is in the process that
+   created the transform;
+2. a generator the transform owns, built from ``seed=`` (one per device, created lazily);
+3. torch's global RNG (``generator=None, seed=None``, the default).
+
+Pickling stores a generator's device and state (``get_state``) and rebuilds it, so a pickled
+transform continues the same stream. In a DataLoader worker (case 1 or 2) every worker would
+otherwise inherit an identical generator and draw identical noise; unless
+``reseed_in_workers=False`` the generator is re-seeded once per worker from
+``(seed, worker_info.seed)``. ``worker_info.seed`` is the DataLoader's per-epoch base seed plus
+the worker id, so workers and epochs differ, and a run is reproducible when the DataLoader's
+base seed is (``torch.manual_seed(...)`` before iterating, or ``DataLoader(generator=...)``).
+Case 3 needs nothing: torch already seeds each worker's global RNG the same way.
+"""
+
+from __future__ import annotations
+
+import os
+from typing import Any
+
+import numpy as np
+import torch
+from torch.utils.data import get_worker_info
+
+
+def mix_seed(seed: int, worker_seed: int) -> int:
+    """A well-mixed 63-bit seed from a user seed and a DataLoader worker seed."""
+    state = np.random.SeedSequence([int(seed) % 2**64, int(worker_seed) % 2**64]).generate_state(1, np.uint64)
+    return int(state[0]) & (2**63 - 1)
+
+
+def _process_key() -> tuple[int, int | None]:
+    info = get_worker_info()
+    return os.getpid(), (None if info is None else int(info.seed))
+
+
+class GeneratorSource:
+    """Picks the generator a random transform draws from (see the module docstring).
+
+    Args:
+        generator: a user generator, or None.
+        seed: an integer seed for an owned generator, or None.
+        reseed_in_workers: re-seed per DataLoader worker so workers draw different numbers.
+    """
+
+    def __init__(self, generator: torch.Generator | None, seed: int | None, reseed_in_workers: bool = True):
+        if generator is not None and not isinstance(generator, torch.Generator):
+            raise TypeError(f"generator must be a torch.Generator or None, got {type(generator).__name__}")
+        self.user_generator = generator
+        self.seed = None if seed is None else int(seed)
+        self.reseed_in_workers = bool(reseed_in_workers)
+        self._active_seed = self.seed
+        self._owned: dict[str, torch.Generator] = {}
+        self._key = _process_key()
+
+    @property
+    def uses_global_rng(self) -> bool:
+        """True when draws come from torch's global RNG."""
+        return self.user_generator is None and self.seed is None
+
+    def get(self, device: torch.device) -> torch.Generator | None:
+        """The generator to use for a draw on ``device`` (None: global RNG)."""
+        if self.uses_global_rng:
+            return None
+        key = _process_key()
+        if key != self._key:
+            self._enter_process(key)
+        if self.user_generator is not None:
+            return self.user_generator
+        name = str(torch.device(device))
+        gen = self._owned.get(name)
+        if gen is None:
+            gen = torch.Generator(device=device)
+            gen.manual_seed(self._active_seed)
+            self._owned[name] = gen
+        return gen
+
+    def _enter_process(self, key: tuple[int, int | None]) -> None:
+        self._key = key
+        worker_seed = key[1]
+        if worker_seed is None or not self.reseed_in_workers:
+            return
+        if self.user_generator is not None:
+            gen = torch.Generator(device=self.user_generator.device)
+            gen.manual_seed(mix_seed(self.user_generator.initial_seed(), worker_seed))
+            self.user_generator = gen
+        else:
+            self._active_seed = mix_seed(self.seed, worker_seed)
+            self._owned = {}
+
+    # torch.Generator only pickles in recent torch: store device + state explicitly.
+    @staticmethod
+    def _pack(gen: torch.Generator) -> tuple[str, int, torch.Tensor]:
+        return str(gen.device), gen.initial_seed(), gen.get_state()
+
+    @staticmethod
+    def _unpack(packed: tuple[str, int, torch.Tensor]) -> torch.Generator:
+        device, initial_seed, state = packed
+        try:
+            gen = torch.Generator(device=device)
+        except RuntimeError:  # e.g. a CUDA generator unpickled on a CPU-only machine
+            gen = torch.Generator()
+            gen.manual_seed(initial_seed)
+            return gen
+        gen.manual_seed(initial_seed)  # keeps initial_seed() meaningful after the round trip
+        gen.set_state(state)
+        return gen
+
+    def __getstate__(self) -> dict[str, Any]:
+        state = dict(self.__dict__)
+        if self.user_generator is not None:
+            state["user_generator"] = self._pack(self.user_generator)
+        state["_owned"] = {k: self._pack(g) for k, g in self._owned.items()}
+        return state
+
+    def __setstate__(self, state: dict[str, Any]) -> None:
+        self.__dict__.update(state)
+        if self.user_generator is not None:
+            self.user_generator = self._unpack(self.user_generator)
+        self._owned = {k: self._unpack(v) for k, v in self._owned.items()}

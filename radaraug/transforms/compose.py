@@ -1,0 +1,94 @@
+"""`RadarCompose`: a sequential pipeline that records its DSP chain and checks CalibratedDR use."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import Any
+
+from torch import nn
+
+from radaraug.errors import CalibrationError
+from radaraug.transforms.chain import canonical_chain, chain_of, describe_chain
+
+
+class RadarCompose(nn.Module):
+    """Apply transforms in order; ``chain_spec()`` lists every step (JSON-able).
+
+    Like :class:`~radaraug.transforms.base.RadarTransform`, ``compose(x, *rest)`` transforms ``x``
+    and passes ``rest`` (e.g. a label) through. ``.eval()``/``.train()`` reach every step.
+
+    At construction every :class:`~radaraug.transforms.dr.CalibratedDR` (and
+    :class:`~radaraug.transforms.dr.RandomDR`) is checked against the steps before it:
+
+    * the clamp works on dB maps, so if any deterministic step precedes it, the last one must
+      produce dB (``ToDecibels``, or a ``CombineRx(db=True)`` after it);
+    * a CalibratedDR that records the chain it was fitted with must follow exactly that chain
+      (compared step by step after expanding ``RangeDoppler`` into its parts; random steps are
+      ignored). A compose that *starts* with the CalibratedDR is taken to receive maps made with
+      the fitted chain elsewhere: only the map shape is then checked, at call time.
+
+    Args:
+        transforms: the steps (radaraug transforms, nested composes, or any ``nn.Module``).
+
+    Raises:
+        CalibrationError: a DR step in the wrong place or after a different chain.
+    """
+
+    def __init__(self, transforms: Sequence[nn.Module]) -> None:
+        super().__init__()
+        if isinstance(transforms, nn.Module) or not isinstance(transforms, Sequence):
+            raise TypeError("RadarCompose takes a list of transforms")
+        self.transforms = nn.ModuleList(transforms)
+        self._check_dr_placement()
+
+    def forward(self, x: Any, *rest: Any) -> Any:
+        for t in self.transforms:
+            x = t(x)
+        return (x, *rest) if rest else x
+
+    def chain_spec(self) -> list[dict[str, Any]]:
+        """Every step's spec in order (nested composes flattened)."""
+        specs = chain_of(list(self.transforms))
+        return specs if specs is not None else [{"name": "opaque"}]
+
+    def _check_dr_placement(self) -> None:
+        from radaraug.transforms.dr import CalibratedDR, RandomDR
+
+        for i, step in enumerate(self.transforms):
+            if not isinstance(step, (CalibratedDR, RandomDR)):
+                continue
+            before = chain_of(list(self.transforms)[:i])
+            if before is None:
+                continue  # a step we cannot describe precedes: nothing reliable to check
+            prefix = canonical_chain(before)
+            if not prefix:
+                continue
+            name = type(step).__name__
+            if not _ends_in_db(prefix):
+                raise CalibrationError(
+                    f"RadarCompose: {name} at position {i} clamps dB maps, but the steps before it "
+                    f"({describe_chain(before)}) do not end in ToDecibels"
+                )
+            if isinstance(step, CalibratedDR) and step.chain is not None:
+                fitted = canonical_chain(step.chain)
+                if prefix != fitted:
+                    raise CalibrationError(
+                        f"RadarCompose: CalibratedDR at position {i} was fitted on maps made by "
+                        f"{describe_chain(step.chain)}, but here it follows {describe_chain(before)}"
+                    )
+
+    def __len__(self) -> int:
+        return len(self.transforms)
+
+    def __getitem__(self, i: int) -> nn.Module:
+        return self.transforms[i]
+
+
+def _ends_in_db(prefix: list[dict[str, Any]]) -> bool:
+    for spec in reversed(prefix):
+        if spec["name"] == "ToDecibels":
+            return True
+        if spec["name"] == "CombineRx" and spec.get("db", False):
+            continue
+        return False
+    return False

@@ -1,0 +1,371 @@
+"""Noise-floor domain randomization: the paper's per-cell clamp ``S~ = max(S, N)`` in dB.
+
+Both transforms take dB RD maps ``(..., rx, range, doppler)`` (``radaraug.units.DB_CONVENTION``)
+and raise every cell below a random floor ``N`` to it; cells above the floor are returned
+exactly unchanged. ``N`` is i.i.d. Gaussian per cell, per RX and per frame (sample).
+
+* :class:`RandomDR`: per frame, ``m ~ U(mean_db)``, ``s ~ U(std_db)``, ``N ~ Normal(m, s**2)``.
+* :class:`CalibratedDR`: fixed ``(m_t, s_t)``, the mean and standard deviation of all RD dB
+  values of an empty-room capture processed by the same chain (:meth:`CalibratedDR.fit`).
+
+Replayable parameters (``last_params``): ``apply`` (bool per sample), ``noise_db`` (the floor
+map ``N``, broadcastable to the input), and for RandomDR ``mean_db``/``std_db`` per sample.
+
+Default RandomDR range: the paper draws ``m`` from [-130, -100] dB in its simulator's units.
+radaraug keeps the 30 dB width and centres it on the RD noise floor of a real BGT60TR13C with
+``RadarConfig.bgt60tr13c()`` and the default chain (``RangeDoppler() -> ToDecibels()``),
+about -105 dBFS at 33 dB IF gain: ``mean_db=(-120, -90)``. See docs/transforms.md for the
+measurement and how the floor moves with IF gain, samples and chirps.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import warnings
+from pathlib import Path
+from typing import Any
+
+import torch
+
+from radaraug.config import RadarConfig
+from radaraug.errors import CalibrationError, ConfigError, RadarAugError
+from radaraug.transforms._fit_sources import iter_source
+from radaraug.transforms._motion import DEFAULT_THRESHOLD_DB, WARN_FRACTION, motion_fraction
+from radaraug.transforms.base import Params, RandomRadarTransform
+from radaraug.transforms.chain import chain_of, doppler_window_of
+from radaraug.transforms.windows import MAIN_LOBE_HALF_WIDTH_BINS
+from radaraug.units import DB_CONVENTION
+
+DEFAULT_RANDOM_DR_MEAN_DB = (-120.0, -90.0)
+DEFAULT_RANDOM_DR_STD_DB = (1.0, 4.0)
+FORMAT = "radaraug.CalibratedDR"
+FORMAT_VERSION = 1
+
+
+def _range_arg(name: str, value: Any, cls: str) -> tuple[float, float]:
+    try:
+        lo, hi = (float(v) for v in value)
+    except (TypeError, ValueError):
+        raise RadarAugError(f"{cls}: {name} must be a (low, high) pair, got {value!r}") from None
+    if not (math.isfinite(lo) and math.isfinite(hi)) or lo > hi:
+        raise RadarAugError(f"{cls}: {name} must be finite with low <= high, got {value!r}")
+    return lo, hi
+
+
+class _DRClamp(RandomRadarTransform):
+    """Shared clamp: ``max(S, noise_db)``."""
+
+    input_layout = "a dB RD map (..., rx, range, doppler)"
+
+    def transform(self, x: torch.Tensor, params: Params) -> torch.Tensor:
+        return torch.maximum(x, params["noise_db"].to(dtype=x.dtype))
+
+
+class RandomDR(_DRClamp):
+    """Random noise-floor clamp with per-frame ``(m, s)`` drawn from ranges.
+
+    Args:
+        mean_db: range of the floor mean ``m`` (dB), drawn uniformly per frame.
+        std_db: range of the floor standard deviation ``s`` (dB), drawn uniformly per frame.
+        p, same_on_batch, generator, seed, reseed_in_workers: see
+            :class:`~radaraug.transforms.base.RandomRadarTransform`.
+    """
+
+    def __init__(
+        self,
+        mean_db: tuple[float, float] = DEFAULT_RANDOM_DR_MEAN_DB,
+        std_db: tuple[float, float] = DEFAULT_RANDOM_DR_STD_DB,
+        p: float = 1.0,
+        same_on_batch: bool = False,
+        generator: torch.Generator | None = None,
+        **rng: Any,
+    ) -> None:
+        super().__init__(p=p, same_on_batch=same_on_batch, generator=generator, **rng)
+        self.mean_db = _range_arg("mean_db", mean_db, "RandomDR")
+        self.std_db = _range_arg("std_db", std_db, "RandomDR")
+        if self.std_db[0] < 0:
+            raise RadarAugError(f"RandomDR: std_db must be >= 0, got {std_db!r}")
+
+    def sample_params(
+        self, x: torch.Tensor, shape: tuple[int, ...], generator: torch.Generator | None
+    ) -> Params:
+        (m_lo, m_hi), (s_lo, s_hi) = self.mean_db, self.std_db
+        mean = m_lo + (m_hi - m_lo) * self.draw("rand", shape, x, generator)
+        std = s_lo + (s_hi - s_lo) * self.draw("rand", shape, x, generator)
+        event = (1,) * self.event_ndim
+        noise = self.draw("normal", shape + tuple(x.shape[-self.event_ndim :]), x, generator)
+        noise = torch.addcmul(mean.reshape(shape + event), noise, std.reshape(shape + event))
+        return {"mean_db": mean, "std_db": std, "noise_db": noise}
+
+    def extra_spec(self) -> dict[str, Any]:
+        return {"mean_db": list(self.mean_db), "std_db": list(self.std_db), **super().extra_spec()}
+
+
+class CalibratedDR(_DRClamp):
+    """Calibrated noise-floor clamp ``max(S, N)``, ``N ~ Normal(mean_db, std_db**2)`` per cell.
+
+    Usually made by :meth:`fit` (or :meth:`load`), which records the DSP chain, radar config and
+    map shape the floor was measured with; a :class:`~radaraug.transforms.compose.RadarCompose`
+    then refuses a different chain, and a map of another shape is refused at call time.
+
+    Args:
+        mean_db: floor mean ``m_t`` in dB (dBFS with radaraug's chain).
+        std_db: floor standard deviation ``s_t`` in dB.
+        chain: chain spec list the maps were made with (None: not checked).
+        config: ``RadarConfig`` (or its dict) of the calibration capture (None: not checked).
+        map_shape: ``(rx, range, doppler)`` of the fitted maps (None: not checked).
+        p, same_on_batch, generator, seed, reseed_in_workers: see
+            :class:`~radaraug.transforms.base.RandomRadarTransform`.
+        source: name of the calibration capture (recorded only).
+        num_frames: frames the statistics came from (recorded only).
+        motion: the motion statistic of the fit (recorded only; see :mod:`._motion`).
+    """
+
+    def __init__(
+        self,
+        mean_db: float,
+        std_db: float,
+        *,
+        chain: list[dict[str, Any]] | None = None,
+        config: RadarConfig | dict[str, Any] | None = None,
+        map_shape: tuple[int, int, int] | None = None,
+        p: float = 1.0,
+        same_on_batch: bool = False,
+        generator: torch.Generator | None = None,
+        source: str | None = None,
+        num_frames: int | None = None,
+        motion: float | None = None,
+        **rng: Any,
+    ) -> None:
+        super().__init__(p=p, same_on_batch=same_on_batch, generator=generator, **rng)
+        self.mean_db, self.std_db = float(mean_db), float(std_db)
+        if not (math.isfinite(self.mean_db) and math.isfinite(self.std_db)) or self.std_db < 0:
+            raise CalibrationError(
+                f"CalibratedDR: need finite mean_db and std_db >= 0, got {mean_db}, {std_db}"
+            )
+        self.chain = None if chain is None else [dict(s) for s in chain]
+        if isinstance(config, dict):
+            try:
+                config = RadarConfig.from_dict(config)
+            except ConfigError as e:
+                raise CalibrationError(f"CalibratedDR: bad radar config: {e}") from None
+        self.config = config
+        self.map_shape = None if map_shape is None else tuple(int(v) for v in map_shape)
+        if self.map_shape is not None and len(self.map_shape) != 3:
+            raise CalibrationError(f"CalibratedDR: map_shape must be (rx, range, doppler), got {map_shape}")
+        self.source = source
+        self.num_frames = num_frames
+        self.motion = motion
+
+    # ------------------------------------------------------------------ the transform
+    def check_input(self, x: Any) -> torch.Tensor:
+        x = super().check_input(x)
+        if self.map_shape is not None and tuple(x.shape[-3:]) != self.map_shape:
+            raise CalibrationError(
+                f"CalibratedDR fitted on maps of shape (rx, range, doppler) = {self.map_shape}"
+                f"{f' from {self.source}' if self.source else ''}, got {tuple(x.shape[-3:])}"
+            )
+        return x
+
+    def sample_params(
+        self, x: torch.Tensor, shape: tuple[int, ...], generator: torch.Generator | None
+    ) -> Params:
+        event = tuple(x.shape[-self.event_ndim :])
+        return {"noise_db": self.draw("normal", shape + event, x, generator, self.mean_db, self.std_db)}
+
+    def check_config(self, config: RadarConfig | dict[str, Any]) -> None:
+        """Raise :class:`CalibrationError` if ``config`` differs from the calibration's config.
+
+        Warns (``UserWarning``) when the calibration recorded no config.
+        """
+        if isinstance(config, dict):
+            config = RadarConfig.from_dict(config)
+        if self.config is None:
+            warnings.warn(
+                "CalibratedDR has no recorded radar config; cannot check it", UserWarning, stacklevel=2
+            )
+            return
+        if config != self.config:
+            a, b = self.config.to_dict(), config.to_dict()
+            diff = {k: (a[k], b.get(k)) for k in a if a[k] != b.get(k)}
+            raise CalibrationError(
+                f"CalibratedDR was fitted with another radar config; (fitted, given): {diff}"
+            )
+
+    def extra_spec(self) -> dict[str, Any]:
+        return {"mean_db": self.mean_db, "std_db": self.std_db, **super().extra_spec()}
+
+    # ------------------------------------------------------------------ fitting
+    @classmethod
+    def fit(
+        cls,
+        source: Any,
+        *,
+        pipeline: Any = None,
+        config: RadarConfig | None = None,
+        max_frames: int | None = None,
+        input: str = "raw",
+        batch_size: int = 32,
+        motion_threshold_db: float = DEFAULT_THRESHOLD_DB,
+        **kwargs: Any,
+    ) -> CalibratedDR:
+        """Fit ``(m_t, s_t)`` = mean and std of all RD dB values of an empty-room capture.
+
+        Args:
+            source: a capture path (radaraug ``.h5`` or Infineon recording folder, opened with
+                ``radaraug.io.open_capture``), an open capture reader, a tensor of frames
+                ``(frames, rx, chirps, samples)`` (raw) or ``(frames, rx, range, doppler)`` (dB),
+                or a ``Dataset`` / iterable yielding frames or ``(frame, label)`` samples.
+            pipeline: raw cube -> dB map chain (default ``RangeDoppler() -> ToDecibels()``). With
+                ``input="db"`` it is not run, only recorded as the chain that made the maps.
+            config: the radar config (taken from the capture when the source is one; an
+                explicit config that differs from the capture's is an error).
+            max_frames: use at most this many frames.
+            input: ``"raw"`` (raw cubes, default) or ``"db"`` (already dB RD maps).
+            batch_size: frames processed at once.
+            motion_threshold_db: threshold of the motion check (see :mod:`._motion`).
+            **kwargs: passed to the constructor (``p``, ``generator``, ``seed``...).
+
+        Warns:
+            UserWarning: when the capture shows motion (it should be empty).
+
+        The standard deviation is the population one (``correction=0``); statistics are
+        accumulated in float64.
+        """
+        from radaraug.transforms.compose import RadarCompose
+        from radaraug.transforms.spectral import RangeDoppler, ToDecibels
+
+        if input not in ("raw", "db"):
+            raise CalibrationError(f"CalibratedDR.fit: input must be 'raw' or 'db', got {input!r}")
+        if pipeline is None:
+            pipeline = RadarCompose([RangeDoppler(), ToDecibels()])
+        chain = chain_of(pipeline)
+        if chain is None:
+            warnings.warn(
+                "CalibratedDR.fit: the pipeline has no chain_spec(); the chain cannot be recorded or checked",
+                UserWarning,
+                stacklevel=2,
+            )
+        batches, source_name, capture_config = iter_source(
+            source, max_frames=max_frames, batch_size=batch_size
+        )
+        if capture_config is not None:
+            if config is not None and config != capture_config:
+                raise CalibrationError(
+                    f"CalibratedDR.fit: the config given differs from the config of {source_name}"
+                )
+            config = capture_config
+        where = f"capture {source_name}" if source_name else "the calibration data"
+        maps = []
+        with torch.no_grad():
+            for batch in batches:
+                out = batch if input == "db" else pipeline(batch)
+                if not isinstance(out, torch.Tensor) or out.ndim != 4 or out.is_complex():
+                    raise CalibrationError(
+                        f"CalibratedDR.fit: the pipeline must map frames to real dB maps (frames, rx, range, "
+                        f"doppler); got {getattr(out, 'shape', type(out).__name__)} from {where}"
+                    )
+                if not bool(torch.isfinite(out).all()):
+                    raise CalibrationError(f"CalibratedDR.fit: NaN/Inf in the RD maps of {where}")
+                maps.append(out)
+        if not maps:
+            raise CalibrationError(f"CalibratedDR.fit: {where} has no frames")
+        shapes = {tuple(m.shape[1:]) for m in maps}
+        if len(shapes) > 1:
+            raise CalibrationError(
+                f"CalibratedDR.fit: frames of {where} have different shapes {sorted(shapes)}"
+            )
+        all_maps = torch.cat(maps)
+        values = all_maps.double()
+        mean, std = float(values.mean()), float(values.std(correction=0))
+        window = doppler_window_of(chain) or "hann"
+        motion = motion_fraction(all_maps, MAIN_LOBE_HALF_WIDTH_BINS.get(window, 1) + 1, motion_threshold_db)
+        if motion is not None and motion > WARN_FRACTION:
+            warnings.warn(
+                f"CalibratedDR.fit: {where} should be an empty scene but shows motion: {100 * motion:.2f} % of the cells "
+                f"off zero Doppler are > {motion_threshold_db:g} dB above their own median over frames (noise "
+                f"and static clutter alone give ~0 %). The fitted floor includes it; record the empty scene.",
+                UserWarning,
+                stacklevel=2,
+            )
+        return cls(
+            mean,
+            std,
+            chain=chain,
+            config=config,
+            map_shape=tuple(all_maps.shape[1:]),
+            source=source_name,
+            num_frames=int(all_maps.shape[0]),
+            motion=motion,
+            **kwargs,
+        )
+
+    # ------------------------------------------------------------------ persistence
+    def to_dict(self) -> dict[str, Any]:
+        """The calibration record (what :meth:`save` writes)."""
+        import radaraug
+
+        return {
+            "format": FORMAT,
+            "format_version": FORMAT_VERSION,
+            "mean_db": self.mean_db,
+            "std_db": self.std_db,
+            "db_convention": DB_CONVENTION,
+            "chain": self.chain,
+            "config": None if self.config is None else self.config.to_dict(),
+            "map_shape": None if self.map_shape is None else list(self.map_shape),
+            "source": self.source,
+            "num_frames": self.num_frames,
+            "motion_fraction": self.motion,
+            "radaraug_version": radaraug.__version__,
+        }
+
+    def save(self, path: str | os.PathLike) -> None:
+        """Write the calibration as a small JSON file."""
+        Path(path).write_text(json.dumps(self.to_dict(), indent=2) + "\n")
+
+    @classmethod
+    def load(cls, path: str | os.PathLike, **kwargs: Any) -> CalibratedDR:
+        """Read a calibration JSON written by :meth:`save` (``kwargs`` go to the constructor).
+
+        Raises:
+            CalibrationError: missing, unreadable or malformed file (the message names it).
+        """
+        try:
+            data = json.loads(Path(path).read_text())
+        except FileNotFoundError:
+            raise CalibrationError(f"calibration file {path} does not exist") from None
+        except (OSError, UnicodeDecodeError) as e:
+            raise CalibrationError(f"cannot read calibration file {path}: {e}") from None
+        except json.JSONDecodeError as e:
+            raise CalibrationError(f"calibration file {path} is not valid JSON: {e}") from None
+        if not isinstance(data, dict) or data.get("format") != FORMAT:
+            raise CalibrationError(f"calibration file {path} is not a {FORMAT} record")
+        try:
+            mean, std = data["mean_db"], data["std_db"]
+            if isinstance(mean, bool) or isinstance(std, bool):
+                raise TypeError("mean_db/std_db must be numbers")
+            chain = data.get("chain")
+            if chain is not None and not (
+                isinstance(chain, list) and all(isinstance(s, dict) for s in chain)
+            ):
+                raise TypeError("chain must be a list of step objects")
+            return cls(
+                float(mean),
+                float(std),
+                chain=chain,
+                config=data.get("config"),
+                map_shape=data.get("map_shape"),
+                source=data.get("source"),
+                num_frames=data.get("num_frames"),
+                motion=data.get("motion_fraction"),
+                **kwargs,
+            )
+        except KeyError as e:
+            raise CalibrationError(f"calibration file {path} lacks the key {e}") from None
+        except CalibrationError as e:
+            raise CalibrationError(f"calibration file {path}: {e}") from None
+        except (TypeError, ValueError) as e:
+            raise CalibrationError(f"calibration file {path} is malformed: {e}") from None

@@ -1,0 +1,103 @@
+"""Window functions for the range and Doppler FFTs, cached per (name, length, dtype, device).
+
+All windows are the *symmetric* forms (``periodic=False`` in torch, ``sym=True`` in scipy), i.e.
+the same values as ``numpy.hanning``/``numpy.hamming``/``numpy.blackman`` and
+``scipy.signal.windows.blackmanharris(n)``. Symmetric windows are the usual choice for spectral
+analysis of one block (Infineon's examples use them); periodic ones are meant for overlap-add.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+
+import torch
+
+from radaraug.errors import InputTensorError
+
+WINDOWS = ("rect", "hann", "hamming", "blackman", "blackmanharris")
+"""Names accepted wherever a window is asked for."""
+
+# Half-width of the main lobe in bins for a tone exactly on a bin: the neighbours that can hold
+# energy of a perfectly static target. Used to keep static clutter out of motion checks.
+MAIN_LOBE_HALF_WIDTH_BINS = {"rect": 0, "hann": 1, "hamming": 1, "blackman": 2, "blackmanharris": 3}
+
+
+def check_window_name(name: str) -> str:
+    """Return ``name`` lower-cased if it is a known window, else raise :class:`InputTensorError`."""
+    key = str(name).lower().replace("-", "").replace("_", "")
+    if key == "hanning":
+        key = "hann"
+    if key in ("rectangular", "boxcar", "none"):
+        key = "rect"
+    if key not in WINDOWS:
+        raise InputTensorError(f"unknown window {name!r}; choose one of {', '.join(WINDOWS)}")
+    return key
+
+
+def _window_f64(name: str, n: int) -> torch.Tensor:
+    """The window in float64 on the CPU (computed once, then cast and moved)."""
+    if n == 1:
+        return torch.ones(1, dtype=torch.float64)
+    if name == "rect":
+        return torch.ones(n, dtype=torch.float64)
+    if name == "hann":
+        return torch.hann_window(n, periodic=False, dtype=torch.float64)
+    if name == "hamming":
+        return torch.hamming_window(n, periodic=False, dtype=torch.float64)
+    if name == "blackman":
+        return torch.blackman_window(n, periodic=False, dtype=torch.float64)
+    # 4-term Blackman-Harris (-92 dB sidelobes), coefficients as in scipy.signal.windows.
+    a = (0.35875, 0.48829, 0.14128, 0.01168)
+    phase = 2 * math.pi * torch.arange(n, dtype=torch.float64) / (n - 1)
+    return a[0] - a[1] * torch.cos(phase) + a[2] * torch.cos(2 * phase) - a[3] * torch.cos(3 * phase)
+
+
+@functools.lru_cache(maxsize=64)
+def get_window(
+    name: str, n: int, dtype: torch.dtype = torch.float32, device: torch.device | str = "cpu"
+) -> torch.Tensor:
+    """A symmetric window of length ``n`` (cached; do not modify the returned tensor in place).
+
+    Args:
+        name: one of :data:`WINDOWS` (``"hanning"``, ``"boxcar"`` are accepted as aliases).
+        n: window length.
+        dtype: real floating dtype of the result.
+        device: device of the result.
+    """
+    return _window_f64(check_window_name(name), int(n)).to(dtype=dtype, device=device)
+
+
+@functools.lru_cache(maxsize=64)
+def normalized_window(name: str, n: int, dtype: torch.dtype, device: torch.device) -> torch.Tensor:
+    """``w / sum(w)``: windowing and the dBFS scaling folded into one multiply (cached)."""
+    w = _window_f64(check_window_name(name), int(n))
+    return (w / w.sum()).to(dtype=dtype, device=device)
+
+
+@functools.lru_cache(maxsize=64)
+def shifted_doppler_window(name: str, m: int, dtype: torch.dtype, device: torch.device) -> torch.Tensor:
+    """``w / sum(w)`` times ``exp(j*pi*2*(m//2)*k/m)``: the Doppler fftshift folded into the window.
+
+    Multiplying slow time by ``exp(j 2 pi (M//2) k / M)`` moves every FFT bin up by ``M//2``
+    (circularly), which is exactly ``torch.fft.fftshift``, without a second pass over the map.
+    For even ``M`` the factor is ``(-1)**k`` and the window stays real.
+    """
+    w = _window_f64(check_window_name(name), int(m))
+    w = w / w.sum()
+    k = torch.arange(m, dtype=torch.float64)
+    if m % 2 == 0:
+        return (w * (1.0 - 2.0 * (k % 2))).to(dtype=dtype, device=device)
+    phase = 2 * math.pi * (m // 2) * k / m
+    cdtype = torch.complex128 if dtype == torch.float64 else torch.complex64
+    return torch.polar(w, phase).to(dtype=cdtype, device=device)
+
+
+def noise_power_gain(name: str, n: int) -> float:
+    """``sum(w**2) / sum(w)**2``: the power a white-noise sample of unit variance keeps per bin.
+
+    With the FFT divided by ``sum(w)``, white noise of variance ``sigma**2`` has
+    ``E|X|**2 = sigma**2 * noise_power_gain`` in every bin (``1/n`` for ``rect``).
+    """
+    w = _window_f64(check_window_name(name), int(n))
+    return float((w * w).sum() / w.sum() ** 2)

@@ -1,0 +1,56 @@
+import matplotlib
+import numpy as np
+import pytest
+import torch
+
+from radaraug.errors import InputTensorError, RadarAugError
+from radaraug.transforms import ClipNormalize, Colormap, Resize
+
+
+def test_clip_normalize_maps_range_to_unit_interval(dtype):
+    x = torch.tensor([[[-130.0, -110.0, -75.0, -40.0, 0.0]]], dtype=dtype)
+    y = ClipNormalize(-110, -40)(x)
+    torch.testing.assert_close(y, torch.tensor([[[0.0, 0.0, 0.5, 1.0, 1.0]]], dtype=dtype))
+    with pytest.raises(RadarAugError):
+        ClipNormalize(-40, -110)
+
+
+def test_estimate_percentiles_tensor_and_dataset():
+    maps = torch.linspace(-120, -20, 1001, dtype=torch.float64).reshape(1, 7, 11, 13)
+    values = maps.flatten().numpy()
+    cn = ClipNormalize.estimate(maps, low=1.0, high=99.0)
+    assert (cn.vmin, cn.vmax) == pytest.approx(tuple(np.percentile(values, [1, 99])))
+    dataset = [(m, 0) for m in maps.reshape(7, 1, 11, 13)]
+    cn2 = ClipNormalize.estimate(dataset, low=1.0, high=99.0)
+    assert (cn2.vmin, cn2.vmax) == pytest.approx((cn.vmin, cn.vmax))
+    with pytest.raises(InputTensorError):
+        ClipNormalize.estimate(torch.tensor([float("nan"), 1.0]))
+
+
+@pytest.mark.parametrize("name", ["viridis", "magma"])
+def test_colormap_matches_matplotlib(name, dtype, device):
+    x = torch.cat(
+        [torch.linspace(0, 1, 4097, dtype=torch.float64), torch.tensor([0.5 - 1e-12, 255 / 256, 1.0])]
+    )
+    x = torch.cat([x, torch.rand(2061, dtype=torch.float64)]).reshape(1, 1, 61, 101)
+    ref = matplotlib.colormaps[name](x[0, 0].numpy())[..., :3]  # (H, W, 3)
+    y = Colormap(name)(x.to(dtype=dtype, device=device))
+    assert y.shape == (1, 3, 61, 101) and y.dtype == dtype and y.device.type == torch.device(device).type
+    np.testing.assert_allclose(y[0].permute(1, 2, 0).cpu().double().numpy(), ref, atol=1e-6, rtol=0)
+
+
+def test_colormap_clips_and_refuses_several_channels():
+    y = Colormap()(torch.tensor([[[[-0.5, 1.5]]]]))
+    lut = matplotlib.colormaps["viridis"]
+    np.testing.assert_allclose(y[0, :, 0, 0].numpy(), lut(0.0)[:3], atol=1e-6)
+    np.testing.assert_allclose(y[0, :, 0, 1].numpy(), lut(1.0)[:3], atol=1e-6)
+    with pytest.raises(InputTensorError, match="CombineRx"):
+        Colormap()(torch.zeros(3, 8, 8))
+
+
+def test_resize_shape_and_constant():
+    x = torch.full((2, 3, 64, 32), 0.25, dtype=torch.float64)
+    y = Resize((224, 224))(x)
+    assert y.shape == (2, 3, 224, 224)
+    torch.testing.assert_close(y, torch.full_like(y, 0.25))
+    assert Resize(16)(x).shape == (2, 3, 16, 16)
