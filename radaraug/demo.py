@@ -28,8 +28,6 @@ def run_demo(out_dir: Path, *, capture: str | Path | None = None) -> dict:
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    from torchvision.io import write_png
-
     from radaraug.inspect import summarize_capture
     from radaraug.io import open_capture, sample_recording_path
     from radaraug.transforms import (
@@ -56,16 +54,15 @@ def run_demo(out_dir: Path, *, capture: str | Path | None = None) -> dict:
     cdr.save(out_dir / "cdr.json")
     print(f"[demo] CalibratedDR fitted: m_t = {cdr.mean_db:.2f} dB, s_t = {cdr.std_db:.2f} dB")
 
-    db = ToDecibels()(RangeDoppler()(frames))  # (F, rx, range, doppler)
-    clip = ClipNormalize.estimate(db)
-    to_image = torch.nn.Sequential(CombineRx("mean_power"), clip, Colormap("viridis"), Resize((224, 224)))
-    # CombineRx on dB maps would average dB; combine on power first.
-    power = RangeDoppler()(frames)
+    db = ToDecibels()(RangeDoppler()(frames))  # (F, rx, range, doppler): what CDR was fitted on
+    combined = CombineRx("mean_power", db=True)(db)  # (F, 1, range, doppler)
+    clip = ClipNormalize.estimate(combined)
+    to_image = torch.nn.Sequential(clip, Colormap("viridis"), Resize((224, 224)))
     images = []
     for i in torch.linspace(0, frames.shape[0] - 1, 4).round().long().tolist():
-        img = to_image[1:](ToDecibels()(CombineRx("mean_power")(power[i])))
+        img = to_image(combined[i])  # (3, 224, 224)
         png = out_dir / f"rd_frame{i:04d}.png"
-        write_png((img.clamp(0, 1) * 255).round().to(torch.uint8), str(png))
+        plt.imsave(png, img.clamp(0, 1).permute(1, 2, 0).numpy())
         images.append(png.name)
 
     values = db.flatten()

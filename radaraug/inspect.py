@@ -26,7 +26,7 @@ def summarize_capture(reader: Any, *, max_frames: int = 256) -> dict[str, Any]:
         A JSON-able dict.
     """
     from radaraug.transforms import RangeDoppler, ToDecibels
-    from radaraug.transforms.dr import motion_statistic
+    from radaraug.transforms._motion import WARN_FRACTION, motion_fraction
 
     cfg = reader.config
     n = min(reader.num_frames, max_frames)
@@ -49,7 +49,13 @@ def summarize_capture(reader: Any, *, max_frames: int = 256) -> dict[str, Any]:
     k = int(static_wo_dc.max(dim=0).values.argmax()) + 1
     off_zero = torch.cat([db[..., :zero - 1], db[..., zero + 2:]], dim=-1) if m > 4 else db
     floor = off_zero[..., db.shape[-2] // 2:, :].median().item() if m > 4 else float("nan")
-    motion = motion_statistic(db) if m > 4 else None
+    frac = motion_fraction(db, guard_bins=2)
+    motion = None if frac is None else {
+        "motion": frac > WARN_FRACTION,
+        "fraction": frac,
+        "explanation": f"{100 * frac:.3f} % of off-zero-Doppler cells > 15 dB above their median over frames; "
+        f"noise alone gives ~0 %, flagged above {100 * WARN_FRACTION:.1f} %",
+    }
 
     return {
         "path": str(reader.path),

@@ -1,7 +1,7 @@
 """A straightforward NumPy implementation of the paper's RD chain: the benchmark baseline.
 
 Same steps and conventions as the torch transforms (mean removal, Hann windows divided by their
-sums, real range FFT keeping N//2 bins, Doppler FFT + fftshift, 20log10, CDR clamp, clip/normalize,
+sums, real range FFT keeping N//2 bins, Doppler FFT + fftshift, 20log10, CDR clamp, RX combining on power, clip/normalize,
 viridis LUT), written the way one would without radaraug: float64, one frame at a time is *not*
 assumed - it is vectorized over the batch like the torch version, so the ratio measures the
 library, not a Python loop.
@@ -22,7 +22,7 @@ def numpy_rd_chain(
     lut: np.ndarray,
     rng: np.random.Generator,
 ) -> np.ndarray:
-    """Raw cube ``(B, rx, chirps, samples)`` -> viridis images ``(B, rx, 3, range, doppler)``.
+    """Raw cube ``(B, rx, chirps, samples)`` -> viridis images ``(B, 3, range, doppler)``.
 
     Args:
         cube: raw frames in SDK floats.
@@ -43,7 +43,8 @@ def numpy_rd_chain(
     db = 20 * np.log10(np.abs(rd) + 1e-12)
     noise = rng.normal(mean_db, std_db, size=db.shape)
     db = np.maximum(db, noise)
+    db = 10 * np.log10(np.mean(10 ** (db / 10), axis=1, keepdims=True))  # combine RX on power
     norm = (np.clip(db, vmin, vmax) - vmin) / (vmax - vmin)
     idx = np.clip((norm * 255).astype(np.int64), 0, 255)
-    img = lut[idx]  # (B, rx, range, doppler, 3)
+    img = lut[idx[:, 0]]  # (B, range, doppler, 3)
     return np.moveaxis(img, -1, -3)

@@ -73,12 +73,13 @@ class HDF5Capture(CaptureReader):
     def _open(self) -> h5py.File:
         # SWMR read skips the "file is already open for write" consistency flag that a writer
         # killed while recording leaves behind (FIELD_NOTES: the frames flushed so far survive).
+        # h5py raises OSError for most damage but RuntimeError for a corrupted superblock.
         try:
             return h5py.File(self.path, "r", swmr=True)
-        except OSError as swmr_error:
+        except (OSError, RuntimeError) as swmr_error:
             try:
                 return h5py.File(self.path, "r")
-            except OSError as e:
+            except (OSError, RuntimeError) as e:
                 hint = ""
                 if "already open for write" in str(e):
                     hint = "; a writer was killed before switching to SWMR: `h5clear -s FILE` may recover it"

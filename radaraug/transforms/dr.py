@@ -209,6 +209,7 @@ class CalibratedDR(_DRClamp):
         input: str = "raw",
         batch_size: int = 32,
         motion_threshold_db: float = DEFAULT_THRESHOLD_DB,
+        progress: bool = False,
         **kwargs: Any,
     ) -> CalibratedDR:
         """Fit ``(m_t, s_t)`` = mean and std of all RD dB values of an empty-room capture.
@@ -226,6 +227,7 @@ class CalibratedDR(_DRClamp):
             input: ``"raw"`` (raw cubes, default) or ``"db"`` (already dB RD maps).
             batch_size: frames processed at once.
             motion_threshold_db: threshold of the motion check (see :mod:`._motion`).
+            progress: show a progress bar (tqdm, on stderr) over the batches.
             **kwargs: passed to the constructor (``p``, ``generator``, ``seed``...).
 
         Warns:
@@ -258,6 +260,10 @@ class CalibratedDR(_DRClamp):
                 )
             config = capture_config
         where = f"capture {source_name}" if source_name else "the calibration data"
+        if progress:
+            from tqdm.auto import tqdm
+
+            batches = tqdm(batches, desc="fit CalibratedDR", unit="batch", leave=False)
         maps = []
         with torch.no_grad():
             for batch in batches:

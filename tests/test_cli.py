@@ -1,0 +1,84 @@
+"""The `radaraug` command line: info, fit-cdr, bench, demo, and clean errors."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+
+from radaraug import RadarConfig
+from radaraug.cli import main
+from radaraug.io import sample_recording_path, write_capture
+
+
+def _empty_room(path, frames=24, seed=0):
+    cfg = RadarConfig.bgt60tr13c(num_samples_per_chirp=64, num_chirps_per_frame=16, sample_rate_Hz=2e6,
+                                 chirp_repetition_time_s=100e-6, frame_repetition_time_s=0.05)
+    rng = np.random.default_rng(seed)
+    n = np.arange(64) / 2e6
+    static = 200 * np.cos(2 * np.pi * 150e3 * n)  # a static reflector
+    counts = 2000 + static + rng.normal(0, 1.4, size=(frames, 3, 16, 64))
+    write_capture(path, np.round(counts).astype(np.uint16), cfg)
+    return cfg
+
+
+def test_info_json_on_bundled_recording(capsys) -> None:
+    assert main(["info", str(sample_recording_path()), "--json"]) == 0
+    info = json.loads(capsys.readouterr().out)
+    assert info["shape"] == [256, 3, 8, 64]
+    assert info["duration_s"] == pytest.approx(256 * 0.07726884633302689, rel=1e-6)
+    # FIELD_NOTES: RX1 ~1580-1655, RX3 ~2065-2070 counts; slow-time noise ~1-1.6 counts.
+    assert 1550 < info["dc_offset_counts"][0] < 1660
+    assert 2050 < info["dc_offset_counts"][2] < 2080
+    assert all(0.8 < v < 2.0 for v in info["slow_time_noise_rms_counts"])
+    assert info["motion"]["motion"] is False
+
+
+def test_info_flags_motion_and_reports_static_return(tmp_path, capsys) -> None:
+    path = tmp_path / "room.h5"
+    cfg = _empty_room(path)
+    assert main(["info", str(path), "--json"]) == 0
+    info = json.loads(capsys.readouterr().out)
+    expected_bin = round(150e3 / cfg.beat_Hz_per_m / cfg.range_resolution_m)
+    assert info["strongest_static_return"]["range_bin"] == expected_bin
+    assert info["motion"]["motion"] is False
+    assert info["clipped_fraction"] == [0.0, 0.0, 0.0]
+
+
+def test_fit_cdr_writes_calibration(tmp_path, capsys) -> None:
+    from radaraug.transforms import CalibratedDR
+
+    path = tmp_path / "room.h5"
+    _empty_room(path)
+    out = tmp_path / "cdr.json"
+    assert main(["fit-cdr", str(path), "-o", str(out)]) == 0
+    cdr = CalibratedDR.load(out)
+    assert "m_t" in capsys.readouterr().out
+    assert np.isfinite(cdr.mean_db) and cdr.std_db > 0
+
+
+def test_bad_input_is_one_line_error(tmp_path, capsys) -> None:
+    bad = tmp_path / "broken.h5"
+    bad.write_bytes(b"\x89HDF\r\n\x1a\n" + b"\x00" * 100)
+    assert main(["info", str(bad)]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("error: ") and "broken.h5" in err and "Traceback" not in err
+    assert main(["info", str(tmp_path / "missing.h5")]) == 2
+
+
+def test_bench_transforms_json(tmp_path, capsys) -> None:
+    out = tmp_path / "b.json"
+    assert main(["bench", "transforms", "--batch", "2", "--repeats", "1", "--json", "--out", str(out)]) == 0
+    result = json.loads(capsys.readouterr().out)
+    assert result == json.loads(out.read_text())
+    assert result["torch_frames_per_s"] > 0 and result["numpy_frames_per_s"] > 0
+    # Both implementations compute the same dB maps.
+    assert result["max_abs_diff_db_vs_numpy"] < 1e-2
+
+
+def test_demo_writes_outputs(tmp_path) -> None:
+    assert main(["demo", "-o", str(tmp_path / "out")]) == 0
+    names = {p.name for p in (tmp_path / "out").iterdir()}
+    assert {"cdr.json", "noise_floor_histogram.png", "summary.json"} <= names
+    assert sum(n.startswith("rd_frame") for n in names) == 4
