@@ -1,0 +1,201 @@
+"""`ChainState`: the signal as it travels down the receiver chain, in two cheap forms.
+
+Until something non-linear or time-domain needs the samples, the signal is kept as
+
+* **paths**: complex coefficients ``C`` (``(…, RX, P)``, ADC float units, coefficient of the
+  positive-frequency component of each real beat tone) with their delays and delay rates, and
+  paths *modulated* by a random process (phase noise);
+* **spectrum**: additive signals (thermal noise, spurs, offsets) as the real FFT over fast time
+  of each chirp, ``(…, RX, M, N//2 + 1)``.
+
+A linear, time-invariant stage (gain, IF filter) then costs almost nothing: each path's
+coefficient is multiplied by the stage's response at the path's beat frequency (exact for a tone,
+the filter's start-up transient aside) and the spectrum by the response at the FFT bins (a
+circular filter per chirp). :meth:`ChainState.materialize` synthesizes the samples once, after
+which stages act on the samples directly.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import torch
+
+from radaraug.config import RadarConfig
+from radaraug.errors import InputTensorError
+from radaraug.sensor.synthesis import ChirpTiming, beat_frequency_Hz, synthesize
+
+
+@dataclass
+class ModulatedPaths:
+    """Paths whose contribution is multiplied sample by sample by a real process.
+
+    ``x += multiplier * sum_p Re{coef_p exp(j Phi_p)}``; ``multiplier`` is ``(…, 1 or RX, M, N)``.
+    """
+
+    coef: torch.Tensor
+    delay_s: torch.Tensor
+    delay_rate: torch.Tensor
+    multiplier: torch.Tensor
+
+
+class ChainState:
+    """Working state of one receiver call (not user-facing; effects mutate it in order).
+
+    Attributes:
+        config: the radar configuration.
+        timing: chirp constants of ``config``.
+        dtype: real output dtype; ``device``: where everything lives.
+        generator: the ``torch.Generator`` for every random draw (None: global RNG).
+        frame_start_s: absolute time of the frame's first ramp start (for time-locked effects).
+        tx_power_W: transmit power.
+        front_end_gain: ADC float units per sqrt(W) at the RX port (0 dB IF gain).
+        batch_shape: leading dims of the paths.
+    """
+
+    def __init__(
+        self,
+        config: RadarConfig,
+        coef: torch.Tensor,
+        delay_s: torch.Tensor,
+        delay_rate: torch.Tensor,
+        *,
+        dtype: torch.dtype,
+        generator: torch.Generator | None,
+        frame_start_s: float,
+        tx_power_W: float,
+        front_end_gain: float,
+        method: str,
+        taylor_tol: float,
+    ) -> None:
+        self.config = config
+        self.timing = ChirpTiming.from_config(config)
+        self.dtype = dtype
+        self.device = coef.device
+        self.generator = generator
+        self.frame_start_s = float(frame_start_s)
+        self.tx_power_W = tx_power_W
+        self.front_end_gain = front_end_gain
+        self.method = method
+        self.taylor_tol = taylor_tol
+        self.batch_shape = tuple(coef.shape[:-2])
+        self.coef = coef
+        self.delay_s = delay_s
+        self.delay_rate = delay_rate
+        self.modulated: list[ModulatedPaths] = []
+        self.spectrum: torch.Tensor | None = None
+        self.samples: torch.Tensor | None = None
+
+    # ------------------------------------------------------------------ helpers
+    @property
+    def num_rx(self) -> int:
+        """Receive channels."""
+        return self.config.num_rx
+
+    @property
+    def complex_dtype(self) -> torch.dtype:
+        """Complex dtype matching :attr:`dtype`."""
+        return torch.complex64 if self.dtype == torch.float32 else torch.complex128
+
+    @property
+    def sample_shape(self) -> tuple[int, ...]:
+        """``(…, RX, M, N)``."""
+        return (*self.batch_shape, self.num_rx, self.timing.num_chirps, self.timing.num_samples)
+
+    def param(self, value: torch.Tensor) -> torch.Tensor:
+        """An effect parameter on this call's device and dtype (keeps the autograd graph)."""
+        return value.to(device=self.device, dtype=self.dtype)
+
+    def fft_freqs_Hz(self) -> torch.Tensor:
+        """Frequencies of the real-FFT bins over fast time (float64)."""
+        return torch.fft.rfftfreq(self.timing.num_samples, d=1 / self.timing.fs, dtype=torch.float64,
+                                  device=self.device)
+
+    def randn(self, shape: tuple[int, ...]) -> torch.Tensor:
+        """Standard normal draws from :attr:`generator` (or the global RNG)."""
+        try:
+            return torch.randn(shape, generator=self.generator, device=self.device, dtype=self.dtype)
+        except RuntimeError as e:
+            gdev = self.generator.device if self.generator is not None else "cpu"
+            raise InputTensorError(
+                f"receiver: the generator is on {gdev} but the paths are on {self.device}; "
+                "pass a torch.Generator(device=...) on the paths' device"
+            ) from e
+
+    # ------------------------------------------------------------------ building the signal
+    def add_paths(self, coef: torch.Tensor, delay_s: torch.Tensor, delay_rate: torch.Tensor) -> None:
+        """Append paths ``(…, RX, P')`` (broadcast to the batch shape)."""
+        if self.samples is not None:
+            raise RuntimeError("paths cannot be added after the samples were synthesized")
+        shape = (*self.batch_shape, self.num_rx, coef.shape[-1])
+        self.coef = torch.cat([self.coef, coef.to(self.coef.dtype).expand(shape)], dim=-1)
+        self.delay_s = torch.cat([self.delay_s, delay_s.to(self.delay_s.dtype).expand(shape)], dim=-1)
+        self.delay_rate = torch.cat([self.delay_rate, delay_rate.to(self.delay_rate.dtype).expand(shape)], dim=-1)
+
+    def add_samples(self, x: torch.Tensor) -> None:
+        """Add a real signal broadcastable to ``(…, RX, M, N)`` (e.g. noise) at this point of the chain."""
+        if self.samples is not None:
+            self.samples = self.samples + x
+            return
+        spec = torch.fft.rfft(x.expand(self.sample_shape), dim=-1)
+        self.spectrum = spec if self.spectrum is None else self.spectrum + spec
+
+    def add_constant(self, per_rx: torch.Tensor) -> None:
+        """Add a per-RX constant ``(RX,)`` (a DC offset) at this point of the chain."""
+        value = per_rx[:, None, None]
+        if self.samples is not None:
+            self.samples = self.samples + value
+            return
+        # A constant is N at the DC bin of the (unnormalised) real FFT and zero elsewhere.
+        F = self.timing.num_samples // 2 + 1
+        unit = torch.zeros(F, dtype=self.dtype, device=self.device)
+        unit[0] = self.timing.num_samples
+        spec = (value * unit).to(self.complex_dtype).expand((*self.sample_shape[:-1], F))
+        self.spectrum = spec if self.spectrum is None else self.spectrum + spec
+
+    def apply_linear(
+        self,
+        rx_gain: torch.Tensor | None = None,
+        response: Callable[[torch.Tensor], torch.Tensor] | None = None,
+    ) -> None:
+        """Apply an LTI stage: a complex gain per RX ``(RX,)`` and/or a frequency response.
+
+        ``response(freq_Hz)`` maps a float64 frequency tensor (any shape, may be negative for
+        a path with a negative IF) to the complex response, Hermitian in frequency.
+        """
+        cd = self.complex_dtype
+        g = None if rx_gain is None else rx_gain.to(cd)
+        if self.samples is None:
+            for target in [self, *self.modulated]:
+                h = g[:, None] if g is not None else 1.0
+                if response is not None:
+                    h = h * response(beat_frequency_Hz(target.delay_s, target.delay_rate, self.timing)).to(cd)
+                target.coef = target.coef * h
+            if self.spectrum is not None:
+                self.spectrum = self.spectrum * self._bin_response(g, response)
+            return
+        spec = torch.fft.rfft(self.samples, dim=-1) * self._bin_response(g, response)
+        self.samples = torch.fft.irfft(spec, n=self.timing.num_samples, dim=-1)
+
+    def _bin_response(self, g: torch.Tensor | None, response: Callable | None) -> torch.Tensor:
+        h = torch.ones((), dtype=self.complex_dtype, device=self.device)
+        if response is not None:
+            h = response(self.fft_freqs_Hz()).to(self.complex_dtype)
+        if g is not None:
+            h = g[:, None, None] * h
+        return h
+
+    # ------------------------------------------------------------------ samples
+    def materialize(self) -> torch.Tensor:
+        """Synthesize the samples ``(…, RX, M, N)`` (idempotent)."""
+        if self.samples is not None:
+            return self.samples
+        kw = dict(timing=self.timing, dtype=self.dtype, method=self.method, taylor_tol=self.taylor_tol)
+        x = synthesize(self.coef, self.delay_s, self.delay_rate, **kw)
+        for mod in self.modulated:
+            x = x + mod.multiplier * synthesize(mod.coef, mod.delay_s, mod.delay_rate, **kw)
+        if self.spectrum is not None:
+            x = x + torch.fft.irfft(self.spectrum, n=self.timing.num_samples, dim=-1)
+        self.samples = x
+        return x

@@ -1,0 +1,86 @@
+"""A plausible BGT60TR13C: the receiver's pinned constants and default effect chain.
+
+Every default and where it comes from (values marked *assumed* are not public; the
+calibration loop fits them against a capture):
+
+* ``TX_POWER_MAX_DBM = 5`` at TX power level 31 (*assumed*: order of magnitude of 60 GHz
+  radar-on-chip PAs); lower levels scale the TX *amplitude* linearly with the level
+  (``P = P_max + 20 log10(level / 31)``, level 0 = TX off; *assumed* DAC law).
+* ``DEFAULT_NOISE_FIGURE_DB = 12`` (*assumed*, typical of 60 GHz SiGe/CMOS radar receivers).
+* ``FRONT_END_GAIN_DB = 49.0``: ADC SDK-float units per sqrt(W) at the RX port with 0 dB IF
+  gain. *Pinned* from the project's field notes: static recordings at 23 dB IF gain,
+  fs = 2 MHz, 64 samples, 80 kHz HPF / 500 kHz AAF show 1.3-1.5 ADC counts RMS. With
+  ``k T0 F fs/2`` at F = 12 dB (-102 dBm), first-order filters (mean power response over the
+  Nyquist band 0.443) and the 1/12 LSB^2 of quantization taken out of 1.4 counts, the chain
+  gain is 72.0 dB, i.e. 49.0 dB + 23 dB IF gain.
+* TX->RX leakage, equivalent range 4 cm (*assumed*), coupling -56.3 dB on RX1 and -64.3 dB on
+  RX2/RX3: *pinned* to the field notes' range-domain leakage levels (-19 dB on RX1, -27 dB on
+  RX2/RX3 at 23 dB, Hann-normalised range FFT) in that same recording configuration.
+* DC offsets RX1 1620, RX2 1945, RX3 2067.5 counts (field notes, 23 dB IF gain; kept in counts
+  at every gain: how they scale with the gain is not known).
+* Phase noise: 100 kHz RMS frequency noise, 200 kHz corner, 4 strongest paths (*assumed*; with
+  the ~0.3 ns leakage delay its skirt stays below the thermal noise).
+* IF filters: first-order, cutoffs from the config (80 kHz / 500 kHz SDK defaults).
+"""
+
+from __future__ import annotations
+
+import math
+
+from radaraug.config import RadarConfig
+from radaraug.sensor.effects import (
+    ADCClipping,
+    ADCQuantization,
+    AntiAliasLowPass,
+    DCOffset,
+    Effect,
+    IFGain,
+    IFHighPass,
+    PhaseNoise,
+    SystemGain,
+    ThermalNoise,
+    TxRxLeakage,
+)
+
+TX_POWER_MAX_DBM = 5.0
+DEFAULT_NOISE_FIGURE_DB = 12.0
+FRONT_END_GAIN_DB = 49.0
+LEAKAGE_RANGE_M = 0.04
+LEAKAGE_COUPLING_DB = {1: -56.3, 2: -64.3, 3: -64.3}
+DC_LEVEL_COUNTS = {1: 1620.0, 2: 1945.0, 3: 2067.5}
+
+
+def tx_power_dBm(level: int) -> float:
+    """TX power (dBm) for an Infineon TX power level 0..31 (assumed law, see module doc)."""
+    if level <= 0:
+        return -math.inf
+    return TX_POWER_MAX_DBM + 20 * math.log10(level / 31)
+
+
+def default_effects(
+    config: RadarConfig,
+    *,
+    noise_figure_dB: float = DEFAULT_NOISE_FIGURE_DB,
+    system_gain_dB: float = 0.0,
+) -> list[Effect]:
+    """The default BGT60TR13C chain for ``config``, in hardware order.
+
+    leakage -> phase noise -> thermal noise -> system gain -> IF high-pass -> IF gain ->
+    anti-alias low-pass -> DC offset -> ADC quantization -> ADC clipping.
+    """
+    mid = config.adc_full_scale_counts / 2
+    rx = config.rx_antennas
+    return [
+        TxRxLeakage(
+            coupling_dB=[LEAKAGE_COUPLING_DB.get(a, LEAKAGE_COUPLING_DB[3]) for a in rx], range_m=LEAKAGE_RANGE_M
+        ),
+        PhaseNoise(),
+        ThermalNoise(noise_figure_dB=noise_figure_dB),
+        SystemGain(gain_dB=system_gain_dB),
+        IFHighPass(cutoff_Hz=config.effective_hp_cutoff_Hz),
+        IFGain(gain_dB=float(config.if_gain_dB)),
+        AntiAliasLowPass(cutoff_Hz=config.effective_aaf_cutoff_Hz),
+        DCOffset(level_counts=[DC_LEVEL_COUNTS.get(a, mid) if config.adc_bits == 12 else mid for a in rx]),
+        ADCQuantization(),
+        ADCClipping(),
+    ]

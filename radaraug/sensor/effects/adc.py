@@ -1,0 +1,68 @@
+"""The ADC end of the chain: per-RX DC offsets, 12-bit quantization and clipping.
+
+Output units are Infineon Radar SDK 3.6 floats ``x = 2*counts/(2**bits - 1) - 1``
+(:data:`radaraug.units.FLOAT_CONVENTION`).
+"""
+
+from __future__ import annotations
+
+import torch
+
+from radaraug.sensor.chain import ChainState
+from radaraug.sensor.effects.base import Effect, per_rx, register
+
+
+@register
+class DCOffset(Effect):
+    """Per-RX DC level at the ADC input, given as the ADC code it sits at.
+
+    Args:
+        level_counts: per-RX (or scalar) mean ADC code; mid-scale is ``(2**bits - 1) / 2``
+            (2047.5 for 12 bits), i.e. zero offset.
+    """
+
+    name = "dc_offset"
+    param_names = ("level_counts",)
+
+    def __init__(self, level_counts: float | list | torch.Tensor = 2047.5) -> None:
+        super().__init__()
+        self._set(level_counts=level_counts)
+
+    def apply(self, state: ChainState) -> None:
+        full = float(state.config.adc_full_scale_counts)
+        level = per_rx(state, self.level_counts, "level_counts", self.name)
+        state.add_constant(level * (2.0 / full) - 1.0)
+
+
+@register
+class ADCQuantization(Effect):
+    """Round to the nearest ADC code (straight-through gradient, so calibration can still fit).
+
+    Args:
+        bits: ADC resolution; ``None`` takes ``config.adc_bits``.
+    """
+
+    name = "adc_quantization"
+    param_names = ("bits",)
+
+    def __init__(self, bits: int | None = None) -> None:
+        super().__init__()
+        self._set(bits=bits)
+
+    def apply(self, state: ChainState) -> None:
+        bits = state.config.adc_bits if self.bits is None else int(self.bits)
+        full = float(2**bits - 1)
+        x = state.materialize()
+        q = torch.round((x + 1.0) * (full / 2.0)) * (2.0 / full) - 1.0
+        state.samples = x + (q - x).detach()
+
+
+@register
+class ADCClipping(Effect):
+    """Clip to the ADC range: codes ``0 .. 2**bits - 1``, i.e. ``[-1, 1]`` in SDK floats."""
+
+    name = "adc_clipping"
+    param_names = ()
+
+    def apply(self, state: ChainState) -> None:
+        state.samples = torch.clamp(state.materialize(), -1.0, 1.0)

@@ -1,0 +1,86 @@
+"""Gain stages: residual system gain, the IF gain (VGA) and per-RX gain/phase mismatch."""
+
+from __future__ import annotations
+
+import torch
+
+from radaraug.sensor.chain import ChainState
+from radaraug.sensor.effects.base import Effect, per_rx, register
+
+
+def db_to_amplitude(db: torch.Tensor) -> torch.Tensor:
+    """``10 ** (dB / 20)``, differentiable."""
+    return torch.pow(10.0, db / 20)
+
+
+@register
+class SystemGain(Effect):
+    """A flat gain on everything present at this point (signal and noise), in dB.
+
+    The receiver's fixed front-end conversion (RX port sqrt(W) -> ADC floats at 0 dB IF gain) is
+    pinned from measured noise; this stage is the residual the calibration loop fits
+    (default 0 dB). Placed after the thermal noise, it scales signal and noise together.
+
+    Args:
+        gain_dB: scalar gain in dB.
+    """
+
+    name = "system_gain"
+    param_names = ("gain_dB",)
+
+    def __init__(self, gain_dB: float | torch.Tensor = 0.0) -> None:
+        super().__init__()
+        self._set(gain_dB=gain_dB)
+
+    def apply(self, state: ChainState) -> None:
+        g = db_to_amplitude(state.param(self.gain_dB)).expand(state.num_rx)
+        state.apply_linear(rx_gain=g)
+
+
+@register
+class IFGain(Effect):
+    """The IF gain (BGT60: high-pass stage 18/30 dB + VGA 0..30 dB), applied after the high-pass.
+
+    Args:
+        gain_dB: gain in dB; ``None`` takes ``config.if_gain_dB`` at call time.
+    """
+
+    name = "if_gain"
+    param_names = ("gain_dB",)
+
+    def __init__(self, gain_dB: float | torch.Tensor | None = None) -> None:
+        super().__init__()
+        self._set(gain_dB=gain_dB)
+
+    def apply(self, state: ChainState) -> None:
+        db = (
+            torch.tensor(float(state.config.if_gain_dB), device=state.device, dtype=state.dtype)
+            if self.gain_dB is None
+            else state.param(self.gain_dB)
+        )
+        state.apply_linear(rx_gain=db_to_amplitude(db).expand(state.num_rx))
+
+
+@register
+class RxGainPhaseMismatch(Effect):
+    """Per-RX complex gain ``10**(gain_dB/20) * exp(j phase_rad)`` (channel imbalance).
+
+    The phase adds to the phase of each real IF tone (it multiplies the positive-frequency
+    component).
+
+    Args:
+        gain_dB: per-RX (or scalar) gain offsets in dB.
+        phase_rad: per-RX (or scalar) phase offsets in radians.
+    """
+
+    name = "rx_gain_phase_mismatch"
+    param_names = ("gain_dB", "phase_rad")
+
+    def __init__(self, gain_dB: float | list | torch.Tensor = 0.0, phase_rad: float | list | torch.Tensor = 0.0) -> None:
+        super().__init__()
+        self._set(gain_dB=gain_dB, phase_rad=phase_rad)
+
+    def apply(self, state: ChainState) -> None:
+        amp = db_to_amplitude(per_rx(state, self.gain_dB, "gain_dB", self.name))
+        ph = per_rx(state, self.phase_rad, "phase_rad", self.name)
+        state.apply_linear(rx_gain=torch.polar(amp, ph))

@@ -1,0 +1,46 @@
+"""TX -> RX leakage: the on-chip/in-package coupling, a strong static path a few cm long."""
+
+from __future__ import annotations
+
+import torch
+
+from radaraug.config import SPEED_OF_LIGHT
+from radaraug.sensor.chain import ChainState
+from radaraug.sensor.effects.base import Effect, per_rx, register
+
+
+@register
+class TxRxLeakage(Effect):
+    """A static path at the RX port with power ``coupling * P_tx``.
+
+    Being a path, it goes through every later stage like a target would (the IF high-pass
+    removes most of it: at 4 cm its beat frequency is ~1 kHz in the paper's chirp).
+
+    Args:
+        coupling_dB: per-RX (or scalar) power at the RX port relative to the TX power, dB.
+        range_m: equivalent one-way range of the coupling (delay ``2 * range_m / c``).
+        phase_rad: per-RX (or scalar) phase of the beat tone, radians.
+    """
+
+    name = "tx_rx_leakage"
+    param_names = ("coupling_dB", "range_m", "phase_rad")
+
+    def __init__(
+        self,
+        coupling_dB: float | list | torch.Tensor = -60.0,
+        range_m: float | torch.Tensor = 0.04,
+        phase_rad: float | list | torch.Tensor = 0.0,
+    ) -> None:
+        super().__init__()
+        self._set(coupling_dB=coupling_dB, range_m=range_m, phase_rad=phase_rad)
+
+    def apply(self, state: ChainState) -> None:
+        c = per_rx(state, self.coupling_dB, "coupling_dB", self.name)
+        ph = per_rx(state, self.phase_rad, "phase_rad", self.name)
+        amp = torch.sqrt(2 * state.tx_power_W * torch.pow(10.0, c / 10)) * state.front_end_gain
+        coef = torch.polar(amp, ph)[:, None]  # (RX, 1)
+        delay = (2 * state.param(self.range_m) / SPEED_OF_LIGHT).reshape(1, 1).expand(state.num_rx, 1)
+        state.add_paths(coef, delay, torch.zeros_like(delay))
+
+
+

@@ -1,0 +1,49 @@
+"""A spurious tone at the ADC input (clock or switching-regulator spur), locked to absolute time."""
+
+from __future__ import annotations
+
+import math
+
+import torch
+
+from radaraug.sensor.chain import ChainState
+from radaraug.sensor.effects.base import Effect, per_rx, register
+
+
+@register
+class SpurTone(Effect):
+    """``A cos(2 pi f t + phi)`` added where the effect sits, ``t`` the absolute sample time.
+
+    ``t = frame_start_s + m * PRT + adc_delay + n / fs``, so the spur keeps its phase from frame
+    to frame like a free-running interferer (it is not coherent with the chirps).
+
+    Args:
+        freq_Hz: spur frequency.
+        amplitude_counts: per-RX (or scalar) peak amplitude in ADC counts at this point.
+        phase_rad: phase at ``t = 0``.
+    """
+
+    name = "spur_tone"
+    param_names = ("freq_Hz", "amplitude_counts", "phase_rad")
+
+    def __init__(
+        self,
+        freq_Hz: float | torch.Tensor = 100e3,
+        amplitude_counts: float | list | torch.Tensor = 1.0,
+        phase_rad: float | torch.Tensor = 0.0,
+    ) -> None:
+        super().__init__()
+        self._set(freq_Hz=freq_Hz, amplitude_counts=amplitude_counts, phase_rad=phase_rad)
+
+    def apply(self, state: ChainState) -> None:
+        tm = state.timing
+        m = torch.arange(tm.num_chirps, device=state.device, dtype=torch.float64)
+        n = torch.arange(tm.num_samples, device=state.device, dtype=torch.float64)
+        t = state.frame_start_s + (m * tm.prt + tm.adc_delay)[:, None] + (n / tm.fs)[None, :]
+        f = self.freq_Hz.to(device=state.device, dtype=torch.float64)
+        cycles = f * t
+        phase = 2 * math.pi * (cycles - torch.round(cycles)).to(state.dtype) + state.param(self.phase_rad)
+        amp = per_rx(state, self.amplitude_counts, "amplitude_counts", self.name) * (
+            2.0 / state.config.adc_full_scale_counts
+        )
+        state.add_samples(amp[:, None, None] * torch.cos(phase))

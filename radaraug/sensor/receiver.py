@@ -1,0 +1,255 @@
+"""`FMCWReceiver`: propagation paths -> raw ADC frames in the real sensor's units.
+
+The chain, in the order the hardware applies it:
+
+1. radar equation in absolute units: ``Paths.amplitude`` (sqrt(W) at the RX port per watt of
+   TX power) times ``sqrt(P_tx)``;
+2. the receiver's effects in list order (default, see :mod:`radaraug.sensor.defaults`):
+   TX->RX leakage, phase noise, thermal noise, system gain, IF high-pass, IF gain,
+   anti-alias low-pass, DC offset, ADC quantization, ADC clipping;
+3. IF synthesis of every path over fast and slow time for every RX (:mod:`.synthesis`),
+   done once, as late as the effects allow (linear stages act on path coefficients).
+
+Output: ``(..., RX, chirps, samples)`` in Infineon Radar SDK 3.6 floats
+(:data:`radaraug.units.FLOAT_CONVENTION`: ``x = 2*counts/4095 - 1``).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping, Sequence
+from typing import Any
+
+import torch
+from torch import nn
+
+from radaraug.config import RadarConfig
+from radaraug.errors import ConfigError, InputTensorError
+from radaraug.sensor.chain import ChainState
+from radaraug.sensor.defaults import FRONT_END_GAIN_DB, default_effects, tx_power_dBm
+from radaraug.sensor.effects import Effect, effect_from_dict
+from radaraug.sensor.paths import Paths
+from radaraug.sensor.synthesis import DEFAULT_TAYLOR_TOL, SYNTHESIS_METHODS
+from radaraug.units import FLOAT_CONVENTION, float_to_counts
+
+
+class FMCWReceiver(nn.Module):
+    """Simulates the BGT60-style FMCW receiver for a :class:`RadarConfig`.
+
+    Args:
+        config: radar configuration (chirp, IF gain, filter cutoffs, ADC bits, RX layout).
+        noise_figure_dB: noise figure of the default chain's thermal noise (default 12 dB, see
+            :mod:`radaraug.sensor.defaults`). Only with ``effects=None``.
+        tx_power_dBm: TX power; ``None`` maps ``config.tx_power_level`` (assumed law in
+            :func:`radaraug.sensor.defaults.tx_power_dBm`).
+        system_gain_dB: residual gain of the default chain's ``system_gain`` stage. Only with
+            ``effects=None``.
+        effects: the effect chain in hardware order; ``None`` builds the default BGT60TR13C
+            chain; ``[]`` gives the ideal receiver (front-end gain only, no IF gain, filters,
+            noise or ADC).
+        synthesis: ``"fast"`` (separable GEMM, default) or ``"exact"`` (direct sum, reference).
+        front_end_gain_dB: ADC float units per sqrt(W) at the RX port at 0 dB IF gain (pinned
+            from measured noise, see :data:`radaraug.sensor.defaults.FRONT_END_GAIN_DB`).
+        taylor_tol: truncation bound of the fast synthesis' coupling expansion.
+    """
+
+    units = FLOAT_CONVENTION
+
+    def __init__(
+        self,
+        config: RadarConfig,
+        *,
+        noise_figure_dB: float | None = None,
+        tx_power_dBm: float | None = None,
+        system_gain_dB: float = 0.0,
+        effects: Sequence[Effect] | None = None,
+        synthesis: str = "fast",
+        front_end_gain_dB: float = FRONT_END_GAIN_DB,
+        taylor_tol: float = DEFAULT_TAYLOR_TOL,
+    ) -> None:
+        super().__init__()
+        if not isinstance(config, RadarConfig):
+            raise ConfigError(f"FMCWReceiver needs a RadarConfig, got {type(config).__name__}")
+        if synthesis not in SYNTHESIS_METHODS:
+            raise ConfigError(f"synthesis must be one of {SYNTHESIS_METHODS}, got {synthesis!r}")
+        if not (taylor_tol > 0 and math.isfinite(taylor_tol)):
+            raise ConfigError(f"taylor_tol must be positive, got {taylor_tol!r}")
+        self.config = config
+        self.synthesis = synthesis
+        self.taylor_tol = float(taylor_tol)
+        self.tx_power_dBm = _tx_power(config, tx_power_dBm)
+        self.front_end_gain_dB = float(front_end_gain_dB)
+        if effects is None:
+            kw: dict[str, float] = {"system_gain_dB": float(system_gain_dB)}
+            if noise_figure_dB is not None:
+                kw["noise_figure_dB"] = float(noise_figure_dB)
+            effects = default_effects(config, **kw)
+        else:
+            if noise_figure_dB is not None or system_gain_dB != 0.0:
+                raise ConfigError(
+                    "noise_figure_dB and system_gain_dB configure the default chain only; with an "
+                    "explicit effects list set them in its ThermalNoise / SystemGain effects"
+                )
+            bad = [e for e in effects if not isinstance(e, Effect)]
+            if bad:
+                raise ConfigError(f"effects must be Effect instances, got {[type(b).__name__ for b in bad]}")
+        self.effects = nn.ModuleList(list(effects))
+
+    # ------------------------------------------------------------------ public API
+    @property
+    def tx_power_W(self) -> float:
+        """TX power in watts."""
+        return 0.0 if self.tx_power_dBm == -math.inf else 10 ** (self.tx_power_dBm / 10) / 1000
+
+    @property
+    def front_end_gain(self) -> float:
+        """Front-end gain as an amplitude factor (ADC floats per sqrt(W))."""
+        return 10 ** (self.front_end_gain_dB / 20)
+
+    def effect(self, name: str) -> Effect:
+        """The first effect called ``name`` (KeyError when absent)."""
+        for e in self.effects:
+            if e.name == name:
+                return e
+        raise KeyError(f"no effect {name!r} in this receiver; it has {[e.name for e in self.effects]}")
+
+    def forward(
+        self, paths: Paths, *, generator: torch.Generator | None = None, frame_start_s: float = 0.0
+    ) -> torch.Tensor:
+        """Simulate the ADC samples of ``paths``.
+
+        Args:
+            paths: propagation paths ``(..., P, RX)`` (see :class:`Paths`); their device and
+                delay dtype (float32/float64) set the output's.
+            generator: source of every random draw (on the paths' device); None: global RNG.
+            frame_start_s: absolute time of the frame's first ramp start (time-locked effects).
+
+        Returns:
+            ``(..., RX, chirps, samples)`` in SDK 3.6 floats.
+        """
+        state = self._initial_state(paths, generator, frame_start_s)
+        for eff in self.effects:
+            eff.apply(state)
+        return state.materialize()
+
+    def to_counts(
+        self,
+        paths_or_samples: Paths | torch.Tensor,
+        *,
+        generator: torch.Generator | None = None,
+        frame_start_s: float = 0.0,
+    ) -> torch.Tensor:
+        """ADC counts (``torch.uint16``) of simulated ``paths`` or of SDK-float samples."""
+        if isinstance(paths_or_samples, Paths):
+            x = self(paths_or_samples, generator=generator, frame_start_s=frame_start_s)
+        elif isinstance(paths_or_samples, torch.Tensor):
+            x = paths_or_samples
+        else:
+            raise InputTensorError(f"to_counts needs Paths or a tensor, got {type(paths_or_samples).__name__}")
+        return float_to_counts(x.detach(), self.config.adc_bits).to(torch.uint16)
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-friendly description: synthesis, TX power, front-end gain and the effect chain."""
+        return {
+            "synthesis": self.synthesis,
+            "tx_power_dBm": None if self.tx_power_dBm == -math.inf else self.tx_power_dBm,
+            "front_end_gain_dB": self.front_end_gain_dB,
+            "taylor_tol": self.taylor_tol,
+            "effects": [e.to_dict() for e in self.effects],
+            "units": FLOAT_CONVENTION,
+        }
+
+    @classmethod
+    def from_dict(cls, config: RadarConfig, data: Mapping[str, Any]) -> FMCWReceiver:
+        """Inverse of :meth:`to_dict` for ``config``."""
+        try:
+            effects = [effect_from_dict(e) for e in data["effects"]]
+            tx = data.get("tx_power_dBm")
+            return cls(
+                config,
+                effects=effects,
+                tx_power_dBm=-math.inf if tx is None else float(tx),
+                synthesis=data.get("synthesis", "fast"),
+                front_end_gain_dB=float(data.get("front_end_gain_dB", FRONT_END_GAIN_DB)),
+                taylor_tol=float(data.get("taylor_tol", DEFAULT_TAYLOR_TOL)),
+            )
+        except (KeyError, TypeError) as e:
+            raise ConfigError(f"invalid receiver description: {e}") from None
+
+    def extra_repr(self) -> str:
+        return f"synthesis={self.synthesis!r}, tx_power_dBm={self.tx_power_dBm:.2f}, front_end_gain_dB={self.front_end_gain_dB}"
+
+    # ------------------------------------------------------------------ internals
+    def _initial_state(self, paths: Paths, generator: torch.Generator | None, frame_start_s: float) -> ChainState:
+        delay, rate, amp, mask = _validated(paths, self.config.num_rx)
+        if not math.isfinite(frame_start_s):
+            raise InputTensorError(f"frame_start_s must be finite, got {frame_start_s!r}")
+        dtype = delay.dtype
+        cdtype = torch.complex64 if dtype == torch.float32 else torch.complex128
+        # The IF is TX x conj(RX): a path's scattering phase enters conjugated; a real tone of
+        # power P has peak amplitude sqrt(2 P).
+        coef = amp.to(cdtype).conj() * (math.sqrt(2 * self.tx_power_W) * self.front_end_gain)
+        if mask is not None:
+            coef = coef * mask[..., None].to(coef.real.dtype)
+        return ChainState(
+            self.config,
+            coef.transpose(-1, -2),
+            delay.transpose(-1, -2),
+            rate.transpose(-1, -2),
+            dtype=dtype,
+            generator=generator,
+            frame_start_s=frame_start_s,
+            tx_power_W=self.tx_power_W,
+            front_end_gain=self.front_end_gain,
+            method=self.synthesis,
+            taylor_tol=self.taylor_tol,
+        )
+
+
+def _tx_power(config: RadarConfig, tx_power_dBm_value: float | None) -> float:
+    if tx_power_dBm_value is None:
+        return tx_power_dBm(int(config.tx_power_level))
+    v = float(tx_power_dBm_value)
+    if math.isnan(v) or v == math.inf:
+        raise ConfigError(f"tx_power_dBm must be a finite number (or -inf for TX off), got {tx_power_dBm_value!r}")
+    return v
+
+
+def _validated(paths: Paths, num_rx: int):
+    """Check a Paths object; return (delay, rate, amplitude, mask) tensors."""
+    if not isinstance(paths, Paths):
+        raise InputTensorError(f"receiver input must be radaraug.sensor.Paths, got {type(paths).__name__}")
+    delay, rate, amp, mask = paths.delay_s, paths.delay_rate, paths.amplitude, paths.mask
+    for name, t in (("delay_s", delay), ("delay_rate", rate), ("amplitude", amp)):
+        if not isinstance(t, torch.Tensor):
+            raise InputTensorError(f"Paths.{name} must be a tensor, got {type(t).__name__}")
+    if delay.dtype not in (torch.float32, torch.float64):
+        raise InputTensorError(f"Paths.delay_s must be float32 or float64, got {delay.dtype}")
+    if delay.ndim < 2:
+        raise InputTensorError(f"Paths.delay_s must be (..., P, RX), got shape {tuple(delay.shape)}")
+    if delay.shape[-1] != num_rx:
+        raise InputTensorError(
+            f"Paths have {delay.shape[-1]} RX channels (last dim) but the config has {num_rx}"
+        )
+    for name, t in (("delay_rate", rate), ("amplitude", amp)):
+        if t.shape != delay.shape:
+            raise InputTensorError(f"Paths.{name} has shape {tuple(t.shape)}, delay_s {tuple(delay.shape)}")
+        if t.device != delay.device:
+            raise InputTensorError(f"Paths.{name} is on {t.device}, delay_s on {delay.device}")
+    if not rate.is_floating_point():
+        raise InputTensorError(f"Paths.delay_rate must be floating point, got {rate.dtype}")
+    if not (amp.is_floating_point() or amp.is_complex()):
+        raise InputTensorError(f"Paths.amplitude must be real or complex floating point, got {amp.dtype}")
+    for name, t in (("delay_s", delay), ("delay_rate", rate), ("amplitude", amp)):
+        if not bool(torch.isfinite(t).all()):
+            raise InputTensorError(f"Paths.{name} holds NaN or Inf")
+    if bool((delay < 0).any()):
+        raise InputTensorError("Paths.delay_s must be >= 0 (a round-trip delay)")
+    if bool((rate.abs() >= 1).any()):
+        raise InputTensorError("Paths.delay_rate must be |rate| < 1 (it is 2 v / c for a radial speed v)")
+    if mask is not None:
+        if not isinstance(mask, torch.Tensor) or mask.shape != delay.shape[:-1]:
+            shape = tuple(mask.shape) if isinstance(mask, torch.Tensor) else type(mask).__name__
+            raise InputTensorError(f"Paths.mask must be (..., P) = {tuple(delay.shape[:-1])}, got {shape}")
+        mask = mask.to(device=delay.device, dtype=torch.bool)
+    return delay, rate.to(delay.dtype), amp, mask
