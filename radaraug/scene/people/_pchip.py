@@ -58,9 +58,10 @@ class PeriodicPchip:
     def _tables(self, device: torch.device, dtype: torch.dtype) -> tuple[torch.Tensor, ...]:
         key = (device, dtype)
         if key not in self._cache:
-            self._cache[key] = tuple(
-                torch.as_tensor(a, dtype=dtype, device=device) for a in (self._x, self._y, self._d)
-            )
+            x, y, d = (torch.as_tensor(a, dtype=dtype, device=device) for a in (self._x, self._y, self._d))
+            lo = torch.stack([x, y, d], dim=-1)  # (C, K, 3): knot k
+            hi = torch.roll(lo, -1, dims=1)  # knot k + 1 (the wrapped last row is never used)
+            self._cache[key] = (x, lo, hi)
         return self._cache[key]
 
     def __call__(self, u: torch.Tensor) -> tuple[torch.Tensor, torch.Tensor]:
@@ -72,12 +73,15 @@ class PeriodicPchip:
         Returns:
             ``(value, d value / du)``, both ``(C, N)``.
         """
-        x, y, d = self._tables(u.device, u.dtype)
+        x, lo, hi = self._tables(u.device, u.dtype)
         k = x.shape[1]
-        idx = (torch.searchsorted(x, u.contiguous(), right=True) - 1).clamp(0, k - 2)
-        x0, x1 = x.gather(1, idx), x.gather(1, idx + 1)
-        y0, y1 = y.gather(1, idx), y.gather(1, idx + 1)
-        d0, d1 = d.gather(1, idx), d.gather(1, idx + 1)
+        # Interval index by counting knots <= u, and the interval's end data by a one-hot
+        # masked sum: plain elementwise ops (cheaper on small tensors than searchsorted +
+        # gathers, and exact, unlike a matmul that may run in TF32).
+        idx = ((u.unsqueeze(-1) >= x.unsqueeze(1)).sum(-1) - 1).clamp(0, k - 2)
+        onehot = (idx.unsqueeze(-1) == torch.arange(k, device=u.device)).to(u.dtype)  # (C, N, K)
+        ends = (onehot.unsqueeze(-1) * torch.cat([lo, hi], dim=-1).unsqueeze(1)).sum(-2)  # (C, N, 6)
+        x0, y0, d0, x1, y1, d1 = ends.unbind(-1)
         h = x1 - x0
         s = (u - x0) / h
         s2, s3 = s * s, s * s * s

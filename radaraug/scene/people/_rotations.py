@@ -60,6 +60,16 @@ def _basis(axis: str, device: torch.device, dtype: torch.dtype) -> tuple[torch.T
     return _BASIS_CACHE[key]
 
 
+def rotation_from_cos_sin(
+    axis: str, c: torch.Tensor, s: torch.Tensor, rate: torch.Tensor
+) -> tuple[torch.Tensor, torch.Tensor]:
+    """Like :func:`axis_rotation_rate` from precomputed ``cos``/``sin`` of the angle (lets a caller
+    evaluate all its trigonometric functions in one batched call)."""
+    kk, cc, ss = _basis(axis, c.device, c.dtype)
+    c, s, rt = c[..., None, None], s[..., None, None], rate[..., None, None]
+    return kk + c * cc + s * ss, (c * rt) * ss - (s * rt) * cc
+
+
 def _rot_and_derivative(
     axis: str, angle: torch.Tensor, rate: torch.Tensor | None
 ) -> tuple[torch.Tensor, torch.Tensor | None]:

@@ -9,6 +9,7 @@ the table below, from anthropometric tables for a 1.8 m adult, scaled linearly w
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import torch
 
@@ -75,6 +76,7 @@ ANKLE_HEIGHT_FRACTION = 0.039
 """Height of the ankle joint above the sole (Winter's anthropometric table)."""
 
 _MIN_SEMI_AXIS_M = 1e-3
+_CACHE: dict[tuple, Any] = {}  # small per-device constant tensors
 
 
 def _kind(segment: str) -> str:
@@ -104,14 +106,21 @@ class Skeleton:
         return len(SEGMENT_NAMES)
 
     def _indices(self, device: torch.device) -> tuple[torch.Tensor, torch.Tensor]:
-        parent = torch.tensor([JOINT_INDEX[s[1]] for s in _SEGMENT_TABLE], device=device)
-        child = torch.tensor([JOINT_INDEX[s[2]] for s in _SEGMENT_TABLE], device=device)
-        return parent, child
+        key = ("idx", device)
+        if key not in _CACHE:
+            _CACHE[key] = (
+                torch.tensor([JOINT_INDEX[s[1]] for s in _SEGMENT_TABLE], device=device),
+                torch.tensor([JOINT_INDEX[s[2]] for s in _SEGMENT_TABLE], device=device),
+            )
+        return _CACHE[key]
 
     def cross_section(self, like: torch.Tensor) -> torch.Tensor:
         """``(S, 2)`` cross-section semi-axes (local x, y) in metres, on ``like``'s device/dtype."""
-        vals = [SEMI_AXIS_FRACTIONS[_kind(s)] for s in SEGMENT_NAMES]
-        return torch.tensor(vals, dtype=like.dtype, device=like.device) * float(self.height_m)
+        key = ("cs", float(self.height_m), like.device, like.dtype)
+        if key not in _CACHE:
+            vals = [SEMI_AXIS_FRACTIONS[_kind(s)] for s in SEGMENT_NAMES]
+            _CACHE[key] = torch.tensor(vals, dtype=like.dtype, device=like.device) * float(self.height_m)
+        return _CACHE[key]
 
     def segment_frames(
         self, joints: torch.Tensor, fallback: torch.Tensor | None = None
@@ -131,9 +140,13 @@ class Skeleton:
         Returns:
             ``(rotations (..., S, 3, 3), fallback (..., S))``.
         """
-        j = JOINT_INDEX
         parent, child = self._indices(joints.device)
-        bone = joints[..., child, :] - joints[..., parent, :]
+        return self._frames(joints, joints[..., child, :] - joints[..., parent, :], fallback)
+
+    def _frames(
+        self, joints: torch.Tensor, bone: torch.Tensor, fallback: torch.Tensor | None
+    ) -> tuple[torch.Tensor, torch.Tensor]:
+        j = JOINT_INDEX
         length = bone.norm(dim=-1, keepdim=True)
         up = torch.zeros_like(bone[..., 0, :])
         up[..., 2] = 1.0
@@ -178,11 +191,15 @@ class Skeleton:
             material: surface material name.
         """
         parent, child = self._indices(joints.device)
-        pa, ch = joints[..., parent, :], joints[..., child, :]
+        s = parent.shape[0]
+        # One gather for both ends of every bone, positions and velocities together.
+        ends = torch.cat([joints, velocities], dim=-1)[..., torch.cat([parent, child]), :]
+        pa, ch = ends[..., :s, :3], ends[..., s:, :3]
         centers = 0.5 * (pa + ch)
-        vel = 0.5 * (velocities[..., parent, :] + velocities[..., child, :])
-        half = (0.5 * (ch - pa).norm(dim=-1, keepdim=True)).clamp_min(_MIN_SEMI_AXIS_M)
+        vel = 0.5 * (ends[..., :s, 3:] + ends[..., s:, 3:])
+        bone = ch - pa
+        half = (0.5 * bone.norm(dim=-1, keepdim=True)).clamp_min(_MIN_SEMI_AXIS_M)
         cs = self.cross_section(joints).expand(*half.shape[:-1], 2)
         semi = torch.cat([cs, half], dim=-1)
-        rot, _ = self.segment_frames(joints, fallback)
+        rot, _ = self._frames(joints, bone, fallback)
         return Ellipsoids(centers=centers, semi_axes=semi, rotations=rot, velocities=vel, material=material)

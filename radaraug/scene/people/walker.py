@@ -127,38 +127,30 @@ class Walker(SkeletonPerson):
     # ------------------------------------------------------------------ kinematics
     def _translations(self, u: torch.Tensor) -> tuple[torch.Tensor, torch.Tensor]:
         """Pelvis oscillation (fb, lateral, vertical) in metres and its d/du, ``(T, 3)``."""
-        a1 = _TWO_PI * (2 * u - 0.35)
-        a2 = _TWO_PI * (u - 0.1)
-        a3 = _TWO_PI * (2 * u + 2 * self._phi_fb)
-        pos = torch.stack(
-            [self._a_fb * torch.sin(a3), self._a_lat * torch.sin(a2), -self._a_vert + self._a_vert * torch.sin(a1)],
-            dim=-1,
-        )
-        der = torch.stack(
-            [
-                self._a_fb * 2 * _TWO_PI * torch.cos(a3),
-                self._a_lat * _TWO_PI * torch.cos(a2),
-                self._a_vert * 2 * _TWO_PI * torch.cos(a1),
-            ],
-            dim=-1,
-        )
-        return pos, der
+        args = torch.stack([2 * u + 2 * self._phi_fb, u - 0.1, 2 * u - 0.35], dim=-1) * _TWO_PI
+        amp = u.new_tensor([self._a_fb, self._a_lat, self._a_vert])
+        freq = u.new_tensor([2.0, 1.0, 2.0]) * _TWO_PI
+        offset = u.new_tensor([0.0, 0.0, -self._a_vert])
+        return amp * torch.sin(args) + offset, (amp * freq) * torch.cos(args)
 
-    def _pelvis_list(self, u: torch.Tensor) -> tuple[torch.Tensor, torch.Tensor]:
-        """Left/right rotation of the pelvis (degrees, d/du): four cosine arcs, C1 continuous.
+    def _pelvis_list_arcs(self, u: torch.Tensor) -> tuple[torch.Tensor, torch.Tensor, torch.Tensor, torch.Tensor]:
+        """Left/right rotation of the pelvis (degrees): four cosine arcs, C1 continuous.
 
-        On each arc ``[u0, u1)``: ``offset + coef * cos(w (u - u0))``.
+        On each arc ``[u0, u1)`` the angle is ``offset + coef * cos(w (u - u0))``; returns
+        ``(offset, coef, w, w (u - u0))`` so that the caller batches the trigonometry.
         """
         a = self._a_pelvis_list
         w1, w2 = _TWO_PI * 10 / 3, _TWO_PI * 10 / 7
-        table = torch.tensor(
-            [[-a, a, w1, 0.0], [-a, -a, w2, 0.15], [a, -a, w1, 0.5], [a, a, w2, 0.65]],
-            dtype=u.dtype, device=u.device,
-        )
-        edges = table[1:, 3].contiguous()
-        off, coef, w, u0 = table[torch.bucketize(u, edges, right=True)].unbind(-1)
-        arg = w * (u - u0)
-        return off + coef * torch.cos(arg), -coef * w * torch.sin(arg)
+        # Arcs (offset, coef, w, u0): [0, .15): (-a, a, w1, 0); [.15, .5): (-a, -a, w2, .15);
+        # [.5, .65): (a, -a, w1, .5); [.65, 1): (a, a, w2, .65). Chosen elementwise (no gather:
+        # tiny index kernels are slow on a busy multi-core CPU).
+        in2, in3, in4 = u >= 0.15, u >= 0.5, u >= 0.65
+        one = torch.ones_like(u)
+        off = torch.where(in3, a * one, -a * one)
+        coef = torch.where(in2 & ~in4, -a * one, a * one)
+        w = torch.where((in2 & ~in3) | in4, w2 * one, w1 * one)
+        u0 = 0.15 * in2.to(u.dtype) + 0.35 * in3.to(u.dtype) + 0.15 * in4.to(u.dtype)
+        return off, coef, w, w * (u - u0)
 
     def _pose(self, t: torch.Tensor) -> dict[str, Any]:
         """Joint positions/velocities and segment rotations (world), for ``t`` ``(T,)``.
@@ -177,27 +169,39 @@ class Walker(SkeletonPerson):
         ang = {k: (vals[i], ders[i]) for i, k in enumerate(_CURVES)}  # (2, T) rad, rad/s
         thorax = (vals[4, 1], ders[4, 1])
 
-        w = _TWO_PI * u
-        ws = _TWO_PI * u_sides
-        a_sh = self._a_shoulder
-        shoulder = ((3 - a_sh / 2 - a_sh * torch.cos(ws)) * _DEG, (a_sh * _TWO_PI * _DEG * rate) * torch.sin(ws))
-        tors = ((-self._a_torsion * _DEG) * torch.cos(w), (self._a_torsion * _TWO_PI * _DEG * rate) * torch.sin(w))
-        a_pf = self._a_pelvis_flex
-        wf = _TWO_PI * (2 * u - 0.1)
-        pflex = ((-a_pf + a_pf * torch.sin(wf)) * _DEG, (a_pf * 2 * _TWO_PI * _DEG * rate) * torch.cos(wf))
-        plist, plist_d = self._pelvis_list(u)
-        plist = (plist * _DEG, plist_d * (_DEG * rate))
+        # All trigonometry in two batched calls: first the gait-phase sinusoids, then the
+        # joint rotations (few large kernels instead of dozens of tiny ones).
+        pl_off, pl_coef, pl_w, pl_arg = self._pelvis_list_arcs(u)
+        phase_args = torch.cat([
+            torch.stack([_TWO_PI * u, _TWO_PI * (2 * u - 0.1), pl_arg]), _TWO_PI * u_sides,
+        ])  # (5, T): torsion, pelvis flexion, pelvis list, shoulder left/right
+        pc, ps = torch.cos(phase_args), torch.sin(phase_args)
+        a_t, a_pf, a_sh = self._a_torsion * _DEG, self._a_pelvis_flex * _DEG, self._a_shoulder * _DEG
+        tors = (-a_t * pc[0], (a_t * _TWO_PI * rate) * ps[0])
+        pflex = (-a_pf + a_pf * ps[1], (a_pf * 2 * _TWO_PI * rate) * pc[1])
+        plist = ((pl_off + pl_coef * pc[2]) * _DEG, (-pl_coef * pl_w * ps[2]) * (_DEG * rate))
+        shoulder = (3 * _DEG - a_sh / 2 - a_sh * pc[3:5], (a_sh * _TWO_PI * rate) * ps[3:5])
+
+        # Rotation angles (signs: Boulic's flexion angles are negative rotations about +y).
+        single = torch.stack([-tors[0], plist[0], -thorax[0], -pflex[0]])  # (4, T)
+        sided = torch.stack([-ang["hip"][0], ang["knee"][0], -ang["ankle"][0], -shoulder[0], -ang["elbow"][0]])
+        rc = torch.cos(torch.cat([single, sided.reshape(10, nt)]))
+        rs = torch.sin(torch.cat([single, sided.reshape(10, nt)]))
+        rc_s, rs_s = rc[4:].view(5, 2, nt), rs[4:].view(5, 2, nt)
+
+        def rot_single(i: int, axis: str, rate_: torch.Tensor) -> tuple[torch.Tensor, torch.Tensor]:
+            return rot.rotation_from_cos_sin(axis, rc[i], rs[i], rate_)
+
+        def rot_sided(i: int, rate_: torch.Tensor) -> tuple[torch.Tensor, torch.Tensor]:
+            return rot.rotation_from_cos_sin("y", rc_s[i], rs_s[i], rate_)
 
         # Pelvis origin: oscillations relative to their value at t = 0 (so the pelvis is at
         # `start` at t = 0) plus the steady forward progression.
-        osc, osc_d = self._translations(u)
-        osc0, _ = self._translations(torch.full((1,), self.phase, dtype=dt, device=dev))
+        osc, osc_d = self._translations(torch.cat([u, u.new_full((1,), self.phase)]))
+        osc, osc_d, osc0 = osc[:-1], osc_d[:-1], osc[-1:]
         cst = self._constants(dev, dt)
         origin = osc - osc0 * cst["xy_mask"] + t[:, None] * cst["forward_v"] + cst["z0"]
         origin_d = osc_d * rate + cst["forward_v"]
-
-        def neg(a: tuple[torch.Tensor, torch.Tensor]) -> tuple[torch.Tensor, torch.Tensor]:
-            return -a[0], -a[1]
 
         def add(base: tuple[torch.Tensor, torch.Tensor], frame: tuple[torch.Tensor, torch.Tensor],
                 v: torch.Tensor) -> tuple[torch.Tensor, torch.Tensor]:
@@ -207,25 +211,25 @@ class Walker(SkeletonPerson):
         # Pelvic list tilts the hip line; the legs hang from the hips in the torsion frame only
         # (Chen / MATLAB rotate the whole legs with the list too, which swings each stance foot
         # sideways by ~5 cm at up to ~1 m/s).
-        torsion = rot.axis_rotation_rate("z", *neg(tors))
-        lower = rot.compose(torsion, rot.axis_rotation_rate("x", *plist))
-        upper = rot.compose(rot.axis_rotation_rate("z", *neg(thorax)), rot.axis_rotation_rate("y", *neg(pflex)))
+        torsion = rot_single(0, "z", -tors[1])
+        lower = rot.compose(torsion, rot_single(1, "x", plist[1]))
+        upper = rot.compose(rot_single(2, "z", -thorax[1]), rot_single(3, "y", -pflex[1]))
         o = (origin, origin_d)
 
         hip = add(o, lower, cst["hip_offsets"])  # (2, T, 3) via broadcasting of (2, 1, 3)
-        thigh = rot.compose(torsion, rot.axis_rotation_rate("y", *neg(ang["hip"])))
+        thigh = rot.compose(torsion, rot_sided(0, -ang["hip"][1]))
         knee = add(hip, thigh, cst["upper_leg"])
-        shank = rot.compose(thigh, rot.axis_rotation_rate("y", *ang["knee"]))
+        shank = rot.compose(thigh, rot_sided(1, ang["knee"][1]))
         ankle = add(knee, shank, cst["lower_leg"])
-        foot = rot.compose(shank, rot.axis_rotation_rate("y", *neg(ang["ankle"])))
+        foot = rot.compose(shank, rot_sided(2, -ang["ankle"][1]))
         toe = add(ankle, foot, cst["foot"])
 
         neck = add(o, upper, cst["torso"])
         head = add(o, upper, cst["torso_head"])
         shoulder_j = add(o, upper, cst["shoulder_offsets"])
-        uarm = rot.compose(upper, rot.axis_rotation_rate("y", *neg(shoulder)))
+        uarm = rot.compose(upper, rot_sided(3, -shoulder[1]))
         elbow = add(shoulder_j, uarm, cst["upper_arm"])
-        farm = rot.compose(uarm, rot.axis_rotation_rate("y", *neg(ang["elbow"])))
+        farm = rot.compose(uarm, rot_sided(4, -ang["elbow"][1]))
         wrist = add(elbow, farm, cst["lower_arm"])
 
         sided = {"shoulder": shoulder_j, "elbow": elbow, "wrist": wrist,
@@ -242,8 +246,8 @@ class Walker(SkeletonPerson):
             pos.append(p)
             vel.append(pd)
         head_r = cst["heading"]
-        pos_w = torch.stack(pos, dim=1) @ head_r.T + cst["start"]
-        vel_w = torch.stack(vel, dim=1) @ head_r.T
+        pos_w = torch.stack(pos, dim=1) @ head_r.mT + cst["start"]
+        vel_w = torch.stack(vel, dim=1) @ head_r.mT
         return {
             "positions": pos_w,
             "velocities": vel_w,
@@ -279,7 +283,7 @@ class Walker(SkeletonPerson):
                 "shoulder_offsets": sides(0.0, L["shoulder_width"] / 2, L["torso"]),
                 "upper_arm": vec(0.0, 0.0, -L["upper_arm"]),
                 "lower_arm": vec(0.0, 0.0, -L["lower_arm"]),
-                "heading": rot.axis_rotation("z", vec(self.heading_rad)),
+                "heading": rot.axis_rotation("z", torch.tensor(self.heading_rad, dtype=dtype, device=device)),
                 "start": vec(self.start[0], self.start[1], 0.0),
             }
         return cache[key]
