@@ -1,0 +1,285 @@
+"""Moving targets: analytic ellipsoid body segments (fast) and PO on person meshes.
+
+**Ellipsoids.** Each segment scatters from its specular point with the geometric-optics RCS of
+an ellipsoid of semi-axes ``a, b, c`` seen along the unit direction ``l`` (local frame)::
+
+    h     = sqrt(a^2 lx^2 + b^2 ly^2 + c^2 lz^2)       (support distance: centre -> specular plane)
+    sigma = pi a^2 b^2 c^2 / h^4                         (= the FIELD_NOTES formula in theta, phi)
+
+times ``|Gamma_skin|^2`` at normal incidence (the root RCS is ``Gamma_skin * sqrt(sigma)``, the
+stationary-phase result of PO on a convex surface: -sqrt(sigma) for metal). The specular point
+is ``centre - h * l``, so a sphere's echo comes from its front, ``R - a``. Monostatic
+``delay_rate = v . (u_tx + u_rx) / c`` with ``u`` the unit vectors from the antennas to the
+scatterer. A segment is dropped (mask False) when the line of sight to its specular point
+crosses another ellipsoid or the room.
+
+**First-order multipath** (``multipath=True``): for each large planar face group of the room
+(mirror planes, total area >= ``min_area_m2``) the image method gives radar -> wall -> segment
+-> radar and its reverse; the bistatic RCS is the monostatic one along the bisector (the
+bistatic equivalence theorem, exact for a sphere in geometric optics), times the wall's
+Fresnel coefficient. A path exists when the segment -> image-radar ray first meets the room on
+that plane and the wall -> radar leg is clear.
+
+**Meshes** (``SceneGeometry`` with ``vertex_velocity``): monostatic PO of every facet
+(:func:`radaraug.raytrace.po.facet_root_rcs`), lit where the facet faces the radar and its
+centroid sees the radar past the mesh itself and the room. One path per lit facet, at the
+centroid, with the facet's mean vertex velocity.
+"""
+
+from __future__ import annotations
+
+import math
+
+import torch
+
+from radaraug.config import SPEED_OF_LIGHT
+from radaraug.errors import SceneError
+from radaraug.raytrace.accel import TriangleBVH
+from radaraug.raytrace.po import facet_normals, facet_root_rcs
+from radaraug.raytrace.radar import RadarGeometry, radar_amplitude
+from radaraug.raytrace.reflect import FaceReflectivity
+from radaraug.raytrace.sbr import surface_offset
+from radaraug.scene.geometry import Ellipsoids, SceneGeometry
+from radaraug.scene.materials import get_material
+from radaraug.sensor.paths import Paths
+
+
+def ellipsoid_rcs(semi_axes: torch.Tensor, local_dir: torch.Tensor) -> tuple[torch.Tensor, torch.Tensor]:
+    """``(sigma, h)`` of ellipsoids ``(..., 3)`` seen along unit local directions ``(..., 3)``."""
+    h2 = ((semi_axes * local_dir) ** 2).sum(-1)
+    h = h2.sqrt()
+    return math.pi * semi_axes.prod(-1) ** 2 / (h2 * h2), h
+
+
+def ray_hits_ellipsoids(
+    origins: torch.Tensor, dirs: torch.Tensor, t_max: torch.Tensor, centers: torch.Tensor,
+    semi_axes: torch.Tensor, rotations: torch.Tensor, exclude_self: bool = True,
+) -> torch.Tensor:
+    """``(N, S)`` bool: the ray ``(N, S, 3)`` from segment slot ``i`` meets an ellipsoid ``j != i``
+    of the same snapshot (``(N, S, ...)``) at ``0 < t < t_max``."""
+    # Into each ellipsoid's unit-sphere frame: x' = R^T (x - c) / axes.  Shapes (N, S_i, S_j, 3).
+    rot_t = rotations.transpose(-1, -2)[:, None]  # (N, 1, Sj, 3, 3)
+    rel = origins[:, :, None] - centers[:, None]
+    o_l = (rot_t @ rel[..., None])[..., 0] / semi_axes[:, None]
+    d_l = (rot_t @ dirs[:, :, None, :, None].expand(-1, -1, centers.shape[1], -1, -1))[..., 0] / semi_axes[:, None]
+    a = (d_l * d_l).sum(-1)
+    b = (o_l * d_l).sum(-1)
+    c = (o_l * o_l).sum(-1) - 1
+    disc = b * b - a * c
+    root = disc.clamp_min(0).sqrt()
+    t1, t2 = (-b - root) / a, (-b + root) / a
+    hit = (disc > 0) & (t2 > 0) & (t1 < t_max[..., None])
+    if exclude_self:
+        eye = torch.eye(centers.shape[1], dtype=torch.bool, device=centers.device)
+        hit = hit & ~eye
+    return hit.any(-1)
+
+
+class MirrorPlanes:
+    """Large planar face groups of a static room, for image-method multipath.
+
+    Attributes:
+        normals: ``(K, 3)`` unit plane normals; ``offsets``: ``(K,)`` with ``n . x = offset``.
+        face_plane: ``(F,)`` long plane index of each room face, -1 for faces of no mirror plane.
+    """
+
+    def __init__(self, room: SceneGeometry, min_area_m2: float, device: torch.device, dtype: torch.dtype) -> None:
+        tri = room.triangles.to(device=device, dtype=torch.float64)
+        n = facet_normals(tri)
+        area = torch.linalg.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0], dim=-1).norm(dim=-1) / 2
+        # Canonical sign: the largest component positive, so both windings of a wall agree.
+        big = n.abs().argmax(-1, keepdim=True)
+        n = n * torch.sign(n.gather(-1, big))
+        off = (n * tri[:, 0]).sum(-1)
+        key = torch.cat([torch.round(n * 1e3), torch.round(off * 1e3)[:, None]], dim=-1)
+        uniq, inv = torch.unique(key, dim=0, return_inverse=True)
+        group_area = torch.zeros(uniq.shape[0], dtype=torch.float64, device=device).index_add_(0, inv, area)
+        keep = group_area >= min_area_m2
+        new_id = torch.full_like(group_area, -1, dtype=torch.long)
+        new_id[keep] = torch.arange(int(keep.sum()), device=device)
+        self.face_plane = new_id[inv]
+        k = int(keep.sum())
+        nsum = torch.zeros(uniq.shape[0], 3, dtype=torch.float64, device=device).index_add_(0, inv, n * area[:, None])
+        osum = torch.zeros(uniq.shape[0], dtype=torch.float64, device=device).index_add_(0, inv, off * area)
+        normals = nsum[keep] / group_area[keep][:, None]
+        self.normals = (normals / normals.norm(dim=-1, keepdim=True)).to(dtype)
+        self.offsets = (osum[keep] / group_area[keep]).to(dtype)
+        self.num_planes = k
+
+
+def ellipsoid_paths(
+    ell: Ellipsoids,
+    radar: RadarGeometry,
+    antenna,
+    *,
+    room_bvh: TriangleBVH | None = None,
+    room_face_material: torch.Tensor | None = None,
+    room_reflectivity: FaceReflectivity | None = None,
+    mirrors: MirrorPlanes | None = None,
+    frequency_Hz: float,
+) -> Paths:
+    """Paths of ellipsoid segments ``(..., S)`` -> :class:`Paths` ``(..., P, RX)`` with a mask.
+
+    ``P = S`` direct paths, plus ``2 S K`` multipath slots when ``mirrors`` (K planes) is given.
+    """
+    dev, dt = radar.tx.device, radar.tx.dtype
+    lead = ell.centers.shape[:-2]
+    s_count = ell.centers.shape[-2]
+    c = ell.centers.to(device=dev, dtype=dt).reshape(-1, s_count, 3)
+    ax = ell.semi_axes.to(device=dev, dtype=dt).reshape(-1, s_count, 3)
+    rot = ell.rotations.to(device=dev, dtype=dt).reshape(-1, s_count, 3, 3)
+    vel = ell.velocities.to(device=dev, dtype=dt).reshape(-1, s_count, 3)
+    if (ax <= 0).any() or not torch.isfinite(ax).all():
+        raise SceneError("ellipsoid semi_axes must be finite and positive")
+    eps_skin = get_material(ell.material).permittivity(frequency_Hz)
+    gamma_skin = (1 - complex(eps_skin) ** 0.5) / (1 + complex(eps_skin) ** 0.5)  # Gamma_TE at normal
+
+    def scatter(u_in: torch.Tensor, u_out: torch.Tensor):
+        """Specular point and root RCS for incidence ``u_in`` and scattering ``u_out`` (unit)."""
+        bis = u_in - u_out
+        bis = bis / bis.norm(dim=-1, keepdim=True).clamp_min(1e-12)
+        local = (rot.transpose(-1, -2) @ bis[..., None])[..., 0]
+        sigma, h = ellipsoid_rcs(ax, local)
+        return c - h[..., None] * bis, gamma_skin * sigma.sqrt()
+
+    # --- direct (monostatic) paths
+    to_t = c - radar.centre
+    u = to_t / to_t.norm(dim=-1, keepdim=True)
+    p, root = scatter(u, -u)
+    los = p - radar.centre
+    r_los = los.norm(dim=-1)
+    u_los = los / r_los[..., None]
+    eps = surface_offset(p)
+    blocked = ray_hits_ellipsoids(radar.centre.expand_as(p), u_los, r_los - eps, c, ax, rot)
+    if room_bvh is not None:
+        blocked = blocked | room_bvh.any_hit(radar.centre.expand_as(p).reshape(-1, 3), u_los.reshape(-1, 3),
+                                              (r_los - eps).reshape(-1)).reshape(blocked.shape)
+    direct = _bistatic(p, root, radar.tx, radar.rx, p, vel, radar, antenna, ~blocked)
+    parts = [direct + (torch.zeros_like(blocked, dtype=torch.int8),)]
+
+    # --- first-order multipath via mirror planes
+    if mirrors is not None and mirrors.num_planes and room_bvh is not None:
+        nrm, off = mirrors.normals.to(dev, dt), mirrors.offsets.to(dev, dt)
+        k = nrm.shape[0]
+        img = radar.centre - 2 * ((nrm @ radar.centre) - off)[:, None] * nrm  # (K, 3)
+        cc = c[:, :, None]  # (N, S, 1, 3)
+        to_img = img - cc
+        u_seg_in = -to_img / to_img.norm(dim=-1, keepdim=True)  # wall -> segment (from the centre)
+        u_back = radar.centre - cc
+        u_back = u_back / u_back.norm(dim=-1, keepdim=True)
+        c_k = c[:, :, None].expand(-1, -1, k, -1)
+        rot_k = rot[:, :, None].expand(-1, -1, k, -1, -1)
+        ax_k = ax[:, :, None].expand(-1, -1, k, -1)
+        bis = u_seg_in - u_back
+        bis = bis / bis.norm(dim=-1, keepdim=True).clamp_min(1e-12)
+        sigma, h = ellipsoid_rcs(ax_k, (rot_k.transpose(-1, -2) @ bis[..., None])[..., 0])
+        pk = c_k - h[..., None] * bis
+        # Bounce point q: where the specular point -> image-radar line crosses the plane, so that
+        # |TX -> q -> p| is exactly the image distance |p - image|.
+        u_img = img - pk
+        u_img = u_img / u_img.norm(dim=-1, keepdim=True)
+        denom = (u_img * nrm).sum(-1)
+        t_q = (off - (pk * nrm).sum(-1)) / torch.where(denom.abs() < 1e-12, torch.ones_like(denom), denom)
+        q = pk + t_q[..., None] * u_img
+        u_wall_in = (q - radar.centre) / (q - radar.centre).norm(dim=-1, keepdim=True)  # radar -> wall
+        hit = room_bvh.intersect(pk.reshape(-1, 3), u_img.reshape(-1, 3), t_min=0.0)
+        plane_id = torch.arange(k, device=dev).expand(c_k.shape[:-1]).reshape(-1)
+        face = hit.face
+        same_side = ((pk * nrm).sum(-1) - off) * ((nrm @ radar.centre) - off) > 0
+        ok = (face >= 0) & (mirrors.face_plane.to(dev)[face.clamp_min(0)] == plane_id) & same_side.reshape(-1)
+        r_wr = (radar.centre - q).norm(dim=-1).reshape(-1)
+        eps_q = surface_offset(q).reshape(-1)
+        clear = ~room_bvh.any_hit(q.reshape(-1, 3), -u_wall_in.reshape(-1, 3), r_wr - eps_q, t_min=eps_q)
+        ok = (ok & clear).reshape(q.shape[:-1])
+        cos_w = (u_wall_in * nrm).sum(-1).abs()
+        g_wall = room_reflectivity(room_face_material[face.clamp_min(0)].reshape(q.shape[:-1]), cos_w,
+                                   u_wall_in, nrm.expand_as(u_wall_in), radar.polarization)
+        root_k = gamma_skin * sigma.sqrt() * g_wall
+        # Path A: TX -> wall -> segment -> RX ; path B: TX -> segment -> wall -> RX.
+        vel_k = vel[:, :, None].expand_as(pk)
+        a = _bistatic(pk, root_k, radar.tx, radar.rx, q, vel_k, radar, antenna, ok, first_leg_via=True)
+        b = _bistatic(pk, root_k, radar.tx, radar.rx, q, vel_k, radar, antenna, ok, first_leg_via=False)
+        for part in (a, b):
+            parts.append(tuple(x.reshape(x.shape[0], -1, *x.shape[3:]) for x in part)
+                         + (torch.ones(ok.shape[0], ok.shape[1] * k, dtype=torch.int8, device=dev),))
+    delay = torch.cat([x[0] for x in parts], dim=1)
+    rate = torch.cat([x[1] for x in parts], dim=1)
+    amp = torch.cat([x[2] for x in parts], dim=1)
+    mask = torch.cat([x[3] for x in parts], dim=1)
+    kind = torch.cat([x[4] for x in parts], dim=1)
+    n_rx = radar.rx.shape[0]
+    return Paths(delay.reshape(*lead, -1, n_rx), rate.reshape(*lead, -1, n_rx), amp.reshape(*lead, -1, n_rx),
+                 kind.reshape(*lead, -1), mask.reshape(*lead, -1))
+
+
+def _bistatic(p, root, tx, rx, q, vel, radar: RadarGeometry, antenna, valid, first_leg_via: bool | None = None):
+    """Delay, rate, amplitude ``(..., RX)`` and mask of scatterer ``p`` (optionally via wall point ``q``).
+
+    ``first_leg_via``: None = direct; True = TX -> q -> p -> RX; False = TX -> p -> q -> RX.
+    """
+    def unit(v):
+        n = v.norm(dim=-1, keepdim=True)
+        return v / n, n[..., 0]
+
+    lam = radar.wavelength
+    rxs = rx.reshape(*([1] * (p.ndim - 1)), -1, 3)
+    if first_leg_via is None or first_leg_via is False:
+        u_t, r_t = unit(p - tx)
+        g_t = antenna.gain(radar.to_radar_dirs(u_t))
+        rate_t = (vel * u_t).sum(-1)
+    else:
+        u_tq, r_tq = unit(q - tx)
+        u_qp, r_qp = unit(p - q)
+        r_t, g_t, rate_t = r_tq + r_qp, antenna.gain(radar.to_radar_dirs(u_tq)), (vel * u_qp).sum(-1)
+    if first_leg_via is None or first_leg_via is True:
+        u_r, r_r = unit(p[..., None, :] - rxs)
+        g_r = antenna.gain(radar.to_radar_dirs(u_r))
+        rate_r = (vel[..., None, :] * u_r).sum(-1)
+    else:
+        u_pq, r_pq = unit(q - p)
+        u_rq, r_rq = unit(q[..., None, :] - rxs)
+        r_r = r_pq[..., None] + r_rq
+        g_r = antenna.gain(radar.to_radar_dirs(u_rq))
+        rate_r = (-(vel * u_pq).sum(-1))[..., None].expand_as(r_r)
+    amp = radar_amplitude(root[..., None], r_t[..., None], r_r, g_t[..., None], g_r, lam)
+    amp = torch.where(valid[..., None], amp, torch.zeros_like(amp))
+    delay = (r_t[..., None] + r_r) / SPEED_OF_LIGHT
+    rate = (rate_t[..., None] + rate_r) / SPEED_OF_LIGHT
+    return delay, rate, amp, valid
+
+
+def mesh_po_paths(
+    mesh: SceneGeometry,
+    radar: RadarGeometry,
+    antenna,
+    reflectivity: FaceReflectivity,
+    *,
+    room_bvh: TriangleBVH | None = None,
+) -> Paths:
+    """Monostatic facet-PO paths ``(F_lit, RX)`` of a (moving) mesh at one instant."""
+    dev, dt = radar.tx.device, radar.tx.dtype
+    tri = mesh.triangles.to(device=dev, dtype=dt)
+    if tri.ndim != 3 or tri.shape[0] == 0:
+        raise SceneError(f"mesh must have (F, 3) faces, got triangles of shape {tuple(tri.shape)}")
+    cen = tri.mean(-2)
+    to_r = radar.centre - cen
+    r = to_r.norm(dim=-1)
+    u = to_r / r[:, None]
+    n = facet_normals(tri)
+    cos = (n * u).sum(-1)
+    gamma = reflectivity(mesh.face_material.to(dev), cos.abs(), -u, n, radar.polarization)
+    root = facet_root_rcs(tri, -u, u, radar.wavelength, gamma)
+    eps = surface_offset(cen)
+    start = cen + eps[:, None] * u
+    lit = root.abs() > 0
+    blocked = TriangleBVH(tri).any_hit(start, u, r - eps, t_min=eps)
+    if room_bvh is not None:
+        blocked |= room_bvh.any_hit(start, u, r - eps, t_min=eps)
+    keep = (lit & ~blocked).nonzero()[:, 0]
+    if mesh.vertex_velocity is not None:
+        vel = mesh.vertex_velocity.to(device=dev, dtype=dt)[mesh.faces.to(dev)].mean(-2)
+    else:
+        vel = torch.zeros_like(cen)
+    d, rate, amp, _ = _bistatic(cen[keep], root[keep], radar.tx, radar.rx, cen[keep], vel[keep], radar, antenna,
+                                torch.ones(keep.numel(), dtype=torch.bool, device=dev))
+    return Paths(d, rate, amp, torch.zeros(keep.numel(), dtype=torch.int8, device=dev))
