@@ -5,6 +5,9 @@ Sub-commands::
     radaraug info PATH [--json]                 config, shape, duration, labels, plausibility
     radaraug fit-cdr PATH -o cdr.json           fit CalibratedDR on an empty-room capture
     radaraug bench transforms [--json]          RD+CDR+clip+colormap chain vs NumPy
+    radaraug bench twin [--json]                digital-twin throughput vs real time and baselines
+    radaraug trace SCENE [--time T] [--json]    the propagation paths of one instant
+    radaraug simulate SCENE --frames N --seed S -o out.h5 [--shard i/n]
     radaraug demo [-o DIR]                      the main job on the built-in default
 
 Bad input ends with one line ``error: <message>`` and exit status 2, never a traceback.
@@ -64,13 +67,58 @@ def _cmd_bench(args: argparse.Namespace) -> int:
         result = run_transforms_benchmark(
             batch=args.batch, repeats=args.repeats, device=args.device, out=args.out
         )
-    else:  # pragma: no cover - argparse restricts choices
-        raise AssertionError(args.what)
+    else:
+        from radaraug.bench.twin import run_twin_benchmark
+
+        result = run_twin_benchmark(blocks=args.blocks, workers=args.workers, device=args.device,
+                                    compiled=not args.no_compile, out=args.out)
     if args.json:
         print(json.dumps(result))
     else:
         for key, value in result.items():
             print(f"{key:28s} {value}")
+    return 0
+
+
+def _scene_arg(text: str):
+    from radaraug.scene.scene import Scene
+
+    p = Path(text)
+    return Scene.from_file(p) if p.exists() or p.suffix.lower() in (".yaml", ".yml", ".json") else Scene.builtin(text)
+
+
+def _cmd_trace(args: argparse.Namespace) -> int:
+    import torch
+
+    from radaraug.raytrace.tracer import RayTracer, paths_to_json
+
+    scene = _scene_arg(args.scene)
+    tracer = RayTracer(scene.room, scene.radar, scene.config, max_bounces=args.bounces, rays=args.rays)
+    t = torch.tensor([args.time], dtype=torch.float64)
+    ell = scene.people_ellipsoids(t) if scene.people else None
+    if ell is not None:
+        ell = type(ell)(*(x.float()[0] for x in (ell.centers, ell.semi_axes, ell.rotations, ell.velocities)),
+                        ell.material)
+    paths = tracer.trace(ellipsoids=ell)
+    data = {"scene": scene.name, "time_s": args.time, **paths_to_json(paths, scene.config)}
+    if args.json:
+        print(json.dumps(data))
+        return 0
+    print(f"{scene.name} at t = {args.time} s: {data['num_paths']} paths ({data['convention']})")
+    strongest = sorted(data["paths"], key=lambda p: -p["power_dB"])[:10]
+    for p in sorted(strongest, key=lambda p: p["range_m"]):
+        print(f"  {p['range_m']:8.3f} m  {p['radial_velocity_m_s']:+7.3f} m/s  {p['power_dB']:8.2f} dB  {p['kind']}")
+    return 0
+
+
+def _cmd_simulate(args: argparse.Namespace) -> int:
+    from radaraug.sim.offline import parse_shard, simulate_capture
+
+    result = simulate_capture(args.scene if Path(args.scene).exists() else _scene_arg(args.scene), args.output,
+                              frames=args.frames, seed=args.seed, shard=parse_shard(args.shard),
+                              device=args.device)
+    print(f"{result['path']}: frames [{result['frames'][0]}, {result['frames'][1]}), "
+          f"{result['simulated']} simulated, resumed from frame {result['resumed_from']}")
     return 0
 
 
@@ -99,13 +147,33 @@ def build_parser() -> argparse.ArgumentParser:
     fit.set_defaults(func=_cmd_fit_cdr)
 
     bench = sub.add_parser("bench", help="benchmarks (figures as ratios against a same-process baseline)")
-    bench.add_argument("what", choices=["transforms"])
-    bench.add_argument("--batch", type=int, default=32, help="frames per batch")
-    bench.add_argument("--repeats", type=int, default=5)
+    bench.add_argument("what", choices=["transforms", "twin"])
+    bench.add_argument("--batch", type=int, default=32, help="transforms: frames per batch")
+    bench.add_argument("--repeats", type=int, default=5, help="transforms: timed repetitions")
+    bench.add_argument("--blocks", type=int, default=8, help="twin: 16-frame blocks per process")
+    bench.add_argument("--workers", type=int, default=2, help="twin: DataLoader worker processes")
+    bench.add_argument("--no-compile", action="store_true", help="twin: skip the torch.compile kernel")
     bench.add_argument("--device", default="cpu")
     bench.add_argument("--json", action="store_true", help="print the figures as one JSON object")
     bench.add_argument("--out", default=None, help="also write the JSON figures to this file")
     bench.set_defaults(func=_cmd_bench)
+
+    trace = sub.add_parser("trace", help="ray-trace one instant of a scene and print its paths")
+    trace.add_argument("scene", help="scene file (.yaml/.json) or built-in scene name")
+    trace.add_argument("--time", type=float, default=0.0, help="instant in seconds")
+    trace.add_argument("--rays", type=int, default=256, help="SBR rays per axis")
+    trace.add_argument("--bounces", type=int, default=2, help="most bounces per SBR ray")
+    trace.add_argument("--json", action="store_true", help="print the paths as one JSON object")
+    trace.set_defaults(func=_cmd_trace)
+
+    sim = sub.add_parser("simulate", help="simulate a scene into a radaraug HDF5 capture")
+    sim.add_argument("scene", help="scene file (.yaml/.json) or built-in scene name")
+    sim.add_argument("--frames", type=int, required=True)
+    sim.add_argument("--seed", type=int, default=0)
+    sim.add_argument("-o", "--output", required=True)
+    sim.add_argument("--shard", default=None, help="i/n: simulate the i-th of n pieces (0-based)")
+    sim.add_argument("--device", default="cpu")
+    sim.set_defaults(func=_cmd_simulate)
 
     demo = sub.add_parser("demo", help="the main job on the built-in default")
     demo.add_argument("-o", "--output", default="demo_out")

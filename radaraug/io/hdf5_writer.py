@@ -174,6 +174,52 @@ class CaptureWriter:
         self._started = True
 
     # ------------------------------------------------------------------ recording
+    @classmethod
+    def resume(cls, path: str | os.PathLike, config: RadarConfig) -> CaptureWriter:
+        """Reopen a capture written by a :class:`CaptureWriter` to append more frames.
+
+        Frames, timestamps and labels already flushed (also by a writer that was killed) are
+        kept; ``num_frames`` starts at their count. Where a kill left timestamps or labels
+        ahead of the frames, they are cut back to the frame count.
+
+        Raises:
+            CaptureError: the file is missing, not a radaraug capture, or was made with another
+                radar config.
+        """
+        self = cls.__new__(cls)
+        self.path = Path(path)
+        self.config = config
+        try:
+            f = h5py.File(self.path, "a", libver="latest")
+        except (OSError, RuntimeError) as e:
+            raise CaptureError(f"{self.path}: cannot reopen capture for appending ({e})") from None
+        try:
+            if f.attrs.get("format") != fmt.FORMAT_NAME or fmt.FRAMES not in f:
+                raise CaptureError(f"{self.path}: not a radaraug capture; cannot resume it")
+            stored = json.loads(f.attrs["radar_config"])
+            if RadarConfig.from_dict(stored) != config:
+                raise CaptureError(f"{self.path}: was recorded with another radar config; cannot resume it")
+            self._file = f
+            self._frames = f[fmt.FRAMES]
+            self._n = int(self._frames.shape[0])
+            self._has_timestamps = fmt.TIMESTAMPS in f
+            group = f.get(fmt.LABELS_GROUP)
+            self._schema = {name: group[name].dtype for name in group} if group is not None else {}
+            started = self._has_timestamps or group is not None
+            for ds in ([f[fmt.TIMESTAMPS]] if self._has_timestamps else []) + (
+                [group[name] for name in group] if group is not None else []
+            ):
+                if ds.shape[0] > self._n:
+                    ds.resize((self._n,))
+            if started:
+                f.swmr_mode = True
+            self._started = started
+            f.flush()
+        except BaseException:
+            f.close()
+            raise
+        return self
+
     @property
     def num_frames(self) -> int:
         """Frames written (and flushed) so far."""

@@ -105,6 +105,37 @@ class MirrorPlanes:
         self.normals = (normals / normals.norm(dim=-1, keepdim=True)).to(dtype)
         self.offsets = (osum[keep] / group_area[keep]).to(dtype)
         self.num_planes = k
+        # For the convex-room fast path (see `convex_enclosure`): float64 planes, the vertices,
+        # and each plane's material when all its faces share one.
+        self._n64 = normals / normals.norm(dim=-1, keepdim=True)
+        self._off64 = osum[keep] / group_area[keep]
+        self._verts64 = room.vertices.to(device=device, dtype=torch.float64)
+        fp = self.face_plane
+        self.plane_material: torch.Tensor | None = None
+        if k and bool((fp >= 0).all()):
+            mat = room.face_material.to(device)
+            lo = torch.full((k,), torch.iinfo(torch.long).max, dtype=torch.long, device=device)
+            hi = torch.full((k,), -1, dtype=torch.long, device=device)
+            lo = lo.scatter_reduce(0, fp, mat, reduce="amin")
+            hi = hi.scatter_reduce(0, fp, mat, reduce="amax")
+            if bool((lo == hi).all()):
+                self.plane_material = lo
+
+    def convex_enclosure(self, point: torch.Tensor, tol: float = 1e-6) -> bool:
+        """True when the room is a convex polyhedron made of these planes, enclosing ``point``.
+
+        Then no straight segment between two points of the room (the radar, a person, a point
+        on a wall) is blocked by the room, and a bounce point lies on its wall exactly when it
+        is on the inner side of every plane: multipath needs no ray casting. Requires every face
+        to belong to a mirror plane and one material per plane.
+        """
+        if self.plane_material is None:
+            return False
+        sp = self._n64 @ point.to(torch.float64) - self._off64
+        if bool((sp.abs() < tol).any()):
+            return False
+        sv = self._verts64 @ self._n64.T - self._off64  # (V, K)
+        return bool((sv * torch.sign(sp) >= -tol).all())
 
 
 def ellipsoid_paths(
@@ -117,10 +148,13 @@ def ellipsoid_paths(
     room_reflectivity: FaceReflectivity | None = None,
     mirrors: MirrorPlanes | None = None,
     frequency_Hz: float,
+    convex_room: bool = False,
 ) -> Paths:
     """Paths of ellipsoid segments ``(..., S)`` -> :class:`Paths` ``(..., P, RX)`` with a mask.
 
     ``P = S`` direct paths, plus ``2 S K`` multipath slots when ``mirrors`` (K planes) is given.
+    With ``convex_room`` (see :meth:`MirrorPlanes.convex_enclosure`) the room cannot block any
+    leg and bounce points are checked against the planes instead of cast against the room.
     """
     dev, dt = radar.tx.device, radar.tx.dtype
     lead = ell.centers.shape[:-2]
@@ -151,7 +185,7 @@ def ellipsoid_paths(
     u_los = los / r_los[..., None]
     eps = surface_offset(p)
     blocked = ray_hits_ellipsoids(radar.centre.expand_as(p), u_los, r_los - eps, c, ax, rot)
-    if room_bvh is not None:
+    if room_bvh is not None and not convex_room:
         blocked = blocked | room_bvh.any_hit(radar.centre.expand_as(p).reshape(-1, 3), u_los.reshape(-1, 3),
                                               (r_los - eps).reshape(-1)).reshape(blocked.shape)
     direct = _bistatic(p, root, radar.tx, radar.rx, p, vel, radar, antenna, ~blocked)
@@ -182,18 +216,26 @@ def ellipsoid_paths(
         t_q = (off - (pk * nrm).sum(-1)) / torch.where(denom.abs() < 1e-12, torch.ones_like(denom), denom)
         q = pk + t_q[..., None] * u_img
         u_wall_in = (q - radar.centre) / (q - radar.centre).norm(dim=-1, keepdim=True)  # radar -> wall
-        hit = room_bvh.intersect(pk.reshape(-1, 3), u_img.reshape(-1, 3), t_min=0.0)
-        plane_id = torch.arange(k, device=dev).expand(c_k.shape[:-1]).reshape(-1)
-        face = hit.face
         same_side = ((pk * nrm).sum(-1) - off) * ((nrm @ radar.centre) - off) > 0
-        ok = (face >= 0) & (mirrors.face_plane.to(dev)[face.clamp_min(0)] == plane_id) & same_side.reshape(-1)
-        r_wr = (radar.centre - q).norm(dim=-1).reshape(-1)
-        eps_q = surface_offset(q).reshape(-1)
-        clear = ~room_bvh.any_hit(q.reshape(-1, 3), -u_wall_in.reshape(-1, 3), r_wr - eps_q, t_min=eps_q)
-        ok = (ok & clear).reshape(q.shape[:-1])
+        if convex_room:
+            # q is on its wall iff it is on the radar's side of every other plane.
+            radar_side = torch.sign((nrm @ radar.centre) - off)  # (K,)
+            side = ((q[..., None, :] * nrm).sum(-1) - off) * radar_side  # (N, S, K, K)
+            tol = 1e-5 * (1 + off.abs().max())
+            ok = same_side & (side >= -tol).all(-1)
+            wall_material = mirrors.plane_material.to(dev).expand(c_k.shape[:-1])
+        else:
+            hit = room_bvh.intersect(pk.reshape(-1, 3), u_img.reshape(-1, 3), t_min=0.0)
+            plane_id = torch.arange(k, device=dev).expand(c_k.shape[:-1]).reshape(-1)
+            face = hit.face
+            ok = (face >= 0) & (mirrors.face_plane.to(dev)[face.clamp_min(0)] == plane_id) & same_side.reshape(-1)
+            r_wr = (radar.centre - q).norm(dim=-1).reshape(-1)
+            eps_q = surface_offset(q).reshape(-1)
+            clear = ~room_bvh.any_hit(q.reshape(-1, 3), -u_wall_in.reshape(-1, 3), r_wr - eps_q, t_min=eps_q)
+            ok = (ok & clear).reshape(q.shape[:-1])
+            wall_material = room_face_material[face.clamp_min(0)].reshape(q.shape[:-1])
         cos_w = (u_wall_in * nrm).sum(-1).abs()
-        g_wall = room_reflectivity(room_face_material[face.clamp_min(0)].reshape(q.shape[:-1]), cos_w,
-                                   u_wall_in, nrm.expand_as(u_wall_in), radar.polarization)
+        g_wall = room_reflectivity(wall_material, cos_w, u_wall_in, nrm.expand_as(u_wall_in), radar.polarization)
         root_k = gamma_skin * sigma.sqrt() * g_wall
         # Path A: TX -> wall -> segment -> RX ; path B: TX -> segment -> wall -> RX.
         vel_k = vel[:, :, None].expand_as(pk)

@@ -82,6 +82,8 @@ class RayTracer:
         self.face_material = room.face_material.to(self.device)
         self.reflectivity = FaceReflectivity(room.materials, self.frequency_Hz, self.device, dtype)
         self.mirrors = MirrorPlanes(room, mirror_min_area_m2, self.device, dtype) if room.num_faces else None
+        # A convex room (a box corridor) blocks no leg between points inside it: skip ray casts.
+        self.convex_room = self.mirrors is not None and self.mirrors.convex_enclosure(self.radar.centre)
         self._static: Paths | None = None
 
     def static_paths(self) -> Paths:
@@ -126,7 +128,7 @@ class RayTracer:
             parts.append(ellipsoid_paths(
                 ellipsoids, self.radar, self.antenna, room_bvh=self.bvh, room_face_material=self.face_material,
                 room_reflectivity=self.reflectivity, mirrors=self.mirrors if multipath else None,
-                frequency_Hz=self.frequency_Hz,
+                frequency_Hz=self.frequency_Hz, convex_room=self.convex_room,
             ))
         for i, mesh in enumerate(meshes or []):
             _check_scene(mesh, f"meshes[{i}]")

@@ -141,6 +141,14 @@ class ChainState:
         spec = torch.fft.rfft(x.expand(self.sample_shape), dim=-1)
         self.spectrum = spec if self.spectrum is None else self.spectrum + spec
 
+    def add_samples_after_synthesis(self, x: torch.Tensor) -> None:
+        """Add a signal broadcastable to ``(…, RX, M, N)`` to the synthesized samples.
+
+        Unlike :meth:`add_samples` the signal is not filtered by later linear stages in the
+        spectral form: it is added to the samples themselves (synthesizing them first).
+        """
+        self.samples = self.materialize() + x.to(device=self.device, dtype=self.dtype)
+
     def add_constant(self, per_rx: torch.Tensor) -> None:
         """Add a per-RX constant ``(RX,)`` (a DC offset) at this point of the chain."""
         value = per_rx[:, None, None]

@@ -114,7 +114,12 @@ class FMCWReceiver(nn.Module):
         raise KeyError(f"no effect {name!r} in this receiver; it has {[e.name for e in self.effects]}")
 
     def forward(
-        self, paths: Paths, *, generator: torch.Generator | None = None, frame_start_s: float = 0.0
+        self,
+        paths: Paths,
+        *,
+        generator: torch.Generator | None = None,
+        frame_start_s: float = 0.0,
+        static_signal: torch.Tensor | None = None,
     ) -> torch.Tensor:
         """Simulate the ADC samples of ``paths``.
 
@@ -123,13 +128,49 @@ class FMCWReceiver(nn.Module):
                 delay dtype (float32/float64) set the output's.
             generator: source of every random draw (on the paths' device); None: global RNG.
             frame_start_s: absolute time of the frame's first ramp start (time-locked effects).
+            static_signal: the precomputed contribution of static paths, from
+                :meth:`static_signal` (broadcast over the batch); added before the first
+                non-linear stage.
 
         Returns:
             ``(..., RX, chirps, samples)`` in SDK 3.6 floats.
         """
         state = self._initial_state(paths, generator, frame_start_s)
+        pending = static_signal
         for eff in self.effects:
+            if pending is not None and eff.kind == "nonlinear":
+                state.add_samples_after_synthesis(pending)
+                pending = None
             eff.apply(state)
+        if pending is not None:
+            state.add_samples_after_synthesis(pending)
+        return state.materialize()
+
+    @torch.no_grad()
+    def static_signal(self, paths: Paths) -> torch.Tensor:
+        """The deterministic signal of paths that are the same in every frame (a static room).
+
+        By superposition, the signal of static paths through the chain is their synthesis
+        through the *linear* stages only (gains, IF filters): additive stages (noise, leakage,
+        offsets) add the same with or without them. Computing it once and passing it to
+        :meth:`forward` as ``static_signal`` gives the same frames as tracing the static paths
+        with the moving ones, except that the ``phase_noise`` stage (which modulates the
+        strongest paths of the call) then only sees the paths passed to ``forward`` and the
+        leakage. Linear stages after the first non-linear one are not applied (there are none
+        in the default chain).
+
+        Args:
+            paths: static paths ``(P, RX)`` (any leading dims are kept).
+
+        Returns:
+            ``(..., RX, chirps, samples)`` in SDK floats, before DC offset and ADC.
+        """
+        state = self._initial_state(paths, None, 0.0)
+        for eff in self.effects:
+            if eff.kind == "nonlinear":
+                break
+            if eff.kind == "linear":
+                eff.apply(state)
         return state.materialize()
 
     def to_counts(

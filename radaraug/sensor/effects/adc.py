@@ -43,6 +43,7 @@ class ADCQuantization(Effect):
     """
 
     name = "adc_quantization"
+    kind = "nonlinear"
     param_names = ("bits",)
 
     def __init__(self, bits: int | None = None) -> None:
@@ -62,6 +63,7 @@ class ADCClipping(Effect):
     """Clip to the ADC range: codes ``0 .. 2**bits - 1``, i.e. ``[-1, 1]`` in SDK floats."""
 
     name = "adc_clipping"
+    kind = "nonlinear"
     param_names = ()
 
     def apply(self, state: ChainState) -> None:

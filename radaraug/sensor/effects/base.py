@@ -49,13 +49,18 @@ def as_param(value: Any, name: str, effect: str) -> torch.Tensor:
 class Effect(nn.Module):
     """Base class of receiver effects.
 
-    Subclasses set ``name`` and ``param_names`` and implement :meth:`apply`. Parameters whose
+    Subclasses set ``name``, ``param_names`` and ``kind`` and implement :meth:`apply`. Parameters whose
     value is ``None`` are taken from the :class:`~radaraug.RadarConfig` at call time (e.g. the
     IF gain) and are not stored.
     """
 
     name: ClassVar[str] = ""
     param_names: ClassVar[tuple[str, ...]] = ()
+    # How the stage acts, for superposition (`FMCWReceiver.static_signal`): "linear" (LTI on the
+    # whole signal: gains, filters), "additive" (adds a signal that does not depend on the input:
+    # noise, leakage, offsets, spurs), "modulating" (depends on the input paths: phase noise) or
+    # "nonlinear" (acts on samples: quantization, clipping).
+    kind: ClassVar[str] = "additive"
 
     def _set(self, **values: Any) -> None:
         for key, value in values.items():

@@ -60,6 +60,7 @@ class IFHighPass(_FirstOrderFilter):
     """
 
     name = "if_highpass"
+    kind = "linear"
 
     def _config_cutoff(self, state: ChainState) -> float:
         return state.config.effective_hp_cutoff_Hz
@@ -83,6 +84,7 @@ class AntiAliasLowPass(_FirstOrderFilter):
     """
 
     name = "anti_alias_lowpass"
+    kind = "linear"
 
     def _config_cutoff(self, state: ChainState) -> float:
         return state.config.effective_aaf_cutoff_Hz

@@ -26,6 +26,7 @@ class SystemGain(Effect):
     """
 
     name = "system_gain"
+    kind = "linear"
     param_names = ("gain_dB",)
 
     def __init__(self, gain_dB: float | torch.Tensor = 0.0) -> None:
@@ -46,6 +47,7 @@ class IFGain(Effect):
     """
 
     name = "if_gain"
+    kind = "linear"
     param_names = ("gain_dB",)
 
     def __init__(self, gain_dB: float | torch.Tensor | None = None) -> None:
@@ -74,6 +76,7 @@ class RxGainPhaseMismatch(Effect):
     """
 
     name = "rx_gain_phase_mismatch"
+    kind = "linear"
     param_names = ("gain_dB", "phase_rad")
 
     def __init__(self, gain_dB: float | list | torch.Tensor = 0.0, phase_rad: float | list | torch.Tensor = 0.0) -> None:

@@ -33,6 +33,7 @@ class PhaseNoise(Effect):
     """
 
     name = "phase_noise"
+    kind = "modulating"
     param_names = ("freq_noise_rms_Hz", "corner_Hz", "num_paths")
 
     def __init__(
