@@ -110,6 +110,7 @@ class MirrorPlanes:
         self._n64 = normals / normals.norm(dim=-1, keepdim=True)
         self._off64 = osum[keep] / group_area[keep]
         self._verts64 = room.vertices.to(device=device, dtype=torch.float64)
+        self._closed_convex = _is_closed_convex(tri, area)
         fp = self.face_plane
         self.plane_material: torch.Tensor | None = None
         if k and bool((fp >= 0).all()):
@@ -127,15 +128,34 @@ class MirrorPlanes:
         Then no straight segment between two points of the room (the radar, a person, a point
         on a wall) is blocked by the room, and a bounce point lies on its wall exactly when it
         is on the inner side of every plane: multipath needs no ray casting. Requires every face
-        to belong to a mirror plane and one material per plane.
+        to belong to a mirror plane, one material per plane, and the faces to cover the convex
+        hull's surface exactly (no openings: same area).
         """
-        if self.plane_material is None:
+        if self.plane_material is None or not self._closed_convex:
             return False
         sp = self._n64 @ point.to(torch.float64) - self._off64
         if bool((sp.abs() < tol).any()):
             return False
         sv = self._verts64 @ self._n64.T - self._off64  # (V, K)
         return bool((sv * torch.sign(sp) >= -tol).all())
+
+
+def _is_closed_convex(tri: torch.Tensor, area: torch.Tensor) -> bool:
+    """True when the triangles tile the surface of their convex hull (a closed convex room)."""
+    import warnings
+
+    import trimesh
+
+    pts = tri.reshape(-1, 3).cpu().numpy()
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # flat scenes: trimesh divides by a zero hull volume
+        try:
+            hull = trimesh.convex.convex_hull(pts)
+            volume, hull_area = float(hull.volume), float(hull.area)
+        except Exception:  # noqa: BLE001 - coplanar or degenerate input: not a closed room
+            return False
+    total = float(area.sum())
+    return bool(volume > 1e-9 and abs(hull_area - total) <= 1e-6 * max(total, 1.0))
 
 
 def ellipsoid_paths(
