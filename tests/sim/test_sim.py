@@ -171,3 +171,18 @@ def test_dataset_with_a_real_recordings_config(real_data) -> None:
     ds = SimulatedRadarDataset("corridor", length=2, seed=0, config=cfg, twin_options=FAST)
     x, _ = ds[0]
     assert x.shape == (3, 64, 128)
+
+
+def test_dataset_with_another_config_read_from_infineon_json() -> None:
+    """The ifxdaq people-counting config (1 GHz, 128 samples @ 2 MHz, 64 chirps @ 400 us, 3 RX)."""
+    from radaraug.config import RadarConfig
+
+    cfg = RadarConfig.from_infineon({"device_config": {"fmcw_single_shape": {
+        "rx_antennas": [1, 2, 3], "tx_antennas": [1], "tx_power_level": 31, "if_gain_dB": 38,
+        "start_frequency_Hz": 60.5e9, "end_frequency_Hz": 61.5e9, "num_chirps_per_frame": 64,
+        "num_samples_per_chirp": 128, "chirp_repetition_time_s": 400e-6, "frame_repetition_time_s": 0.05,
+        "sample_rate_Hz": 2e6, "mimo_mode": "off"}}})
+    ds = SimulatedRadarDataset("corridor", length=3, seed=0, config=cfg, twin_options=FAST, frames_per_item=2)
+    x, y = ds[1]
+    assert x.shape == (2, 3, 64, 128) and y == ds.scenario(1).count
+    assert torch.isfinite(x).all() and x.abs().max() <= 1
