@@ -30,6 +30,7 @@ lint: $(STAMP)
 
 bench: $(STAMP)
 	$(VENV)/bin/radaraug bench transforms --out benchmarks/transforms_cpu.json
+	$(VENV)/bin/radaraug bench twin --out benchmarks/twin_cpu.json
 
 clean:
 	rm -rf $(VENV) demo_out build *.egg-info
