@@ -179,6 +179,12 @@ def ellipsoid_paths(
     dev, dt = radar.tx.device, radar.tx.dtype
     lead = ell.centers.shape[:-2]
     s_count = ell.centers.shape[-2]
+    n_rx = radar.rx.shape[0]
+    if s_count == 0:  # no segments (a scene without people): no paths, but the leading dims stay
+        z = torch.zeros(*lead, 0, n_rx, dtype=dt, device=dev)
+        cdt = torch.complex128 if dt == torch.float64 else torch.complex64
+        return Paths(z, z.clone(), z.to(cdt), torch.zeros(*lead, 0, dtype=torch.int8, device=dev),
+                     torch.zeros(*lead, 0, dtype=torch.bool, device=dev))
     c = ell.centers.to(device=dev, dtype=dt).reshape(-1, s_count, 3)
     ax = ell.semi_axes.to(device=dev, dtype=dt).reshape(-1, s_count, 3)
     rot = ell.rotations.to(device=dev, dtype=dt).reshape(-1, s_count, 3, 3)
@@ -269,7 +275,6 @@ def ellipsoid_paths(
     amp = torch.cat([x[2] for x in parts], dim=1)
     mask = torch.cat([x[3] for x in parts], dim=1)
     kind = torch.cat([x[4] for x in parts], dim=1)
-    n_rx = radar.rx.shape[0]
     return Paths(delay.reshape(*lead, -1, n_rx), rate.reshape(*lead, -1, n_rx), amp.reshape(*lead, -1, n_rx),
                  kind.reshape(*lead, -1), mask.reshape(*lead, -1))
 

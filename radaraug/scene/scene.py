@@ -257,11 +257,17 @@ def _inline_room(spec: Mapping[str, Any], rd: _Reader) -> SceneGeometry:
         object_id = torch.tensor(spec["object_id"], dtype=torch.long) if "object_id" in spec else None
     except (TypeError, ValueError, RuntimeError) as err:
         raise rd.fail("room", f"inline arrays are malformed: {err}") from None
+    for k in ("faces", "face_material", "object_id"):
+        # torch.tensor(..., dtype=long) truncates 1.5 to 1 silently: indices must be integers.
+        if k in spec and not _all_integers(spec[k]):
+            raise rd.fail(f"room.{k}", "must contain integers only")
     materials = spec["materials"]
     if not isinstance(materials, Sequence) or isinstance(materials, str):
         raise rd.fail("room.materials", "must be a list of material names")
     if vertices.ndim != 2 or vertices.shape[1] != 3 or faces.ndim != 2 or faces.shape[1] != 3:
         raise rd.fail("room", "vertices and faces must be lists of 3-element lists")
+    if not bool(torch.isfinite(vertices).all()):
+        raise rd.fail("room.vertices", "must be finite numbers (found NaN or inf)")
     if face_material.shape != faces.shape[:1] or (object_id is not None and object_id.shape != faces.shape[:1]):
         raise rd.fail("room.face_material", "needs one entry per face")
     if faces.numel() and (faces.min() < 0 or faces.max() >= len(vertices)):
@@ -275,6 +281,13 @@ def _inline_room(spec: Mapping[str, Any], rd: _Reader) -> SceneGeometry:
             raise rd.fail(f"room.materials[{i}]", str(err)) from None
     return SceneGeometry(vertices, faces, face_material, tuple(materials), None,
                          object_id if object_id is not None else torch.zeros(len(faces), dtype=torch.long))
+
+
+def _all_integers(value: Any) -> bool:
+    """True when every leaf of a nested list is an int (bools are not)."""
+    if isinstance(value, Sequence) and not isinstance(value, str):
+        return all(_all_integers(v) for v in value)
+    return isinstance(value, int) and not isinstance(value, bool)
 
 
 def _inline_dict(geom: SceneGeometry) -> dict[str, Any]:
@@ -361,12 +374,15 @@ def _read_materials(spec: Any, rd: _Reader) -> dict[str, dict[str, Any]]:
             if len(m) != 1:
                 raise rd.fail(key, "give either eps or a, b, c, d")
             re, im = rd.vector(m["eps"], f"{key}.eps", 2)
-            mat = Material(str(name), re, 0.0, 0.0, 0.0, eps_complex_override=complex(re, im))
+            kwargs: dict[str, Any] = {"a": re, "b": 0.0, "c": 0.0, "d": 0.0, "eps_complex_override": complex(re, im)}
         else:
-            vals = {k: rd.number(m.get(k, 0.0), f"{key}.{k}") for k in "abcd"}
+            kwargs = {k: rd.number(m.get(k, 0.0), f"{key}.{k}") for k in "abcd"}
             if "a" not in m:
                 raise rd.fail(f"{key}.a", "is required")
-            mat = Material(str(name), **vals)
+        try:
+            mat = Material(str(name), **kwargs)
+        except SceneError as err:
+            raise rd.fail(key, str(err)) from None
         existing = MATERIALS.get(str(name))
         if existing is not None and existing != mat:
             raise rd.fail(key, "redefines a different material with this name")

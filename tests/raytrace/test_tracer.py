@@ -50,6 +50,16 @@ def test_corridor_end_to_end(device):
     assert targets.num_paths == 32 + 2 * 32 * 6
 
 
+def test_scene_without_people_traces():
+    """Zero segments (``Scene.people_ellipsoids`` of an empty scene) keep the frame dim: (T, P_static, RX)."""
+    tracer = _corridor_tracer(rays=16)
+    empty = _walkers(4, 0)
+    targets = tracer.target_paths(empty)
+    assert targets.delay_s.shape == (4, 0, 3) and targets.mask.shape == (4, 0) and targets.kind.shape == (4, 0)
+    full = tracer.trace(empty)
+    assert full.delay_s.shape == (4, tracer.static_paths().num_paths, 3)
+
+
 def test_end_wall_return_is_there():
     """The metal end wall at 19.8 m gives the strongest static returns near range 19.8 m."""
     static = _corridor_tracer(rays=128).static_paths()

@@ -267,6 +267,16 @@ def test_people_key_errors(stub_people: types.SimpleNamespace, tmp_path: Path) -
 
 
 # ---------------------------------------------------------------------------------------- errors
+_INLINE_TRIANGLE = {"type": "inline", "vertices": [[0, 0, 0], [1, 0, 0], [0, 1, 0]], "faces": [[0, 1, 2]],
+                    "materials": ["concrete"], "face_material": [0]}
+
+
+def test_inline_triangle_is_valid(tmp_path: Path) -> None:
+    """The base of the inline-room error cases loads (so each case fails for its own reason)."""
+    s = Scene.from_file(_write(tmp_path / "ok.yaml", _base(room=_INLINE_TRIANGLE)))
+    assert s.room.faces.tolist() == [[0, 1, 2]]
+
+
 @pytest.mark.parametrize(
     ("change", "key"),
     [
@@ -283,6 +293,10 @@ def test_people_key_errors(stub_people: types.SimpleNamespace, tmp_path: Path) -
         ({"room": {"type": "corridor", "colour": "red"}}, "room"),
         ({"room": {"type": "mesh", "file": "nowhere.obj"}}, "room"),
         ({"extra": 1}, "(top level)"),
+        ({"materials": {"x@1": {"a": 1.0}}}, "materials.x@1"),
+        ({"room": _INLINE_TRIANGLE | {"vertices": [[0, 0, float("nan")], [1, 0, 0], [0, 1, 0]]}}, "room.vertices"),
+        ({"room": _INLINE_TRIANGLE | {"faces": [[0, 1.5, 2]]}}, "room.faces"),
+        ({"room": _INLINE_TRIANGLE | {"face_material": [0.7]}}, "room.face_material"),
     ],
 )
 def test_bad_content_names_file_and_key(tmp_path: Path, change: dict[str, Any], key: str) -> None:

@@ -8,6 +8,7 @@ file's up axis is ``+Y`` (as in CMU, Mixamo and most exporters).
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -112,9 +113,12 @@ class _Lines:
     def number(self, what: str) -> float:
         tok, line = self.next(what)
         try:
-            return float(tok)
+            value = float(tok)
         except ValueError:
             raise self.error(f"expected a number for {what}, found {tok!r}", line) from None
+        if not math.isfinite(value):
+            raise self.error(f"{what} must be finite, found {tok!r}", line)
+        return value
 
 
 def _parse_joint(s: _Lines, name: str, parent: int, out: BVHSkeleton, n_channels: list[int]) -> None:
@@ -212,9 +216,10 @@ def read_bvh(path: str | Path) -> BVHSkeleton:
     except ValueError:
         bad = next((v, n) for v, n in values if not _is_float(v))
         raise s.error(f"non-numeric motion value {bad[0]!r}", bad[1]) from None
+    bad_line = next((n for x, (_, n) in zip(flat, values) if not math.isfinite(x)), None)
+    if bad_line is not None:
+        raise s.error("motion values contain NaN/Inf", bad_line)
     motion = torch.tensor(flat, dtype=torch.float64).reshape(n_frames, n_channels[0])
-    if not bool(torch.isfinite(motion).all()):
-        raise s.error("motion values contain NaN/Inf")
     out.motion = motion
     return out
 

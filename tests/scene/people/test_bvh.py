@@ -109,6 +109,9 @@ def test_mixamo_names_are_mapped(tmp_path: Path) -> None:
         (lambda s: s.replace("Zrotation Xrotation Yrotation\n    End", "Zrotation Xrotation Qrotation\n    End"), 9),
         (lambda s: s.replace("1 20 3 90 0 0 0 90 0\n", "1 20 3 90 0 0 0 90\n"), 20),
         (lambda s: s.replace("MOTION", "MOTON"), 16),
+        (lambda s: s.replace("OFFSET 0 -10 0", "OFFSET 0 nan 0"), 8),
+        (lambda s: s.replace("Frame Time: 0.1", "Frame Time: inf"), 18),
+        (lambda s: s.replace("1 20 3 90 0 0 0 90 0", "1 20 3 90 0 0 0 nan 0"), 20),
     ],
 )
 def test_malformed_bvh_names_file_and_line(tmp_path: Path, mutate, line: int) -> None:  # noqa: ANN001
