@@ -17,11 +17,12 @@ from __future__ import annotations
 
 import argparse
 import json
+import math
 import sys
 from collections.abc import Sequence
 from pathlib import Path
 
-from radaraug.errors import RadarAugError
+from radaraug.errors import ConfigError, RadarAugError
 
 
 def _cmd_info(args: argparse.Namespace) -> int:
@@ -60,7 +61,25 @@ def _cmd_fit_cdr(args: argparse.Namespace) -> int:
     return 0
 
 
+def _device_arg(text: str) -> str:
+    """Check a ``--device`` value: a torch device that exists on this machine."""
+    import torch
+
+    try:
+        dev = torch.device(text)
+    except (RuntimeError, TypeError):
+        raise ConfigError(f"--device {text!r}: not a torch device (use cpu, cuda or cuda:N)") from None
+    if dev.type == "cuda" and not torch.cuda.is_available():
+        raise ConfigError(f"--device {text!r}: CUDA is not available on this machine")
+    if dev.type == "cuda" and dev.index is not None and dev.index >= torch.cuda.device_count():
+        raise ConfigError(f"--device {text!r}: this machine has {torch.cuda.device_count()} CUDA device(s)")
+    if dev.type not in ("cpu", "cuda"):
+        raise ConfigError(f"--device {text!r}: only cpu and cuda are supported")
+    return text
+
+
 def _cmd_bench(args: argparse.Namespace) -> int:
+    _device_arg(args.device)
     if args.what == "transforms":
         from radaraug.bench.transforms import run_transforms_benchmark
 
@@ -81,10 +100,9 @@ def _cmd_bench(args: argparse.Namespace) -> int:
 
 
 def _scene_arg(text: str):
-    from radaraug.scene.scene import Scene
+    from radaraug.sim.dataset import load_scene
 
-    p = Path(text)
-    return Scene.from_file(p) if p.exists() or p.suffix.lower() in (".yaml", ".yml", ".json") else Scene.builtin(text)
+    return load_scene(text)
 
 
 def _cmd_trace(args: argparse.Namespace) -> int:
@@ -92,6 +110,8 @@ def _cmd_trace(args: argparse.Namespace) -> int:
 
     from radaraug.raytrace.tracer import RayTracer, paths_to_json
 
+    if not math.isfinite(args.time):
+        raise ConfigError(f"--time must be a finite number of seconds, got {args.time}")
     scene = _scene_arg(args.scene)
     tracer = RayTracer(scene.room, scene.radar, scene.config, max_bounces=args.bounces, rays=args.rays)
     t = torch.tensor([args.time], dtype=torch.float64)
@@ -114,9 +134,11 @@ def _cmd_trace(args: argparse.Namespace) -> int:
 def _cmd_simulate(args: argparse.Namespace) -> int:
     from radaraug.sim.offline import parse_shard, simulate_capture
 
-    result = simulate_capture(args.scene if Path(args.scene).exists() else _scene_arg(args.scene), args.output,
-                              frames=args.frames, seed=args.seed, shard=parse_shard(args.shard),
-                              device=args.device)
+    shard = parse_shard(args.shard)
+    if args.frames < 1:
+        raise ConfigError(f"--frames must be >= 1, got {args.frames}")
+    result = simulate_capture(_scene_arg(args.scene), args.output, frames=args.frames, seed=args.seed,
+                              shard=shard, device=_device_arg(args.device))
     print(f"{result['path']}: frames [{result['frames'][0]}, {result['frames'][1]}), "
           f"{result['simulated']} simulated, resumed from frame {result['resumed_from']}")
     return 0

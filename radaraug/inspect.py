@@ -7,11 +7,13 @@ whether anything moves (energy off zero Doppler against what noise alone gives).
 
 from __future__ import annotations
 
+import numbers
 from typing import Any
 
 import numpy as np
 import torch
 
+from radaraug.errors import RadarAugError
 from radaraug.units import DB_CONVENTION
 
 
@@ -24,12 +26,17 @@ def summarize_capture(reader: Any, *, max_frames: int = 256) -> dict[str, Any]:
 
     Returns:
         A JSON-able dict.
+
+    Raises:
+        RadarAugError: ``max_frames`` is not a positive integer.
     """
+    if isinstance(max_frames, bool) or not isinstance(max_frames, numbers.Integral) or max_frames < 1:
+        raise RadarAugError(f"{reader.path}: max_frames must be a positive integer, got {max_frames!r}")
     from radaraug.transforms import RangeDoppler, ToDecibels
     from radaraug.transforms._motion import WARN_FRACTION, motion_fraction
 
     cfg = reader.config
-    n = min(reader.num_frames, max_frames)
+    n = min(reader.num_frames, int(max_frames))
     counts = reader.read(0, n, as_float=False).to(torch.float64)  # (F, rx, chirps, samples)
     full = cfg.adc_full_scale_counts
     dc = counts.mean(dim=(0, 2, 3))
@@ -48,7 +55,8 @@ def summarize_capture(reader: Any, *, max_frames: int = 256) -> dict[str, Any]:
     static_wo_dc = static[:, 1:]
     k = int(static_wo_dc.max(dim=0).values.argmax()) + 1
     off_zero = torch.cat([db[..., :zero - 1], db[..., zero + 2:]], dim=-1) if m > 4 else db
-    floor = off_zero[..., db.shape[-2] // 2:, :].median().item() if m > 4 else float("nan")
+    # None (JSON null, not the invalid NaN) when there are too few chirps to leave zero Doppler out.
+    floor = round(off_zero[..., db.shape[-2] // 2:, :].median().item(), 2) if m > 4 else None
     frac = motion_fraction(db, guard_bins=2)
     motion = None if frac is None else {
         "motion": frac > WARN_FRACTION,
@@ -69,7 +77,7 @@ def summarize_capture(reader: Any, *, max_frames: int = 256) -> dict[str, Any]:
         "dc_offset_counts": [round(float(v), 1) for v in dc],
         "slow_time_noise_rms_counts": [round(float(v), 3) for v in slow_std],
         "clipped_fraction": [float(v) for v in clipped],
-        "noise_floor_db": round(floor, 2),
+        "noise_floor_db": floor,
         "strongest_static_return": {
             "range_m": round(float(rng_axis[k]), 3),
             "range_bin": k,

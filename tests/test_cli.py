@@ -82,3 +82,40 @@ def test_demo_writes_outputs(tmp_path) -> None:
     names = {p.name for p in (tmp_path / "out").iterdir()}
     assert {"cdr.json", "noise_floor_histogram.png", "summary.json"} <= names
     assert sum(n.startswith("rd_frame") for n in names) == 4
+
+
+def test_info_max_frames_must_be_positive(tmp_path, capsys) -> None:
+    path = tmp_path / "room.h5"
+    _empty_room(path)
+    # Before: 0 gave a confusing "cannot read frames 0:0", -3 silently analysed all but 3 frames.
+    for bad in ("0", "-3"):
+        assert main(["info", str(path), "--max-frames", bad, "--json"]) == 2
+        err = capsys.readouterr().err
+        assert "max_frames must be a positive integer" in err and "room.h5" in err
+
+
+def test_info_json_is_valid_json_when_the_floor_cannot_be_computed(tmp_path, capsys) -> None:
+    cfg = RadarConfig.bgt60tr13c(num_samples_per_chirp=64, num_chirps_per_frame=4)
+    counts = np.random.default_rng(0).integers(1900, 2100, size=(20, 3, 4, 64)).astype(np.uint16)
+    write_capture(tmp_path / "few_chirps.h5", counts, cfg)
+    assert main(["info", str(tmp_path / "few_chirps.h5"), "--json"]) == 0
+    out = capsys.readouterr().out
+    info = json.loads(out, parse_constant=lambda c: pytest.fail(f"invalid JSON constant {c}"))
+    assert info["noise_floor_db"] is None
+
+
+def test_fit_cdr_bad_input_and_unwritable_output_are_one_line_errors(tmp_path, capsys) -> None:
+    path = tmp_path / "room.h5"
+    _empty_room(path)
+    # Before: a bare FileNotFoundError traceback from CalibratedDR.save.
+    out = tmp_path / "no_such_dir" / "cdr.json"
+    assert main(["fit-cdr", str(path), "-o", str(out)]) == 2
+    err = capsys.readouterr().err.split("\r")[-1]  # after the progress bar
+    assert err.startswith("error: ") and "cdr.json" in err and "Traceback" not in err
+    # Before: --max-frames -3 silently fitted on all but the last 3 frames of a tensor source.
+    assert main(["fit-cdr", str(path), "-o", str(tmp_path / "c.json"), "--max-frames", "-3"]) == 2
+    assert "max_frames must be a positive integer" in capsys.readouterr().err
+    trunc = tmp_path / "trunc.h5"
+    trunc.write_bytes(path.read_bytes()[: path.stat().st_size // 2])
+    assert main(["fit-cdr", str(trunc), "-o", str(tmp_path / "c.json")]) == 2
+    assert "trunc.h5" in capsys.readouterr().err

@@ -156,16 +156,27 @@ class HDF5Capture(CaptureReader):
         assert f is not None
         if fmt.TIMESTAMPS not in f:
             return None
-        ts = np.asarray(f[fmt.TIMESTAMPS][()], dtype=np.float64).reshape(-1)
+        ds = f[fmt.TIMESTAMPS]
+        # Timestamps are optional: unusable ones are dropped with a warning (the frames stay
+        # readable), never returned as garbage (NaN durations, a 2-D array flattened).
+        if not isinstance(ds, h5py.Dataset) or ds.ndim != 1 or ds.dtype.kind not in "iuf":
+            what = "not a dataset" if not isinstance(ds, h5py.Dataset) else f"{ds.dtype} {ds.shape}"
+            return self._drop_timestamps(f"'{fmt.TIMESTAMPS}' is {what}, expected float64 (frames,)")
+        try:
+            ts = np.asarray(ds[()], dtype=np.float64)
+        except (OSError, RuntimeError) as e:
+            return self._drop_timestamps(f"cannot read '{fmt.TIMESTAMPS}' ({e})")
         # The writer stores timestamps before the frame data of each append, so a writer killed
         # mid-append can leave timestamps ahead of the frames, never behind.
-        if len(ts) >= self.num_frames:
-            return ts[: self.num_frames]
-        warnings.warn(
-            f"{self.path}: {len(ts)} timestamps for {self.num_frames} frames; timestamps ignored",
-            CaptureWarning,
-            stacklevel=4,
-        )
+        if len(ts) < self.num_frames:
+            return self._drop_timestamps(f"{len(ts)} timestamps for {self.num_frames} frames")
+        ts = ts[: self.num_frames]
+        if not np.isfinite(ts).all():
+            return self._drop_timestamps("timestamps hold NaN or Inf")
+        return ts
+
+    def _drop_timestamps(self, problem: str) -> None:
+        warnings.warn(f"{self.path}: {problem}; timestamps ignored", CaptureWarning, stacklevel=5)
         return None
 
     def _load_labels(self) -> dict[str, np.ndarray]:

@@ -142,7 +142,10 @@ class InfineonRecording(CaptureReader):
         self.temperature_C = self._load_temperature(dev / "temperature.npy")
         self.labels = {}
         version_file = dev / "format.version"
-        version = version_file.read_text(errors="replace").strip() if version_file.exists() else None
+        try:
+            version = version_file.read_text(errors="replace").strip() if version_file.exists() else None
+        except OSError as e:
+            raise CaptureError(f"{version_file}: cannot read ({e})") from None
         if version is not None and version.split(".")[0] != FORMAT_VERSION.split(".")[0]:
             warnings.warn(
                 f"{version_file}: format.version {version!r} is not {FORMAT_VERSION}; reading it anyway",
@@ -185,12 +188,13 @@ class InfineonRecording(CaptureReader):
             ts = np.array([float(ln) for ln in lines if ln], dtype=np.float64)
         except (OSError, UnicodeDecodeError, ValueError) as e:
             raise CaptureError(f"{path}: cannot parse timestamps ({e})") from None
+        problem = None
         if len(ts) != self.num_frames:
-            warnings.warn(
-                f"{path}: {len(ts)} timestamps for {self.num_frames} frames; timestamps ignored",
-                CaptureWarning,
-                stacklevel=3,
-            )
+            problem = f"{len(ts)} timestamps for {self.num_frames} frames"
+        elif not np.isfinite(ts).all():
+            problem = "timestamps hold NaN or Inf"
+        if problem is not None:
+            warnings.warn(f"{path}: {problem}; timestamps ignored", CaptureWarning, stacklevel=3)
             return None
         return ts
 

@@ -48,7 +48,8 @@ class ChainState:
         timing: chirp constants of ``config``.
         dtype: real output dtype; ``device``: where everything lives.
         generator: the ``torch.Generator`` for every random draw (None: global RNG).
-        frame_start_s: absolute time of the frame's first ramp start (for time-locked effects).
+        frame_start_s: absolute time of the frame's first ramp start (for time-locked effects): a
+            float, or a float64 tensor broadcastable to :attr:`batch_shape` (one start per frame).
         tx_power_W: transmit power.
         front_end_gain: ADC float units per sqrt(W) at the RX port (0 dB IF gain).
         batch_shape: leading dims of the paths.
@@ -63,7 +64,7 @@ class ChainState:
         *,
         dtype: torch.dtype,
         generator: torch.Generator | None,
-        frame_start_s: float,
+        frame_start_s: float | torch.Tensor,
         tx_power_W: float,
         front_end_gain: float,
         method: str,
@@ -74,7 +75,7 @@ class ChainState:
         self.dtype = dtype
         self.device = coef.device
         self.generator = generator
-        self.frame_start_s = float(frame_start_s)
+        self.frame_start_s = frame_start_s if isinstance(frame_start_s, torch.Tensor) else float(frame_start_s)
         self.tx_power_W = tx_power_W
         self.front_end_gain = front_end_gain
         self.method = method

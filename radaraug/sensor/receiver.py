@@ -118,7 +118,7 @@ class FMCWReceiver(nn.Module):
         paths: Paths,
         *,
         generator: torch.Generator | None = None,
-        frame_start_s: float = 0.0,
+        frame_start_s: float | torch.Tensor = 0.0,
         static_signal: torch.Tensor | None = None,
     ) -> torch.Tensor:
         """Simulate the ADC samples of ``paths``.
@@ -127,7 +127,9 @@ class FMCWReceiver(nn.Module):
             paths: propagation paths ``(..., P, RX)`` (see :class:`Paths`); their device and
                 delay dtype (float32/float64) set the output's.
             generator: source of every random draw (on the paths' device); None: global RNG.
-            frame_start_s: absolute time of the frame's first ramp start (time-locked effects).
+            frame_start_s: absolute time of the frame's first ramp start (time-locked effects):
+                a number, or a tensor broadcastable to the paths' batch dims ``...`` giving each
+                frame of a batch its own start.
             static_signal: the precomputed contribution of static paths, from
                 :meth:`static_signal` (broadcast over the batch); added before the first
                 non-linear stage.
@@ -136,6 +138,8 @@ class FMCWReceiver(nn.Module):
             ``(..., RX, chirps, samples)`` in SDK 3.6 floats.
         """
         state = self._initial_state(paths, generator, frame_start_s)
+        if static_signal is not None:
+            _check_static_signal(static_signal, state.sample_shape)
         pending = static_signal
         for eff in self.effects:
             if pending is not None and eff.kind == "nonlinear":
@@ -178,7 +182,7 @@ class FMCWReceiver(nn.Module):
         paths_or_samples: Paths | torch.Tensor,
         *,
         generator: torch.Generator | None = None,
-        frame_start_s: float = 0.0,
+        frame_start_s: float | torch.Tensor = 0.0,
     ) -> torch.Tensor:
         """ADC counts (``torch.uint16``) of simulated ``paths`` or of SDK-float samples."""
         if isinstance(paths_or_samples, Paths):
@@ -221,10 +225,11 @@ class FMCWReceiver(nn.Module):
         return f"synthesis={self.synthesis!r}, tx_power_dBm={self.tx_power_dBm:.2f}, front_end_gain_dB={self.front_end_gain_dB}"
 
     # ------------------------------------------------------------------ internals
-    def _initial_state(self, paths: Paths, generator: torch.Generator | None, frame_start_s: float) -> ChainState:
+    def _initial_state(
+        self, paths: Paths, generator: torch.Generator | None, frame_start_s: float | torch.Tensor
+    ) -> ChainState:
         delay, rate, amp, mask = _validated(paths, self.config.num_rx)
-        if not math.isfinite(frame_start_s):
-            raise InputTensorError(f"frame_start_s must be finite, got {frame_start_s!r}")
+        frame_start_s = _validated_start(frame_start_s, tuple(delay.shape[:-2]))
         dtype = delay.dtype
         cdtype = torch.complex64 if dtype == torch.float32 else torch.complex128
         # The IF is TX x conj(RX): a path's scattering phase enters conjugated; a real tone of
@@ -254,6 +259,49 @@ def _tx_power(config: RadarConfig, tx_power_dBm_value: float | None) -> float:
     if math.isnan(v) or v == math.inf:
         raise ConfigError(f"tx_power_dBm must be a finite number (or -inf for TX off), got {tx_power_dBm_value!r}")
     return v
+
+
+def _check_static_signal(x: torch.Tensor, sample_shape: tuple[int, ...]) -> None:
+    """A ``static_signal`` must be a real tensor broadcastable to ``(..., RX, chirps, samples)``."""
+    if not isinstance(x, torch.Tensor) or not x.is_floating_point():
+        got = x.dtype if isinstance(x, torch.Tensor) else type(x).__name__
+        raise InputTensorError(f"static_signal must be a real floating-point tensor, got {got}")
+    try:
+        ok = torch.broadcast_shapes(x.shape, sample_shape) == torch.Size(sample_shape)
+    except RuntimeError:
+        ok = False
+    if not ok:
+        raise InputTensorError(
+            f"static_signal has shape {tuple(x.shape)}, which does not broadcast to the frames' "
+            f"{tuple(sample_shape)} (computed for another config?)"
+        )
+
+
+def _validated_start(start: float | torch.Tensor, batch_shape: tuple[int, ...]) -> float | torch.Tensor:
+    """``frame_start_s`` as a finite float, or a float64 tensor broadcastable to ``batch_shape``."""
+    if isinstance(start, torch.Tensor):
+        if start.is_complex() or start.dtype == torch.bool:
+            raise InputTensorError(f"frame_start_s must be real, got {start.dtype}")
+        try:
+            ok = torch.broadcast_shapes(start.shape, batch_shape) == torch.Size(batch_shape)
+        except RuntimeError:
+            ok = False
+        if not ok:
+            raise InputTensorError(
+                f"frame_start_s has shape {tuple(start.shape)}; it must broadcast to the paths' batch "
+                f"shape {batch_shape}"
+            )
+        start = start.to(torch.float64)
+        if not bool(torch.isfinite(start).all()):
+            raise InputTensorError("frame_start_s holds NaN or Inf")
+        return start
+    try:
+        value = float(start)
+    except (TypeError, ValueError):
+        raise InputTensorError(f"frame_start_s must be a number or a tensor, got {start!r}") from None
+    if not math.isfinite(value):
+        raise InputTensorError(f"frame_start_s must be finite, got {start!r}")
+    return value
 
 
 def _validated(paths: Paths, num_rx: int):

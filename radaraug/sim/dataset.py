@@ -18,6 +18,7 @@ import torch
 from torch.utils.data import Dataset
 
 from radaraug.config import RadarConfig
+from radaraug.errors import ConfigError
 from radaraug.scene.scene import Scene
 from radaraug.sim.scenarios import Scenario, ScenarioSampler
 from radaraug.sim.seeding import item_generator
@@ -26,13 +27,19 @@ from radaraug.sim.twin import DigitalTwin
 TARGETS = ("count", "occupancy", "both", "none")
 
 
-def _load_scene(scene: Scene | str | os.PathLike) -> Scene:
+def load_scene(scene: Scene | str | os.PathLike) -> Scene:
+    """A :class:`Scene`, a scene file (``.yaml``/``.yml``/``.json``) or a built-in scene name.
+
+    Raises:
+        SceneError: missing or invalid file, or unknown built-in name.
+    """
     if isinstance(scene, Scene):
         return scene
     p = Path(scene)
-    if p.suffix.lower() in (".yaml", ".yml", ".json") or p.exists():
+    if p.suffix.lower() in (".yaml", ".yml", ".json") or p.is_file():
         return Scene.from_file(p)
     return Scene.builtin(str(scene))
+
 
 
 class SimulatedRadarDataset(Dataset):
@@ -73,10 +80,10 @@ class SimulatedRadarDataset(Dataset):
         twin_options: dict[str, Any] | None = None,
     ) -> None:
         if target not in TARGETS:
-            raise ValueError(f"target must be one of {TARGETS}, got {target!r}")
+            raise ConfigError(f"target must be one of {TARGETS}, got {target!r}")
         if length < 0 or frames_per_item < 1:
-            raise ValueError("length must be >= 0 and frames_per_item >= 1")
-        self.scene = _load_scene(scene)
+            raise ConfigError(f"length must be >= 0 and frames_per_item >= 1, got {length} and {frames_per_item}")
+        self.scene = load_scene(scene)
         self.config = config or self.scene.config
         self.length = int(length)
         self.seed = int(seed)

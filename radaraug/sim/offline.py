@@ -8,7 +8,12 @@ a pure function of ``(scene, seed, k)`` however the job is split.
 ``--shard i/n`` takes the ``i``-th of ``n`` contiguous, block-aligned ranges of frames and writes
 ``<out stem>.shard-<i>-of-<n>.h5``; a cluster scheduler runs the pieces independently. Re-running
 the same command resumes: frames already flushed to the output (the capture format flushes every
-append in SWMR mode, so they survive a crash) are kept and simulation continues after them.
+append in SWMR mode, so they survive a crash) are kept and simulation continues after them. A file
+that another job wrote (other scene, seed, frame count, shard or device type) or that is not a
+simulated capture at all is refused, never overwritten.
+
+The noise streams of a CPU and a CUDA ``torch.Generator`` differ for the same seed, so frames are
+reproducible per device type (CPU or CUDA); a job is resumed only on the device type that began it.
 """
 
 from __future__ import annotations
@@ -23,6 +28,7 @@ import torch
 from radaraug.errors import CaptureError, ConfigError
 from radaraug.io import CaptureWriter, open_capture
 from radaraug.scene.scene import Scene
+from radaraug.sim.dataset import load_scene
 from radaraug.sim.seeding import item_generator
 from radaraug.sim.twin import DigitalTwin
 
@@ -86,23 +92,45 @@ def simulate_capture(
 ) -> dict[str, Any]:
     """Simulate ``frames`` frames of ``scene`` (this shard's part) into a capture file.
 
+    Args:
+        scene: a :class:`Scene`, a scene file or a built-in scene name.
+        out: output capture (``out`` itself, or ``<stem>.shard-<i>-of-<n>.h5`` for a shard).
+        frames: total frames of the whole job (all shards).
+        seed: noise seed; frame ``k`` depends only on ``(scene, seed, k)`` and the device type.
+        shard: ``(i, n)``: this run simulates the ``i``-th of ``n`` block-aligned pieces.
+        device: where to simulate.
+        progress: show a progress bar.
+        twin_options: keyword arguments of :class:`DigitalTwin`.
+
     Returns:
         ``{"path", "frames": [start, stop), "resumed_from", "simulated"}``.
+
+    Raises:
+        SceneError: bad scene; ConfigError: ``frames < 1`` or a bad shard or device;
+        CaptureError: ``out`` exists and was not written by this same job.
     """
-    if not isinstance(scene, Scene):
-        scene = Scene.from_file(scene)
-    if frames < 1:
-        raise ConfigError(f"--frames must be >= 1, got {frames}")
+    scene = load_scene(scene)
+    if isinstance(frames, bool) or not isinstance(frames, int) or frames < 1:
+        raise ConfigError(f"--frames must be an integer >= 1, got {frames!r}")
+    if parse_shard(f"{shard[0]}/{shard[1]}") != tuple(shard):  # validates (i, n) given from Python
+        raise ConfigError(f"shard must be (i, n) with 0 <= i < n, got {shard!r}")
+    try:
+        device_type = torch.device(device).type
+    except (RuntimeError, TypeError):
+        raise ConfigError(f"device {device!r}: not a torch device (use cpu, cuda or cuda:N)") from None
     start, stop = shard_range(frames, shard)
     path = shard_path(out, shard)
+    job = {"scene": _jsonable(scene.to_dict()), "seed": seed, "frames_total": frames, "shard": list(shard),
+           "first_frame": start, "block_frames": BLOCK_FRAMES, "device_type": device_type}
     attrs = {
         "source": "radaraug simulate",
         "description": f"simulated scene {scene.name!r}",
-        "simulation": {"scene": scene.to_dict(), "seed": seed, "frames_total": frames,
-                       "shard": list(shard), "first_frame": start, "block_frames": BLOCK_FRAMES},
+        "simulation": job,
     }
-    done = _existing_frames(path, scene, seed, start)
-    if done >= stop - start:
+    done = _existing_frames(path, job)
+    if done > stop - start:
+        raise CaptureError(f"{path} holds {done} frames, more than this job's {stop - start}; remove it")
+    if done == stop - start:
         return {"path": str(path), "frames": [start, stop], "resumed_from": stop, "simulated": 0}
     twin = DigitalTwin(scene, device=device, **(twin_options or {}))
     period = twin.config.frame_repetition_time_s
@@ -135,29 +163,62 @@ def simulate_capture(
             "simulated": stop - start - done}
 
 
-def _existing_frames(path: Path, scene: Scene, seed: int, start: int) -> int:
-    """Frames already in ``path`` from an earlier run of the same job (0 when there is none)."""
+def _existing_frames(path: Path, job: dict[str, Any]) -> int:
+    """Frames already in ``path`` from an earlier run of the same ``job`` (0 when there is none).
+
+    Raises:
+        CaptureError: ``path`` is something else (another job's capture, or not ours at all).
+    """
     if not path.exists():
         return 0
+    refuse = CaptureError(
+        f"{path} exists and was not made by this job (other scene, seed, frame count, shard or device "
+        "type, or not a simulated capture); remove it or choose another output"
+    )
+    if not path.is_file():
+        raise refuse
     try:
-        cap = open_capture(path)
+        with open_capture(path) as cap:
+            sim, done = cap.attrs.get("simulation"), cap.num_frames
     except CaptureError:
-        # Broken beyond what SWMR protects (killed before its first flush): start again.
-        return 0
-    with cap:
-        sim = cap.attrs.get("simulation")
-        if isinstance(sim, str):
-            import json
+        # Not a readable capture: a run killed before its first frame (no frames yet) or before its
+        # first flush (HDF5 that cannot be opened) starts again; anything else is not ours to overwrite.
+        sim, done = _raw_simulation_attr(path), 0
+        if sim is _BROKEN_HDF5:
+            return 0
+    if isinstance(sim, bytes):
+        sim = sim.decode()
+    if isinstance(sim, str):
+        import json
 
+        try:
             sim = json.loads(sim)
-        same = isinstance(sim, dict) and sim.get("seed") == seed and sim.get("first_frame") == start \
-            and sim.get("scene") == _jsonable(scene.to_dict())
-        if not same:
-            raise CaptureError(
-                f"{path} exists and was not made by this job (other scene, seed or shard); "
-                "remove it or choose another output"
-            )
-        return cap.num_frames
+        except ValueError:
+            raise refuse from None
+    if not isinstance(sim, dict):
+        raise refuse
+    sim = {"device_type": "cpu", **sim}  # files written before the device type was recorded
+    if any(sim.get(k) != v for k, v in job.items()):
+        raise refuse
+    return done
+
+
+_BROKEN_HDF5 = object()
+
+
+def _raw_simulation_attr(path: Path) -> Any:
+    """The ``simulation`` attribute read with h5py alone; :data:`_BROKEN_HDF5` for an HDF5 file
+    h5py cannot open (a run killed before its first flush); None when there is none."""
+    import h5py
+
+    with open(path, "rb") as f:
+        if f.read(8) != b"\x89HDF\r\n\x1a\n":
+            return None
+    try:
+        with h5py.File(path, "r") as f:
+            return f.attrs.get("simulation")
+    except OSError:
+        return _BROKEN_HDF5
 
 
 def _jsonable(d: Any) -> Any:

@@ -15,6 +15,7 @@ from typing import Any
 import torch
 
 from radaraug.config import RadarConfig
+from radaraug.errors import InputTensorError
 from radaraug.raytrace.tracer import RayTracer
 from radaraug.scene.geometry import Ellipsoids
 from radaraug.scene.scene import Scene
@@ -120,15 +121,16 @@ class DigitalTwin:
         static = self.static_signal()
         if isinstance(generators, Sequence):
             if len(generators) != times.shape[0]:
-                raise ValueError(f"need one generator per frame: {len(generators)} for {times.shape[0]} frames")
+                raise InputTensorError(f"need one generator per frame: {len(generators)} for {times.shape[0]} frames")
             frames = [
                 self.receiver(_index_paths(paths, k), generator=g, frame_start_s=float(times[k]),
                               static_signal=static)
                 for k, g in enumerate(generators)
             ]
             return torch.stack(frames)
-        start = float(times[0]) if len(times) else 0.0
-        return self.receiver(paths, generator=generators, frame_start_s=start, static_signal=static)
+        # Each frame of the batch starts at its own time (time-locked effects such as a spur tone).
+        return self.receiver(paths, generator=generators, frame_start_s=times.to(torch.float64),
+                             static_signal=static)
 
 
 def _index_paths(paths: Paths, k: int) -> Paths:

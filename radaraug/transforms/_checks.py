@@ -32,8 +32,18 @@ def check_tensor(
         raise InputTensorError(f"{what}: expected {kinds} tensor, got dtype {x.dtype}{hint}")
     if x.ndim < min_ndim:
         raise InputTensorError(f"{what}: expected at least {min_ndim} dims, got shape {tuple(x.shape)}")
+    if min_ndim and 0 in x.shape[x.ndim - min_ndim :]:
+        # Empty leading (batch) dims are fine; an empty event (0 rx, chirps or samples) is not.
+        raise InputTensorError(f"{what}: got an empty event, shape {tuple(x.shape)}")
     # A sum is NaN/Inf whenever any element is (one cheap reduction, no bool temporary); only a
     # non-finite sum -- which a huge but finite input can also give -- pays for the exact test.
-    if finite and x.numel() and not bool(torch.isfinite(x.sum())) and not bool(torch.isfinite(x).all()):
+    # Meta tensors (shape/device tracing) hold no values to test.
+    if (
+        finite
+        and x.numel()
+        and x.device.type != "meta"
+        and not bool(torch.isfinite(x.sum()))
+        and not bool(torch.isfinite(x).all())
+    ):
         raise InputTensorError(f"{what}: input holds NaN or Inf values")
     return x

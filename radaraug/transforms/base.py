@@ -177,10 +177,13 @@ class RandomRadarTransform(RadarTransform):
         else:
             if params is None:
                 params = self.make_params(x, self.rng.get(x.device))
+                # p = 1 (the default): every sample applies; skip _apply_where's two host syncs.
+                every = self.p >= 1.0
             else:
                 params = {k: torch.as_tensor(v, device=x.device) for k, v in params.items()}
+                every = False
             self.last_params = dict(params)
-            out = self._apply_where(x, params)
+            out = self.transform(x, params) if every else self._apply_where(x, params)
         return (out, *rest) if rest else out
 
     def _apply_where(self, x: torch.Tensor, params: Params) -> torch.Tensor:

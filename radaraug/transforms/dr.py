@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import json
 import math
+import numbers
 import os
 import warnings
 from pathlib import Path
@@ -151,6 +152,10 @@ class CalibratedDR(_DRClamp):
                 config = RadarConfig.from_dict(config)
             except ConfigError as e:
                 raise CalibrationError(f"CalibratedDR: bad radar config: {e}") from None
+        elif config is not None and not isinstance(config, RadarConfig):
+            raise CalibrationError(
+                f"CalibratedDR: config must be a RadarConfig or its dict, got {type(config).__name__}"
+            )
         self.config = config
         self.map_shape = None if map_shape is None else tuple(int(v) for v in map_shape)
         if self.map_shape is not None and len(self.map_shape) != 3:
@@ -230,6 +235,10 @@ class CalibratedDR(_DRClamp):
             progress: show a progress bar (tqdm, on stderr) over the batches.
             **kwargs: passed to the constructor (``p``, ``generator``, ``seed``...).
 
+        Raises:
+            CalibrationError: ``max_frames``/``batch_size`` not a positive integer, a source with
+                no frames, NaN/Inf maps, or a config that differs from the capture's.
+
         Warns:
             UserWarning: when the capture shows motion (it should be empty).
 
@@ -241,6 +250,11 @@ class CalibratedDR(_DRClamp):
 
         if input not in ("raw", "db"):
             raise CalibrationError(f"CalibratedDR.fit: input must be 'raw' or 'db', got {input!r}")
+        for name, value in (("max_frames", max_frames), ("batch_size", batch_size)):
+            if value is None and name == "max_frames":
+                continue
+            if isinstance(value, bool) or not isinstance(value, numbers.Integral) or value < 1:
+                raise CalibrationError(f"CalibratedDR.fit: {name} must be a positive integer, got {value!r}")
         if pipeline is None:
             pipeline = RadarCompose([RangeDoppler(), ToDecibels()])
         chain = chain_of(pipeline)
@@ -276,7 +290,7 @@ class CalibratedDR(_DRClamp):
                 if not bool(torch.isfinite(out).all()):
                     raise CalibrationError(f"CalibratedDR.fit: NaN/Inf in the RD maps of {where}")
                 maps.append(out)
-        if not maps:
+        if not maps or sum(m.shape[0] for m in maps) == 0:
             raise CalibrationError(f"CalibratedDR.fit: {where} has no frames")
         shapes = {tuple(m.shape[1:]) for m in maps}
         if len(shapes) > 1:
@@ -329,15 +343,24 @@ class CalibratedDR(_DRClamp):
         }
 
     def save(self, path: str | os.PathLike) -> None:
-        """Write the calibration as a small JSON file."""
-        Path(path).write_text(json.dumps(self.to_dict(), indent=2) + "\n")
+        """Write the calibration as a small JSON file.
+
+        Raises:
+            CalibrationError: the file cannot be written (the message names it).
+        """
+        text = json.dumps(self.to_dict(), indent=2) + "\n"
+        try:
+            Path(path).write_text(text)
+        except OSError as e:
+            raise CalibrationError(f"cannot write calibration file {path}: {e}") from None
 
     @classmethod
     def load(cls, path: str | os.PathLike, **kwargs: Any) -> CalibratedDR:
         """Read a calibration JSON written by :meth:`save` (``kwargs`` go to the constructor).
 
         Raises:
-            CalibrationError: missing, unreadable or malformed file (the message names it).
+            CalibrationError: missing, unreadable or malformed file, another ``format_version``,
+                or another ``db_convention`` (the message names the file).
         """
         try:
             data = json.loads(Path(path).read_text())
@@ -349,6 +372,18 @@ class CalibratedDR(_DRClamp):
             raise CalibrationError(f"calibration file {path} is not valid JSON: {e}") from None
         if not isinstance(data, dict) or data.get("format") != FORMAT:
             raise CalibrationError(f"calibration file {path} is not a {FORMAT} record")
+        version = data.get("format_version", FORMAT_VERSION)
+        if version != FORMAT_VERSION or isinstance(version, bool):
+            raise CalibrationError(
+                f"calibration file {path} has format_version {version!r}; this radaraug reads {FORMAT_VERSION}"
+            )
+        convention = data.get("db_convention", DB_CONVENTION)
+        if convention != DB_CONVENTION:
+            # (m_t, s_t) in another dB scale would clamp at a silently wrong level.
+            raise CalibrationError(
+                f"calibration file {path} was fitted in another dB convention ({convention!r}); "
+                f"radaraug's maps use {DB_CONVENTION!r}"
+            )
         try:
             mean, std = data["mean_db"], data["std_db"]
             if isinstance(mean, bool) or isinstance(std, bool):

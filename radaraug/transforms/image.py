@@ -80,9 +80,9 @@ class ClipNormalize(RadarTransform):
                     f"ClipNormalize.estimate: item {k} is not a real float dB map ({t.dtype})"
                 )
             chunks.append(t.detach().reshape(-1).to("cpu", torch.float64).numpy())
-        if not chunks:
+        values = np.concatenate(chunks) if chunks else np.empty(0)
+        if values.size == 0:
             raise InputTensorError("ClipNormalize.estimate: no data")
-        values = np.concatenate(chunks)
         if not np.isfinite(values).all():
             raise InputTensorError("ClipNormalize.estimate: data holds NaN or Inf")
         vmin, vmax = np.percentile(values, [low, high])

@@ -31,6 +31,23 @@ PROFILE_LAYOUT = "range profiles (..., rx, chirps, range)"
 RD_LAYOUT = "an RD map (..., rx, range, doppler)"
 
 
+FFT_DTYPES = (torch.float32, torch.float64, torch.complex64, torch.complex128)
+
+
+class _FFTTransform(RadarTransform):
+    """A transform that runs an FFT: float32/float64 (or complex64/128) input only."""
+
+    def check_input(self, x: Any) -> torch.Tensor:
+        x = super().check_input(x)
+        if x.dtype not in FFT_DTYPES:
+            # torch's FFTs refuse half precision on the CPU (and on CUDA for most sizes).
+            raise InputTensorError(
+                f"{type(self).__name__} expects {self.input_layout} of float32 or float64, got {x.dtype} "
+                "(convert with .float())"
+            )
+        return x
+
+
 class RemoveMean(RadarTransform):
     """Subtract each chirp's mean over fast time (removes the per-RX ADC DC offset)."""
 
@@ -56,7 +73,7 @@ class StaticClutterRemoval(RadarTransform):
         return x - x.mean(dim=-2, keepdim=True)
 
 
-class RangeFFT(RadarTransform):
+class RangeFFT(_FFTTransform):
     """Window over samples, real FFT, keep the ``N // 2`` positive bins, divide by the window sum.
 
     Input ``(..., rx, chirps, samples)`` real; output complex ``(..., rx, chirps, N // 2)``
@@ -83,7 +100,7 @@ class RangeFFT(RadarTransform):
         return {"window": self.window}
 
 
-class DopplerFFT(RadarTransform):
+class DopplerFFT(_FFTTransform):
     """Window over chirps, FFT, divide by the window sum, centre zero Doppler (fftshift).
 
     Input complex range profiles ``(..., rx, chirps, range)``; output ``(..., rx, range,
@@ -110,7 +127,7 @@ class DopplerFFT(RadarTransform):
         return {"window": self.window}
 
 
-class RangeDoppler(RadarTransform):
+class RangeDoppler(_FFTTransform):
     """Raw cube -> complex RD map: [mean removal] -> [MTI] -> range FFT -> Doppler FFT.
 
     Equivalent to ``RemoveMean -> StaticClutterRemoval -> RangeFFT -> DopplerFFT`` (the optional

@@ -250,3 +250,30 @@ def test_bad_file_level_labels(h5_capture):
     _expect_error(h5_capture, "'labels' is not valid JSON")
     _mutate(h5_capture, lambda f: f.attrs.__setitem__("labels", json.dumps({"count": [1, 2]})))
     _expect_error(h5_capture, "label 'count' has shape")
+
+
+@pytest.mark.parametrize(
+    "damage, fragment",
+    [
+        (lambda f: f["timestamps"].__setitem__(2, np.nan), "NaN or Inf"),
+        (lambda f: (f.__delitem__("timestamps"), f.create_group("timestamps")), "not a dataset"),
+        (
+            lambda f: (f.__delitem__("timestamps"), f.create_dataset("timestamps", data=np.array([b"x"] * 6))),
+            "expected float64",
+        ),
+        (
+            lambda f: (f.__delitem__("timestamps"), f.create_dataset("timestamps", data=np.zeros((6, 2)))),
+            "expected float64",
+        ),
+    ],
+    ids=["nan", "group", "strings", "2-D"],
+)
+def test_unusable_timestamps_warn_and_are_dropped(h5_capture, damage, fragment):
+    # Before: a bare TypeError/ValueError from h5py/numpy, or NaN durations / a flattened 2-D array.
+    _mutate(h5_capture, damage)
+    with pytest.warns(CaptureWarning, match=fragment):
+        cap = open_capture(h5_capture)
+    with cap:
+        assert cap.timestamps is None
+        assert cap.duration_s == pytest.approx(6 * cap.config.frame_repetition_time_s)
+        assert cap.read().shape[0] == 6  # the frames stay readable

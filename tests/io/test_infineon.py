@@ -204,3 +204,20 @@ def test_real_recordings(real_data: Path, folder):
         assert counts.min() >= 0 and counts.max() <= 4095
         raw = np.load(path / "RadarIfxAvian_00" / "radar.npy")
         np.testing.assert_array_equal(counts.numpy(), raw)
+
+
+def test_non_finite_timestamps_warn_and_are_dropped(infineon_recording):
+    csv = infineon_recording / "RadarIfxAvian_00" / "radar_timestamp.csv"
+    csv.write_text("1.0\n2.0\nnan\n4.0\n5.0\n")
+    with pytest.warns(CaptureWarning, match="NaN or Inf"):
+        cap = open_capture(infineon_recording)
+    assert cap.timestamps is None
+    assert np.isfinite(cap.duration_s)
+
+
+def test_unreadable_format_version_is_a_capture_error(infineon_recording):
+    version = infineon_recording / "RadarIfxAvian_00" / "format.version"
+    version.unlink()
+    version.mkdir()
+    err = _expect_error(infineon_recording, "format.version: cannot read")
+    assert str(version) in str(err)

@@ -121,3 +121,25 @@ def test_gradients_flow_to_effect_parameters(cfg, make_paths):
     x.pow(2).mean().backward()
     assert gain.grad is not None and float(gain.grad) > 0
     assert nf.grad is not None and torch.isfinite(nf.grad)
+
+
+def test_spur_tone_uses_each_frames_own_start_in_a_batch(small_cfg):
+    """A batch of frames with per-frame starts equals the frames simulated one by one."""
+    from radaraug.errors import InputTensorError
+    from radaraug.sensor import Paths
+
+    f = 123_456.7  # not a whole number of cycles per frame period
+    rx = FMCWReceiver(small_cfg, effects=[SpurTone(freq_Hz=f, amplitude_counts=3.0)])
+    empty = Paths(torch.zeros(2, 0, 3, dtype=torch.float64), torch.zeros(2, 0, 3, dtype=torch.float64),
+                  torch.zeros(2, 0, 3, dtype=torch.complex128))
+    starts = torch.tensor([0.0, 0.1037], dtype=torch.float64)
+    batch = rx(empty, frame_start_s=starts)
+    for k in range(2):
+        alone = rx(Paths(*(t[k] for t in (empty.delay_s, empty.delay_rate, empty.amplitude))),
+                   frame_start_s=float(starts[k]))
+        torch.testing.assert_close(batch[k], alone, rtol=0, atol=1e-12)
+    assert not torch.allclose(batch[0], batch[1])
+    with pytest.raises(InputTensorError, match="broadcast"):
+        rx(empty, frame_start_s=torch.zeros(3))
+    with pytest.raises(InputTensorError, match="NaN"):
+        rx(empty, frame_start_s=torch.tensor([0.0, math.nan]))

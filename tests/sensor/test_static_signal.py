@@ -45,3 +45,17 @@ def test_static_signal_broadcasts_over_frames_and_is_constant_over_chirps() -> N
                     (moving.delay_s, moving.delay_rate, moving.amplitude, moving.kind, moving.mask)))
     out = rx(batch, generator=torch.Generator().manual_seed(0), static_signal=s)
     assert out.shape == (4, 3, 64, 256)
+
+
+def test_static_signal_of_another_shape_is_a_clear_error() -> None:
+    import pytest
+
+    from radaraug.errors import InputTensorError
+
+    cfg = RadarConfig.bgt60tr13c()
+    rx = FMCWReceiver(cfg, effects=[])
+    moving = point_target_paths(cfg, positions_m=torch.tensor([[0.0, 0.0, 3.0]]))
+    with pytest.raises(InputTensorError, match="static_signal has shape"):
+        rx(moving, static_signal=torch.zeros(3, 64, 128))  # computed for a 128-sample config
+    with pytest.raises(InputTensorError, match="real floating-point"):
+        rx(moving, static_signal=torch.zeros(3, 64, 256, dtype=torch.complex64))

@@ -216,3 +216,18 @@ def test_dataloader_workers_reproducible_and_distinct(kind):
     if kind != "global":
         same = run_loader(make_t(reseed_in_workers=False))
         assert torch.equal(same[0], same[1])  # asked for: every worker replays one stream
+
+
+def test_shapes_and_devices_follow_the_input_on_the_meta_device():
+    # Meta tensors carry shape/dtype/device but no data: every step must keep its tensors on the
+    # input's device, and the default p=1 path must not read values back to the host
+    # (before: "Tensor.item() cannot be called on meta tensors").
+    x = torch.empty(2, 3, 8, 16, device="meta")
+    pipeline = RadarCompose(
+        [RangeDoppler(), ToDecibels(), CalibratedDR(-100, 3), RandomDR(), CombineRx("mean_power", db=True),
+         ClipNormalize(-120, -40), Colormap(), Resize((5, 7))]
+    )
+    y = pipeline(x)
+    assert y.device.type == "meta" and y.shape == (2, 3, 5, 7) and y.dtype == torch.float32
+    for t in (pipeline[2], pipeline[3]):
+        assert all(v.device.type == "meta" for v in t.last_params.values())

@@ -111,6 +111,14 @@ def test_save_load_round_trip(tmp_path, cfg):
             '{"format": "radaraug.CalibratedDR", "mean_db": -90, "std_db": 1, "map_shape": [1, 2]}',
             "map_shape",
         ),
+        # before: a bare AttributeError
+        ('{"format": "radaraug.CalibratedDR", "mean_db": -90, "std_db": 1, "config": [1]}', "config"),
+        # before: accepted silently
+        ('{"format": "radaraug.CalibratedDR", "format_version": 2, "mean_db": -90, "std_db": 1}', "format_version"),
+        (
+            '{"format": "radaraug.CalibratedDR", "db_convention": "dB = 10*log10(|X|)", "mean_db": -90, "std_db": 1}',
+            "another dB convention",
+        ),
     ],
 )
 def test_load_malformed_names_the_file(tmp_path, text, match):
@@ -205,3 +213,25 @@ def test_real_recordings_motion_check(real_data):
     assert -102 < cdr.mean_db < -95 and math.isfinite(cdr.std_db)
     with pytest.warns(UserWarning, match="shows motion"):
         CalibratedDR.fit(moving)
+
+
+def test_fit_refuses_bad_frame_counts_and_empty_sources():
+    frames = 0.01 * torch.randn(4, 3, 8, 16)
+    # before: max_frames=-1 silently fitted on frames[:-1]; 0 and empty tensors gave "got nan, nan";
+    # batch_size=0 a bare RuntimeError from torch.split
+    for kwargs, match in (
+        ({"max_frames": -1}, "max_frames must be a positive integer"),
+        ({"max_frames": 0}, "max_frames must be a positive integer"),
+        ({"batch_size": 0}, "batch_size must be a positive integer"),
+    ):
+        with pytest.raises(CalibrationError, match=match):
+            CalibratedDR.fit(frames, **kwargs)
+    with pytest.raises(CalibrationError, match="has no frames"):
+        CalibratedDR.fit(frames[:0])
+    assert CalibratedDR.fit(frames, max_frames=3).num_frames == 3
+
+
+def test_save_to_an_unwritable_place_names_the_file(tmp_path):
+    # before: a bare FileNotFoundError
+    with pytest.raises(CalibrationError, match="cdr.json"):
+        CalibratedDR(-100, 2).save(tmp_path / "missing_dir" / "cdr.json")

@@ -54,3 +54,10 @@ def test_resize_shape_and_constant():
     assert y.shape == (2, 3, 224, 224)
     torch.testing.assert_close(y, torch.full_like(y, 0.25))
     assert Resize(16)(x).shape == (2, 3, 16, 16)
+
+
+def test_estimate_on_empty_data_is_a_clear_error():
+    # before: a bare IndexError from numpy.percentile
+    for empty in (torch.ones(0), [torch.ones(0, 4)], []):
+        with pytest.raises(InputTensorError, match="no data"):
+            ClipNormalize.estimate(empty)

@@ -145,6 +145,11 @@ def test_combine_rx_modes():
         (torch.tensor([[[0.0, float("nan")]]]).expand(1, 4, 2), "NaN or Inf"),
         (torch.tensor([[[0.0, float("inf")]]]).expand(1, 4, 2), "NaN or Inf"),
         ([[[0.0]]], "torch.Tensor"),
+        # before: bare NotImplementedError from torch.fft / RuntimeError "Invalid number of data points"
+        (torch.zeros(1, 4, 8, dtype=torch.float16), "float32 or float64"),
+        (torch.zeros(1, 4, 8, dtype=torch.bfloat16), "float32 or float64"),
+        (torch.zeros(1, 0, 8), "empty event"),
+        (torch.zeros(0, 4, 8), "empty event"),
     ],
 )
 def test_bad_input_raises_input_tensor_error(bad, match):
@@ -155,3 +160,15 @@ def test_bad_input_raises_input_tensor_error(bad, match):
 def test_huge_finite_input_is_not_flagged():
     x = torch.full((1, 4, 8), 3e38)  # sums overflow to inf, but every value is finite
     assert RemoveMean().check_input(x) is x
+
+
+def test_fft_steps_refuse_half_precision_and_empty_events():
+    for t, x in (
+        (RangeFFT(), torch.zeros(3, 4, 8, dtype=torch.float16)),
+        (DopplerFFT(), torch.zeros(3, 4, 8, dtype=torch.bfloat16)),
+        (DopplerFFT(), torch.zeros(3, 0, 8, dtype=torch.complex64)),
+    ):
+        with pytest.raises(InputTensorError, match=type(t).__name__):
+            t(x)
+    # an empty *batch* is fine: the output is an empty batch of RD maps
+    assert RangeDoppler()(torch.zeros(0, 3, 4, 8)).shape == (0, 3, 4, 4)

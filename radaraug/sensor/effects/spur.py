@@ -15,7 +15,8 @@ class SpurTone(Effect):
     """``A cos(2 pi f t + phi)`` added where the effect sits, ``t`` the absolute sample time.
 
     ``t = frame_start_s + m * PRT + adc_delay + n / fs``, so the spur keeps its phase from frame
-    to frame like a free-running interferer (it is not coherent with the chirps).
+    to frame like a free-running interferer (it is not coherent with the chirps). In a batch,
+    each frame uses its own start when ``frame_start_s`` is a tensor over the batch.
 
     Args:
         freq_Hz: spur frequency.
@@ -39,7 +40,10 @@ class SpurTone(Effect):
         tm = state.timing
         m = torch.arange(tm.num_chirps, device=state.device, dtype=torch.float64)
         n = torch.arange(tm.num_samples, device=state.device, dtype=torch.float64)
-        t = state.frame_start_s + (m * tm.prt + tm.adc_delay)[:, None] + (n / tm.fs)[None, :]
+        start = state.frame_start_s
+        if isinstance(start, torch.Tensor):  # one start per frame of the batch: (..., 1, 1, 1)
+            start = start.to(device=state.device, dtype=torch.float64)[..., None, None, None]
+        t = start + (m * tm.prt + tm.adc_delay)[:, None] + (n / tm.fs)[None, :]
         f = self.freq_Hz.to(device=state.device, dtype=torch.float64)
         cycles = f * t
         phase = 2 * math.pi * (cycles - torch.round(cycles)).to(state.dtype) + state.param(self.phase_rad)
