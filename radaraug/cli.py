@@ -43,7 +43,9 @@ def _cmd_info(args: argparse.Namespace) -> int:
     print(f"DC offset    {info['dc_offset_counts']} counts (mid-scale {mid})")
     print(f"noise RMS    {info['slow_time_noise_rms_counts']} counts (slow time)")
     print(f"clipping     {[f'{v:.2%}' for v in info['clipped_fraction']]}")
-    print(f"noise floor  {info['noise_floor_db']} dBFS (median RD cell, far half of range, off zero Doppler)")
+    floor = info["noise_floor_db"]
+    floor_text = "n/a (too few chirps)" if floor is None else f"{floor} dBFS"
+    print(f"noise floor  {floor_text} (median RD cell, far half of range, off zero Doppler)")
     s = info["strongest_static_return"]
     print(f"strongest    {s['level_db']} dBFS at {s['range_m']} m (bin {s['range_bin']}, zero Doppler)")
     mo = info["motion"]
