@@ -261,16 +261,20 @@ def _tx_power(config: RadarConfig, tx_power_dBm_value: float | None) -> float:
     return v
 
 
+def _broadcasts_to(shape: torch.Size, target: tuple[int, ...]) -> bool:
+    """True when ``shape`` broadcasts to exactly ``target``."""
+    try:
+        return torch.broadcast_shapes(shape, target) == torch.Size(target)
+    except RuntimeError:
+        return False
+
+
 def _check_static_signal(x: torch.Tensor, sample_shape: tuple[int, ...]) -> None:
     """A ``static_signal`` must be a real tensor broadcastable to ``(..., RX, chirps, samples)``."""
     if not isinstance(x, torch.Tensor) or not x.is_floating_point():
         got = x.dtype if isinstance(x, torch.Tensor) else type(x).__name__
         raise InputTensorError(f"static_signal must be a real floating-point tensor, got {got}")
-    try:
-        ok = torch.broadcast_shapes(x.shape, sample_shape) == torch.Size(sample_shape)
-    except RuntimeError:
-        ok = False
-    if not ok:
+    if not _broadcasts_to(x.shape, sample_shape):
         raise InputTensorError(
             f"static_signal has shape {tuple(x.shape)}, which does not broadcast to the frames' "
             f"{tuple(sample_shape)} (computed for another config?)"
@@ -282,11 +286,7 @@ def _validated_start(start: float | torch.Tensor, batch_shape: tuple[int, ...]) 
     if isinstance(start, torch.Tensor):
         if start.is_complex() or start.dtype == torch.bool:
             raise InputTensorError(f"frame_start_s must be real, got {start.dtype}")
-        try:
-            ok = torch.broadcast_shapes(start.shape, batch_shape) == torch.Size(batch_shape)
-        except RuntimeError:
-            ok = False
-        if not ok:
+        if not _broadcasts_to(start.shape, batch_shape):
             raise InputTensorError(
                 f"frame_start_s has shape {tuple(start.shape)}; it must broadcast to the paths' batch "
                 f"shape {batch_shape}"
