@@ -153,8 +153,7 @@ class RayTracer:
         static = self.static_paths()
         lead = targets.delay_s.shape[:-2]
         if lead:
-            static = Paths(*(None if x is None else x.expand(*lead, *x.shape) for x in
-                             (static.delay_s, static.delay_rate, static.amplitude, static.kind, static.mask)))
+            static = static.map(lambda x: x.expand(*lead, *x.shape))
         return Paths.cat([static, targets])
 
 
@@ -192,13 +191,9 @@ def paths_to_json(paths: Paths, config: RadarConfig) -> dict[str, Any]:
         flat = paths.delay_s.shape[:-2]
         n = math.prod(flat)
 
-        def sl(x, i):
-            return None if x is None else x.reshape(n, *x.shape[len(flat):])[i]
-
+        flat_paths = paths.map(lambda x: x.reshape(n, *x.shape[len(flat):]))
         return {"batch_shape": list(flat), "snapshots": [
-            paths_to_json(Paths(*(sl(x, i) for x in (paths.delay_s, paths.delay_rate, paths.amplitude,
-                                                     paths.kind, paths.mask))), config)["paths"]
-            for i in range(n)
+            paths_to_json(flat_paths.map(lambda x, i=i: x[i]), config)["paths"] for i in range(n)
         ]}
     d = paths.delay_s.detach().double().cpu()
     rate = paths.delay_rate.detach().double().cpu()

@@ -10,6 +10,7 @@ matters for Doppler; a walker's limbs are handled by tracing one snapshot per fr
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import torch
@@ -48,12 +49,16 @@ class Paths:
         """Number of path slots ``P``."""
         return int(self.delay_s.shape[-2])
 
-    def to(self, device: torch.device | str) -> Paths:
-        """Move every tensor to ``device``."""
+    def map(self, fn: Callable[[torch.Tensor], torch.Tensor]) -> Paths:
+        """Apply ``fn`` to every tensor (``None`` fields stay ``None``), e.g. to index or expand the batch."""
         return Paths(
-            *(t.to(device) if t is not None else None for t in
+            *(fn(t) if t is not None else None for t in
               (self.delay_s, self.delay_rate, self.amplitude, self.kind, self.mask))
         )
+
+    def to(self, device: torch.device | str) -> Paths:
+        """Move every tensor to ``device``."""
+        return self.map(lambda t: t.to(device))
 
     @staticmethod
     def cat(items: list[Paths]) -> Paths:

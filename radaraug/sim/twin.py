@@ -123,7 +123,7 @@ class DigitalTwin:
             if len(generators) != times.shape[0]:
                 raise InputTensorError(f"need one generator per frame: {len(generators)} for {times.shape[0]} frames")
             frames = [
-                self.receiver(_index_paths(paths, k), generator=g, frame_start_s=float(times[k]),
+                self.receiver(paths.map(lambda x, k=k: x[k]), generator=g, frame_start_s=float(times[k]),
                               static_signal=static)
                 for k, g in enumerate(generators)
             ]
@@ -132,7 +132,3 @@ class DigitalTwin:
         return self.receiver(paths, generator=generators, frame_start_s=times.to(torch.float64),
                              static_signal=static)
 
-
-def _index_paths(paths: Paths, k: int) -> Paths:
-    return Paths(*(None if x is None else x[k] for x in
-                   (paths.delay_s, paths.delay_rate, paths.amplitude, paths.kind, paths.mask)))
