@@ -14,7 +14,7 @@ import numpy as np
 import torch
 
 from radaraug.errors import RadarAugError
-from radaraug.units import DB_CONVENTION
+from radaraug.units import DB_CONVENTION, counts_to_float
 
 
 def summarize_capture(reader: Any, *, max_frames: int = 256) -> dict[str, Any]:
@@ -37,7 +37,8 @@ def summarize_capture(reader: Any, *, max_frames: int = 256) -> dict[str, Any]:
 
     cfg = reader.config
     n = min(reader.num_frames, int(max_frames))
-    counts = reader.read(0, n, as_float=False).to(torch.float64)  # (F, rx, chirps, samples)
+    raw = reader.read(0, n, as_float=False)  # (F, rx, chirps, samples) int32 codes, read once
+    counts = raw.to(torch.float64)
     full = cfg.adc_full_scale_counts
     dc = counts.mean(dim=(0, 2, 3))
     # Slow-time noise per sample: std over chirps, after removing each sample's mean over chirps
@@ -45,7 +46,7 @@ def summarize_capture(reader: Any, *, max_frames: int = 256) -> dict[str, Any]:
     slow_std = counts.std(dim=2).median(dim=-1).values.median(dim=0).values
     clipped = ((counts <= 0) | (counts >= full)).double().mean(dim=(0, 2, 3))
 
-    x = reader.read(0, n, as_float=True)
+    x = counts_to_float(raw, cfg.adc_bits)  # the same SDK floats read(as_float=True) gives
     db = ToDecibels()(RangeDoppler()(x))  # (F, rx, range, doppler)
     m = cfg.num_chirps_per_frame
     zero = m // 2
