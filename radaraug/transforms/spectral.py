@@ -47,6 +47,18 @@ class _FFTTransform(RadarTransform):
             )
         return x
 
+    def forward(self, x: torch.Tensor, *rest: Any) -> Any:
+        x = self.check_input(x)
+        event = x.shape[x.ndim - self.event_ndim:]
+        if x.numel() == 0 and all(d > 0 for d in event):
+            # Some torch builds (MKL FFT in torch 2.14 on CPU) raise on a zero-size batch instead
+            # of returning an empty result: transform one zero event and keep none of it.
+            probe = self.transform(x.new_zeros(event), {})
+            out = probe.expand(*x.shape[: x.ndim - self.event_ndim], *probe.shape).clone()
+        else:
+            out = self.transform(x, {})
+        return (out, *rest) if rest else out
+
 
 class RemoveMean(RadarTransform):
     """Subtract each chirp's mean over fast time (removes the per-RX ADC DC offset)."""
