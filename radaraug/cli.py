@@ -9,6 +9,9 @@ Sub-commands::
     radaraug trace SCENE [--time T] [--json]    the propagation paths of one instant
     radaraug simulate SCENE --frames N --seed S -o out.h5 [--shard i/n]
     radaraug demo [-o DIR]                      the main job on the built-in default
+    radaraug train fit --config recipes/occupancy_cdr.yaml [--key value ...]   LightningCLI recipes
+    radaraug reproduce [--quick] [--seeds N] [--calibration C] [--test PATH[:COUNT] ...] -o OUT
+    radaraug make-proxy -o DIR [--frames-per-count N]   the held-out proxy test set
 
 Bad input ends with one line ``error: <message>`` and exit status 2, never a traceback.
 """
@@ -153,6 +156,29 @@ def _cmd_demo(args: argparse.Namespace) -> int:
     return 0
 
 
+def _cmd_reproduce(args: argparse.Namespace) -> int:
+    from radaraug.training.reproduce import parse_test_arg, reproduce
+
+    test = [parse_test_arg(t) for t in args.test] if args.test else None
+    report = reproduce(args.output, quick=args.quick, seeds=args.seeds, calibration=args.calibration, test=test,
+                       ablation=not args.no_ablation, accelerator=args.accelerator, progress=True)
+    print(f"{Path(args.output) / 'report.md'} ({report['kind']}, {report['wall_seconds'] / 60:.1f} min)")
+    for task, by in report["results"].items():
+        text = ", ".join(f"{m} {v['balanced_accuracy']['mean']:.3f}+-{v['balanced_accuracy']['std']:.3f}" for m, v in by.items())
+        print(f"  {task}: {text}")
+    return 0
+
+
+def _cmd_make_proxy(args: argparse.Namespace) -> int:
+    from radaraug.sim.proxy import make_proxy
+
+    proxy = make_proxy(args.output, frames_per_count=args.frames_per_count, seed=args.seed, progress=True)
+    print(f"calibration  {proxy.calibration}")
+    for path, count in proxy.tests:
+        print(f"test         {path} ({count} people)")
+    return 0
+
+
 def build_parser() -> argparse.ArgumentParser:
     """The argument parser (exposed for docs and tests)."""
     p = argparse.ArgumentParser(prog="radaraug", description=__doc__.split("\n")[0])
@@ -202,11 +228,41 @@ def build_parser() -> argparse.ArgumentParser:
     demo = sub.add_parser("demo", help="the main job on the built-in default")
     demo.add_argument("-o", "--output", default="demo_out")
     demo.set_defaults(func=_cmd_demo)
+
+    # `train` is parsed by LightningCLI (radaraug.training.cli); listed here for --help only.
+    sub.add_parser("train", help="LightningCLI recipes: radaraug train fit --config recipes/occupancy_cdr.yaml",
+                   add_help=False)
+
+    rep = sub.add_parser("reproduce", help="the paper's experiment: 2 tasks x 3 methods x N seeds, report + figures")
+    rep.add_argument("--quick", action="store_true", help="minutes on a 2-core CPU (what `make demo` runs)")
+    rep.add_argument("--seeds", type=int, default=3)
+    rep.add_argument("--calibration", default=None, help="empty-room capture for CDR (default: the held-out proxy's)")
+    rep.add_argument("--test", action="append", default=None, metavar="PATH[:COUNT]",
+                     help="test capture; COUNT labels the whole file, else per-frame 'count' labels (repeatable)")
+    rep.add_argument("--no-ablation", action="store_true", help="skip CDR without twin randomization")
+    rep.add_argument("--accelerator", default="auto", help="Lightning accelerator (auto, cpu, gpu)")
+    rep.add_argument("-o", "--output", required=True)
+    rep.set_defaults(func=_cmd_reproduce)
+
+    proxy = sub.add_parser("make-proxy", help="generate the held-out proxy test set (docs/proxy.md)")
+    proxy.add_argument("-o", "--output", required=True)
+    proxy.add_argument("--frames-per-count", type=int, default=120)
+    proxy.add_argument("--seed", type=int, default=1234)
+    proxy.set_defaults(func=_cmd_make_proxy)
     return p
 
 
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the `radaraug` script."""
+    argv = list(sys.argv[1:] if argv is None else argv)
+    if argv[:1] == ["train"]:
+        from radaraug.training.cli import main as train_main
+
+        try:
+            return train_main(argv[1:])
+        except RadarAugError as e:
+            print(f"error: {e}", file=sys.stderr)
+            return 2
     args = build_parser().parse_args(argv)
     try:
         return int(args.func(args) or 0)

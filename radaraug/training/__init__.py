@@ -1,0 +1,34 @@
+"""Training from the twin and testing on captures: Lightning recipes, metrics, the reproduce report.
+
+* :class:`RadarDataModule` -- simulated train/val (cached once), captures for test, the paper's chain;
+* :class:`RDClassifier` -- ResNet18 (random init) occupancy / counting classifier;
+* :mod:`.metrics` -- balanced accuracy from the confusion matrix, JSON + PNG reports;
+* ``radaraug train`` (LightningCLI, :mod:`.cli`) and ``radaraug reproduce`` (:mod:`.reproduce`).
+"""
+
+from radaraug.training.chain import METHODS, TASKS, estimate_clip_range, image_chain, make_dr, rd_db_chain
+from radaraug.training.data import RadarDataModule
+from radaraug.training.metrics import (
+    accuracy,
+    balanced_accuracy,
+    classification_report,
+    confusion_matrix,
+    save_metrics,
+)
+from radaraug.training.module import RDClassifier
+
+__all__ = [
+    "TASKS",
+    "METHODS",
+    "RadarDataModule",
+    "RDClassifier",
+    "rd_db_chain",
+    "image_chain",
+    "make_dr",
+    "estimate_clip_range",
+    "confusion_matrix",
+    "balanced_accuracy",
+    "accuracy",
+    "classification_report",
+    "save_metrics",
+]

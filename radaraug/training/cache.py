@@ -1,0 +1,223 @@
+"""Simulate once: per-RX RD dB maps of simulated items, cached on disk (HDF5) under a content key.
+
+The six runs of an experiment (2 tasks x 3 DR methods) and every seed of them train on the same
+simulated items; only the DR differs, and DR acts on dB maps. So the twin's output is stored
+*before* DR as ``(rx, range, doppler)`` dB maps (float16: 0.06 dB steps at -100 dB, half the
+size) with the people count of each item. The file name carries a hash of everything the maps
+depend on -- scene, radar config, receiver, scenario sampler, twin randomization, seed, the item
+indices and the RD chain -- so a change of any of them re-simulates and an unchanged one does not.
+
+A file is written under a temporary name and renamed when complete: a killed run leaves no
+half-written cache that a later run would trust.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import hashlib
+import json
+import os
+from collections.abc import Sequence
+from pathlib import Path
+from typing import Any
+
+import h5py
+import numpy as np
+import torch
+from torch.utils.data import DataLoader, Dataset, Subset
+
+from radaraug.errors import CaptureError
+from radaraug.sim.dataset import SimulatedRadarDataset
+from radaraug.training.chain import rd_db_chain
+from radaraug.units import DB_CONVENTION
+
+CACHE_FORMAT = "radaraug-sim-rd-cache"
+CACHE_VERSION = 1
+
+
+def _jsonable(value: Any) -> Any:
+    if dataclasses.is_dataclass(value) and not isinstance(value, type):
+        return _jsonable(dataclasses.asdict(value))
+    if isinstance(value, dict):
+        return {str(k): _jsonable(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_jsonable(v) for v in value]
+    if isinstance(value, (str, int, float, bool)) or value is None:
+        return value
+    if isinstance(value, Path):
+        return str(value)
+    if hasattr(value, "to_dict"):
+        return _jsonable(value.to_dict())
+    return repr(value)
+
+
+def cache_spec(dataset: SimulatedRadarDataset, indices: Sequence[int]) -> dict[str, Any]:
+    """Everything the cached maps of ``dataset[indices]`` depend on (JSON types)."""
+    idx = list(indices)
+    randomization = getattr(dataset, "randomization", None)
+    return {
+        "format": CACHE_FORMAT,
+        "version": CACHE_VERSION,
+        "scene": _jsonable(dataset.scene.to_dict()),
+        "config": dataset.config.to_dict(),
+        "receiver": _jsonable(dataset.twin_options.get("receiver").to_dict())
+        if dataset.twin_options.get("receiver") is not None else "default",
+        "twin_options": _jsonable({k: v for k, v in dataset.twin_options.items() if k != "receiver"}),
+        "sampler": _jsonable(dataset.sampler),
+        "randomization": _jsonable(randomization) if randomization is not None else None,
+        "seed": dataset.seed,
+        "frames_per_item": dataset.frames_per_item,
+        # a hash, not the list: a 100k-item index list would bloat every file's attributes
+        "indices": {"count": len(idx), "first": idx[0] if idx else None, "last": idx[-1] if idx else None,
+                    "sha1": hashlib.sha1(np.asarray(idx, dtype=np.int64).tobytes()).hexdigest()},
+        "chain": rd_db_chain().chain_spec(),
+        "db_convention": DB_CONVENTION,
+    }
+
+
+def cache_key(spec: dict[str, Any]) -> str:
+    """A 20-hex-digit content hash of a cache spec."""
+    return hashlib.sha256(json.dumps(spec, sort_keys=True).encode()).hexdigest()[:20]
+
+
+def build_map_cache(
+    dataset: SimulatedRadarDataset,
+    indices: Sequence[int],
+    cache_dir: str | os.PathLike,
+    *,
+    batch_size: int = 16,
+    num_workers: int = 0,
+    progress: bool = True,
+    name: str = "sim",
+) -> Path:
+    """The cache file of ``dataset[indices]``: reused when it exists, else simulated and written.
+
+    Args:
+        dataset: the simulated dataset (its ``transform`` and ``target`` are ignored: raw frames
+            and people counts are read through :meth:`SimulatedRadarDataset.scenario`).
+        indices: the items to cache, in order.
+        cache_dir: folder of the cache files.
+        batch_size: frames turned into RD maps at once.
+        num_workers: DataLoader workers that simulate in parallel (the room is traced once,
+            here, and inherited by them).
+        progress: show a progress bar.
+        name: file name prefix.
+
+    Returns:
+        ``cache_dir/<name>-<key>.h5``.
+    """
+    spec = cache_spec(dataset, indices)
+    key = cache_key(spec)
+    cache_dir = Path(cache_dir)
+    path = cache_dir / f"{name}-{key}.h5"
+    if path.is_file():
+        return path
+    cache_dir.mkdir(parents=True, exist_ok=True)
+    sim = _RawItems(dataset)
+    if num_workers > 0:
+        dataset.prepare()
+    loader = DataLoader(Subset(sim, list(indices)), batch_size=batch_size, num_workers=num_workers,
+                        persistent_workers=False)
+    chain = rd_db_chain()
+    partial = path.with_suffix(f".partial-{os.getpid()}.h5")
+    n = len(indices)
+    try:
+        with h5py.File(partial, "w") as f:
+            f.attrs["format"] = CACHE_FORMAT
+            f.attrs["version"] = CACHE_VERSION
+            f.attrs["key"] = key
+            f.attrs["spec"] = json.dumps(spec)
+            f.attrs["db_convention"] = DB_CONVENTION
+            maps = counts = None
+            done = 0
+            bar = _progress(n, f"simulating {n} items", progress)
+            for x, count in loader:
+                db = chain(x)
+                if maps is None:
+                    shape = tuple(db.shape[1:])
+                    maps = f.create_dataset("maps", (n, *shape), dtype="float16", chunks=(1, *shape))
+                    counts = f.create_dataset("count", (n,), dtype="int64")
+                    f.create_dataset("index", data=np.asarray(list(indices), dtype=np.int64))
+                k = db.shape[0]
+                maps[done:done + k] = db.clamp(-300, 300).numpy().astype(np.float16)
+                counts[done:done + k] = count.numpy()
+                done += k
+                bar.update(k)
+            bar.close()
+        os.replace(partial, path)
+    finally:
+        if partial.exists():
+            partial.unlink()
+    return path
+
+
+class _RawItems(Dataset):
+    """Raw frames and people counts of a simulated dataset (whatever its target/transform)."""
+
+    def __init__(self, dataset: SimulatedRadarDataset) -> None:
+        self.dataset = dataset
+
+    def __len__(self) -> int:
+        return len(self.dataset)
+
+    def __getitem__(self, index: int) -> tuple[torch.Tensor, int]:
+        ds = self.dataset
+        saved = ds.transform, ds.target
+        ds.transform, ds.target = None, "count"
+        try:
+            x, count = ds[index]
+        finally:
+            ds.transform, ds.target = saved
+        return x.float(), int(count)
+
+
+def _progress(total: int, desc: str, enabled: bool) -> Any:
+    from tqdm.auto import tqdm
+
+    return tqdm(total=total, desc=desc, disable=not enabled, leave=False)
+
+
+class CachedMaps(Dataset):
+    """Items of a map cache: ``(db_map float32 (rx, range, doppler), people count)``.
+
+    The file is opened lazily in each process (safe with DataLoader workers of any start method).
+
+    Raises:
+        CaptureError: the file is missing or not a radaraug map cache.
+    """
+
+    def __init__(self, path: str | os.PathLike, *, in_memory: bool = True) -> None:
+        self.path = Path(path)
+        try:
+            with h5py.File(self.path, "r") as f:
+                if f.attrs.get("format") != CACHE_FORMAT:
+                    raise CaptureError(f"{self.path}: not a radaraug simulated-map cache")
+                self.spec = json.loads(f.attrs["spec"])
+                self.counts = torch.from_numpy(f["count"][()])
+                self.indices = torch.from_numpy(f["index"][()])
+                self.map_shape = tuple(f["maps"].shape[1:])
+                self._maps = torch.from_numpy(f["maps"][()]) if in_memory else None
+        except (OSError, KeyError) as e:
+            raise CaptureError(f"{self.path}: cannot read the map cache ({e})") from None
+        self._file: h5py.File | None = None
+
+    def __len__(self) -> int:
+        return int(self.counts.shape[0])
+
+    def maps(self, items: slice | Sequence[int] = slice(None)) -> torch.Tensor:
+        """Several maps at once as float32."""
+        if self._maps is not None:
+            return self._maps[items].float()
+        return torch.stack([self[i][0] for i in range(len(self))[items]])
+
+    def __getitem__(self, i: int) -> tuple[torch.Tensor, int]:
+        if self._maps is not None:
+            return self._maps[i].float(), int(self.counts[i])
+        if self._file is None:
+            self._file = h5py.File(self.path, "r")
+        return torch.from_numpy(self._file["maps"][i]).float(), int(self.counts[i])
+
+    def __getstate__(self) -> dict[str, Any]:
+        state = self.__dict__.copy()
+        state["_file"] = None
+        return state

@@ -1,0 +1,132 @@
+"""The paper's processing chain, split where the simulate-once cache sits.
+
+::
+
+    raw frames -> RangeDoppler -> ToDecibels               (rd_db_chain: cached for simulation)
+      -> RandomDR | CalibratedDR | nothing                 (make_dr: training only, per method)
+      -> CombineRx(mean power) -> ClipNormalize(vmin, vmax) -> Colormap(viridis) -> Resize
+                                                           (image_chain: train, val and test)
+
+Real test captures take the same chain without DR (paper Sec. 2.2, Fig. 3). ``[vmin, vmax]`` is
+estimated once on simulated maps of the run (after the run's DR, so that the clip sees the
+floor the network is trained on) and saved with the run.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from collections.abc import Sequence
+from typing import Any
+
+import torch
+from torch import nn
+
+from radaraug.errors import ConfigError
+from radaraug.transforms import (
+    CalibratedDR,
+    ClipNormalize,
+    Colormap,
+    CombineRx,
+    RadarCompose,
+    RandomDR,
+    RangeDoppler,
+    Resize,
+    ToDecibels,
+)
+
+#: Class names per task; the label of a simulated item is its people count.
+TASKS: dict[str, tuple[str, ...]] = {"occupancy": ("empty", "occupied"), "counting": ("0", "1", "2")}
+#: Noise-floor randomization methods of the paper.
+METHODS = ("rt", "randomdr", "cdr")
+
+
+def check_task(task: str) -> tuple[str, ...]:
+    """The class names of ``task`` (ConfigError for an unknown task)."""
+    if task not in TASKS:
+        raise ConfigError(f"task must be one of {sorted(TASKS)}, got {task!r}")
+    return TASKS[task]
+
+
+def label_of(count: int | torch.Tensor, task: str) -> Any:
+    """The class label of a people count for ``task`` (occupancy: count > 0)."""
+    if task == "occupancy":
+        return (count > 0).long() if isinstance(count, torch.Tensor) else int(count > 0)
+    return count
+
+
+def rd_db_chain() -> RadarCompose:
+    """Raw frames ``(..., rx, chirps, samples)`` -> per-RX RD dB maps ``(..., rx, range, doppler)``."""
+    return RadarCompose([RangeDoppler(), ToDecibels()])
+
+
+def make_dr(
+    method: str,
+    *,
+    calibration: str | os.PathLike | CalibratedDR | None = None,
+    seed: int | None = None,
+    randomdr_mean_db: Sequence[float] | None = None,
+    randomdr_std_db: Sequence[float] | None = None,
+) -> nn.Module | None:
+    """The training-time noise-floor randomization of ``method`` (None for ``rt``).
+
+    Args:
+        method: ``rt`` (no randomization), ``randomdr`` or ``cdr``.
+        calibration: for ``cdr``: a fitted :class:`CalibratedDR`, its JSON, or an empty-room
+            capture to fit it on.
+        seed: seed of the transform's own generator (per-sample draws).
+        randomdr_mean_db, randomdr_std_db: ranges of RandomDR (default: radaraug's documented
+            defaults, see ``docs/transforms.md``).
+    """
+    if method not in METHODS:
+        raise ConfigError(f"method must be one of {METHODS}, got {method!r}")
+    if method == "rt":
+        return None
+    if method == "randomdr":
+        kw: dict[str, Any] = {}
+        if randomdr_mean_db is not None:
+            kw["mean_db"] = tuple(randomdr_mean_db)
+        if randomdr_std_db is not None:
+            kw["std_db"] = tuple(randomdr_std_db)
+        return RandomDR(seed=seed, **kw)
+    if calibration is None:
+        raise ConfigError("method 'cdr' needs a calibration: an empty-room capture or a CalibratedDR JSON")
+    if isinstance(calibration, CalibratedDR):
+        fitted = calibration
+    elif str(calibration).lower().endswith(".json"):
+        fitted = CalibratedDR.load(calibration)
+    else:
+        fitted = CalibratedDR.fit(calibration, progress=False)
+    return CalibratedDR(fitted.mean_db, fitted.std_db, chain=fitted.chain, config=fitted.config,
+                        map_shape=fitted.map_shape, source=fitted.source, num_frames=fitted.num_frames,
+                        motion=fitted.motion, seed=seed)
+
+
+def image_chain(vmin: float, vmax: float, size: Sequence[int] | None = None) -> nn.Sequential:
+    """Per-RX dB maps -> ``(3, H, W)`` viridis images in [0, 1] (the network input)."""
+    steps: list[nn.Module] = [CombineRx("mean_power", db=True), ClipNormalize(vmin, vmax), Colormap("viridis")]
+    if size is not None:
+        steps.append(Resize(tuple(int(s) for s in size)))
+    return nn.Sequential(*steps)
+
+
+@torch.no_grad()
+def estimate_clip_range(
+    db_maps: torch.Tensor, dr: nn.Module | None = None, *, percentiles: tuple[float, float] = (1.0, 99.9)
+) -> tuple[float, float]:
+    """``[vmin, vmax]`` from simulated per-RX dB maps ``(N, rx, range, doppler)``.
+
+    The maps go through ``dr`` (if any) and the RX combination first, so the range covers what
+    the network will see; ``vmin``/``vmax`` are the given percentiles of all cells.
+    """
+    x = db_maps.float()
+    if dr is not None:
+        x = dr(x)
+    x = CombineRx("mean_power", db=True)(x).flatten()
+    if x.numel() > 2_000_000:  # quantile() refuses very large inputs; a strided subsample is enough
+        x = x[:: math.ceil(x.numel() / 2_000_000)]
+    lo, hi = torch.quantile(x.double(), torch.tensor([percentiles[0] / 100, percentiles[1] / 100], dtype=torch.float64))
+    vmin, vmax = float(lo), float(hi)
+    if not vmax > vmin:
+        vmax = vmin + 1.0
+    return round(vmin, 2), round(vmax, 2)

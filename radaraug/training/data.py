@@ -1,0 +1,282 @@
+"""`RadarDataModule`: train on the twin, validate on held-out simulation, test on captures.
+
+* **train / val**: items ``[0, train_items)`` and ``[train_items, train_items + val_items)`` of
+  one :class:`~radaraug.sim.dataset.SimulatedRadarDataset` (twin randomization on by default),
+  simulated once into the map cache (:mod:`radaraug.training.cache`) and reused by every DR
+  method and seed. Under DDP each rank simulates and trains on its own shard (item ``i`` goes to
+  rank ``i % world_size``); nothing is simulated twice.
+* **test**: captures named in the config (radaraug HDF5 or Infineon folders), each with a
+  people count for the whole file or per-frame ``count`` labels from the file; without any,
+  the held-out proxy (:mod:`radaraug.sim.proxy`) is generated and used, and so is its
+  empty-room capture for CDR.
+* the chain (:mod:`radaraug.training.chain`): per-RX dB maps arrive on the device; in training
+  the run's DR is applied there, per sample, from its own seeded generator; then RX combination,
+  clip to ``[vmin, vmax]``, normalize, viridis and resize, for every split.
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+from typing import Any
+
+import lightning as L
+import torch
+from torch.utils.data import ConcatDataset, DataLoader, Dataset, Subset
+
+from radaraug.config import RadarConfig
+from radaraug.errors import ConfigError
+from radaraug.io import RadarCaptureDataset, open_capture
+from radaraug.sim.dataset import SimulatedRadarDataset
+from radaraug.training.cache import CachedMaps, build_map_cache
+from radaraug.training.chain import (
+    check_task,
+    estimate_clip_range,
+    image_chain,
+    label_of,
+    make_dr,
+    rd_db_chain,
+)
+
+
+class _Labelled(Dataset):
+    """``(x, count)`` items -> ``(x, class label of task)``."""
+
+    def __init__(self, base: Dataset, task: str) -> None:
+        self.base, self.task = base, task
+
+    def __len__(self) -> int:
+        return len(self.base)  # type: ignore[arg-type]
+
+    def __getitem__(self, i: int) -> tuple[torch.Tensor, int]:
+        x, count = self.base[i]
+        return x, int(label_of(int(count), self.task))
+
+
+def _rank_world(trainer: Any) -> tuple[int, int]:
+    if trainer is None:
+        return 0, 1
+    return int(trainer.global_rank), int(trainer.world_size)
+
+
+class RadarDataModule(L.LightningDataModule):
+    """The paper's data side as a LightningDataModule (every argument is a YAML key).
+
+    Args:
+        task: ``occupancy`` (2 classes) or ``counting`` (0/1/2 people).
+        method: ``rt``, ``randomdr`` or ``cdr`` (noise-floor randomization in training).
+        scene: training scene: built-in name or scene file (default: the paper's corridor).
+        calibration: empty-room capture (or a CalibratedDR JSON) for ``cdr``; its radar config
+            is the one simulated. None with no ``test``: the held-out proxy's.
+        test: test captures, each ``{"path": ..., "count": N}`` (whole file has N people) or
+            ``{"path": ...}`` (per-frame ``count`` labels in the file). None: the held-out proxy.
+        proxy_dir: where the held-out proxy is generated (and reused) when it is needed.
+        proxy_frames_per_count: test frames per people count of a generated proxy.
+        train_items, val_items: simulated items for training and validation.
+        sim_seed: seed of the simulated set (item ``i`` is a function of ``(sim_seed, i)``).
+        randomization: twin randomization: True (defaults), False/None (off), or a dict of
+            :class:`~radaraug.sim.randomization.TwinRandomization` fields.
+        tracer_rays: SBR rays per axis for the room (None: the twin's default).
+        cache_dir: folder of the simulate-once cache.
+        image_size: network input ``[H, W]`` (None: the RD map's own size).
+        clip_percentiles: percentiles of simulated (post-DR) maps that give ``[vmin, vmax]``.
+        clip_range: a fixed ``[vmin, vmax]`` instead of the estimate.
+        randomdr_mean_db, randomdr_std_db: RandomDR ranges (None: radaraug's defaults).
+        dr_seed: seed of the DR draws (rank ``r`` uses ``dr_seed + 1000 r``).
+        batch_size: training batch size.
+        num_workers: DataLoader workers for training and test reads.
+        sim_workers: DataLoader workers that simulate while the cache is built.
+        progress: progress bars while simulating.
+        out_dir: where the run's ``clip_range.json`` is written (default: the trainer's log dir).
+    """
+
+    def __init__(
+        self,
+        task: str = "occupancy",
+        method: str = "cdr",
+        scene: str = "corridor",
+        calibration: str | None = None,
+        test: list[dict[str, Any]] | None = None,
+        proxy_dir: str = "radaraug_proxy",
+        proxy_frames_per_count: int = 120,
+        train_items: int = 1200,
+        val_items: int = 240,
+        sim_seed: int = 0,
+        randomization: bool | dict[str, Any] | None = True,
+        tracer_rays: int | None = None,
+        cache_dir: str = "radaraug_cache",
+        image_size: list[int] | None = None,
+        clip_percentiles: tuple[float, float] = (1.0, 99.9),
+        clip_range: list[float] | None = None,
+        randomdr_mean_db: list[float] | None = None,
+        randomdr_std_db: list[float] | None = None,
+        dr_seed: int = 0,
+        batch_size: int = 32,
+        num_workers: int = 0,
+        sim_workers: int = 0,
+        progress: bool = True,
+        out_dir: str | None = None,
+    ) -> None:
+        super().__init__()
+        self.class_names = check_task(task)
+        if train_items < 1 or val_items < 0:
+            raise ConfigError(f"train_items must be >= 1 and val_items >= 0, got {train_items}, {val_items}")
+        self.save_hyperparameters()
+        self.task, self.method = task, method
+        self.clip: tuple[float, float] | None = tuple(clip_range) if clip_range is not None else None  # type: ignore[assignment]
+        self.dr: torch.nn.Module | None = None
+        self.image: torch.nn.Module | None = None
+        self.config: RadarConfig | None = None
+        self._train: Dataset | None = None
+        self._val: Dataset | None = None
+        self._test: Dataset | None = None
+        self.train_class_counts: torch.Tensor | None = None
+
+    # ------------------------------------------------------------------ resolving inputs
+    def _proxy(self) -> Any:
+        from radaraug.sim.proxy import make_proxy
+
+        return make_proxy(self.hparams.proxy_dir, frames_per_count=self.hparams.proxy_frames_per_count,
+                          progress=self.hparams.progress)
+
+    def resolved_captures(self) -> tuple[str | None, list[dict[str, Any]]]:
+        """``(calibration, test entries)``, the held-out proxy's where the config names none."""
+        calibration, test = self.hparams.calibration, self.hparams.test
+        if test is None or (calibration is None and self.method == "cdr"):
+            proxy = self._proxy()
+            if test is None:
+                test = [{"path": str(p), "count": int(c)} for p, c in proxy.tests]
+            if calibration is None:
+                calibration = str(proxy.calibration)
+        for i, entry in enumerate(test):
+            if not isinstance(entry, dict) or "path" not in entry:
+                raise ConfigError(f"test[{i}] must be a mapping with a 'path' (and optionally 'count'), got {entry!r}")
+        return calibration, list(test)
+
+    def prepare_data(self) -> None:
+        # Rank 0 of each node generates the proxy once; the other ranks reuse its files in setup().
+        if self.hparams.test is None or (self.hparams.calibration is None and self.method == "cdr"):
+            self._proxy()
+
+    def simulated_dataset(self) -> SimulatedRadarDataset:
+        """The training twin's dataset (train + val items), in the test captures' radar config."""
+        r = self.hparams.randomization
+        randomization = None
+        if r:
+            from radaraug.sim.randomization import TwinRandomization
+
+            randomization = TwinRandomization() if r is True else TwinRandomization.from_dict(dict(r))
+        twin_options: dict[str, Any] = {}
+        if self.hparams.tracer_rays is not None:
+            twin_options["tracer_options"] = {"rays": int(self.hparams.tracer_rays)}
+        extra = {} if randomization is None else {"randomization": randomization}
+        return SimulatedRadarDataset(
+            self.hparams.scene, length=self.hparams.train_items + self.hparams.val_items,
+            seed=self.hparams.sim_seed, config=self.config, target="count", twin_options=twin_options, **extra,
+        )
+
+    # ------------------------------------------------------------------ Lightning hooks
+    def setup(self, stage: str | None = None) -> None:
+        if self.image is not None and (stage != "test" or self._test is not None):
+            return
+        rank, world = _rank_world(self.trainer)
+        calibration, test = self.resolved_captures()
+        source = calibration if calibration is not None and not str(calibration).endswith(".json") else test[0]["path"]
+        with open_capture(source) as cap:
+            self.config = cap.config
+        self.dr = make_dr(self.method, calibration=calibration, seed=self.hparams.dr_seed + 1000 * rank,
+                          randomdr_mean_db=self.hparams.randomdr_mean_db,
+                          randomdr_std_db=self.hparams.randomdr_std_db)
+        if self.method == "cdr":
+            self.dr.check_config(self.config)
+
+        n_train, n_val = self.hparams.train_items, self.hparams.val_items
+        needs_sim = stage in (None, "fit", "validate") or self.clip is None
+        if needs_sim:
+            sim = self.simulated_dataset()
+            common = {"cache_dir": self.hparams.cache_dir, "num_workers": self.hparams.sim_workers,
+                      "progress": self.hparams.progress and rank == 0}
+            train = CachedMaps(build_map_cache(sim, range(rank, n_train, world), name="train", **common))
+            self.train_class_counts = torch.bincount(label_of(train.counts, self.task),
+                                                     minlength=len(self.class_names))
+            self._train = _Labelled(train, self.task)
+            if n_val > 0:
+                val = CachedMaps(build_map_cache(sim, range(n_train + rank, n_train + n_val, world), name="val", **common))
+                self._val = _Labelled(val, self.task)
+            if self.clip is None:
+                self.clip = self._estimate_clip(train)
+        self.image = image_chain(*self.clip, self.hparams.image_size)
+
+        tests = []
+        for entry in test:
+            count = entry.get("count")
+            tests.append(RadarCaptureDataset(entry["path"], label="count" if count is None else int(count),
+                                             transform=rd_db_chain()))
+        for t in tests:
+            if t.config != self.config:
+                raise ConfigError(f"test capture {t.paths[0]} has another radar config than the training twin "
+                                  f"({self.config.describe()})")
+        full = ConcatDataset(tests)
+        self._test = _Labelled(Subset(full, range(rank, len(full), world)), self.task)
+        self._write_run_files()
+
+    def _estimate_clip(self, train: CachedMaps) -> tuple[float, float]:
+        maps = train.maps(slice(0, 256))
+        vmin, vmax = estimate_clip_range(maps, self.dr, percentiles=tuple(self.hparams.clip_percentiles))
+        if self.trainer is not None and self.trainer.world_size > 1:
+            vmin, vmax = self.trainer.strategy.broadcast((vmin, vmax), src=0)
+        return float(vmin), float(vmax)
+
+    def _write_run_files(self) -> None:
+        out = self.hparams.out_dir
+        if out is None and self.trainer is not None:
+            out = self.trainer.log_dir
+        if out is None or (self.trainer is not None and self.trainer.global_rank != 0):
+            return
+        Path(out).mkdir(parents=True, exist_ok=True)
+        info = {"clip_range_db": list(self.clip), "task": self.task, "method": self.method,
+                "classes": list(self.class_names), "config": self.config.to_dict(),
+                "train_class_counts": None if self.train_class_counts is None else self.train_class_counts.tolist()}
+        (Path(out) / "clip_range.json").write_text(json.dumps(info, indent=2))
+
+    def state_dict(self) -> dict[str, Any]:
+        # The clip range is part of the model: a checkpoint tested later must clip the same way.
+        return {"clip_range": None if self.clip is None else list(self.clip)}
+
+    def load_state_dict(self, state_dict: dict[str, Any]) -> None:
+        if state_dict.get("clip_range") is not None:
+            self.clip = tuple(state_dict["clip_range"])  # type: ignore[assignment]
+            self.image = image_chain(*self.clip, self.hparams.image_size)
+
+    def _loader(self, ds: Dataset | None, *, shuffle: bool) -> DataLoader:
+        if ds is None:
+            raise ConfigError("this split is empty or setup() has not run")
+        g = torch.Generator()
+        g.manual_seed(self.hparams.dr_seed)
+        return DataLoader(ds, batch_size=self.hparams.batch_size, shuffle=shuffle, generator=g if shuffle else None,
+                          num_workers=self.hparams.num_workers, persistent_workers=self.hparams.num_workers > 0)
+
+    def train_dataloader(self) -> DataLoader:
+        return self._loader(self._train, shuffle=True)
+
+    def val_dataloader(self) -> DataLoader | list:
+        return self._loader(self._val, shuffle=False) if self._val is not None else []
+
+    def test_dataloader(self) -> DataLoader:
+        return self._loader(self._test, shuffle=False)
+
+    def on_after_batch_transfer(self, batch: Any, dataloader_idx: int) -> Any:
+        x, y = batch
+        if self.image is None:
+            raise ConfigError("RadarDataModule.setup() has not run")
+        trainer = self.trainer
+        if self.dr is not None and trainer is not None and trainer.training:
+            x = self.dr.to(x.device).train()(x)
+        return self.image.to(x.device)(x), y
+
+    def images(self, db_maps: torch.Tensor, *, randomize: bool = False) -> torch.Tensor:
+        """Network inputs from per-RX dB maps (with this run's DR when ``randomize``): for figures."""
+        x = db_maps
+        if randomize and self.dr is not None:
+            x = self.dr.train()(x)
+        return self.image(x)

@@ -1,0 +1,175 @@
+"""The paper's figures (Fig. 4-9), made from one reproduce run's own data.
+
+Every function takes tensors (per-RX dB RD maps, models, confusion matrices) and writes one PNG;
+none simulates or trains. Display ranges are stated in the titles; dB values follow
+``radaraug.units.DB_CONVENTION``.
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Mapping, Sequence
+from pathlib import Path
+from typing import Any
+
+import torch
+
+from radaraug.training.metrics import balanced_accuracy
+from radaraug.transforms import CombineRx
+
+
+def _plt() -> Any:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    return plt
+
+
+def _save(fig: Any, path: str | os.PathLike) -> Path:
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    _plt().close(fig)
+    return path
+
+
+def combined_db(maps: torch.Tensor) -> torch.Tensor:
+    """Per-RX dB maps ``(..., rx, range, doppler)`` -> RX power-combined dB ``(..., range, doppler)``."""
+    return CombineRx("mean_power", db=True)(maps.float())
+
+
+def noise_floor_histograms(groups: Mapping[str, torch.Tensor], path: str | os.PathLike) -> Path:
+    """Fig. 4: histograms of all RD dB cell values of empty-room maps, one curve per group."""
+    plt = _plt()
+    fig, ax = plt.subplots(figsize=(6.4, 3.6))
+    for name, maps in groups.items():
+        v = maps.float().flatten()
+        v = v[torch.isfinite(v) & (v > -250)]
+        ax.hist(v.numpy(), bins=120, density=True, histtype="step", linewidth=1.4,
+                label=f"{name} (median {float(v.median()):.1f} dB)")
+    ax.set_xlabel("RD cell level, dBFS (per RX)")
+    ax.set_ylabel("density")
+    ax.set_title("Noise-floor histograms of empty-room RD maps")
+    ax.legend(fontsize=8)
+    return _save(fig, path)
+
+
+def rd_triplets(rows: Mapping[str, Sequence[tuple[str, torch.Tensor]]], path: str | os.PathLike,
+                *, vmin: float, vmax: float, range_max_m: float, v_max_m_s: float) -> Path:
+    """Fig. 5: a grid of RD maps, a row per situation (e.g. empty / one person), a column per source."""
+    plt = _plt()
+    n_rows = len(rows)
+    n_cols = max(len(r) for r in rows.values())
+    fig, axes = plt.subplots(n_rows, n_cols, figsize=(3.0 * n_cols, 3.2 * n_rows), squeeze=False)
+    im = None
+    for i, (row_name, items) in enumerate(rows.items()):
+        for j, (col_name, m) in enumerate(items):
+            ax = axes[i][j]
+            im = ax.imshow(combined_db(m).numpy(), origin="lower", aspect="auto", cmap="viridis", vmin=vmin,
+                           vmax=vmax, extent=(-v_max_m_s, v_max_m_s, 0, range_max_m))
+            ax.set_title(f"{row_name}: {col_name}", fontsize=9)
+            ax.set_xlabel("velocity (m/s)", fontsize=8)
+            if j == 0:
+                ax.set_ylabel("range (m)", fontsize=8)
+    if im is not None:
+        fig.colorbar(im, ax=axes, shrink=0.8, label=f"dBFS, clipped to [{vmin:.0f}, {vmax:.0f}]")
+    fig.suptitle("Range-Doppler maps: simulation, simulation + CDR, test capture", fontsize=10)
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path
+
+
+def static_to_total(maps: torch.Tensor, low_doppler_bins: int = 1) -> torch.Tensor:
+    """Per frame, the fraction of RD power within ``+-low_doppler_bins`` of zero Doppler."""
+    p = torch.pow(10.0, combined_db(maps).double() / 10)
+    m = p.shape[-1]
+    lo, hi = m // 2 - low_doppler_bins, m // 2 + low_doppler_bins + 1
+    return (p[..., lo:hi].sum(dim=(-1, -2)) / p.sum(dim=(-1, -2))).float()
+
+
+def static_energy_plot(groups: Mapping[str, torch.Tensor], path: str | os.PathLike, low_doppler_bins: int = 1) -> Path:
+    """Fig. 6: static-to-total (low-Doppler) energy ratio per frame, one series per group."""
+    plt = _plt()
+    fig, ax = plt.subplots(figsize=(6.4, 3.4))
+    for name, maps in groups.items():
+        r = 10 * torch.log10(static_to_total(maps, low_doppler_bins).clamp_min(1e-12))
+        ax.plot(r.numpy(), ".", markersize=3, label=f"{name} (median {float(r.median()):.2f} dB)")
+    ax.set_xlabel("frame")
+    ax.set_ylabel(f"static / total energy (dB), |Doppler bin| <= {low_doppler_bins}")
+    ax.set_title("Static-to-total energy per frame")
+    ax.legend(fontsize=8)
+    return _save(fig, path)
+
+
+@torch.no_grad()
+def first_block_features(net: torch.nn.Module, image: torch.Tensor) -> torch.Tensor:
+    """Channel-averaged output of ResNet18's first residual stage (``layer1``) for one image."""
+    was_training = net.training
+    net.eval()
+    x = image[None].to(next(net.parameters()).device)
+    x = net.maxpool(net.relu(net.bn1(net.conv1(x))))
+    out = net.layer1(x)[0].mean(dim=0).cpu()
+    net.train(was_training)
+    return out
+
+
+def feature_maps(models: Mapping[str, torch.nn.Module], inputs: Mapping[str, torch.Tensor], path: str | os.PathLike) -> Path:
+    """Fig. 7: first-residual-block feature maps, a row per model, a column per input image."""
+    plt = _plt()
+    fig, axes = plt.subplots(len(models), len(inputs) + 0, figsize=(3.0 * len(inputs), 2.8 * len(models)),
+                             squeeze=False)
+    for i, (mname, net) in enumerate(models.items()):
+        for j, (iname, img) in enumerate(inputs.items()):
+            f = first_block_features(net, img)
+            axes[i][j].imshow(f.numpy(), origin="lower", aspect="auto", cmap="magma")
+            axes[i][j].set_title(f"{mname} model, {iname} input", fontsize=9)
+            axes[i][j].set_xticks([])
+            axes[i][j].set_yticks([])
+    fig.suptitle("ResNet18 layer1 activations (channel mean)", fontsize=10)
+    return _save(fig, path)
+
+
+def confusion_grid(cms: Mapping[str, torch.Tensor], class_names: Sequence[str], path: str | os.PathLike, title: str) -> Path:
+    """Fig. 8/9: confusion matrices side by side (one per method; counts summed over seeds)."""
+    plt = _plt()
+    fig, axes = plt.subplots(1, len(cms), figsize=(3.0 * len(cms), 3.0), squeeze=False)
+    for ax, (name, cm) in zip(axes[0], cms.items()):
+        cm = torch.as_tensor(cm, dtype=torch.float64)
+        rows = cm.sum(dim=1, keepdim=True)
+        frac = torch.where(rows > 0, cm / rows.clamp_min(1), torch.zeros_like(cm))
+        ax.imshow(frac.numpy(), cmap="Blues", vmin=0, vmax=1)
+        k = cm.shape[0]
+        for a in range(k):
+            for b in range(k):
+                ax.text(b, a, f"{frac[a, b]:.2f}", ha="center", va="center", fontsize=8,
+                        color="white" if frac[a, b] > 0.5 else "black")
+        ax.set_xticks(range(k), class_names, fontsize=8)
+        ax.set_yticks(range(k), class_names, fontsize=8)
+        ax.set_xlabel("predicted", fontsize=8)
+        ax.set_ylabel("true", fontsize=8)
+        ax.set_title(f"{name}: bal. acc. {balanced_accuracy(cm):.2f}", fontsize=9)
+    fig.suptitle(title, fontsize=10)
+    return _save(fig, path)
+
+
+def results_bars(results: Mapping[str, Mapping[str, Mapping[str, Any]]], path: str | os.PathLike) -> Path:
+    """Balanced accuracy (mean +- std over seeds) per task and method, with the ablation if present."""
+    plt = _plt()
+    tasks = list(results)
+    fig, axes = plt.subplots(1, len(tasks), figsize=(4.2 * len(tasks), 3.2), squeeze=False)
+    for ax, task in zip(axes[0], tasks):
+        names = list(results[task])
+        means = [results[task][n]["balanced_accuracy"]["mean"] for n in names]
+        stds = [results[task][n]["balanced_accuracy"]["std"] for n in names]
+        ax.bar(range(len(names)), means, yerr=stds, capsize=4, color="tab:blue")
+        ax.axhline(1 / (2 if task == "occupancy" else 3), color="gray", linestyle=":", label="chance")
+        ax.set_xticks(range(len(names)), names, fontsize=8, rotation=20)
+        ax.set_ylim(0, 1)
+        ax.set_title(f"{task}: balanced accuracy (mean +- std over seeds)", fontsize=9)
+        ax.legend(fontsize=8)
+    return _save(fig, path)

@@ -1,0 +1,122 @@
+"""Classification metrics from the confusion matrix: balanced accuracy, accuracy, per-class recall.
+
+Balanced accuracy is the mean recall over the classes *present* in the labels. It is computed
+from the confusion matrix here rather than with torchmetrics' ``MulticlassAccuracy(average=
+"macro")``, which averages over every class and so differs when a class is absent from a test
+split (0.417 vs 0.625 in one measured case): a test file of 0 and 1 people scored by a 3-class
+counting model must not be penalised for the absent class 2.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+from collections.abc import Sequence
+from pathlib import Path
+from typing import Any
+
+import torch
+
+from radaraug.errors import ConfigError
+
+
+def confusion_matrix(preds: torch.Tensor, targets: torch.Tensor, num_classes: int) -> torch.Tensor:
+    """Counts ``cm[true, predicted]`` as an int64 ``(num_classes, num_classes)`` tensor.
+
+    Raises:
+        ConfigError: shapes differ, or a label lies outside ``[0, num_classes)``.
+    """
+    preds, targets = torch.as_tensor(preds).reshape(-1), torch.as_tensor(targets).reshape(-1)
+    if preds.shape != targets.shape:
+        raise ConfigError(f"confusion_matrix: {preds.numel()} predictions for {targets.numel()} targets")
+    for name, t in (("prediction", preds), ("target", targets)):
+        if t.numel() and (int(t.min()) < 0 or int(t.max()) >= num_classes):
+            raise ConfigError(f"confusion_matrix: a {name} lies outside [0, {num_classes}): {t.unique().tolist()}")
+    idx = targets.long() * num_classes + preds.long()
+    return torch.bincount(idx.cpu(), minlength=num_classes * num_classes).reshape(num_classes, num_classes)
+
+
+def _recalls(cm: torch.Tensor) -> tuple[torch.Tensor, torch.Tensor]:
+    cm = torch.as_tensor(cm, dtype=torch.float64)
+    support = cm.sum(dim=1)
+    recall = torch.where(support > 0, cm.diagonal() / support.clamp_min(1), torch.full_like(support, float("nan")))
+    return recall, support
+
+
+def balanced_accuracy(cm: torch.Tensor) -> float:
+    """Mean recall over the classes with at least one true sample (NaN for an empty matrix)."""
+    recall, support = _recalls(cm)
+    present = support > 0
+    return float(recall[present].mean()) if bool(present.any()) else float("nan")
+
+
+def accuracy(cm: torch.Tensor) -> float:
+    """Fraction of correct predictions (NaN for an empty matrix)."""
+    cm = torch.as_tensor(cm, dtype=torch.float64)
+    total = float(cm.sum())
+    return float(cm.diagonal().sum()) / total if total > 0 else float("nan")
+
+
+def classification_report(cm: torch.Tensor, class_names: Sequence[str] | None = None) -> dict[str, Any]:
+    """Balanced accuracy, accuracy, per-class recall and support, and the matrix itself (JSON types)."""
+    cm = torch.as_tensor(cm)
+    k = cm.shape[0]
+    names = list(class_names) if class_names is not None else [str(i) for i in range(k)]
+    if len(names) != k:
+        raise ConfigError(f"classification_report: {len(names)} class names for a {k}-class matrix")
+    recall, support = _recalls(cm)
+    return {
+        "balanced_accuracy": balanced_accuracy(cm),
+        "accuracy": accuracy(cm),
+        "classes": names,
+        "recall": {n: (None if torch.isnan(r) else float(r)) for n, r in zip(names, recall)},
+        "support": {n: int(s) for n, s in zip(names, support)},
+        "confusion_matrix": cm.long().tolist(),
+        "confusion_matrix_layout": "rows: true class, columns: predicted class",
+    }
+
+
+def plot_confusion_matrix(
+    cm: torch.Tensor, class_names: Sequence[str], path: str | os.PathLike, *, title: str = ""
+) -> Path:
+    """Write a confusion-matrix figure (counts and row-normalised recall) as PNG."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    cm = torch.as_tensor(cm, dtype=torch.float64)
+    rows = cm.sum(dim=1, keepdim=True)
+    frac = torch.where(rows > 0, cm / rows.clamp_min(1), torch.zeros_like(cm))
+    k = cm.shape[0]
+    fig, ax = plt.subplots(figsize=(1.2 * k + 1.8, 1.2 * k + 1.2))
+    ax.imshow(frac.numpy(), cmap="Blues", vmin=0, vmax=1)
+    for i in range(k):
+        for j in range(k):
+            ax.text(j, i, f"{int(cm[i, j])}\n{frac[i, j]:.2f}", ha="center", va="center",
+                    color="white" if frac[i, j] > 0.5 else "black", fontsize=9)
+    ax.set_xticks(range(k), class_names)
+    ax.set_yticks(range(k), class_names)
+    ax.set_xlabel("predicted")
+    ax.set_ylabel("true")
+    ax.set_title(title or f"balanced accuracy {balanced_accuracy(cm):.3f}", fontsize=9)
+    fig.tight_layout()
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path
+
+
+def save_metrics(
+    cm: torch.Tensor, class_names: Sequence[str], out_dir: str | os.PathLike, name: str = "test",
+    *, extra: dict[str, Any] | None = None,
+) -> dict[str, Any]:
+    """Write ``<name>_metrics.json`` and ``<name>_confusion.png`` into ``out_dir``; return the report."""
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    report = {**classification_report(cm, class_names), **(extra or {})}
+    (out / f"{name}_metrics.json").write_text(json.dumps(report, indent=2))
+    plot_confusion_matrix(cm, class_names, out / f"{name}_confusion.png",
+                          title=f"{name}: balanced accuracy {report['balanced_accuracy']:.3f}")
+    return report

@@ -1,0 +1,111 @@
+"""`RDClassifier`: torchvision ResNet18 (random init) on viridis RD images, as a LightningModule."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import lightning as L
+import torch
+import torch.nn.functional as F
+import torchvision
+
+from radaraug.training.chain import check_task
+from radaraug.training.metrics import balanced_accuracy, classification_report, confusion_matrix, save_metrics
+
+
+class RDClassifier(L.LightningModule):
+    """ResNet18 with a task-specific head (paper Sec. 2.2: random initialization).
+
+    Validation and test accumulate a confusion matrix (summed over DDP ranks) and log balanced
+    accuracy (mean recall over the classes present, see :mod:`radaraug.training.metrics`). At
+    the end of a test, ``test_metrics.json`` and ``test_confusion.png`` go to ``out_dir`` (default:
+    the trainer's log dir).
+
+    Args:
+        task: ``occupancy`` (2 classes) or ``counting`` (3).
+        lr: AdamW learning rate.
+        weight_decay: AdamW weight decay.
+        balance_classes: weight the loss by inverse class frequency of the training set (the
+            simulated set has 1/3 empty items: occupancy would otherwise lean to "occupied").
+        out_dir: where test metrics are written.
+    """
+
+    def __init__(
+        self,
+        task: str = "occupancy",
+        lr: float = 1e-3,
+        weight_decay: float = 1e-4,
+        balance_classes: bool = True,
+        out_dir: str | None = None,
+    ) -> None:
+        super().__init__()
+        self.save_hyperparameters()
+        self.class_names = check_task(task)
+        k = len(self.class_names)
+        # weights=None: torchvision refuses pretrained weights with num_classes != 1000.
+        self.net = torchvision.models.resnet18(weights=None, num_classes=k)
+        self.register_buffer("class_weights", torch.ones(k), persistent=False)
+        self._cm: dict[str, torch.Tensor] = {}
+        self.last_test_report: dict[str, Any] | None = None
+
+    def forward(self, x: torch.Tensor) -> torch.Tensor:
+        return self.net(x)
+
+    def setup(self, stage: str) -> None:
+        dm = getattr(self.trainer, "datamodule", None)
+        counts = getattr(dm, "train_class_counts", None)
+        if self.hparams.balance_classes and counts is not None and stage == "fit":
+            c = counts.double().clamp_min(1)
+            self.class_weights = (c.sum() / (len(c) * c)).float().to(self.class_weights.device)
+            # every rank must use the same weights: its own shard's counts differ slightly
+            self.class_weights = self.trainer.strategy.broadcast(self.class_weights, src=0)
+
+    def training_step(self, batch: Any, batch_idx: int) -> torch.Tensor:
+        x, y = batch
+        logits = self(x)
+        loss = F.cross_entropy(logits, y, weight=self.class_weights.to(logits.dtype))
+        self.log("train/loss", loss, prog_bar=True, batch_size=y.shape[0])
+        return loss
+
+    def _eval_step(self, batch: Any, split: str) -> None:
+        x, y = batch
+        logits = self(x)
+        self.log(f"{split}/loss", F.cross_entropy(logits, y), batch_size=y.shape[0], sync_dist=True)
+        cm = confusion_matrix(logits.argmax(dim=1), y, len(self.class_names)).to(self.device)
+        self._cm[split] = self._cm.get(split, torch.zeros_like(cm)) + cm
+
+    def validation_step(self, batch: Any, batch_idx: int) -> None:
+        self._eval_step(batch, "val")
+
+    def test_step(self, batch: Any, batch_idx: int) -> None:
+        self._eval_step(batch, "test")
+
+    def _epoch_cm(self, split: str) -> torch.Tensor:
+        k = len(self.class_names)
+        cm = self._cm.pop(split, torch.zeros(k, k, dtype=torch.long, device=self.device))
+        return self.trainer.strategy.reduce(cm, reduce_op="sum") if self.trainer.world_size > 1 else cm
+
+    def on_validation_epoch_end(self) -> None:
+        cm = self._epoch_cm("val")
+        # already summed over ranks: sync_dist only averages equal values (and silences a warning)
+        self.log("val/balanced_accuracy", balanced_accuracy(cm.cpu()), prog_bar=True, sync_dist=True)
+
+    def on_test_epoch_end(self) -> None:
+        cm = self._epoch_cm("test").cpu()
+        bacc = balanced_accuracy(cm)
+        self.log("test/balanced_accuracy", bacc, sync_dist=True)
+        dm = getattr(self.trainer, "datamodule", None)
+        out = self.hparams.out_dir or getattr(dm, "hparams", {}).get("out_dir") or self.trainer.log_dir
+        if out is not None and self.trainer.global_rank == 0:
+            self.last_test_report = save_metrics(cm, self.class_names, out, "test")
+        else:
+            self.last_test_report = classification_report(cm, self.class_names)
+
+    def configure_optimizers(self) -> Any:
+        opt = torch.optim.AdamW(self.parameters(), lr=self.hparams.lr, weight_decay=self.hparams.weight_decay)
+        max_epochs = self.trainer.max_epochs if self.trainer is not None and self.trainer.max_epochs else None
+        if not max_epochs or max_epochs < 0:
+            return opt
+        sched = torch.optim.lr_scheduler.CosineAnnealingLR(opt, T_max=max_epochs)
+        return {"optimizer": opt, "lr_scheduler": sched}
+

@@ -1,0 +1,62 @@
+"""Metrics on hand-made confusion matrices (values worked out by hand, not by the code)."""
+
+import json
+
+import pytest
+import torch
+
+from radaraug.errors import ConfigError
+from radaraug.training.metrics import (
+    accuracy,
+    balanced_accuracy,
+    classification_report,
+    confusion_matrix,
+    save_metrics,
+)
+
+
+def test_confusion_matrix_counts_true_rows_predicted_columns():
+    y = torch.tensor([0, 0, 1, 1, 1, 2])
+    p = torch.tensor([0, 1, 1, 1, 2, 2])
+    cm = confusion_matrix(p, y, 3)
+    assert cm.tolist() == [[1, 1, 0], [0, 2, 1], [0, 0, 1]]
+
+
+def test_balanced_accuracy_is_mean_recall():
+    cm = torch.tensor([[8, 2], [1, 9]])  # recalls 0.8 and 0.9
+    assert balanced_accuracy(cm) == pytest.approx(0.85)
+    assert accuracy(cm) == pytest.approx(17 / 20)
+
+
+def test_balanced_accuracy_ignores_an_absent_class():
+    # a 3-class counting model on a test split with no 2-person frames
+    cm = torch.tensor([[3, 1, 0], [1, 1, 2], [0, 0, 0]])  # recalls 0.75, 0.25, absent
+    assert balanced_accuracy(cm) == pytest.approx(0.5)
+    # macro accuracy over all three classes would give (0.75 + 0.25 + 0) / 3 = 0.333
+    rep = classification_report(cm, ["0", "1", "2"])
+    assert rep["recall"]["2"] is None and rep["support"]["2"] == 0
+
+
+def test_imbalanced_classes_chance_level():
+    # always "occupied" on 10 empty and 90 occupied frames: accuracy 0.9, balanced 0.5
+    cm = torch.tensor([[0, 10], [0, 90]])
+    assert accuracy(cm) == pytest.approx(0.9)
+    assert balanced_accuracy(cm) == pytest.approx(0.5)
+
+
+def test_empty_matrix_is_nan_and_bad_labels_raise():
+    assert torch.isnan(torch.tensor(balanced_accuracy(torch.zeros(2, 2, dtype=torch.long))))
+    with pytest.raises(ConfigError, match="outside"):
+        confusion_matrix(torch.tensor([0, 3]), torch.tensor([0, 1]), 3)
+    with pytest.raises(ConfigError, match="predictions"):
+        confusion_matrix(torch.tensor([0]), torch.tensor([0, 1]), 3)
+
+
+def test_save_metrics_writes_json_and_png(tmp_path):
+    cm = torch.tensor([[5, 0, 0], [1, 3, 1], [0, 2, 3]])
+    rep = save_metrics(cm, ["0", "1", "2"], tmp_path, "test", extra={"method": "cdr"})
+    data = json.loads((tmp_path / "test_metrics.json").read_text())
+    assert data["balanced_accuracy"] == pytest.approx((1 + 0.6 + 0.6) / 3)
+    assert data["method"] == "cdr" and data["confusion_matrix"] == cm.tolist()
+    assert (tmp_path / "test_confusion.png").read_bytes()[:4] == b"\x89PNG"
+    assert rep["accuracy"] == pytest.approx(11 / 15)
