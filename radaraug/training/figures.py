@@ -38,7 +38,7 @@ def _save(fig: Any, path: str | os.PathLike) -> Path:
 
 def combined_db(maps: torch.Tensor) -> torch.Tensor:
     """Per-RX dB maps ``(..., rx, range, doppler)`` -> RX power-combined dB ``(..., range, doppler)``."""
-    return CombineRx("mean_power", db=True)(maps.float())
+    return CombineRx("mean_power", db=True)(maps.float()).squeeze(-3)
 
 
 def noise_floor_histograms(groups: Mapping[str, torch.Tensor], path: str | os.PathLike) -> Path:
@@ -63,7 +63,8 @@ def rd_triplets(rows: Mapping[str, Sequence[tuple[str, torch.Tensor]]], path: st
     plt = _plt()
     n_rows = len(rows)
     n_cols = max(len(r) for r in rows.values())
-    fig, axes = plt.subplots(n_rows, n_cols, figsize=(3.0 * n_cols, 3.2 * n_rows), squeeze=False)
+    fig, axes = plt.subplots(n_rows, n_cols, figsize=(3.2 * n_cols + 1, 3.3 * n_rows), squeeze=False,
+                             layout="constrained")
     im = None
     for i, (row_name, items) in enumerate(rows.items()):
         for j, (col_name, m) in enumerate(items):

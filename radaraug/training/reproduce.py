@@ -44,6 +44,8 @@ class ReproduceSettings:
     tracer_rays: int | None = None
     num_workers: int = 2
     sim_workers: int = 2
+    #: twin randomization of the main runs: True (defaults), or a dict of TwinRandomization fields
+    randomization: bool | dict[str, Any] = True
 
     @classmethod
     def full(cls) -> ReproduceSettings:
@@ -84,7 +86,7 @@ def _run_one(task: str, method: str, seed: int, *, settings: ReproduceSettings, 
                          image_size=list(settings.image_size), batch_size=settings.batch_size,
                          num_workers=settings.num_workers, sim_workers=settings.sim_workers,
                          tracer_rays=settings.tracer_rays, proxy_frames_per_count=settings.proxy_frames_per_count,
-                         progress=progress, **data_kw)
+                         progress=progress, **({"randomization": settings.randomization} | data_kw))
     model = RDClassifier(task=task, lr=settings.lr, out_dir=str(run_dir))
     trainer = L.Trainer(max_epochs=settings.epochs, accelerator=accelerator, devices=1, logger=False,
                         enable_checkpointing=False, enable_model_summary=False, num_sanity_val_steps=0,
@@ -281,7 +283,7 @@ def _markdown(rep: dict[str, Any]) -> str:
                   "clutter, another motion source, other sensor effects; docs/proxy.md). They show that training "
                   "survives a twin it was not made with; they are not a measurement on a real sensor.", ""]
     else:
-        lines += ["Test captures: " + ", ".join(f"`{e['path']}`" + (f" ({e['count']} people)" if e.get('count') is not None else " (per-frame labels)") for e in rep["test"]), ""]
+        lines += ["Test captures: " + ", ".join(f"`{e['path']}`" + (f" (count {e['count']})" if e.get('count') is not None else " (per-frame labels)") for e in rep["test"]), ""]
     st = rep["settings"]
     lines += [f"Seeds: {st['seeds']} (network init, DR draws, batch order; one shared simulated set of "
               f"{st['train_items']} training + {st['val_items']} validation items). Epochs {st['epochs']}, image "
