@@ -1,0 +1,295 @@
+"""A sinusoidal gait model written as BVH: a motion source independent of the Boulic walker.
+
+The held-out proxy set (:mod:`radaraug.sim.proxy`) must not be driven by the same walking model
+the training twin uses (:class:`~radaraug.scene.people.Walker`, Boulic-Thalmann). This module is
+a deliberately different, simple kinematic gait whose clips radaraug writes itself (no motion
+capture is bundled) and plays back with :class:`~radaraug.scene.people.BVHPerson`:
+
+* **cadence law**: the gait-cycle frequency grows linearly with speed and does not depend on
+  height, ``f_cycle = 0.575 + 0.275 V`` Hz (half the step-frequency law
+  ``1.15 + 0.55 V`` steps/s); stride length ``V / f_cycle``. Boulic's law depends on the
+  relative velocity ``V / leg length``: ``Dc = 1.346 / sqrt(rv)`` (e.g. 0.5 m/s, 1.75 m:
+  1.40 s here against 1.77 s);
+* **joint angles**: single sinusoids or squared raised cosines of the cycle phase ``u`` instead
+  of Boulic's PCHIP control points, with their own amplitudes: hip flexion
+  ``6 + (12 + 7V) cos(2 pi u)``; knee flexion ``4 + (42 + 12V) r(u - 0.22)^2`` with the raised
+  cosine ``r(x) = (1 - cos 2 pi x) / 2``; ankle dorsiflexion
+  ``8 sin(2 pi (u - 0.15)) - 4 sin(4 pi (u - 0.03))``; a larger arm swing, shoulder flexion
+  ``-(8 + 14V) cos(2 pi u)`` (Boulic: ``9.88 rv``), elbow flexion
+  ``14 + 8V + (6 + 8V) r(u)``; a forward trunk lean ``2 + 3V``; pelvis rotation
+  ``(3 + 4V) cos(2 pi u)`` with the thorax counter-rotating by 1.3 times it; pelvis obliquity
+  ``2.5 sin(2 pi u)`` (all degrees, the left side half a cycle later);
+* **pelvis translation**: vertical bob ``-(0.010 + 0.012V) cos(4 pi u)`` m, lateral sway
+  ``-(0.025 - 0.006V) sin(2 pi u)`` m, forward surge ``0.008 sin(4 pi (u - 0.1))`` m on top of
+  the constant speed;
+* **body proportions**: Drillis-Contini fractions of the height for the legs, trunk and head
+  (as the walker) but a longer foot (0.115 H ankle-to-toe) and shorter arms (upper arm 0.186 H,
+  forearm 0.146 H).
+
+Heel strike of the right foot is at ``u = 0``. The pelvis height is set once per clip so that
+the lowest heel or toe point over the cycle touches the floor. The model is open loop and not
+validated against gait data: it is plausible walking, not a reference.
+
+BVH axes: +Y up, +Z the walking direction, +X the person's left (CMU joint names, so
+:class:`~radaraug.scene.people.BVHPerson` maps it onto the 16-segment skeleton).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import asdict, dataclass
+from pathlib import Path
+from typing import Any
+
+import torch
+
+from radaraug.errors import SceneError
+from radaraug.scene.people import _rotations as rot
+from radaraug.scene.people.bvh_person import UNIT_SCALES
+from radaraug.scene.people.skeleton import ANKLE_HEIGHT_FRACTION, SEGMENT_LENGTH_FRACTIONS
+
+_TWO_PI = 2.0 * math.pi
+
+# Body proportions (fractions of height). Legs, trunk, head, hip and shoulder widths as the
+# walker (Drillis-Contini); foot and arms differ.
+PROPORTIONS: dict[str, float] = {
+    "upper_leg": SEGMENT_LENGTH_FRACTIONS["upper_leg"],
+    "lower_leg": SEGMENT_LENGTH_FRACTIONS["lower_leg"],
+    "hip_width": SEGMENT_LENGTH_FRACTIONS["hip_width"],
+    "shoulder_width": SEGMENT_LENGTH_FRACTIONS["shoulder_width"],
+    "torso": SEGMENT_LENGTH_FRACTIONS["torso"],
+    "head": SEGMENT_LENGTH_FRACTIONS["head"],
+    "foot_forward": 0.115,  # ankle to toe, horizontal
+    "heel_back": 0.035,  # ankle to heel, horizontal
+    "upper_arm": 0.186,
+    "forearm": 0.146,
+    "hand": 0.05,
+    "shoulder_drop": 0.02,  # shoulder joints below the neck joint
+}
+
+
+def _r(x: torch.Tensor) -> torch.Tensor:
+    """Raised cosine ``(1 - cos 2 pi x) / 2`` in [0, 1], peak at ``x = 1/2``."""
+    return 0.5 - 0.5 * torch.cos(_TWO_PI * x)
+
+
+@dataclass(frozen=True)
+class SineGait:
+    """A person walking straight ahead with the sinusoidal gait (see the module doc).
+
+    Args:
+        height_m: standing height H, metres (1.2-2.2).
+        speed_m_s: walking speed V, m/s (0.3-2.0: walking, not running).
+        phase: gait-cycle phase at ``t = 0`` in [0, 1) (0 = right heel strike).
+        arm_swing: scale of the arm-swing amplitude (1 = the model's law).
+    """
+
+    height_m: float = 1.75
+    speed_m_s: float = 1.2
+    phase: float = 0.0
+    arm_swing: float = 1.0
+
+    def __post_init__(self) -> None:
+        checks = (("height_m", self.height_m, 1.2, 2.2), ("speed_m_s", self.speed_m_s, 0.3, 2.0),
+                  ("phase", self.phase, 0.0, 1.0), ("arm_swing", self.arm_swing, 0.0, 3.0))
+        for name, value, lo, hi in checks:
+            if not (isinstance(value, (int, float)) and math.isfinite(value) and lo <= value <= hi):
+                raise SceneError(f"SineGait: {name}={value!r} must be a number in [{lo}, {hi}]")
+
+    @property
+    def cycle_frequency_Hz(self) -> float:
+        """Gait cycles per second: ``0.575 + 0.275 V`` (linear in speed, height-independent)."""
+        return 0.575 + 0.275 * self.speed_m_s
+
+    @property
+    def cycle_duration_s(self) -> float:
+        """Seconds per gait cycle (two steps)."""
+        return 1.0 / self.cycle_frequency_Hz
+
+    @property
+    def stride_length_m(self) -> float:
+        """Distance covered per cycle."""
+        return self.speed_m_s * self.cycle_duration_s
+
+    def to_dict(self) -> dict[str, Any]:
+        """The parameters (JSON-friendly)."""
+        return {"model": "sine_gait", **asdict(self)}
+
+    # ------------------------------------------------------------------ kinematics
+    def angles_deg(self, u: torch.Tensor) -> dict[str, torch.Tensor]:
+        """Joint angles in degrees at cycle phases ``u`` ``(T,)`` (right side; left = ``u + 0.5``)."""
+        v = self.speed_m_s
+        return {
+            "hip": 6.0 + (12.0 + 7.0 * v) * torch.cos(_TWO_PI * u),
+            "knee": 4.0 + (42.0 + 12.0 * v) * _r(u - 0.22) ** 2,
+            "ankle": 8.0 * torch.sin(_TWO_PI * (u - 0.15)) - 4.0 * torch.sin(2 * _TWO_PI * (u - 0.03)),
+            "shoulder": -self.arm_swing * (8.0 + 14.0 * v) * torch.cos(_TWO_PI * u),
+            "elbow": 14.0 + 8.0 * v + (6.0 + 8.0 * v) * _r(u),
+            "pelvis_rotation": (3.0 + 4.0 * v) * torch.cos(_TWO_PI * u),
+            "pelvis_obliquity": 2.5 * torch.sin(_TWO_PI * u),
+        }
+
+    def _lengths(self) -> dict[str, float]:
+        return {k: f * self.height_m for k, f in PROPORTIONS.items()}
+
+    def _hierarchy(self) -> list[tuple[str, str | None, tuple[float, float, float], tuple[float, float, float] | None]]:
+        """``(joint, parent, offset (BVH axes, m), end-site offset or None)`` in file order."""
+        ln = self._lengths()
+        h = self.height_m
+        hw, sw = ln["hip_width"] / 2, ln["shoulder_width"] / 2
+        spec: list[tuple[str, str | None, tuple[float, float, float], tuple[float, float, float] | None]]
+        spec = [("Hips", None, (0.0, 0.0, 0.0), None)]
+        for side, sgn in (("Left", 1.0), ("Right", -1.0)):
+            spec += [
+                (f"{side}UpLeg", "Hips", (sgn * hw, 0.0, 0.0), None),
+                (f"{side}Leg", f"{side}UpLeg", (0.0, -ln["upper_leg"], 0.0), None),
+                (f"{side}Foot", f"{side}Leg", (0.0, -ln["lower_leg"], 0.0),
+                 (0.0, -ANKLE_HEIGHT_FRACTION * h, ln["foot_forward"])),
+            ]
+        spec += [
+            ("Spine", "Hips", (0.0, 0.0, 0.0), None),
+            ("Neck", "Spine", (0.0, ln["torso"], 0.0), None),
+            ("Head", "Neck", (0.0, ln["head"] / 2, 0.0), (0.0, ln["head"] / 2, 0.0)),
+        ]
+        for side, sgn in (("Left", 1.0), ("Right", -1.0)):
+            spec += [
+                (f"{side}Arm", "Neck", (sgn * sw, -ln["shoulder_drop"], 0.0), None),
+                (f"{side}ForeArm", f"{side}Arm", (0.0, -ln["upper_arm"], 0.0), None),
+                (f"{side}Hand", f"{side}ForeArm", (0.0, -ln["forearm"], 0.0), (0.0, -ln["hand"], 0.0)),
+            ]
+        return spec
+
+    def channels(self, t: torch.Tensor) -> tuple[torch.Tensor, dict[str, torch.Tensor]]:
+        """Root position ``(T, 3)`` (BVH axes, m, floor not yet applied) and per-joint Euler
+        angles ``(T, 3)`` in degrees, order ``(Z, X, Y)`` (``R = Rz Rx Ry``), at times ``t``."""
+        t = t.to(torch.float64)
+        v = self.speed_m_s
+        u = t / self.cycle_duration_s + self.phase
+        right = self.angles_deg(u)
+        left = self.angles_deg(u + 0.5)
+        zero = torch.zeros_like(t)
+        lean = 2.0 + 3.0 * v
+
+        def zxy(z: torch.Tensor, x: torch.Tensor, y: torch.Tensor) -> torch.Tensor:
+            return torch.stack([z, x, y], dim=-1)
+
+        eul: dict[str, torch.Tensor] = {
+            "Hips": zxy(right["pelvis_obliquity"], zero, right["pelvis_rotation"]),
+            "Spine": zxy(zero, zero + lean, -1.3 * right["pelvis_rotation"]),
+            "Neck": zxy(zero, zero - 0.6 * lean, zero),
+            "Head": zxy(zero, zero, zero),
+        }
+        abduction = 6.0
+        for side, a, sgn in (("Left", left, 1.0), ("Right", right, -1.0)):
+            # Rx(+a) turns a hanging segment (0, -1, 0) backward, to (0, -cos a, -sin a): forward
+            # flexion of hip, shoulder and elbow, and dorsiflexion (toes up), are negative X rotations.
+            eul[f"{side}UpLeg"] = zxy(zero, -a["hip"], zero)
+            eul[f"{side}Leg"] = zxy(zero, a["knee"], zero)
+            eul[f"{side}Foot"] = zxy(zero, -a["ankle"], zero)
+            eul[f"{side}Arm"] = zxy(zero + sgn * abduction, -a["shoulder"], zero)
+            eul[f"{side}ForeArm"] = zxy(zero, -a["elbow"], zero)
+            eul[f"{side}Hand"] = zxy(zero, zero, zero)
+        bob = -(0.010 + 0.012 * v) * torch.cos(2 * _TWO_PI * u)
+        sway = -(0.025 - 0.006 * v) * torch.sin(_TWO_PI * u)
+        surge = 0.008 * torch.sin(2 * _TWO_PI * (u - 0.1))
+        root = torch.stack([sway, bob, v * t + surge], dim=-1)
+        return root, eul
+
+    def forward_kinematics(self, t: torch.Tensor, root: torch.Tensor | None = None) -> dict[str, torch.Tensor]:
+        """World positions ``(T, 3)`` (BVH axes, m) of every joint, end site (``<joint>_end``)
+        and heel (``<side>Heel``) at times ``t``; ``root`` overrides the root position."""
+        r0, eul = self.channels(t)
+        root = r0 if root is None else root
+        pos: dict[str, torch.Tensor] = {}
+        wrot: dict[str, torch.Tensor] = {}
+        for name, parent, offset, end in self._hierarchy():
+            local = rot.matrix_from_euler(torch.deg2rad(eul[name]), "zxy")
+            off = torch.tensor(offset, dtype=torch.float64)
+            if parent is None:
+                pos[name] = root
+                wrot[name] = local
+            else:
+                pos[name] = pos[parent] + wrot[parent] @ off
+                wrot[name] = wrot[parent] @ local
+            if end is not None:
+                pos[f"{name}_end"] = pos[name] + wrot[name] @ torch.tensor(end, dtype=torch.float64)
+        ln = self._lengths()
+        for side in ("Left", "Right"):
+            heel = torch.tensor([0.0, -ANKLE_HEIGHT_FRACTION * self.height_m, -ln["heel_back"]], dtype=torch.float64)
+            pos[f"{side}Heel"] = pos[f"{side}Foot"] + wrot[f"{side}Foot"] @ heel
+        return pos
+
+    def clip_times(self, fps: float = 100.0) -> torch.Tensor:
+        """Frame times of one looping cycle: ``n + 1`` frames, the last one cycle after the first."""
+        if not (isinstance(fps, (int, float)) and math.isfinite(fps) and fps > 0):
+            raise SceneError(f"SineGait: fps must be a positive number, got {fps!r}")
+        n = max(8, int(round(self.cycle_duration_s * fps)))
+        return torch.arange(n + 1, dtype=torch.float64) * (self.cycle_duration_s / n)
+
+    def pelvis_height_m(self, fps: float = 100.0) -> float:
+        """Constant added to the root height so that the lowest heel/toe point touches the floor."""
+        t = self.clip_times(fps)
+        pos = self.forward_kinematics(t)
+        low = torch.stack([pos[k][:, 1] for k in ("LeftFoot_end", "RightFoot_end", "LeftHeel", "RightHeel")])
+        return -float(low.min())
+
+
+def write_sine_gait_bvh(gait: SineGait, path: str | Path, *, fps: float = 100.0, unit: str = "cm") -> Path:
+    """Write one gait cycle of ``gait`` as a looping BVH clip (CMU joint names).
+
+    The clip has ``round(cycle * fps) + 1`` frames, the last one exactly one cycle (one stride
+    forward) after the first, so :class:`~radaraug.scene.people.BVHPerson` with ``loop=True``
+    walks on seamlessly. The frame time is ``cycle / round(cycle * fps)``.
+
+    Args:
+        gait: the gait.
+        path: output file.
+        fps: nominal frames per second.
+        unit: length unit of the file, a key of ``UNIT_SCALES`` (``"cm"`` default).
+
+    Returns:
+        The path written.
+    """
+    if unit not in UNIT_SCALES:
+        raise SceneError(f"write_sine_gait_bvh: unknown unit {unit!r}; one of {sorted(UNIT_SCALES)}")
+    m_per_unit = UNIT_SCALES[unit]
+    t = gait.clip_times(fps)
+    root, eul = gait.channels(t)
+    root = root + torch.tensor([0.0, gait.pelvis_height_m(fps), 0.0], dtype=torch.float64)
+    spec = gait._hierarchy()
+    children: dict[str | None, list[int]] = {}
+    for i, s in enumerate(spec):
+        children.setdefault(s[1], []).append(i)
+
+    def fmt(vec: tuple[float, float, float]) -> str:
+        return " ".join(f"{x / m_per_unit:.6f}" for x in vec)
+
+    lines = ["HIERARCHY"]
+    order: list[str] = []
+
+    def emit(i: int, depth: int) -> None:
+        name, parent, offset, end = spec[i]
+        pad = "  " * depth
+        lines.append(f"{pad}{'ROOT' if parent is None else 'JOINT'} {name}")
+        lines.append(f"{pad}{{")
+        lines.append(f"{pad}  OFFSET {fmt(offset)}")
+        pos_ch = "Xposition Yposition Zposition " if parent is None else ""
+        lines.append(f"{pad}  CHANNELS {6 if parent is None else 3} {pos_ch}Zrotation Xrotation Yrotation")
+        order.append(name)
+        for c in children.get(name, []):
+            emit(c, depth + 1)
+        if end is not None:
+            lines.extend([f"{pad}  End Site", f"{pad}  {{", f"{pad}    OFFSET {fmt(end)}", f"{pad}  }}"])
+        lines.append(f"{pad}}}")
+
+    emit(0, 0)
+    motion = torch.cat([root / m_per_unit] + [eul[name] for name in order], dim=1)
+    frame_time = float(t[1] - t[0])
+    lines += ["MOTION", f"Frames: {motion.shape[0]}", f"Frame Time: {frame_time:.9f}"]
+    lines += [" ".join(f"{float(x):.6f}" for x in row) for row in motion]
+    out = Path(path)
+    out.write_text("\n".join(lines) + "\n", encoding="utf-8")
+    return out
+
+
+__all__ = ["PROPORTIONS", "SineGait", "write_sine_gait_bvh"]
