@@ -1,1 +1,2 @@
-"""On-the-fly simulation: scenario sampling, the simulated Dataset, offline sharded generation."""
+"""On-the-fly simulation: scenario sampling, twin randomization, the simulated Dataset, offline sharded
+generation."""

@@ -3,7 +3,9 @@
 Item ``i`` is a pure function of ``(seed, i)``: its scenario and its receiver noise come from
 generators seeded by :func:`radaraug.sim.seeding.item_seed`, never from worker or rank state,
 so the same item comes out in any DataLoader worker, process or DDP rank (use a
-``DistributedSampler`` to split the indices; nothing else is needed).
+``DistributedSampler`` to split the indices; nothing else is needed). With a
+:class:`~radaraug.sim.randomization.TwinRandomization`, item ``i`` also draws its room (from a
+pool that is a pure function of ``seed``), people's RCS and the receiver's gain and noise figure.
 """
 
 from __future__ import annotations
@@ -20,6 +22,8 @@ from torch.utils.data import Dataset
 from radaraug.config import RadarConfig
 from radaraug.errors import ConfigError
 from radaraug.scene.scene import Scene
+from radaraug.sensor.receiver import FMCWReceiver
+from radaraug.sim.randomization import RoomDraw, TwinRandomization, check_receiver, simulate_item
 from radaraug.sim.scenarios import Scenario, ScenarioSampler
 from radaraug.sim.seeding import item_generator
 from radaraug.sim.twin import DigitalTwin
@@ -60,7 +64,12 @@ class SimulatedRadarDataset(Dataset):
         as_counts: return uint16 ADC codes instead of SDK floats (before ``transform``).
         device: where the twin runs (the item is returned on that device).
         twin_options: keyword arguments of :class:`DigitalTwin` (``tracer_options``,
-            ``receiver``, ``multipath``).
+            ``receiver``, ``multipath``); with randomization they apply to every room variant.
+        randomization: twin randomization (a :class:`TwinRandomization` or a dict of its fields);
+            None (default) or :meth:`TwinRandomization.off` simulate the scene as it is. When
+            enabled, the scene must be a corridor scene: it gives the radar's x, y position,
+            pose and mounting; the room, the radar's height and tilt, the people's ranges, each
+            person's RCS and the receiver's gain and noise figure are drawn per item.
     """
 
     def __init__(
@@ -78,6 +87,7 @@ class SimulatedRadarDataset(Dataset):
         as_counts: bool = False,
         device: torch.device | str = "cpu",
         twin_options: dict[str, Any] | None = None,
+        randomization: TwinRandomization | dict[str, Any] | None = None,
     ) -> None:
         if target not in TARGETS:
             raise ConfigError(f"target must be one of {TARGETS}, got {target!r}")
@@ -97,6 +107,22 @@ class SimulatedRadarDataset(Dataset):
         self.twin_options = dict(twin_options or {})
         self._twin: DigitalTwin | None = None
         self._static_signal: torch.Tensor | None = None
+        if isinstance(randomization, dict):
+            randomization = TwinRandomization.from_dict(randomization)
+        if randomization is not None and not isinstance(randomization, TwinRandomization):
+            raise ConfigError(f"randomization must be a TwinRandomization, a dict or None, "
+                              f"got {type(randomization).__name__}")
+        self.randomization = randomization
+        self._rooms: list[RoomDraw] = []
+        self._variant_twins: dict[int, DigitalTwin] = {}
+        self._variant_static: dict[int, torch.Tensor] = {}
+        if self.randomized:
+            # Fail now, not in a DataLoader worker: a non-corridor scene, a radar outside a drawn
+            # room, or a receiver without the stages the offsets act on.
+            self._rooms = [self.randomization.room(self.seed, k) for k in range(self.randomization.room_variants)]
+            for room in self._rooms:
+                room.scene(self.scene, self.config)
+            check_receiver(self._reference_receiver(), self.randomization)
 
     # The twin is built lazily in each worker and never pickled; the room's signal (traced once,
     # ~200 kB) is, so workers started after `prepare()` skip the room's ray tracing.
@@ -105,7 +131,19 @@ class SimulatedRadarDataset(Dataset):
         state["_twin"] = None
         if self._twin is not None and self._twin._static_signal is not None:
             state["_static_signal"] = self._twin._static_signal.cpu()
+        # Same for every room variant already traced (~200 kB each).
+        state["_variant_twins"] = {}
+        static = {k: v.cpu() for k, v in self._variant_static.items()}
+        for k, twin in self._variant_twins.items():
+            if twin._static_signal is not None:
+                static[k] = twin._static_signal.cpu()
+        state["_variant_static"] = static
         return state
+
+    @property
+    def randomized(self) -> bool:
+        """True when items draw the twin's randomization (given and enabled)."""
+        return self.randomization is not None and self.randomization.enabled
 
     @property
     def twin(self) -> DigitalTwin:
@@ -115,9 +153,28 @@ class SimulatedRadarDataset(Dataset):
                                      static_signal=self._static_signal, **self.twin_options)
         return self._twin
 
+    def variant_twin(self, k: int) -> DigitalTwin:
+        """The process-local twin of room variant ``k`` (built on first use; randomization only)."""
+        if not self.randomized:
+            raise ConfigError("room variants exist only with twin randomization enabled")
+        twin = self._variant_twins.get(k)
+        if twin is None:
+            scene = self._rooms[k].scene(self.scene, self.config)
+            twin = DigitalTwin(scene, config=self.config, device=self.device,
+                               static_signal=self._variant_static.get(k), **self.twin_options)
+            self._variant_twins[k] = twin
+        return twin
+
     def prepare(self) -> SimulatedRadarDataset:
-        """Trace the room now (once), so DataLoader workers inherit it instead of each tracing it."""
-        self.twin.static_signal()
+        """Trace the room now (once), so DataLoader workers inherit it instead of each tracing it.
+
+        With randomization, every room variant of the pool is traced (one SBR trace each).
+        """
+        if self.randomized:
+            for k in range(len(self._rooms)):
+                self.variant_twin(k).static_signal()
+        else:
+            self.twin.static_signal()
         return self
 
     def __len__(self) -> int:
@@ -125,6 +182,12 @@ class SimulatedRadarDataset(Dataset):
 
     def scenario(self, index: int) -> Scenario:
         """The scenario of item ``index`` (people and labels), without simulating it."""
+        if self.randomized:
+            # People walk along the drawn corridor (+x), whatever the radar's drawn yaw.
+            room = self._rooms[self.randomization.variant_of(self.seed, index)]
+            x = float(self.scene.radar.position[0])
+            sampler = self.randomization.sampler(self.sampler, room, x)
+            return sampler.sample(item_generator(self.seed, index, stream=0), radar_xy=(x, 0.0), axis_deg=0.0)
         radar = self.scene.radar
         pos = radar.position.tolist()
         boresight = radar.rotation[:, 2].tolist()
@@ -132,16 +195,61 @@ class SimulatedRadarDataset(Dataset):
         return self.sampler.sample(item_generator(self.seed, index, stream=0), radar_xy=(pos[0], pos[1]),
                                    axis_deg=axis_deg)
 
-    def __getitem__(self, index: int) -> Any:
+    def item_params(self, index: int) -> dict[str, Any]:
+        """What item ``index`` is made of, without simulating it (JSON-able).
+
+        Always ``index``, ``seed``, ``randomized``, ``count``, ``occupancy`` and ``people`` (each
+        person's drawn parameters). With randomization also ``variant``, ``room`` (size,
+        materials, radar height / pitch / yaw), each person's ``rcs_scale_dB``, and the receiver's
+        ``system_gain_offset_dB`` / ``noise_figure_offset_dB`` with the resulting absolute
+        ``system_gain_dB`` / ``noise_figure_dB`` (None where the receiver lacks the stage).
+        """
+        index = self._check_index(index)
+        scenario = self.scenario(index)
+        people = [dict(p) for p in scenario.params]
+        out: dict[str, Any] = {"index": index, "seed": self.seed, "randomized": self.randomized,
+                               "count": scenario.count, "occupancy": scenario.occupancy, "people": people}
+        if not self.randomized:
+            return out
+        draw = self.randomization.item(self.seed, index, scenario.count)
+        for person, db in zip(people, draw.rcs_scale_dB):
+            person["rcs_scale_dB"] = db
+        base = self._reference_receiver()
+        gain = _param(base, "system_gain", "gain_dB")
+        nf = _param(base, "thermal_noise", "noise_figure_dB")
+        out.update(
+            variant=draw.variant, room=self._rooms[draw.variant].to_dict(),
+            system_gain_offset_dB=draw.system_gain_offset_dB, noise_figure_offset_dB=draw.noise_figure_offset_dB,
+            system_gain_dB=None if gain is None else gain + draw.system_gain_offset_dB,
+            noise_figure_dB=None if nf is None else nf + draw.noise_figure_offset_dB,
+        )
+        return out
+
+    def _reference_receiver(self) -> FMCWReceiver:
+        """The receiver the twins are built with (for its calibrated gain / noise figure)."""
+        given = self.twin_options.get("receiver")
+        return given if given is not None else FMCWReceiver(self.config)
+
+    def _check_index(self, index: int) -> int:
         if not -self.length <= index < self.length:
             raise IndexError(f"index {index} out of range for a dataset of {self.length} items")
-        index %= self.length
+        return index % self.length
+
+    def __getitem__(self, index: int) -> Any:
+        index = self._check_index(index)
         scenario = self.scenario(index)
         noise = item_generator(self.seed, index, stream=1, device=self.device)
-        times = self.twin.frame_times(range(self.frames_per_item))
-        x = self.twin.simulate(scenario.people, times, generators=noise)
+        if self.randomized:
+            draw = self.randomization.item(self.seed, index, scenario.count)
+            twin = self.variant_twin(draw.variant)
+            times = twin.frame_times(range(self.frames_per_item))
+            x = simulate_item(twin, scenario.people, times, draw, noise)
+        else:
+            twin = self.twin
+            times = twin.frame_times(range(self.frames_per_item))
+            x = twin.simulate(scenario.people, times, generators=noise)
         if self.as_counts:
-            x = self.twin.receiver.to_counts(x)
+            x = twin.receiver.to_counts(x)
         if self.frames_per_item == 1:
             x = x[0]
         if self.transform is not None:
@@ -158,3 +266,12 @@ class SimulatedRadarDataset(Dataset):
         if self.target_transform is not None:
             label = self.target_transform(label)
         return x, label
+
+
+def _param(receiver: FMCWReceiver, effect: str, name: str) -> float | None:
+    """A scalar effect parameter of ``receiver`` as a float (None without that effect)."""
+    try:
+        value = receiver.effect(effect).params()[name]
+    except KeyError:
+        return None
+    return None if value is None else float(value.detach().cpu().reshape(-1)[0])

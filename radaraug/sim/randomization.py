@@ -1,0 +1,454 @@
+"""Twin randomization: per-item draws of what one empty-room calibration cannot pin down.
+
+An empty-room capture pins the receiver's noise floor, not a stranger's radar cross-section,
+the room's size and materials, the radar's mounting or the receiver's exact gain. A classifier
+trained on a twin that fixes those learns the twin (e.g. "bright blob = person": the twin's
+walkers were ~18 dB brighter against the room than in independently generated data). With
+:class:`TwinRandomization`, :class:`~radaraug.sim.dataset.SimulatedRadarDataset` draws them per
+item around the calibrated values, all from generators seeded by ``(seed, index)``:
+
+* per person: an RCS scale in dB, applied to every path of that person (direct and wall
+  multipath), so ``|amplitude|`` scales by ``10**(dB / 20)`` (amplitude ~ sqrt(RCS));
+* people's count, height, speed, heading and position, through :class:`ScenarioSampler` with
+  wider ranges, kept inside the drawn room;
+* the room (corridor length, width, height, the P.2040 material of each surface) and the
+  radar's height, pitch and yaw: these change the static room, whose ray trace costs seconds,
+  so a *pool* of ``room_variants`` rooms is drawn (variant ``k`` from its own generator seeded by
+  ``(seed, k)``: the pool is a pure function of the seed) and each item picks one;
+* the receiver's ``system_gain`` and ``thermal_noise`` noise figure, as offsets around the
+  receiver's own (calibrated) values, for that item only.
+
+Generator streams (:func:`radaraug.sim.seeding.item_generator`): the dataset uses stream 0 for
+the scenario and 1 for the receiver noise; this module uses :data:`ITEM_STREAM` for the per-item
+draws and :data:`ROOM_STREAM` (index = variant number) for the room pool. The order of the draws
+inside a stream is part of the contract: changing it changes every item of every seed.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+import torch
+
+from radaraug.config import RadarConfig
+from radaraug.errors import ConfigError, SceneError
+from radaraug.scene.materials import get_material
+from radaraug.scene.room import CORRIDOR_SURFACES
+from radaraug.scene.scene import Scene, _yaw_pitch_roll
+from radaraug.sensor.effects import SystemGain, ThermalNoise
+from radaraug.sensor.paths import Paths
+from radaraug.sensor.receiver import FMCWReceiver
+from radaraug.sim.scenarios import ScenarioSampler, _uniform
+from radaraug.sim.seeding import item_generator
+from radaraug.sim.twin import DigitalTwin
+
+ITEM_STREAM = 3
+"""Generator stream of the per-item draws (room variant, gain, noise figure, RCS per person)."""
+ROOM_STREAM = 4
+"""Generator stream of the room pool (``index`` = variant number)."""
+
+RADAR_CEILING_MARGIN_M = 0.15
+"""The radar's drawn height is clipped to at most the drawn room height minus this."""
+
+# ITU-R P.2040-3 materials valid at 60 GHz (brick is defined only up to 40 GHz: left out).
+DEFAULT_MATERIALS: dict[str, tuple[str, ...]] = {
+    "floor": ("floorboard", "concrete", "wood", "chipboard"),
+    "ceiling": ("ceiling_board", "plasterboard", "concrete"),
+    "left_wall": ("plasterboard", "concrete", "glass", "wood"),
+    "right_wall": ("plasterboard", "concrete", "glass", "wood"),
+    "near_wall": ("concrete", "plasterboard", "wood", "metal"),
+    "far_wall": ("concrete", "plasterboard", "wood", "glass", "metal"),
+}
+"""Default material choices per corridor surface (drawn uniformly and independently)."""
+
+_RANGE_FIELDS = (
+    "rcs_scale_dB", "length_m", "width_m", "height_m", "radar_height_m", "radar_pitch_deg", "radar_yaw_deg",
+    "person_height_m", "speed_m_s", "range_m", "system_gain_offset_dB", "noise_figure_offset_dB",
+)
+_POSITIVE_RANGES = ("length_m", "width_m", "height_m", "radar_height_m", "person_height_m", "speed_m_s", "range_m")
+
+
+def _materials_default() -> dict[str, tuple[str, ...]]:
+    return dict(DEFAULT_MATERIALS)
+
+
+@dataclass
+class TwinRandomization:
+    """What the twin draws per item, and from which ranges (every range is ``(lo, hi)``, uniform).
+
+    Every field is a plain type (bool, int, float, a pair of floats, lists of material names),
+    so a YAML/JSON mapping of the same keys (:meth:`from_dict`) configures it; lists are
+    accepted wherever a pair is expected.
+
+    Args:
+        enabled: False gives the twin without randomization (see :meth:`off`).
+        rcs_scale_dB: per-person RCS scale in dB (amplitude x ``10**(dB/20)``). Default
+            (-20, +10): the field notes found people's RCS drawn over -20...+5 dB the largest
+            single sim-to-real gain, and nothing pins which side of the twin's own walker level
+            (itself ~18 dB brighter than independently generated data) real people sit on, so
+            the range also reaches +10 dB; human RCS at 60 GHz alone fluctuates by several dB.
+        room_variants: size of the room pool. Each variant is one ray trace of the room
+            (about 7 s at 256 x 256 rays on a laptop CPU, done once by ``prepare()``).
+        length_m: corridor length. Default (8, 25): short rooms to ones reaching past the
+            BGT60TR13C default's ~21.7 m maximum range (the paper's corridor is 20 m).
+        width_m: corridor width (1.5, 3.5): a narrow corridor to a wide hall.
+        height_m: ceiling height (2.4, 3.5): offices to lobbies.
+        materials: per corridor surface, the P.2040 material names drawn from (uniformly).
+            A mapping naming only some surfaces keeps the defaults (:data:`DEFAULT_MATERIALS`)
+            for the others.
+        radar_height_m: radar height above the floor (0.8, 2.0): table to wall mount (the paper's
+            1.2 m inside); clipped to the drawn ceiling height minus 0.15 m.
+        radar_pitch_deg: pitch added to the scene's pose (-10, +10): a hand-mounted sensor is
+            rarely level, and a high mount is often tilted down.
+        radar_yaw_deg: yaw added to the scene's pose (-5, +5): a little misalignment with the
+            corridor's axis.
+        person_height_m: body height (1.45, 2.0): wider than the paper-like 1.55-1.95 default.
+        speed_m_s: walking speed (0.4, 2.0): slow strolling to brisk walking.
+        range_m: start distance along the corridor (0.8, 15.0), clipped to the drawn room's
+            length minus ``wall_margin_m``.
+        heading_jitter_deg: heading spread around straight toward/away (30 deg instead of 5):
+            people do not walk on rails.
+        wall_margin_m: lateral positions are drawn in +-(width / 2 - margin) of the drawn room
+            (0.35 m: half a shoulder width plus swinging arms).
+        system_gain_offset_dB: added to the receiver's ``system_gain`` (-6, +6): the residual
+            gain a calibration leaves uncertain (unit to unit, temperature, the IF gain law).
+        noise_figure_offset_dB: added to the receiver's ``thermal_noise`` noise figure (-6, +6);
+            around the default 12 dB this is the 6-18 dB the field notes found to help.
+    """
+
+    enabled: bool = True
+    rcs_scale_dB: tuple[float, float] = (-20.0, 10.0)
+    room_variants: int = 4
+    length_m: tuple[float, float] = (8.0, 25.0)
+    width_m: tuple[float, float] = (1.5, 3.5)
+    height_m: tuple[float, float] = (2.4, 3.5)
+    materials: dict[str, tuple[str, ...]] = field(default_factory=_materials_default)
+    radar_height_m: tuple[float, float] = (0.8, 2.0)
+    radar_pitch_deg: tuple[float, float] = (-10.0, 10.0)
+    radar_yaw_deg: tuple[float, float] = (-5.0, 5.0)
+    person_height_m: tuple[float, float] = (1.45, 2.0)
+    speed_m_s: tuple[float, float] = (0.4, 2.0)
+    range_m: tuple[float, float] = (0.8, 15.0)
+    heading_jitter_deg: float = 30.0
+    wall_margin_m: float = 0.35
+    system_gain_offset_dB: tuple[float, float] = (-6.0, 6.0)
+    noise_figure_offset_dB: tuple[float, float] = (-6.0, 6.0)
+
+    def __post_init__(self) -> None:
+        # Normalise YAML-ish input (lists, ints) and fail early, naming the field.
+        if not isinstance(self.enabled, bool):
+            raise ConfigError(f"twin randomization: enabled must be true or false, got {self.enabled!r}")
+        for name in _RANGE_FIELDS:
+            setattr(self, name, _pair(getattr(self, name), name, positive=name in _POSITIVE_RANGES))
+        if isinstance(self.room_variants, bool) or not isinstance(self.room_variants, int) or self.room_variants < 1:
+            raise ConfigError(f"twin randomization: room_variants must be an integer >= 1, got {self.room_variants!r}")
+        for name in ("heading_jitter_deg", "wall_margin_m"):
+            setattr(self, name, _number(getattr(self, name), name, minimum=0.0))
+        self.materials = _materials(self.materials)
+
+    @classmethod
+    def off(cls) -> TwinRandomization:
+        """The non-randomized twin: a dataset gives exactly the items it gives without randomization."""
+        return cls(enabled=False)
+
+    def to_dict(self) -> dict[str, Any]:
+        """Plain JSON/YAML types (pairs and material choices as lists)."""
+        out: dict[str, Any] = {}
+        for f in dataclasses.fields(self):
+            v = getattr(self, f.name)
+            if f.name == "materials":
+                v = {k: list(c) for k, c in v.items()}
+            elif isinstance(v, tuple):
+                v = list(v)
+            out[f.name] = v
+        return out
+
+    @classmethod
+    def from_dict(cls, data: Mapping[str, Any]) -> TwinRandomization:
+        """Inverse of :meth:`to_dict`; missing keys take the defaults.
+
+        Raises:
+            ConfigError: not a mapping, an unknown key (named), or a bad value.
+        """
+        if not isinstance(data, Mapping):
+            raise ConfigError(f"twin randomization must be a mapping, got {type(data).__name__}")
+        known = {f.name for f in dataclasses.fields(cls)}
+        unknown = sorted(str(k) for k in data if k not in known)
+        if unknown:
+            raise ConfigError(f"twin randomization: unknown key(s) {unknown}; known: {sorted(known)}")
+        return cls(**dict(data))
+
+    # ------------------------------------------------------------------ draws
+    def room(self, seed: int, k: int) -> RoomDraw:
+        """Room variant ``k`` of the pool of a dataset seeded ``seed`` (a pure function of both)."""
+        if not 0 <= k < self.room_variants:
+            raise ConfigError(f"room variant {k} out of range: the pool has {self.room_variants}")
+        g = item_generator(seed, k, stream=ROOM_STREAM)
+        length = _uniform(self.length_m, g)
+        width = _uniform(self.width_m, g)
+        height = _uniform(self.height_m, g)
+        # Every surface draws (in CORRIDOR_SURFACES order), even ones a room without end walls
+        # lacks, so the other draws do not depend on that setting.
+        mats = {s: self.materials[s][int(torch.randint(len(self.materials[s]), (), generator=g))]
+                for s in CORRIDOR_SURFACES}
+        radar_height = min(_uniform(self.radar_height_m, g), height - RADAR_CEILING_MARGIN_M)
+        pitch = _uniform(self.radar_pitch_deg, g)
+        yaw = _uniform(self.radar_yaw_deg, g)
+        return RoomDraw(k, length, width, height, mats, radar_height, pitch, yaw)
+
+    def variant_of(self, seed: int, index: int) -> int:
+        """Which room variant item ``index`` uses (the first draw of its stream)."""
+        g = item_generator(seed, index, stream=ITEM_STREAM)
+        return int(torch.randint(self.room_variants, (), generator=g))
+
+    def item(self, seed: int, index: int, num_people: int) -> ItemDraw:
+        """The per-item draws of item ``index`` with ``num_people`` people.
+
+        Person ``j``'s RCS scale does not depend on how many people follow it.
+        """
+        g = item_generator(seed, index, stream=ITEM_STREAM)
+        variant = int(torch.randint(self.room_variants, (), generator=g))
+        gain = _uniform(self.system_gain_offset_dB, g)
+        nf = _uniform(self.noise_figure_offset_dB, g)
+        rcs = tuple(_uniform(self.rcs_scale_dB, g) for _ in range(num_people))
+        return ItemDraw(variant, gain, nf, rcs)
+
+    def sampler(self, base: ScenarioSampler, room: RoomDraw, radar_x_m: float) -> ScenarioSampler:
+        """``base`` (counts and their weights, toward/away, speed spacing kept) with this
+        randomization's people ranges, fitted inside ``room`` for a radar at ``x = radar_x_m``."""
+        lateral = max(0.0, room.width_m / 2 - self.wall_margin_m)
+        far = max(0.0, room.length_m - radar_x_m - self.wall_margin_m)
+        hi = min(self.range_m[1], far)
+        lo = min(self.range_m[0], hi)
+        return dataclasses.replace(
+            base, speed_m_s=self.speed_m_s, height_m=self.person_height_m, range_m=(lo, hi),
+            lateral_m=(-lateral, lateral), heading_jitter_deg=self.heading_jitter_deg,
+        )
+
+
+@dataclass(frozen=True)
+class RoomDraw:
+    """One room of the pool: a corridor and the radar's mounting in it.
+
+    Attributes:
+        index: variant number ``k``.
+        length_m, width_m, height_m: corridor size.
+        materials: P.2040 material name per corridor surface.
+        radar_height_m: radar height above the floor.
+        radar_pitch_deg, radar_yaw_deg: added to the base scene's pose.
+    """
+
+    index: int
+    length_m: float
+    width_m: float
+    height_m: float
+    materials: dict[str, str]
+    radar_height_m: float
+    radar_pitch_deg: float
+    radar_yaw_deg: float
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-able description."""
+        return {**dataclasses.asdict(self), "materials": dict(self.materials)}
+
+    def scene(self, base: Scene, config: RadarConfig | None = None) -> Scene:
+        """This room as a :class:`Scene`: ``base``'s radar (x, y position, pose and mounting,
+        ``max_edge`` and end walls of its corridor) in the drawn corridor.
+
+        Raises:
+            ConfigError: ``base`` is not a corridor scene, or its radar is outside the drawn room.
+        """
+        spec = base.room_spec
+        if spec is None or spec.get("type") != "corridor":
+            kind = "a room built in Python" if spec is None else f"a {spec.get('type')!r} room"
+            raise ConfigError(f"twin randomization draws corridor rooms; scene {base.name!r} has {kind} "
+                              "(use a corridor scene, or TwinRandomization.off())")
+        x, y = (float(v) for v in base.radar.position[:2])
+        if not (0.0 < x < self.length_m and abs(y) < self.width_m / 2):
+            raise ConfigError(f"room variant {self.index}: the scene's radar at x={x:.2f}, y={y:.2f} m is "
+                              f"outside the drawn {self.length_m:.2f} x {self.width_m:.2f} m corridor")
+        room = {"type": "corridor", "length": self.length_m, "width": self.width_m, "height": self.height_m,
+                "max_edge": spec.get("max_edge", 0.5), "end_walls": spec.get("end_walls", True),
+                "materials": dict(self.materials)}
+        data = {"name": f"{base.name}-variant-{self.index}",
+                "radar": {"position": [x, y, self.radar_height_m], "rotation": self._rotation(base).tolist()},
+                "room": room}
+        try:
+            scene = Scene.from_dict(data)
+        except SceneError as err:
+            raise ConfigError(f"room variant {self.index}: {err}") from None
+        scene.config = config or base.config
+        return scene
+
+    def _rotation(self, base: Scene) -> torch.Tensor:
+        """The base pose turned by the drawn yaw (about world z) and pitch (boresight up).
+
+        The base pose is written as ``yaw_pitch_roll(yaw0, pitch0, 0) @ M``, with ``M`` what
+        remains (roll and the portrait/landscape mounting, a turn about the boresight); the
+        variant is ``yaw_pitch_roll(yaw0 + yaw, pitch0 + pitch, 0) @ M``, so the mounting stays.
+        """
+        rot = base.radar.rotation.detach().cpu().to(torch.float64)
+        b = rot[:, 2]
+        yaw0 = math.degrees(math.atan2(float(b[1]), float(b[0])))
+        pitch0 = math.degrees(math.asin(max(-1.0, min(1.0, float(b[2])))))
+        mount = _yaw_pitch_roll(yaw0, pitch0, 0.0).T @ rot
+        return _yaw_pitch_roll(yaw0 + self.radar_yaw_deg, pitch0 + self.radar_pitch_deg, 0.0) @ mount
+
+
+@dataclass(frozen=True)
+class ItemDraw:
+    """The per-item draws: room variant, receiver offsets and each person's RCS scale."""
+
+    variant: int
+    system_gain_offset_dB: float
+    noise_figure_offset_dB: float
+    rcs_scale_dB: tuple[float, ...]
+
+
+# ---------------------------------------------------------------------------- simulation
+def scale_people_paths(paths: Paths, segments: Sequence[int], rcs_scale_dB: Sequence[float]) -> Paths:
+    """Scale each person's paths by ``10**(dB/20)`` (amplitude ~ sqrt(RCS)).
+
+    ``paths`` are the target paths of people traced together (so that they still shadow each
+    other), ``segments`` the number of body segments of each person in the order traced. The
+    ellipsoid tracer lays out ``S`` direct paths (one per segment), then ``S K`` paths
+    radar -> wall -> segment -> radar and ``S K`` of the reverse, segment-major (``K`` mirror
+    planes); a multipath path scatters off its segment, so it belongs to that segment's person.
+
+    Raises:
+        RuntimeError: the paths do not have that layout (the tracer changed: fix this helper).
+    """
+    s = int(sum(segments))
+    p = paths.num_paths
+    if s == 0 or not rcs_scale_dB:
+        return paths
+    if len(segments) != len(rcs_scale_dB):
+        raise ValueError(f"{len(segments)} people but {len(rcs_scale_dB)} RCS scales")
+    if p < s or (p - s) % (2 * s):
+        raise RuntimeError(f"unexpected target path layout: {p} paths for {s} segments")
+    k = (p - s) // (2 * s)
+    if paths.kind is not None and not (bool((paths.kind[..., :s] == 0).all())
+                                       and bool((paths.kind[..., s:] == 1).all())):
+        raise RuntimeError("unexpected target path layout: direct paths do not come first")
+    dev = paths.amplitude.device
+    per_person = torch.tensor([10 ** (db / 20) for db in rcs_scale_dB], dtype=torch.float64)
+    per_segment = per_person.repeat_interleave(torch.tensor(list(segments)))
+    mp = per_segment.repeat_interleave(k)
+    per_path = torch.cat([per_segment, mp, mp]).to(device=dev, dtype=paths.amplitude.real.dtype)
+    return dataclasses.replace(paths, amplitude=paths.amplitude * per_path[:, None])
+
+
+def people_paths(twin: DigitalTwin, people: Sequence[Any], times: torch.Tensor,
+                 rcs_scale_dB: Sequence[float]) -> Paths:
+    """The twin's target paths of ``people`` at ``times``, each person's scaled by its RCS scale."""
+    paths = twin.paths(list(people), times)
+    t0 = times[:1].to(torch.float64)
+    segments = [int(p.ellipsoids(t0).centers.shape[-2]) for p in people]
+    return scale_people_paths(paths, segments, rcs_scale_dB)
+
+
+def check_receiver(receiver: FMCWReceiver, randomization: TwinRandomization) -> None:
+    """Raise ConfigError when ``receiver`` cannot take the randomization's gain / noise offsets."""
+    names = [e.name for e in receiver.effects]
+    first_nonlinear = next((i for i, e in enumerate(receiver.effects) if e.kind == "nonlinear"), len(names))
+    if randomization.system_gain_offset_dB != (0.0, 0.0):
+        if "system_gain" not in names:
+            raise ConfigError("twin randomization: the receiver has no system_gain stage; add one or set "
+                              "system_gain_offset_dB to [0, 0]")
+        # The room's cached signal went through the linear stages before the first non-linear
+        # one; only there does scaling it by the gain equal applying the gain.
+        if names.index("system_gain") > first_nonlinear:
+            raise ConfigError("twin randomization: the receiver's system_gain comes after a non-linear stage")
+    if randomization.noise_figure_offset_dB != (0.0, 0.0) and "thermal_noise" not in names:
+        raise ConfigError("twin randomization: the receiver has no thermal_noise stage; add one or set "
+                          "noise_figure_offset_dB to [0, 0]")
+
+
+def item_receiver(receiver: FMCWReceiver, system_gain_offset_dB: float, noise_figure_offset_dB: float) -> FMCWReceiver:
+    """A receiver like ``receiver`` with its (first) ``system_gain`` and ``thermal_noise`` stages
+    offset. ``receiver`` is not changed (its other stages are shared, not copied), so nothing
+    leaks from one item to the next, even across threads."""
+    effects = list(receiver.effects)
+    for i, e in enumerate(effects):
+        if isinstance(e, SystemGain):
+            effects[i] = SystemGain(gain_dB=e.gain_dB + system_gain_offset_dB)
+            break
+    for i, e in enumerate(effects):
+        if isinstance(e, ThermalNoise):
+            effects[i] = ThermalNoise(noise_figure_dB=e.noise_figure_dB + noise_figure_offset_dB,
+                                      temperature_K=e.temperature_K)
+            break
+    return FMCWReceiver(receiver.config, effects=effects, tx_power_dBm=receiver.tx_power_dBm,
+                        synthesis=receiver.synthesis, front_end_gain_dB=receiver.front_end_gain_dB,
+                        taylor_tol=receiver.taylor_tol)
+
+
+@torch.no_grad()
+def simulate_item(twin: DigitalTwin, people: Sequence[Any], times: torch.Tensor, draw: ItemDraw,
+                  generator: torch.Generator | None) -> torch.Tensor:
+    """Raw frames ``(T, rx, chirps, samples)`` of one randomized item (one noise generator for the
+    block, as :meth:`DigitalTwin.simulate`).
+
+    The room's cached signal went through the receiver's linear stages, ``system_gain``
+    included: it is scaled by the item's gain offset, which by linearity equals tracing the room
+    through the offset receiver.
+    """
+    paths = people_paths(twin, people, times, draw.rcs_scale_dB)
+    receiver = item_receiver(twin.receiver, draw.system_gain_offset_dB, draw.noise_figure_offset_dB)
+    static = twin.static_signal()
+    if draw.system_gain_offset_dB != 0.0:
+        static = static * 10 ** (draw.system_gain_offset_dB / 20)
+    return receiver(paths, generator=generator, frame_start_s=times.to(torch.float64), static_signal=static)
+
+
+# ---------------------------------------------------------------------------- validation
+def _number(value: Any, name: str, *, minimum: float | None = None) -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+        raise ConfigError(f"twin randomization: {name} must be a finite number, got {value!r}")
+    if minimum is not None and value < minimum:
+        raise ConfigError(f"twin randomization: {name} must be >= {minimum}, got {value!r}")
+    return float(value)
+
+
+def _pair(value: Any, name: str, *, positive: bool = False) -> tuple[float, float]:
+    if isinstance(value, (str, bytes)) or not isinstance(value, Sequence) or len(value) != 2:
+        raise ConfigError(f"twin randomization: {name} must be a pair [lo, hi], got {value!r}")
+    lo, hi = (_number(v, name) for v in value)
+    if lo > hi:
+        raise ConfigError(f"twin randomization: {name} must have lo <= hi, got {[lo, hi]}")
+    if positive and lo <= 0:
+        raise ConfigError(f"twin randomization: {name} must be positive, got {[lo, hi]}")
+    return (lo, hi)
+
+
+def _materials(value: Any) -> dict[str, tuple[str, ...]]:
+    if not isinstance(value, Mapping):
+        raise ConfigError(f"twin randomization: materials must be a mapping surface -> list of names, got {value!r}")
+    unknown = sorted(str(k) for k in value if k not in CORRIDOR_SURFACES)
+    if unknown:
+        raise ConfigError(f"twin randomization: materials: unknown surface(s) {unknown}; "
+                          f"surfaces are {list(CORRIDOR_SURFACES)}")
+    out = dict(DEFAULT_MATERIALS)
+    for surface, names in value.items():
+        key = f"materials.{surface}"
+        if isinstance(names, str):
+            names = [names]
+        if not isinstance(names, Sequence) or not names:
+            raise ConfigError(f"twin randomization: {key} must be a non-empty list of material names, got {names!r}")
+        for n in names:
+            try:
+                get_material(n)
+            except SceneError as err:
+                raise ConfigError(f"twin randomization: {key}: {err}") from None
+        out[surface] = tuple(str(n) for n in names)
+    return out
+
+
+__all__ = [
+    "DEFAULT_MATERIALS", "ITEM_STREAM", "ROOM_STREAM", "ItemDraw", "RoomDraw", "TwinRandomization",
+    "check_receiver", "item_receiver", "people_paths", "scale_people_paths", "simulate_item",
+]

@@ -1,0 +1,284 @@
+"""Twin randomization: reproducible per (seed, index), every drawn quantity varies, RCS and gain
+are applied exactly (closed forms), YAML round trip, and ``off()`` is the plain twin."""
+
+from __future__ import annotations
+
+import math
+import pickle
+
+import numpy as np
+import pytest
+import torch
+import yaml
+
+from radaraug.errors import ConfigError
+from radaraug.scene.people import Walker
+from radaraug.scene.scene import Scene
+from radaraug.sensor.defaults import default_effects
+from radaraug.sensor.effects import ThermalNoise
+from radaraug.sensor.paths import Paths
+from radaraug.sensor.receiver import FMCWReceiver
+from radaraug.sim.dataset import SimulatedRadarDataset
+from radaraug.sim.randomization import (
+    DEFAULT_MATERIALS,
+    ItemDraw,
+    TwinRandomization,
+    simulate_item,
+)
+from radaraug.sim.twin import DigitalTwin
+
+FAST = {"tracer_options": {"rays": 16}}  # a coarse room trace keeps the tests quick
+SMALL = {"room_variants": 2}
+
+
+@pytest.fixture(scope="module")
+def dataset() -> SimulatedRadarDataset:
+    return SimulatedRadarDataset("corridor", length=60, seed=5, twin_options=FAST,
+                                 randomization=TwinRandomization(**SMALL)).prepare()
+
+
+def _linear_chain(config, *, noise: bool) -> list:
+    """The default chain up to the analogue output: no phase noise, DC offset or ADC (so the
+    output is linear in the paths and in the gain), thermal noise on or at 0 K."""
+    effects = []
+    for e in default_effects(config):
+        if e.kind == "nonlinear" or e.name in ("dc_offset", "phase_noise"):
+            continue
+        if e.name == "thermal_noise" and not noise:
+            e = ThermalNoise(noise_figure_dB=12.0, temperature_K=0.0)
+        effects.append(e)
+    return effects
+
+
+# ------------------------------------------------------------------------------ configuration
+def test_dict_round_trip_yaml_and_errors() -> None:
+    r = TwinRandomization(rcs_scale_dB=[-12, 3], room_variants=3, materials={"floor": ["concrete"]})
+    assert r.rcs_scale_dB == (-12.0, 3.0)  # lists accepted, stored as pairs
+    assert r.materials["floor"] == ("concrete",) and r.materials["ceiling"] == DEFAULT_MATERIALS["ceiling"]
+    text = yaml.safe_dump(r.to_dict())
+    assert TwinRandomization.from_dict(yaml.safe_load(text)) == r
+    assert TwinRandomization.from_dict({}) == TwinRandomization()
+    with pytest.raises(ConfigError, match="rcs_scale_db"):
+        TwinRandomization.from_dict({"rcs_scale_db": [0, 1]})
+    for bad in ({"width_m": [3, 2]}, {"room_variants": 0}, {"enabled": "yes"}, {"gain": 1},
+                {"materials": {"floor": ["unobtainium"]}}, {"materials": {"roof": ["wood"]}},
+                {"noise_figure_offset_dB": [0, math.inf]}, {"length_m": 5.0}):
+        with pytest.raises(ConfigError):
+            TwinRandomization.from_dict(bad)
+    defaults = TwinRandomization()
+    lo, hi = defaults.rcs_scale_dB
+    assert lo <= -10 and hi >= 10  # covers +-10 dB around the twin's own walker
+
+
+def test_scene_and_receiver_are_checked() -> None:
+    from radaraug.scene.geometry import RadarPose
+    from radaraug.scene.room import corridor
+
+    python_room = Scene(room=corridor(10.0), radar=RadarPose.look_at((0.1, 0, 1.2), (5, 0, 1.2)))
+    with pytest.raises(ConfigError, match="corridor"):
+        SimulatedRadarDataset(python_room, length=2, twin_options=FAST, randomization=TwinRandomization(**SMALL))
+    cfg = Scene.builtin("corridor").config
+    no_gain = FMCWReceiver(cfg, effects=[e for e in default_effects(cfg) if e.name != "system_gain"])
+    with pytest.raises(ConfigError, match="system_gain"):
+        SimulatedRadarDataset("corridor", length=2, twin_options={**FAST, "receiver": no_gain},
+                              randomization=TwinRandomization(**SMALL))
+    # Without gain offsets such a receiver is fine.
+    SimulatedRadarDataset("corridor", length=2, twin_options={**FAST, "receiver": no_gain},
+                          randomization=TwinRandomization(system_gain_offset_dB=(0, 0), **SMALL))
+
+
+# ------------------------------------------------------------------------------ draws
+def test_every_drawn_quantity_varies() -> None:
+    r = TwinRandomization()
+    draws = [r.item(0, i, 2) for i in range(200)]
+    rcs = np.array([d.rcs_scale_dB for d in draws])
+    assert rcs.max() - rcs.min() >= 20 and rcs.min() >= -20 and rcs.max() <= 10
+    assert np.ptp([d.system_gain_offset_dB for d in draws]) > 8
+    assert np.ptp([d.noise_figure_offset_dB for d in draws]) > 8
+    assert set(d.variant for d in draws) == set(range(r.room_variants))
+    # The room pool: a pure function of (seed, k), different across seeds and variants.
+    rooms = [r.room(s, k) for s in range(40) for k in range(r.room_variants)]
+    assert r.room(3, 1) == r.room(3, 1) and r.room(3, 1) != r.room(4, 1)
+    for name, (lo, hi) in (("length_m", r.length_m), ("width_m", r.width_m), ("height_m", r.height_m),
+                           ("radar_pitch_deg", r.radar_pitch_deg), ("radar_yaw_deg", r.radar_yaw_deg)):
+        v = np.array([getattr(room, name) for room in rooms])
+        assert v.min() >= lo and v.max() <= hi and np.ptp(v) > 0.6 * (hi - lo), name
+    heights = np.array([room.radar_height_m for room in rooms])
+    assert np.ptp(heights) > 0.8 and all(room.radar_height_m <= room.height_m - 0.15 for room in rooms)
+    for surface, choices in r.materials.items():
+        assert {room.materials[surface] for room in rooms} == set(choices), surface
+
+
+def test_item_params_people_inside_the_drawn_room(dataset) -> None:
+    # Building a walker costs ~0.1 s (its gait's ground offset): 40 items keep this quick.
+    params = [dataset.item_params(i) for i in range(40)]
+    counts = np.bincount([p["count"] for p in params], minlength=3)
+    assert counts.min() >= 8  # 0/1/2 stay balanced (expected ~13 each)
+    people = [(p, q) for p in params for q in p["people"]]
+    r = dataset.randomization
+    for p, q in people:
+        room = p["room"]
+        assert abs(q["lateral_m"]) <= room["width_m"] / 2 - r.wall_margin_m + 1e-9
+        assert q["range_m"] <= room["length_m"] - 0.1 - r.wall_margin_m + 1e-9
+        assert r.rcs_scale_dB[0] <= q["rcs_scale_dB"] <= r.rcs_scale_dB[1]
+    heights = [q["height_m"] for _, q in people]
+    speeds = [q["speed_m_s"] for _, q in people]
+    assert min(heights) < 1.55 and max(heights) > 1.95  # wider than the paper-like sampler
+    assert min(speeds) < 0.6 and max(speeds) > 1.8
+    # Heading jitter beyond the plain sampler's +-5 deg.
+    off_axis = [math.degrees(abs(math.remainder(q["heading_rad"], math.pi))) for _, q in people]
+    assert max(off_axis) > 15
+    gains = [p["system_gain_dB"] for p in params]
+    nfs = [p["noise_figure_dB"] for p in params]
+    assert min(gains) < -4 and max(gains) > 4 and min(nfs) < 8 and max(nfs) > 16
+    assert {p["variant"] for p in params} == {0, 1}
+    # JSON-able, and a pure function of (seed, index).
+    import json
+
+    json.dumps(params[:5])
+    other = SimulatedRadarDataset("corridor", length=60, seed=5, twin_options=FAST,
+                                  randomization=TwinRandomization(**SMALL))
+    assert other.item_params(17) == params[17]
+    assert SimulatedRadarDataset("corridor", length=200, seed=6, twin_options=FAST,
+                                 randomization=TwinRandomization(**SMALL)).item_params(17) != params[17]
+
+
+# ------------------------------------------------------------------------------ reproducibility
+def test_items_reproducible_in_any_order_and_process(dataset) -> None:
+    idx = [0, 1, 2, 3]
+    first = [dataset[i] for i in idx]
+    assert all(x.shape == (3, 64, 256) for x, _ in first)
+    fresh = SimulatedRadarDataset("corridor", length=60, seed=5, twin_options=FAST,
+                                  randomization=TwinRandomization(**SMALL))
+    backwards = {i: fresh[i] for i in reversed(idx)}
+    for i, (x, y) in zip(idx, first):
+        assert torch.equal(backwards[i][0], x) and backwards[i][1] == y
+        assert torch.equal(dataset[i][0], x)
+    assert not torch.equal(first[0][0], first[1][0])
+    # A DataLoader worker gets the traced rooms with the pickled dataset and traces nothing.
+    copy = pickle.loads(pickle.dumps(dataset))
+    assert sorted(copy._variant_static) == [0, 1] and not copy._variant_twins
+    assert torch.equal(copy[2][0], first[2][0])
+    # Windows of frames and ADC codes work the same way.
+    win = SimulatedRadarDataset("corridor", length=60, seed=5, twin_options=FAST, frames_per_item=2,
+                                as_counts=True, randomization=TwinRandomization(**SMALL))
+    win._variant_static = copy._variant_static
+    x, y = win[2]
+    assert x.shape == (2, 3, 64, 256) and x.dtype == torch.uint16 and y == first[2][1]
+
+
+def test_off_is_the_plain_twin() -> None:
+    plain = SimulatedRadarDataset("corridor", length=4, seed=2, twin_options=FAST)
+    items = {i: plain[i] for i in (0, 3)}
+    for r in (TwinRandomization.off(), {"enabled": False}):
+        off = SimulatedRadarDataset("corridor", length=4, seed=2, twin_options=FAST, randomization=r)
+        assert not off.randomized
+        off._twin, off._static_signal = None, plain.twin.static_signal()  # skip a second room trace
+        for i, (x, y) in items.items():
+            assert torch.equal(off[i][0], x) and off[i][1] == y
+        assert off.item_params(1) == plain.item_params(1)
+    assert "variant" not in plain.item_params(1)
+
+
+# ------------------------------------------------------------------------------ physics
+@pytest.fixture(scope="module")
+def ideal_twin() -> DigitalTwin:
+    scene = Scene.builtin("corridor")
+    return DigitalTwin(scene, receiver=FMCWReceiver(scene.config, effects=[]), **FAST)
+
+
+def test_rcs_scale_gives_the_same_db_on_the_person_rd_peak(ideal_twin) -> None:
+    """+6 dB RCS -> +6 dB on the walker's RD peak (ideal receiver: linear, no noise)."""
+    from radaraug.transforms import RangeDoppler, ToDecibels
+
+    walker = Walker(height_m=1.8, speed_m_s=1.2, start=(6.1, 0.0), heading_rad=0.0)
+    times = ideal_twin.frame_times([0])
+    static = ideal_twin.static_signal()
+
+    def peak(db: float) -> float:
+        x = simulate_item(ideal_twin, [walker], times, ItemDraw(0, 0.0, 0.0, (db,)), None) - static
+        return float(ToDecibels()(RangeDoppler()(x)).amax())
+
+    assert peak(6.0) - peak(0.0) == pytest.approx(6.0, abs=1e-3)
+    assert peak(-14.0) - peak(0.0) == pytest.approx(-14.0, abs=1e-3)
+
+
+def test_rcs_scale_is_per_person_including_wall_multipath(ideal_twin) -> None:
+    """Two people traced together, scaled per person, equal each traced alone and scaled (they do
+    not shadow each other here): the scaling hits every path of the right person."""
+    a = Walker(height_m=1.7, speed_m_s=1.0, start=(3.1, -0.6), heading_rad=0.0)
+    b = Walker(height_m=1.9, speed_m_s=1.5, start=(8.1, 0.6), heading_rad=math.pi)
+    times = ideal_twin.frame_times([0, 1])
+    paths = ideal_twin.paths([a, b], times)
+    assert bool((paths.kind == 1).any())  # wall multipath is present
+    static = ideal_twin.static_signal()
+
+    def sim(people, rcs):
+        return simulate_item(ideal_twin, people, times, ItemDraw(0, 0.0, 0.0, rcs), None) - static
+
+    both = sim([a, b], (6.0, -10.0))
+    alone = 10 ** (6 / 20) * sim([a], (0.0,)) + 10 ** (-10 / 20) * sim([b], (0.0,))
+    assert torch.allclose(both, alone, rtol=1e-4, atol=1e-5 * float(alone.abs().max()))
+    # 0 dB is exactly the unrandomized twin.
+    plain = ideal_twin.simulate([a, b], times)
+    assert torch.equal(sim([a, b], (0.0, 0.0)) + static, plain)
+    assert isinstance(paths, Paths)
+
+
+def test_gain_offset_scales_room_people_and_noise_alike() -> None:
+    """An item at +g dB equals the item at 0 dB times 10**(g/20) (same noise draws), and equals an
+    independent reference that traces the room with the people through a receiver set to +g."""
+    scene = Scene.builtin("corridor")
+    g = 4.5
+    base = dict(length=8, seed=1, twin_options={**FAST, "receiver": FMCWReceiver(
+        scene.config, effects=_linear_chain(scene.config, noise=True))})
+    r0 = TwinRandomization(system_gain_offset_dB=(0, 0), room_variants=1)
+    rg = TwinRandomization(system_gain_offset_dB=(g, g), room_variants=1)
+    ds0 = SimulatedRadarDataset(scene, randomization=r0, **base)
+    dsg = SimulatedRadarDataset(scene, randomization=rg, **base)
+    dsg._variant_static = {0: ds0.prepare().variant_twin(0).static_signal()}  # one room trace
+    i = next(i for i in range(8) if ds0.item_params(i)["count"] > 0)
+    assert ds0.item_params(i)["people"] == dsg.item_params(i)["people"]
+    x0, xg = ds0[i][0], dsg[i][0]
+    assert torch.allclose(xg, 10 ** (g / 20) * x0, rtol=1e-5, atol=1e-6 * float(xg.abs().max()))
+    # The shared receiver and the cached room are untouched by the item's gain.
+    rx = dsg.variant_twin(0).receiver
+    assert float(rx.effect("system_gain").gain_dB) == 0.0
+    assert torch.equal(dsg.variant_twin(0).static_signal(), ds0.variant_twin(0).static_signal())
+
+    # Independent reference, noise off: room and people traced together, receiver at +g dB.
+    quiet = {**FAST, "receiver": FMCWReceiver(scene.config, effects=_linear_chain(scene.config, noise=False))}
+    dsq = SimulatedRadarDataset(scene, length=8, seed=1, twin_options=quiet, randomization=rg)
+    twin = dsq.variant_twin(0)
+    params = dsq.item_params(i)
+    got = dsq[i][0]
+    effects = _linear_chain(scene.config, noise=False)
+    effects = [e if e.name != "system_gain" else type(e)(gain_dB=g) for e in effects]
+    ref_rx = FMCWReceiver(scene.config, effects=effects)
+    draw = dsq.randomization.item(dsq.seed, i, params["count"])
+    from radaraug.sim.randomization import people_paths
+
+    times = twin.frame_times([0])
+    people = people_paths(twin, dsq.scenario(i).people, times, draw.rcs_scale_dB)
+    room = twin.tracer.static_paths().map(lambda t: t.expand(1, *t.shape))
+    ref = ref_rx(Paths.cat([room, people]), frame_start_s=times)[0]
+    assert torch.allclose(got, ref, rtol=1e-4, atol=1e-5 * float(ref.abs().max()))
+
+
+def test_variant_pose_keeps_the_mounting_and_applies_tilt() -> None:
+    r = TwinRandomization(radar_pitch_deg=(7, 7), radar_yaw_deg=(-3, -3), room_variants=1)
+    for mounting in ("landscape", "portrait"):
+        data = Scene.builtin("corridor").to_dict()
+        data["radar"] = {"position": [0.1, 0.0, 1.2], "look_at": [10.0, 0.0, 1.2], "mounting": mounting}
+        base = Scene.from_dict(data)
+        room = r.room(0, 0)
+        rot = room.scene(base).radar.rotation
+        b = rot[:, 2]
+        assert math.degrees(math.asin(float(b[2]))) == pytest.approx(7.0, abs=1e-6)
+        assert math.degrees(math.atan2(float(b[1]), float(b[0]))) == pytest.approx(-3.0, abs=1e-6)
+        # The sensor's own x axis stays horizontal (landscape) or in the vertical plane (portrait).
+        x_axis_z = float(rot[2, 0])
+        assert (abs(x_axis_z) < 1e-9) if mounting == "landscape" else (abs(x_axis_z) > 0.99)
+        level = TwinRandomization(radar_pitch_deg=(0, 0), radar_yaw_deg=(0, 0), room_variants=1).room(0, 0)
+        assert torch.allclose(level.scene(base).radar.rotation, base.radar.rotation, atol=1e-12)
+        assert float(room.scene(base).radar.position[2]) == pytest.approx(room.radar_height_m)
