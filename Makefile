@@ -17,7 +17,7 @@ $(STAMP): pyproject.toml
 	touch $(STAMP)
 
 demo: $(STAMP)
-	$(VENV)/bin/radaraug demo -o demo_out
+	$(VENV)/bin/radaraug reproduce --quick -o demo_out
 
 test: $(STAMP)
 	$(PY) -m pytest -q
@@ -31,6 +31,7 @@ lint: $(STAMP)
 bench: $(STAMP)
 	$(VENV)/bin/radaraug bench transforms --out benchmarks/transforms_cpu.json
 	$(VENV)/bin/radaraug bench twin --out benchmarks/twin_cpu.json
+	$(VENV)/bin/radaraug bench training --out benchmarks/training_cpu.json
 
 clean:
 	rm -rf $(VENV) demo_out build *.egg-info

@@ -9,8 +9,9 @@
   people count for the whole file or per-frame ``count`` labels from the file; without any,
   the held-out proxy (:mod:`radaraug.sim.proxy`) is generated and used, and so is its
   empty-room capture for CDR.
-* the chain (:mod:`radaraug.training.chain`): per-RX dB maps arrive on the device; in training
-  the run's DR is applied there, per sample, from its own seeded generator; then RX combination,
+* the chain (:mod:`radaraug.training.chain`): per-RX dB maps arrive on the device; on the
+  simulated splits (train and val) the run's DR is applied there, per sample, from its own seeded
+  generator (captures never get DR); then RX combination,
   clip to ``[vmin, vmax]``, normalize, viridis and resize, for every split.
 """
 
@@ -270,7 +271,9 @@ class RadarDataModule(L.LightningDataModule):
         if self.image is None:
             raise ConfigError("RadarDataModule.setup() has not run")
         trainer = self.trainer
-        if self.dr is not None and trainer is not None and trainer.training:
+        # Simulated splits (train and held-out val) go through the run's DR; captures never do.
+        if self.dr is not None and trainer is not None and (trainer.training or trainer.validating
+                                                            or trainer.sanity_checking):
             x = self.dr.to(x.device).train()(x)
         return self.image.to(x.device)(x), y
 

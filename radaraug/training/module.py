@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from collections import deque
 from typing import Any
 
 import lightning as L
@@ -27,6 +28,11 @@ class RDClassifier(L.LightningModule):
         weight_decay: AdamW weight decay.
         balance_classes: weight the loss by inverse class frequency of the training set (the
             simulated set has 1/3 empty items: occupancy would otherwise lean to "occupied").
+        precise_bn_batches: before each evaluation, recompute the BatchNorm statistics from the
+            last this-many training batches with the final weights (0: off). Why: with a few
+            hundred steps the running averages lag the fast-moving weights; measured on the quick
+            counting run, eval-mode accuracy was 0.29-0.35 on both the training and the validation
+            set while train-mode (batch statistics) accuracy was 0.99 / 0.94.
         out_dir: where test metrics are written.
     """
 
@@ -36,6 +42,7 @@ class RDClassifier(L.LightningModule):
         lr: float = 1e-3,
         weight_decay: float = 1e-4,
         balance_classes: bool = True,
+        precise_bn_batches: int = 8,
         out_dir: str | None = None,
     ) -> None:
         super().__init__()
@@ -46,6 +53,8 @@ class RDClassifier(L.LightningModule):
         self.net = torchvision.models.resnet18(weights=None, num_classes=k)
         self.register_buffer("class_weights", torch.ones(k), persistent=False)
         self._cm: dict[str, torch.Tensor] = {}
+        self._recent: deque[torch.Tensor] = deque(maxlen=max(int(precise_bn_batches), 1))
+        self._bn_stale = False
         self.last_test_report: dict[str, Any] | None = None
 
     def forward(self, x: torch.Tensor) -> torch.Tensor:
@@ -62,10 +71,42 @@ class RDClassifier(L.LightningModule):
 
     def training_step(self, batch: Any, batch_idx: int) -> torch.Tensor:
         x, y = batch
+        if self.hparams.precise_bn_batches > 0:
+            self._recent.append(x.detach())
+            self._bn_stale = True
         logits = self(x)
         loss = F.cross_entropy(logits, y, weight=self.class_weights.to(logits.dtype))
         self.log("train/loss", loss, prog_bar=True, batch_size=y.shape[0])
         return loss
+
+    @torch.no_grad()
+    def recompute_bn_stats(self) -> None:
+        """Precise BatchNorm: running mean/var = exact averages over the recent training batches."""
+        if not self._bn_stale or not self._recent:
+            return
+        bns = [m for m in self.net.modules() if isinstance(m, torch.nn.modules.batchnorm._BatchNorm)]
+        was_training = self.net.training
+        momenta = [m.momentum for m in bns]
+        for m in bns:
+            m.reset_running_stats()
+            m.momentum = None  # cumulative average over the batches below
+        self.net.train()
+        for x in self._recent:
+            self.net(x)
+        for m, mom in zip(bns, momenta):
+            m.momentum = mom
+        if self.trainer is not None and self.trainer.world_size > 1:
+            for m in bns:  # one set of statistics for every rank
+                m.running_mean.copy_(self.trainer.strategy.reduce(m.running_mean, reduce_op="mean"))
+                m.running_var.copy_(self.trainer.strategy.reduce(m.running_var, reduce_op="mean"))
+        self.net.train(was_training)
+        self._bn_stale = False
+
+    def on_validation_epoch_start(self) -> None:
+        self.recompute_bn_stats()
+
+    def on_train_end(self) -> None:
+        self.recompute_bn_stats()
 
     def _eval_step(self, batch: Any, split: str) -> None:
         x, y = batch

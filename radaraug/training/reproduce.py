@@ -96,9 +96,9 @@ def _run_one(task: str, method: str, seed: int, *, settings: ReproduceSettings, 
         warnings.filterwarnings("ignore", message=".*does not have many workers.*")
         trainer.fit(model, datamodule=dm)
         fit_s = time.perf_counter() - t0
+        val_bacc = trainer.callback_metrics.get("val/balanced_accuracy")  # test() resets the metrics
         trainer.test(model, datamodule=dm, verbose=False)
     report = dict(model.last_test_report or {})
-    val_bacc = trainer.callback_metrics.get("val/balanced_accuracy")
     report.update({"task": task, "method": method, "seed": seed, "fit_seconds": fit_s,
                    "clip_range_db": list(dm.clip), "val_balanced_accuracy": None if val_bacc is None else float(val_bacc)})
     (run_dir / "run.json").write_text(json.dumps(report, indent=2))
