@@ -113,6 +113,7 @@ def build_map_cache(
     if path.is_file():
         return path
     cache_dir.mkdir(parents=True, exist_ok=True)
+    _remove_dead_partials(path)
     sim = _RawItems(dataset)
     if num_workers > 0:
         dataset.prepare()
@@ -149,6 +150,18 @@ def build_map_cache(
         if partial.exists():
             partial.unlink()
     return path
+
+
+def _remove_dead_partials(path: Path) -> None:
+    """Delete temporary files of this cache left by killed processes (SIGKILL skips cleanup)."""
+    for p in path.parent.glob(f"{path.stem}.partial-*.h5"):
+        try:
+            pid = int(p.name.rsplit("-", 1)[1].split(".")[0])
+            os.kill(pid, 0)
+        except (ValueError, IndexError, ProcessLookupError):
+            p.unlink(missing_ok=True)
+        except PermissionError:  # alive, another user's process
+            pass
 
 
 class _RawItems(Dataset):

@@ -84,3 +84,45 @@ def test_not_a_cache_is_a_clear_error(tmp_path):
         CachedMaps(p)
     with pytest.raises(CaptureError, match="cannot read"):
         CachedMaps(tmp_path / "missing.h5")
+
+
+def test_sigkill_during_build_leaves_no_trusted_file(tmp_path):
+    """A separate process killed with SIGKILL mid-build: no cache file, and the next build is whole."""
+    import os
+    import signal
+    import subprocess
+    import sys
+    import time
+    from pathlib import Path
+
+    script = (
+        "import sys; sys.path.insert(0, %r)\n"
+        "from data import small_config\n"
+        "from radaraug.sim.dataset import SimulatedRadarDataset\n"
+        "from radaraug.training.cache import build_map_cache\n"
+        "ds = SimulatedRadarDataset('corridor', length=4000, seed=0, config=small_config(),"
+        " twin_options={'tracer_options': {'rays': 16}})\n"
+        "build_map_cache(ds, range(4000), %r, progress=False, batch_size=2)\n"
+    ) % (str(Path(__file__).parent), str(tmp_path))
+    proc = subprocess.Popen([sys.executable, "-c", script])
+    try:
+        deadline = time.time() + 120
+        while not list(tmp_path.glob("*.partial-*.h5")) and time.time() < deadline:
+            time.sleep(0.2)
+        time.sleep(1.0)  # let it write some items
+        assert proc.poll() is None, "the build finished before it could be killed"
+    finally:
+        os.kill(proc.pid, signal.SIGKILL)
+        proc.wait()
+    assert [p.name for p in tmp_path.glob("sim-*.h5") if "partial" not in p.name] == []
+    from radaraug.training.cache import _remove_dead_partials
+
+    big = SimulatedRadarDataset("corridor", length=4000, seed=0, config=small_config(), twin_options=TWIN)
+    dead = tmp_path / f"sim-{cache_key(cache_spec(big, range(4000)))}.h5"
+    assert len(list(tmp_path.glob(f"{dead.stem}.partial-*.h5"))) == 1
+    _remove_dead_partials(dead)  # what the next build of that key does first
+    assert list(tmp_path.glob("*.partial-*.h5")) == []
+    # the next build (here a smaller one of another key) cleans the dead partial of its own key only
+    ds = _ds()
+    path = build_map_cache(ds, range(2), tmp_path, progress=False)
+    assert len(CachedMaps(path)) == 2
