@@ -321,6 +321,39 @@ def load_mesh(
     )
 
 
+def box(
+    lo: Sequence[float], hi: Sequence[float], material: str | Material, *, max_edge_m: float = 0.5,
+) -> SceneGeometry:
+    """An axis-aligned box (a cabinet, a pillar, a bench) from corner ``lo`` to corner ``hi``.
+
+    Outward normals, faces split into triangles no longer than ``max_edge_m`` (like
+    :func:`corridor`, so physical-optics facets stay small). Merge it into a room with
+    :func:`merge`.
+
+    Raises:
+        SceneError: a corner that is not 3 finite numbers, ``hi <= lo`` on an axis, or an unknown
+            material.
+    """
+    import trimesh
+
+    lo_a, hi_a = np.asarray(lo, dtype=np.float64), np.asarray(hi, dtype=np.float64)
+    if lo_a.shape != (3,) or hi_a.shape != (3,) or not (np.isfinite(lo_a).all() and np.isfinite(hi_a).all()):
+        raise SceneError(f"box: corners must be 3 finite numbers each, got {list(lo)} and {list(hi)}")
+    if not (hi_a > lo_a).all():
+        raise SceneError(f"box: every coordinate of hi must exceed lo's, got {list(lo)} and {list(hi)}")
+    key = _material_key(material, None, "box")
+    mesh = trimesh.creation.box(extents=hi_a - lo_a,
+                                transform=trimesh.transformations.translation_matrix((lo_a + hi_a) / 2))
+    v, f = trimesh.remesh.subdivide_to_size(mesh.vertices, mesh.faces, max_edge=max_edge_m)
+    return SceneGeometry(
+        vertices=torch.as_tensor(np.asarray(v), dtype=torch.get_default_dtype()),
+        faces=torch.as_tensor(np.asarray(f), dtype=torch.long),
+        face_material=torch.zeros(len(f), dtype=torch.long),
+        materials=(key,),
+        object_id=torch.zeros(len(f), dtype=torch.long),
+    )
+
+
 def merge(geoms: Sequence[SceneGeometry]) -> SceneGeometry:
     """Union of triangle soups.
 
@@ -378,4 +411,4 @@ def merge(geoms: Sequence[SceneGeometry]) -> SceneGeometry:
     )
 
 
-__all__ = ["CORRIDOR_SURFACES", "PAPER_CORRIDOR_MATERIALS", "corridor", "load_mesh", "merge"]
+__all__ = ["CORRIDOR_SURFACES", "PAPER_CORRIDOR_MATERIALS", "box", "corridor", "load_mesh", "merge"]

@@ -222,6 +222,8 @@ class SimulatedRadarDataset(Dataset):
             system_gain_offset_dB=draw.system_gain_offset_dB, noise_figure_offset_dB=draw.noise_figure_offset_dB,
             system_gain_dB=None if gain is None else gain + draw.system_gain_offset_dB,
             noise_figure_dB=None if nf is None else nf + draw.noise_figure_offset_dB,
+            static_scatterers=[dict(zip(("range_m", "azimuth_deg", "elevation_deg", "rcs_dBsm"), s))
+                               for s in draw.scatterers],
         )
         return out
 

@@ -63,7 +63,7 @@ from radaraug.config import RadarConfig
 from radaraug.errors import ConfigError
 from radaraug.scene.geometry import RadarPose, SceneGeometry
 from radaraug.scene.materials import MATERIALS, Material, register_material
-from radaraug.scene.room import corridor, merge
+from radaraug.scene.room import box, corridor, merge
 from radaraug.scene.scene import Scene
 from radaraug.sensor.effects import (
     ADCClipping,
@@ -157,32 +157,13 @@ def _register_body_material() -> None:
         raise ConfigError(f"material {BODY_MATERIAL.name!r} is registered with other values")
 
 
-def _box(lo: tuple[float, float, float], hi: tuple[float, float, float], material: str,
-         max_edge_m: float) -> SceneGeometry:
-    """An axis-aligned box (outward normals), split into triangles no longer than ``max_edge_m``."""
-    import trimesh
-
-    lo_a, hi_a = np.asarray(lo, dtype=np.float64), np.asarray(hi, dtype=np.float64)
-    box = trimesh.creation.box(extents=hi_a - lo_a, transform=trimesh.transformations.translation_matrix(
-        (lo_a + hi_a) / 2))
-    v, f = trimesh.remesh.subdivide_to_size(box.vertices, box.faces, max_edge=max_edge_m)
-    dtype = torch.get_default_dtype()
-    return SceneGeometry(
-        vertices=torch.as_tensor(np.asarray(v), dtype=dtype),
-        faces=torch.as_tensor(np.asarray(f), dtype=torch.long),
-        face_material=torch.zeros(len(f), dtype=torch.long),
-        materials=(material,),
-        object_id=torch.zeros(len(f), dtype=torch.long),
-    )
-
-
 def proxy_room(max_edge_m: float = 0.5) -> SceneGeometry:
     """The proxy room: the corridor of :data:`ROOM_SIZE_M` / :data:`ROOM_MATERIALS` plus the
     :data:`CLUTTER` boxes, merged (object id 0 = walls, 1.. = the objects)."""
     length, width, height = ROOM_SIZE_M
     walls = corridor(length, width, height, materials=ROOM_MATERIALS, thickness_m=ROOM_THICKNESS_M,
                      max_edge_m=max_edge_m)
-    objects = [_box(c["min"], c["max"], c["material"], max_edge_m) for c in CLUTTER]
+    objects = [box(c["min"], c["max"], c["material"], max_edge_m=max_edge_m) for c in CLUTTER]
     return merge([walls, *objects])
 
 

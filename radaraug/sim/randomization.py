@@ -37,7 +37,7 @@ import torch
 from radaraug.config import RadarConfig
 from radaraug.errors import ConfigError, SceneError
 from radaraug.scene.materials import get_material
-from radaraug.scene.room import CORRIDOR_SURFACES
+from radaraug.scene.room import CORRIDOR_SURFACES, box, merge
 from radaraug.scene.scene import Scene, _yaw_pitch_roll
 from radaraug.sensor.effects import SystemGain, ThermalNoise
 from radaraug.sensor.paths import Paths
@@ -50,6 +50,11 @@ ITEM_STREAM = 3
 """Generator stream of the per-item draws (room variant, gain, noise figure, RCS per person)."""
 ROOM_STREAM = 4
 """Generator stream of the room pool (``index`` = variant number)."""
+SCATTERER_STREAM = 5
+"""Generator stream of the per-item static scatterers."""
+SCATTERER_ANTENNA_GAIN_DBI = 6.0
+"""Antenna gain (TX and RX) applied to the static scatterers: the patch antenna's peak (their
+azimuth is drawn within +-45 deg, where the pattern loses a few dB, small next to the RCS range)."""
 
 RADAR_CEILING_MARGIN_M = 0.15
 """The radar's drawn height is clipped to at most the drawn room height minus this."""
@@ -65,11 +70,24 @@ DEFAULT_MATERIALS: dict[str, tuple[str, ...]] = {
 }
 """Default material choices per corridor surface (drawn uniformly and independently)."""
 
+DEFAULT_CLUTTER_MATERIALS: tuple[str, ...] = ("metal", "wood", "chipboard", "concrete", "glass", "plasterboard")
+"""Materials of clutter objects (cabinets, shelves, benches, bins, radiators, glass cases)."""
+CLUTTER_LENGTH_M = (0.3, 1.5)
+"""Clutter object size along the wall it stands against."""
+CLUTTER_DEPTH_M = (0.25, 0.7)
+"""Clutter object depth out of the wall."""
+CLUTTER_HEIGHT_M = (0.4, 2.0)
+"""Clutter object height (bin to tall cabinet)."""
+CLUTTER_START_M = 1.0
+"""Clutter stands at least this far along the corridor from its near end (the radar's side)."""
+
 _RANGE_FIELDS = (
     "rcs_scale_dB", "length_m", "width_m", "height_m", "radar_height_m", "radar_pitch_deg", "radar_yaw_deg",
     "person_height_m", "speed_m_s", "range_m", "system_gain_offset_dB", "noise_figure_offset_dB",
+    "static_scatterer_range_m", "static_scatterer_rcs_dBsm", "static_scatterer_azimuth_deg",
 )
-_POSITIVE_RANGES = ("length_m", "width_m", "height_m", "radar_height_m", "person_height_m", "speed_m_s", "range_m")
+_POSITIVE_RANGES = ("length_m", "width_m", "height_m", "radar_height_m", "person_height_m", "speed_m_s", "range_m",
+                    "static_scatterer_range_m")
 
 
 def _materials_default() -> dict[str, tuple[str, ...]]:
@@ -118,11 +136,29 @@ class TwinRandomization:
             gain a calibration leaves uncertain (unit to unit, temperature, the IF gain law).
         noise_figure_offset_dB: added to the receiver's ``thermal_noise`` noise figure (-6, +6);
             around the default 12 dB this is the 6-18 dB the field notes found to help.
+        clutter_objects: number of clutter objects per room variant, ``[lo, hi]`` inclusive
+            (default 0-6). Real rooms hold furniture: boxes of :data:`CLUTTER_LENGTH_M` x
+            :data:`CLUTTER_DEPTH_M` x :data:`CLUTTER_HEIGHT_M` standing against a side wall at
+            least :data:`CLUTTER_START_M` along the corridor. Why: in a twin whose rooms are
+            empty boxes, a strong return between the radar and the end wall only ever comes from a
+            person, and a classifier learns "zero-Doppler blob at mid range = person".
+        clutter_materials: materials drawn (uniformly) for each clutter object.
+        static_scatterers: number of extra static point scatterers per *item*, ``[lo, hi]``
+            inclusive (default 0-8): furniture, door frames, radiators and pipes the room pool
+            does not hold, redrawn for every item at no ray-tracing cost. They are passed to the
+            receiver with the people, so the strongest get the receiver's phase noise (a skirt
+            around strong clutter, as real sensors show). Their zero-Doppler lines at random
+            ranges keep "a static return at mid range" from meaning "a person".
+        static_scatterer_range_m: range of a static scatterer from the radar (0.5, 20).
+        static_scatterer_rcs_dBsm: its RCS in dBsm (-20, +10): a chair leg to a metal cabinet
+            face seen square on.
+        static_scatterer_azimuth_deg: its azimuth off boresight (-45, +45); the elevation is
+            drawn in (-20, +20) deg.
     """
 
     enabled: bool = True
     rcs_scale_dB: tuple[float, float] = (-20.0, 10.0)
-    room_variants: int = 4
+    room_variants: int = 8
     length_m: tuple[float, float] = (8.0, 25.0)
     width_m: tuple[float, float] = (1.5, 3.5)
     height_m: tuple[float, float] = (2.4, 3.5)
@@ -137,6 +173,12 @@ class TwinRandomization:
     wall_margin_m: float = 0.35
     system_gain_offset_dB: tuple[float, float] = (-6.0, 6.0)
     noise_figure_offset_dB: tuple[float, float] = (-6.0, 6.0)
+    clutter_objects: tuple[int, int] = (0, 6)
+    clutter_materials: tuple[str, ...] = DEFAULT_CLUTTER_MATERIALS
+    static_scatterers: tuple[int, int] = (0, 8)
+    static_scatterer_range_m: tuple[float, float] = (0.5, 20.0)
+    static_scatterer_rcs_dBsm: tuple[float, float] = (-20.0, 10.0)
+    static_scatterer_azimuth_deg: tuple[float, float] = (-45.0, 45.0)
 
     def __post_init__(self) -> None:
         # Normalise YAML-ish input (lists, ints) and fail early, naming the field.
@@ -149,6 +191,9 @@ class TwinRandomization:
         for name in ("heading_jitter_deg", "wall_margin_m"):
             setattr(self, name, _number(getattr(self, name), name, minimum=0.0))
         self.materials = _materials(self.materials)
+        self.clutter_objects = _count_pair(self.clutter_objects, "clutter_objects")
+        self.static_scatterers = _count_pair(self.static_scatterers, "static_scatterers")
+        self.clutter_materials = _material_list(self.clutter_materials, "clutter_materials")
 
     @classmethod
     def off(cls) -> TwinRandomization:
@@ -198,7 +243,19 @@ class TwinRandomization:
         radar_height = min(_uniform(self.radar_height_m, g), height - RADAR_CEILING_MARGIN_M)
         pitch = _uniform(self.radar_pitch_deg, g)
         yaw = _uniform(self.radar_yaw_deg, g)
-        return RoomDraw(k, length, width, height, mats, radar_height, pitch, yaw)
+        lo_n, hi_n = self.clutter_objects
+        clutter = []
+        for _ in range(int(torch.randint(lo_n, hi_n + 1, (), generator=g))):
+            along = _uniform(CLUTTER_LENGTH_M, g)
+            depth = min(_uniform(CLUTTER_DEPTH_M, g), width / 3)
+            tall = min(_uniform(CLUTTER_HEIGHT_M, g), height - 0.1)
+            x0 = _uniform((CLUTTER_START_M, max(CLUTTER_START_M, length - 0.2 - along)), g)
+            side = 1.0 if bool(torch.rand((), generator=g) < 0.5) else -1.0
+            mat = self.clutter_materials[int(torch.randint(len(self.clutter_materials), (), generator=g))]
+            y_wall, y_in = side * width / 2, side * (width / 2 - depth)
+            clutter.append({"min": [x0, min(y_wall, y_in), 0.0], "max": [x0 + along, max(y_wall, y_in), tall],
+                            "material": mat})
+        return RoomDraw(k, length, width, height, mats, radar_height, pitch, yaw, tuple(clutter))
 
     def variant_of(self, seed: int, index: int) -> int:
         """Which room variant item ``index`` uses (the first draw of its stream)."""
@@ -215,7 +272,15 @@ class TwinRandomization:
         gain = _uniform(self.system_gain_offset_dB, g)
         nf = _uniform(self.noise_figure_offset_dB, g)
         rcs = tuple(_uniform(self.rcs_scale_dB, g) for _ in range(num_people))
-        return ItemDraw(variant, gain, nf, rcs)
+        # Own stream: the scatterers do not depend on the number of people (or vice versa).
+        gs = item_generator(seed, index, stream=SCATTERER_STREAM)
+        lo_n, hi_n = self.static_scatterers
+        scatterers = tuple(
+            (_uniform(self.static_scatterer_range_m, gs), _uniform(self.static_scatterer_azimuth_deg, gs),
+             _uniform((-20.0, 20.0), gs), _uniform(self.static_scatterer_rcs_dBsm, gs))
+            for _ in range(int(torch.randint(lo_n, hi_n + 1, (), generator=gs)))
+        )
+        return ItemDraw(variant, gain, nf, rcs, scatterers)
 
     def sampler(self, base: ScenarioSampler, room: RoomDraw, radar_x_m: float) -> ScenarioSampler:
         """``base`` (counts and their weights, toward/away, speed spacing kept) with this
@@ -240,6 +305,8 @@ class RoomDraw:
         materials: P.2040 material name per corridor surface.
         radar_height_m: radar height above the floor.
         radar_pitch_deg, radar_yaw_deg: added to the base scene's pose.
+        clutter: boxes standing in the room, each ``{"min": [x, y, z], "max": [x, y, z],
+            "material": name}`` in the corridor's frame.
     """
 
     index: int
@@ -250,10 +317,11 @@ class RoomDraw:
     radar_height_m: float
     radar_pitch_deg: float
     radar_yaw_deg: float
+    clutter: tuple[dict[str, Any], ...] = ()
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-able description."""
-        return {**dataclasses.asdict(self), "materials": dict(self.materials)}
+        return {**dataclasses.asdict(self), "materials": dict(self.materials), "clutter": [dict(c) for c in self.clutter]}
 
     def scene(self, base: Scene, config: RadarConfig | None = None) -> Scene:
         """This room as a :class:`Scene`: ``base``'s radar (x, y position, pose and mounting,
@@ -282,6 +350,11 @@ class RoomDraw:
         except SceneError as err:
             raise ConfigError(f"room variant {self.index}: {err}") from None
         scene.config = config or base.config
+        if self.clutter:
+            max_edge = float(spec.get("max_edge", 0.5))
+            scene.room = merge([scene.room, *(box(c["min"], c["max"], c["material"], max_edge_m=max_edge)
+                                              for c in self.clutter)])
+            scene.room_spec = None  # no longer a plain corridor: written inline by Scene.to_dict
         return scene
 
     def _rotation(self, base: Scene) -> torch.Tensor:
@@ -301,12 +374,14 @@ class RoomDraw:
 
 @dataclass(frozen=True)
 class ItemDraw:
-    """The per-item draws: room variant, receiver offsets and each person's RCS scale."""
+    """The per-item draws: room variant, receiver offsets, each person's RCS scale and the static
+    scatterers ``(range_m, azimuth_deg, elevation_deg, rcs_dBsm)``."""
 
     variant: int
     system_gain_offset_dB: float
     noise_figure_offset_dB: float
     rcs_scale_dB: tuple[float, ...]
+    scatterers: tuple[tuple[float, float, float, float], ...] = ()
 
 
 # ---------------------------------------------------------------------------- simulation
@@ -387,6 +462,24 @@ def item_receiver(receiver: FMCWReceiver, system_gain_offset_dB: float, noise_fi
                         taylor_tol=receiver.taylor_tol)
 
 
+def static_scatterer_paths(config: RadarConfig, scatterers: Sequence[tuple[float, float, float, float]],
+                           like: Paths) -> Paths:
+    """Paths of static point scatterers ``(range_m, azimuth_deg, elevation_deg, rcs_dBsm)`` in the
+    radar's frame (x right, y up, z boresight), batched like ``like`` ``(..., P, RX)``."""
+    from radaraug.sensor.point_target import point_target_paths
+
+    dt, dev = like.delay_s.dtype, like.delay_s.device
+    sc = torch.tensor(scatterers, dtype=torch.float64)
+    r, az, el = sc[:, 0], torch.deg2rad(sc[:, 1]), torch.deg2rad(sc[:, 2])
+    pos = torch.stack([r * torch.sin(az) * torch.cos(el), r * torch.sin(el), r * torch.cos(az) * torch.cos(el)], -1)
+    p = point_target_paths(config, pos, rcs_m2=10 ** (sc[:, 3] / 10), antenna_gain_dBi=SCATTERER_ANTENNA_GAIN_DBI)
+    batch = tuple(like.delay_s.shape[:-2])
+    cdt = like.amplitude.dtype if like.amplitude.is_complex() else None
+    p = Paths(p.delay_s.to(dev, dt), p.delay_rate.to(dev, dt),
+              p.amplitude.to(dev, cdt) if cdt is not None else p.amplitude.to(dev, dt))
+    return p.map(lambda t: t.expand(*batch, *t.shape))
+
+
 @torch.no_grad()
 def simulate_item(twin: DigitalTwin, people: Sequence[Any], times: torch.Tensor, draw: ItemDraw,
                   generator: torch.Generator | None) -> torch.Tensor:
@@ -398,6 +491,8 @@ def simulate_item(twin: DigitalTwin, people: Sequence[Any], times: torch.Tensor,
     through the offset receiver.
     """
     paths = people_paths(twin, people, times, draw.rcs_scale_dB)
+    if draw.scatterers:
+        paths = Paths.cat([paths, static_scatterer_paths(twin.config, draw.scatterers, paths)])
     receiver = item_receiver(twin.receiver, draw.system_gain_offset_dB, draw.noise_figure_offset_dB)
     static = twin.static_signal()
     if draw.system_gain_offset_dB != 0.0:
@@ -425,6 +520,29 @@ def _pair(value: Any, name: str, *, positive: bool = False) -> tuple[float, floa
     return (lo, hi)
 
 
+def _count_pair(value: Any, name: str) -> tuple[int, int]:
+    if isinstance(value, (str, bytes)) or not isinstance(value, Sequence) or len(value) != 2 or any(
+            isinstance(v, bool) or not isinstance(v, int) for v in value):
+        raise ConfigError(f"twin randomization: {name} must be a pair of integers [lo, hi], got {value!r}")
+    lo, hi = int(value[0]), int(value[1])
+    if not 0 <= lo <= hi:
+        raise ConfigError(f"twin randomization: {name} must have 0 <= lo <= hi, got {[lo, hi]}")
+    return (lo, hi)
+
+
+def _material_list(value: Any, name: str) -> tuple[str, ...]:
+    if isinstance(value, str):
+        value = [value]
+    if not isinstance(value, Sequence) or not value:
+        raise ConfigError(f"twin randomization: {name} must be a non-empty list of material names, got {value!r}")
+    for n in value:
+        try:
+            get_material(n)
+        except SceneError as err:
+            raise ConfigError(f"twin randomization: {name}: {err}") from None
+    return tuple(str(n) for n in value)
+
+
 def _materials(value: Any) -> dict[str, tuple[str, ...]]:
     if not isinstance(value, Mapping):
         raise ConfigError(f"twin randomization: materials must be a mapping surface -> list of names, got {value!r}")
@@ -434,17 +552,7 @@ def _materials(value: Any) -> dict[str, tuple[str, ...]]:
                           f"surfaces are {list(CORRIDOR_SURFACES)}")
     out = dict(DEFAULT_MATERIALS)
     for surface, names in value.items():
-        key = f"materials.{surface}"
-        if isinstance(names, str):
-            names = [names]
-        if not isinstance(names, Sequence) or not names:
-            raise ConfigError(f"twin randomization: {key} must be a non-empty list of material names, got {names!r}")
-        for n in names:
-            try:
-                get_material(n)
-            except SceneError as err:
-                raise ConfigError(f"twin randomization: {key}: {err}") from None
-        out[surface] = tuple(str(n) for n in names)
+        out[surface] = _material_list(names, f"materials.{surface}")
     return out
 
 

@@ -256,12 +256,13 @@ def test_gain_offset_scales_room_people_and_noise_alike() -> None:
     effects = [e if e.name != "system_gain" else type(e)(gain_dB=g) for e in effects]
     ref_rx = FMCWReceiver(scene.config, effects=effects)
     draw = dsq.randomization.item(dsq.seed, i, params["count"])
-    from radaraug.sim.randomization import people_paths
+    from radaraug.sim.randomization import people_paths, static_scatterer_paths
 
     times = twin.frame_times([0])
     people = people_paths(twin, dsq.scenario(i).people, times, draw.rcs_scale_dB)
     room = twin.tracer.static_paths().map(lambda t: t.expand(1, *t.shape))
-    ref = ref_rx(Paths.cat([room, people]), frame_start_s=times)[0]
+    extra = [static_scatterer_paths(scene.config, draw.scatterers, people)] if draw.scatterers else []
+    ref = ref_rx(Paths.cat([room, people, *extra]), frame_start_s=times)[0]
     assert torch.allclose(got, ref, rtol=1e-4, atol=1e-5 * float(ref.abs().max()))
 
 
@@ -282,3 +283,51 @@ def test_variant_pose_keeps_the_mounting_and_applies_tilt() -> None:
         level = TwinRandomization(radar_pitch_deg=(0, 0), radar_yaw_deg=(0, 0), room_variants=1).room(0, 0)
         assert torch.allclose(level.scene(base).radar.rotation, base.radar.rotation, atol=1e-12)
         assert float(room.scene(base).radar.position[2]) == pytest.approx(room.radar_height_m)
+
+
+def test_static_scatterer_lands_in_its_range_bin_at_zero_doppler() -> None:
+    """One 0 dBsm scatterer at 6 m on boresight: peak at the 6 m range bin, zero Doppler; the
+    same scatterer at +10 dBsm reads +10 dB (RCS enters the power linearly)."""
+    from radaraug.transforms import RangeDoppler, ToDecibels
+
+    scene = Scene.builtin("corridor")
+    cfg = scene.config
+    twin = DigitalTwin(scene, receiver=FMCWReceiver(cfg, effects=[]), **{"tracer_options": FAST["tracer_options"]})
+    times = twin.frame_times([0])
+    levels = []
+    for rcs in (0.0, 10.0):
+        draw = ItemDraw(0, 0.0, 0.0, (), ((6.0, 0.0, 0.0, rcs),))
+        x = simulate_item(twin, [], times, draw, None)
+        x = x - twin.static_signal()  # the room's part (same in every frame) out
+        db = ToDecibels()(RangeDoppler()(x))[0].amax(0)  # (range, doppler), strongest RX
+        r, d = divmod(int(db.argmax()), db.shape[-1])
+        assert d == cfg.num_chirps_per_frame // 2
+        assert abs(cfg.range_axis_m()[r] - 6.0) <= cfg.range_resolution_m
+        levels.append(float(db.max()))
+    assert levels[1] - levels[0] == pytest.approx(10.0, abs=0.05)
+
+
+def test_scatterers_and_clutter_vary_and_are_reproducible(dataset) -> None:
+    r = dataset.randomization
+    counts = {len(r.item(5, i, 0).scatterers) for i in range(40)}
+    assert min(counts) == 0 and max(counts) >= 6
+    a, b = r.item(5, 3, 2).scatterers, r.item(5, 3, 0).scatterers
+    assert a == b  # independent of the number of people
+    params = dataset.item_params(3)
+    assert len(params["static_scatterers"]) == len(a)
+    rooms = [r.room(5, k) for k in range(r.room_variants)]
+    big = TwinRandomization(room_variants=12)
+    n_obj = [len(big.room(0, k).clutter) for k in range(12)]
+    assert min(n_obj) < max(n_obj) <= 6
+    with_clutter = next(room for room in [big.room(0, k) for k in range(12)] if room.clutter)
+    plain = Scene.builtin("corridor")
+    scene = with_clutter.scene(plain)
+    c = with_clutter.clutter[0]
+    assert c["material"] in scene.room.materials or any(m.startswith(c["material"]) for m in scene.room.materials)
+    assert int(scene.room.object_id.max()) == len(with_clutter.clutter)  # walls 0, one id per object
+    assert with_clutter.to_dict()["clutter"][0]["max"][2] <= with_clutter.height_m
+    assert rooms == [r.room(5, k) for k in range(r.room_variants)]
+    with pytest.raises(ConfigError, match="static_scatterers"):
+        TwinRandomization(static_scatterers=(3, 1))
+    with pytest.raises(ConfigError, match="clutter_materials"):
+        TwinRandomization(clutter_materials=["unobtainium"])
