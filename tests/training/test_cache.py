@@ -96,14 +96,14 @@ def test_sigkill_during_build_leaves_no_trusted_file(tmp_path):
     from pathlib import Path
 
     script = (
-        "import sys; sys.path.insert(0, %r)\n"
+        f"import sys; sys.path.insert(0, {str(Path(__file__).parent)!r})\n"
         "from data import small_config\n"
         "from radaraug.sim.dataset import SimulatedRadarDataset\n"
         "from radaraug.training.cache import build_map_cache\n"
         "ds = SimulatedRadarDataset('corridor', length=4000, seed=0, config=small_config(),"
         " twin_options={'tracer_options': {'rays': 16}})\n"
-        "build_map_cache(ds, range(4000), %r, progress=False, batch_size=2)\n"
-    ) % (str(Path(__file__).parent), str(tmp_path))
+        f"build_map_cache(ds, range(4000), {str(tmp_path)!r}, progress=False, batch_size=2)\n"
+    )
     proc = subprocess.Popen([sys.executable, "-c", script])
     try:
         deadline = time.time() + 120
