@@ -17,6 +17,18 @@ from radaraug.errors import RadarAugError
 from radaraug.units import DB_CONVENTION, counts_to_float
 
 
+def noise_floor_db(db: torch.Tensor) -> float | None:
+    """The RD noise floor of dB maps ``(..., rx, range, doppler)``: the median cell of the far half
+    of range, leaving out zero Doppler +-1 bin (static returns) -- None (JSON null, not the
+    invalid NaN) when there are too few chirps (<= 4) to leave zero Doppler out."""
+    m = db.shape[-1]
+    if m <= 4:
+        return None
+    zero = m // 2
+    off_zero = torch.cat([db[..., :zero - 1], db[..., zero + 2:]], dim=-1)
+    return float(off_zero[..., db.shape[-2] // 2:, :].median())
+
+
 def summarize_capture(reader: Any, *, max_frames: int = 256) -> dict[str, Any]:
     """Summarize a capture opened with :func:`radaraug.io.open_capture`.
 
@@ -55,9 +67,8 @@ def summarize_capture(reader: Any, *, max_frames: int = 256) -> dict[str, Any]:
     # Skip range bin 0 (residual DC after mean removal).
     static_wo_dc = static[:, 1:]
     k = int(static_wo_dc.max(dim=0).values.argmax()) + 1
-    off_zero = torch.cat([db[..., :zero - 1], db[..., zero + 2:]], dim=-1) if m > 4 else db
-    # None (JSON null, not the invalid NaN) when there are too few chirps to leave zero Doppler out.
-    floor = round(off_zero[..., db.shape[-2] // 2:, :].median().item(), 2) if m > 4 else None
+    floor = noise_floor_db(db)
+    floor = None if floor is None else round(floor, 2)
     frac = motion_fraction(db, guard_bins=2)
     motion = None if frac is None else {
         "motion": frac > WARN_FRACTION,

@@ -224,6 +224,7 @@ class SimulatedRadarDataset(Dataset):
             noise_figure_dB=None if nf is None else nf + draw.noise_figure_offset_dB,
             static_scatterers=[dict(zip(("range_m", "azimuth_deg", "elevation_deg", "rcs_dBsm"), s))
                                for s in draw.scatterers],
+            phase_noise_rms_Hz=draw.phase_noise_rms_Hz,
         )
         return out
 
@@ -245,7 +246,7 @@ class SimulatedRadarDataset(Dataset):
             draw = self.randomization.item(self.seed, index, scenario.count)
             twin = self.variant_twin(draw.variant)
             times = twin.frame_times(range(self.frames_per_item))
-            x = simulate_item(twin, scenario.people, times, draw, noise)
+            x = simulate_item(twin, scenario.people, times, draw, noise, self.randomization.phase_noise_paths)
         else:
             twin = self.twin
             times = twin.frame_times(range(self.frames_per_item))

@@ -39,7 +39,7 @@ from radaraug.errors import ConfigError, SceneError
 from radaraug.scene.materials import get_material
 from radaraug.scene.room import CORRIDOR_SURFACES, box, merge
 from radaraug.scene.scene import Scene, _yaw_pitch_roll
-from radaraug.sensor.effects import SystemGain, ThermalNoise
+from radaraug.sensor.effects import PhaseNoise, SystemGain, ThermalNoise
 from radaraug.sensor.paths import Paths
 from radaraug.sensor.receiver import FMCWReceiver
 from radaraug.sim.scenarios import ScenarioSampler, _uniform
@@ -84,7 +84,7 @@ CLUTTER_START_M = 1.0
 _RANGE_FIELDS = (
     "rcs_scale_dB", "length_m", "width_m", "height_m", "radar_height_m", "radar_pitch_deg", "radar_yaw_deg",
     "person_height_m", "speed_m_s", "range_m", "system_gain_offset_dB", "noise_figure_offset_dB",
-    "static_scatterer_range_m", "static_scatterer_rcs_dBsm", "static_scatterer_azimuth_deg",
+    "static_scatterer_range_m", "static_scatterer_rcs_dBsm", "static_scatterer_azimuth_deg", "phase_noise_rms_Hz",
 )
 _POSITIVE_RANGES = ("length_m", "width_m", "height_m", "radar_height_m", "person_height_m", "speed_m_s", "range_m",
                     "static_scatterer_range_m")
@@ -134,8 +134,10 @@ class TwinRandomization:
             (0.35 m: half a shoulder width plus swinging arms).
         system_gain_offset_dB: added to the receiver's ``system_gain`` (-6, +6): the residual
             gain a calibration leaves uncertain (unit to unit, temperature, the IF gain law).
-        noise_figure_offset_dB: added to the receiver's ``thermal_noise`` noise figure (-6, +6);
-            around the default 12 dB this is the 6-18 dB the field notes found to help.
+        noise_figure_offset_dB: added to the receiver's ``thermal_noise`` noise figure (-3, +3),
+            around the calibrated value (the recipes fit it on the empty-room capture,
+            :mod:`radaraug.sim.noise_fit`): the floor a capture shows is known to a few dB, but
+            the gain and noise figure behind it shift with the unit and its temperature.
         clutter_objects: number of clutter objects per room variant, ``[lo, hi]`` inclusive
             (default 0-6). Real rooms hold furniture: boxes of :data:`CLUTTER_LENGTH_M` x
             :data:`CLUTTER_DEPTH_M` x :data:`CLUTTER_HEIGHT_M` standing against a side wall at
@@ -154,6 +156,14 @@ class TwinRandomization:
             face seen square on.
         static_scatterer_azimuth_deg: its azimuth off boresight (-45, +45); the elevation is
             drawn in (-20, +20) deg.
+        phase_noise_rms_Hz: RMS LO frequency noise of the receiver's ``phase_noise`` stage, drawn
+            per item (30 kHz, 400 kHz) around the chain's *assumed* 100 kHz (the BGT60's is not
+            public). Phase noise turns a strong static return into a skirt across Doppler at its
+            range -- a horizontal line, which is what a walking person looks like too -- so a
+            twin that always has the same, weak skirt teaches "a line across Doppler = person".
+        phase_noise_paths: how many of the strongest per-item paths (people, static scatterers,
+            leakage; ranked by amplitude x delay) get the skirt. The room pool's own returns are
+            cached through the linear stages and get none.
     """
 
     enabled: bool = True
@@ -172,13 +182,15 @@ class TwinRandomization:
     heading_jitter_deg: float = 30.0
     wall_margin_m: float = 0.35
     system_gain_offset_dB: tuple[float, float] = (-6.0, 6.0)
-    noise_figure_offset_dB: tuple[float, float] = (-6.0, 6.0)
+    noise_figure_offset_dB: tuple[float, float] = (-3.0, 3.0)
     clutter_objects: tuple[int, int] = (0, 6)
     clutter_materials: tuple[str, ...] = DEFAULT_CLUTTER_MATERIALS
     static_scatterers: tuple[int, int] = (0, 8)
     static_scatterer_range_m: tuple[float, float] = (0.5, 20.0)
     static_scatterer_rcs_dBsm: tuple[float, float] = (-20.0, 10.0)
     static_scatterer_azimuth_deg: tuple[float, float] = (-45.0, 45.0)
+    phase_noise_rms_Hz: tuple[float, float] = (30e3, 400e3)
+    phase_noise_paths: int = 16
 
     def __post_init__(self) -> None:
         # Normalise YAML-ish input (lists, ints) and fail early, naming the field.
@@ -186,6 +198,10 @@ class TwinRandomization:
             raise ConfigError(f"twin randomization: enabled must be true or false, got {self.enabled!r}")
         for name in _RANGE_FIELDS:
             setattr(self, name, _pair(getattr(self, name), name, positive=name in _POSITIVE_RANGES))
+        if isinstance(self.phase_noise_paths, bool) or not isinstance(self.phase_noise_paths, int) or self.phase_noise_paths < 1:
+            raise ConfigError(f"twin randomization: phase_noise_paths must be an integer >= 1, got {self.phase_noise_paths!r}")
+        if self.phase_noise_rms_Hz[0] < 0:
+            raise ConfigError(f"twin randomization: phase_noise_rms_Hz must be >= 0, got {list(self.phase_noise_rms_Hz)}")
         if isinstance(self.room_variants, bool) or not isinstance(self.room_variants, int) or self.room_variants < 1:
             raise ConfigError(f"twin randomization: room_variants must be an integer >= 1, got {self.room_variants!r}")
         for name in ("heading_jitter_deg", "wall_margin_m"):
@@ -280,7 +296,8 @@ class TwinRandomization:
              _uniform((-20.0, 20.0), gs), _uniform(self.static_scatterer_rcs_dBsm, gs))
             for _ in range(int(torch.randint(lo_n, hi_n + 1, (), generator=gs)))
         )
-        return ItemDraw(variant, gain, nf, rcs, scatterers)
+        phase_noise = _uniform(self.phase_noise_rms_Hz, gs)
+        return ItemDraw(variant, gain, nf, rcs, scatterers, phase_noise)
 
     def sampler(self, base: ScenarioSampler, room: RoomDraw, radar_x_m: float) -> ScenarioSampler:
         """``base`` (counts and their weights, toward/away, speed spacing kept) with this
@@ -382,6 +399,7 @@ class ItemDraw:
     noise_figure_offset_dB: float
     rcs_scale_dB: tuple[float, ...]
     scatterers: tuple[tuple[float, float, float, float], ...] = ()
+    phase_noise_rms_Hz: float | None = None
 
 
 # ---------------------------------------------------------------------------- simulation
@@ -441,13 +459,24 @@ def check_receiver(receiver: FMCWReceiver, randomization: TwinRandomization) -> 
     if randomization.noise_figure_offset_dB != (0.0, 0.0) and "thermal_noise" not in names:
         raise ConfigError("twin randomization: the receiver has no thermal_noise stage; add one or set "
                           "noise_figure_offset_dB to [0, 0]")
+    if randomization.phase_noise_rms_Hz != (0.0, 0.0) and "phase_noise" not in names:
+        raise ConfigError("twin randomization: the receiver has no phase_noise stage; add one or set "
+                          "phase_noise_rms_Hz to [0, 0]")
 
 
-def item_receiver(receiver: FMCWReceiver, system_gain_offset_dB: float, noise_figure_offset_dB: float) -> FMCWReceiver:
+def item_receiver(receiver: FMCWReceiver, system_gain_offset_dB: float, noise_figure_offset_dB: float,
+                  phase_noise: tuple[float, int] | None = None) -> FMCWReceiver:
     """A receiver like ``receiver`` with its (first) ``system_gain`` and ``thermal_noise`` stages
-    offset. ``receiver`` is not changed (its other stages are shared, not copied), so nothing
-    leaks from one item to the next, even across threads."""
+    offset, and its ``phase_noise`` stage set to ``(rms_Hz, num_paths)`` when given.
+    ``receiver`` is not changed (its other stages are shared, not copied), so nothing leaks from
+    one item to the next, even across threads."""
     effects = list(receiver.effects)
+    if phase_noise is not None:
+        for i, e in enumerate(effects):
+            if isinstance(e, PhaseNoise):
+                effects[i] = PhaseNoise(freq_noise_rms_Hz=phase_noise[0], corner_Hz=e.corner_Hz,
+                                        num_paths=phase_noise[1])
+                break
     for i, e in enumerate(effects):
         if isinstance(e, SystemGain):
             effects[i] = SystemGain(gain_dB=e.gain_dB + system_gain_offset_dB)
@@ -482,7 +511,7 @@ def static_scatterer_paths(config: RadarConfig, scatterers: Sequence[tuple[float
 
 @torch.no_grad()
 def simulate_item(twin: DigitalTwin, people: Sequence[Any], times: torch.Tensor, draw: ItemDraw,
-                  generator: torch.Generator | None) -> torch.Tensor:
+                  generator: torch.Generator | None, phase_noise_paths: int = 16) -> torch.Tensor:
     """Raw frames ``(T, rx, chirps, samples)`` of one randomized item (one noise generator for the
     block, as :meth:`DigitalTwin.simulate`).
 
@@ -493,7 +522,8 @@ def simulate_item(twin: DigitalTwin, people: Sequence[Any], times: torch.Tensor,
     paths = people_paths(twin, people, times, draw.rcs_scale_dB)
     if draw.scatterers:
         paths = Paths.cat([paths, static_scatterer_paths(twin.config, draw.scatterers, paths)])
-    receiver = item_receiver(twin.receiver, draw.system_gain_offset_dB, draw.noise_figure_offset_dB)
+    pn = None if not draw.phase_noise_rms_Hz else (draw.phase_noise_rms_Hz, phase_noise_paths)
+    receiver = item_receiver(twin.receiver, draw.system_gain_offset_dB, draw.noise_figure_offset_dB, pn)
     static = twin.static_signal()
     if draw.system_gain_offset_dB != 0.0:
         static = static * 10 ** (draw.system_gain_offset_dB / 20)

@@ -18,6 +18,7 @@
 from __future__ import annotations
 
 import json
+import os
 from pathlib import Path
 from typing import Any
 
@@ -28,6 +29,7 @@ from torch.utils.data import ConcatDataset, DataLoader, Dataset, Subset
 from radaraug.config import RadarConfig
 from radaraug.errors import ConfigError
 from radaraug.io import RadarCaptureDataset, open_capture
+from radaraug.sensor.receiver import FMCWReceiver
 from radaraug.sim.dataset import SimulatedRadarDataset
 from radaraug.training.cache import CachedMaps, build_map_cache
 from radaraug.training.chain import (
@@ -77,6 +79,9 @@ class RadarDataModule(L.LightningDataModule):
         sim_seed: seed of the simulated set (item ``i`` is a function of ``(sim_seed, i)``).
         randomization: twin randomization: True (defaults), False/None (off), or a dict of
             :class:`~radaraug.sim.randomization.TwinRandomization` fields.
+        calibrate_noise: fit the twin's noise figure so that its empty-room RD noise floor equals
+            the calibration capture's (:mod:`radaraug.sim.noise_fit`); twin randomization then
+            draws around the fitted value. Applies to every method: they share one simulated set.
         tracer_rays: SBR rays per axis for the room (None: the twin's default).
         cache_dir: folder of the simulate-once cache.
         image_size: network input ``[H, W]`` (None: the RD map's own size).
@@ -104,6 +109,7 @@ class RadarDataModule(L.LightningDataModule):
         val_items: int = 240,
         sim_seed: int = 0,
         randomization: bool | dict[str, Any] | None = True,
+        calibrate_noise: bool = True,
         tracer_rays: int | None = None,
         cache_dir: str = "radaraug_cache",
         image_size: list[int] | None = None,
@@ -132,6 +138,7 @@ class RadarDataModule(L.LightningDataModule):
         self._val: Dataset | None = None
         self._test: Dataset | None = None
         self.train_class_counts: torch.Tensor | None = None
+        self.noise_fit: dict[str, Any] | None = None
 
     # ------------------------------------------------------------------ resolving inputs
     def _proxy(self) -> Any:
@@ -170,6 +177,8 @@ class RadarDataModule(L.LightningDataModule):
         twin_options: dict[str, Any] = {}
         if self.hparams.tracer_rays is not None:
             twin_options["tracer_options"] = {"rays": int(self.hparams.tracer_rays)}
+        if self.noise_fit is not None:
+            twin_options["receiver"] = FMCWReceiver(self.config, noise_figure_dB=self.noise_fit["noise_figure_dB"])
         extra = {} if randomization is None else {"randomization": randomization}
         return SimulatedRadarDataset(
             self.hparams.scene, length=self.hparams.train_items + self.hparams.val_items,
@@ -193,6 +202,8 @@ class RadarDataModule(L.LightningDataModule):
 
         n_train, n_val = self.hparams.train_items, self.hparams.val_items
         needs_sim = stage in (None, "fit", "validate") or self.clip is None
+        if needs_sim and self.hparams.calibrate_noise and calibration is not None and not str(calibration).endswith(".json"):
+            self.noise_fit = self._fit_noise(calibration)
         if needs_sim:
             sim = self.simulated_dataset()
             common = {"cache_dir": self.hparams.cache_dir, "num_workers": self.hparams.sim_workers,
@@ -221,6 +232,28 @@ class RadarDataModule(L.LightningDataModule):
         self._test = _Labelled(Subset(full, range(rank, len(full), world)), self.task)
         self._write_run_files()
 
+    def _fit_noise(self, calibration: str) -> dict[str, Any]:
+        """The twin's noise figure fitted to the calibration capture's floor (cached in cache_dir)."""
+        import hashlib
+
+        from radaraug.sim.dataset import load_scene
+        from radaraug.sim.noise_fit import capture_noise_floor_db, fit_noise_figure
+
+        target = capture_noise_floor_db(calibration)
+        key = hashlib.sha256(json.dumps([str(self.hparams.scene), self.config.to_dict(), round(target, 4),
+                                         self.hparams.tracer_rays], sort_keys=True).encode()).hexdigest()[:20]
+        path = Path(self.hparams.cache_dir) / f"noise_fit-{key}.json"
+        if path.is_file():
+            return json.loads(path.read_text())
+        opts = {"rays": int(self.hparams.tracer_rays)} if self.hparams.tracer_rays is not None else None
+        fit = fit_noise_figure(load_scene(self.hparams.scene), self.config, target, tracer_options=opts)
+        fit["calibration"] = str(calibration)
+        path.parent.mkdir(parents=True, exist_ok=True)
+        tmp = path.with_suffix(f".{os.getpid()}.tmp")
+        tmp.write_text(json.dumps(fit, indent=2))
+        os.replace(tmp, path)
+        return fit
+
     def _estimate_clip(self, train: CachedMaps) -> tuple[float, float]:
         maps = train.maps(slice(0, 256))
         vmin, vmax = estimate_clip_range(maps, self.dr, percentiles=tuple(self.hparams.clip_percentiles))
@@ -236,6 +269,7 @@ class RadarDataModule(L.LightningDataModule):
             return
         Path(out).mkdir(parents=True, exist_ok=True)
         info = {"clip_range_db": list(self.clip), "task": self.task, "method": self.method,
+                "twin_noise_fit": self.noise_fit,
                 "classes": list(self.class_names), "config": self.config.to_dict(),
                 "train_class_counts": None if self.train_class_counts is None else self.train_class_counts.tolist()}
         (Path(out) / "clip_range.json").write_text(json.dumps(info, indent=2))
