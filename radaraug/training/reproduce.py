@@ -13,6 +13,7 @@ set: the spread reported is that of training, for a fixed twin sample.
 from __future__ import annotations
 
 import json
+import logging
 import os
 import platform
 import statistics
@@ -90,7 +91,7 @@ def _run_one(task: str, method: str, seed: int, *, settings: ReproduceSettings, 
     model = RDClassifier(task=task, lr=settings.lr, out_dir=str(run_dir))
     trainer = L.Trainer(max_epochs=settings.epochs, accelerator=accelerator, devices=1, logger=False,
                         enable_checkpointing=False, enable_model_summary=False, num_sanity_val_steps=0,
-                        enable_progress_bar=progress, default_root_dir=str(run_dir))
+                        enable_progress_bar=False, default_root_dir=str(run_dir))
     t0 = time.perf_counter()
     with warnings.catch_warnings():
         warnings.filterwarnings("ignore", message=".*does not have many workers.*")
@@ -165,6 +166,12 @@ def reproduce(
     runs: list[dict[str, Any]] = []
     cms: dict[str, dict[str, torch.Tensor]] = {}
     keep: dict[tuple[str, str], tuple[Any, Any]] = {}
+    from tqdm.auto import tqdm
+
+    # Lightning logs its hardware summary at every Trainer: 24 times is noise next to the run bar.
+    for name in ("lightning.pytorch", "lightning.fabric"):
+        logging.getLogger(name).setLevel(logging.WARNING)
+    bar = tqdm(total=len(tasks) * len(variants) * seeds, desc="reproduce runs", disable=not progress)
     for task in tasks:
         results[task] = {}
         cms[task] = {}
@@ -172,8 +179,12 @@ def reproduce(
             per_seed, cm_sum = [], None
             for seed in range(seeds):
                 run_dir = out / "runs" / f"{task}_{name}_seed{seed}"
+                bar.set_postfix_str(f"{task} {name} seed {seed}")
                 rep, model, dm = _run_one(task, method, seed, settings=settings, data_kw={**data_kw, **extra},
                                           run_dir=run_dir, accelerator=accelerator, progress=progress)
+                bar.update(1)
+                bar.write(f"{task:9s} {name:26s} seed {seed}: balanced accuracy {rep['balanced_accuracy']:.3f} "
+                          f"(simulated val {rep['val_balanced_accuracy'] or float('nan'):.3f})")
                 runs.append({k: rep[k] for k in ("task", "method", "seed", "balanced_accuracy", "accuracy",
                                                  "fit_seconds", "clip_range_db", "val_balanced_accuracy")}
                             | {"variant": name})
@@ -188,6 +199,7 @@ def reproduce(
                 "confusion_matrix_sum_over_seeds": cm_sum.tolist(),
             }
             cms[task][name] = cm_sum
+    bar.close()
     figures = _figures(out / "figures", keep, cms, results, calibration, test, settings)
     wall = time.perf_counter() - t_start
     report = {
