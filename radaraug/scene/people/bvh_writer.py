@@ -13,6 +13,42 @@ from radaraug.scene.people.skeleton import ANKLE_HEIGHT_FRACTION
 from radaraug.scene.people.walker import Walker
 
 
+def hierarchy_lines(joints: list[tuple[str, str | None, str, str | None]]) -> tuple[list[str], list[str]]:
+    """The ``HIERARCHY`` section of a BVH file and the joint order of its motion channels.
+
+    Args:
+        joints: ``(name, parent or None for the root, "x y z" offset, "x y z" end-site offset or
+            None)`` in any order with the root first; offsets already in the file's unit.
+
+    Returns:
+        ``(lines, order)``: the text lines, and joint names in depth-first channel order (the
+        root has 6 channels ``Xposition Yposition Zposition Zrotation Xrotation Yrotation``,
+        the others the 3 rotations).
+    """
+    children: dict[str | None, list[int]] = {}
+    for i, j in enumerate(joints):
+        children.setdefault(j[1], []).append(i)
+    lines = ["HIERARCHY"]
+    order: list[str] = []
+
+    def emit(i: int, depth: int) -> None:
+        name, parent, offset, end = joints[i]
+        pad = "  " * depth
+        lines.append(f"{pad}{'ROOT' if parent is None else 'JOINT'} {name}")
+        lines.append(f"{pad}{{")
+        lines.append(f"{pad}  OFFSET {offset}")
+        chans = "Xposition Yposition Zposition " if parent is None else ""
+        lines.append(f"{pad}  CHANNELS {6 if parent is None else 3} {chans}Zrotation Xrotation Yrotation")
+        order.append(name)
+        for c in children.get(name, []):
+            emit(c, depth + 1)
+        if end is not None:
+            lines.extend([f"{pad}  End Site", f"{pad}  {{", f"{pad}    OFFSET {end}", f"{pad}  }}"])
+        lines.append(f"{pad}}}")
+
+    emit(0, 0)
+    return lines, order
+
 def write_bvh(
     person: Walker,
     path: str | Path,
@@ -80,29 +116,8 @@ def write_bvh(
              (0.0, 0.0, -0.05 * h)),
         ]
     world_rot = {name: r for name, _, _, r, _ in spec}
-    children: dict[str | None, list[int]] = {}
-    for i, s in enumerate(spec):
-        children.setdefault(s[1], []).append(i)
-
-    lines = ["HIERARCHY"]
-    order: list[str] = []
-
-    def emit(i: int, depth: int) -> None:
-        name, parent, offset, _, end = spec[i]
-        pad = "  " * depth
-        lines.append(f"{pad}{'ROOT' if parent is None else 'JOINT'} {name}")
-        lines.append(f"{pad}{{")
-        lines.append(f"{pad}  OFFSET {off(*offset)}")
-        chans = "Xposition Yposition Zposition " if parent is None else ""
-        lines.append(f"{pad}  CHANNELS {6 if parent is None else 3} {chans}Zrotation Xrotation Yrotation")
-        order.append(name)
-        for c in children.get(name, []):
-            emit(c, depth + 1)
-        if end is not None:
-            lines.extend([f"{pad}  End Site", f"{pad}  {{", f"{pad}    OFFSET {off(*end)}", f"{pad}  }}"])
-        lines.append(f"{pad}}}")
-
-    emit(0, 0)
+    lines, order = hierarchy_lines([(name, parent, off(*offset), None if end is None else off(*end))
+                                    for name, parent, offset, _, end in spec])
     parent_of = {s[0]: s[1] for s in spec}
     columns = []
     root = pose["positions"][:, 0] @ p_mat / m_per_unit  # world -> bvh: P^T p

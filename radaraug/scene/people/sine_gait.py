@@ -46,6 +46,7 @@ import torch
 from radaraug.errors import SceneError
 from radaraug.scene.people import _rotations as rot
 from radaraug.scene.people.bvh_person import UNIT_SCALES
+from radaraug.scene.people.bvh_writer import hierarchy_lines
 from radaraug.scene.people.skeleton import ANKLE_HEIGHT_FRACTION, SEGMENT_LENGTH_FRACTIONS
 
 _TWO_PI = 2.0 * math.pi
@@ -257,32 +258,12 @@ def write_sine_gait_bvh(gait: SineGait, path: str | Path, *, fps: float = 100.0,
     root, eul = gait.channels(t)
     root = root + torch.tensor([0.0, gait.pelvis_height_m(fps), 0.0], dtype=torch.float64)
     spec = gait._hierarchy()
-    children: dict[str | None, list[int]] = {}
-    for i, s in enumerate(spec):
-        children.setdefault(s[1], []).append(i)
 
     def fmt(vec: tuple[float, float, float]) -> str:
         return " ".join(f"{x / m_per_unit:.6f}" for x in vec)
 
-    lines = ["HIERARCHY"]
-    order: list[str] = []
-
-    def emit(i: int, depth: int) -> None:
-        name, parent, offset, end = spec[i]
-        pad = "  " * depth
-        lines.append(f"{pad}{'ROOT' if parent is None else 'JOINT'} {name}")
-        lines.append(f"{pad}{{")
-        lines.append(f"{pad}  OFFSET {fmt(offset)}")
-        pos_ch = "Xposition Yposition Zposition " if parent is None else ""
-        lines.append(f"{pad}  CHANNELS {6 if parent is None else 3} {pos_ch}Zrotation Xrotation Yrotation")
-        order.append(name)
-        for c in children.get(name, []):
-            emit(c, depth + 1)
-        if end is not None:
-            lines.extend([f"{pad}  End Site", f"{pad}  {{", f"{pad}    OFFSET {fmt(end)}", f"{pad}  }}"])
-        lines.append(f"{pad}}}")
-
-    emit(0, 0)
+    lines, order = hierarchy_lines([(name, parent, fmt(offset), None if end is None else fmt(end))
+                                    for name, parent, offset, end in spec])
     motion = torch.cat([root / m_per_unit] + [eul[name] for name in order], dim=1)
     frame_time = float(t[1] - t[0])
     lines += ["MOTION", f"Frames: {motion.shape[0]}", f"Frame Time: {frame_time:.9f}"]
