@@ -23,12 +23,19 @@ from radaraug.training.chain import image_chain
 from radaraug.transforms import CalibratedDR
 
 
-def _steps_per_s(step, n: int) -> float:
-    step()  # warm-up
-    t0 = time.perf_counter()
-    for _ in range(n):
+def _best_rates(steps: dict[str, Any], n: int, rounds: int = 3) -> dict[str, float]:
+    """Steps/s of each step function: one warm-up each, then ``rounds`` interleaved rounds of ``n``
+    steps, the best round kept (interleaving spreads drifts of a shared machine over both)."""
+    for step in steps.values():
         step()
-    return n / (time.perf_counter() - t0)
+    best = dict.fromkeys(steps, 0.0)
+    for _ in range(rounds):
+        for name, step in steps.items():
+            t0 = time.perf_counter()
+            for _ in range(n):
+                step()
+            best[name] = max(best[name], n / (time.perf_counter() - t0))
+    return best
 
 
 def run_training_benchmark(
@@ -56,8 +63,8 @@ def run_training_benchmark(
         if dev.type == "cuda":
             torch.cuda.synchronize()
 
-    bare = _steps_per_s(lambda: train_step(ready), steps) * batch
-    full = _steps_per_s(lambda: train_step(chain(cdr(maps))), steps) * batch
+    rates = _best_rates({"bare": lambda: train_step(ready), "pipeline": lambda: train_step(chain(cdr(maps)))}, steps)
+    bare, full = rates["bare"] * batch, rates["pipeline"] * batch
     res = {
         "benchmark": "training_step",
         "device": str(dev),

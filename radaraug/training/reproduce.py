@@ -95,6 +95,7 @@ def _run_one(task: str, method: str, seed: int, *, settings: ReproduceSettings, 
     t0 = time.perf_counter()
     with warnings.catch_warnings():
         warnings.filterwarnings("ignore", message=".*does not have many workers.*")
+        warnings.filterwarnings("ignore", message=".*isinstance\\(treespec, LeafSpec\\).*")  # Lightning-internal
         trainer.fit(model, datamodule=dm)
         fit_s = time.perf_counter() - t0
         val_bacc = trainer.callback_metrics.get("val/balanced_accuracy")  # test() resets the metrics
