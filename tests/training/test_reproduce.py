@@ -36,6 +36,10 @@ def test_report_on_a_tiny_run(tmp_path, captures):
     for key in ("fig4_noise_floor", "fig5_rd_triplets", "fig6_static_energy", "fig7_feature_maps",
                 "fig8_confusion_occupancy", "fig9_confusion_counting"):
         assert (out / data["figures"][key]).read_bytes()[:4] == b"\x89PNG"
+    assert set(data["empty_room_median_db"]) == {"simulation", "simulation_cdr", "capture"}
+    # the twin's noise figure was fitted to the calibration capture's floor (independent generator)
+    fit = data["twin_noise_fit"]
+    assert abs(fit["twin_floor_db"] - fit["target_floor_db"]) < 0.5
     md = (out / "report.md").read_text()
     assert "Balanced accuracy" in md and "RT < RandomDR < CDR" in md
     # the six main runs of a task share one simulated set: one train cache file per randomization setting
