@@ -150,12 +150,15 @@ class RadarDataModule(L.LightningDataModule):
     def resolved_captures(self) -> tuple[str | None, list[dict[str, Any]]]:
         """``(calibration, test entries)``, the held-out proxy's where the config names none."""
         calibration, test = self.hparams.calibration, self.hparams.test
-        if test is None or (calibration is None and self.method == "cdr"):
+        if test is None:
             proxy = self._proxy()
-            if test is None:
-                test = [{"path": str(p), "count": int(c)} for p, c in proxy.tests]
+            test = [{"path": str(p), "count": int(c)} for p, c in proxy.tests]
             if calibration is None:
                 calibration = str(proxy.calibration)
+        elif calibration is None and self.method == "cdr":
+            # The proxy's empty room says nothing about the user's captures: no silent stand-in.
+            raise ConfigError("method 'cdr' needs data.calibration: an empty-room capture (or CalibratedDR JSON) "
+                              "recorded like the test captures")
         for i, entry in enumerate(test):
             if not isinstance(entry, dict) or "path" not in entry:
                 raise ConfigError(f"test[{i}] must be a mapping with a 'path' (and optionally 'count'), got {entry!r}")
@@ -163,7 +166,7 @@ class RadarDataModule(L.LightningDataModule):
 
     def prepare_data(self) -> None:
         # Rank 0 of each node generates the proxy once; the other ranks reuse its files in setup().
-        if self.hparams.test is None or (self.hparams.calibration is None and self.method == "cdr"):
+        if self.hparams.test is None:
             self._proxy()
 
     def simulated_dataset(self) -> SimulatedRadarDataset:
@@ -226,8 +229,8 @@ class RadarDataModule(L.LightningDataModule):
                                              transform=rd_db_chain()))
         for t in tests:
             if t.config != self.config:
-                raise ConfigError(f"test capture {t.paths[0]} has another radar config than the training twin "
-                                  f"({self.config.describe()})")
+                raise ConfigError(f"test capture {t.paths[0]} has another radar config ({t.config.describe()}) "
+                                  f"than the training twin ({self.config.describe()}, from {source})")
         full = ConcatDataset(tests)
         self._test = _Labelled(Subset(full, range(rank, len(full), world)), self.task)
         self._write_run_files()
