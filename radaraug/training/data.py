@@ -4,7 +4,8 @@
   one :class:`~radaraug.sim.dataset.SimulatedRadarDataset` (twin randomization on by default),
   simulated once into the map cache (:mod:`radaraug.training.cache`) and reused by every DR
   method and seed. Under DDP each rank simulates and trains on its own shard (item ``i`` goes to
-  rank ``i % world_size``); nothing is simulated twice.
+  rank ``i % world_size``; the last ``train_items % world_size`` items are left out so that every
+  rank runs the same number of steps); nothing is simulated twice.
 * **test**: captures named in the config (radaraug HDF5 or Infineon folders), each with a
   people count for the whole file or per-frame ``count`` labels from the file; without any,
   the held-out proxy (:mod:`radaraug.sim.proxy`) is generated and used, and so is its
@@ -211,7 +212,10 @@ class RadarDataModule(L.LightningDataModule):
             sim = self.simulated_dataset()
             common = {"cache_dir": self.hparams.cache_dir, "num_workers": self.hparams.sim_workers,
                       "progress": self.hparams.progress and rank == 0}
-            train = CachedMaps(build_map_cache(sim, range(rank, n_train, world), name="train", **common))
+            # Equal shards: DDP all-reduces gradients every step, so a rank with one batch more than
+            # the others would wait forever. The last n_train % world items are left out.
+            train = CachedMaps(build_map_cache(sim, range(rank, n_train - n_train % world, world), name="train",
+                                               **common))
             self.train_class_counts = torch.bincount(label_of(train.counts, self.task),
                                                      minlength=len(self.class_names))
             self._train = _Labelled(train, self.task)
@@ -291,7 +295,11 @@ class RadarDataModule(L.LightningDataModule):
             raise ConfigError("this split is empty or setup() has not run")
         g = torch.Generator()
         g.manual_seed(self.hparams.dr_seed)
-        return DataLoader(ds, batch_size=self.hparams.batch_size, shuffle=shuffle, generator=g if shuffle else None,
+        bs = self.hparams.batch_size
+        # Training drops a last partial batch: one of a single item breaks BatchNorm (and a short
+        # one skews its statistics), unless the whole split is smaller than a batch.
+        return DataLoader(ds, batch_size=bs, shuffle=shuffle, generator=g if shuffle else None,
+                          drop_last=shuffle and len(ds) > bs,  # type: ignore[arg-type]
                           num_workers=self.hparams.num_workers, persistent_workers=self.hparams.num_workers > 0)
 
     def train_dataloader(self) -> DataLoader:
