@@ -322,9 +322,6 @@ class RadarDataModule(L.LightningDataModule):
             x = self.dr.to(x.device).train()(x)
         return self.image.to(x.device)(x), y
 
-    def images(self, db_maps: torch.Tensor, *, randomize: bool = False) -> torch.Tensor:
-        """Network inputs from per-RX dB maps (with this run's DR when ``randomize``): for figures."""
-        x = db_maps
-        if randomize and self.dr is not None:
-            x = self.dr.train()(x)
-        return self.image(x)
+    def images(self, db_maps: torch.Tensor) -> torch.Tensor:
+        """Network inputs from per-RX dB maps, without DR (this run's clip range): for figures."""
+        return self.image(db_maps)

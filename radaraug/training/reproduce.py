@@ -20,7 +20,7 @@ import statistics
 import time
 import warnings
 from collections.abc import Sequence
-from dataclasses import asdict, dataclass, replace
+from dataclasses import asdict, dataclass
 from pathlib import Path
 from typing import Any
 
@@ -214,7 +214,7 @@ def reproduce(
         "proxy": proxy_info,
         "figures": {k: str(Path(v).relative_to(out)) for k, v in figures.items()},
         "empty_room_median_db": floors,
-        "twin_noise_fit": keep_noise_fit(keep),
+        "twin_noise_fit": _noise_fit_of(keep),
         "wall_seconds": wall,
         "machine": {"platform": platform.platform(), "torch": torch.__version__,
                     "device": "cuda" if torch.cuda.is_available() and accelerator != "cpu" else "cpu",
@@ -226,7 +226,7 @@ def reproduce(
     return report
 
 
-def keep_noise_fit(keep: dict) -> dict[str, Any] | None:
+def _noise_fit_of(keep: dict) -> dict[str, Any] | None:
     """The twin's noise-figure fit of the runs (they share it), if any."""
     for _model, dm in keep.values():
         if getattr(dm, "noise_fit", None) is not None:
@@ -359,7 +359,3 @@ def _markdown(rep: dict[str, Any]) -> str:
     lines += ["", f"dB convention: {rep['db_convention']}.", ""]
     return "\n".join(lines)
 
-
-def settings_with(base: ReproduceSettings, **overrides: Any) -> ReproduceSettings:
-    """``base`` with some fields replaced (None values ignored)."""
-    return replace(base, **{k: v for k, v in overrides.items() if v is not None})
