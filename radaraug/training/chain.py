@@ -55,6 +55,11 @@ def label_of(count: int | torch.Tensor, task: str) -> Any:
     return count
 
 
+def is_calibration_json(calibration: str | os.PathLike) -> bool:
+    """True when ``calibration`` names a saved CalibratedDR (``.json``), False for a capture."""
+    return str(calibration).lower().endswith(".json")
+
+
 def rd_db_chain() -> RadarCompose:
     """Raw frames ``(..., rx, chirps, samples)`` -> per-RX RD dB maps ``(..., rx, range, doppler)``."""
     return RadarCompose([RangeDoppler(), ToDecibels()])
@@ -93,7 +98,7 @@ def make_dr(
         raise ConfigError("method 'cdr' needs a calibration: an empty-room capture or a CalibratedDR JSON")
     if isinstance(calibration, CalibratedDR):
         fitted = calibration
-    elif str(calibration).lower().endswith(".json"):
+    elif is_calibration_json(calibration):
         fitted = CalibratedDR.load(calibration)
     else:
         fitted = CalibratedDR.fit(calibration, progress=False)

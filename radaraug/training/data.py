@@ -37,6 +37,7 @@ from radaraug.training.chain import (
     check_task,
     estimate_clip_range,
     image_chain,
+    is_calibration_json,
     label_of,
     make_dr,
     rd_db_chain,
@@ -195,7 +196,8 @@ class RadarDataModule(L.LightningDataModule):
             return
         rank, world = _rank_world(self.trainer)
         calibration, test = self.resolved_captures()
-        source = calibration if calibration is not None and not str(calibration).endswith(".json") else test[0]["path"]
+        has_capture = calibration is not None and not is_calibration_json(calibration)
+        source = calibration if has_capture else test[0]["path"]
         with open_capture(source) as cap:
             self.config = cap.config
         self.dr = make_dr(self.method, calibration=calibration, seed=self.hparams.dr_seed + 1000 * rank,
@@ -206,7 +208,7 @@ class RadarDataModule(L.LightningDataModule):
 
         n_train, n_val = self.hparams.train_items, self.hparams.val_items
         needs_sim = stage in (None, "fit", "validate") or self.clip is None
-        if needs_sim and self.hparams.calibrate_noise and calibration is not None and not str(calibration).endswith(".json"):
+        if needs_sim and self.hparams.calibrate_noise and has_capture:
             self.noise_fit = self._fit_noise(calibration)
         if needs_sim:
             sim = self.simulated_dataset()

@@ -126,7 +126,7 @@ def first_block_features(net: torch.nn.Module, image: torch.Tensor) -> torch.Ten
 def feature_maps(models: Mapping[str, torch.nn.Module], inputs: Mapping[str, torch.Tensor], path: str | os.PathLike) -> Path:
     """Fig. 7: first-residual-block feature maps, a row per model, a column per input image."""
     plt = _plt()
-    fig, axes = plt.subplots(len(models), len(inputs) + 0, figsize=(3.0 * len(inputs), 2.8 * len(models)),
+    fig, axes = plt.subplots(len(models), len(inputs), figsize=(3.0 * len(inputs), 2.8 * len(models)),
                              squeeze=False)
     for i, (mname, net) in enumerate(models.items()):
         for j, (iname, img) in enumerate(inputs.items()):

@@ -27,7 +27,7 @@ from typing import Any
 import torch
 
 from radaraug.errors import ConfigError
-from radaraug.training.chain import METHODS, TASKS
+from radaraug.training.chain import METHODS, TASKS, is_calibration_json
 from radaraug.units import DB_CONVENTION
 
 
@@ -265,7 +265,7 @@ def _figures(fig_dir: Path, keep: dict, cms: dict, results: dict, calibration: s
     task = next(iter(cms))
     cdr_run = keep.get((task, "cdr"))
     rt_run = keep.get((task, "rt"))
-    if cdr_run is None or calibration is None or str(calibration).endswith(".json"):
+    if cdr_run is None or calibration is None or is_calibration_json(calibration):
         return figs
     dm = cdr_run[1]
     sim_empty = _maps_of(dm, 0, 64)
