@@ -8,11 +8,12 @@ Sub-commands::
     radaraug bench twin [--json]                digital-twin throughput vs real time and baselines
     radaraug bench training [--json]            recipe training step vs a bare ResNet18 step
     radaraug trace SCENE [--time T] [--json]    the propagation paths of one instant
-    radaraug simulate SCENE --frames N --seed S -o out.h5 [--shard i/n]
+    radaraug simulate SCENE --frames N --seed S -o out.h5 [--shard i/n] [--profile P]
     radaraug demo [-o DIR]                      the main job on the built-in default
     radaraug train fit --config recipes/occupancy_cdr.yaml [--key value ...]   LightningCLI recipes
     radaraug reproduce [--quick] [--seeds N] [--calibration C] [--test PATH[:COUNT] ...] -o OUT
     radaraug make-proxy -o DIR [--frames-per-count N]   the held-out proxy test set
+    radaraug diagnose CAPTURE [--scene SCENE] -o REPORT_DIR   twin vs capture, fitted twin profile
 
 Bad input ends with one line ``error: <message>`` and exit status 2, never a traceback.
 """
@@ -148,7 +149,7 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
     if args.frames < 1:
         raise ConfigError(f"--frames must be >= 1, got {args.frames}")
     result = simulate_capture(_scene_arg(args.scene), args.output, frames=args.frames, seed=args.seed,
-                              shard=shard, device=_device_arg(args.device))
+                              shard=shard, device=_device_arg(args.device), profile=args.profile)
     print(f"{result['path']}: frames [{result['frames'][0]}, {result['frames'][1]}), "
           f"{result['simulated']} simulated, resumed from frame {result['resumed_from']}")
     return 0
@@ -181,6 +182,25 @@ def _cmd_make_proxy(args: argparse.Namespace) -> int:
     print(f"calibration  {proxy.calibration}")
     for path, count in proxy.tests:
         print(f"test         {path} ({count} people)")
+    return 0
+
+
+def _cmd_diagnose(args: argparse.Namespace) -> int:
+    from radaraug.calibration import SearchSettings, diagnose, write_report
+
+    if args.max_frames < 4:
+        raise ConfigError(f"--max-frames must be >= 4, got {args.max_frames}")
+    settings = SearchSettings(seed=args.seed)
+    diag = diagnose(args.capture, scene=_scene_arg(args.scene) if args.scene else None, max_frames=args.max_frames,
+                    settings=settings, start_profile=args.profile, progress=True)
+    out = write_report(diag, args.output, figures=not args.no_figures)
+    r = diag.result
+    print(f"{out / 'report.json'} ({diag.mode} mode, {diag.runtime_s:.1f} s)")
+    print(f"  held-out error: default {r.before.overall:.2f} dB -> base refit {r.base.overall:.2f} dB -> "
+          f"final {r.after.overall:.2f} dB")
+    for s in r.steps:
+        print(f"  + {s['effect']}: {s['error_before']:.3f} -> {s['error_after']:.3f} dB")
+    print(f"  unexplained: {len(diag.unexplained)} item(s); profile {out / 'profile.json'}")
     return 0
 
 
@@ -228,6 +248,7 @@ def build_parser() -> argparse.ArgumentParser:
     sim.add_argument("-o", "--output", required=True)
     sim.add_argument("--shard", default=None, help="i/n: simulate the i-th of n pieces (0-based)")
     sim.add_argument("--device", default="cpu")
+    sim.add_argument("--profile", default=None, help="twin profile JSON (from radaraug diagnose) for the receiver")
     sim.set_defaults(func=_cmd_simulate)
 
     demo = sub.add_parser("demo", help="the main job on the built-in default")
@@ -254,6 +275,17 @@ def build_parser() -> argparse.ArgumentParser:
     proxy.add_argument("--frames-per-count", type=int, default=120)
     proxy.add_argument("--seed", type=int, default=1234)
     proxy.set_defaults(func=_cmd_make_proxy)
+
+    dia = sub.add_parser("diagnose", help="compare a capture with the twin, fit the missing effects (docs/calibration.md)")
+    dia.add_argument("capture", help="radaraug .h5 capture or Infineon recording folder")
+    dia.add_argument("--scene", default=None, help="the capture's scene (file or built-in name); "
+                     "default: estimate the static scene from the capture")
+    dia.add_argument("-o", "--output", required=True, help="report folder")
+    dia.add_argument("--max-frames", type=int, default=100, help="frames read (half fit, half held out)")
+    dia.add_argument("--profile", default=None, help="start from this twin profile instead of the default chain")
+    dia.add_argument("--seed", type=int, default=0, help="seed of the twin's noise")
+    dia.add_argument("--no-figures", action="store_true")
+    dia.set_defaults(func=_cmd_diagnose)
     return p
 
 

@@ -6,7 +6,7 @@ floats (``x = 2*counts/4095 - 1``), like a real capture. See ``docs/receiver.md`
 
 from radaraug.sensor.benchmark import benchmark_receiver
 from radaraug.sensor.defaults import default_effects, tx_power_dBm
-from radaraug.sensor.effects import EFFECTS, Effect, effect_from_dict
+from radaraug.sensor.effects import EFFECTS, HARDWARE_ORDER, Effect, Prior, effect_from_dict, insert_in_order
 from radaraug.sensor.paths import Paths
 from radaraug.sensor.point_target import point_target_paths
 from radaraug.sensor.receiver import FMCWReceiver
@@ -18,6 +18,9 @@ __all__ = [
     "EFFECTS",
     "Effect",
     "effect_from_dict",
+    "HARDWARE_ORDER",
+    "insert_in_order",
+    "Prior",
     "default_effects",
     "tx_power_dBm",
     "point_target_paths",

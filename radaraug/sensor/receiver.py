@@ -51,6 +51,8 @@ class FMCWReceiver(nn.Module):
         front_end_gain_dB: ADC float units per sqrt(W) at the RX port at 0 dB IF gain (pinned
             from measured noise, see :data:`radaraug.sensor.defaults.FRONT_END_GAIN_DB`).
         taylor_tol: truncation bound of the fast synthesis' coupling expansion.
+        adc_noise_rms_counts: RMS of the default chain's ``adc_noise`` stage (None: the fitted
+            default, :data:`radaraug.sensor.defaults.ADC_NOISE_RMS_COUNTS`). Only with ``effects=None``.
     """
 
     units = FLOAT_CONVENTION
@@ -66,6 +68,7 @@ class FMCWReceiver(nn.Module):
         synthesis: str = "fast",
         front_end_gain_dB: float = FRONT_END_GAIN_DB,
         taylor_tol: float = DEFAULT_TAYLOR_TOL,
+        adc_noise_rms_counts: float | None = None,
     ) -> None:
         super().__init__()
         if not isinstance(config, RadarConfig):
@@ -83,12 +86,15 @@ class FMCWReceiver(nn.Module):
             kw: dict[str, float] = {"system_gain_dB": float(system_gain_dB)}
             if noise_figure_dB is not None:
                 kw["noise_figure_dB"] = float(noise_figure_dB)
+            if adc_noise_rms_counts is not None:
+                kw["adc_noise_rms_counts"] = float(adc_noise_rms_counts)
             effects = default_effects(config, **kw)
         else:
-            if noise_figure_dB is not None or system_gain_dB != 0.0:
+            if noise_figure_dB is not None or system_gain_dB != 0.0 or adc_noise_rms_counts is not None:
                 raise ConfigError(
-                    "noise_figure_dB and system_gain_dB configure the default chain only; with an "
-                    "explicit effects list set them in its ThermalNoise / SystemGain effects"
+                    "noise_figure_dB, system_gain_dB and adc_noise_rms_counts configure the default chain "
+                    "only; with an explicit effects list set them in its ThermalNoise / SystemGain / "
+                    "ADCNoise effects"
                 )
             bad = [e for e in effects if not isinstance(e, Effect)]
             if bad:

@@ -22,6 +22,7 @@ from torch.utils.data import Dataset
 from radaraug.config import RadarConfig
 from radaraug.errors import ConfigError
 from radaraug.scene.scene import Scene
+from radaraug.sensor.profile import as_profile
 from radaraug.sensor.receiver import FMCWReceiver
 from radaraug.sim.randomization import RoomDraw, TwinRandomization, check_receiver, simulate_item
 from radaraug.sim.scenarios import Scenario, ScenarioSampler
@@ -70,6 +71,9 @@ class SimulatedRadarDataset(Dataset):
             enabled, the scene must be a corridor scene: it gives the radar's x, y position,
             pose and mounting; the room, the radar's height and tilt, the people's ranges, each
             person's RCS and the receiver's gain and noise figure are drawn per item.
+        profile: a fitted twin profile (:class:`~radaraug.sensor.profile.TwinProfile`, its JSON
+            path or dict, from ``radaraug diagnose``): the twin's receiver carries its effects
+            (randomization then draws its offsets around the profile's gain and noise figure).
     """
 
     def __init__(
@@ -88,6 +92,7 @@ class SimulatedRadarDataset(Dataset):
         device: torch.device | str = "cpu",
         twin_options: dict[str, Any] | None = None,
         randomization: TwinRandomization | dict[str, Any] | None = None,
+        profile: Any = None,
     ) -> None:
         if target not in TARGETS:
             raise ConfigError(f"target must be one of {TARGETS}, got {target!r}")
@@ -105,6 +110,11 @@ class SimulatedRadarDataset(Dataset):
         self.as_counts = as_counts
         self.device = torch.device(device)
         self.twin_options = dict(twin_options or {})
+        self.profile = as_profile(profile)
+        if self.profile is not None:
+            if "receiver" in self.twin_options or "profile" in self.twin_options:
+                raise ConfigError("give the twin's receiver as profile= or twin_options['receiver'], not both")
+            self.twin_options["receiver"] = self.profile.receiver(self.config)
         self._twin: DigitalTwin | None = None
         self._static_signal: torch.Tensor | None = None
         if isinstance(randomization, dict):

@@ -1,11 +1,13 @@
-"""Calibrate the twin's noise level on an empty-room capture: fit the receiver's noise figure.
+"""Calibrate the twin's noise level on an empty-room capture: one offset on both noise sources.
 
-The one thing an empty-room capture pins is the noise floor. The twin's floor is its thermal
-noise through the receiver chain; its level follows the ``thermal_noise`` stage's noise figure
-dB for dB as long as thermal noise dominates the ADC's quantization noise. So the fit is a
-fixed-point iteration on one number: simulate empty frames, measure the RD noise floor with the
-same statistic as ``radaraug info`` (:func:`radaraug.inspect.noise_floor_db`), move the noise
-figure by the difference, repeat.
+The one thing an empty-room capture pins is the noise floor. The twin's floor is its two noise
+sources through the receiver chain: thermal noise (``thermal_noise``, before the IF gain) and
+the noise on the ADC side of the IF gain (``adc_noise``, which dominates at low IF gain, see
+:mod:`radaraug.sensor.defaults`). The fit moves both by one offset ``d`` (noise figure
+``+d`` dB, ADC-side RMS ``x 10**(d/20)``), so the floor follows ``d`` dB for dB at any IF gain
+while their ratio stays the fitted default's. It is a fixed-point iteration on that one number:
+simulate empty frames, measure the RD noise floor with the same statistic as ``radaraug info``
+(:func:`radaraug.inspect.noise_floor_db`), move the offset by the difference, repeat.
 
 Why it matters for training: CalibratedDR raises the simulated floor with *independent* draws
 per RD cell, but a real floor is noise seen through the range and Doppler windows, correlated
@@ -27,7 +29,7 @@ from radaraug.config import RadarConfig
 from radaraug.errors import CalibrationError
 from radaraug.inspect import noise_floor_db
 from radaraug.scene.scene import Scene
-from radaraug.sensor.defaults import DEFAULT_NOISE_FIGURE_DB
+from radaraug.sensor.defaults import ADC_NOISE_RMS_COUNTS, DEFAULT_NOISE_FIGURE_DB
 from radaraug.sensor.receiver import FMCWReceiver
 from radaraug.sim.seeding import item_generator
 from radaraug.sim.twin import DigitalTwin
@@ -64,22 +66,23 @@ def fit_noise_figure(
     tracer_options: dict[str, Any] | None = None,
     twin: DigitalTwin | None = None,
 ) -> dict[str, Any]:
-    """The noise figure that puts the empty twin's RD noise floor at ``target_floor_db``.
+    """The noise offset that puts the empty twin's RD noise floor at ``target_floor_db``.
 
     Args:
         scene: the (empty) training scene; its people are ignored.
         config: the radar config to simulate (the capture's).
         target_floor_db: the capture's floor (:func:`capture_noise_floor_db`).
         frames: empty frames simulated per iteration.
-        iterations: most fixed-point steps (each moves the NF by the floor difference).
+        iterations: most fixed-point steps (each moves the offset by the floor difference).
         tol_db: stop when the floors agree this well.
         seed: noise seed.
         tracer_options: the room trace's options (e.g. ``{"rays": 128}``).
         twin: an existing twin of ``scene`` and ``config`` whose room trace to reuse.
 
     Returns:
-        ``{"noise_figure_dB", "target_floor_db", "twin_floor_db", "history"}``; ``history`` lists
-        ``(noise_figure_dB, floor_db)`` per step.
+        ``{"noise_figure_dB", "adc_noise_rms_counts", "noise_offset_dB", "target_floor_db",
+        "twin_floor_db", "history"}`` (build the receiver with :func:`noise_fit_receiver`);
+        ``history`` lists ``(noise_figure_dB, floor_db)`` per step.
 
     Raises:
         CalibrationError: the floor does not move with the noise figure (quantization or another
@@ -92,7 +95,8 @@ def fit_noise_figure(
     nf = DEFAULT_NOISE_FIGURE_DB
     history: list[tuple[float, float]] = []
     for step in range(iterations):
-        rx = FMCWReceiver(config, noise_figure_dB=nf).to(twin.device)
+        rx = FMCWReceiver(config, noise_figure_dB=nf,
+                          adc_noise_rms_counts=_adc_rms(config, nf)).to(twin.device)
         gens = [item_generator(seed, k, stream=7, device=twin.device) for k in range(frames)]
         paths = twin.paths([], times)
         x = torch.stack([rx(paths.map(lambda t, k=k: t[k]), generator=g, frame_start_s=float(times[k]),
@@ -118,5 +122,20 @@ def fit_noise_figure(
                 f"fitting the noise floor {target_floor_db:.1f} dB needs a noise figure of {nf:.1f} dB, outside "
                 f"{list(NOISE_FIGURE_LIMITS_DB)}: the capture's floor is not the twin's thermal noise")
     best_nf, best_floor = min(history, key=lambda h: abs(h[1] - target_floor_db))
-    return {"noise_figure_dB": round(best_nf, 3), "target_floor_db": round(target_floor_db, 3),
+    return {"noise_figure_dB": round(best_nf, 3), "adc_noise_rms_counts": round(_adc_rms(config, best_nf), 4),
+            "noise_offset_dB": round(best_nf - DEFAULT_NOISE_FIGURE_DB, 3),
+            "target_floor_db": round(target_floor_db, 3),
             "twin_floor_db": round(best_floor, 3), "history": [[round(a, 3), round(b, 3)] for a, b in history]}
+
+
+def _adc_rms(config: RadarConfig, noise_figure_dB: float) -> float:
+    """ADC-side noise RMS that goes with ``noise_figure_dB`` (both moved by the same offset)."""
+    scale = (2**config.adc_bits - 1) / 4095
+    return ADC_NOISE_RMS_COUNTS * scale * 10 ** ((noise_figure_dB - DEFAULT_NOISE_FIGURE_DB) / 20)
+
+
+def noise_fit_receiver(config: RadarConfig, fit: dict[str, Any]) -> FMCWReceiver:
+    """The default receiver with the noise levels of a :func:`fit_noise_figure` result."""
+    adc = fit.get("adc_noise_rms_counts")
+    return FMCWReceiver(config, noise_figure_dB=float(fit["noise_figure_dB"]),
+                        adc_noise_rms_counts=None if adc is None else float(adc))

@@ -28,6 +28,7 @@ import torch
 from radaraug.errors import CaptureError, ConfigError
 from radaraug.io import CaptureWriter, open_capture
 from radaraug.scene.scene import Scene
+from radaraug.sensor.profile import as_profile
 from radaraug.sim.dataset import load_scene
 from radaraug.sim.seeding import item_generator
 from radaraug.sim.twin import DigitalTwin
@@ -89,6 +90,7 @@ def simulate_capture(
     device: str = "cpu",
     progress: bool = True,
     twin_options: dict[str, Any] | None = None,
+    profile: Any = None,
 ) -> dict[str, Any]:
     """Simulate ``frames`` frames of ``scene`` (this shard's part) into a capture file.
 
@@ -101,6 +103,8 @@ def simulate_capture(
         device: where to simulate.
         progress: show a progress bar.
         twin_options: keyword arguments of :class:`DigitalTwin`.
+        profile: a fitted twin profile (object, JSON path or dict) for the receiver; part of
+            the job's identity, so a resume never mixes frames of two profiles.
 
     Returns:
         ``{"path", "frames": [start, stop), "resumed_from", "simulated"}``.
@@ -122,6 +126,10 @@ def simulate_capture(
     path = shard_path(out, shard)
     job = {"scene": _jsonable(scene.to_dict()), "seed": seed, "frames_total": frames, "shard": list(shard),
            "first_frame": start, "block_frames": BLOCK_FRAMES, "device_type": device_type}
+    prof = as_profile(profile)
+    if prof is not None:
+        job["profile"] = prof.to_dict()["receiver"]
+        twin_options = {**(twin_options or {}), "profile": prof}
     attrs = {
         "source": "radaraug simulate",
         "description": f"simulated scene {scene.name!r}",

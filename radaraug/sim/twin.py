@@ -15,11 +15,12 @@ from typing import Any
 import torch
 
 from radaraug.config import RadarConfig
-from radaraug.errors import InputTensorError
+from radaraug.errors import ConfigError, InputTensorError
 from radaraug.raytrace.tracer import RayTracer
 from radaraug.scene.geometry import Ellipsoids
 from radaraug.scene.scene import Scene
 from radaraug.sensor.paths import Paths
+from radaraug.sensor.profile import as_profile
 from radaraug.sensor.receiver import FMCWReceiver
 
 
@@ -38,6 +39,9 @@ class DigitalTwin:
         dtype: real dtype of the tracer (float32; the receiver follows the paths' dtype).
         static_signal: the room's signal from an earlier :meth:`static_signal` of the same
             scene, config and receiver (skips the room's SBR trace, seconds of work).
+        profile: a fitted twin profile (:class:`~radaraug.sensor.profile.TwinProfile`, its JSON
+            path or dict, e.g. written by ``radaraug diagnose``): the receiver is built from it.
+            Give ``receiver`` or ``profile``, not both.
     """
 
     def __init__(
@@ -51,6 +55,7 @@ class DigitalTwin:
         device: torch.device | str = "cpu",
         dtype: torch.dtype = torch.float32,
         static_signal: torch.Tensor | None = None,
+        profile: Any = None,
     ) -> None:
         self.scene = scene
         self.config = config or scene.config
@@ -61,6 +66,10 @@ class DigitalTwin:
         self.tracer = RayTracer(
             scene.room.to(self.device), scene.radar, self.config, device=self.device, dtype=dtype, **options,
         )
+        if profile is not None:
+            if receiver is not None:
+                raise ConfigError("DigitalTwin: give a receiver or a profile, not both")
+            receiver = as_profile(profile).receiver(self.config)
         self.receiver = (receiver or FMCWReceiver(self.config)).to(self.device)
         self._static_signal = None if static_signal is None else static_signal.to(self.device)
 

@@ -1,7 +1,8 @@
 """Simulate once: per-RX RD dB maps of simulated items, cached on disk (HDF5) under a content key.
 
-The six runs of an experiment (2 tasks x 3 DR methods) and every seed of them train on the same
-simulated items; only the DR differs, and DR acts on dB maps. So the twin's output is stored
+The runs of an experiment (2 tasks x the DR methods) and every seed of them train on the same
+simulated items; only the DR differs, and DR acts on dB maps. (``cdr_profile`` simulates with
+another receiver, the fitted twin profile's: its set has its own key.) So the twin's output is stored
 *before* DR as ``(rx, range, doppler)`` dB maps (float16: 0.06 dB steps at -100 dB, half the
 size) with the people count of each item. The file name carries a hash of everything the maps
 depend on -- scene, radar config, receiver, scenario sampler, twin randomization, seed, the item
@@ -78,6 +79,28 @@ def cache_spec(dataset: SimulatedRadarDataset, indices: Sequence[int]) -> dict[s
 def cache_key(spec: dict[str, Any]) -> str:
     """A 20-hex-digit content hash of a cache spec."""
     return hashlib.sha256(json.dumps(spec, sort_keys=True).encode()).hexdigest()[:20]
+
+
+def content_digest(path: str | os.PathLike) -> str:
+    """SHA-256 of a file's bytes, or of a folder's files (relative names and bytes, in sorted order:
+    an Infineon recording folder). The name and modification time of ``path`` do not count, so a
+    copied or renamed capture keeps its digest and an edited one does not.
+
+    Raises:
+        CaptureError: ``path`` does not exist.
+    """
+    root = Path(path)
+    if not root.exists():
+        raise CaptureError(f"{root}: does not exist")
+    files = [root] if root.is_file() else sorted(p for p in root.rglob("*") if p.is_file())
+    h = hashlib.sha256()
+    for f in files:
+        name = b"" if f == root else f.relative_to(root).as_posix().encode()
+        h.update(name + b"\0" + f.stat().st_size.to_bytes(8, "little"))  # unambiguous boundaries
+        with open(f, "rb") as fh:
+            for block in iter(lambda: fh.read(1 << 20), b""):
+                h.update(block)
+    return h.hexdigest()
 
 
 def build_map_cache(

@@ -37,8 +37,13 @@ from radaraug.transforms import (
 
 #: Class names per task; the label of a simulated item is its people count.
 TASKS: dict[str, tuple[str, ...]] = {"occupancy": ("empty", "occupied"), "counting": ("0", "1", "2")}
-#: Noise-floor randomization methods of the paper.
-METHODS = ("rt", "randomdr", "cdr")
+#: Noise-floor randomization methods: the paper's three, and CDR on a twin whose receiver carries
+#: the twin profile fitted (``radaraug diagnose``) on the same empty-room calibration capture.
+METHODS = ("rt", "randomdr", "cdr", "cdr_profile")
+#: Methods whose DR is CalibratedDR (they need a calibration).
+CDR_METHODS = ("cdr", "cdr_profile")
+#: Methods whose twin receiver is the twin profile fitted on the calibration capture.
+PROFILE_METHODS = ("cdr_profile",)
 
 
 def check_task(task: str) -> tuple[str, ...]:
@@ -76,9 +81,10 @@ def make_dr(
     """The training-time noise-floor randomization of ``method`` (None for ``rt``).
 
     Args:
-        method: ``rt`` (no randomization), ``randomdr`` or ``cdr``.
-        calibration: for ``cdr``: a fitted :class:`CalibratedDR`, its JSON, or an empty-room
-            capture to fit it on.
+        method: ``rt`` (no randomization), ``randomdr``, ``cdr`` or ``cdr_profile`` (the same
+            CalibratedDR as ``cdr``: the method differs in the twin's receiver, not in the DR).
+        calibration: for ``cdr`` / ``cdr_profile``: a fitted :class:`CalibratedDR`, its JSON, or
+            an empty-room capture to fit it on.
         seed: seed of the transform's own generator (per-sample draws).
         randomdr_mean_db, randomdr_std_db: ranges of RandomDR (default: radaraug's documented
             defaults, see ``docs/transforms.md``).
@@ -95,7 +101,7 @@ def make_dr(
             kw["std_db"] = tuple(randomdr_std_db)
         return RandomDR(seed=seed, **kw)
     if calibration is None:
-        raise ConfigError("method 'cdr' needs a calibration: an empty-room capture or a CalibratedDR JSON")
+        raise ConfigError(f"method {method!r} needs a calibration: an empty-room capture or a CalibratedDR JSON")
     if isinstance(calibration, CalibratedDR):
         fitted = calibration
     elif is_calibration_json(calibration):

@@ -10,6 +10,11 @@
   people count for the whole file or per-frame ``count`` labels from the file; without any,
   the held-out proxy (:mod:`radaraug.sim.proxy`) is generated and used, and so is its
   empty-room capture for CDR.
+* **the twin's receiver**: the default chain with its noise figure fitted to the calibration
+  capture's floor (``calibrate_noise``), or a twin profile (:mod:`radaraug.sensor.profile`):
+  the one named by ``profile``, or, for ``cdr_profile``, the one ``radaraug diagnose`` fits on
+  the calibration capture (cached in ``cache_dir`` as ``profile-<key>.json``). A profile replaces
+  the noise-figure fit; the simulated set of a profile twin has its own cache key.
 * the chain (:mod:`radaraug.training.chain`): per-RX dB maps arrive on the device; on the
   simulated splits (train and val) the run's DR is applied there, per sample, from its own seeded
   generator (captures never get DR); then RX combination,
@@ -20,6 +25,7 @@ from __future__ import annotations
 
 import json
 import os
+import warnings
 from pathlib import Path
 from typing import Any
 
@@ -28,12 +34,15 @@ import torch
 from torch.utils.data import ConcatDataset, DataLoader, Dataset, Subset
 
 from radaraug.config import RadarConfig
-from radaraug.errors import ConfigError
+from radaraug.errors import CalibrationError, ConfigError
 from radaraug.io import RadarCaptureDataset, open_capture
+from radaraug.sensor.profile import PROFILE_VERSION, TwinProfile
 from radaraug.sensor.receiver import FMCWReceiver
 from radaraug.sim.dataset import SimulatedRadarDataset
-from radaraug.training.cache import CachedMaps, build_map_cache
+from radaraug.training.cache import CachedMaps, build_map_cache, cache_key, content_digest
 from radaraug.training.chain import (
+    CDR_METHODS,
+    PROFILE_METHODS,
     check_task,
     estimate_clip_range,
     image_chain,
@@ -42,6 +51,12 @@ from radaraug.training.chain import (
     make_dr,
     rd_db_chain,
 )
+
+PROFILE_FIT_FORMAT = "radaraug-profile-fit"
+#: Version of the cached ``cdr_profile`` fits (``cache_dir/profile-<key>.json``): part of their key,
+#: bumped when what :func:`radaraug.calibration.diagnose` fits changes, so old fits are not reused.
+PROFILE_FIT_VERSION = 1
+NOISE_FIT_SKIPPED = "skipped: the twin's receiver comes from the twin profile (its fitted chain sets the floor)"
 
 
 class _Labelled(Dataset):
@@ -69,10 +84,13 @@ class RadarDataModule(L.LightningDataModule):
 
     Args:
         task: ``occupancy`` (2 classes) or ``counting`` (0/1/2 people).
-        method: ``rt``, ``randomdr`` or ``cdr`` (noise-floor randomization in training).
+        method: ``rt``, ``randomdr`` or ``cdr`` (noise-floor randomization in training), or
+            ``cdr_profile``: ``cdr``'s DR on a twin whose receiver is the twin profile fitted
+            (:func:`radaraug.calibration.diagnose`, no scene) on the calibration capture.
         scene: training scene: built-in name or scene file (default: the paper's corridor).
-        calibration: empty-room capture (or a CalibratedDR JSON) for ``cdr``; its radar config
-            is the one simulated. None with no ``test``: the held-out proxy's.
+        calibration: empty-room capture (or a CalibratedDR JSON) for ``cdr`` / ``cdr_profile``;
+            its radar config is the one simulated. None with no ``test``: the held-out proxy's.
+            ``cdr_profile`` fits its profile on it, so it must be a capture (or give ``profile``).
         test: test captures, each ``{"path": ..., "count": N}`` (whole file has N people) or
             ``{"path": ...}`` (per-frame ``count`` labels in the file). None: the held-out proxy.
         proxy_dir: where the held-out proxy is generated (and reused) when it is needed.
@@ -83,7 +101,13 @@ class RadarDataModule(L.LightningDataModule):
             :class:`~radaraug.sim.randomization.TwinRandomization` fields.
         calibrate_noise: fit the twin's noise figure so that its empty-room RD noise floor equals
             the calibration capture's (:mod:`radaraug.sim.noise_fit`); twin randomization then
-            draws around the fitted value. Applies to every method: they share one simulated set.
+            draws around the fitted value. Applies to every method that simulates with the default
+            receiver (they share one simulated set); skipped when the receiver is a profile.
+        profile: a twin profile JSON (``radaraug diagnose CAPTURE -o DIR`` writes
+            ``DIR/profile.json``), any method: the twin's receiver is built from it (the noise
+            fit is skipped; twin randomization draws its gain / noise-figure offsets around the
+            profile's values). For ``cdr_profile`` it is used instead of fitting one.
+        profile_max_frames: frames of the calibration capture that ``cdr_profile``'s diagnose reads.
         tracer_rays: SBR rays per axis for the room (None: the twin's default).
         cache_dir: folder of the simulate-once cache.
         image_size: network input ``[H, W]`` (None: the RD map's own size).
@@ -112,6 +136,8 @@ class RadarDataModule(L.LightningDataModule):
         sim_seed: int = 0,
         randomization: bool | dict[str, Any] | None = True,
         calibrate_noise: bool = True,
+        profile: str | None = None,
+        profile_max_frames: int = 100,
         tracer_rays: int | None = None,
         cache_dir: str = "radaraug_cache",
         image_size: list[int] | None = None,
@@ -141,6 +167,8 @@ class RadarDataModule(L.LightningDataModule):
         self._test: Dataset | None = None
         self.train_class_counts: torch.Tensor | None = None
         self.noise_fit: dict[str, Any] | None = None
+        self.twin_profile: TwinProfile | None = None
+        self.profile_info: dict[str, Any] | None = None
 
     # ------------------------------------------------------------------ resolving inputs
     def _proxy(self) -> Any:
@@ -157,10 +185,10 @@ class RadarDataModule(L.LightningDataModule):
             test = [{"path": str(p), "count": int(c)} for p, c in proxy.tests]
             if calibration is None:
                 calibration = str(proxy.calibration)
-        elif calibration is None and self.method == "cdr":
+        elif calibration is None and self.method in CDR_METHODS:
             # The proxy's empty room says nothing about the user's captures: no silent stand-in.
-            raise ConfigError("method 'cdr' needs data.calibration: an empty-room capture (or CalibratedDR JSON) "
-                              "recorded like the test captures")
+            raise ConfigError(f"method {self.method!r} needs data.calibration: an empty-room capture (or CalibratedDR "
+                              "JSON) recorded like the test captures")
         for i, entry in enumerate(test):
             if not isinstance(entry, dict) or "path" not in entry:
                 raise ConfigError(f"test[{i}] must be a mapping with a 'path' (and optionally 'count'), got {entry!r}")
@@ -182,9 +210,11 @@ class RadarDataModule(L.LightningDataModule):
         twin_options: dict[str, Any] = {}
         if self.hparams.tracer_rays is not None:
             twin_options["tracer_options"] = {"rays": int(self.hparams.tracer_rays)}
-        if self.noise_fit is not None:
+        extra: dict[str, Any] = {} if randomization is None else {"randomization": randomization}
+        if self.twin_profile is not None:
+            extra["profile"] = self.twin_profile
+        elif self.noise_fit is not None:
             twin_options["receiver"] = FMCWReceiver(self.config, noise_figure_dB=self.noise_fit["noise_figure_dB"])
-        extra = {} if randomization is None else {"randomization": randomization}
         return SimulatedRadarDataset(
             self.hparams.scene, length=self.hparams.train_items + self.hparams.val_items,
             seed=self.hparams.sim_seed, config=self.config, target="count", twin_options=twin_options, **extra,
@@ -203,13 +233,15 @@ class RadarDataModule(L.LightningDataModule):
         self.dr = make_dr(self.method, calibration=calibration, seed=self.hparams.dr_seed + 1000 * rank,
                           randomdr_mean_db=self.hparams.randomdr_mean_db,
                           randomdr_std_db=self.hparams.randomdr_std_db)
-        if self.method == "cdr":
+        if self.method in CDR_METHODS:
             self.dr.check_config(self.config)
 
         n_train, n_val = self.hparams.train_items, self.hparams.val_items
         needs_sim = stage in (None, "fit", "validate") or self.clip is None
-        if needs_sim and self.hparams.calibrate_noise and has_capture:
-            self.noise_fit = self._fit_noise(calibration)
+        if needs_sim:
+            self._resolve_receiver(calibration, has_capture, rank, world)
+            if self.twin_profile is None and self.hparams.calibrate_noise and has_capture:
+                self.noise_fit = self._fit_noise(calibration)
         if needs_sim:
             sim = self.simulated_dataset()
             common = {"cache_dir": self.hparams.cache_dir, "num_workers": self.hparams.sim_workers,
@@ -240,6 +272,80 @@ class RadarDataModule(L.LightningDataModule):
         full = ConcatDataset(tests)
         self._test = _Labelled(Subset(full, range(rank, len(full), world)), self.task)
         self._write_run_files()
+
+    def _resolve_receiver(self, calibration: str | None, has_capture: bool, rank: int, world: int) -> None:
+        """Set :attr:`twin_profile` (and :attr:`profile_info`): ``data.profile``, or for
+        ``cdr_profile`` the profile fitted on the calibration capture; None otherwise."""
+        self.twin_profile, self.profile_info = None, None
+        if self.hparams.profile is not None:
+            path = str(self.hparams.profile)
+            prof = TwinProfile.load(path)
+            info: dict[str, Any] = {"source": "data.profile", "path": path}
+        elif self.method in PROFILE_METHODS:
+            if not has_capture:
+                raise ConfigError(
+                    f"method {self.method!r} fits a twin profile on the empty-room capture in data.calibration, but "
+                    f"{calibration!r} is a CalibratedDR JSON: give the capture itself, or a fitted profile as "
+                    "data.profile (radaraug diagnose CAPTURE -o DIR writes DIR/profile.json)")
+            data = path = None
+            if rank == 0:  # one diagnose per run; the other DDP ranks get its result
+                fitted, cached = self._fit_profile(calibration)
+                data, path = fitted.to_dict(), str(cached)
+            if world > 1:
+                data, path = self.trainer.strategy.broadcast((data, path), src=0)
+            prof = TwinProfile.from_dict(data, source=path)
+            info = {"source": "fitted on data.calibration", "path": path, "calibration": str(calibration),
+                    "max_frames": int(self.hparams.profile_max_frames)}
+        else:
+            return
+        fitted_on = prof.fitted_on
+        if "config" in fitted_on:
+            try:
+                same = RadarConfig.from_dict(fitted_on["config"]) == self.config
+            except (ConfigError, TypeError, ValueError):
+                same = False
+            if not same:
+                warnings.warn(f"twin profile {info['path']} was fitted on a capture with another radar config than "
+                              f"the training twin's ({self.config.describe()}); its sensor effects are applied as "
+                              "fitted", stacklevel=2)
+        info |= {
+            "capture": fitted_on.get("capture"),
+            "mode": fitted_on.get("mode"),
+            "effects": prof.effect_names,
+            "effects_added": list(fitted_on.get("effects_added") or []),
+            "error_before_dB": fitted_on.get("error_before_dB"),
+            "error_after_dB": fitted_on.get("error_after_dB"),
+        }
+        if self.hparams.calibrate_noise:
+            info["calibrate_noise"] = NOISE_FIT_SKIPPED
+        self.twin_profile, self.profile_info = prof, info
+
+    def profile_cache_path(self, calibration: str) -> Path:
+        """``cache_dir/profile-<key>.json`` of ``calibration``: the key covers the capture's bytes
+        (not its name), the frames read and the fit's version."""
+        key = cache_key({"format": PROFILE_FIT_FORMAT, "version": PROFILE_FIT_VERSION,
+                         "profile_version": PROFILE_VERSION, "capture_sha256": content_digest(calibration),
+                         "scene": None, "max_frames": int(self.hparams.profile_max_frames)})
+        return Path(self.hparams.cache_dir) / f"profile-{key}.json"
+
+    def _fit_profile(self, calibration: str) -> tuple[TwinProfile, Path]:
+        """The twin profile fitted on the calibration capture (empty room, no scene), cached."""
+        path = self.profile_cache_path(calibration)
+        if path.is_file():
+            try:
+                return TwinProfile.load(path), path
+            except CalibrationError:
+                pass  # unreadable (e.g. written by another radaraug): fit again and replace it
+        from radaraug import calibration as cal_mod
+
+        diag = cal_mod.diagnose(str(calibration), scene=None, max_frames=int(self.hparams.profile_max_frames),
+                                progress=bool(self.hparams.progress))
+        prof = diag.profile
+        path.parent.mkdir(parents=True, exist_ok=True)
+        tmp = path.with_suffix(f".{os.getpid()}.tmp")
+        tmp.write_text(json.dumps(prof.to_dict(), indent=1))
+        os.replace(tmp, path)
+        return prof, path
 
     def _fit_noise(self, calibration: str) -> dict[str, Any]:
         """The twin's noise figure fitted to the calibration capture's floor (cached in cache_dir)."""
@@ -278,10 +384,19 @@ class RadarDataModule(L.LightningDataModule):
             return
         Path(out).mkdir(parents=True, exist_ok=True)
         info = {"clip_range_db": list(self.clip), "task": self.task, "method": self.method,
-                "twin_noise_fit": self.noise_fit,
+                "twin_receiver": self.receiver_kind(),
+                "twin_noise_fit": NOISE_FIT_SKIPPED if self.twin_profile is not None and self.hparams.calibrate_noise
+                else self.noise_fit,
+                "twin_profile": self.profile_info,
                 "classes": list(self.class_names), "config": self.config.to_dict(),
                 "train_class_counts": None if self.train_class_counts is None else self.train_class_counts.tolist()}
         (Path(out) / "clip_range.json").write_text(json.dumps(info, indent=2))
+
+    def receiver_kind(self) -> str:
+        """What the twin's receiver is: ``profile``, ``noise_fit`` or ``default``."""
+        if self.twin_profile is not None:
+            return "profile"
+        return "noise_fit" if self.noise_fit is not None else "default"
 
     def state_dict(self) -> dict[str, Any]:
         # The clip range is part of the model: a checkpoint tested later must clip the same way.

@@ -59,7 +59,8 @@ def noise_floor_histograms(groups: Mapping[str, torch.Tensor], path: str | os.Pa
 
 def rd_triplets(rows: Mapping[str, Sequence[tuple[str, torch.Tensor]]], path: str | os.PathLike,
                 *, vmin: float, vmax: float, range_max_m: float, v_max_m_s: float) -> Path:
-    """Fig. 5: a grid of RD maps, a row per situation (e.g. empty / one person), a column per source."""
+    """Fig. 5: a grid of RD maps, a row per situation (e.g. empty / one person), a column per source
+    (e.g. simulation, simulation + CDR, the profile twin + CDR, capture)."""
     plt = _plt()
     n_rows = len(rows)
     n_cols = max(len(r) for r in rows.values())
@@ -77,7 +78,7 @@ def rd_triplets(rows: Mapping[str, Sequence[tuple[str, torch.Tensor]]], path: st
                 ax.set_ylabel("range (m)", fontsize=8)
     if im is not None:
         fig.colorbar(im, ax=axes, shrink=0.8, label=f"dBFS, clipped to [{vmin:.0f}, {vmax:.0f}]")
-    fig.suptitle("Range-Doppler maps: simulation, simulation + CDR, test capture", fontsize=10)
+    fig.suptitle("Range-Doppler maps: " + ", ".join(name for name, _ in next(iter(rows.values()))), fontsize=10)
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     fig.savefig(path, dpi=110)
@@ -166,7 +167,8 @@ def results_bars(results: Mapping[str, Mapping[str, Mapping[str, Any]]], path: s
     """Balanced accuracy (mean +- std over seeds) per task and method, with the ablation if present."""
     plt = _plt()
     tasks = list(results)
-    fig, axes = plt.subplots(1, len(tasks), figsize=(4.2 * len(tasks), 3.2), squeeze=False)
+    bars = max((len(results[t]) for t in tasks), default=1)
+    fig, axes = plt.subplots(1, len(tasks), figsize=(max(4.2, 0.8 * bars + 1.4) * len(tasks), 3.4), squeeze=False)
     for ax, task in zip(axes[0], tasks):
         names = list(results[task])
         means = [results[task][n]["balanced_accuracy"]["mean"] for n in names]

@@ -1,8 +1,10 @@
 """`radaraug reproduce`: the paper's experiment (Sec. 2.2-3) end to end, with a report.
 
-2 tasks (occupancy, counting) x 3 methods (RT, RandomDR, CDR) x N seeds, all trained on one
-simulated set (simulated once, :mod:`radaraug.training.cache`) and tested on the same captures;
-plus an ablation (CDR without twin randomization). Writes ``OUT/report.md``, ``OUT/report.json``
+2 tasks (occupancy, counting) x 4 methods (RT, RandomDR, CDR, and CDR on the twin profile fitted on
+the calibration capture: ``cdr_profile``) x N seeds, tested on the same captures. RT, RandomDR and
+CDR train on one simulated set (simulated once, :mod:`radaraug.training.cache`); ``cdr_profile``
+on a second one, simulated with the profile's receiver. Plus an ablation (CDR without twin
+randomization). Writes ``OUT/report.md``, ``OUT/report.json``
 (``results[task][method]["balanced_accuracy"] = {"mean", "std", "per_seed"}``), per-run metrics
 under ``OUT/runs/`` and the paper's figures under ``OUT/figures/``.
 
@@ -27,7 +29,7 @@ from typing import Any
 import torch
 
 from radaraug.errors import ConfigError
-from radaraug.training.chain import METHODS, TASKS, is_calibration_json
+from radaraug.training.chain import METHODS, PROFILE_METHODS, TASKS, is_calibration_json
 from radaraug.units import DB_CONVENTION
 
 
@@ -47,6 +49,8 @@ class ReproduceSettings:
     sim_workers: int = 2
     #: twin randomization of the main runs: True (defaults), or a dict of TwinRandomization fields
     randomization: bool | dict[str, Any] = True
+    #: calibration-capture frames that ``cdr_profile``'s diagnose reads (fits on half, scores on half)
+    profile_max_frames: int = 100
 
     @classmethod
     def full(cls) -> ReproduceSettings:
@@ -55,9 +59,10 @@ class ReproduceSettings:
 
     @classmethod
     def quick(cls) -> ReproduceSettings:
-        """Minutes on a 2-core CPU: fewer items and epochs, half-size images, 128x128 room rays."""
+        """Minutes on a 2-core CPU: fewer items and epochs, half-size images, 128x128 room rays, a
+        40-frame diagnose for ``cdr_profile``."""
         return cls(train_items=360, val_items=90, epochs=4, image_size=(64, 32), batch_size=32,
-                   proxy_frames_per_count=60, tracer_rays=128, num_workers=0, sim_workers=0)
+                   proxy_frames_per_count=60, tracer_rays=128, num_workers=0, sim_workers=0, profile_max_frames=40)
 
 
 def parse_test_arg(text: str) -> dict[str, Any]:
@@ -87,7 +92,7 @@ def _run_one(task: str, method: str, seed: int, *, settings: ReproduceSettings, 
                          image_size=list(settings.image_size), batch_size=settings.batch_size,
                          num_workers=settings.num_workers, sim_workers=settings.sim_workers,
                          tracer_rays=settings.tracer_rays, proxy_frames_per_count=settings.proxy_frames_per_count,
-                         progress=progress, **({"randomization": settings.randomization} | data_kw))
+                         profile_max_frames=settings.profile_max_frames, progress=progress, **({"randomization": settings.randomization} | data_kw))
     model = RDClassifier(task=task, lr=settings.lr, out_dir=str(run_dir))
     trainer = L.Trainer(max_epochs=settings.epochs, accelerator=accelerator, devices=1, logger=False,
                         enable_checkpointing=False, enable_model_summary=False, num_sanity_val_steps=0,
@@ -127,9 +132,11 @@ def reproduce(
         out: output folder.
         quick: the quick settings (:meth:`ReproduceSettings.quick`) instead of the full ones.
         seeds: seeds per task x method (0 .. seeds-1).
-        calibration: empty-room capture for CDR (None: the held-out proxy's).
+        calibration: empty-room capture for CDR and for ``cdr_profile``'s twin profile (None: the
+            held-out proxy's). A CalibratedDR JSON serves CDR but not ``cdr_profile``.
         test: test entries ``{"path", "count"?}`` (None: the held-out proxy).
-        tasks, methods: subsets of ``occupancy``/``counting`` and ``rt``/``randomdr``/``cdr``.
+        tasks, methods: subsets of ``occupancy``/``counting`` and
+            ``rt``/``randomdr``/``cdr``/``cdr_profile``.
         ablation: also train CDR without twin randomization.
         accelerator: Lightning accelerator (``auto`` uses a GPU when there is one).
         progress: progress bars.
@@ -143,6 +150,9 @@ def reproduce(
     for m in methods:
         if m not in METHODS:
             raise ConfigError(f"unknown method {m!r}; choose from {METHODS}")
+    if calibration is not None and is_calibration_json(calibration) and any(m in PROFILE_METHODS for m in methods):
+        raise ConfigError(f"method 'cdr_profile' fits a twin profile on an empty-room capture, but the calibration "
+                          f"{calibration!r} is a CalibratedDR JSON: give the capture, or leave cdr_profile out")
     settings = settings or (ReproduceSettings.quick() if quick else ReproduceSettings.full())
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
@@ -215,6 +225,7 @@ def reproduce(
         "figures": {k: str(Path(v).relative_to(out)) for k, v in figures.items()},
         "empty_room_median_db": floors,
         "twin_noise_fit": _noise_fit_of(keep),
+        "twin_profile": _profile_of(keep, out),
         "wall_seconds": wall,
         "machine": {"platform": platform.platform(), "torch": torch.__version__,
                     "device": "cuda" if torch.cuda.is_available() and accelerator != "cpu" else "cpu",
@@ -231,6 +242,21 @@ def _noise_fit_of(keep: dict) -> dict[str, Any] | None:
     for _model, dm in keep.values():
         if getattr(dm, "noise_fit", None) is not None:
             return dm.noise_fit
+    return None
+
+
+def _profile_of(keep: dict, out: Path) -> dict[str, Any] | None:
+    """The twin profile of the ``cdr_profile`` runs (they share it): where it came from, the
+    effects the fit added and the diagnose error before / after (``profile.fitted_on``)."""
+    for _model, dm in keep.values():
+        info = getattr(dm, "profile_info", None)
+        if info is not None:
+            info = dict(info)
+            try:
+                info["path"] = str(Path(info["path"]).resolve().relative_to(out.resolve()))
+            except (KeyError, TypeError, ValueError):
+                pass
+            return info
     return None
 
 
@@ -252,7 +278,8 @@ def _capture_maps(path: str, n: int) -> torch.Tensor:
 def _figures(fig_dir: Path, keep: dict, cms: dict, results: dict, calibration: str | None,
              test: Sequence[dict[str, Any]], settings: ReproduceSettings, floors: dict[str, float]) -> dict[str, Path]:
     """Write the figures; fill ``floors`` with the median empty-room RD level (dB) of simulation,
-    simulation + CDR and the calibration capture (Fig. 4's data)."""
+    simulation + CDR, the calibration capture and, with ``cdr_profile`` runs, the profile twin
+    with and without CDR (Fig. 4's data)."""
     from radaraug.training import figures as F
 
     figs: dict[str, Path] = {}
@@ -265,6 +292,7 @@ def _figures(fig_dir: Path, keep: dict, cms: dict, results: dict, calibration: s
     task = next(iter(cms))
     cdr_run = keep.get((task, "cdr"))
     rt_run = keep.get((task, "rt"))
+    prof_run = keep.get((task, "cdr_profile"))
     if cdr_run is None or calibration is None or is_calibration_json(calibration):
         return figs
     dm = cdr_run[1]
@@ -275,17 +303,33 @@ def _figures(fig_dir: Path, keep: dict, cms: dict, results: dict, calibration: s
     real_one = _capture_maps(one[0]["path"], 64) if one else None
     with torch.no_grad():
         cdr_empty, cdr_one = dm.dr.train()(sim_empty), dm.dr.train()(sim_one)
-    for key, maps in (("simulation", sim_empty), ("simulation_cdr", cdr_empty), ("capture", real_empty)):
+    groups = {"simulation": sim_empty, "simulation + CDR": cdr_empty}
+    median_of = {"simulation": sim_empty, "simulation_cdr": cdr_empty}
+    prof_empty = prof_one = None
+    if prof_run is not None:
+        pdm = prof_run[1]
+        prof_empty, prof_one = _maps_of(pdm, 0, 64), _maps_of(pdm, 1, 64)
+        with torch.no_grad():
+            prof_cdr_empty = pdm.dr.train()(prof_empty)
+            prof_one = pdm.dr.train()(prof_one)
+        groups |= {"profile twin": prof_empty, "profile twin + CDR": prof_cdr_empty}
+        median_of |= {"simulation_profile": prof_empty, "simulation_profile_cdr": prof_cdr_empty}
+        prof_empty = prof_cdr_empty
+    groups["empty-room capture"] = real_empty
+    median_of["capture"] = real_empty
+    for key, maps in median_of.items():
         v = maps.float().flatten()
         floors[key] = round(float(v[torch.isfinite(v) & (v > -250)].median()), 2)
-    figs["fig4_noise_floor"] = F.noise_floor_histograms(
-        {"simulation": sim_empty, "simulation + CDR": cdr_empty, "empty-room capture": real_empty},
-        fig_dir / "fig4_noise_floor_histograms.png")
+    figs["fig4_noise_floor"] = F.noise_floor_histograms(groups, fig_dir / "fig4_noise_floor_histograms.png")
     vmin, vmax = dm.clip
     cfg = dm.config
-    rows = {"empty": [("sim", sim_empty[0]), ("sim + CDR", cdr_empty[0]), ("capture", real_empty[0])]}
+    rows = {"empty": [("sim", sim_empty[0]), ("sim + CDR", cdr_empty[0])]
+            + ([("profile sim + CDR", prof_empty[0])] if prof_empty is not None and len(prof_empty) else [])
+            + [("capture", real_empty[0])]}
     if real_one is not None and len(sim_one):
-        rows["one person"] = [("sim", sim_one[0]), ("sim + CDR", cdr_one[0]), ("capture", real_one[len(real_one) // 2])]
+        rows["one person"] = ([("sim", sim_one[0]), ("sim + CDR", cdr_one[0])]
+                              + ([("profile sim + CDR", prof_one[0])] if prof_one is not None and len(prof_one) else [])
+                              + [("capture", real_one[len(real_one) // 2])])
     figs["fig5_rd_triplets"] = F.rd_triplets(rows, fig_dir / "fig5_rd_triplets.png", vmin=vmin, vmax=vmax,
                                              range_max_m=float(cfg.max_range_m), v_max_m_s=float(cfg.max_velocity_m_s))
     energy = {"simulation": torch.cat([sim_empty, sim_one]), "simulation + CDR": torch.cat([cdr_empty, cdr_one]),
@@ -295,8 +339,10 @@ def _figures(fig_dir: Path, keep: dict, cms: dict, results: dict, calibration: s
     figs["fig6_static_energy"] = F.static_energy_plot(energy, fig_dir / "fig6_static_to_total_energy.png")
     if rt_run is not None and real_one is not None and len(sim_one):
         inputs = {"simulated": dm.images(sim_one[:1])[0], "capture": dm.images(real_one[len(real_one) // 2:][:1])[0]}
-        figs["fig7_feature_maps"] = F.feature_maps({"RT": rt_run[0].net, "CDR": cdr_run[0].net}, inputs,
-                                                   fig_dir / "fig7_feature_maps.png")
+        models = {"RT": rt_run[0].net, "CDR": cdr_run[0].net}
+        if prof_run is not None:
+            models["CDR-profile"] = prof_run[0].net
+        figs["fig7_feature_maps"] = F.feature_maps(models, inputs, fig_dir / "fig7_feature_maps.png")
     return figs
 
 
@@ -327,10 +373,13 @@ def _markdown(rep: dict[str, Any]) -> str:
     order = []
     for task, by in rep["results"].items():
         m = {k: v["balanced_accuracy"]["mean"] for k, v in by.items()}
-        if all(k in m for k in METHODS):
+        if all(k in m for k in ("rt", "randomdr", "cdr")):
             holds = m["rt"] < m["randomdr"] < m["cdr"]
             order.append(f"- {task}: paper's ordering RT < RandomDR < CDR {'holds' if holds else 'does NOT hold'} "
                          f"({m['rt']:.3f} / {m['randomdr']:.3f} / {m['cdr']:.3f}).")
+        if "cdr_profile" in m and "cdr" in m:
+            order.append(f"- {task}: CDR on the profile twin {m['cdr_profile']:.3f} vs CDR on the noise-fitted twin "
+                         f"{m['cdr']:.3f}.")
         if "cdr_no_twin_randomization" in m and "cdr" in m:
             order.append(f"- {task}: twin randomization ablation: CDR {m['cdr']:.3f} with vs "
                          f"{m['cdr_no_twin_randomization']:.3f} without.")
@@ -346,6 +395,27 @@ def _markdown(rep: dict[str, Any]) -> str:
             "max(S, N) adds a second, i.i.d. floor on top: training sees a higher, rougher floor than the test "
             "captures have, which penalises CDR against RT (see docs/training.md, 'What the numbers show').")
     lines += ["## Ordering and ablation", "", *order, ""]
+    prof = rep.get("twin_profile")
+    if prof:
+        def db(v: Any) -> str:
+            return "n/a" if v is None else f"{v:.3f} dB"
+
+        added = ", ".join(f"`{e}`" for e in prof.get("effects_added") or []) or "none"
+        how = ("fitted by `radaraug diagnose` on the calibration capture"
+               if str(prof.get("source", "")).startswith("fitted") else "given as `data.profile`")
+        frames = f", {prof['max_frames']} frames read" if prof.get("max_frames") else ""
+        lines += ["## Twin profile (`cdr_profile`)", "",
+                  f"The `cdr_profile` runs simulate with the twin profile {how} (`{prof.get('path')}`; capture "
+                  f"`{prof.get('capture')}`, {prof.get('mode')} scene{frames}) instead of the noise-figure fit.", "",
+                  f"- effects added by the fit: {added}",
+                  f"- diagnose error (held-out frames): {db(prof.get('error_before_dB'))} before -> "
+                  f"{db(prof.get('error_after_dB'))} after",
+                  "- chain: " + " -> ".join(prof.get("effects") or []), ""]
+        if "simulation_profile" in floors:
+            lines += [f"Empty-room median RD level: profile twin {floors['simulation_profile']:.1f} dB, "
+                      f"+ CDR {floors['simulation_profile_cdr']:.1f} dB, capture {floors['capture']:.1f} dB "
+                      f"(noise-fitted twin {floors['simulation']:.1f} dB, + CDR {floors['simulation_cdr']:.1f} dB).",
+                      ""]
     lines += ["## Figures", ""]
     for key, rel in rep["figures"].items():
         lines.append(f"![{key}]({rel})")

@@ -154,7 +154,7 @@ def test_default_noise_pinned_to_measured_counts(make_paths):
 
 def test_quantization_and_clipping(cfg, make_paths):
     rx = FMCWReceiver(cfg, effects=[IFGain(), DCOffset([1000.0, 2047.5, 3000.0]), ADCQuantization(), ADCClipping()])
-    x = rx(make_paths(cfg, [1.0, 4.0], amplitudes=[1e-3, 3e-4]))
+    x = rx(make_paths(cfg, [1.0, 4.0], amplitudes=[3e-2, 3e-4]))
     codes = (x + 1) * 4095 / 2
     torch.testing.assert_close(codes, torch.round(codes), atol=1e-6, rtol=0)
     assert float(x.min()) == -1.0 and float(x.max()) == 1.0  # strong target: clips at both rails

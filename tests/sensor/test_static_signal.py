@@ -17,7 +17,7 @@ def test_static_signal_equals_joint_synthesis() -> None:
     cfg = RadarConfig.bgt60tr13c()
     # Deterministic chain (no noise, no phase noise) so the comparison is exact up to rounding.
     rx = FMCWReceiver(cfg, synthesis="fast")
-    keep = [e for e in rx.effects if e.name not in ("thermal_noise", "phase_noise", "adc_quantization")]
+    keep = [e for e in rx.effects if e.name not in ("thermal_noise", "adc_noise", "phase_noise", "adc_quantization")]
     rx = FMCWReceiver(cfg, effects=keep)
     static = point_target_paths(cfg, positions_m=torch.tensor([[0.3, 0.0, 4.0], [-1.0, 0.2, 9.0]],
                                                                dtype=torch.float64), rcs_m2=2.0)

@@ -38,11 +38,11 @@ def dataset() -> SimulatedRadarDataset:
 
 
 def _linear_chain(config, *, noise: bool) -> list:
-    """The default chain up to the analogue output: no phase noise, DC offset or ADC (so the
-    output is linear in the paths and in the gain), thermal noise on or at 0 K."""
+    """The default chain up to the analogue output: no phase noise, DC offset, ADC-side noise or
+    ADC (so the output is linear in the paths and in the gain), thermal noise on or at 0 K."""
     effects = []
     for e in default_effects(config):
-        if e.kind == "nonlinear" or e.name in ("dc_offset", "phase_noise"):
+        if e.kind == "nonlinear" or e.name in ("dc_offset", "phase_noise", "adc_noise"):
             continue
         if e.name == "thermal_noise" and not noise:
             e = ThermalNoise(noise_figure_dB=12.0, temperature_K=0.0)
@@ -338,7 +338,7 @@ def test_scatterers_and_clutter_vary_and_are_reproducible(dataset) -> None:
 
 
 def test_drawn_phase_noise_skirts_a_strong_static_scatterer() -> None:
-    """A +20 dBsm scatterer at 8 m: with 400 kHz RMS frequency noise its range bin fills across
+    """A +40 dBsm scatterer at 8 m: with 400 kHz RMS frequency noise its range bin fills across
     Doppler (a skirt); with 30 kHz it stays at zero Doppler."""
     from radaraug.transforms import RangeDoppler, ToDecibels
 
@@ -348,7 +348,7 @@ def test_drawn_phase_noise_skirts_a_strong_static_scatterer() -> None:
     times = twin.frame_times([0])
     off = []
     for pn in (30e3, 400e3):
-        draw = ItemDraw(0, 0.0, 0.0, (), ((8.0, 0.0, 0.0, 20.0),), pn)
+        draw = ItemDraw(0, 0.0, 0.0, (), ((8.0, 0.0, 0.0, 40.0),), pn)
         x = simulate_item(twin, [], times, draw, torch.Generator().manual_seed(0))
         db = ToDecibels()(RangeDoppler()(x))[0].amax(0)
         r = min(range(db.shape[0]), key=lambda k: abs(cfg.range_axis_m()[k] - 8.0))

@@ -35,7 +35,7 @@ def test_one_recipe_per_task_and_method():
     assert names == {f"{t}_{m}" for t in TASKS for m in METHODS}
     for p in RECIPES:
         cfg = yaml.safe_load(p.read_text())
-        task, method = p.stem.split("_")
+        task, method = p.stem.split("_", 1)
         assert cfg["data"]["task"] == task and cfg["data"]["method"] == method
         assert cfg["data"]["randomization"] is True  # twin randomization on by default
 

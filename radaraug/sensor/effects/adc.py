@@ -8,8 +8,9 @@ from __future__ import annotations
 
 import torch
 
+from radaraug.config import RadarConfig
 from radaraug.sensor.chain import ChainState
-from radaraug.sensor.effects.base import Effect, per_rx, register
+from radaraug.sensor.effects.base import Effect, Prior, per_rx, register
 
 
 @register
@@ -19,10 +20,18 @@ class DCOffset(Effect):
     Args:
         level_counts: per-RX (or scalar) mean ADC code; mid-scale is ``(2**bits - 1) / 2``
             (2047.5 for 12 bits), i.e. zero offset.
+
+    Priors: ``level_counts`` (each RX) over the ADC's codes, [0, ``config.adc_full_scale_counts``]
+    (linear).
     """
 
     name = "dc_offset"
     param_names = ("level_counts",)
+
+    @classmethod
+    def priors(cls, config: RadarConfig) -> dict[str, Prior]:
+        """``level_counts`` anywhere in the ADC's code range."""
+        return {"level_counts": Prior(0.0, float(config.adc_full_scale_counts))}
 
     def __init__(self, level_counts: float | list | torch.Tensor = 2047.5) -> None:
         super().__init__()
@@ -40,6 +49,8 @@ class ADCQuantization(Effect):
 
     Args:
         bits: ADC resolution; ``None`` takes ``config.adc_bits``.
+
+    Priors: none (the bit depth is the sensor's, not searched).
     """
 
     name = "adc_quantization"
@@ -60,7 +71,10 @@ class ADCQuantization(Effect):
 
 @register
 class ADCClipping(Effect):
-    """Clip to the ADC range: codes ``0 .. 2**bits - 1``, i.e. ``[-1, 1]`` in SDK floats."""
+    """Clip to the ADC range: codes ``0 .. 2**bits - 1``, i.e. ``[-1, 1]`` in SDK floats.
+
+    No parameters, so no priors.
+    """
 
     name = "adc_clipping"
     kind = "nonlinear"

@@ -7,23 +7,98 @@ gradient). It acts on a :class:`~radaraug.sensor.chain.ChainState` in place; the
 applies its effects in list order, which is the order the hardware applies them.
 
 Every effect carries a ``name`` from the project's effect list (DESIGN.md), :meth:`params`
-(the live tensors), :meth:`from_params` (build from numbers or tensors), and a JSON-friendly
-:meth:`to_dict` / :func:`effect_from_dict` pair for twin profiles.
+(the live tensors), :meth:`from_params` (build from numbers or tensors), a JSON-friendly
+:meth:`to_dict` / :func:`effect_from_dict` pair for twin profiles, and :meth:`Effect.priors`: the
+search range (:class:`Prior`) of each parameter a calibration search may move.
+
+:data:`HARDWARE_ORDER` lists every registered name in the order the hardware applies the
+stages; :func:`insert_in_order` puts a new effect at its place in an existing chain.
 """
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+import math
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
 from typing import Any, ClassVar
 
 import torch
 from torch import nn
 
-from radaraug.errors import ConfigError
+from radaraug.config import RadarConfig
+from radaraug.errors import ConfigError, InputTensorError
 from radaraug.sensor.chain import ChainState
 
 EFFECTS: dict[str, type[Effect]] = {}
 """Registry: effect name -> effect class."""
+
+HARDWARE_ORDER: tuple[str, ...] = (
+    "multipath",
+    "tx_rx_leakage",
+    "static_clutter",
+    "vibrating_clutter",
+    "phase_noise",
+    "chirp_nonlinearity",
+    "thermal_noise",
+    "system_gain",
+    "rx_gain_phase_mismatch",
+    "if_highpass",
+    "if_gain",
+    "interference",
+    "adc_noise",
+    "anti_alias_lowpass",
+    "frame_drift",
+    "spur_tone",
+    "dc_offset",
+    "adc_quantization",
+    "adc_clipping",
+)
+"""Every registered effect name, in the order the hardware applies the stages.
+
+Multipath comes first so that it ghosts the scene's paths but not the on-chip leakage; the
+clutter paths enter at the antenna, before the LO's phase noise and ramp non-linearity act on
+them; the noise sources sit where they are referred (thermal noise at the RX port, ADC-driver
+noise after the IF gain); the frame drift acts on the filtered signal before the ADC's own DC
+level, spurs and quantization.
+"""
+
+
+@dataclass(frozen=True)
+class Prior:
+    """Search range of one effect parameter, in the parameter's physical unit.
+
+    A calibration search draws or bounds the parameter in ``[lo, hi]``, uniformly in the value
+    (``scale="lin"``) or in its logarithm (``scale="log"``, for quantities spanning decades:
+    frequencies, noise levels). A per-RX or per-scatterer parameter uses the same range for
+    each element.
+
+    Attributes:
+        lo: lower bound (``> 0`` for ``scale="log"``).
+        hi: upper bound, ``> lo``.
+        scale: ``"lin"`` or ``"log"``.
+    """
+
+    lo: float
+    hi: float
+    scale: str = "lin"
+
+    def __post_init__(self) -> None:
+        if self.scale not in ("lin", "log"):
+            raise ConfigError(f"Prior scale must be 'lin' or 'log', got {self.scale!r}")
+        if not (math.isfinite(self.lo) and math.isfinite(self.hi) and self.lo < self.hi):
+            raise ConfigError(f"Prior needs finite lo < hi, got [{self.lo}, {self.hi}]")
+        if self.scale == "log" and self.lo <= 0:
+            raise ConfigError(f"a log-scale Prior needs lo > 0, got {self.lo}")
+
+    def contains(self, value: float) -> bool:
+        """True when ``lo <= value <= hi``."""
+        return self.lo <= value <= self.hi
+
+    def from_unit(self, u: float) -> float:
+        """Map ``u`` in [0, 1] onto the range (linearly, or geometrically for ``"log"``)."""
+        if self.scale == "log":
+            return math.exp(math.log(self.lo) + u * (math.log(self.hi) - math.log(self.lo)))
+        return self.lo + u * (self.hi - self.lo)
 
 
 def register(cls: type[Effect]) -> type[Effect]:
@@ -61,6 +136,24 @@ class Effect(nn.Module):
     # noise, leakage, offsets, spurs), "modulating" (depends on the input paths: phase noise) or
     # "nonlinear" (acts on samples: quantization, clipping).
     kind: ClassVar[str] = "additive"
+    # Search ranges of the parameters a calibration search may move (see `priors`); parameters
+    # absent here (orders, bit depths, path counts) are not searched.
+    PRIORS: ClassVar[dict[str, Prior]] = {}
+
+    @classmethod
+    def priors(cls, config: RadarConfig) -> dict[str, Prior]:
+        """Search range of each searchable parameter, in physical units.
+
+        The default returns :attr:`PRIORS`; effects whose ranges depend on the radar (a frequency
+        up to Nyquist, a range up to ``config.max_range_m``) override this.
+
+        Args:
+            config: the radar configuration the effect will run with.
+
+        Returns:
+            ``{parameter name: Prior}`` (a fresh dict the caller may modify).
+        """
+        return dict(cls.PRIORS)
 
     def _set(self, **values: Any) -> None:
         for key, value in values.items():
@@ -117,3 +210,83 @@ def per_rx(state: ChainState, value: torch.Tensor, name: str, effect: str) -> to
     if v.shape != (state.num_rx,):
         raise ConfigError(f"effect {effect}: {name} has {v.numel()} values for {state.num_rx} RX channels")
     return v
+
+
+def insert_in_order(effects: Sequence[Effect], new: Effect) -> list[Effect]:
+    """A new chain with ``new`` at its place in :data:`HARDWARE_ORDER`.
+
+    Any effect of the same name is dropped (``new`` replaces it); ``new`` then goes before the
+    first effect that the hardware applies after it, or at the end. Effects whose names are not
+    in :data:`HARDWARE_ORDER` (user-registered ones) keep their place and never count as later.
+
+    Args:
+        effects: the current chain (not modified).
+        new: the effect to add.
+
+    Returns:
+        The new list (the effect objects themselves are shared, not copied).
+    """
+    if not isinstance(new, Effect):
+        raise ConfigError(f"insert_in_order needs an Effect, got {type(new).__name__}")
+    order = {name: i for i, name in enumerate(HARDWARE_ORDER)}
+    if new.name not in order:
+        raise ConfigError(f"effect {new.name!r} has no place in HARDWARE_ORDER; insert it by hand")
+    pos = order[new.name]
+    out = [e for e in effects if e.name != new.name]
+    for i, e in enumerate(out):
+        if order.get(e.name, -1) > pos:
+            return [*out[:i], new, *out[i:]]
+    return [*out, new]
+
+
+def rand(state: ChainState, shape: tuple[int, ...]) -> torch.Tensor:
+    """Uniform draws in [0, 1) from the call's generator (or the global RNG), like ``state.randn``."""
+    try:
+        return torch.rand(shape, generator=state.generator, device=state.device, dtype=state.dtype)
+    except RuntimeError as e:
+        gdev = state.generator.device if state.generator is not None else "cpu"
+        raise InputTensorError(
+            f"receiver: the generator is on {gdev} but the paths are on {state.device}; "
+            "pass a torch.Generator(device=...) on the paths' device"
+        ) from e
+
+
+def check_nonnegative(effect: Effect, **values: torch.Tensor | None) -> None:
+    """Raise :class:`ConfigError` when a parameter holds a negative value."""
+    for key, v in values.items():
+        if v is not None and bool((v < 0).any()):
+            raise ConfigError(f"effect {effect.name}: {key} must be >= 0, got {v.tolist()}")
+
+
+def check_positive(effect: Effect, **values: torch.Tensor | None) -> None:
+    """Raise :class:`ConfigError` when a parameter holds a value <= 0."""
+    for key, v in values.items():
+        if v is not None and bool((v <= 0).any()):
+            raise ConfigError(f"effect {effect.name}: {key} must be > 0, got {v.tolist()}")
+
+
+def scatterer_count(effect: Effect, **values: torch.Tensor) -> int:
+    """Common length K of per-scatterer parameters (each a scalar or a 1-D tensor of length K or 1)."""
+    shapes = []
+    for key, v in values.items():
+        if v.ndim > 1:
+            raise ConfigError(f"effect {effect.name}: {key} must be a number or a list, got shape {tuple(v.shape)}")
+        shapes.append(v.shape)
+    try:
+        shape = torch.broadcast_shapes(*shapes)
+    except RuntimeError:
+        lens = {k: (v.numel() if v.ndim else 1) for k, v in values.items()}
+        raise ConfigError(f"effect {effect.name}: per-scatterer parameters have different lengths {lens}") from None
+    k = int(shape[0]) if len(shape) else 1
+    if k < 1:
+        raise ConfigError(f"effect {effect.name}: needs at least one scatterer, got empty parameter lists")
+    return k
+
+
+def strongest_paths(state: ChainState, k: int) -> tuple[torch.Tensor, torch.Tensor, torch.Tensor]:
+    """Coefficients, delays and delay rates ``(…, RX, k)`` of the ``k`` paths with the largest
+    ``|C| tau`` (strongest over RX, chosen per frame): the paths whose LO-borne modulation
+    (phase noise, ramp ripple, both proportional to the delay) is largest."""
+    strength = (state.coef.abs() * state.delay_s.abs()).amax(dim=-2)  # (…, P)
+    idx = torch.topk(strength, k, dim=-1).indices[..., None, :].expand(*state.batch_shape, state.num_rx, k)
+    return state.coef.gather(-1, idx), state.delay_s.gather(-1, idx), state.delay_rate.gather(-1, idx)

@@ -12,9 +12,10 @@ from __future__ import annotations
 
 import torch
 
+from radaraug.config import RadarConfig
 from radaraug.errors import ConfigError
 from radaraug.sensor.chain import ChainState
-from radaraug.sensor.effects.base import Effect, register
+from radaraug.sensor.effects.base import Effect, Prior, register
 
 
 def highpass_response(freq_Hz: torch.Tensor, cutoff_Hz: torch.Tensor, order: int = 1) -> torch.Tensor:
@@ -57,10 +58,14 @@ class IFHighPass(_FirstOrderFilter):
         cutoff_Hz: -3 dB frequency of each section; ``None`` takes
             ``config.effective_hp_cutoff_Hz`` (80 kHz SDK default).
         order: number of cascaded first-order sections.
+
+    Priors: ``cutoff_Hz`` in [5 kHz, 300 kHz] (log), around the BGT60's 20-80 kHz options.
+    ``order`` is structural, not searched.
     """
 
     name = "if_highpass"
     kind = "linear"
+    PRIORS = {"cutoff_Hz": Prior(5e3, 300e3, "log")}
 
     def _config_cutoff(self, state: ChainState) -> float:
         return state.config.effective_hp_cutoff_Hz
@@ -81,10 +86,17 @@ class AntiAliasLowPass(_FirstOrderFilter):
         cutoff_Hz: -3 dB frequency of each section; ``None`` takes
             ``config.effective_aaf_cutoff_Hz``.
         order: number of cascaded first-order sections.
+
+    Priors: ``cutoff_Hz`` in [50 kHz, ``config.sample_rate_Hz``] (log). ``order`` is not searched.
     """
 
     name = "anti_alias_lowpass"
     kind = "linear"
+
+    @classmethod
+    def priors(cls, config: RadarConfig) -> dict[str, Prior]:
+        """``cutoff_Hz`` from 50 kHz up to the sample rate (a cutoff above it no longer matters)."""
+        return {"cutoff_Hz": Prior(50e3, max(float(config.sample_rate_Hz), 100e3), "log")}
 
     def _config_cutoff(self, state: ChainState) -> float:
         return state.config.effective_aaf_cutoff_Hz

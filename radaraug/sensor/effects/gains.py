@@ -2,10 +2,12 @@
 
 from __future__ import annotations
 
+import math
+
 import torch
 
 from radaraug.sensor.chain import ChainState
-from radaraug.sensor.effects.base import Effect, per_rx, register
+from radaraug.sensor.effects.base import Effect, Prior, per_rx, register
 
 
 def db_to_amplitude(db: torch.Tensor) -> torch.Tensor:
@@ -23,11 +25,14 @@ class SystemGain(Effect):
 
     Args:
         gain_dB: scalar gain in dB.
+
+    Priors: ``gain_dB`` in [-30, 30] dB (linear): a residual around the pinned front-end gain.
     """
 
     name = "system_gain"
     kind = "linear"
     param_names = ("gain_dB",)
+    PRIORS = {"gain_dB": Prior(-30.0, 30.0)}
 
     def __init__(self, gain_dB: float | torch.Tensor = 0.0) -> None:
         super().__init__()
@@ -44,6 +49,9 @@ class IFGain(Effect):
 
     Args:
         gain_dB: gain in dB; ``None`` takes ``config.if_gain_dB`` at call time.
+
+    Priors: none. The IF gain is a recorded setting of the capture, not searched (the residual
+    goes to ``system_gain``).
     """
 
     name = "if_gain"
@@ -73,11 +81,14 @@ class RxGainPhaseMismatch(Effect):
     Args:
         gain_dB: per-RX (or scalar) gain offsets in dB.
         phase_rad: per-RX (or scalar) phase offsets in radians.
+
+    Priors (each RX): ``gain_dB`` in [-6, 6] dB, ``phase_rad`` in [-pi, pi] (linear).
     """
 
     name = "rx_gain_phase_mismatch"
     kind = "linear"
     param_names = ("gain_dB", "phase_rad")
+    PRIORS = {"gain_dB": Prior(-6.0, 6.0), "phase_rad": Prior(-math.pi, math.pi)}
 
     def __init__(self, gain_dB: float | list | torch.Tensor = 0.0, phase_rad: float | list | torch.Tensor = 0.0) -> None:
         super().__init__()

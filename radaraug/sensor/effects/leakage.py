@@ -2,11 +2,13 @@
 
 from __future__ import annotations
 
+import math
+
 import torch
 
 from radaraug.config import SPEED_OF_LIGHT
 from radaraug.sensor.chain import ChainState
-from radaraug.sensor.effects.base import Effect, per_rx, register
+from radaraug.sensor.effects.base import Effect, Prior, per_rx, register
 
 
 @register
@@ -20,10 +22,18 @@ class TxRxLeakage(Effect):
         coupling_dB: per-RX (or scalar) power at the RX port relative to the TX power, dB.
         range_m: equivalent one-way range of the coupling (delay ``2 * range_m / c``).
         phase_rad: per-RX (or scalar) phase of the beat tone, radians.
+
+    Priors (linear): ``coupling_dB`` in [-100, -20] dB (each RX), ``range_m`` in [0.005, 0.3] m
+    (on-chip to in-housing coupling), ``phase_rad`` in [-pi, pi].
     """
 
     name = "tx_rx_leakage"
     param_names = ("coupling_dB", "range_m", "phase_rad")
+    PRIORS = {
+        "coupling_dB": Prior(-100.0, -20.0),
+        "range_m": Prior(0.005, 0.3),
+        "phase_rad": Prior(-math.pi, math.pi),
+    }
 
     def __init__(
         self,

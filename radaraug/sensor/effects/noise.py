@@ -1,10 +1,13 @@
-"""Thermal noise of the receiver, referred to the RX port: ``k T F (fs / 2)``.
+"""Receiver noise: thermal noise referred to the RX port, and noise referred to the ADC.
 
-The noise power in the ADC's Nyquist band ``fs / 2`` is ``k T0 F fs/2`` (-117 dBm for
+Thermal noise: the noise power in the ADC's Nyquist band ``fs / 2`` is ``k T0 F fs/2`` (-117 dBm for
 ``fs`` = 1 MHz before the noise figure), white, independent per RX, chirp and sample. It enters
 at the front of the chain, so every later gain and filter shapes it. Noise above Nyquist that
 the anti-alias filter lets through and the ADC folds back is not modelled (the noise figure
 absorbs it when calibrated).
+
+ADC-referred noise (:class:`ADCNoise`) is the VGA-output / ADC-driver floor: white, in ADC
+counts, added after the IF gain so it does not scale with it.
 """
 
 from __future__ import annotations
@@ -12,7 +15,7 @@ from __future__ import annotations
 import torch
 
 from radaraug.sensor.chain import ChainState
-from radaraug.sensor.effects.base import Effect, register
+from radaraug.sensor.effects.base import Effect, Prior, check_nonnegative, per_rx, register
 
 BOLTZMANN = 1.380649e-23
 """Boltzmann constant, J/K."""
@@ -32,10 +35,14 @@ class ThermalNoise(Effect):
     Args:
         noise_figure_dB: receiver noise figure F.
         temperature_K: noise temperature of the source (290 K for the standard noise figure).
+
+    Priors: ``noise_figure_dB`` in [0, 45] dB (linear; the top end absorbs noise the model
+    refers to the wrong place). ``temperature_K`` is not searched: it trades exactly with F.
     """
 
     name = "thermal_noise"
     param_names = ("noise_figure_dB", "temperature_K")
+    PRIORS = {"noise_figure_dB": Prior(0.0, 45.0)}
 
     def __init__(self, noise_figure_dB: float | torch.Tensor = 12.0, temperature_K: float | torch.Tensor = T0_KELVIN) -> None:
         super().__init__()
@@ -48,3 +55,34 @@ class ThermalNoise(Effect):
         sigma = torch.sqrt(power) * state.front_end_gain
         state.add_samples(sigma * state.randn(state.sample_shape))
 
+
+
+@register
+class ADCNoise(Effect):
+    """White Gaussian noise referred to the ADC side of the IF gain (VGA output / ADC driver).
+
+    Real receivers have a noise floor that does not scale with the IF gain: at low gain it is
+    what the ADC sees. This stage adds it after ``if_gain`` and before ``anti_alias_lowpass``, so
+    the IF gain and high-pass do not touch it and the anti-alias filter shapes it. Independent per
+    RX, chirp and sample.
+
+    Args:
+        rms_counts: per-RX (or scalar) RMS in ADC counts of the white noise over the Nyquist
+            band, *before* the anti-alias filter that follows it (so the RMS at the ADC is this
+            times the filter's noise-bandwidth factor). Default 0.5 counts (*assumed*).
+
+    Priors: ``rms_counts`` in [0.01, 50] counts (log, each RX).
+    """
+
+    name = "adc_noise"
+    param_names = ("rms_counts",)
+    PRIORS = {"rms_counts": Prior(0.01, 50.0, "log")}
+
+    def __init__(self, rms_counts: float | list | torch.Tensor = 0.5) -> None:
+        super().__init__()
+        self._set(rms_counts=rms_counts)
+        check_nonnegative(self, rms_counts=self.rms_counts)
+
+    def apply(self, state: ChainState) -> None:
+        sigma = per_rx(state, self.rms_counts, "rms_counts", self.name) * (2.0 / state.config.adc_full_scale_counts)
+        state.add_samples(sigma[:, None, None] * state.randn(state.sample_shape))

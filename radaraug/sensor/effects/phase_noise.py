@@ -19,7 +19,7 @@ import math
 import torch
 
 from radaraug.sensor.chain import ChainState, ModulatedPaths
-from radaraug.sensor.effects.base import Effect, register
+from radaraug.sensor.effects.base import Effect, Prior, register, strongest_paths
 
 
 @register
@@ -30,11 +30,15 @@ class PhaseNoise(Effect):
         freq_noise_rms_Hz: RMS of the LO frequency noise ``nu``.
         corner_Hz: corner of its Lorentzian spectrum ``1 / (1 + (f / corner)^2)``.
         num_paths: how many of the strongest paths (by ``|C| tau``) get the skirt.
+
+    Priors (log): ``freq_noise_rms_Hz`` in [1 kHz, 3 MHz], ``corner_Hz`` in [1 kHz, 1 MHz].
+    ``num_paths`` is a cost knob, not searched.
     """
 
     name = "phase_noise"
     kind = "modulating"
     param_names = ("freq_noise_rms_Hz", "corner_Hz", "num_paths")
+    PRIORS = {"freq_noise_rms_Hz": Prior(1e3, 3e6, "log"), "corner_Hz": Prior(1e3, 1e6, "log")}
 
     def __init__(
         self,
@@ -50,11 +54,7 @@ class PhaseNoise(Effect):
         k = min(int(self.num_paths), P)
         if k == 0:
             return
-        strength = (state.coef.abs() * state.delay_s.abs()).amax(dim=-2)  # (…, P)
-        idx = torch.topk(strength, k, dim=-1).indices[..., None, :].expand(*state.batch_shape, state.num_rx, k)
-        coef = state.coef.gather(-1, idx)
-        delay = state.delay_s.gather(-1, idx)
-        rate = state.delay_rate.gather(-1, idx)
+        coef, delay, rate = strongest_paths(state, k)
         mod_coef = coef * (2j * math.pi) * delay.to(coef.dtype)
         state.modulated.append(ModulatedPaths(mod_coef, delay, rate, self._frequency_noise(state)))
 

@@ -6,8 +6,9 @@ import math
 
 import torch
 
+from radaraug.config import RadarConfig
 from radaraug.sensor.chain import ChainState
-from radaraug.sensor.effects.base import Effect, per_rx, register
+from radaraug.sensor.effects.base import Effect, Prior, per_rx, register
 
 
 @register
@@ -22,10 +23,23 @@ class SpurTone(Effect):
         freq_Hz: spur frequency.
         amplitude_counts: per-RX (or scalar) peak amplitude in ADC counts at this point.
         phase_rad: phase at ``t = 0``.
+
+    Priors: ``freq_Hz`` in [0, ``config.sample_rate_Hz / 2``] (linear: a spur is located to a
+    fraction of a bin), ``amplitude_counts`` in [0.05, 200] counts (log, each RX),
+    ``phase_rad`` in [-pi, pi].
     """
 
     name = "spur_tone"
     param_names = ("freq_Hz", "amplitude_counts", "phase_rad")
+
+    @classmethod
+    def priors(cls, config: RadarConfig) -> dict[str, Prior]:
+        """Frequency up to Nyquist; amplitude and phase fixed ranges."""
+        return {
+            "freq_Hz": Prior(0.0, float(config.sample_rate_Hz) / 2),
+            "amplitude_counts": Prior(0.05, 200.0, "log"),
+            "phase_rad": Prior(-math.pi, math.pi),
+        }
 
     def __init__(
         self,

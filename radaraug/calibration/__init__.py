@@ -1,0 +1,35 @@
+"""Closing the loop with measured data: residual views, the effect catalog, the search, twin profiles.
+
+``radaraug diagnose CAPTURE [--scene SCENE] -o REPORT_DIR`` (or :func:`diagnose` +
+:func:`write_report`) compares a capture with the twin, adds the sensor effects that explain the
+residual with fitted parameters, and writes a report and a fitted :class:`TwinProfile` that the
+simulator and the recipes load. See ``docs/calibration.md``.
+"""
+
+from radaraug.calibration.catalog import CATALOG_NAMES, Candidate, ParamSpec, catalog
+from radaraug.calibration.diagnose import Diagnosis, diagnose, locate_unexplained, write_report
+from radaraug.calibration.search import Search, SearchResult, SearchSettings
+from radaraug.calibration.twin_source import TwinSource
+from radaraug.calibration.views import VIEW_NAMES, Views, compute_views, overall_error, view_errors
+from radaraug.sensor.profile import TwinProfile
+
+__all__ = [
+    "CATALOG_NAMES",
+    "Candidate",
+    "ParamSpec",
+    "catalog",
+    "Diagnosis",
+    "diagnose",
+    "locate_unexplained",
+    "write_report",
+    "Search",
+    "SearchResult",
+    "SearchSettings",
+    "TwinSource",
+    "VIEW_NAMES",
+    "Views",
+    "compute_views",
+    "overall_error",
+    "view_errors",
+    "TwinProfile",
+]

@@ -1,0 +1,507 @@
+"""The effect catalog the loop searches: which parameters of each effect it fits, and where to start.
+
+A :class:`Candidate` names a registered receiver effect (:data:`radaraug.sensor.EFFECTS`), the
+parameters the search moves (:class:`ParamSpec`, each with a prior range: the effect's own
+:meth:`~radaraug.sensor.effects.Effect.priors`, or a narrower one around a start read off the
+residual) and its starting points. Starts come from the residual where the residual says
+something (a spur's range *and* Doppler bin give its frequency in closed form; a static line's
+range bin gives a scatterer's range; paired echoes around the strongest return give a chirp
+ripple), and from a coarse grid where it does not (noise levels). A candidate whose effect is
+already in the chain is a *refit* of that effect.
+
+Every candidate is a stage of the hardware chain: it is inserted at its place in
+:data:`radaraug.sensor.effects.HARDWARE_ORDER`.
+"""
+
+from __future__ import annotations
+
+import copy
+import math
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import torch
+
+from radaraug.calibration.views import Views, _db
+from radaraug.config import SPEED_OF_LIGHT, RadarConfig
+from radaraug.sensor.effects import EFFECTS, HARDWARE_ORDER
+from radaraug.sensor.effects.base import Prior
+
+Chain = list[dict[str, Any]]
+
+BASE_STAGES = ("thermal_noise", "system_gain", "if_highpass", "anti_alias_lowpass", "adc_noise", "dc_offset")
+"""The base chain, refitted before any catalog effect is tried."""
+
+
+@dataclass(frozen=True)
+class ParamSpec:
+    """One searched parameter: ``effect.params[name]`` (element ``index`` of a per-RX list)."""
+
+    name: str
+    prior: Prior
+    index: int | None = None
+
+
+@dataclass
+class Context:
+    """What a candidate may look at to choose its starts."""
+
+    config: RadarConfig
+    mode: str
+    chain: Chain
+    capture: Views
+    twin: Views
+    probe: Callable[[Chain], Views]
+
+    def excess_db(self) -> torch.Tensor:
+        """Capture over twin frame-averaged RD power, RX-averaged, ``(range, doppler)`` dB."""
+        return _db(self.capture.stats.power.mean(dim=0)) - _db(self.twin.stats.power.mean(dim=0))
+
+    def range_m(self, k: int) -> float:
+        """Range (m) of range bin ``k``."""
+        return float(self.config.range_axis_m()[k])
+
+
+@dataclass
+class Candidate:
+    """An effect the loop can add (or refit), its searched parameters and its starts."""
+
+    name: str
+    specs: Callable[[Context, dict[str, Any]], list[ParamSpec]]
+    starts: Callable[[Context], list[dict[str, Any]]]
+    modes: tuple[str, ...] = ("scene", "estimated")
+    notes: str = ""
+    joint: tuple[tuple[str, str], ...] = ()
+    """Parameters of other stages fitted together with this one, ``(effect, parameter)``: a new
+    noise source trades off against the thermal noise's level."""
+
+
+# --------------------------------------------------------------------------- chain helpers
+def find(chain: Chain, name: str) -> dict[str, Any] | None:
+    """The effect dict called ``name`` in ``chain`` (None when absent)."""
+    return next((e for e in chain if e["name"] == name), None)
+
+
+def with_effect(chain: Chain, name: str, params: Mapping[str, Any]) -> Chain:
+    """A copy of ``chain`` with effect ``name`` set to ``params`` (merged into an existing one, or
+    inserted at its place in the hardware order)."""
+    out = copy.deepcopy(chain)
+    cur = find(out, name)
+    if cur is not None:
+        cur["params"].update(copy.deepcopy(dict(params)))
+        return out
+    default = EFFECTS[name]().to_dict()["params"] if _default_constructible(name) else {}
+    new = {"name": name, "params": {**default, **copy.deepcopy(dict(params))}}
+    order = {n: i for i, n in enumerate(HARDWARE_ORDER)}
+    pos = order.get(name, len(order))
+    for i, e in enumerate(out):
+        if order.get(e["name"], len(order)) > pos:
+            out.insert(i, new)
+            return out
+    out.append(new)
+    return out
+
+
+def _default_constructible(name: str) -> bool:
+    try:
+        EFFECTS[name]()
+        return True
+    except Exception:  # noqa: BLE001 - an effect without defaults takes every parameter from the start
+        return False
+
+
+def get_param(chain: Chain, name: str, spec: ParamSpec) -> float:
+    """Current value of ``spec`` in effect ``name``."""
+    v = find(chain, name)["params"][spec.name]
+    if isinstance(v, list):
+        return float(v[spec.index if spec.index is not None else 0])
+    return float(v)
+
+
+def set_params(chain: Chain, name: str, specs: Sequence[ParamSpec], values: Sequence[float], num_rx: int) -> Chain:
+    """A copy of ``chain`` with the searched parameters of effect ``name`` set to ``values``."""
+    out = copy.deepcopy(chain)
+    eff = find(out, name)
+    for spec, val in zip(specs, values):
+        cur = eff["params"].get(spec.name)
+        if spec.index is None:
+            eff["params"][spec.name] = float(val) if not isinstance(cur, list) else [float(val)] * len(cur)
+        else:
+            lst = list(cur) if isinstance(cur, list) else [float(cur if cur is not None else 0.0)] * num_rx
+            lst[spec.index] = float(val)
+            eff["params"][spec.name] = lst
+    return out
+
+
+def _priors(ctx: Context, name: str) -> dict[str, Prior]:
+    return EFFECTS[name].priors(ctx.config)
+
+
+def _around(value: float, prior: Prior, rel: float | None = None, half: float | None = None) -> Prior:
+    """A narrower prior around ``value``: x/÷ 10**rel (log) or +- half (lin), inside ``prior``."""
+    if prior.scale == "log" and rel is not None:
+        lo, hi = value / 10**rel, value * 10**rel
+    else:
+        h = half if half is not None else (prior.hi - prior.lo) / 8
+        lo, hi = value - h, value + h
+    lo, hi = max(lo, prior.lo), min(hi, prior.hi)
+    if not lo < hi:
+        return prior
+    return Prior(lo, hi, prior.scale)
+
+
+def _spec(ctx: Context, name: str, pname: str, index: int | None = None, prior: Prior | None = None) -> ParamSpec:
+    return ParamSpec(pname, prior or _priors(ctx, name)[pname], index)
+
+
+# --------------------------------------------------------------------------- residual reading
+def _peaks(excess: torch.Tensor, mask: torch.Tensor, k: int, min_db: float) -> list[tuple[int, int, float]]:
+    """Up to ``k`` (row, col, dB) local maxima of ``excess`` where ``mask``, at least ``min_db``."""
+    e = excess.masked_fill(~mask, -math.inf)
+    out: list[tuple[int, int, float]] = []
+    flat = e.flatten()
+    order = torch.argsort(flat, descending=True)
+    taken = torch.zeros_like(e, dtype=torch.bool)
+    for idx in order[: 4096].tolist():
+        v = float(flat[idx])
+        if v < min_db or len(out) >= k:
+            break
+        r, c = divmod(idx, e.shape[1])
+        if taken[max(r - 2, 0): r + 3, max(c - 2, 0): c + 3].any():
+            continue
+        taken[r, c] = True
+        out.append((r, c, v))
+    return out
+
+
+def _off_zero_mask(shape: tuple[int, int]) -> torch.Tensor:
+    nr, M = shape
+    m = torch.ones(nr, M, dtype=torch.bool)
+    z = M // 2
+    m[:, max(z - 1, 0): z + 2] = False
+    m[:1] = False
+    return m
+
+
+def _level_probe(ctx: Context, name: str, params: dict[str, Any], r: int, col: int, target_db: float,
+                 level_key: str) -> float | None:
+    """Level (dB, the effect's ``level_key``) that puts the effect's RD power at cell (r, col) at
+    ``target_db`` above the twin: one simulation at the current level, then linear scaling."""
+    probe_chain = with_effect(ctx.chain, name, params)
+    v = ctx.probe(probe_chain)
+    p_with = float(v.stats.power.mean(dim=0)[r, col])
+    p_without = float(ctx.twin.stats.power.mean(dim=0)[r, col])
+    gain = p_with - p_without
+    if gain <= 0:
+        return None
+    want = p_without * (10 ** (target_db / 10) - 1)
+    if want <= 0:
+        return None
+    return float(params[level_key]) + 10 * math.log10(want / gain)
+
+
+# --------------------------------------------------------------------------- candidates
+def _noise_like(name: str, pname: str, grid: Sequence[float], joint: tuple[tuple[str, str], ...] = ()) -> Candidate:
+    def specs(ctx: Context, start: dict[str, Any]) -> list[ParamSpec]:
+        return [_spec(ctx, name, pname)]
+
+    def starts(ctx: Context) -> list[dict[str, Any]]:
+        cur = find(ctx.chain, name)
+        if cur is not None:
+            v = cur["params"][pname]
+            v = float(v[0] if isinstance(v, list) else v)
+            return [{pname: v}] + [{pname: v * f} for f in (0.3, 3.0)]
+        return [{pname: g} for g in grid]
+
+    return Candidate(name, specs, starts, joint=joint)
+
+
+def _spur() -> Candidate:
+    def starts(ctx: Context) -> list[dict[str, Any]]:
+        cfg = ctx.config
+        ex = ctx.excess_db()
+        M = ex.shape[1]
+        out = []
+        cap = ctx.capture.stats.power.mean(dim=0)
+        bin_hz = cfg.sample_rate_Hz / cfg.num_samples_per_chirp
+        T = cfg.chirp_repetition_time_s
+        for r, d, _v in _peaks(ex, _off_zero_mask(tuple(ex.shape)), 2, 6.0):
+            # Sub-bin frequency from the Hann peak's neighbours (parabola on log power), then the
+            # Doppler bin picks among the aliases 1/T apart; the neighbouring aliases are starts too.
+            frac_bin = 0.0
+            if 0 < r < cap.shape[0] - 1:
+                a, b, c = (math.log(max(float(cap[k, d]), 1e-30)) for k in (r - 1, r, r + 1))
+                den = a - 2 * b + c
+                frac_bin = 0.5 * (a - c) / den if den < 0 else 0.0
+            f_est = (r + max(min(frac_bin, 0.5), -0.5)) * bin_hz
+            amp = 2 * math.sqrt(float(cap[r, d])) * cfg.adc_full_scale_counts / 2
+            for sign in (1, -1):
+                frac = sign * (d - M // 2) / M
+                j = round(f_est * T - frac)
+                for dj in (0, -1, 1):
+                    f = (j + dj + frac) / T
+                    if abs(f - f_est) <= bin_hz and 0 < f < cfg.sample_rate_Hz / 2:
+                        out.append({"freq_Hz": f, "amplitude_counts": amp, "phase_rad": 0.0})
+        return out
+
+    def specs(ctx: Context, start: dict[str, Any]) -> list[ParamSpec]:
+        pr = _priors(ctx, "spur_tone")
+        half = 0.5 / (ctx.config.num_chirps_per_frame * ctx.config.chirp_repetition_time_s)
+        return [
+            _spec(ctx, "spur_tone", "freq_Hz", prior=_around(start["freq_Hz"], pr["freq_Hz"], half=half)),
+            _spec(ctx, "spur_tone", "amplitude_counts", prior=_around(start["amplitude_counts"],
+                                                                      pr["amplitude_counts"], rel=0.7)),
+        ]
+
+    return Candidate("spur_tone", specs, starts, notes="frequency in closed form from the line's range and Doppler bin")
+
+
+def _static_clutter() -> Candidate:
+    def starts(ctx: Context) -> list[dict[str, Any]]:
+        ex = ctx.excess_db()
+        M = ex.shape[1]
+        prof = ex[:, M // 2].clone()
+        prof[:1] = -math.inf
+        r = int(prof.argmax())
+        if float(prof[r]) < 3.0:
+            return []
+        params = {"range_m": ctx.range_m(r), "level_dB": -90.0, "phase_rad": 0.0}
+        lvl = _level_probe(ctx, "static_clutter", params, r, M // 2, float(prof[r]), "level_dB")
+        if lvl is None:
+            return []
+        params["level_dB"] = lvl
+        return [params]
+
+    def specs(ctx: Context, start: dict[str, Any]) -> list[ParamSpec]:
+        pr = _priors(ctx, "static_clutter")
+        res = ctx.config.range_resolution_m
+        return [_spec(ctx, "static_clutter", "range_m", prior=_around(start["range_m"], pr["range_m"], half=res)),
+                _spec(ctx, "static_clutter", "level_dB", prior=_around(start["level_dB"], pr["level_dB"], half=6.0))]
+
+    return Candidate("static_clutter", specs, starts, modes=("scene",))
+
+
+def _vibrating() -> Candidate:
+    def starts(ctx: Context) -> list[dict[str, Any]]:
+        cfg = ctx.config
+        ex = ctx.excess_db()
+        M = ex.shape[1]
+        out = []
+        for r, d, v in _peaks(ex, _off_zero_mask(tuple(ex.shape)), 1, 6.0):
+            vib = abs(d - M // 2) / (M * cfg.chirp_repetition_time_s)
+            for beta in (0.5, 1.5):
+                params = {"range_m": ctx.range_m(r), "level_dB": -90.0,
+                          "displacement_m": beta * cfg.wavelength_m / (4 * math.pi),
+                          "vibration_Hz": vib, "phase_rad": 0.0}
+                lvl = _level_probe(ctx, "vibrating_clutter", params, r, d, v, "level_dB")
+                if lvl is not None:
+                    params["level_dB"] = lvl
+                    out.append(params)
+        return out
+
+    def specs(ctx: Context, start: dict[str, Any]) -> list[ParamSpec]:
+        pr = _priors(ctx, "vibrating_clutter")
+        cfg = ctx.config
+        dopp = 1 / (cfg.num_chirps_per_frame * cfg.chirp_repetition_time_s)
+        return [
+            _spec(ctx, "vibrating_clutter", "level_dB", prior=_around(start["level_dB"], pr["level_dB"], half=8.0)),
+            _spec(ctx, "vibrating_clutter", "displacement_m",
+                  prior=_around(start["displacement_m"], pr["displacement_m"], rel=0.6)),
+            _spec(ctx, "vibrating_clutter", "vibration_Hz",
+                  prior=Prior(max(start["vibration_Hz"] - dopp, 1e-3), start["vibration_Hz"] + dopp, "lin")),
+        ]
+
+    return Candidate("vibrating_clutter", specs, starts)
+
+
+def _strongest_static(ctx: Context) -> tuple[int, float]:
+    zp = ctx.capture.stats.power.mean(dim=0)[:, ctx.capture.stats.power.shape[-1] // 2].clone()
+    zp[:1] = 0
+    k = int(zp.argmax())
+    return k, float(zp[k])
+
+
+def _multipath() -> Candidate:
+    def starts(ctx: Context) -> list[dict[str, Any]]:
+        ex = ctx.excess_db()
+        M = ex.shape[1]
+        k, pk = _strongest_static(ctx)
+        prof = ex[:, M // 2].clone()
+        prof[: k + 1] = -math.inf
+        r = int(prof.argmax())
+        if float(prof[r]) < 3.0:
+            return []
+        p_r = float(ctx.capture.stats.power.mean(dim=0)[r, M // 2])
+        lvl = 10 * math.log10(max(p_r, 1e-30) / max(pk, 1e-30))
+        return [{"extra_range_m": ctx.range_m(r) - ctx.range_m(k), "level_dB": min(lvl, -0.5), "phase_rad": 0.0}]
+
+    def specs(ctx: Context, start: dict[str, Any]) -> list[ParamSpec]:
+        pr = _priors(ctx, "multipath")
+        res = ctx.config.range_resolution_m
+        return [_spec(ctx, "multipath", "extra_range_m", prior=_around(start["extra_range_m"], pr["extra_range_m"],
+                                                                        half=res)),
+                _spec(ctx, "multipath", "level_dB", prior=_around(start["level_dB"], pr["level_dB"], half=6.0))]
+
+    return Candidate("multipath", specs, starts, modes=("scene",))
+
+
+def _chirp_nonlinearity() -> Candidate:
+    def starts(ctx: Context) -> list[dict[str, Any]]:
+        cfg = ctx.config
+        ex = ctx.excess_db()
+        M = ex.shape[1]
+        k, pk = _strongest_static(ctx)
+        prof = ex[:, M // 2].clone()
+        prof[:1] = -math.inf
+        prof[max(k - 1, 0): k + 2] = -math.inf
+        r = int(prof.argmax())
+        if float(prof[r]) < 3.0:
+            return []
+        p_r = float(ctx.capture.stats.power.mean(dim=0)[r, M // 2])
+        ratio = math.sqrt(max(p_r, 1e-30) / max(pk, 1e-30))
+        tau = 2 * ctx.range_m(k) / SPEED_OF_LIGHT
+        ripple = abs(r - k) * cfg.sample_rate_Hz / cfg.num_samples_per_chirp
+        dev = ratio / (math.pi * max(tau, 1e-12))
+        pr = _priors(ctx, "chirp_nonlinearity")
+        dev = min(max(dev, pr["deviation_Hz"].lo), pr["deviation_Hz"].hi)
+        return [{"deviation_Hz": dev, "ripple_Hz": max(ripple, pr["ripple_Hz"].lo), "phase_rad": 0.0}]
+
+    def specs(ctx: Context, start: dict[str, Any]) -> list[ParamSpec]:
+        pr = _priors(ctx, "chirp_nonlinearity")
+        bin_hz = ctx.config.sample_rate_Hz / ctx.config.num_samples_per_chirp
+        return [_spec(ctx, "chirp_nonlinearity", "deviation_Hz",
+                      prior=_around(start["deviation_Hz"], pr["deviation_Hz"], rel=0.6)),
+                _spec(ctx, "chirp_nonlinearity", "ripple_Hz",
+                      prior=_around(start["ripple_Hz"], Prior(pr["ripple_Hz"].lo, pr["ripple_Hz"].hi, "lin"),
+                                    half=bin_hz))]
+
+    return Candidate("chirp_nonlinearity", specs, starts, modes=("scene",))
+
+
+def _interference() -> Candidate:
+    def starts(ctx: Context) -> list[dict[str, Any]]:
+        return [{"probability": p, "amplitude_counts": a, "duration_s": 5e-6}
+                for p in (0.05, 0.25) for a in (30.0, 300.0)]
+
+    def specs(ctx: Context, start: dict[str, Any]) -> list[ParamSpec]:
+        return [_spec(ctx, "interference", "probability"), _spec(ctx, "interference", "amplitude_counts"),
+                _spec(ctx, "interference", "duration_s")]
+
+    return Candidate("interference", specs, starts, joint=(("thermal_noise", "noise_figure_dB"),))
+
+
+def _frame_drift() -> Candidate:
+    def starts(ctx: Context) -> list[dict[str, Any]]:
+        c, t = ctx.capture.stats, ctx.twin.stats
+        if c.frame_noise is None or t.frame_noise is None:
+            return []
+        excess = (c.frame_noise**2 - c.chirp_noise**2) - (t.frame_noise**2 - t.chirp_noise**2)
+        dc = math.sqrt(max(excess, 0.0)) if excess > 0 else 0.3
+        sc, st = float(ctx.capture["frame_power"][1]), float(ctx.twin["frame_power"][1])
+        g = math.sqrt(max(sc**2 - st**2, 0.0))
+        return [{"gain_rms_dB": g, "dc_rms_counts": dc}, {"gain_rms_dB": 0.0, "dc_rms_counts": dc},
+                {"gain_rms_dB": max(g, 0.3), "dc_rms_counts": 0.0}]
+
+    def specs(ctx: Context, start: dict[str, Any]) -> list[ParamSpec]:
+        return [_spec(ctx, "frame_drift", "gain_rms_dB"), _spec(ctx, "frame_drift", "dc_rms_counts")]
+
+    return Candidate("frame_drift", specs, starts)
+
+
+def _rx_mismatch() -> Candidate:
+    def starts(ctx: Context) -> list[dict[str, Any]]:
+        R = ctx.config.num_rx
+        if R < 2:
+            return []
+        fc = ctx.capture["rx_balance"][:R]
+        ft = ctx.twin["rx_balance"][:R]
+        d = (fc - ft) - (fc - ft)[0]
+        cur = find(ctx.chain, "rx_gain_phase_mismatch")
+        g0 = [0.0] * R
+        p0 = [0.0] * R
+        if cur is not None:
+            g0 = _as_list(cur["params"]["gain_dB"], R)
+            p0 = _as_list(cur["params"]["phase_rad"], R)
+        gains = [g0[i] + float(d[i]) for i in range(R)]
+        phases = list(p0)
+        if ctx.mode == "scene":
+            k, _ = _strongest_static(ctx)
+            pc = ctx.capture["rx_phase"][:, k] - ctx.capture["rx_phase"][0, k]
+            pt = ctx.twin["rx_phase"][:, k] - ctx.twin["rx_phase"][0, k]
+            phases = [p0[i] + float(torch.remainder(pc[i] - pt[i] + math.pi, 2 * math.pi) - math.pi) for i in range(R)]
+        return [{"gain_dB": gains, "phase_rad": phases}]
+
+    def specs(ctx: Context, start: dict[str, Any]) -> list[ParamSpec]:
+        R = ctx.config.num_rx
+        pr = _priors(ctx, "rx_gain_phase_mismatch")
+        out = [ParamSpec("gain_dB", _around(start["gain_dB"][i], pr["gain_dB"], half=1.5), i) for i in range(1, R)]
+        if ctx.mode == "scene":
+            out += [ParamSpec("phase_rad", _around(start["phase_rad"][i], pr["phase_rad"], half=0.4), i)
+                    for i in range(1, R)]
+        return out
+
+    return Candidate("rx_gain_phase_mismatch", specs, starts)
+
+
+def _as_list(v: Any, n: int) -> list[float]:
+    return [float(x) for x in v] if isinstance(v, list) else [float(v)] * n
+
+
+def _leakage() -> Candidate:
+    def starts(ctx: Context) -> list[dict[str, Any]]:
+        cur = find(ctx.chain, "tx_rx_leakage")
+        if cur is None:
+            return [{"coupling_dB": -60.0, "range_m": 0.04, "phase_rad": 0.0}]
+        R = ctx.config.num_rx
+        M = ctx.capture.stats.power.shape[-1]
+        pc = _db(ctx.capture.stats.power[:, 0:2, M // 2].mean(dim=1))
+        pt = _db(ctx.twin.stats.power[:, 0:2, M // 2].mean(dim=1))
+        c0 = _as_list(cur["params"]["coupling_dB"], R)
+        return [{"coupling_dB": [c0[i] + float(pc[i] - pt[i]) for i in range(R)]}]
+
+    def specs(ctx: Context, start: dict[str, Any]) -> list[ParamSpec]:
+        R = ctx.config.num_rx
+        pr = _priors(ctx, "tx_rx_leakage")
+        c = _as_list(start.get("coupling_dB", -60.0), R)
+        return [ParamSpec("coupling_dB", _around(c[i], pr["coupling_dB"], half=4.0), i) for i in range(R)]
+
+    return Candidate("tx_rx_leakage", specs, starts, modes=("scene",))
+
+
+def _phase_noise() -> Candidate:
+    def starts(ctx: Context) -> list[dict[str, Any]]:
+        cur = find(ctx.chain, "phase_noise")
+        v = float(cur["params"]["freq_noise_rms_Hz"]) if cur is not None else 100e3
+        return [{"freq_noise_rms_Hz": v * f} for f in (0.3, 3.0, 10.0)]
+
+    def specs(ctx: Context, start: dict[str, Any]) -> list[ParamSpec]:
+        return [_spec(ctx, "phase_noise", "freq_noise_rms_Hz")]
+
+    return Candidate("phase_noise", specs, starts, modes=("scene",))
+
+
+def catalog() -> list[Candidate]:
+    """Every candidate the loop tries after the base refit, in a fixed order (ties go to the first)."""
+    return [
+        _noise_like("adc_noise", "rms_counts", (0.5, 2.0, 8.0), joint=(("thermal_noise", "noise_figure_dB"),)),
+        _frame_drift(),
+        _spur(),
+        _rx_mismatch(),
+        _interference(),
+        _vibrating(),
+        _static_clutter(),
+        _multipath(),
+        _chirp_nonlinearity(),
+        _leakage(),
+        _phase_noise(),
+    ]
+
+
+CATALOG_NAMES = (
+    "system_gain", "thermal_noise", "if_highpass", "anti_alias_lowpass", "dc_offset", "adc_quantization",
+    "adc_clipping", "adc_noise", "frame_drift", "spur_tone", "rx_gain_phase_mismatch", "interference",
+    "vibrating_clutter", "static_clutter", "multipath", "chirp_nonlinearity", "tx_rx_leakage", "phase_noise",
+)
+"""Every effect the loop fits: the base stages (refitted first; quantization and clipping are
+always present and have nothing to fit) and the catalog candidates."""

@@ -1,0 +1,344 @@
+"""`radaraug diagnose`: twin vs capture, the effect search, the report and the fitted twin profile.
+
+:func:`diagnose` reads a capture (radaraug HDF5 or Infineon recording), simulates its scene with
+the capture's radar config (or, without a scene, takes the static scene from the capture itself),
+runs the search of :mod:`radaraug.calibration.search` and locates what is left unexplained.
+:func:`write_report` writes ``report.json``, ``summary.md``, one figure per view and the
+fitted twin profile (``profile.json``).
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import torch
+
+from radaraug.calibration.catalog import CATALOG_NAMES, Chain, find
+from radaraug.calibration.search import Search, SearchResult, SearchSettings
+from radaraug.calibration.twin_source import STATIC_STAGES, TwinSource
+from radaraug.calibration.views import VIEW_UNITS, Views, _db
+from radaraug.config import RadarConfig
+from radaraug.errors import CalibrationError
+from radaraug.sensor.profile import TwinProfile, as_profile
+from radaraug.sensor.receiver import FMCWReceiver
+from radaraug.units import DB_CONVENTION, FLOAT_CONVENTION
+
+MIN_FRAMES = 4
+UNEXPLAINED_DB = 6.0
+"""A frame-averaged RD cell is unexplained when capture and twin differ by more than this (and by
+more than 4 robust standard deviations of the residual map)."""
+
+
+@dataclass
+class Diagnosis:
+    """Everything :func:`diagnose` found (see :func:`write_report` for the files)."""
+
+    capture: str
+    scene: str | None
+    mode: str
+    config: RadarConfig
+    result: SearchResult
+    unexplained: list[dict[str, Any]]
+    profile: TwinProfile
+    frames: dict[str, int]
+    runtime_s: float
+    capture_views: Views
+    extra: dict[str, Any] = field(default_factory=dict)
+
+    def report(self) -> dict[str, Any]:
+        """The ``report.json`` content."""
+        r = self.result
+        units = {"overall": VIEW_UNITS["overall"], "views": "dB (see docs/calibration.md for each view's error)"}
+        return {
+            "capture": self.capture,
+            "scene": self.scene,
+            "mode": self.mode,
+            "mode_explanation": _MODE_TEXT[self.mode],
+            "config": self.config.to_dict(),
+            "frames": self.frames,
+            "error_before": {**r.before.as_dict(), "units": units},
+            "error_base_refit": {**r.base.as_dict(), "units": units},
+            "error_after": {**r.after.as_dict(), "units": units},
+            "base_refit": {"params": _base_params(r.chain_base), "params_before": _base_params(r.chain_before)},
+            "steps": [{k: v for k, v in s.items() if k not in ("views_before", "views_after")} | {
+                "views_before": s["views_before"], "views_after": s["views_after"]} for s in r.steps],
+            "candidates_tried": r.tried,
+            "unexplained": self.unexplained,
+            "catalog": list(CATALOG_NAMES),
+            "evaluations": r.evaluations,
+            "runtime_s": round(self.runtime_s, 2),
+            "db_convention": DB_CONVENTION,
+            "units": FLOAT_CONVENTION,
+        }
+
+
+_MODE_TEXT = {
+    "scene": "the capture's scene was simulated (room traced with the capture's radar config)",
+    "estimated": "no scene given: the static scene was estimated from the capture (its mean chirp over the fitting "
+                 "frames), so static stages (TX->RX leakage, room clutter, multipath) are taken as measured and "
+                 "only what varies was diagnosed",
+}
+
+
+def _base_params(chain: Chain) -> dict[str, Any]:
+    out = {}
+    for name in ("thermal_noise", "system_gain", "if_highpass", "anti_alias_lowpass", "adc_noise", "dc_offset"):
+        e = find(chain, name)
+        if e is not None:
+            out[name] = e["params"]
+    return out
+
+
+def _read_capture(capture: Any, max_frames: int) -> tuple[str, RadarConfig, torch.Tensor]:
+    from radaraug.io import open_capture
+
+    if isinstance(capture, (str, os.PathLike)):
+        with open_capture(capture) as reader:
+            return _read_capture(reader, max_frames)
+    n = min(capture.num_frames, int(max_frames))
+    if n < MIN_FRAMES:
+        raise CalibrationError(f"{capture.path}: {capture.num_frames} frames; diagnosing needs at least {MIN_FRAMES}")
+    return str(capture.path), capture.config, capture.read(0, n).to(torch.float64)
+
+
+def _source(config: RadarConfig, scene: Any, fit: torch.Tensor, sim_frames: int,
+            chain: Chain, tracer_options: dict[str, Any] | None) -> tuple[TwinSource, Chain, str | None]:
+    rx = FMCWReceiver.from_dict(config, {"effects": chain})
+    if scene is None:
+        mean_chirp = fit.mean(dim=(0, 2))  # (rx, samples)
+        static = (mean_chirp - mean_chirp.mean(dim=-1, keepdim=True))[:, None, :].expand(
+            config.num_rx, config.num_chirps_per_frame, config.num_samples_per_chirp).contiguous()
+        chain = [e for e in chain if e["name"] not in STATIC_STAGES]
+        return TwinSource(config, static_fixed=static, tx_power_dBm=rx.tx_power_dBm,
+                          front_end_gain_dB=rx.front_end_gain_dB), chain, None
+    from radaraug.sim.dataset import load_scene
+    from radaraug.sim.twin import DigitalTwin
+
+    sc = load_scene(scene)
+    twin = DigitalTwin(sc, config=config, tracer_options=tracer_options, dtype=torch.float64)
+    static_paths = twin.tracer.static_paths()
+    moving = None
+    if sc.people:
+        moving = twin.paths(sc.people, twin.frame_times(range(sim_frames * 2)))
+    name = scene if isinstance(scene, str) else str(getattr(sc, "name", "scene"))
+    return TwinSource(config, static_paths=static_paths, moving=moving, tx_power_dBm=rx.tx_power_dBm,
+                      front_end_gain_dB=rx.front_end_gain_dB), chain, str(name)
+
+
+def locate_unexplained(capture: Views, twin: Views, config: RadarConfig, limit: int = 10) -> list[dict[str, Any]]:
+    """Residual no effect explains: clusters of frame-averaged RD cells where capture and twin
+    differ by more than :data:`UNEXPLAINED_DB` (and 4 robust sigmas), located by range (m) and
+    Doppler (m/s), plus runs of range bins where the noise floor is off by more than 3 dB."""
+    ex = _db(capture.stats.power.mean(dim=0)) - _db(twin.stats.power.mean(dim=0))  # (range, doppler)
+    med = ex.median()
+    sigma = 1.4826 * (ex - med).abs().median()
+    thr = max(UNEXPLAINED_DB, 4 * float(sigma))
+    rng = config.range_axis_m()
+    vel = config.velocity_axis_m_s()
+    items: list[dict[str, Any]] = []
+    for sign in (1, -1):
+        mask = (sign * (ex - med)) > thr
+        for cells in _clusters(mask):
+            vals = torch.tensor([float(ex[r, d]) for r, d in cells])
+            k = int((sign * vals).argmax())
+            r, d = cells[k]
+            items.append({
+                "view": "rd_map",
+                "kind": "excess" if sign > 0 else "deficit",
+                "range_m": round(rng[r], 3),
+                "velocity_m_s": round(vel[d], 3),
+                "range_span_m": [round(rng[min(c[0] for c in cells)], 3), round(rng[max(c[0] for c in cells)], 3)],
+                "velocity_span_m_s": [round(vel[min(c[1] for c in cells)], 3), round(vel[max(c[1] for c in cells)], 3)],
+                "size_dB": round(float(vals[k]), 2),
+                "cells": len(cells),
+            })
+    floor_res = capture["noise_floor"] - twin["noise_floor"]
+    run: list[int] = []
+    for k in range(floor_res.numel() + 1):
+        off = k < floor_res.numel() and abs(float(floor_res[k])) > 3.0
+        if off:
+            run.append(k)
+        elif run:
+            worst = max(run, key=lambda i: abs(float(floor_res[i])))
+            items.append({"view": "noise_floor", "kind": "excess" if floor_res[worst] > 0 else "deficit",
+                          "range_m": round(rng[worst], 3), "velocity_m_s": None,
+                          "range_span_m": [round(rng[run[0]], 3), round(rng[run[-1]], 3)],
+                          "size_dB": round(float(floor_res[worst]), 2), "cells": len(run)})
+            run = []
+    items.sort(key=lambda i: -abs(i["size_dB"]))
+    return items[:limit]
+
+
+def _clusters(mask: torch.Tensor) -> list[list[tuple[int, int]]]:
+    """4-connected clusters of True cells (Doppler wraps around)."""
+    todo = {tuple(x) for x in mask.nonzero().tolist()}
+    M = mask.shape[1]
+    out = []
+    while todo:
+        seed = todo.pop()
+        stack, cells = [seed], [seed]
+        while stack:
+            r, d = stack.pop()
+            for nb in ((r + 1, d), (r - 1, d), (r, (d + 1) % M), (r, (d - 1) % M)):
+                if nb in todo:
+                    todo.remove(nb)
+                    stack.append(nb)
+                    cells.append(nb)
+        out.append(cells)
+    out.sort(key=len, reverse=True)
+    return out[:50]
+
+
+def profile_chain(result_chain: Chain, default_chain: Chain, mode: str) -> Chain:
+    """The fitted chain for training: in estimated mode the static stages the loop did not
+    diagnose come back from the default chain."""
+    if mode == "scene":
+        return result_chain
+    from radaraug.calibration.catalog import with_effect
+
+    out = list(result_chain)
+    for e in default_chain:
+        if e["name"] in STATIC_STAGES and find(out, e["name"]) is None:
+            out = with_effect(out, e["name"], e["params"])
+    return out
+
+
+def diagnose(
+    capture: Any,
+    *,
+    scene: Any = None,
+    max_frames: int = 100,
+    settings: SearchSettings | None = None,
+    start_profile: Any = None,
+    tracer_options: dict[str, Any] | None = None,
+    progress: bool = False,
+) -> Diagnosis:
+    """Compare a capture with the twin, search the effect catalog, fit a twin profile.
+
+    Args:
+        capture: a capture path (radaraug HDF5 or Infineon recording folder) or an open reader.
+        scene: the capture's scene (a :class:`~radaraug.scene.Scene`, a scene file or a built-in
+            name); ``None`` estimates the static scene from the capture.
+        max_frames: frames read (the first half fits, the second half scores).
+        settings: search knobs (:class:`SearchSettings`).
+        start_profile: start from this twin profile instead of the default chain.
+        tracer_options: the room trace's options in scene mode.
+        progress: print one line per decision.
+
+    Returns:
+        A :class:`Diagnosis`; :func:`write_report` writes it.
+
+    Raises:
+        CalibrationError: fewer than 4 frames, or a profile that does not fit the capture.
+    """
+    t0 = time.perf_counter()
+    path, config, frames = _read_capture(capture, max_frames)
+    settings = settings or SearchSettings()
+    half = frames.shape[0] // 2
+    fit, held = frames[:half], frames[half:]
+    start = as_profile(start_profile)
+    receiver = start.receiver(config) if start is not None else FMCWReceiver(config)
+    default_chain = receiver.to_dict()["effects"]
+    source, chain, scene_name = _source(config, scene, fit, settings.sim_frames, default_chain, tracer_options)
+    say = (lambda s: print(f"diagnose: {s}", flush=True)) if progress else None
+    search = Search(source, fit, held, settings, progress=say)
+    result = search.run(chain)
+    unexplained = locate_unexplained(search.cap_held, result.after.twin, config)
+    runtime = time.perf_counter() - t0
+    full_chain = profile_chain(result.chain_after, default_chain, source.mode)
+    rx_dict = {**receiver.to_dict(), "effects": full_chain}
+    profile = TwinProfile(rx_dict, {
+        "capture": Path(path).name,
+        "scene": scene_name,
+        "mode": source.mode,
+        "config": config.to_dict(),
+        "error_before_dB": round(result.before.overall, 4),
+        "error_after_dB": round(result.after.overall, 4),
+        "effects_added": [s["effect"] for s in result.steps],
+    })
+    return Diagnosis(path, scene_name, source.mode, config, result, unexplained, profile,
+                     {"read": int(frames.shape[0]), "fit": int(half), "held_out": int(frames.shape[0] - half),
+                      "simulated_per_evaluation": search.n_fit}, runtime, search.cap_held,
+                     extra={"evaluations": search.evaluations})
+
+
+def write_report(diag: Diagnosis, out_dir: str | os.PathLike, figures: bool = True) -> Path:
+    """Write ``report.json``, ``summary.md``, ``profile.json`` and the view figures under ``out_dir``."""
+    out = Path(out_dir)
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+    except OSError as e:
+        raise CalibrationError(f"{out}: cannot create the report folder ({e.strerror or e})") from None
+    report = diag.report()
+    diag.profile.save(out / "profile.json")
+    report["profile"] = "profile.json"
+    if figures:
+        from radaraug.calibration.figures import view_figures
+
+        report["figures"] = view_figures(diag, out)
+    tmp = out / "report.json.tmp"
+    tmp.write_text(json.dumps(report, indent=1, default=_json_default))
+    os.replace(tmp, out / "report.json")
+    (out / "summary.md").write_text(summary_text(diag, report))
+    return out
+
+
+def _json_default(o: Any) -> Any:
+    if isinstance(o, torch.Tensor):
+        return o.tolist()
+    if isinstance(o, float) and not math.isfinite(o):
+        return None
+    raise TypeError(type(o).__name__)
+
+
+def _fmt_params(params: dict[str, Any]) -> str:
+    def f(v: Any) -> str:
+        if isinstance(v, list):
+            return "[" + ", ".join(f(x) for x in v) + "]"
+        if isinstance(v, float):
+            return f"{v:.4g}"
+        return str(v)
+
+    return ", ".join(f"{k}={f(v)}" for k, v in params.items())
+
+
+def summary_text(diag: Diagnosis, report: dict[str, Any]) -> str:
+    """A short readable summary of the diagnosis (Markdown)."""
+    r = diag.result
+    lines = [
+        f"# Diagnosis of `{Path(diag.capture).name}`",
+        "",
+        f"- Mode: **{diag.mode}** ({_MODE_TEXT[diag.mode]}).",
+        f"- Config: {diag.config.describe()}",
+        f"- Frames: {diag.frames['fit']} to fit, {diag.frames['held_out']} held out; "
+        f"{r.evaluations} twin evaluations in {diag.runtime_s:.1f} s.",
+        f"- Held-out error (mean of the view errors, dB): default twin **{r.before.overall:.2f}**, "
+        f"base chain refitted **{r.base.overall:.2f}**, after the search **{r.after.overall:.2f}**.",
+        "",
+        "## Effects added (in order)",
+        "",
+    ]
+    if not r.steps:
+        lines.append("None: no catalog effect improved the held-out error by the margin.")
+    for s in r.steps:
+        lines.append(f"1. `{s['effect']}`{' (refit)' if s['refit'] else ''}: {s['error_before']:.3f} -> "
+                     f"{s['error_after']:.3f} dB; {_fmt_params(s['params'])}")
+    lines += ["", "## Error per view (dB, held-out)", "", "| view | default twin | base refit | final |",
+              "|---|---|---|---|"]
+    for k in r.before.views:
+        lines.append(f"| {k} | {r.before.views[k]:.2f} | {r.base.views[k]:.2f} | {r.after.views[k]:.2f} |")
+    lines += ["", "## Unexplained residual", ""]
+    if not diag.unexplained:
+        lines.append("Nothing above the thresholds.")
+    for u in diag.unexplained:
+        where = f"{u['range_m']} m" + (f", {u['velocity_m_s']} m/s" if u.get("velocity_m_s") is not None else "")
+        lines.append(f"- {u['view']}: {u['kind']} of {u['size_dB']:+.1f} dB at {where} ({u['cells']} cells)")
+    lines += ["", f"Units: {DB_CONVENTION}; samples {FLOAT_CONVENTION}.", ""]
+    return "\n".join(lines)
+

@@ -1,0 +1,93 @@
+"""Figures of a diagnosis: every view, capture vs twin before and after, and the RD residual."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+import torch
+
+from radaraug.calibration.views import ADC_QUANTILES, RD_QUANTILES, _db
+
+if TYPE_CHECKING:
+    from radaraug.calibration.diagnose import Diagnosis
+
+
+def view_figures(diag: Diagnosis, out: Path) -> list[str]:
+    """Write one PNG per view plus ``rd_residual.png``; returns the file names."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    cfg = diag.config
+    rng = torch.tensor(cfg.range_axis_m())
+    vel = torch.tensor(cfg.velocity_axis_m_s())
+    cap, before, after = diag.capture_views, diag.result.before.twin, diag.result.after.twin
+    series = (("capture (held-out)", cap, "k-"), ("twin before", before, "C3--"), ("twin after", after, "C0-"))
+    nr = cap["noise_floor"].numel()
+    names: list[str] = []
+
+    def save(fig, name: str) -> None:
+        fig.tight_layout()
+        fig.savefig(out / name, dpi=90)
+        plt.close(fig)
+        names.append(name)
+
+    def curve(view: str, x: torch.Tensor, xlabel: str, ylabel: str, sl: slice = slice(None)) -> None:
+        fig, ax = plt.subplots(figsize=(6, 3.4))
+        for label, v, style in series:
+            ax.plot(x, v[view][sl], style, label=label, lw=1.2)
+        ax.set(xlabel=xlabel, ylabel=ylabel, title=view)
+        ax.legend(fontsize=8)
+        save(fig, f"view_{view}.png")
+
+    curve("rd_histogram", torch.tensor(RD_QUANTILES), "quantile", "RD cell (dBFS)")
+    curve("noise_floor", rng, "range (m)", "median off-zero-Doppler power (dBFS)")
+    curve("range_profile", rng, "range (m)", "mean zero-Doppler power (dBFS)")
+    curve("doppler_profile", vel, "velocity (m/s)", "mean power (dBFS)")
+    curve("static_ratio", rng, "range (m)", "zero-Doppler / total (dB)")
+    fig, axes = plt.subplots(1, 2, figsize=(9, 3.4))
+    for label, v, style in series:
+        axes[0].plot(rng, v["lines"][:nr], style, label=label, lw=1)
+        axes[1].plot(vel, v["lines"][nr:], style, label=label, lw=1)
+    axes[0].set(xlabel="range (m)", ylabel="peak / median (dB)", title="lines per range row")
+    axes[1].set(xlabel="velocity (m/s)", ylabel="peak / median (dB)", title="lines per Doppler column")
+    axes[0].legend(fontsize=8)
+    save(fig, "view_lines.png")
+    fig, axes = plt.subplots(1, 2, figsize=(9, 3.4))
+    R = cfg.num_rx
+    for j, (label, v, _style) in enumerate(series):
+        axes[0].bar(torch.arange(R) + 0.25 * (j - 1), v["rx_balance"][:R], width=0.25, label=label)
+        axes[1].bar(torch.arange(R) + 0.25 * (j - 1), v["rx_balance"][R:], width=0.25, label=label)
+    axes[0].set(xlabel="RX", ylabel="noise floor - mean (dB)", title="rx_balance: noise")
+    axes[1].set(xlabel="RX", ylabel="static level - mean (dB)", title="rx_balance: static")
+    axes[0].legend(fontsize=8)
+    save(fig, "view_rx_balance.png")
+    fig, ax = plt.subplots(figsize=(6, 3.4))
+    for label, v, style in series:
+        for r in range(R):
+            ax.plot(ADC_QUANTILES, v["adc_histogram"][r, :-1], style, lw=1, label=label if r == 0 else None)
+    ax.set(xscale="logit", xlabel="quantile", ylabel="ADC code", title="adc_histogram (per RX)")
+    ax.legend(fontsize=8)
+    save(fig, "view_adc_histogram.png")
+    fig, ax = plt.subplots(figsize=(6, 3.4))
+    lab = ["median frame power (dB)", "frame power spread (dB)", "chirp-to-chirp noise (dB counts^2)",
+           "frame-to-frame noise (dB counts^2)"]
+    for j, (label, v, _) in enumerate(series):
+        ax.bar(torch.arange(4) + 0.25 * (j - 1), v["frame_power"], width=0.25, label=label)
+    ax.set_xticks(range(4), lab, rotation=15, fontsize=7)
+    ax.set(title="frame_power")
+    ax.legend(fontsize=8)
+    save(fig, "view_frame_power.png")
+    ex = _db(cap.stats.power.mean(dim=0)) - _db(after.stats.power.mean(dim=0))
+    fig, ax = plt.subplots(figsize=(6, 4))
+    im = ax.imshow(ex, aspect="auto", origin="lower", cmap="RdBu_r", vmin=-15, vmax=15,
+                   extent=[float(vel[0]), float(vel[-1]), float(rng[0]), float(rng[-1])])
+    for u in diag.unexplained:
+        if u["view"] == "rd_map":
+            ax.plot(u["velocity_m_s"], u["range_m"], "ko", mfc="none")
+    fig.colorbar(im, ax=ax, label="capture - twin after (dB)")
+    ax.set(xlabel="velocity (m/s)", ylabel="range (m)", title="RD residual after the search (circles: unexplained)")
+    save(fig, "rd_residual.png")
+    return names

@@ -1,0 +1,115 @@
+"""What the calibration loop simulates: the capture's scene through a candidate receiver chain.
+
+Two modes (:attr:`TwinSource.mode`):
+
+* ``"scene"``: a scene is given. Its room is ray-traced once with the capture's radar config;
+  the room's static paths go through each candidate chain's linear stages
+  (:meth:`FMCWReceiver.static_signal`, recomputed only when a linear stage changes) and the
+  scene's people, if any, are traced once for the simulated frame times.
+* ``"estimated"``: no scene. An empty room is static, so the static scene *is* the capture's
+  mean chirp (per RX, over the fitting frames, its own mean over samples removed: the DC
+  offset is a separate, fitted stage). It is injected as the static signal; everything static
+  (room, TX->RX leakage, the IF filters' effect on them) is then taken as measured, and the
+  loop diagnoses what varies: noise, its range shape, spurs, drift, interference, ADC.
+"""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Mapping, Sequence
+from typing import Any
+
+import torch
+
+from radaraug.config import RadarConfig
+from radaraug.sensor.effects import effect_from_dict
+from radaraug.sensor.paths import Paths
+from radaraug.sensor.receiver import FMCWReceiver
+
+# Stages that an estimated static scene already contains (leave them out in that mode).
+STATIC_STAGES = ("tx_rx_leakage", "multipath", "static_clutter")
+
+
+def chain_receiver(config: RadarConfig, chain: Sequence[Mapping[str, Any]], tx_power_dBm: float | None = None,
+                   front_end_gain_dB: float | None = None) -> FMCWReceiver:
+    """An :class:`FMCWReceiver` for ``config`` with the effect chain ``chain`` (effect dicts)."""
+    kw: dict[str, Any] = {}
+    if tx_power_dBm is not None:
+        kw["tx_power_dBm"] = tx_power_dBm
+    if front_end_gain_dB is not None:
+        kw["front_end_gain_dB"] = front_end_gain_dB
+    return FMCWReceiver(config, effects=[effect_from_dict(e) for e in chain], **kw)
+
+
+class TwinSource:
+    """Simulates frames of one capture's scene for any effect chain.
+
+    Args:
+        config: the capture's radar config.
+        static_paths: the room's paths ``(P, RX)`` (scene mode).
+        static_fixed: a measured static signal ``(rx, chirps, samples)`` in SDK floats
+            (estimated mode).
+        moving: people's paths per simulated frame ``(T, P, RX)`` (scene mode with people).
+        frame_period_s: frame period (frame start times for time-locked effects).
+        tx_power_dBm, front_end_gain_dB: receiver constants (default: the library's).
+    """
+
+    def __init__(
+        self,
+        config: RadarConfig,
+        *,
+        static_paths: Paths | None = None,
+        static_fixed: torch.Tensor | None = None,
+        moving: Paths | None = None,
+        tx_power_dBm: float | None = None,
+        front_end_gain_dB: float | None = None,
+    ) -> None:
+        if (static_paths is None) == (static_fixed is None):
+            raise ValueError("give exactly one of static_paths (scene mode) or static_fixed (estimated mode)")
+        self.config = config
+        self.static_paths = static_paths
+        self.static_fixed = None if static_fixed is None else static_fixed.to(torch.float64)
+        self.moving = moving
+        self.tx_power_dBm = tx_power_dBm
+        self.front_end_gain_dB = front_end_gain_dB
+        self._static_cache: dict[str, torch.Tensor] = {}
+        self.calls = 0
+
+    @property
+    def mode(self) -> str:
+        """``"scene"`` or ``"estimated"``."""
+        return "scene" if self.static_paths is not None else "estimated"
+
+    def receiver(self, chain: Sequence[Mapping[str, Any]]) -> FMCWReceiver:
+        """The receiver of ``chain`` with this source's constants."""
+        return chain_receiver(self.config, chain, self.tx_power_dBm, self.front_end_gain_dB)
+
+    def _static(self, rx: FMCWReceiver, chain: Sequence[Mapping[str, Any]]) -> torch.Tensor:
+        if self.static_fixed is not None:
+            return self.static_fixed
+        linear = [e for e, m in zip(chain, rx.effects) if m.kind == "linear"]
+        key = json.dumps(linear, sort_keys=True)
+        if key not in self._static_cache:
+            if len(self._static_cache) > 64:
+                self._static_cache.clear()
+            self._static_cache[key] = rx.static_signal(self.static_paths.map(lambda t: t.to(torch.float64)))
+        return self._static_cache[key]
+
+    @torch.no_grad()
+    def frames(self, chain: Sequence[Mapping[str, Any]], num_frames: int, seed: int,
+               first_frame: int = 0) -> torch.Tensor:
+        """``(num_frames, rx, chirps, samples)`` SDK floats (float64) of ``chain``, seeded."""
+        self.calls += 1
+        rx = self.receiver(chain)
+        static = self._static(rx, chain)
+        R = self.config.num_rx
+        if self.moving is not None:
+            T = self.moving.delay_s.shape[0]
+            idx = torch.arange(first_frame, first_frame + num_frames) % T
+            paths = self.moving.map(lambda t: t[idx].to(torch.float64) if t.is_floating_point() else t[idx])
+        else:
+            z = torch.zeros(num_frames, 0, R, dtype=torch.float64)
+            paths = Paths(z, z.clone(), z.to(torch.complex128))
+        g = torch.Generator().manual_seed(int(seed))
+        times = (torch.arange(num_frames, dtype=torch.float64) + first_frame) * self.config.frame_repetition_time_s
+        return rx(paths, generator=g, frame_start_s=times, static_signal=static)

@@ -1,0 +1,264 @@
+"""Clutter added at the antenna: static scatterers, a vibrating scatterer, and multipath ghosts.
+
+These stand in for what a scene description lacks (an unmodelled wall, a fan, a reflection
+between the target and a wall) when a twin is calibrated against a capture. Levels are given
+like ``tx_rx_leakage``'s coupling: received power at the RX port relative to the TX power, so
+no antenna pattern or RCS has to be assumed. A scatterer is seen identically by every RX
+(broadside), as one path per scatterer.
+"""
+
+from __future__ import annotations
+
+import math
+
+import torch
+
+from radaraug.config import SPEED_OF_LIGHT, RadarConfig
+from radaraug.errors import ConfigError
+from radaraug.sensor.chain import ChainState, ModulatedPaths
+from radaraug.sensor.effects.base import (
+    Effect,
+    Prior,
+    check_nonnegative,
+    check_positive,
+    register,
+    scatterer_count,
+)
+
+
+def _per_scatterer(state: ChainState, value: torch.Tensor, k: int) -> torch.Tensor:
+    """A scalar or ``(K,)`` parameter as ``(K,)`` on the call's device and dtype."""
+    return state.param(value).reshape(-1).expand(k)
+
+
+def _tone_amplitude(state: ChainState, level_dB: torch.Tensor) -> torch.Tensor:
+    """Peak ADC-float amplitude of a path whose RX-port power is ``level_dB`` below P_tx.
+
+    ``sqrt(2 P_tx 10**(level/10)) * G_fe``, written as a product so the gradient stays finite
+    with the TX off.
+    """
+    return math.sqrt(2 * state.tx_power_W) * state.front_end_gain * torch.pow(10.0, level_dB / 20)
+
+
+def _clutter_priors(config: RadarConfig) -> dict[str, Prior]:
+    return {
+        "range_m": Prior(0.05, max(float(config.max_range_m), 0.1)),
+        "level_dB": Prior(-140.0, -30.0),
+        "phase_rad": Prior(-math.pi, math.pi),
+    }
+
+
+@register
+class StaticClutter(Effect):
+    """``K`` static point scatterers (paths with zero delay rate).
+
+    Each is a path of delay ``2 range_m / c`` and beat-tone amplitude
+    ``sqrt(2 P_tx 10**(level_dB / 10)) * G_fe`` (``G_fe`` the front-end gain) with phase
+    ``phase_rad``, the same on every RX. Being paths they go through every later stage like the
+    scene's targets (the IF high-pass attenuates the near ones). Place it right after
+    ``tx_rx_leakage``.
+
+    Args:
+        range_m: one-way range of each scatterer, m (scalar or ``(K,)``). Default 1 m.
+        level_dB: received power at the RX port relative to the TX power, dB (scalar or
+            ``(K,)``). Default -80 dB, about a 1 m^2 target at 1 m with isotropic antennas.
+        phase_rad: phase of each beat tone, rad (scalar or ``(K,)``).
+
+    Priors (each scatterer, linear): ``range_m`` in [0.05, ``config.max_range_m``],
+    ``level_dB`` in [-140, -30] dB, ``phase_rad`` in [-pi, pi].
+    """
+
+    name = "static_clutter"
+    param_names = ("range_m", "level_dB", "phase_rad")
+
+    def __init__(
+        self,
+        range_m: float | list | torch.Tensor = 1.0,
+        level_dB: float | list | torch.Tensor = -80.0,
+        phase_rad: float | list | torch.Tensor = 0.0,
+    ) -> None:
+        super().__init__()
+        self._set(range_m=range_m, level_dB=level_dB, phase_rad=phase_rad)
+        self.num_scatterers = scatterer_count(self, range_m=self.range_m, level_dB=self.level_dB,
+                                              phase_rad=self.phase_rad)
+        check_nonnegative(self, range_m=self.range_m)
+
+    @classmethod
+    def priors(cls, config: RadarConfig) -> dict[str, Prior]:
+        """Range up to the unambiguous range; level and phase fixed ranges."""
+        return _clutter_priors(config)
+
+    def apply(self, state: ChainState) -> None:
+        k = self.num_scatterers
+        amp = _tone_amplitude(state, _per_scatterer(state, self.level_dB, k))
+        coef = torch.polar(amp, _per_scatterer(state, self.phase_rad, k))[None, :]  # (1, K): all RX
+        delay = (2 / SPEED_OF_LIGHT) * _per_scatterer(state, self.range_m, k)[None, :]
+        state.add_paths(coef, delay, torch.zeros_like(delay))
+
+
+@register
+class VibratingClutter(Effect):
+    """Scatterers whose range oscillates: ``R + displacement_m sin(2 pi vibration_Hz t + phase_rad)``.
+
+    A fan blade, a pump or a monitor's case: the oscillation phase-modulates the return,
+    ``exp(j beta sin(w t + phi))`` with ``beta = 4 pi displacement_m / lambda``
+    (``lambda = config.wavelength_m``). By the Jacobi-Anger expansion
+    ``exp(j beta sin x) = sum_k J_k(beta) exp(j k x)`` the range-Doppler map shows, at the
+    scatterer's range, lines at Doppler ``k * vibration_Hz`` with amplitudes ``|J_k(beta)|``
+    relative to the scatterer's (wrapping past the Doppler Nyquist ``1 / (2 PRT)`` like any
+    Doppler).
+
+    It is computed without truncating that series: the return is one static path (the carrier,
+    at delay ``2 R / c``, amplitude as :class:`StaticClutter`) plus the same path modulated sample
+    by sample by the real multipliers ``cos(psi) - 1`` and ``sin(psi)`` (two modulated copies,
+    the second with coefficient ``j C``), ``psi = beta sin(w t + phi)``. That is
+    ``Re{C exp(j Phi) exp(j psi)}`` exactly, and it keeps every harmonic at the scatterer's
+    range: as separate paths with delay rates ``k vibration_Hz / f0``, harmonic ``k`` would drift
+    in range by ``k vibration_Hz lambda / 2`` per second (centimetres per frame at 1 kHz),
+    which the vibrating scatterer does not. ``t`` is the absolute sample time
+    ``frame_start_s + m PRT + adc_delay + n / fs`` (as ``spur_tone``), so consecutive frames
+    continue the oscillation; in a batch each frame uses its own ``frame_start_s``. The in-chirp
+    range change ``+- displacement_m`` (sub-millimetre to millimetres, far below a range bin)
+    is not modelled, only its phase. The carrier phase is 0 (a point scatterer). The
+    modulation is common to all RX. Place it after ``static_clutter``.
+
+    Args:
+        range_m: mean one-way range, m (scalar or ``(K,)`` for K scatterers). Default 1 m.
+        level_dB: received power at the RX port relative to the TX power, dB (scalar or
+            ``(K,)``). Default -80 dB.
+        displacement_m: peak displacement, m (scalar or ``(K,)``, >= 0). Default 0.5 mm.
+        vibration_Hz: vibration frequency, Hz (scalar or ``(K,)``, > 0). Default 50 Hz.
+        phase_rad: vibration phase at absolute time 0, rad (scalar or ``(K,)``).
+
+    Priors (each scatterer): ``range_m`` in [0.05, ``config.max_range_m``], ``level_dB`` in
+    [-140, -30] dB, ``displacement_m`` in [10 um, 5 mm] (log), ``vibration_Hz`` in [0.5 Hz,
+    ``1 / (2 PRT)``] (log; above the Doppler Nyquist the lines alias), ``phase_rad`` in
+    [-pi, pi].
+    """
+
+    name = "vibrating_clutter"
+    param_names = ("range_m", "level_dB", "displacement_m", "vibration_Hz", "phase_rad")
+
+    def __init__(
+        self,
+        range_m: float | list | torch.Tensor = 1.0,
+        level_dB: float | list | torch.Tensor = -80.0,
+        displacement_m: float | list | torch.Tensor = 0.5e-3,
+        vibration_Hz: float | list | torch.Tensor = 50.0,
+        phase_rad: float | list | torch.Tensor = 0.0,
+    ) -> None:
+        super().__init__()
+        self._set(range_m=range_m, level_dB=level_dB, displacement_m=displacement_m, vibration_Hz=vibration_Hz,
+                  phase_rad=phase_rad)
+        self.num_scatterers = scatterer_count(
+            self, range_m=self.range_m, level_dB=self.level_dB, displacement_m=self.displacement_m,
+            vibration_Hz=self.vibration_Hz, phase_rad=self.phase_rad,
+        )
+        check_nonnegative(self, range_m=self.range_m, displacement_m=self.displacement_m)
+        check_positive(self, vibration_Hz=self.vibration_Hz)
+
+    @classmethod
+    def priors(cls, config: RadarConfig) -> dict[str, Prior]:
+        """Range up to the unambiguous range, vibration up to the Doppler Nyquist."""
+        p = _clutter_priors(config)
+        return {
+            "range_m": p["range_m"],
+            "level_dB": p["level_dB"],
+            "displacement_m": Prior(1e-5, 5e-3, "log"),
+            "vibration_Hz": Prior(0.5, max(0.5 / float(config.chirp_repetition_time_s), 1.0), "log"),
+            "phase_rad": p["phase_rad"],
+        }
+
+    def modulation_rad(self, state: ChainState) -> torch.Tensor:
+        """``psi = beta sin(w t + phi)`` at every sample, ``(…, K, 1, M, N)`` (``…``: per-frame starts)."""
+        tm = state.timing
+        k = self.num_scatterers
+        m = torch.arange(tm.num_chirps, device=state.device, dtype=torch.float64)
+        n = torch.arange(tm.num_samples, device=state.device, dtype=torch.float64)
+        start = state.frame_start_s
+        if isinstance(start, torch.Tensor):  # one start per frame of the batch
+            start = start.to(device=state.device, dtype=torch.float64)[..., None, None, None, None]
+        t = start + (m * tm.prt + tm.adc_delay)[:, None] + (n / tm.fs)[None, :]  # (…, 1, 1, M, N)
+        f = self.vibration_Hz.to(device=state.device, dtype=torch.float64).reshape(-1).expand(k)
+        cycles = f[:, None, None, None] * t  # (…, K, 1, M, N)
+        # Reduce the (possibly huge, absolute-time) cycle count mod 1 in float64 before the cast.
+        phase = 2 * math.pi * (cycles - torch.round(cycles)).to(state.dtype)
+        phase = phase + _per_scatterer(state, self.phase_rad, k)[:, None, None, None]
+        beta = (4 * math.pi / state.config.wavelength_m) * _per_scatterer(state, self.displacement_m, k)
+        return beta[:, None, None, None] * torch.sin(phase)
+
+    def apply(self, state: ChainState) -> None:
+        k = self.num_scatterers
+        amp = _tone_amplitude(state, _per_scatterer(state, self.level_dB, k))
+        coef = amp.to(state.complex_dtype)[None, :].expand(state.num_rx, k)  # (RX, K)
+        delay = ((2 / SPEED_OF_LIGHT) * _per_scatterer(state, self.range_m, k))[None, :].expand(state.num_rx, k)
+        rate = torch.zeros_like(delay)
+        state.add_paths(coef, delay, rate)
+        psi = self.modulation_rad(state)
+        batch_coef = coef.expand(*state.batch_shape, state.num_rx, k)
+        batch_delay = delay.to(state.delay_s.dtype).expand(*state.batch_shape, state.num_rx, k)
+        batch_rate = torch.zeros_like(batch_delay)
+        for i in range(k):
+            c, d, r = (x[..., i: i + 1] for x in (batch_coef, batch_delay, batch_rate))
+            p = psi[..., i, :, :, :]
+            # exp(j psi) = 1 + (cos psi - 1) + j sin psi; cos psi - 1 = -2 sin^2(psi / 2) keeps
+            # precision for small displacements.
+            state.modulated.append(ModulatedPaths(c, d, r, -2 * torch.sin(p / 2) ** 2))
+            state.modulated.append(ModulatedPaths(c * 1j, d, r, torch.sin(p)))
+
+
+@register
+class Multipath(Effect):
+    """A ghost of every path present: the same return again, ``extra_range_m`` farther.
+
+    Models a bounce the scene lacks (target -> wall -> radar): each path present when the stage
+    runs gets a copy with delay ``+ 2 extra_range_m / c`` (it appears ``extra_range_m`` farther
+    in range), the same delay rate, and beat-tone coefficient multiplied by
+    ``10**(level_dB / 20) exp(j phase_rad)``. With ``K`` values each path gets ``K`` ghosts. It is
+    linear in the signal (``kind = "linear"``), so :meth:`FMCWReceiver.static_signal` ghosts a
+    static room too. Place it first in the chain, so that the on-chip leakage and the clutter
+    effects (added after it) get no ghost; modulated copies and additive signals already present
+    are not ghosted.
+
+    Args:
+        extra_range_m: extra one-way range of the ghost, m (scalar or ``(K,)``, >= 0).
+            Default 0.5 m.
+        level_dB: ghost power relative to its path, dB (scalar or ``(K,)``). Default -10 dB.
+        phase_rad: extra phase of the ghost's beat tone, rad (scalar or ``(K,)``).
+
+    Priors (each ghost, linear): ``extra_range_m`` in [0.05, 5] m, ``level_dB`` in [-40, 0] dB,
+    ``phase_rad`` in [-pi, pi].
+    """
+
+    name = "multipath"
+    kind = "linear"
+    param_names = ("extra_range_m", "level_dB", "phase_rad")
+    PRIORS = {
+        "extra_range_m": Prior(0.05, 5.0),
+        "level_dB": Prior(-40.0, 0.0),
+        "phase_rad": Prior(-math.pi, math.pi),
+    }
+
+    def __init__(
+        self,
+        extra_range_m: float | list | torch.Tensor = 0.5,
+        level_dB: float | list | torch.Tensor = -10.0,
+        phase_rad: float | list | torch.Tensor = 0.0,
+    ) -> None:
+        super().__init__()
+        self._set(extra_range_m=extra_range_m, level_dB=level_dB, phase_rad=phase_rad)
+        self.num_ghosts = scatterer_count(self, extra_range_m=self.extra_range_m, level_dB=self.level_dB,
+                                          phase_rad=self.phase_rad)
+        check_nonnegative(self, extra_range_m=self.extra_range_m)
+
+    def apply(self, state: ChainState) -> None:
+        if state.samples is not None:
+            raise ConfigError("effect multipath acts on paths: place it before any non-linear stage (first)")
+        k = self.num_ghosts
+        ratio = torch.polar(torch.pow(10.0, _per_scatterer(state, self.level_dB, k) / 20),
+                            _per_scatterer(state, self.phase_rad, k))
+        extra = (2 / SPEED_OF_LIGHT) * _per_scatterer(state, self.extra_range_m, k)
+        coef = (state.coef[..., None] * ratio.to(state.coef.dtype)).flatten(-2)  # (…, RX, P*K)
+        delay = (state.delay_s[..., None] + extra.to(state.delay_s.dtype)).flatten(-2)
+        rate = state.delay_rate[..., None].expand(*state.delay_rate.shape, k).flatten(-2)
+        state.add_paths(coef, delay, rate)

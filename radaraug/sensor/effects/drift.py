@@ -1,0 +1,61 @@
+"""Frame-to-frame drift: a random gain and per-RX DC shift, constant within each frame.
+
+Real captures show more noise measured frame to frame (the same range-Doppler cell across
+frames) than within a frame (across chirps): the receiver's gain and the DC level wander slowly
+(temperature, supply, the AGC-less VGA settling). Within one frame (~25 ms) the wander is
+negligible, so it is drawn once per frame.
+"""
+
+from __future__ import annotations
+
+import math
+
+import torch
+
+from radaraug.sensor.chain import ChainState
+from radaraug.sensor.effects.base import Effect, Prior, check_nonnegative, per_rx, register
+
+
+@register
+class FrameDrift(Effect):
+    """Per-frame random gain (common to all RX) and per-RX DC shift.
+
+    Each leading batch element of the call is one frame (an unbatched call is one frame). The
+    samples present at this point (signal, noise and any precomputed static signal) are
+    multiplied by ``10 ** (g / 20)`` with ``g ~ Normal(0, gain_rms_dB)``, one draw per frame for
+    all RX (one VGA bias network), and each RX gets a DC shift ``~ Normal(0, dc_rms_counts)``
+    counts. Both are reparameterised (``scale * standard normal``), so gradients reach the two
+    RMS values. The stage acts on samples (``kind = "nonlinear"``): place it after
+    ``anti_alias_lowpass`` and before ``dc_offset``.
+
+    Args:
+        gain_rms_dB: RMS of the per-frame gain, dB. Default 0.1 dB (*assumed*).
+        dc_rms_counts: per-RX (or scalar) RMS of the per-frame DC shift, ADC counts. Default
+            0.5 counts (*assumed*).
+
+    Priors (linear): ``gain_rms_dB`` in [0, 3] dB, ``dc_rms_counts`` in [0, 20] counts (each RX).
+    """
+
+    name = "frame_drift"
+    kind = "nonlinear"
+    param_names = ("gain_rms_dB", "dc_rms_counts")
+    PRIORS = {"gain_rms_dB": Prior(0.0, 3.0), "dc_rms_counts": Prior(0.0, 20.0)}
+
+    def __init__(
+        self,
+        gain_rms_dB: float | torch.Tensor = 0.1,
+        dc_rms_counts: float | list | torch.Tensor = 0.5,
+    ) -> None:
+        super().__init__()
+        self._set(gain_rms_dB=gain_rms_dB, dc_rms_counts=dc_rms_counts)
+        check_nonnegative(self, gain_rms_dB=self.gain_rms_dB, dc_rms_counts=self.dc_rms_counts)
+
+    def apply(self, state: ChainState) -> None:
+        x = state.materialize()
+        batch = state.batch_shape
+        g_db = state.param(self.gain_rms_dB) * state.randn((*batch, 1, 1, 1))
+        dc_sigma = per_rx(state, self.dc_rms_counts, "dc_rms_counts", self.name) * (
+            2.0 / state.config.adc_full_scale_counts
+        )
+        dc = dc_sigma[:, None, None] * state.randn((*batch, state.num_rx, 1, 1))
+        state.samples = x * torch.exp(g_db * (math.log(10.0) / 20)) + dc

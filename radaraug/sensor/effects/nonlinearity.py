@@ -1,0 +1,101 @@
+"""Chirp non-linearity: a periodic ripple of the ramp's instantaneous frequency.
+
+The PLL that generates the ramp does not follow a perfect line: its frequency error
+``dF(t)`` (loop settling, reference spurs) repeats in every chirp. Mixing the TX with its copy
+delayed by ``tau`` leaves the beat phase error ``2 pi [Phi(t) - Phi(t - tau)] ~= 2 pi tau dF(t)``
+(linearised like the phase noise: exact while ``tau`` is much shorter than the ripple period).
+A sinusoidal ripple turns every strong return into *paired echoes*: weak copies at beat
+frequency ``+-ripple_Hz`` around it, with amplitude ``pi tau deviation_Hz`` relative to the
+return (the first Bessel sidebands of the phase modulation, to first order).
+"""
+
+from __future__ import annotations
+
+import math
+
+import torch
+
+from radaraug.config import RadarConfig
+from radaraug.errors import ConfigError
+from radaraug.sensor.chain import ChainState, ModulatedPaths
+from radaraug.sensor.effects.base import (
+    Effect,
+    Prior,
+    check_nonnegative,
+    check_positive,
+    register,
+    strongest_paths,
+)
+
+
+@register
+class ChirpNonlinearity(Effect):
+    """Sinusoidal ramp-frequency ripple ``dF(t) = deviation_Hz sin(2 pi ripple_Hz t + phase_rad)``.
+
+    ``t`` is the fast time from the first ADC sample, the same in every chirp (the ripple is
+    locked to the ramp). Each of the ``num_paths`` paths with the largest ``|C| tau`` gains the
+    linearised term ``Re{j 2 pi tau C exp(j Phi)} dF(t)`` (a modulated copy, like
+    ``phase_noise``). Weaker paths' echoes would sit below the noise. The echo at
+    ``beat + ripple_Hz`` has complex ratio ``pi tau deviation_Hz exp(j phase_rad)`` to the main
+    tone, the one at ``beat - ripple_Hz`` ``-pi tau deviation_Hz exp(-j phase_rad)``. The LO is
+    common to all RX. Place it right after ``phase_noise``.
+
+    Args:
+        deviation_Hz: peak frequency deviation of the ramp, Hz. Default 20 kHz (*assumed*).
+        ripple_Hz: ripple frequency, Hz. Default 100 kHz (*assumed*).
+        phase_rad: ripple phase at the first ADC sample.
+        num_paths: how many of the strongest paths (by ``|C| tau``) get the echoes.
+
+    Priors: ``deviation_Hz`` in [1 kHz, 5 MHz] (log), ``ripple_Hz`` in [1 kHz,
+    ``config.sample_rate_Hz / 2``] (log), ``phase_rad`` in [-pi, pi]. ``num_paths`` is a cost
+    knob, not searched.
+    """
+
+    name = "chirp_nonlinearity"
+    kind = "modulating"
+    param_names = ("deviation_Hz", "ripple_Hz", "phase_rad", "num_paths")
+
+    def __init__(
+        self,
+        deviation_Hz: float | torch.Tensor = 20e3,
+        ripple_Hz: float | torch.Tensor = 100e3,
+        phase_rad: float | torch.Tensor = 0.0,
+        num_paths: int = 16,
+    ) -> None:
+        super().__init__()
+        if int(num_paths) != num_paths or num_paths < 0:
+            raise ConfigError(f"effect {self.name}: num_paths must be an integer >= 0, got {num_paths!r}")
+        self._set(deviation_Hz=deviation_Hz, ripple_Hz=ripple_Hz, phase_rad=phase_rad, num_paths=int(num_paths))
+        for key in ("deviation_Hz", "ripple_Hz", "phase_rad"):
+            if getattr(self, key).ndim != 0:
+                raise ConfigError(f"effect {self.name}: {key} must be a single number")
+        check_nonnegative(self, deviation_Hz=self.deviation_Hz)
+        check_positive(self, ripple_Hz=self.ripple_Hz)
+
+    @classmethod
+    def priors(cls, config: RadarConfig) -> dict[str, Prior]:
+        """Deviation 1 kHz..5 MHz, ripple 1 kHz..Nyquist (both log), any phase."""
+        return {
+            "deviation_Hz": Prior(1e3, 5e6, "log"),
+            "ripple_Hz": Prior(1e3, max(float(config.sample_rate_Hz) / 2, 2e3), "log"),
+            "phase_rad": Prior(-math.pi, math.pi),
+        }
+
+    def frequency_error_Hz(self, state: ChainState) -> torch.Tensor:
+        """``dF`` at the ADC samples of a chirp, ``(N,)`` in the call's dtype."""
+        tm = state.timing
+        t = torch.arange(tm.num_samples, device=state.device, dtype=torch.float64) / tm.fs
+        # Cycles in float64, reduced mod 1 before the cast, so float32 keeps the phase.
+        cycles = self.ripple_Hz.to(device=state.device, dtype=torch.float64) * t
+        phase = 2 * math.pi * (cycles - torch.round(cycles)).to(state.dtype) + state.param(self.phase_rad)
+        return state.param(self.deviation_Hz) * torch.sin(phase)
+
+    def apply(self, state: ChainState) -> None:
+        k = min(int(self.num_paths), state.coef.shape[-1])
+        if k == 0:
+            return
+        coef, delay, rate = strongest_paths(state, k)
+        mod_coef = coef * (2j * math.pi) * delay.to(coef.dtype)
+        tm = state.timing
+        multiplier = self.frequency_error_Hz(state).reshape(1, 1, tm.num_samples).expand(1, tm.num_chirps, -1)
+        state.modulated.append(ModulatedPaths(mod_coef, delay, rate, multiplier))
