@@ -7,6 +7,7 @@ Sub-commands::
     radaraug bench transforms [--json]          RD+CDR+clip+colormap chain vs NumPy
     radaraug bench twin [--json]                digital-twin throughput vs real time and baselines
     radaraug bench training [--json]            recipe training step vs a bare ResNet18 step
+    radaraug bench diagnose [--json]            diagnose a 100-frame paper-config capture vs simulating it
     radaraug trace SCENE [--time T] [--json]    the propagation paths of one instant
     radaraug simulate SCENE --frames N --seed S -o out.h5 [--shard i/n] [--profile P]
     radaraug demo [-o DIR]                      the main job on the built-in default
@@ -93,6 +94,10 @@ def _cmd_bench(args: argparse.Namespace) -> int:
         result = run_transforms_benchmark(
             batch=args.batch, repeats=args.repeats, device=args.device, out=args.out
         )
+    elif args.what == "diagnose":
+        from radaraug.bench.diagnose import run_diagnose_benchmark
+
+        result = run_diagnose_benchmark(out=args.out)
     elif args.what == "training":
         from radaraug.bench.training import run_training_benchmark
 
@@ -222,7 +227,7 @@ def build_parser() -> argparse.ArgumentParser:
     fit.set_defaults(func=_cmd_fit_cdr)
 
     bench = sub.add_parser("bench", help="benchmarks (figures as ratios against a same-process baseline)")
-    bench.add_argument("what", choices=["transforms", "twin", "training"])
+    bench.add_argument("what", choices=["transforms", "twin", "training", "diagnose"])
     bench.add_argument("--batch", type=int, default=32, help="transforms, training: frames per batch")
     bench.add_argument("--repeats", type=int, default=5, help="transforms: timed repetitions; training: steps")
     bench.add_argument("--blocks", type=int, default=8, help="twin: 16-frame blocks per process")

@@ -34,6 +34,12 @@ BASE_STAGES = ("thermal_noise", "system_gain", "if_highpass", "anti_alias_lowpas
 """The base chain, refitted before any catalog effect is tried."""
 
 
+NOISE_BASE = (("thermal_noise", "noise_figure_dB"), ("adc_noise", "rms_counts"), ("if_highpass", "cutoff_Hz"),
+              ("anti_alias_lowpass", "cutoff_Hz"))
+"""Base parameters a new noise source is fitted together with: the base refit has already bent
+them to imitate it (a higher floor, another shape), so they must be free to move back."""
+
+
 @dataclass(frozen=True)
 class ParamSpec:
     """One searched parameter: ``effect.params[name]`` (element ``index`` of a per-RX list)."""
@@ -176,10 +182,11 @@ def _peaks(excess: torch.Tensor, mask: torch.Tensor, k: int, min_db: float) -> l
 
 
 def _off_zero_mask(shape: tuple[int, int]) -> torch.Tensor:
+    """Cells off zero Doppler and off range bin 0 (lines a few Doppler bins from zero count: the
+    static scene is matched in the excess map, so what is left there is not static)."""
     nr, M = shape
     m = torch.ones(nr, M, dtype=torch.bool)
-    z = M // 2
-    m[:, max(z - 1, 0): z + 2] = False
+    m[:, M // 2] = False
     m[:1] = False
     return m
 
@@ -291,9 +298,11 @@ def _vibrating() -> Candidate:
         for r, d, v in _peaks(ex, _off_zero_mask(tuple(ex.shape)), 1, 6.0):
             vib = abs(d - M // 2) / (M * cfg.chirp_repetition_time_s)
             for beta in (0.5, 1.5):
+                # An estimated static scene already holds the object's mean return: add only
+                # what the vibration adds (carrier 0).
                 params = {"range_m": ctx.range_m(r), "level_dB": -90.0,
                           "displacement_m": beta * cfg.wavelength_m / (4 * math.pi),
-                          "vibration_Hz": vib, "phase_rad": 0.0}
+                          "vibration_Hz": vib, "phase_rad": 0.0, "carrier": 0.0 if ctx.mode == "estimated" else 1.0}
                 lvl = _level_probe(ctx, "vibrating_clutter", params, r, d, v, "level_dB")
                 if lvl is not None:
                     params["level_dB"] = lvl
@@ -381,14 +390,17 @@ def _chirp_nonlinearity() -> Candidate:
 
 def _interference() -> Candidate:
     def starts(ctx: Context) -> list[dict[str, Any]]:
-        return [{"probability": p, "amplitude_counts": a, "duration_s": 5e-6}
-                for p in (0.05, 0.25) for a in (30.0, 300.0)]
+        # The share of chirps well above the median chirp power estimates the burst probability.
+        p = ctx.capture.stats.burst_fraction - ctx.twin.stats.burst_fraction
+        probs = (min(max(2 * p, 0.02), 0.9), 0.05, 0.25) if p > 0.005 else (0.05, 0.25)
+        return [{"probability": q, "amplitude_counts": a, "duration_s": d}
+                for q in probs for a in (30.0, 300.0) for d in (5e-6, 15e-6)]
 
     def specs(ctx: Context, start: dict[str, Any]) -> list[ParamSpec]:
         return [_spec(ctx, "interference", "probability"), _spec(ctx, "interference", "amplitude_counts"),
                 _spec(ctx, "interference", "duration_s")]
 
-    return Candidate("interference", specs, starts, joint=(("thermal_noise", "noise_figure_dB"),))
+    return Candidate("interference", specs, starts, joint=NOISE_BASE)
 
 
 def _frame_drift() -> Candidate:
@@ -414,8 +426,10 @@ def _rx_mismatch() -> Candidate:
         R = ctx.config.num_rx
         if R < 2:
             return []
-        fc = ctx.capture["rx_balance"][:R]
-        ft = ctx.twin["rx_balance"][:R]
+        # Static levels per RX where there is a static scene to compare, else the noise floors.
+        part = slice(R, 2 * R) if ctx.mode == "scene" else slice(0, R)
+        fc = ctx.capture["rx_balance"][part]
+        ft = ctx.twin["rx_balance"][part]
         d = (fc - ft) - (fc - ft)[0]
         cur = find(ctx.chain, "rx_gain_phase_mismatch")
         g0 = [0.0] * R
@@ -435,7 +449,7 @@ def _rx_mismatch() -> Candidate:
     def specs(ctx: Context, start: dict[str, Any]) -> list[ParamSpec]:
         R = ctx.config.num_rx
         pr = _priors(ctx, "rx_gain_phase_mismatch")
-        out = [ParamSpec("gain_dB", _around(start["gain_dB"][i], pr["gain_dB"], half=1.5), i) for i in range(1, R)]
+        out = [ParamSpec("gain_dB", _around(start["gain_dB"][i], pr["gain_dB"], half=2.0), i) for i in range(1, R)]
         if ctx.mode == "scene":
             out += [ParamSpec("phase_rad", _around(start["phase_rad"][i], pr["phase_rad"], half=0.4), i)
                     for i in range(1, R)]
@@ -478,13 +492,13 @@ def _phase_noise() -> Candidate:
     def specs(ctx: Context, start: dict[str, Any]) -> list[ParamSpec]:
         return [_spec(ctx, "phase_noise", "freq_noise_rms_Hz")]
 
-    return Candidate("phase_noise", specs, starts, modes=("scene",))
+    return Candidate("phase_noise", specs, starts)
 
 
 def catalog() -> list[Candidate]:
     """Every candidate the loop tries after the base refit, in a fixed order (ties go to the first)."""
     return [
-        _noise_like("adc_noise", "rms_counts", (0.5, 2.0, 8.0), joint=(("thermal_noise", "noise_figure_dB"),)),
+        _noise_like("adc_noise", "rms_counts", (0.5, 2.0, 8.0), joint=NOISE_BASE[:1] + NOISE_BASE[2:]),
         _frame_drift(),
         _spur(),
         _rx_mismatch(),

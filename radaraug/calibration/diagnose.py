@@ -108,8 +108,8 @@ def _read_capture(capture: Any, max_frames: int) -> tuple[str, RadarConfig, torc
 
 
 def _source(config: RadarConfig, scene: Any, fit: torch.Tensor, sim_frames: int,
-            chain: Chain, tracer_options: dict[str, Any] | None) -> tuple[TwinSource, Chain, str | None]:
-    rx = FMCWReceiver.from_dict(config, {"effects": chain})
+            rx: FMCWReceiver, tracer_options: dict[str, Any] | None) -> tuple[TwinSource, Chain, str | None]:
+    chain = rx.to_dict()["effects"]
     if scene is None:
         mean_chirp = fit.mean(dim=(0, 2))  # (rx, samples)
         static = (mean_chirp - mean_chirp.mean(dim=-1, keepdim=True))[:, None, :].expand(
@@ -245,7 +245,7 @@ def diagnose(
     start = as_profile(start_profile)
     receiver = start.receiver(config) if start is not None else FMCWReceiver(config)
     default_chain = receiver.to_dict()["effects"]
-    source, chain, scene_name = _source(config, scene, fit, settings.sim_frames, default_chain, tracer_options)
+    source, chain, scene_name = _source(config, scene, fit, settings.sim_frames, receiver, tracer_options)
     say = (lambda s: print(f"diagnose: {s}", flush=True)) if progress else None
     search = Search(source, fit, held, settings, progress=say)
     result = search.run(chain)

@@ -71,12 +71,13 @@ def view_figures(diag: Diagnosis, out: Path) -> list[str]:
     ax.set(xscale="logit", xlabel="quantile", ylabel="ADC code", title="adc_histogram (per RX)")
     ax.legend(fontsize=8)
     save(fig, "view_adc_histogram.png")
-    fig, ax = plt.subplots(figsize=(6, 3.4))
-    lab = ["median frame power (dB)", "frame power spread (dB)", "chirp-to-chirp noise (dB counts^2)",
-           "frame-to-frame noise (dB counts^2)"]
+    fig, ax = plt.subplots(figsize=(8, 3.4))
+    lab = ["median frame\npower (dB)", "frame power\nspread (dB)", "chirp-to-chirp\nnoise (dB c^2)",
+           "frame-to-frame\nnoise (dB c^2)", "chirp q90\n- q50", "chirp q97\n- q50", "chirp q99\n- q50",
+           "chirp q99.9\n- q50"]
     for j, (label, v, _) in enumerate(series):
-        ax.bar(torch.arange(4) + 0.25 * (j - 1), v["frame_power"], width=0.25, label=label)
-    ax.set_xticks(range(4), lab, rotation=15, fontsize=7)
+        ax.bar(torch.arange(len(lab)) + 0.25 * (j - 1), v["frame_power"], width=0.25, label=label)
+    ax.set_xticks(range(len(lab)), lab, fontsize=6)
     ax.set(title="frame_power")
     ax.legend(fontsize=8)
     save(fig, "view_frame_power.png")

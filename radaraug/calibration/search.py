@@ -202,10 +202,11 @@ class Search:
         """Refit the base stages present in ``chain`` (noise figure, IF filters, ADC-side noise,
         system gain in scene mode) and the DC offsets."""
         chain = self.dc_closed_form(chain)
-        names = [("thermal_noise", "noise_figure_dB"), ("adc_noise", "rms_counts"),
-                 ("if_highpass", "cutoff_Hz"), ("anti_alias_lowpass", "cutoff_Hz")]
+        names = [("thermal_noise", "noise_figure_dB"), ("adc_noise", "rms_counts"), ("anti_alias_lowpass", "cutoff_Hz")]
         if self.source.mode == "scene":
-            names.append(("system_gain", "gain_dB"))
+            # With an estimated static scene the high-pass only shapes the thermal noise (weak at
+            # low IF gain): left at the config's cutoff rather than bent to imitate something else.
+            names += [("if_highpass", "cutoff_Hz"), ("system_gain", "gain_dB")]
         specs = []
         for eff, p in names:
             e = find(chain, eff)
@@ -261,6 +262,8 @@ class Search:
                 start = find(ch, cand.name)["params"]
                 specs = [(cand.name, sp) for sp in cand.specs(ctx, start)]
                 for eff, pname in cand.joint:
+                    if eff == "if_highpass" and self.source.mode == "estimated":
+                        continue  # see refit_base
                     e = find(ch, eff)
                     if e is not None and e["params"].get(pname) is not None:
                         specs.append((eff, ParamSpec(pname, EFFECTS[eff].priors(self.config)[pname])))

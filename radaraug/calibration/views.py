@@ -20,7 +20,9 @@ view                what, and how its error is measured
                     fraction; ``20 log10(1 + rms(d quantile) / spread)`` dB with ``spread`` the
                     capture's robust code spread (IQR / 1.349) of that RX
 ``frame_power``     median frame power, its spread over frames, chirp-to-chirp and
-                    frame-to-frame sample noise (all dB); RMS dB
+                    frame-to-frame sample noise, and the upper tail of the chirp power
+                    (90/97/99/99.9 % quantiles over the median, static part removed: bursts
+                    of interference); all dB; RMS dB
 ``static_ratio``    per range bin, zero-Doppler over total power (dB); RMS dB
 ==================  ==========================================================================
 
@@ -31,7 +33,7 @@ library's (:data:`radaraug.units.DB_CONVENTION`).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import torch
 
@@ -44,6 +46,7 @@ VIEW_NAMES = (
 )
 RD_QUANTILES = (0.005, 0.02, 0.05, 0.1, 0.25, 0.5, 0.75, 0.9, 0.95, 0.98, 0.995, 0.999)
 ADC_QUANTILES = (0.001, 0.01, 0.05, 0.25, 0.5, 0.75, 0.95, 0.99, 0.999)
+CHIRP_QUANTILES = (0.5, 0.9, 0.97, 0.99, 0.999)
 _TINY = 1e-30
 
 
@@ -64,6 +67,8 @@ class FrameStats:
         frame_power_db: ``(F,)`` power of each frame (mean-removed samples) in dB.
         chirp_noise: RMS (counts) of chirp-to-chirp sample differences / sqrt 2.
         frame_noise: RMS (counts) of frame-to-frame sample differences / sqrt 2 (None if F < 2).
+        chirp_power_q: quantiles of each chirp's power (dB) at :data:`CHIRP_QUANTILES`.
+        burst_fraction: fraction of chirps more than 3 dB above the median chirp power.
         num_frames: F.
     """
 
@@ -76,8 +81,9 @@ class FrameStats:
     frame_power_db: torch.Tensor
     chirp_noise: float
     frame_noise: float | None
+    chirp_power_q: torch.Tensor
+    burst_fraction: float
     num_frames: int
-    extra: dict = field(default_factory=dict)
 
 
 def _guard_slice(m: int) -> torch.Tensor:
@@ -119,14 +125,20 @@ def frame_stats(frames: torch.Tensor, config: RadarConfig, chunk: int = 32) -> F
     sub = counts.transpose(0, 1).reshape(R, -1)
     if sub.shape[1] > 400_000:
         sub = sub[:, :: sub.shape[1] // 400_000]
-    cq = torch.quantile(sub, torch.tensor(ADC_QUANTILES, dtype=torch.float64), dim=1).T
+    code_q = torch.quantile(sub, torch.tensor(ADC_QUANTILES, dtype=torch.float64), dim=1).T
     clipped = ((counts <= 0) | (counts >= full)).double().mean(dim=(0, 2, 3))
     centred = x - x.mean(dim=-1, keepdim=True)
     fpow = _db(centred.square().mean(dim=(1, 2, 3)))
+    # Chirp power after removing the static part (mean over chirps): bursts (interference) show
+    # as a heavy upper tail.
+    moving = centred - centred.mean(dim=2, keepdim=True)
+    cpow = _db(moving.square().mean(dim=(1, 3))).flatten()
+    cq = torch.quantile(cpow, torch.tensor(CHIRP_QUANTILES, dtype=torch.float64))
+    burst = float((cpow > cq[0] + 3.0).double().mean())
     scale = full / 2
     chirp_noise = float((x[:, :, 1:] - x[:, :, :-1]).square().mean().sqrt() / math.sqrt(2) * scale) if M > 1 else 0.0
     frame_noise = float((x[1:] - x[:-1]).square().mean().sqrt() / math.sqrt(2) * scale) if F > 1 else None
-    return FrameStats(power, q, floor, static, cq, clipped, fpow, chirp_noise, frame_noise, F)
+    return FrameStats(power, q, floor, static, code_q, clipped, fpow, chirp_noise, frame_noise, cq, burst, F)
 
 
 @dataclass
@@ -173,6 +185,7 @@ def compute_views(frames: torch.Tensor | FrameStats, config: RadarConfig) -> Vie
         _db(torch.tensor(st.chirp_noise**2, dtype=torch.float64)),
         _db(torch.tensor((st.frame_noise if st.frame_noise is not None else st.chirp_noise) ** 2,
                          dtype=torch.float64)),
+        *(st.chirp_power_q[1:] - st.chirp_power_q[0]),
     ])
     adc = torch.cat([st.code_quantiles, st.clipped[:, None]], dim=1)
     values = {

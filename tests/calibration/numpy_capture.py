@@ -90,8 +90,9 @@ effect may appear more than once.
   ``10**(level_dB/20) exp(j phase_rad)``; the leakage, the clutter effects and other ghosts get
   none (as in the library, where multipath runs before leakage and clutter are added).
 * ``interference``: ``probability``, ``amplitude_counts``, ``duration_s``: each chirp of each
-  frame independently gets, with that probability, a burst sweeping linearly from 0 to ``fs/2``
-  over ``duration_s``, Hann-windowed (``sin^2``, peak ``amplitude_counts``), random phase, start
+  frame independently gets, with that probability, a burst whose beat frequency sweeps linearly
+  from ``-fs/2`` to ``fs/2`` over ``duration_s`` (the two radars' ramps cross at the burst's
+  centre, where the beat passes through zero), Hann-windowed (``sin^2``, peak ``amplitude_counts``), random phase, start
   uniform in ``[0, max(T_adc - duration_s, 0)]`` after the first ADC sample; the same burst on
   every RX; added after the IF gain (the AAF shapes it).
 * ``frame_drift``: ``gain_rms_dB``, ``dc_rms_counts``: per frame a gain ``10**(g/20)``,
@@ -461,7 +462,8 @@ def generate(
             u = t[None, :] - start[fi, mi][:, None]  # (bursts, L)
             inside = (u >= 0.0) & (u <= dur)
             window = np.sin(math.pi * u / dur) ** 2
-            sweep = 2.0 * math.pi * (fs / 2.0) / (2.0 * dur) * u * u + phase[fi, mi][:, None]
+            # instantaneous beat frequency (fs/2)(2u/dur - 1): zero where the ramps cross
+            sweep = 2.0 * math.pi * (fs / 2.0) * (u * u / dur - u) + phase[fi, mi][:, None]
             burst = np.where(inside, window * np.cos(sweep), 0.0) * (e["amplitude_counts"] * to_float)
             after[fi, :, mi, :] += burst[:, None, :]
 

@@ -129,6 +129,10 @@ class VibratingClutter(Effect):
         displacement_m: peak displacement, m (scalar or ``(K,)``, >= 0). Default 0.5 mm.
         vibration_Hz: vibration frequency, Hz (scalar or ``(K,)``, > 0). Default 50 Hz.
         phase_rad: vibration phase at absolute time 0, rad (scalar or ``(K,)``).
+        carrier: 1 (default) for the whole return; 0 to leave out its mean over time
+            (``J_0(beta)`` times the static return), i.e. only what the vibration adds: for a twin
+            whose static scene already holds the object (the calibration loop's scene estimated
+            from a capture). Not searched.
 
     Priors (each scatterer): ``range_m`` in [0.05, ``config.max_range_m``], ``level_dB`` in
     [-140, -30] dB, ``displacement_m`` in [10 um, 5 mm] (log), ``vibration_Hz`` in [0.5 Hz,
@@ -137,7 +141,7 @@ class VibratingClutter(Effect):
     """
 
     name = "vibrating_clutter"
-    param_names = ("range_m", "level_dB", "displacement_m", "vibration_Hz", "phase_rad")
+    param_names = ("range_m", "level_dB", "displacement_m", "vibration_Hz", "phase_rad", "carrier")
 
     def __init__(
         self,
@@ -146,10 +150,13 @@ class VibratingClutter(Effect):
         displacement_m: float | list | torch.Tensor = 0.5e-3,
         vibration_Hz: float | list | torch.Tensor = 50.0,
         phase_rad: float | list | torch.Tensor = 0.0,
+        carrier: float = 1.0,
     ) -> None:
         super().__init__()
+        if float(carrier) not in (0.0, 1.0):
+            raise ConfigError(f"effect {self.name}: carrier must be 0 or 1, got {carrier!r}")
         self._set(range_m=range_m, level_dB=level_dB, displacement_m=displacement_m, vibration_Hz=vibration_Hz,
-                  phase_rad=phase_rad)
+                  phase_rad=phase_rad, carrier=float(carrier))
         self.num_scatterers = scatterer_count(
             self, range_m=self.range_m, level_dB=self.level_dB, displacement_m=self.displacement_m,
             vibration_Hz=self.vibration_Hz, phase_rad=self.phase_rad,
@@ -193,7 +200,12 @@ class VibratingClutter(Effect):
         coef = amp.to(state.complex_dtype)[None, :].expand(state.num_rx, k)  # (RX, K)
         delay = ((2 / SPEED_OF_LIGHT) * _per_scatterer(state, self.range_m, k))[None, :].expand(state.num_rx, k)
         rate = torch.zeros_like(delay)
-        state.add_paths(coef, delay, rate)
+        if float(self.carrier) == 0.0:
+            # Leave out the time mean J0(beta) C of C exp(j psi): the static path becomes (1 - J0) C.
+            beta = (4 * math.pi / state.config.wavelength_m) * _per_scatterer(state, self.displacement_m, k)
+            state.add_paths(coef * (1 - torch.special.bessel_j0(beta)).to(coef.dtype)[None, :], delay, rate)
+        else:
+            state.add_paths(coef, delay, rate)
         psi = self.modulation_rad(state)
         batch_coef = coef.expand(*state.batch_shape, state.num_rx, k)
         batch_delay = delay.to(state.delay_s.dtype).expand(*state.batch_shape, state.num_rx, k)
