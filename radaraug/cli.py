@@ -264,7 +264,7 @@ def build_parser() -> argparse.ArgumentParser:
     sub.add_parser("train", help="LightningCLI recipes: radaraug train fit --config recipes/occupancy_cdr.yaml",
                    add_help=False)
 
-    rep = sub.add_parser("reproduce", help="the paper's experiment: 2 tasks x 3 methods x N seeds, report + figures")
+    rep = sub.add_parser("reproduce", help="the paper's experiment: 2 tasks x 4 methods (the paper's 3 + cdr_profile) x N seeds, report + figures")
     rep.add_argument("--quick", action="store_true", help="minutes on a 2-core CPU (what `make demo` runs)")
     rep.add_argument("--seeds", type=int, default=3)
     rep.add_argument("--calibration", default=None, help="empty-room capture for CDR (default: the held-out proxy's)")

@@ -119,3 +119,24 @@ def test_fit_cdr_bad_input_and_unwritable_output_are_one_line_errors(tmp_path, c
     trunc.write_bytes(path.read_bytes()[: path.stat().st_size // 2])
     assert main(["fit-cdr", str(trunc), "-o", str(tmp_path / "c.json")]) == 2
     assert "trunc.h5" in capsys.readouterr().err
+
+
+def test_diagnose_on_bundled_recording_writes_report_and_profile(tmp_path, capsys) -> None:
+    out = tmp_path / "diag"
+    assert main(["diagnose", str(sample_recording_path()), "-o", str(out), "--max-frames", "16", "--no-figures"]) == 0
+    report = json.loads((out / "report.json").read_text())
+    assert report["mode"] == "estimated" and report["scene"] is None
+    assert report["error_after"]["overall"] <= report["error_before"]["overall"] + 1e-9
+    assert (out / "profile.json").is_file() and (out / "summary.md").is_file()
+    assert "held-out error" in capsys.readouterr().out
+
+
+def test_diagnose_and_simulate_profile_bad_input_are_one_line_errors(tmp_path, capsys) -> None:
+    assert main(["diagnose", str(tmp_path / "missing.h5"), "-o", str(tmp_path / "d")]) == 2
+    assert main(["diagnose", str(sample_recording_path()), "-o", str(tmp_path / "d"), "--max-frames", "2"]) == 2
+    bad = tmp_path / "profile.json"
+    bad.write_text('{"format": "something else"}')
+    assert main(["simulate", "corridor", "--frames", "1", "-o", str(tmp_path / "s.h5"), "--profile", str(bad)]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 3 and all(line.startswith("error: ") for line in err)
+    assert "twin profile" in err[-1]

@@ -191,6 +191,20 @@ def _off_zero_mask(shape: tuple[int, int]) -> torch.Tensor:
     return m
 
 
+def _sub_bin(power: torch.Tensor, r: int, d: int) -> float:
+    """Fractional range bin of a peak at row ``r`` (column ``d``): a parabola through the log
+    power of the row's neighbours (Hann peaks are close to Gaussian), clipped to +-0.5."""
+    if not 0 < r < power.shape[0] - 1:
+        return float(r)
+    a, b, c = (math.log(max(float(power[k, d]), 1e-30)) for k in (r - 1, r, r + 1))
+    den = a - 2 * b + c
+    return r + (max(min(0.5 * (a - c) / den, 0.5), -0.5) if den < 0 else 0.0)
+
+
+def _range_of_bin(ctx: Context, k: float) -> float:
+    return float(k) * ctx.config.range_resolution_m
+
+
 def _level_probe(ctx: Context, name: str, params: dict[str, Any], r: int, col: int, target_db: float,
                  level_key: str) -> float | None:
     """Level (dB, the effect's ``level_key``) that puts the effect's RD power at cell (r, col) at
@@ -236,12 +250,7 @@ def _spur() -> Candidate:
         for r, d, _v in _peaks(ex, _off_zero_mask(tuple(ex.shape)), 2, 6.0):
             # Sub-bin frequency from the Hann peak's neighbours (parabola on log power), then the
             # Doppler bin picks among the aliases 1/T apart; the neighbouring aliases are starts too.
-            frac_bin = 0.0
-            if 0 < r < cap.shape[0] - 1:
-                a, b, c = (math.log(max(float(cap[k, d]), 1e-30)) for k in (r - 1, r, r + 1))
-                den = a - 2 * b + c
-                frac_bin = 0.5 * (a - c) / den if den < 0 else 0.0
-            f_est = (r + max(min(frac_bin, 0.5), -0.5)) * bin_hz
+            f_est = _sub_bin(cap, r, d) * bin_hz
             amp = 2 * math.sqrt(float(cap[r, d])) * cfg.adc_full_scale_counts / 2
             for sign in (1, -1):
                 frac = sign * (d - M // 2) / M
@@ -273,7 +282,8 @@ def _static_clutter() -> Candidate:
         r = int(prof.argmax())
         if float(prof[r]) < 3.0:
             return []
-        params = {"range_m": ctx.range_m(r), "level_dB": -90.0, "phase_rad": 0.0}
+        rr = _range_of_bin(ctx, _sub_bin(ctx.capture.stats.power.mean(dim=0), r, M // 2))
+        params = {"range_m": rr, "level_dB": -90.0, "phase_rad": 0.0}
         lvl = _level_probe(ctx, "static_clutter", params, r, M // 2, float(prof[r]), "level_dB")
         if lvl is None:
             return []
@@ -300,8 +310,8 @@ def _vibrating() -> Candidate:
             for beta in (0.5, 1.5):
                 # An estimated static scene already holds the object's mean return: add only
                 # what the vibration adds (carrier 0).
-                params = {"range_m": ctx.range_m(r), "level_dB": -90.0,
-                          "displacement_m": beta * cfg.wavelength_m / (4 * math.pi),
+                params = {"range_m": _range_of_bin(ctx, _sub_bin(ctx.capture.stats.power.mean(dim=0), r, d)),
+                          "level_dB": -90.0, "displacement_m": beta * cfg.wavelength_m / (4 * math.pi),
                           "vibration_Hz": vib, "phase_rad": 0.0, "carrier": 0.0 if ctx.mode == "estimated" else 1.0}
                 lvl = _level_probe(ctx, "vibrating_clutter", params, r, d, v, "level_dB")
                 if lvl is not None:

@@ -65,7 +65,8 @@ class Diagnosis:
             "error_before": {**r.before.as_dict(), "units": units},
             "error_base_refit": {**r.base.as_dict(), "units": units},
             "error_after": {**r.after.as_dict(), "units": units},
-            "base_refit": {"params": _base_params(r.chain_base), "params_before": _base_params(r.chain_before)},
+            "base_refit": {"params": _base_params(r.chain_base), "params_before": _base_params(r.chain_before),
+                           "params_final": _base_params(r.chain_after)},
             "steps": [{k: v for k, v in s.items() if k not in ("views_before", "views_after")} | {
                 "views_before": s["views_before"], "views_after": s["views_after"]} for s in r.steps],
             "candidates_tried": r.tried,

@@ -41,6 +41,7 @@ from radaraug.calibration.catalog import (
 from radaraug.calibration.twin_source import TwinSource
 from radaraug.calibration.views import ADC_QUANTILES, Views, compute_views, overall_error, view_errors
 from radaraug.sensor.effects import EFFECTS
+from radaraug.sensor.effects.base import Prior
 
 
 @dataclass
@@ -198,10 +199,8 @@ class Search:
                 self.config)["level_counts"], i) for i in range(R)], new, R)
         return chain
 
-    def refit_base(self, chain: Chain) -> tuple[Chain, Score]:
-        """Refit the base stages present in ``chain`` (noise figure, IF filters, ADC-side noise,
-        system gain in scene mode) and the DC offsets."""
-        chain = self.dc_closed_form(chain)
+    def base_specs(self, chain: Chain) -> list[tuple[str, ParamSpec]]:
+        """The base parameters present in ``chain`` that the search refits."""
         names = [("thermal_noise", "noise_figure_dB"), ("adc_noise", "rms_counts"), ("anti_alias_lowpass", "cutoff_Hz")]
         if self.source.mode == "scene":
             # With an estimated static scene the high-pass only shapes the thermal noise (weak at
@@ -212,8 +211,22 @@ class Search:
             e = find(chain, eff)
             if e is None or e["params"].get(p) is None:
                 continue
-            specs.append((eff, ParamSpec(p, EFFECTS[eff].priors(self.config)[p])))
-        chain, _ = self.optimize(chain, specs)
+            prior = EFFECTS[eff].priors(self.config)[p]
+            if p == "cutoff_Hz":
+                # A filter's cutoff is a config setting, known to a factor of 2 at worst; a wider
+                # range lets the base bend its shape to imitate a local feature (a line, a bump).
+                nominal = (self.config.effective_hp_cutoff_Hz if eff == "if_highpass"
+                           else self.config.effective_aaf_cutoff_Hz)
+                prior = Prior(max(nominal / 2, prior.lo), min(nominal * 2, prior.hi), "log")
+            specs.append((eff, ParamSpec(p, prior)))
+        return specs
+
+    def refit_base(self, chain: Chain, extra: Sequence[tuple[str, ParamSpec]] = ()) -> tuple[Chain, Score]:
+        """Refit the base stages present in ``chain`` (noise figure, anti-alias cutoff, ADC-side
+        noise; high-pass cutoff and system gain in scene mode) and the DC offsets, together with
+        ``extra`` parameters (the effect just added: the base was bent to imitate it before)."""
+        chain = self.dc_closed_form(chain)
+        chain, _ = self.optimize(chain, self.base_specs(chain) + list(extra))
         chain = self.dc_closed_form(chain, iterations=1)
         return chain, self.fit_score(chain)
 
@@ -261,22 +274,18 @@ class Search:
             for _, cand, ch in screened[: st.screen_top]:
                 start = find(ch, cand.name)["params"]
                 specs = [(cand.name, sp) for sp in cand.specs(ctx, start)]
-                for eff, pname in cand.joint:
-                    if eff == "if_highpass" and self.source.mode == "estimated":
-                        continue  # see refit_base
-                    e = find(ch, eff)
-                    if e is not None and e["params"].get(pname) is not None:
-                        specs.append((eff, ParamSpec(pname, EFFECTS[eff].priors(self.config)[pname])))
+                joint = set(cand.joint)
+                specs += [(e, sp) for e, sp in self.base_specs(ch) if (e, sp.name) in joint]
                 fitted, fit_sc = self.optimize(ch, specs)
                 if cand.name != "dc_offset":
                     fitted = self.dc_closed_form(fitted, iterations=1)
                 held = self.held_score(fitted)
-                results.append((held, cand, fitted, fit_sc))
+                results.append((held, cand, fitted, fit_sc, specs))
                 tried.append({"step": len(steps) + 1, "effect": cand.name, "fit_error": round(fit_sc.overall, 4),
                               "held_out_error": round(held.overall, 4)})
             if not results:
                 break
-            held, cand, fitted, _ = min(results, key=lambda t: t[0].overall)
+            held, cand, fitted, _, cand_specs = min(results, key=lambda t: t[0].overall)
             gain = cur_held.overall - held.overall
             need = max(st.min_gain_db, st.min_gain_rel * cur_held.overall)
             if gain < need:
@@ -296,13 +305,15 @@ class Search:
                           f"{held.overall:.3f} dB")
             added.add(cand.name)
             current, cur_held = fitted, held
-            # A new stage can take over from a base one (ADC-side noise from thermal noise): refit
-            # the base with it in place, kept only when the held-out error does not get worse.
-            rebased, _ = self.refit_base(current)
+            # The base was bent to imitate the new stage before it existed (a higher floor, a lower
+            # anti-alias cutoff...): refit the base together with the new stage's parameters,
+            # kept only when the held-out error does not get worse.
+            rebased, _ = self.refit_base(current, [(e, sp) for e, sp in cand_specs if e == cand.name])
             rebased_held = self.held_score(rebased)
             if rebased_held.overall <= cur_held.overall:
                 current, cur_held = rebased, rebased_held
                 steps[-1]["error_after_base_refit"] = round(rebased_held.overall, 4)
+                steps[-1]["params"] = find(current, cand.name)["params"]
         return SearchResult(chain, base_chain, current, before, base, cur_held, steps, tried, self.evaluations)
 
 

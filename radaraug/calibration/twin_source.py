@@ -92,7 +92,9 @@ class TwinSource:
         if key not in self._static_cache:
             if len(self._static_cache) > 64:
                 self._static_cache.clear()
-            self._static_cache[key] = rx.static_signal(self.static_paths.map(lambda t: t.to(torch.float64)))
+            paths = self.static_paths.map(
+                lambda t: t.to(torch.complex128) if t.is_complex() else t.to(torch.float64) if t.is_floating_point() else t)
+            self._static_cache[key] = rx.static_signal(paths)
         return self._static_cache[key]
 
     @torch.no_grad()

@@ -13,7 +13,8 @@ view                what, and how its error is measured
 ``doppler_profile`` mean power per Doppler bin over range bins 2..; RMS dB
 ``lines``           persistent narrow lines: per range row (off zero Doppler) and per Doppler
                     column of the frame-averaged power map, peak over median (dB); RMS dB
-``rx_balance``      per RX: noise floor and static level relative to the RX mean (dB), phase
+``rx_balance``      per RX: noise floor and static level (range bins 2..) relative to the RX
+                    mean (dB), phase
                     of the strongest static return relative to RX1; RMS dB, a phase error
                     ``d`` counting as ``20 log10(1 + 2|sin(d/2)|)`` dB (the vector error)
 ``adc_histogram``   per RX, quantiles of the ADC codes (0.1 %..99.9 %) and the clipped
@@ -174,7 +175,9 @@ def compute_views(frames: torch.Tensor | FrameStats, config: RadarConfig) -> Vie
     body = st.power[:, 2:] if nr > 4 else st.power
     doppler_profile = _db(body.mean(dim=(0, 1)))
     floor_rx = _db(st.floor_rx_range.mean(dim=1))
-    static_rx = _db(zero_p.mean(dim=1))
+    # Static level per RX beyond range bin 1, so that the TX->RX leakage (its own per-RX stage)
+    # does not dominate the balance of the scene's returns.
+    static_rx = _db((zero_p[:, 2:] if nr > 4 else zero_p).mean(dim=1))
     rx_bal = torch.cat([floor_rx - floor_rx.mean(), static_rx - static_rx.mean()])
     ph = torch.angle(st.static_cplx)  # (rx, range)
     static_ratio = _db(zero_p.mean(dim=0) / st.power.mean(dim=0).sum(dim=-1).clamp_min(_TINY) * M)

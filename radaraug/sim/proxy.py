@@ -67,6 +67,7 @@ from radaraug.scene.room import box, corridor, merge
 from radaraug.scene.scene import Scene
 from radaraug.sensor.effects import (
     ADCClipping,
+    ADCNoise,
     ADCQuantization,
     AntiAliasLowPass,
     DCOffset,
@@ -87,7 +88,7 @@ from radaraug.sim.seeding import item_generator, item_seed
 from radaraug.sim.twin import DigitalTwin
 from radaraug.units import DB_CONVENTION, FLOAT_CONVENTION
 
-GENERATOR_VERSION = 1
+GENERATOR_VERSION = 2
 """Bumped whenever the generator's output changes; part of the reuse check."""
 
 MANIFEST_NAME = "proxy.json"
@@ -185,17 +186,21 @@ def proxy_effects(config: RadarConfig) -> list[Effect]:
     """The proxy receiver's effect chain, in hardware order.
 
     leakage -> phase noise -> thermal noise -> system gain -> RX gain/phase mismatch -> IF
-    high-pass -> IF gain -> anti-alias low-pass -> spur tone -> DC offset -> ADC quantization ->
-    ADC clipping. Values are fixed, not fitted to anything (see the module doc).
+    high-pass -> IF gain -> ADC-side noise -> anti-alias low-pass -> spur tone -> DC offset -> ADC
+    quantization -> ADC clipping. Values are fixed, not fitted to anything (see the module doc).
+    Generator version 2: the leakage couplings moved with the library's front-end gain (-20.5 dB)
+    so the proxy's leakage keeps its level at the ADC, and the proxy's own ADC-side noise
+    (2.2 counts, the default's is 1.75) was added with it.
     """
     return [
-        TxRxLeakage(coupling_dB=[-52.0, -61.0, -62.5], range_m=0.07, phase_rad=[0.4, -1.2, 2.0]),
+        TxRxLeakage(coupling_dB=[-31.5, -40.5, -42.0], range_m=0.07, phase_rad=[0.4, -1.2, 2.0]),
         PhaseNoise(freq_noise_rms_Hz=300e3, corner_Hz=400e3, num_paths=16),
         ThermalNoise(noise_figure_dB=9.0),
         SystemGain(gain_dB=-4.0),
         RxGainPhaseMismatch(gain_dB=[0.0, -1.2, 0.7], phase_rad=[0.0, 0.35, -0.25]),
         IFHighPass(cutoff_Hz=config.effective_hp_cutoff_Hz),
         IFGain(gain_dB=float(config.if_gain_dB)),
+        ADCNoise(rms_counts=2.2 * (2**config.adc_bits - 1) / 4095),
         AntiAliasLowPass(cutoff_Hz=config.effective_aaf_cutoff_Hz),
         SpurTone(freq_Hz=233e3, amplitude_counts=[0.4, 0.4, 0.4], phase_rad=0.7),
         DCOffset(level_counts=[1585.0, 1990.0, 2040.0]),

@@ -37,7 +37,6 @@ from radaraug.config import RadarConfig
 from radaraug.errors import CalibrationError, ConfigError
 from radaraug.io import RadarCaptureDataset, open_capture
 from radaraug.sensor.profile import PROFILE_VERSION, TwinProfile
-from radaraug.sensor.receiver import FMCWReceiver
 from radaraug.sim.dataset import SimulatedRadarDataset
 from radaraug.training.cache import CachedMaps, build_map_cache, cache_key, content_digest
 from radaraug.training.chain import (
@@ -214,7 +213,10 @@ class RadarDataModule(L.LightningDataModule):
         if self.twin_profile is not None:
             extra["profile"] = self.twin_profile
         elif self.noise_fit is not None:
-            twin_options["receiver"] = FMCWReceiver(self.config, noise_figure_dB=self.noise_fit["noise_figure_dB"])
+            from radaraug.sim.noise_fit import noise_fit_receiver
+
+            # Both noise sources moved by the fitted offset (noise figure and ADC-side noise).
+            twin_options["receiver"] = noise_fit_receiver(self.config, self.noise_fit)
         return SimulatedRadarDataset(
             self.hparams.scene, length=self.hparams.train_items + self.hparams.val_items,
             seed=self.hparams.sim_seed, config=self.config, target="count", twin_options=twin_options, **extra,
@@ -355,8 +357,11 @@ class RadarDataModule(L.LightningDataModule):
         from radaraug.sim.noise_fit import capture_noise_floor_db, fit_noise_figure
 
         target = capture_noise_floor_db(calibration)
+        # "noise-offset-v2": the fit moves thermal and ADC-side noise together (older fits moved
+        # the noise figure alone and must not be reused).
         key = hashlib.sha256(json.dumps([str(self.hparams.scene), self.config.to_dict(), round(target, 4),
-                                         self.hparams.tracer_rays], sort_keys=True).encode()).hexdigest()[:20]
+                                         self.hparams.tracer_rays, "noise-offset-v2"],
+                                        sort_keys=True).encode()).hexdigest()[:20]
         path = Path(self.hparams.cache_dir) / f"noise_fit-{key}.json"
         if path.is_file():
             return json.loads(path.read_text())

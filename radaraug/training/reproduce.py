@@ -360,8 +360,10 @@ def _markdown(rep: dict[str, Any]) -> str:
     else:
         lines += ["Test captures: " + ", ".join(f"`{e['path']}`" + (f" (count {e['count']})" if e.get('count') is not None else " (per-frame labels)") for e in rep["test"]), ""]
     st = rep["settings"]
+    sets = ("; `cdr_profile` trains on a second set of that size, simulated with the twin profile's receiver"
+            if "cdr_profile" in st.get("methods", []) else "")
     lines += [f"Seeds: {st['seeds']} (network init, DR draws, batch order; one shared simulated set of "
-              f"{st['train_items']} training + {st['val_items']} validation items). Epochs {st['epochs']}, image "
+              f"{st['train_items']} training + {st['val_items']} validation items{sets}). Epochs {st['epochs']}, image "
               f"{st['image_size'][0]}x{st['image_size'][1]}, {'quick' if st['quick'] else 'full'} mode. "
               f"Wall time {rep['wall_seconds'] / 60:.1f} min on {rep['machine']['device']}.", "",
               "## Balanced accuracy (mean ± std over seeds)", "",

@@ -68,7 +68,7 @@ def test_views_are_zero_for_identical_frames_and_follow_a_noise_step():
     assert errs["rd_histogram"] == pytest.approx(10 * math.log10(2), abs=0.02)
 
 
-@pytest.mark.parametrize("seed", [1, 2])
+@pytest.mark.parametrize("seed", [1, pytest.param(2, marks=pytest.mark.slow)])
 def test_no_undeclared_effect_adds_nothing(tmp_path, seed):
     d = _diagnose(tmp_path, [], seed)
     assert d.result.steps == []
@@ -76,7 +76,7 @@ def test_no_undeclared_effect_adds_nothing(tmp_path, seed):
     assert d.unexplained == []
 
 
-@pytest.mark.parametrize("seed", [1, 2])
+@pytest.mark.parametrize("seed", [1, pytest.param(2, marks=pytest.mark.slow)])
 def test_spur_tone_found_first_and_fitted(tmp_path, seed):
     truth, e = _truth("spur_tone", seed)
     d = _diagnose(tmp_path, [e], seed)
@@ -88,7 +88,7 @@ def test_spur_tone_found_first_and_fitted(tmp_path, seed):
     assert r.after.overall <= 0.5 * r.base.overall
 
 
-@pytest.mark.parametrize("seed", [1, 2])
+@pytest.mark.parametrize("seed", [1, pytest.param(2, marks=pytest.mark.slow)])
 def test_frame_drift_found_first_and_fitted(tmp_path, seed):
     truth, e = _truth("frame_drift", seed)
     r = _diagnose(tmp_path, [e], seed).result
@@ -99,6 +99,7 @@ def test_frame_drift_found_first_and_fitted(tmp_path, seed):
     assert r.after.overall <= 0.5 * r.base.overall
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("seed", [1, 2])
 def test_vibrating_clutter_found_first_and_fitted(tmp_path, seed):
     truth, e = _truth("vibrating_clutter", seed)
@@ -118,6 +119,7 @@ def test_vibrating_clutter_found_first_and_fitted(tmp_path, seed):
     assert r.after.overall <= 0.5 * r.base.overall
 
 
+@pytest.mark.slow
 def test_two_undeclared_effects_both_found(tmp_path):
     seed = 1
     rng = np.random.default_rng(seed)
@@ -127,6 +129,7 @@ def test_two_undeclared_effects_both_found(tmp_path):
     assert r.after.overall <= 0.5 * r.base.overall
 
 
+@pytest.mark.slow
 def test_effect_outside_the_catalog_is_unexplained_at_its_range_and_doppler(tmp_path):
     seed = 3
     target = {"name": "moving_target", "range_m": 3.0, "speed_m_s": 1.2, "level_dB": -80.0}
@@ -198,11 +201,11 @@ def test_scene_mode_finds_an_undeclared_static_scatterer(tmp_path):
 
 
 def test_scene_mode_finds_rx_gain_mismatch(tmp_path):
-    extra = {"name": "rx_gain_phase_mismatch", "gain_dB": [0.0, -2.5, 2.0], "phase_rad": [0.0, 0.8, -0.6]}
+    extra = {"name": "rx_gain_phase_mismatch", "gain_dB": [0.0, -4.0, 3.0], "phase_rad": [0.0, 1.2, -0.9]}
     r = _scene_search(tmp_path, [extra], 6)
     assert r.steps[0]["effect"] == "rx_gain_phase_mismatch"
     p = r.steps[0]["params"]
-    np.testing.assert_allclose(np.array(p["gain_dB"]) - p["gain_dB"][0], [0.0, -2.5, 2.0], atol=0.6)
-    dphi = np.angle(np.exp(1j * (np.array(p["phase_rad"]) - p["phase_rad"][0] - np.array([0.0, 0.8, -0.6]))))
+    np.testing.assert_allclose(np.array(p["gain_dB"]) - p["gain_dB"][0], [0.0, -4.0, 3.0], atol=0.6)
+    dphi = np.angle(np.exp(1j * (np.array(p["phase_rad"]) - p["phase_rad"][0] - np.array([0.0, 1.2, -0.9]))))
     assert np.abs(dphi).max() < 0.25
     assert r.after.overall <= 0.5 * r.base.overall

@@ -49,9 +49,10 @@ def test_recipe_fast_dev_run(recipe, tmp_path, captures, monkeypatch):
     assert len(list((tmp_path / "cache").glob("train-*.h5"))) == 1
 
 
-def test_ddp_two_gloo_processes_each_simulate_their_own_shard(tmp_path, captures):
+@pytest.mark.parametrize("recipe", ["occupancy_cdr", "occupancy_cdr_profile"])
+def test_ddp_two_gloo_processes_each_simulate_their_own_shard(recipe, tmp_path, captures):
     out = tmp_path / "run"
-    cmd = [sys.executable, "-m", "radaraug.cli", "train", "fit", "--config", str(REPO / "recipes" / "occupancy_cdr.yaml"),
+    cmd = [sys.executable, "-m", "radaraug.cli", "train", "fit", "--config", str(REPO / "recipes" / f"{recipe}.yaml"),
            "--trainer.max_epochs", "1", "--trainer.strategy", "ddp", "--trainer.devices", "2",
            "--trainer.accelerator", "cpu", "--trainer.logger", "false", "--trainer.enable_checkpointing", "false",
            "--data.out_dir", str(out), *_small_args(tmp_path, captures), "--data.train_items", "9",
@@ -67,3 +68,8 @@ def test_ddp_two_gloo_processes_each_simulate_their_own_shard(tmp_path, captures
     report = json.loads((out / "test_metrics.json").read_text())
     # the confusion matrix is summed over both ranks: every test frame counted once
     assert int(np.sum(report["confusion_matrix"])) == 6 + 6
+    if recipe.endswith("cdr_profile"):
+        # rank 0 fitted the twin profile once and sent it to rank 1
+        assert len(list((tmp_path / "cache").glob("profile-*.json"))) == 1
+        info = json.loads((out / "clip_range.json").read_text())
+        assert info["twin_receiver"] == "profile" and info["twin_profile"]["capture"] == captures[0].name
