@@ -115,8 +115,15 @@ class ChainState:
 
     def randn(self, shape: tuple[int, ...]) -> torch.Tensor:
         """Standard normal draws from :attr:`generator` (or the global RNG)."""
+        return self._draw(torch.randn, shape)
+
+    def rand(self, shape: tuple[int, ...]) -> torch.Tensor:
+        """Uniform draws in [0, 1) from :attr:`generator` (or the global RNG)."""
+        return self._draw(torch.rand, shape)
+
+    def _draw(self, fn: Callable[..., torch.Tensor], shape: tuple[int, ...]) -> torch.Tensor:
         try:
-            return torch.randn(shape, generator=self.generator, device=self.device, dtype=self.dtype)
+            return fn(shape, generator=self.generator, device=self.device, dtype=self.dtype)
         except RuntimeError as e:
             gdev = self.generator.device if self.generator is not None else "cpu"
             raise InputTensorError(

@@ -26,7 +26,7 @@ import torch
 from torch import nn
 
 from radaraug.config import RadarConfig
-from radaraug.errors import ConfigError, InputTensorError
+from radaraug.errors import ConfigError
 from radaraug.sensor.chain import ChainState
 
 EFFECTS: dict[str, type[Effect]] = {}
@@ -241,14 +241,7 @@ def insert_in_order(effects: Sequence[Effect], new: Effect) -> list[Effect]:
 
 def rand(state: ChainState, shape: tuple[int, ...]) -> torch.Tensor:
     """Uniform draws in [0, 1) from the call's generator (or the global RNG), like ``state.randn``."""
-    try:
-        return torch.rand(shape, generator=state.generator, device=state.device, dtype=state.dtype)
-    except RuntimeError as e:
-        gdev = state.generator.device if state.generator is not None else "cpu"
-        raise InputTensorError(
-            f"receiver: the generator is on {gdev} but the paths are on {state.device}; "
-            "pass a torch.Generator(device=...) on the paths' device"
-        ) from e
+    return state.rand(shape)
 
 
 def check_nonnegative(effect: Effect, **values: torch.Tensor | None) -> None:
