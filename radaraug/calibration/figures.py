@@ -37,7 +37,7 @@ def view_figures(diag: Diagnosis, out: Path) -> list[str]:
     def curve(view: str, x: torch.Tensor, xlabel: str, ylabel: str, sl: slice = slice(None)) -> None:
         fig, ax = plt.subplots(figsize=(6, 3.4))
         for label, v, style in series:
-            ax.plot(x, v[view][sl], style, label=label, lw=1.2)
+            ax.plot(x.tolist(), v[view][sl].tolist(), style, label=label, lw=1.2)
         ax.set(xlabel=xlabel, ylabel=ylabel, title=view)
         ax.legend(fontsize=8)
         save(fig, f"view_{view}.png")
@@ -49,8 +49,8 @@ def view_figures(diag: Diagnosis, out: Path) -> list[str]:
     curve("static_ratio", rng, "range (m)", "zero-Doppler / total (dB)")
     fig, axes = plt.subplots(1, 2, figsize=(9, 3.4))
     for label, v, style in series:
-        axes[0].plot(rng, v["lines"][:nr], style, label=label, lw=1)
-        axes[1].plot(vel, v["lines"][nr:], style, label=label, lw=1)
+        axes[0].plot(rng.tolist(), v["lines"][:nr].tolist(), style, label=label, lw=1)
+        axes[1].plot(vel.tolist(), v["lines"][nr:].tolist(), style, label=label, lw=1)
     axes[0].set(xlabel="range (m)", ylabel="peak / median (dB)", title="lines per range row")
     axes[1].set(xlabel="velocity (m/s)", ylabel="peak / median (dB)", title="lines per Doppler column")
     axes[0].legend(fontsize=8)
@@ -58,8 +58,9 @@ def view_figures(diag: Diagnosis, out: Path) -> list[str]:
     fig, axes = plt.subplots(1, 2, figsize=(9, 3.4))
     R = cfg.num_rx
     for j, (label, v, _style) in enumerate(series):
-        axes[0].bar(torch.arange(R) + 0.25 * (j - 1), v["rx_balance"][:R], width=0.25, label=label)
-        axes[1].bar(torch.arange(R) + 0.25 * (j - 1), v["rx_balance"][R:], width=0.25, label=label)
+        x = [k + 0.25 * (j - 1) for k in range(R)]
+        axes[0].bar(x, v["rx_balance"][:R].tolist(), width=0.25, label=label)
+        axes[1].bar(x, v["rx_balance"][R:].tolist(), width=0.25, label=label)
     axes[0].set(xlabel="RX", ylabel="noise floor - mean (dB)", title="rx_balance: noise")
     axes[1].set(xlabel="RX", ylabel="static level - mean (dB)", title="rx_balance: static")
     axes[0].legend(fontsize=8)
@@ -67,7 +68,7 @@ def view_figures(diag: Diagnosis, out: Path) -> list[str]:
     fig, ax = plt.subplots(figsize=(6, 3.4))
     for label, v, style in series:
         for r in range(R):
-            ax.plot(ADC_QUANTILES, v["adc_histogram"][r, :-1], style, lw=1, label=label if r == 0 else None)
+            ax.plot(ADC_QUANTILES, v["adc_histogram"][r, :-1].tolist(), style, lw=1, label=label if r == 0 else None)
     ax.set(xscale="logit", xlabel="quantile", ylabel="ADC code", title="adc_histogram (per RX)")
     ax.legend(fontsize=8)
     save(fig, "view_adc_histogram.png")
@@ -76,14 +77,14 @@ def view_figures(diag: Diagnosis, out: Path) -> list[str]:
            "frame-to-frame\nnoise (dB c^2)", "chirp q90\n- q50", "chirp q97\n- q50", "chirp q99\n- q50",
            "chirp q99.9\n- q50"]
     for j, (label, v, _) in enumerate(series):
-        ax.bar(torch.arange(len(lab)) + 0.25 * (j - 1), v["frame_power"], width=0.25, label=label)
+        ax.bar([k + 0.25 * (j - 1) for k in range(len(lab))], v["frame_power"].tolist(), width=0.25, label=label)
     ax.set_xticks(range(len(lab)), lab, fontsize=6)
     ax.set(title="frame_power")
     ax.legend(fontsize=8)
     save(fig, "view_frame_power.png")
     ex = _db(cap.stats.power.mean(dim=0)) - _db(after.stats.power.mean(dim=0))
     fig, ax = plt.subplots(figsize=(6, 4))
-    im = ax.imshow(ex, aspect="auto", origin="lower", cmap="RdBu_r", vmin=-15, vmax=15,
+    im = ax.imshow(ex.numpy(), aspect="auto", origin="lower", cmap="RdBu_r", vmin=-15, vmax=15,
                    extent=[float(vel[0]), float(vel[-1]), float(rng[0]), float(rng[-1])])
     for u in diag.unexplained:
         if u["view"] == "rd_map":
