@@ -334,9 +334,10 @@ def _vibrating() -> Candidate:
     return Candidate("vibrating_clutter", specs, starts)
 
 
-def _strongest_static(ctx: Context) -> tuple[int, float]:
+def _strongest_static(ctx: Context, first: int = 1) -> tuple[int, float]:
+    """Range bin and power of the capture's strongest zero-Doppler return from bin ``first`` on."""
     zp = ctx.capture.stats.power.mean(dim=0)[:, ctx.capture.stats.power.shape[-1] // 2].clone()
-    zp[:1] = 0
+    zp[: min(first, zp.numel() - 1)] = 0
     k = int(zp.argmax())
     return k, float(zp[k])
 
@@ -450,7 +451,7 @@ def _rx_mismatch() -> Candidate:
         gains = [g0[i] + float(d[i]) for i in range(R)]
         phases = list(p0)
         if ctx.mode == "scene":
-            k, _ = _strongest_static(ctx)
+            k, _ = _strongest_static(ctx, first=3)
             pc = ctx.capture["rx_phase"][:, k] - ctx.capture["rx_phase"][0, k]
             pt = ctx.twin["rx_phase"][:, k] - ctx.twin["rx_phase"][0, k]
             phases = [p0[i] + float(torch.remainder(pc[i] - pt[i] + math.pi, 2 * math.pi) - math.pi) for i in range(R)]

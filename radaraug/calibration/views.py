@@ -14,7 +14,7 @@ view                what, and how its error is measured
 ``lines``           persistent narrow lines: per range row (off zero Doppler) and per Doppler
                     column of the frame-averaged power map, peak over median (dB); RMS dB
 ``rx_balance``      per RX: noise floor and static level (range bins 2..) relative to the RX
-                    mean (dB), phase
+                    mean (dB), phase (range bins 3..)
                     of the strongest static return relative to RX1; RMS dB, a phase error
                     ``d`` counting as ``20 log10(1 + 2|sin(d/2)|)`` dB (the vector error)
 ``adc_histogram``   per RX, quantiles of the ADC codes (0.1 %..99.9 %) and the clipped
@@ -228,9 +228,11 @@ def view_errors(twin: Views, capture: Views) -> dict[str, float]:
     if R > 1:
         zp = capture.stats.power[..., capture.stats.power.shape[-1] // 2].mean(dim=0)
         fl = capture.stats.floor_rx_range.mean(dim=0)
-        snr = zp[1:] / fl[1:].clamp_min(_TINY)
-        k = int(snr.argmax()) + 1
-        if float(snr[k - 1]) > 10.0:
+        # Past the leakage bins (0..2), where leakage, near returns and the high-pass mix.
+        first = 3 if zp.numel() > 6 else 1
+        snr = zp[first:] / fl[first:].clamp_min(_TINY)
+        k = int(snr.argmax()) + first
+        if float(snr[k - first]) > 10.0:
             pc = capture["rx_phase"][:, k] - capture["rx_phase"][0, k]
             pt = twin["rx_phase"][:, k] - twin["rx_phase"][0, k]
             dphi = torch.remainder(pt - pc + math.pi, 2 * math.pi) - math.pi
