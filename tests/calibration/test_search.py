@@ -209,3 +209,29 @@ def test_scene_mode_finds_rx_gain_mismatch(tmp_path):
     dphi = np.angle(np.exp(1j * (np.array(p["phase_rad"]) - p["phase_rad"][0] - np.array([0.0, 1.2, -0.9]))))
     assert np.abs(dphi).max() < 0.25
     assert r.after.overall <= 0.5 * r.base.overall
+
+
+@pytest.mark.slow
+def test_scene_mode_on_a_ray_traced_corridor_finds_an_undeclared_spur(tmp_path):
+    """End to end through the command line: the library's twin of the corridor with a spur the loop
+    is not told about (set through a twin profile), diagnosed with the corridor as its scene."""
+    from radaraug.cli import main
+    from radaraug.sensor.effects import SpurTone, insert_in_order
+
+    cfg = RadarConfig.bgt60tr13c()
+    effects = insert_in_order(list(FMCWReceiver(cfg).effects), SpurTone(freq_Hz=151.7e3, amplitude_counts=2.0))
+    TwinProfile(FMCWReceiver(cfg, effects=effects).to_dict(), {"capture": "truth"}).save(tmp_path / "truth.json")
+    cap = tmp_path / "corridor.h5"
+    assert main(["simulate", "corridor", "--frames", "40", "--seed", "2", "-o", str(cap),
+                 "--profile", str(tmp_path / "truth.json")]) == 0
+    assert main(["diagnose", str(cap), "--scene", "corridor", "-o", str(tmp_path / "rep"), "--max-frames", "40",
+                 "--no-figures"]) == 0
+    import json
+
+    rep = json.loads((tmp_path / "rep" / "report.json").read_text())
+    assert rep["mode"] == "scene" and rep["scene"]  # the scene's own name
+    step = rep["steps"][0]
+    assert step["effect"] == "spur_tone"
+    assert abs(step["params"]["freq_Hz"] - 151.7e3) < 1 / (cfg.num_chirps_per_frame * cfg.chirp_repetition_time_s)
+    assert step["params"]["amplitude_counts"] == pytest.approx(2.0, rel=0.2)
+    assert rep["error_after"]["overall"] <= 0.5 * rep["error_base_refit"]["overall"]
