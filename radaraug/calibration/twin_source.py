@@ -8,7 +8,8 @@ Two modes (:attr:`TwinSource.mode`):
   scene's people, if any, are traced once for the simulated frame times.
 * ``"estimated"``: no scene. An empty room is static, so the static scene *is* the capture's
   mean chirp (per RX, over the fitting frames, its own mean over samples removed: the DC
-  offset is a separate, fitted stage). It is injected as the static signal; everything static
+  offset is a separate, fitted stage), made into one static path per range bin (see
+  :meth:`TwinSource._estimated_paths`) so that the phase-noise stage can act on it; everything static
   (room, TX->RX leakage, the IF filters' effect on them) is then taken as measured, and the
   loop diagnoses what varies: noise, its range shape, spurs, drift, interference, ADC.
 """
@@ -16,6 +17,7 @@ Two modes (:attr:`TwinSource.mode`):
 from __future__ import annotations
 
 import json
+import math
 from collections.abc import Mapping, Sequence
 from typing import Any
 
@@ -25,6 +27,7 @@ from radaraug.config import RadarConfig
 from radaraug.sensor.effects import effect_from_dict
 from radaraug.sensor.paths import Paths
 from radaraug.sensor.receiver import FMCWReceiver
+from radaraug.sensor.synthesis import ChirpTiming
 
 # Stages that an estimated static scene already contains (leave them out in that mode).
 STATIC_STAGES = ("tx_rx_leakage", "multipath", "static_clutter")
@@ -84,9 +87,45 @@ class TwinSource:
         """The receiver of ``chain`` with this source's constants."""
         return chain_receiver(self.config, chain, self.tx_power_dBm, self.front_end_gain_dB)
 
-    def _static(self, rx: FMCWReceiver, chain: Sequence[Mapping[str, Any]]) -> torch.Tensor:
+    def _estimated_paths(self, rx: FMCWReceiver, chain: Sequence[Mapping[str, Any]]) -> Paths:
+        """The estimated static scene as paths ``(K, RX)`` at the receiver's input.
+
+        The mean chirp is exactly a sum of tones at the DFT bins ``k fs / N`` (``0 < k <= N/2``; its
+        mean is the DC stage's). Each becomes a static path of delay ``f_k / S`` whose input
+        amplitude is the tone divided by the chain's linear response at ``f_k`` and by the synthesis
+        phase ``f0 tau - S tau^2 / 2``: through the chain it gives back the measured chirp, and being
+        a path, the phase-noise stage can put its skirt on it (the leakage's and the clutter's).
+        """
+        linear = [e for e, m in zip(chain, rx.effects) if m.kind == "linear"]
+        key = "estimated:" + json.dumps(linear, sort_keys=True)
+        if key not in self._static_cache:
+            cfg = self.config
+            N, R = cfg.num_samples_per_chirp, cfg.num_rx
+            timing = ChirpTiming.from_config(cfg)
+            X = torch.fft.rfft(self.static_fixed[:, 0, :], dim=-1)  # (R, N//2 + 1)
+            k = torch.arange(1, N // 2 + 1, dtype=torch.float64)
+            tau = (k * timing.fs / N) / timing.slope  # (K,)
+            c = 2 * X[:, 1: N // 2 + 1] / N  # (R, K) positive-frequency coefficients
+            if N % 2 == 0:
+                c[:, -1] = X[:, N // 2] / N  # the Nyquist bin is real and counted once
+            phase0 = 2 * math.pi * (timing.f0 * tau - timing.slope * tau**2 / 2)
+            need = c * torch.polar(torch.ones_like(phase0), -phase0)[None, :]
+            delay = tau[:, None].expand(-1, R).contiguous()
+            unit = Paths(delay, torch.zeros_like(delay), torch.ones_like(delay, dtype=torch.complex128))
+            state = rx._initial_state(unit, None, 0.0)
+            for eff in rx.effects:
+                if eff.kind == "nonlinear":
+                    break
+                if eff.kind == "linear":
+                    eff.apply(state)
+            h = state.coef  # (R, K): the chain's coefficient for a unit input amplitude
+            amp = torch.conj(need / h).transpose(0, 1).contiguous()  # (K, R)
+            self._static_cache[key] = Paths(delay, torch.zeros_like(delay), amp)
+        return self._static_cache[key]
+
+    def _static(self, rx: FMCWReceiver, chain: Sequence[Mapping[str, Any]]) -> torch.Tensor | None:
         if self.static_fixed is not None:
-            return self.static_fixed
+            return None
         linear = [e for e, m in zip(chain, rx.effects) if m.kind == "linear"]
         key = json.dumps(linear, sort_keys=True)
         if key not in self._static_cache:
@@ -112,6 +151,11 @@ class TwinSource:
         else:
             z = torch.zeros(num_frames, 0, R, dtype=torch.float64)
             paths = Paths(z, z.clone(), z.to(torch.complex128))
+        if self.static_fixed is not None:
+            est = self._estimated_paths(rx, chain)
+            paths = Paths(*(torch.cat([a, b[None].expand(num_frames, -1, -1).to(a.dtype)], dim=1)
+                            for a, b in ((paths.delay_s, est.delay_s), (paths.delay_rate, est.delay_rate),
+                                         (paths.amplitude, est.amplitude))))
         g = torch.Generator().manual_seed(int(seed))
         times = (torch.arange(num_frames, dtype=torch.float64) + first_frame) * self.config.frame_repetition_time_s
         return rx(paths, generator=g, frame_start_s=times, static_signal=static)
