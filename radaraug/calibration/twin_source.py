@@ -112,13 +112,7 @@ class TwinSource:
             need = c * torch.polar(torch.ones_like(phase0), -phase0)[None, :]
             delay = tau[:, None].expand(-1, R).contiguous()
             unit = Paths(delay, torch.zeros_like(delay), torch.ones_like(delay, dtype=torch.complex128))
-            state = rx._initial_state(unit, None, 0.0)
-            for eff in rx.effects:
-                if eff.kind == "nonlinear":
-                    break
-                if eff.kind == "linear":
-                    eff.apply(state)
-            h = state.coef  # (R, K): the chain's coefficient for a unit input amplitude
+            h = rx.linear_state(unit).coef  # (R, K): the chain's coefficient for a unit input amplitude
             amp = torch.conj(need / h).transpose(0, 1).contiguous()  # (K, R)
             self._static_cache[key] = Paths(delay, torch.zeros_like(delay), amp)
         return self._static_cache[key]

@@ -175,13 +175,19 @@ class FMCWReceiver(nn.Module):
         Returns:
             ``(..., RX, chirps, samples)`` in SDK floats, before DC offset and ADC.
         """
+        return self.linear_state(paths).materialize()
+
+    @torch.no_grad()
+    def linear_state(self, paths: Paths) -> ChainState:
+        """The chain state of ``paths`` after the linear stages before the first non-linear one
+        (what :meth:`static_signal` synthesizes; ``state.coef`` holds each path's coefficient)."""
         state = self._initial_state(paths, None, 0.0)
         for eff in self.effects:
             if eff.kind == "nonlinear":
                 break
             if eff.kind == "linear":
                 eff.apply(state)
-        return state.materialize()
+        return state
 
     def to_counts(
         self,
