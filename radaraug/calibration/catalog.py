@@ -25,8 +25,8 @@ import torch
 
 from radaraug.calibration.views import Views, _db
 from radaraug.config import SPEED_OF_LIGHT, RadarConfig
-from radaraug.sensor.effects import EFFECTS, HARDWARE_ORDER
-from radaraug.sensor.effects.base import Prior
+from radaraug.sensor.effects import EFFECTS
+from radaraug.sensor.effects.base import Prior, hardware_position
 
 Chain = list[dict[str, Any]]
 
@@ -64,9 +64,9 @@ class Context:
         """Capture over twin frame-averaged RD power, RX-averaged, ``(range, doppler)`` dB."""
         return _db(self.capture.stats.power.mean(dim=0)) - _db(self.twin.stats.power.mean(dim=0))
 
-    def range_m(self, k: int) -> float:
-        """Range (m) of range bin ``k``."""
-        return float(self.config.range_axis_m()[k])
+    def range_m(self, k: float) -> float:
+        """Range (m) of range bin ``k`` (fractional bins too)."""
+        return float(k) * self.config.range_resolution_m
 
 
 @dataclass
@@ -77,7 +77,6 @@ class Candidate:
     specs: Callable[[Context, dict[str, Any]], list[ParamSpec]]
     starts: Callable[[Context], list[dict[str, Any]]]
     modes: tuple[str, ...] = ("scene", "estimated")
-    notes: str = ""
     joint: tuple[tuple[str, str], ...] = ()
     """Parameters of other stages fitted together with this one, ``(effect, parameter)``: a new
     noise source trades off against the thermal noise's level."""
@@ -97,24 +96,10 @@ def with_effect(chain: Chain, name: str, params: Mapping[str, Any]) -> Chain:
     if cur is not None:
         cur["params"].update(copy.deepcopy(dict(params)))
         return out
-    default = EFFECTS[name]().to_dict()["params"] if _default_constructible(name) else {}
-    new = {"name": name, "params": {**default, **copy.deepcopy(dict(params))}}
-    order = {n: i for i, n in enumerate(HARDWARE_ORDER)}
-    pos = order.get(name, len(order))
-    for i, e in enumerate(out):
-        if order.get(e["name"], len(order)) > pos:
-            out.insert(i, new)
-            return out
-    out.append(new)
+    # Every registered effect builds with its defaults (tested), which fill what ``params`` leaves out.
+    new = {"name": name, "params": {**EFFECTS[name]().to_dict()["params"], **copy.deepcopy(dict(params))}}
+    out.insert(hardware_position([e["name"] for e in out], name), new)
     return out
-
-
-def _default_constructible(name: str) -> bool:
-    try:
-        EFFECTS[name]()
-        return True
-    except Exception:  # noqa: BLE001 - an effect without defaults takes every parameter from the start
-        return False
 
 
 def get_param(chain: Chain, name: str, spec: ParamSpec) -> float:
@@ -201,10 +186,6 @@ def _sub_bin(power: torch.Tensor, r: int, d: int) -> float:
     return r + (max(min(0.5 * (a - c) / den, 0.5), -0.5) if den < 0 else 0.0)
 
 
-def _range_of_bin(ctx: Context, k: float) -> float:
-    return float(k) * ctx.config.range_resolution_m
-
-
 def _level_probe(ctx: Context, name: str, params: dict[str, Any], r: int, col: int, target_db: float,
                  level_key: str) -> float | None:
     """Level (dB, the effect's ``level_key``) that puts the effect's RD power at cell (r, col) at
@@ -223,6 +204,19 @@ def _level_probe(ctx: Context, name: str, params: dict[str, Any], r: int, col: i
 
 
 # --------------------------------------------------------------------------- candidates
+def _range_level_specs(name: str, range_key: str) -> Callable[[Context, dict[str, Any]], list[ParamSpec]]:
+    """Specs of a scatterer-like effect: a range (within one range bin of its start) and a level
+    (within 6 dB of it)."""
+
+    def specs(ctx: Context, start: dict[str, Any]) -> list[ParamSpec]:
+        pr = _priors(ctx, name)
+        res = ctx.config.range_resolution_m
+        return [_spec(ctx, name, range_key, prior=_around(start[range_key], pr[range_key], half=res)),
+                _spec(ctx, name, "level_dB", prior=_around(start["level_dB"], pr["level_dB"], half=6.0))]
+
+    return specs
+
+
 def _noise_like(name: str, pname: str, grid: Sequence[float], joint: tuple[tuple[str, str], ...] = ()) -> Candidate:
     def specs(ctx: Context, start: dict[str, Any]) -> list[ParamSpec]:
         return [_spec(ctx, name, pname)]
@@ -270,7 +264,7 @@ def _spur() -> Candidate:
                                                                       pr["amplitude_counts"], rel=0.7)),
         ]
 
-    return Candidate("spur_tone", specs, starts, notes="frequency in closed form from the line's range and Doppler bin")
+    return Candidate("spur_tone", specs, starts)
 
 
 def _static_clutter() -> Candidate:
@@ -282,7 +276,7 @@ def _static_clutter() -> Candidate:
         r = int(prof.argmax())
         if float(prof[r]) < 3.0:
             return []
-        rr = _range_of_bin(ctx, _sub_bin(ctx.capture.stats.power.mean(dim=0), r, M // 2))
+        rr = ctx.range_m(_sub_bin(ctx.capture.stats.power.mean(dim=0), r, M // 2))
         params = {"range_m": rr, "level_dB": -90.0, "phase_rad": 0.0}
         lvl = _level_probe(ctx, "static_clutter", params, r, M // 2, float(prof[r]), "level_dB")
         if lvl is None:
@@ -290,13 +284,7 @@ def _static_clutter() -> Candidate:
         params["level_dB"] = lvl
         return [params]
 
-    def specs(ctx: Context, start: dict[str, Any]) -> list[ParamSpec]:
-        pr = _priors(ctx, "static_clutter")
-        res = ctx.config.range_resolution_m
-        return [_spec(ctx, "static_clutter", "range_m", prior=_around(start["range_m"], pr["range_m"], half=res)),
-                _spec(ctx, "static_clutter", "level_dB", prior=_around(start["level_dB"], pr["level_dB"], half=6.0))]
-
-    return Candidate("static_clutter", specs, starts, modes=("scene",))
+    return Candidate("static_clutter", _range_level_specs("static_clutter", "range_m"), starts, modes=("scene",))
 
 
 def _vibrating() -> Candidate:
@@ -310,7 +298,7 @@ def _vibrating() -> Candidate:
             for beta in (0.5, 1.5):
                 # An estimated static scene already holds the object's mean return: add only
                 # what the vibration adds (carrier 0).
-                params = {"range_m": _range_of_bin(ctx, _sub_bin(ctx.capture.stats.power.mean(dim=0), r, d)),
+                params = {"range_m": ctx.range_m(_sub_bin(ctx.capture.stats.power.mean(dim=0), r, d)),
                           "level_dB": -90.0, "displacement_m": beta * cfg.wavelength_m / (4 * math.pi),
                           "vibration_Hz": vib, "phase_rad": 0.0, "carrier": 0.0 if ctx.mode == "estimated" else 1.0}
                 lvl = _level_probe(ctx, "vibrating_clutter", params, r, d, v, "level_dB")
@@ -356,14 +344,7 @@ def _multipath() -> Candidate:
         lvl = 10 * math.log10(max(p_r, 1e-30) / max(pk, 1e-30))
         return [{"extra_range_m": ctx.range_m(r) - ctx.range_m(k), "level_dB": min(lvl, -0.5), "phase_rad": 0.0}]
 
-    def specs(ctx: Context, start: dict[str, Any]) -> list[ParamSpec]:
-        pr = _priors(ctx, "multipath")
-        res = ctx.config.range_resolution_m
-        return [_spec(ctx, "multipath", "extra_range_m", prior=_around(start["extra_range_m"], pr["extra_range_m"],
-                                                                        half=res)),
-                _spec(ctx, "multipath", "level_dB", prior=_around(start["level_dB"], pr["level_dB"], half=6.0))]
-
-    return Candidate("multipath", specs, starts, modes=("scene",))
+    return Candidate("multipath", _range_level_specs("multipath", "extra_range_m"), starts, modes=("scene",))
 
 
 def _chirp_nonlinearity() -> Candidate:

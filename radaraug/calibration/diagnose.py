@@ -19,7 +19,7 @@ from typing import Any
 
 import torch
 
-from radaraug.calibration.catalog import CATALOG_NAMES, Chain, find
+from radaraug.calibration.catalog import BASE_STAGES, CATALOG_NAMES, Chain, find
 from radaraug.calibration.search import Search, SearchResult, SearchSettings
 from radaraug.calibration.twin_source import STATIC_STAGES, TwinSource
 from radaraug.calibration.views import VIEW_UNITS, Views, _db
@@ -89,7 +89,7 @@ _MODE_TEXT = {
 
 def _base_params(chain: Chain) -> dict[str, Any]:
     out = {}
-    for name in ("thermal_noise", "system_gain", "if_highpass", "anti_alias_lowpass", "adc_noise", "dc_offset"):
+    for name in BASE_STAGES:
         e = find(chain, name)
         if e is not None:
             out[name] = e["params"]
@@ -112,11 +112,8 @@ def _source(config: RadarConfig, scene: Any, fit: torch.Tensor, sim_frames: int,
             rx: FMCWReceiver, tracer_options: dict[str, Any] | None) -> tuple[TwinSource, Chain, str | None]:
     chain = rx.to_dict()["effects"]
     if scene is None:
-        mean_chirp = fit.mean(dim=(0, 2))  # (rx, samples)
-        static = (mean_chirp - mean_chirp.mean(dim=-1, keepdim=True))[:, None, :].expand(
-            config.num_rx, config.num_chirps_per_frame, config.num_samples_per_chirp).contiguous()
         chain = [e for e in chain if e["name"] not in STATIC_STAGES]
-        return TwinSource(config, static_fixed=static, tx_power_dBm=rx.tx_power_dBm,
+        return TwinSource(config, mean_chirp=fit.mean(dim=(0, 2)), tx_power_dBm=rx.tx_power_dBm,
                           front_end_gain_dB=rx.front_end_gain_dB), chain, None
     from radaraug.sim.dataset import load_scene
     from radaraug.sim.twin import DigitalTwin

@@ -31,14 +31,12 @@ from radaraug.transforms import RangeDoppler, ToDecibels
 
 
 def capture_floor_db(path: str | os.PathLike, max_frames: int = 64) -> tuple[RadarConfig, float]:
-    """A recording's config and RD noise floor (dBFS)."""
+    """A recording's config and RD noise floor (dBFS, :func:`radaraug.sim.noise_fit.capture_noise_floor_db`)."""
     from radaraug.io import open_capture
+    from radaraug.sim.noise_fit import capture_noise_floor_db
 
     with open_capture(path) as reader:
-        n = min(reader.num_frames, max_frames)
-        x = reader.read(0, n).to(torch.float64)
-        cfg = reader.config
-    return cfg, float(noise_floor_db(ToDecibels()(RangeDoppler()(x))))
+        return reader.config, capture_noise_floor_db(reader, max_frames)
 
 
 @torch.no_grad()
@@ -46,7 +44,7 @@ def twin_floor_db(config: RadarConfig, front_end_gain_dB: float = FRONT_END_GAIN
                   adc_noise_rms_counts: float = ADC_NOISE_RMS_COUNTS, frames: int = 8, seed: int = 0) -> float:
     """RD noise floor (dBFS) of the default chain's empty frames with the given two constants."""
     effects = default_effects(config, adc_noise_rms_counts=adc_noise_rms_counts)
-    leak = effects[0]
+    leak = next(e for e in effects if e.name == "tx_rx_leakage")
     leak.coupling_dB.add_(FRONT_END_GAIN_DB - front_end_gain_dB)  # keep the leakage's ADC level
     rx = FMCWReceiver(config, effects=effects, front_end_gain_dB=front_end_gain_dB)
     z = torch.zeros(frames, 0, config.num_rx, dtype=torch.float64)

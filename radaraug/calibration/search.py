@@ -145,7 +145,8 @@ class Search:
 
     # ------------------------------------------------------------------ optimizer
     def optimize(self, chain: Chain, specs: Sequence[tuple[str, ParamSpec]]) -> tuple[Chain, Score]:
-        """Coordinate search of ``specs`` (``(effect, spec)``) from the values in ``chain``."""
+        """Nelder-Mead over ``specs`` (``(effect, spec)``) from the values in ``chain``, in each prior's
+        scale; returns the best chain evaluated and its fit score."""
         R = self.config.num_rx
 
         def to_u(v: float, sp: ParamSpec) -> float:
@@ -237,15 +238,13 @@ class Search:
 
     def try_candidate(self, chain: Chain, cand: Candidate, ctx: Context) -> tuple[Chain, Score] | None:
         """Screen a candidate's starts; ``None`` when it has none."""
-        best: tuple[Chain, Score, dict[str, Any]] | None = None
+        best: tuple[Chain, Score] | None = None
         for start in cand.starts(ctx):
             ch = with_effect(chain, cand.name, start)
             sc = self.fit_score(ch)
             if best is None or sc.overall < best[1].overall:
-                best = (ch, sc, start)
-        if best is None:
-            return None
-        return best[0], best[1]
+                best = (ch, sc)
+        return best
 
     def run(self, chain: Chain) -> SearchResult:
         """Refit the base, then add effects while they improve the held-out error."""
@@ -277,8 +276,7 @@ class Search:
                 joint = set(cand.joint)
                 specs += [(e, sp) for e, sp in self.base_specs(ch) if (e, sp.name) in joint]
                 fitted, fit_sc = self.optimize(ch, specs)
-                if cand.name != "dc_offset":
-                    fitted = self.dc_closed_form(fitted, iterations=1)
+                fitted = self.dc_closed_form(fitted, iterations=1)
                 held = self.held_score(fitted)
                 results.append((held, cand, fitted, fit_sc, specs))
                 tried.append({"step": len(steps) + 1, "effect": cand.name, "fit_error": round(fit_sc.overall, 4),

@@ -50,8 +50,8 @@ class TwinSource:
     Args:
         config: the capture's radar config.
         static_paths: the room's paths ``(P, RX)`` (scene mode).
-        static_fixed: a measured static signal ``(rx, chirps, samples)`` in SDK floats
-            (estimated mode).
+        mean_chirp: the capture's mean chirp ``(rx, samples)`` in SDK floats (estimated mode;
+            its mean over samples is the DC stage's and is left out).
         moving: people's paths per simulated frame ``(T, P, RX)`` (scene mode with people).
         frame_period_s: frame period (frame start times for time-locked effects).
         tx_power_dBm, front_end_gain_dB: receiver constants (default: the library's).
@@ -62,21 +62,20 @@ class TwinSource:
         config: RadarConfig,
         *,
         static_paths: Paths | None = None,
-        static_fixed: torch.Tensor | None = None,
+        mean_chirp: torch.Tensor | None = None,
         moving: Paths | None = None,
         tx_power_dBm: float | None = None,
         front_end_gain_dB: float | None = None,
     ) -> None:
-        if (static_paths is None) == (static_fixed is None):
-            raise ValueError("give exactly one of static_paths (scene mode) or static_fixed (estimated mode)")
+        if (static_paths is None) == (mean_chirp is None):
+            raise ValueError("give exactly one of static_paths (scene mode) or mean_chirp (estimated mode)")
         self.config = config
         self.static_paths = static_paths
-        self.static_fixed = None if static_fixed is None else static_fixed.to(torch.float64)
+        self.mean_chirp = None if mean_chirp is None else mean_chirp.to(torch.float64)
         self.moving = moving
         self.tx_power_dBm = tx_power_dBm
         self.front_end_gain_dB = front_end_gain_dB
-        self._static_cache: dict[str, torch.Tensor] = {}
-        self.calls = 0
+        self._static_cache: dict[str, torch.Tensor | Paths] = {}
 
     @property
     def mode(self) -> str:
@@ -102,7 +101,7 @@ class TwinSource:
             cfg = self.config
             N, R = cfg.num_samples_per_chirp, cfg.num_rx
             timing = ChirpTiming.from_config(cfg)
-            X = torch.fft.rfft(self.static_fixed[:, 0, :], dim=-1)  # (R, N//2 + 1)
+            X = torch.fft.rfft(self.mean_chirp, dim=-1)  # (R, N//2 + 1)
             k = torch.arange(1, N // 2 + 1, dtype=torch.float64)
             tau = (k * timing.fs / N) / timing.slope  # (K,)
             c = 2 * X[:, 1: N // 2 + 1] / N  # (R, K) positive-frequency coefficients
@@ -118,7 +117,7 @@ class TwinSource:
         return self._static_cache[key]
 
     def _static(self, rx: FMCWReceiver, chain: Sequence[Mapping[str, Any]]) -> torch.Tensor | None:
-        if self.static_fixed is not None:
+        if self.mean_chirp is not None:
             return None
         linear = [e for e, m in zip(chain, rx.effects) if m.kind == "linear"]
         key = json.dumps(linear, sort_keys=True)
@@ -134,7 +133,6 @@ class TwinSource:
     def frames(self, chain: Sequence[Mapping[str, Any]], num_frames: int, seed: int,
                first_frame: int = 0) -> torch.Tensor:
         """``(num_frames, rx, chirps, samples)`` SDK floats (float64) of ``chain``, seeded."""
-        self.calls += 1
         rx = self.receiver(chain)
         static = self._static(rx, chain)
         R = self.config.num_rx
@@ -145,7 +143,7 @@ class TwinSource:
         else:
             z = torch.zeros(num_frames, 0, R, dtype=torch.float64)
             paths = Paths(z, z.clone(), z.to(torch.complex128))
-        if self.static_fixed is not None:
+        if self.mean_chirp is not None:
             est = self._estimated_paths(rx, chain)
             paths = Paths(*(torch.cat([a, b[None].expand(num_frames, -1, -1).to(a.dtype)], dim=1)
                             for a, b in ((paths.delay_s, est.delay_s), (paths.delay_rate, est.delay_rate),

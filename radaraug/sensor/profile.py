@@ -73,9 +73,10 @@ class TwinProfile:
         }
 
     def save(self, path: str | os.PathLike) -> Path:
-        """Write the profile atomically (temporary file + rename)."""
+        """Write the profile atomically (a temporary file of this process + rename, so concurrent
+        writers of the same profile never mix their bytes)."""
         p = Path(path)
-        tmp = p.with_name(p.name + ".tmp")
+        tmp = p.with_name(f"{p.name}.{os.getpid()}.tmp")
         tmp.write_text(json.dumps(self.to_dict(), indent=1))
         os.replace(tmp, p)
         return p

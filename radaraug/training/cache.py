@@ -76,7 +76,7 @@ def cache_spec(dataset: SimulatedRadarDataset, indices: Sequence[int]) -> dict[s
     }
 
 
-def cache_key(spec: dict[str, Any]) -> str:
+def cache_key(spec: dict[str, Any] | list[Any]) -> str:
     """A 20-hex-digit content hash of a cache spec."""
     return hashlib.sha256(json.dumps(spec, sort_keys=True).encode()).hexdigest()[:20]
 

@@ -342,26 +342,20 @@ class RadarDataModule(L.LightningDataModule):
 
         diag = cal_mod.diagnose(str(calibration), scene=None, max_frames=int(self.hparams.profile_max_frames),
                                 progress=bool(self.hparams.progress))
-        prof = diag.profile
         path.parent.mkdir(parents=True, exist_ok=True)
-        tmp = path.with_suffix(f".{os.getpid()}.tmp")
-        tmp.write_text(json.dumps(prof.to_dict(), indent=1))
-        os.replace(tmp, path)
-        return prof, path
+        diag.profile.save(path)
+        return diag.profile, path
 
     def _fit_noise(self, calibration: str) -> dict[str, Any]:
         """The twin's noise figure fitted to the calibration capture's floor (cached in cache_dir)."""
-        import hashlib
-
         from radaraug.sim.dataset import load_scene
         from radaraug.sim.noise_fit import capture_noise_floor_db, fit_noise_figure
 
         target = capture_noise_floor_db(calibration)
         # "noise-offset-v2": the fit moves thermal and ADC-side noise together (older fits moved
         # the noise figure alone and must not be reused).
-        key = hashlib.sha256(json.dumps([str(self.hparams.scene), self.config.to_dict(), round(target, 4),
-                                         self.hparams.tracer_rays, "noise-offset-v2"],
-                                        sort_keys=True).encode()).hexdigest()[:20]
+        key = cache_key([str(self.hparams.scene), self.config.to_dict(), round(target, 4), self.hparams.tracer_rays,
+                         "noise-offset-v2"])
         path = Path(self.hparams.cache_dir) / f"noise_fit-{key}.json"
         if path.is_file():
             return json.loads(path.read_text())

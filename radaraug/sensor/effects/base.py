@@ -228,15 +228,25 @@ def insert_in_order(effects: Sequence[Effect], new: Effect) -> list[Effect]:
     """
     if not isinstance(new, Effect):
         raise ConfigError(f"insert_in_order needs an Effect, got {type(new).__name__}")
-    order = {name: i for i, name in enumerate(HARDWARE_ORDER)}
-    if new.name not in order:
-        raise ConfigError(f"effect {new.name!r} has no place in HARDWARE_ORDER; insert it by hand")
-    pos = order[new.name]
     out = [e for e in effects if e.name != new.name]
-    for i, e in enumerate(out):
-        if order.get(e.name, -1) > pos:
-            return [*out[:i], new, *out[i:]]
-    return [*out, new]
+    i = hardware_position([e.name for e in out], new.name)
+    return [*out[:i], new, *out[i:]]
+
+
+def hardware_position(names: Sequence[str], name: str) -> int:
+    """Where effect ``name`` goes in a chain whose effects are called ``names``: before the first
+    one the hardware applies after it (:data:`HARDWARE_ORDER`; names not in it never count as
+    later), or at the end. The one ordering rule behind :func:`insert_in_order` and the
+    calibration loop's chains of effect dicts.
+
+    Raises:
+        ConfigError: ``name`` has no place in :data:`HARDWARE_ORDER`.
+    """
+    order = {n: i for i, n in enumerate(HARDWARE_ORDER)}
+    if name not in order:
+        raise ConfigError(f"effect {name!r} has no place in HARDWARE_ORDER; insert it by hand")
+    pos = order[name]
+    return next((i for i, n in enumerate(names) if order.get(n, -1) > pos), len(names))
 
 
 def rand(state: ChainState, shape: tuple[int, ...]) -> torch.Tensor:
