@@ -249,6 +249,15 @@ def hardware_position(names: Sequence[str], name: str) -> int:
     return next((i for i, n in enumerate(names) if order.get(n, -1) > pos), len(names))
 
 
+def tone_amplitude(state: ChainState, level_dB: torch.Tensor) -> torch.Tensor:
+    """Peak ADC-float amplitude of a path whose RX-port power is ``level_dB`` relative to P_tx.
+
+    ``sqrt(2 P_tx 10**(level/10)) * G_fe``, written as a product so the gradient stays finite
+    with the TX off. Shared by the leakage and the clutter effects.
+    """
+    return math.sqrt(2 * state.tx_power_W) * state.front_end_gain * torch.pow(10.0, level_dB / 20)
+
+
 def rand(state: ChainState, shape: tuple[int, ...]) -> torch.Tensor:
     """Uniform draws in [0, 1) from the call's generator (or the global RNG), like ``state.randn``."""
     return state.rand(shape)

@@ -23,21 +23,13 @@ from radaraug.sensor.effects.base import (
     check_positive,
     register,
     scatterer_count,
+    tone_amplitude,
 )
 
 
 def _per_scatterer(state: ChainState, value: torch.Tensor, k: int) -> torch.Tensor:
     """A scalar or ``(K,)`` parameter as ``(K,)`` on the call's device and dtype."""
     return state.param(value).reshape(-1).expand(k)
-
-
-def _tone_amplitude(state: ChainState, level_dB: torch.Tensor) -> torch.Tensor:
-    """Peak ADC-float amplitude of a path whose RX-port power is ``level_dB`` below P_tx.
-
-    ``sqrt(2 P_tx 10**(level/10)) * G_fe``, written as a product so the gradient stays finite
-    with the TX off.
-    """
-    return math.sqrt(2 * state.tx_power_W) * state.front_end_gain * torch.pow(10.0, level_dB / 20)
 
 
 def _clutter_priors(config: RadarConfig) -> dict[str, Prior]:
@@ -90,7 +82,7 @@ class StaticClutter(Effect):
 
     def apply(self, state: ChainState) -> None:
         k = self.num_scatterers
-        amp = _tone_amplitude(state, _per_scatterer(state, self.level_dB, k))
+        amp = tone_amplitude(state, _per_scatterer(state, self.level_dB, k))
         coef = torch.polar(amp, _per_scatterer(state, self.phase_rad, k))[None, :]  # (1, K): all RX
         delay = (2 / SPEED_OF_LIGHT) * _per_scatterer(state, self.range_m, k)[None, :]
         state.add_paths(coef, delay, torch.zeros_like(delay))
@@ -196,7 +188,7 @@ class VibratingClutter(Effect):
 
     def apply(self, state: ChainState) -> None:
         k = self.num_scatterers
-        amp = _tone_amplitude(state, _per_scatterer(state, self.level_dB, k))
+        amp = tone_amplitude(state, _per_scatterer(state, self.level_dB, k))
         coef = amp.to(state.complex_dtype)[None, :].expand(state.num_rx, k)  # (RX, K)
         delay = ((2 / SPEED_OF_LIGHT) * _per_scatterer(state, self.range_m, k))[None, :].expand(state.num_rx, k)
         rate = torch.zeros_like(delay)

@@ -8,7 +8,7 @@ import torch
 
 from radaraug.config import SPEED_OF_LIGHT
 from radaraug.sensor.chain import ChainState
-from radaraug.sensor.effects.base import Effect, Prior, per_rx, register
+from radaraug.sensor.effects.base import Effect, Prior, per_rx, register, tone_amplitude
 
 
 @register
@@ -47,7 +47,7 @@ class TxRxLeakage(Effect):
     def apply(self, state: ChainState) -> None:
         c = per_rx(state, self.coupling_dB, "coupling_dB", self.name)
         ph = per_rx(state, self.phase_rad, "phase_rad", self.name)
-        amp = torch.sqrt(2 * state.tx_power_W * torch.pow(10.0, c / 10)) * state.front_end_gain
+        amp = tone_amplitude(state, c)
         coef = torch.polar(amp, ph)[:, None]  # (RX, 1)
         delay = (2 * state.param(self.range_m) / SPEED_OF_LIGHT).reshape(1, 1).expand(state.num_rx, 1)
         state.add_paths(coef, delay, torch.zeros_like(delay))
