@@ -8,6 +8,7 @@ Sub-commands::
     radaraug bench twin [--json]                digital-twin throughput vs real time and baselines
     radaraug bench training [--json]            recipe training step vs a bare ResNet18 step
     radaraug bench diagnose [--json]            diagnose a 100-frame paper-config capture vs simulating it
+    radaraug bench static-room [--json]         room trace: image method vs SBR ray counts, convergence
     radaraug trace SCENE [--time T] [--json]    the propagation paths of one instant
     radaraug simulate SCENE --frames N --seed S -o out.h5 [--shard i/n] [--profile P]
     radaraug demo [-o DIR]                      the main job on the built-in default
@@ -98,6 +99,10 @@ def _cmd_bench(args: argparse.Namespace) -> int:
         from radaraug.bench.diagnose import run_diagnose_benchmark
 
         result = run_diagnose_benchmark(out=args.out)
+    elif args.what == "static-room":
+        from radaraug.bench.static_room import run_static_room_benchmark
+
+        result = run_static_room_benchmark(out=args.out, figure=args.figure)
     elif args.what == "training":
         from radaraug.bench.training import run_training_benchmark
 
@@ -129,7 +134,8 @@ def _cmd_trace(args: argparse.Namespace) -> int:
     if not math.isfinite(args.time):
         raise ConfigError(f"--time must be a finite number of seconds, got {args.time}")
     scene = _scene_arg(args.scene)
-    tracer = RayTracer(scene.room, scene.radar, scene.config, max_bounces=args.bounces, rays=args.rays)
+    tracer = RayTracer(scene.room, scene.radar, scene.config, method=args.method, max_bounces=args.bounces,
+                       rays=args.rays)
     t = torch.tensor([args.time], dtype=torch.float64)
     ell = scene.people_ellipsoids(t) if scene.people else None
     if ell is not None:
@@ -227,7 +233,7 @@ def build_parser() -> argparse.ArgumentParser:
     fit.set_defaults(func=_cmd_fit_cdr)
 
     bench = sub.add_parser("bench", help="benchmarks (figures as ratios against a same-process baseline)")
-    bench.add_argument("what", choices=["transforms", "twin", "training", "diagnose"])
+    bench.add_argument("what", choices=["transforms", "twin", "training", "diagnose", "static-room"])
     bench.add_argument("--batch", type=int, default=32, help="transforms, training: frames per batch")
     bench.add_argument("--repeats", type=int, default=5, help="transforms: timed repetitions; training: steps")
     bench.add_argument("--blocks", type=int, default=8, help="twin: 16-frame blocks per process")
@@ -236,13 +242,17 @@ def build_parser() -> argparse.ArgumentParser:
     bench.add_argument("--device", default="cpu")
     bench.add_argument("--json", action="store_true", help="print the figures as one JSON object")
     bench.add_argument("--out", default=None, help="also write the JSON figures to this file")
+    bench.add_argument("--figure", default=None, help="static-room: write the range-profile figure (PNG) here")
     bench.set_defaults(func=_cmd_bench)
 
     trace = sub.add_parser("trace", help="ray-trace one instant of a scene and print its paths")
     trace.add_argument("scene", help="scene file (.yaml/.json) or built-in scene name")
     trace.add_argument("--time", type=float, default=0.0, help="instant in seconds")
-    trace.add_argument("--rays", type=int, default=256, help="SBR rays per axis")
-    trace.add_argument("--bounces", type=int, default=2, help="most bounces per SBR ray")
+    trace.add_argument("--method", choices=["image", "sbr"], default="image",
+                       help="static room: image method (exact specular orders, default) or SBR rays")
+    trace.add_argument("--rays", type=int, default=256, help="SBR rays per axis (--method sbr)")
+    trace.add_argument("--bounces", type=int, default=None,
+                       help="most specular reflections (image method, default 3) or bounces per SBR ray (default 2)")
     trace.add_argument("--json", action="store_true", help="print the paths as one JSON object")
     trace.set_defaults(func=_cmd_trace)
 

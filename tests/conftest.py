@@ -11,6 +11,18 @@ import torch
 REPO_ROOT = Path(__file__).resolve().parents[1]
 
 
+@pytest.fixture(autouse=True, scope="session")
+def _static_room_cache(tmp_path_factory: pytest.TempPathFactory):
+    """Traced static rooms go to a per-run folder, not the user's cache (shared by the run's tests)."""
+    old = os.environ.get("RADARAUG_CACHE_DIR")
+    os.environ["RADARAUG_CACHE_DIR"] = str(tmp_path_factory.mktemp("static_room_cache"))
+    yield
+    if old is None:
+        os.environ.pop("RADARAUG_CACHE_DIR", None)
+    else:
+        os.environ["RADARAUG_CACHE_DIR"] = old
+
+
 def real_data_root() -> Path | None:
     """Folder of third-party BGT60TR13C recordings, if present.
 

@@ -44,3 +44,50 @@ def merge_paths(paths: Paths, frequency_Hz: float, *, bin_m: float = 0.01, floor
     keep = p >= p.max() * 10 ** (floor_dB / 10) if g else p.bool()
     keep &= p > 0
     return Paths(tau_bar[keep], torch.zeros_like(tau_bar[keep]), merged[keep], kinds[keep])
+
+
+def merge_paths_with_vertices(
+    paths: Paths, vertices: torch.Tensor, frequency_Hz: float, *, bin_m: float = 0.01, voxel_m: float = 0.1,
+) -> tuple[Paths, torch.Tensor]:
+    """:func:`merge_paths` that keeps where each merged path scatters (for shadowing).
+
+    Members are merged only when they share the path-length bin, the kind and the ``voxel_m``
+    cube of their first interaction point (``vertices[:, 1]``); each merged path's vertices are
+    the power-weighted mean of its members'. The coherent sum is the same as :func:`merge_paths`
+    (carrier phase of every member kept); the geometry is exact to ``voxel_m``, below the first
+    Fresnel zone (0.15 m at a few metres) that sets the shadowing's soft edge. Nothing is dropped.
+
+    Args:
+        paths: ``(P, RX)`` static paths.
+        vertices: ``(P, V, 3)`` their vertices.
+        frequency_Hz: carrier frequency.
+        bin_m: path-length bin.
+        voxel_m: edge of the spatial cells.
+
+    Returns:
+        Merged ``(paths, vertices)``.
+    """
+    if paths.num_paths == 0:
+        return paths, vertices
+    delay, amp = paths.delay_s, paths.amplitude
+    kind = paths.kind if paths.kind is not None else torch.zeros(delay.shape[0], dtype=torch.int8,
+                                                                   device=delay.device)
+    length_bin = torch.round(delay.mean(-1) * SPEED_OF_LIGHT / bin_m).long()
+    cell = torch.floor(vertices[:, 1].double() / voxel_m).long()
+    key = torch.cat([length_bin[:, None], kind.long()[:, None], cell], dim=1)
+    uniq, inv = torch.unique(key, dim=0, return_inverse=True)
+    g = uniq.shape[0]
+    n_rx = delay.shape[1]
+    power = (amp.abs() ** 2).clamp_min(1e-300 if delay.dtype == torch.float64 else 1e-38)
+    idx = inv[:, None].expand(-1, n_rx)
+    wsum = torch.zeros(g, n_rx, dtype=delay.dtype, device=delay.device).scatter_add_(0, idx, power)
+    tau_bar = torch.zeros_like(wsum).scatter_add_(0, idx, power * delay) / wsum
+    rot = torch.polar(torch.ones_like(delay), -2 * math.pi * frequency_Hz * (delay - tau_bar[inv]))
+    merged = torch.zeros(g, n_rx, dtype=amp.dtype, device=amp.device).scatter_add_(0, idx, amp * rot)
+    kinds = torch.zeros(g, dtype=torch.int8, device=delay.device).scatter_(0, inv, kind)
+    w = power.mean(-1)
+    wv = torch.zeros(g, dtype=w.dtype, device=w.device).scatter_add_(0, inv, w)
+    vsum = torch.zeros(g, *vertices.shape[1:], dtype=vertices.dtype, device=vertices.device)
+    vsum.index_add_(0, inv, vertices * w[:, None, None].to(vertices.dtype))
+    verts = vsum / wv[:, None, None].to(vertices.dtype)
+    return Paths(tau_bar, torch.zeros_like(tau_bar), merged, kinds), verts

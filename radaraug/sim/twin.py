@@ -32,8 +32,9 @@ class DigitalTwin:
         config: radar config to simulate instead of the scene's (e.g. one read from a real
             recording); the pose stays the scene's.
         receiver: the FMCW receiver (default: :class:`FMCWReceiver` with the BGT60TR13C chain).
-        tracer_options: keyword arguments of :class:`RayTracer` (``max_bounces``, ``rays``...);
-            default ``rays=256`` (256 x 256 SBR rays over +-70 deg: the room is traced once).
+        tracer_options: keyword arguments of :class:`RayTracer` (``method``, ``max_bounces``,
+            ``cache``...); the default image method needs no ray count and the traced room is
+            cached on disk per (scene, config, tracer version).
         multipath: first-order multipath of the people via the room's walls.
         device: where to simulate (default CPU).
         dtype: real dtype of the tracer (float32; the receiver follows the paths' dtype).
@@ -62,7 +63,7 @@ class DigitalTwin:
         self.device = torch.device(device)
         self.dtype = dtype
         self.multipath = multipath
-        options = {"rays": 256, **(tracer_options or {})}
+        options = dict(tracer_options or {})
         self.tracer = RayTracer(
             scene.room.to(self.device), scene.radar, self.config, device=self.device, dtype=dtype, **options,
         )

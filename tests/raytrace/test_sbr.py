@@ -26,7 +26,7 @@ R = 30.0  # beyond the far-field distance 2 D^2 / lambda (~8 m) of 10 cm targets
 def _far_rcs(triangles: torch.Tensor, bounces: int, n_rays: int = 200, extent: float = 0.1) -> float:
     scene = soup(triangles)
     pose = RadarPose.look_at((0.0, 0.0, 0.0), (R, 0.0, 0.0))
-    tracer = RayTracer(scene, pose, CFG, rays=n_rays, fov_deg=math.degrees(math.atan(extent / R)),
+    tracer = RayTracer(scene, pose, CFG, method="sbr", rays=n_rays, fov_deg=math.degrees(math.atan(extent / R)),
                        antenna=IsotropicAntenna(), max_bounces=bounces, merge_bin_m=None, dtype=torch.float64)
     a = carrier_sum(tracer.static_paths(), F0)
     return abs(a) ** 2 * (4 * math.pi) ** 3 * R**4 / LAM**2
@@ -80,7 +80,7 @@ def test_metal_wall_image_path():
     ey, ez = torch.tensor([0.0, 1.0, 0.0]).double(), torch.tensor([0.0, 0.0, 1.0]).double()
     wall = soup(quad(c - half * (ey + ez), 2 * half * ey, 2 * half * ez))
     pose = RadarPose.look_at((0.0, 0.0, 0.0), (1.0, 0.0, 0.0))
-    tracer = RayTracer(wall, pose, CFG, rays=256, fov_deg=40.0, antenna=IsotropicAntenna(), max_bounces=1,
+    tracer = RayTracer(wall, pose, CFG, method="sbr", rays=256, fov_deg=40.0, antenna=IsotropicAntenna(), max_bounces=1,
                        dtype=torch.float64)
     paths = tracer.static_paths()
     a = carrier_sum(paths, F0)
@@ -96,7 +96,7 @@ def test_merge_keeps_carrier_sum_and_shrinks():
     ey, ez = torch.tensor([0.0, 1.0, 0.0]).double(), torch.tensor([0.0, 0.0, 1.0]).double()
     wall = soup(quad(c - half * (ey + ez), 2 * half * ey, 2 * half * ez))
     pose = RadarPose.look_at((0.0, 0.0, 0.0), (1.0, 0.0, 0.0))
-    tracer = RayTracer(wall, pose, CFG, rays=96, fov_deg=40.0, max_bounces=1, merge_bin_m=None, dtype=torch.float64)
+    tracer = RayTracer(wall, pose, CFG, method="sbr", rays=96, fov_deg=40.0, max_bounces=1, merge_bin_m=None, dtype=torch.float64)
     raw = tracer.static_paths()
     merged = merge_paths(raw, F0, bin_m=0.01, floor_dB=-300)
     assert merged.num_paths < raw.num_paths / 10

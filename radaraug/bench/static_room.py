@@ -1,0 +1,127 @@
+"""`radaraug bench static-room`: the room trace's cost and convergence, image method vs SBR rays.
+
+Scene: the paper's corridor (``corridor``) at the paper's config, and a furnished mesh room (a
+15 m box room with a radiator, a door frame and a cabinet as small faces). Figures:
+
+* ``image_trace_s`` and, per SBR ray count, ``sbr_trace_s`` with the ratio ``sbr / image`` (the
+  baseline is the image-method trace in the same process);
+* the static range profile's error against a reference (ideal receiver, Hann, mean chirp,
+  :mod:`radaraug.raytrace.convergence`): SBR at each ray count against the image method (the end
+  wall and the RMS over 2-19.5 m), and the image method against itself at ``density=4`` (the
+  issue's "4x denser trace" criterion) for both rooms;
+* optionally a figure of the corridor's static range profile for every trace.
+"""
+
+from __future__ import annotations
+
+import json
+import platform
+import time
+from pathlib import Path
+from typing import Any
+
+import torch
+
+SBR_RAYS = (128, 256, 512, 1024)
+
+
+def furnished_room():
+    """The mesh room of the benchmark and the convergence test: ``(room, pose)``."""
+    from radaraug.scene.geometry import RadarPose
+    from radaraug.scene.room import box, corridor, merge
+
+    room = merge([
+        corridor(15.0, 3.0, 2.6, materials={"floor": "floorboard", "ceiling": "ceiling_board",
+                                            "left_wall": "concrete", "right_wall": "concrete",
+                                            "near_wall": "concrete", "far_wall": "metal"}),
+        box((4.0, 1.3, 0.4), (5.0, 1.45, 1.0), "metal"),       # radiator
+        box((8.0, -1.5, 0.0), (8.1, -1.35, 2.1), "wood"),      # door frame
+        box((11.0, -0.4, 0.0), (11.6, 0.2, 0.9), "wood"),      # cabinet
+    ])
+    return room, RadarPose.look_at((0.1, 0.0, 1.2), (15.0, 0.0, 1.2))
+
+
+def _timed_trace(**kw: Any) -> tuple[Any, float]:
+    from radaraug.raytrace.tracer import RayTracer
+
+    t0 = time.perf_counter()
+    tracer = RayTracer(cache=False, **kw)
+    tracer.static_paths()
+    return tracer, time.perf_counter() - t0
+
+
+def run_static_room_benchmark(
+    *, rays: tuple[int, ...] = SBR_RAYS, out: str | Path | None = None, figure: str | Path | None = None,
+) -> dict[str, Any]:
+    """Run the benchmark (module docstring); write JSON to ``out`` and a PNG to ``figure``."""
+    from radaraug.raytrace.convergence import compare_profiles, static_range_profile
+    from radaraug.scene.scene import Scene
+
+    scene = Scene.builtin("corridor")
+    cfg = scene.config
+    base = {"room": scene.room, "radar": scene.radar, "config": cfg}
+    image, t_image = _timed_trace(**base)
+    r, ref = static_range_profile(image.static_paths(), cfg)
+    dense, t_dense = _timed_trace(**base, density=4.0)
+    _, ref_dense = static_range_profile(dense.static_paths(), cfg)
+    interval = (2.0, min(19.5, cfg.max_range_m))
+    res: dict[str, Any] = {
+        "benchmark": "static-room",
+        "scene": "corridor (paper corridor, 20 m x 2 m x 2.7 m)",
+        "config_max_range_m": round(cfg.max_range_m, 3),
+        "image_trace_s": round(t_image, 3),
+        "image_static_paths": image.static_paths().num_paths,
+        "image_vs_density4": _cmp(compare_profiles(r, ref, ref_dense, interval_m=interval)),
+        "image_density4_trace_s": round(t_dense, 3),
+        "sbr": [],
+    }
+    profiles = {"image method": ref}
+    for n in rays:
+        sbr, t = _timed_trace(**base, method="sbr", rays=n, max_bounces=3)
+        _, prof = static_range_profile(sbr.static_paths(), cfg)
+        profiles[f"SBR {n}x{n} rays"] = prof
+        res["sbr"].append({"rays": n, "trace_s": round(t, 2), "ratio_to_image": round(t / t_image, 1),
+                           "paths": sbr.static_paths().num_paths,
+                           "vs_image": _cmp(compare_profiles(r, prof, ref, interval_m=interval))})
+    room, pose = furnished_room()
+    mesh, t_mesh = _timed_trace(room=room, radar=pose, config=cfg)
+    mesh4, t_mesh4 = _timed_trace(room=room, radar=pose, config=cfg, density=4.0)
+    _, p1 = static_range_profile(mesh.static_paths(), cfg)
+    _, p4 = static_range_profile(mesh4.static_paths(), cfg)
+    res["mesh_room"] = {"trace_s": round(t_mesh, 3), "density4_trace_s": round(t_mesh4, 3),
+                        "static_paths": mesh.static_paths().num_paths,
+                        "vs_density4": _cmp(compare_profiles(r, p1, p4, interval_m=interval))}
+    res.update(torch_version=torch.__version__, cpu=platform.machine(), threads=torch.get_num_threads())
+    if out is not None:
+        Path(out).parent.mkdir(parents=True, exist_ok=True)
+        Path(out).write_text(json.dumps(res, indent=2) + "\n")
+    if figure is not None:
+        _plot(r, profiles, figure)
+    return res
+
+
+def _cmp(c: Any) -> dict[str, float]:
+    return {"far_peak_range_m": round(c.far_peak_range_m, 2), "far_peak_error_dB": round(c.far_peak_error_dB, 2),
+            "rms_error_dB": round(c.rms_error_dB, 2), "max_error_dB": round(c.max_error_dB, 2), "bins": c.bins}
+
+
+def _plot(r: torch.Tensor, profiles: dict[str, torch.Tensor], path: str | Path) -> None:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(figsize=(8, 4.2))
+    for name, prof in profiles.items():
+        ax.plot(r.numpy(), prof.numpy(), lw=2.2 if name == "image method" else 1.0,
+                color="k" if name == "image method" else None, label=name)
+    ax.set_xlabel("range (m)")
+    ax.set_ylabel("static range profile (dB, ideal receiver)")
+    ax.set_title("Paper corridor: static room vs ray density")
+    ax.set_ylim(max(float(min(p.min() for p in profiles.values())), -200), None)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    Path(path).parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(path, dpi=110)
+    plt.close(fig)

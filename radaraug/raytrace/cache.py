@@ -1,0 +1,91 @@
+"""On-disk cache of traced static rooms, keyed by (scene, radar, tracer options, tracer version).
+
+The room is traced once per scene; DataLoader workers, later runs and other processes load the
+result instead of tracing again. The key is a SHA-256 of everything the static paths depend on:
+the room's vertices, faces, per-face materials and each material's permittivity table, the
+radar's pose, carrier frequency and antenna positions (not the IF gain, the chirp timing or
+anything else the receiver applies later), the tracer's options and :data:`TRACER_VERSION`.
+
+Folder: ``$RADARAUG_CACHE_DIR``, else ``$XDG_CACHE_HOME/radaraug``, else ``~/.cache/radaraug``;
+files ``static-<key>.pt`` (plain tensors, loaded with ``weights_only=True``). Writes are atomic
+(temporary file + rename), so a killed process never leaves a half-written entry; an unreadable
+entry is traced again and replaced, a folder that cannot be written is warned about once and the
+trace is simply not cached.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import os
+import tempfile
+import warnings
+from pathlib import Path
+from typing import Any
+
+import torch
+
+TRACER_VERSION = 2
+"""Bump when a change to the tracer changes the static paths of an unchanged scene."""
+
+_warned_dirs: set[str] = set()
+
+
+def default_cache_dir() -> Path:
+    """The folder of the static-room cache (module docstring)."""
+    env = os.environ.get("RADARAUG_CACHE_DIR")
+    if env:
+        return Path(env)
+    xdg = os.environ.get("XDG_CACHE_HOME")
+    return (Path(xdg) if xdg else Path.home() / ".cache") / "radaraug"
+
+
+def digest(parts: list[Any]) -> str:
+    """SHA-256 hex digest of tensors (dtype, shape, bytes) and reprs of everything else."""
+    h = hashlib.sha256()
+    for p in parts:
+        if isinstance(p, torch.Tensor):
+            t = p.detach().cpu().contiguous()
+            h.update(f"{t.dtype}{tuple(t.shape)}".encode())
+            h.update(t.view(torch.uint8).numpy().tobytes() if t.numel() else b"")
+        else:
+            h.update(repr(p).encode())
+        h.update(b"\x00")
+    return h.hexdigest()
+
+
+def load(folder: Path, key: str) -> dict[str, torch.Tensor] | None:
+    """The cached entry of ``key`` or None (missing or unreadable: the caller traces again)."""
+    path = folder / f"static-{key}.pt"
+    if not path.is_file():
+        return None
+    try:
+        data = torch.load(path, map_location="cpu", weights_only=True)
+    except Exception as err:  # noqa: BLE001 - any damage to a cache entry means "trace again"
+        warnings.warn(f"static-room cache entry {path} is unreadable ({type(err).__name__}); tracing again",
+                      RuntimeWarning, stacklevel=3)
+        return None
+    if not isinstance(data, dict) or data.get("version") != TRACER_VERSION:
+        return None
+    return data
+
+
+def store(folder: Path, key: str, data: dict[str, Any]) -> None:
+    """Write an entry atomically; warn once per folder when it cannot be written."""
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+        fd, tmp = tempfile.mkstemp(prefix=f".static-{key}.", suffix=".tmp", dir=folder)
+        try:
+            with os.fdopen(fd, "wb") as f:
+                torch.save({**data, "version": TRACER_VERSION}, f)
+                f.flush()
+                os.fsync(f.fileno())
+            os.replace(tmp, folder / f"static-{key}.pt")
+        except BaseException:
+            Path(tmp).unlink(missing_ok=True)
+            raise
+    except OSError as err:
+        if str(folder) not in _warned_dirs:
+            _warned_dirs.add(str(folder))
+            warnings.warn(f"cannot write the static-room cache in {folder} ({err}); the room will be traced "
+                          "again by every process (set RADARAUG_CACHE_DIR to a writable folder)",
+                          RuntimeWarning, stacklevel=3)
