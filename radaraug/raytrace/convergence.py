@@ -49,7 +49,8 @@ class ProfileComparison:
     """Two static range profiles compared (dB).
 
     Attributes:
-        far_peak_range_m: range of the strongest bin beyond ``far_from_m`` in the reference.
+        far_peak_range_m: range of the strongest bin beyond ``far_from_m`` in the reference (the
+            end wall of a corridor; searched up to the last bin, not only within the interval).
         far_peak_error_dB: ``test - reference`` at that bin.
         rms_error_dB: RMS of ``test - reference`` over the interval (bins above the floor).
         max_error_dB: largest ``|test - reference|`` over the same bins.
@@ -72,7 +73,7 @@ def compare_profiles(
     strong = reference_dB >= float(reference_dB[in_range].max()) - floor_dB
     sel = in_range & strong
     diff = (test_dB - reference_dB)[sel]
-    far = (range_m >= far_from_m) & (range_m <= interval_m[1])
+    far = range_m >= far_from_m
     far_idx = int(torch.where(far, reference_dB, torch.full_like(reference_dB, -math.inf)).argmax())
     return ProfileComparison(
         far_peak_range_m=float(range_m[far_idx]),
