@@ -63,6 +63,7 @@ beyond, truncation error < 1e-9), compared with ``scipy.special.fresnel`` to 1e-
 
 from __future__ import annotations
 
+import functools
 import math
 from pathlib import Path as FilePath
 
@@ -445,6 +446,15 @@ def shadow_correction_paths(
     )
 
 
+@functools.lru_cache(maxsize=4)
+def _gauss_legendre(nodes: int) -> tuple[torch.Tensor, torch.Tensor]:
+    """Gauss-Legendre nodes and weights on [-1, 1] (float64), cached: numpy solves an eigenproblem."""
+    import numpy as np  # reference computation, outside the simulation's hot path
+
+    x, w = np.polynomial.legendre.leggauss(nodes)
+    return torch.from_numpy(x), torch.from_numpy(w)
+
+
 def ellipse_obstacle_transmission(
     offset: torch.Tensor, semi_axes: tuple[float, float], d1: float, d2: float, wavelength: float,
     *, nodes: int = 400,
@@ -469,14 +479,12 @@ def ellipse_obstacle_transmission(
     Returns:
         ``(N,)`` complex128 transmission.
     """
-    import numpy as np  # reference computation, outside the simulation's hot path
-
     scale = math.sqrt(2.0 / wavelength * (1 / d1 + 1 / d2))
     a, b = semi_axes[0] * scale, semi_axes[1] * scale
     off = offset.to(torch.float64) * scale
-    xg, wg = np.polynomial.legendre.leggauss(nodes)
-    theta = torch.from_numpy(xg) * (math.pi / 2)
-    wt = torch.from_numpy(wg) * (math.pi / 2)
+    xg, wg = _gauss_legendre(nodes)
+    theta = xg * (math.pi / 2)
+    wt = wg * (math.pi / 2)
     yy = b * torch.sin(theta)  # (K,)
     jac = b * torch.cos(theta)
     half = a * torch.cos(theta)

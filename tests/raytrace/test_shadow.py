@@ -8,6 +8,7 @@ scipy's Fresnel integrals and numpy's Gauss-Legendre nodes.
 
 from __future__ import annotations
 
+import functools
 import math
 
 import numpy as np
@@ -39,6 +40,11 @@ def ref_knife_edge(nu: np.ndarray) -> np.ndarray:
     return (1 + 1j) / 2 * ((0.5 - c) - 1j * (0.5 - s))
 
 
+@functools.lru_cache(maxsize=2)
+def gauss_legendre(nodes: int) -> tuple[np.ndarray, np.ndarray]:
+    return np.polynomial.legendre.leggauss(nodes)
+
+
 def ref_ellipse_po(off: np.ndarray, a: float, b: float, d1: float, d2: float, nodes: int = 600) -> complex:
     """Fresnel-Kirchhoff transmission past an opaque ellipse (semi-axes a, b; centre ``off``).
 
@@ -49,7 +55,7 @@ def ref_ellipse_po(off: np.ndarray, a: float, b: float, d1: float, d2: float, no
     k = math.sqrt(2 / LAM * (1 / d1 + 1 / d2))
     a, b = a * k, b * k
     x0, y0 = off[0] * k, off[1] * k
-    th, wt = np.polynomial.legendre.leggauss(nodes)
+    th, wt = gauss_legendre(nodes)
     th, wt = th * np.pi / 2, wt * np.pi / 2
     y = y0 + b * np.sin(th)
     half = a * np.cos(th)
@@ -304,3 +310,28 @@ def test_bad_shapes_raise() -> None:
     static, _, _ = wall_path()
     with pytest.raises(InputTensorError):
         shadow_correction_paths(static, torch.cat([vertices, vertices]), ell, LAM)
+
+
+def test_twin_adds_the_correction_when_the_tracer_gives_vertices() -> None:
+    """DigitalTwin.paths: correction paths appended when the tracer has static_vertices() (the
+    static geometry is stubbed here with the wall path), none with shadowing=False or without it."""
+    from radaraug.scene.scene import Scene
+    from radaraug.sim.twin import DigitalTwin
+
+    scene = Scene.builtin("corridor")
+    times = torch.tensor([0.0, 0.05], dtype=torch.float64)
+    walker = Walker(start=(4.0, 0.0), heading_rad=0.0)
+    counts = {}
+    for shadowing, stub in [(True, True), (False, True), (True, False)]:
+        twin = DigitalTwin(scene, tracer_options={"rays": 16}, shadowing=shadowing)
+        rx = twin.config.num_rx
+        r = twin.tracer.radar.centre.double()
+        wall = r + torch.tensor([WALL, 0.0, 0.0], dtype=torch.float64)
+        static = Paths(torch.full((1, rx), 2 * WALL / 299792458.0), torch.zeros(1, rx),
+                       torch.full((1, rx), 1e-3 + 0j, dtype=torch.complex64))
+        twin.tracer.static_paths = lambda static=static: static
+        if stub:
+            twin.tracer.static_vertices = lambda r=r, wall=wall: torch.stack([r, wall, r])[None].float()
+        base = twin.tracer.target_paths(ellipsoids=twin.ellipsoids([walker], times), multipath=True)
+        counts[(shadowing, stub)] = twin.paths([walker], times).num_paths - base.num_paths
+    assert counts == {(True, True): 1, (False, True): 0, (True, False): 0}
