@@ -336,7 +336,7 @@ def shadow_transmission(
     legs = torch.nonzero((((rel - t[..., None] * uf) ** 2).sum(-1) < reach * reach).any(0) & (lf > 0))[:, 0]
     if legs.shape[0] == 0:
         return out_log.exp().reshape(*batch, num_p)
-    a_k, u_k, l_k, m_k = a0[legs], uf[legs], lf[legs], mf[legs]
+    a_k, u_k, l_k = a0[legs], uf[legs], lf[legs]
 
     # Cull 2: every segment at every snapshot against those legs, as matrix products:
     # d1 = (c - a) . u along the leg, perpendicular distance^2 = |c - a|^2 - d1^2.
@@ -345,14 +345,16 @@ def shadow_transmission(
     au = (a_k * u_k).sum(-1)
     a2 = (a_k * a_k).sum(-1)
     c2 = (cs * cs).sum(-1)
+    half_lam, inv_l = 0.5 * wavelength, 1 / l_k.clamp(min=1e-12)
     hits = []
     rows = max(1, int(2**22 // max(1, legs.shape[0])))
     for r0 in range(0, cs.shape[0], rows):
         cc = cs[r0:r0 + rows]
         d1 = cc @ u_k.T - au
         perp2 = c2[r0:r0 + rows, None] - 2 * (cc @ a_k.T) + a2 - d1 * d1
-        reach = r_s[r0:r0 + rows, None] + m_k
-        # 1e-6 m^2 slack for the rounding of the expanded square.
+        # Reach: the segment's radius plus the clearance where |nu| = nu_cut at this d1
+        # (nu_cut sqrt(lambda d1 d2 / (2 L))); 1e-6 m^2 slack for the rounding of the expanded square.
+        reach = r_s[r0:r0 + rows, None] + nu_cut * torch.sqrt((half_lam * d1 * (l_k - d1) * inv_l).clamp(min=0))
         idx = torch.nonzero((d1 > 0) & (d1 < l_k) & (perp2 < reach * reach + 1e-6))
         idx[:, 0] += r0
         hits.append(idx)
@@ -379,10 +381,12 @@ def shadow_transmission(
     nu = nu[keep]
     if combine == "dominant":
         # One knife edge per (snapshot, path, leg, person): the segment with the largest nu.
+        # A dense (snapshot * path * leg * person) table: cheaper than sorting the keys.
         key = (row * num_legs + li[keep]) * ng + si[keep] // g
-        uniq, inv = torch.unique(key, return_inverse=True)
-        nu = torch.full(uniq.shape, -math.inf, dtype=nu.dtype, device=device).scatter_reduce_(
-            0, inv, nu, reduce="amax")
+        dense = torch.full((nb * num_p * num_legs * ng,), -math.inf, dtype=nu.dtype, device=device)
+        dense.scatter_reduce_(0, key, nu, reduce="amax")
+        uniq = torch.nonzero(dense > -math.inf)[:, 0]
+        nu = dense[uniq]
         row = uniq // (num_legs * ng)
     nu64 = nu.to(torch.float64)
     f = 1 + _taper(nu64, nu_full, nu_cut) * (knife_edge(nu64) - 1)
@@ -497,71 +501,95 @@ def ellipse_obstacle_transmission(
     return 1 - 0.5j * integrand.sum(-1)
 
 
+def _walker_wall_curves(walker: object, times: torch.Tensor, wall_m: float, radar_height_m: float,
+                        lateral_axis: int, wavelength: float) -> dict[str, torch.Tensor]:
+    """Model and torso-only estimates (two passes, dB) of a metal wall's return with a walker."""
+    from radaraug.scene.people import SEGMENT_NAMES
+
+    vertices = torch.tensor([[[0.0, 0.0, radar_height_m], [wall_m, 0.0, radar_height_m],
+                              [0.0, 0.0, radar_height_m]]], dtype=torch.float64)
+    ell = walker.ellipsoids(times)  # type: ignore[attr-defined]
+    model = 20 * torch.log10(shadow_transmission(vertices, ell, wavelength)[:, 0].abs())
+    k = SEGMENT_NAMES.index("torso")
+    tc = ell.centers[:, k]
+    xs = tc[:, 0]
+    offset = torch.stack([tc[:, 1], tc[:, 2] - radar_height_m], -1)
+    lat, vert = float(ell.semi_axes[0, k, lateral_axis]), float(ell.semi_axes[0, k, 2])
+    po = torch.stack([
+        ellipse_obstacle_transmission(offset[i:i + 1], (lat, vert), float(xs[i]), wall_m - float(xs[i]), wavelength)[0]
+        for i in range(xs.shape[0])
+    ])
+    scale = torch.sqrt(2.0 / wavelength * (1 / xs + 1 / (wall_m - xs)))
+    h_edge = torch.minimum(lat - offset[:, 0].abs(), vert - offset[:, 1].abs())
+    return {"x": xs, "y": tc[:, 1], "model": model, "po": 40 * torch.log10(po.abs()),
+            "knife_edge": 40 * torch.log10(knife_edge(h_edge * scale).abs()), "covered": h_edge > 0}
+
+
 def plot_walker_shadowing(path: str | FilePath, *, wall_m: float = 8.0, radar_height_m: float = 1.25,
                           frames: int = 241) -> dict[str, float]:
-    """Figure: a metal wall's return vs a walker's position on the radar-wall line.
+    """Figure: a metal wall's return vs a walker's position, model against independent estimates.
 
     Radar at ``(0, 0, radar_height_m)`` looking along +x, a metal wall at ``x = wall_m`` (its
-    first-order image path by hand), a 1.8 m walker walking along the line from the wall toward
-    the radar; the model (all 16 segments, both passes) against the physical-optics estimate of
-    the torso's cross-section alone (two passes) and the knife-edge of the torso's nearer edge.
+    first-order image path); left, a 1.8 m walker walking along the radar-wall line from the wall
+    toward the radar; right, one crossing it at ``wall_m / 2``. The model (all 16 segments, both
+    passes) is drawn against the knife edge of the torso's nearer edge and the physical-optics
+    integral over the torso's elliptic cross-section (both two passes, the torso alone).
 
     Args:
         path: PNG file to write.
         wall_m: distance to the wall, metres.
         radar_height_m: height of the radar and of the wall's foot point, metres.
-        frames: number of walker positions.
+        frames: walker positions per panel.
 
     Returns:
-        Summary numbers: the drop (dB) at the closest approach to the wall's centre (mid-way)
-        for the model and the estimates, and the model's mean drop over the middle half.
+        Summary numbers (dB): along the line, the means over the middle half; crossing, the values
+        at the closest pass and the means while the torso covers the line.
     """
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from radaraug.scene.people import SEGMENT_NAMES, Walker
+    from radaraug.scene.people import Walker
 
     lam = 299792458.0 / 61e9
-    vertices = torch.tensor([[[0.0, 0.0, radar_height_m], [wall_m, 0.0, radar_height_m],
-                              [0.0, 0.0, radar_height_m]]], dtype=torch.float64)
     speed = 1.4
-    walker = Walker(speed_m_s=speed, start=(wall_m - 0.5, 0.0), heading_rad=math.pi)
-    times = torch.linspace(0.0, (wall_m - 1.0) / speed, frames, dtype=torch.float64)
-    ell = walker.ellipsoids(times)
-    model = 20 * torch.log10(shadow_transmission(vertices, ell, lam)[:, 0].abs())
-    k = SEGMENT_NAMES.index("torso")
-    tc = ell.centers[:, k]
-    xs = tc[:, 0]
-    offset = torch.stack([tc[:, 1], tc[:, 2] - radar_height_m], -1)
-    lat, vert = float(ell.semi_axes[0, k, 1]), float(ell.semi_axes[0, k, 2])
-    po = torch.stack([
-        ellipse_obstacle_transmission(offset[i:i + 1], (lat, vert), float(xs[i]), wall_m - float(xs[i]), lam)[0]
-        for i in range(frames)
-    ])
-    po_db = 40 * torch.log10(po.abs())  # two passes
-    scale = torch.sqrt(2.0 / lam * (1 / xs + 1 / (wall_m - xs)))
-    h_edge = torch.minimum(lat - offset[:, 0].abs(), vert - offset[:, 1].abs())
-    ke_db = 40 * torch.log10(knife_edge(h_edge * scale).abs())
+    along = _walker_wall_curves(
+        Walker(speed_m_s=speed, start=(wall_m - 0.5, 0.0), heading_rad=math.pi),
+        torch.linspace(0.0, (wall_m - 1.0) / speed, frames, dtype=torch.float64), wall_m, radar_height_m, 1, lam)
+    cross = _walker_wall_curves(
+        Walker(speed_m_s=speed, start=(wall_m / 2, -1.5), heading_rad=math.pi / 2),
+        torch.linspace(0.0, 3.0 / speed, frames, dtype=torch.float64), wall_m, radar_height_m, 0, lam)
 
-    fig, ax = plt.subplots(figsize=(7, 3.8))
-    ax.plot(xs, model, label="model: per-segment knife edges, 2 passes", lw=1.8)
-    ax.plot(xs, ke_db, "--", label="knife edge at the torso's nearer edge, 2 passes")
-    ax.plot(xs, po_db, ":", label="physical optics, torso ellipse, 2 passes")
-    ax.set_xlabel("walker (torso centre) x along the radar-wall line, m")
-    ax.set_ylabel("wall return vs unshadowed, dB")
-    ax.set_title(f"Walker between the radar and a metal wall at {wall_m:g} m (61 GHz)")
-    ax.grid(alpha=0.3)
-    ax.legend(fontsize=8, loc="lower left")
+    fig, axes = plt.subplots(1, 2, figsize=(11, 3.9), sharey=True)
+    for ax, cur, key, xlabel in ((axes[0], along, "x", "walker (torso centre) x along the radar-wall line, m"),
+                                 (axes[1], cross, "y", f"torso centre y, crossing the line at x = {wall_m / 2:g} m")):
+        ax.plot(cur[key], cur["model"], label="model: knife edge per person, 2 passes", lw=1.8)
+        ax.plot(cur[key], cur["knife_edge"].clamp(min=-80), "--", label="knife edge, torso's nearer edge")
+        ax.plot(cur[key], cur["po"], ":", label="physical optics, torso ellipse")
+        ax.set_xlabel(xlabel)
+        ax.grid(alpha=0.3)
+    axes[0].set_ylabel("wall return vs unshadowed, dB")
+    axes[0].set_title(f"Walking along the line (metal wall at {wall_m:g} m, 61 GHz)", fontsize=10)
+    axes[1].set_title("Crossing the line (side view of the torso)", fontsize=10)
+    axes[1].legend(fontsize=8, loc="lower left")
     fig.tight_layout()
     FilePath(path).parent.mkdir(parents=True, exist_ok=True)
     fig.savefig(path, dpi=120)
     plt.close(fig)
-    mid = int(torch.argmin((xs - wall_m / 2).abs()))
+    xs = along["x"]
     middle = (xs > wall_m / 4) & (xs < 3 * wall_m / 4)
+    i = int(torch.argmin(cross["y"].abs()))
+    on = cross["covered"]
     return {
-        "model_db_mid": float(model[mid]), "knife_edge_db_mid": float(ke_db[mid]),
-        "po_db_mid": float(po_db[mid]), "model_db_mean_middle": float(model[middle].mean()),
-        "po_db_mean_middle": float(po_db[middle].mean()), "knife_edge_db_mean_middle": float(ke_db[middle].mean()),
+        "along_model_db_mean": float(along["model"][middle].mean()),
+        "along_knife_edge_db_mean": float(along["knife_edge"][middle].mean()),
+        "along_po_db_mean": float(along["po"][middle].mean()),
+        "cross_model_db_closest": float(cross["model"][i]),
+        "cross_knife_edge_db_closest": float(cross["knife_edge"][i]),
+        "cross_po_db_closest": float(cross["po"][i]),
+        "cross_model_db_mean_covered": float(cross["model"][on].mean()),
+        "cross_knife_edge_db_mean_covered": float(cross["knife_edge"][on].mean()),
+        "cross_po_db_mean_covered": float(cross["po"][on].mean()),
+        "cross_model_db_max_off_line": float(cross["model"][cross["y"].abs() > 1.0].abs().max()),
     }
