@@ -335,3 +335,29 @@ def test_twin_adds_the_correction_when_the_tracer_gives_vertices() -> None:
         base = twin.tracer.target_paths(ellipsoids=twin.ellipsoids([walker], times), multipath=True)
         counts[(shadowing, stub)] = twin.paths([walker], times).num_paths - base.num_paths
     assert counts == {(True, True): 1, (False, True): 0, (True, False): 0}
+
+
+def test_product_combination_counts_overlapping_segments() -> None:
+    """combine='product' multiplies every segment's factor: deeper than the dominant edge when
+    segments overlap in the leg's view (the walker seen from the side, arm over the torso)."""
+    _, vertices, _ = wall_path()
+    ell = Walker(start=(4.0, -2.0), heading_rad=math.pi / 2).ellipsoids(torch.linspace(0, 4 / 1.4, 80, dtype=torch.float64))
+    dom = 20 * torch.log10(shadow_transmission(vertices, ell, LAM).abs())
+    prod = 20 * torch.log10(shadow_transmission(vertices, ell, LAM, combine="product").abs())
+    assert (prod.min() < dom.min() - 5) and (prod[dom == 0] == 0).all()
+    with pytest.raises(InputTensorError):
+        shadow_transmission(vertices, ell, LAM, combine="sum")
+
+
+@pytest.mark.parametrize("dtype", [torch.float32, torch.float64])
+def test_sphere_centred_on_the_leg_is_a_knife_edge_at_its_radius(dtype: torch.dtype) -> None:
+    """Exactly on the leg (no direction to the leg): the clearance is the nearest edge, the radius
+    (for an ellipsoid, its smallest transverse semi-axis)."""
+    length, d1 = 6.0, 2.0
+    k = math.sqrt(2 / LAM * (1 / d1 + 1 / (length - d1)))
+    centres = torch.tensor([[[d1, 0.0, 0.0]], [[d1, 0.0, 0.0]]], dtype=dtype)
+    semi = torch.tensor([[[0.1, 0.1, 0.1]], [[0.3, 0.12, 0.2]]], dtype=dtype)
+    ell = Ellipsoids(centres, semi, torch.eye(3, dtype=dtype).expand(2, 1, 3, 3), torch.zeros(2, 1, 3, dtype=dtype))
+    t = shadow_transmission(torch.tensor([[[0.0, 0, 0], [length, 0, 0]]], dtype=dtype), ell, LAM, segments_per_person=1)
+    ref = ref_knife_edge(np.array([0.1, 0.12]) * k)
+    np.testing.assert_allclose(t[:, 0].to(torch.complex128).numpy(), ref, atol=2e-4 if dtype == torch.float64 else 2e-3)
