@@ -82,6 +82,7 @@ from radaraug.sensor.paths import Paths
 _SERIES_MAX = 3.5  # |x| below which the power series is used (its cancellation error is ~1e-8 there)
 _SERIES_TERMS = 85  # (pi x^2 / 2)^n / n! * x < 1e-16 at x = 3.5 for n >= 85
 _ASYMPTOTIC_TERMS = 9  # smallest asymptotic term at x = 3.5 is ~1e-9 relative
+_DENSE_TABLE_MAX = 2**24  # entries of the dominant-edge table; beyond, the keys are sorted instead
 
 
 def fresnel_integrals(x: torch.Tensor) -> tuple[torch.Tensor, torch.Tensor]:
@@ -274,10 +275,12 @@ def shadow_transmission(
 ) -> torch.Tensor:
     """Field transmission of each static path through the people's body segments.
 
-    Vectorized over (snapshot, path, leg, segment) after a cull: each person's bounding sphere
-    (``segments_per_person`` consecutive segments; all segments form one group when ``S`` is not
-    a multiple) is tested against every leg with a margin of ``nu_cut`` Fresnel-zone units, and
-    only the surviving (snapshot, leg, person) triples are expanded to segments.
+    Vectorized over (snapshot, path, leg, segment) after two culls: each person's bounding sphere
+    over the whole batch (``segments_per_person`` consecutive segments; all segments form one
+    group when ``S`` is not a multiple) against every leg, then every segment's bounding sphere
+    at every snapshot against the surviving legs (matrix products), each with a margin of the
+    clearance where ``nu = -nu_cut``. Only the surviving (snapshot, segment, leg) triples get a
+    silhouette, and one knife-edge factor is evaluated per (snapshot, path, leg, person).
 
     Args:
         vertices: ``(P, V, 3)`` path vertices (radar centre, interaction points, radar centre;
@@ -396,10 +399,16 @@ def shadow_transmission(
         # One knife edge per (snapshot, path, leg, person): the segment with the largest nu.
         # A dense (snapshot * path * leg * person) table: cheaper than sorting the keys.
         key = (row * num_legs + li[keep]) * ng + si[keep] // g
-        dense = torch.full((nb * num_p * num_legs * ng,), -math.inf, dtype=nu.dtype, device=device)
-        dense.scatter_reduce_(0, key, nu, reduce="amax")
-        uniq = torch.nonzero(dense > -math.inf)[:, 0]
-        nu = dense[uniq]
+        table = nb * num_p * num_legs * ng
+        if table <= _DENSE_TABLE_MAX:  # a dense table is cheaper than sorting the keys
+            dense = torch.full((table,), -math.inf, dtype=nu.dtype, device=device)
+            dense.scatter_reduce_(0, key, nu, reduce="amax")
+            uniq = torch.nonzero(dense > -math.inf)[:, 0]
+            nu = dense[uniq]
+        else:
+            uniq, inv = torch.unique(key, return_inverse=True)
+            nu = torch.full(uniq.shape, -math.inf, dtype=nu.dtype, device=device).scatter_reduce_(
+                0, inv, nu, reduce="amax")
         row = uniq // (num_legs * ng)
     nu64 = nu.to(torch.float64)
     f = 1 + _taper(nu64, nu_full, nu_cut) * (knife_edge(nu64) - 1)

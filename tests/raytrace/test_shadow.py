@@ -361,3 +361,13 @@ def test_sphere_centred_on_the_leg_is_a_knife_edge_at_its_radius(dtype: torch.dt
     t = shadow_transmission(torch.tensor([[[0.0, 0, 0], [length, 0, 0]]], dtype=dtype), ell, LAM, segments_per_person=1)
     ref = ref_knife_edge(np.array([0.1, 0.12]) * k)
     np.testing.assert_allclose(t[:, 0].to(torch.complex128).numpy(), ref, atol=2e-4 if dtype == torch.float64 else 2e-3)
+
+
+def test_dominant_edge_sorted_keys_match_the_dense_table(monkeypatch: pytest.MonkeyPatch) -> None:
+    from radaraug.raytrace import shadow
+
+    _, vertices, _ = wall_path()
+    ell = Walker(start=(4.0, -2.0), heading_rad=math.pi / 2).ellipsoids(torch.linspace(0, 3, 40, dtype=torch.float64))
+    dense = shadow_transmission(vertices, ell, LAM)
+    monkeypatch.setattr(shadow, "_DENSE_TABLE_MAX", 0)
+    torch.testing.assert_close(shadow_transmission(vertices, ell, LAM), dense)
