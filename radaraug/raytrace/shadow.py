@@ -386,6 +386,20 @@ def shadow_transmission(
     keep = (d1 > 0) & (d1 < leg_len)
     bi, si, pi_, li, d1, rel, direction, leg_len, flat_leg = (
         x[keep] for x in (bi, si, pi_, li, d1, rel, direction, leg_len, flat_leg))
+    table = nb * num_p * num_legs * ng
+    if combine == "dominant" and table <= _DENSE_TABLE_MAX and bi.shape[0]:
+        # Prune segments that cannot be their person's dominant edge on this leg: the clearance
+        # lies between (smallest semi-axis - distance) and (largest semi-axis - distance) (the
+        # silhouette contains the disk of the smallest semi-axis and lies in the sphere of the largest).
+        k_nu = torch.sqrt(2.0 / wavelength * (1 / d1.clamp(min=1e-9) + 1 / (leg_len - d1).clamp(min=1e-9)))
+        perp = torch.sqrt(((rel * rel).sum(-1) - d1 * d1).clamp(min=0))
+        key = ((bi * num_p + pi_) * num_legs + li) * ng + si // g
+        best_lower = torch.full((table,), -math.inf, dtype=dtype, device=device)
+        best_lower.scatter_reduce_(0, key, k_nu * (semi[bi, si].amin(-1) - perp), reduce="amax")
+        # 1e-4 of slack in nu for rounding; ties keep both.
+        keep = k_nu * (seg_r[bi, si] - perp) >= best_lower[key] - 1e-4
+        bi, si, pi_, li, d1, rel, direction, leg_len, flat_leg = (
+            x[keep] for x in (bi, si, pi_, li, d1, rel, direction, leg_len, flat_leg))
     e1f, e2f = e1.reshape(-1, 3)[flat_leg], e2.reshape(-1, 3)[flat_leg]
     h = silhouette_clearance(rel, d1, direction, e1f, e2f, shape_all[bi, si])
     d2 = leg_len - d1
@@ -399,7 +413,6 @@ def shadow_transmission(
         # One knife edge per (snapshot, path, leg, person): the segment with the largest nu.
         # A dense (snapshot * path * leg * person) table: cheaper than sorting the keys.
         key = (row * num_legs + li[keep]) * ng + si[keep] // g
-        table = nb * num_p * num_legs * ng
         if table <= _DENSE_TABLE_MAX:  # a dense table is cheaper than sorting the keys
             dense = torch.full((table,), -math.inf, dtype=nu.dtype, device=device)
             dense.scatter_reduce_(0, key, nu, reduce="amax")
