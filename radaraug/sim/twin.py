@@ -16,6 +16,7 @@ import torch
 
 from radaraug.config import RadarConfig
 from radaraug.errors import ConfigError, InputTensorError
+from radaraug.raytrace.shadow import shadow_correction_paths
 from radaraug.raytrace.tracer import RayTracer
 from radaraug.scene.geometry import Ellipsoids
 from radaraug.scene.scene import Scene
@@ -39,10 +40,13 @@ class DigitalTwin:
         device: where to simulate (default CPU).
         dtype: real dtype of the tracer (float32; the receiver follows the paths' dtype).
         static_signal: the room's signal from an earlier :meth:`static_signal` of the same
-            scene, config and receiver (skips the room's SBR trace, seconds of work).
+            scene, config and receiver (skips the room's trace and synthesis).
         profile: a fitted twin profile (:class:`~radaraug.sensor.profile.TwinProfile`, its JSON
             path or dict, e.g. written by ``radaraug diagnose``): the receiver is built from it.
             Give ``receiver`` or ``profile``, not both.
+        shadowing: the people shadow the room's paths (knife-edge diffraction by their body
+            segments, :mod:`radaraug.raytrace.shadow`); needs the static paths' geometry
+            (:meth:`RayTracer.static_vertices`, given by the default image method, not by SBR).
     """
 
     def __init__(
@@ -57,12 +61,14 @@ class DigitalTwin:
         dtype: torch.dtype = torch.float32,
         static_signal: torch.Tensor | None = None,
         profile: Any = None,
+        shadowing: bool = True,
     ) -> None:
         self.scene = scene
         self.config = config or scene.config
         self.device = torch.device(device)
         self.dtype = dtype
         self.multipath = multipath
+        self.shadowing = shadowing
         options = dict(tracer_options or {})
         self.tracer = RayTracer(
             scene.room.to(self.device), scene.radar, self.config, device=self.device, dtype=dtype, **options,
@@ -108,7 +114,16 @@ class DigitalTwin:
             z = torch.zeros(int(times.shape[0]), 0, rx, dtype=self.dtype, device=self.device)
             c = torch.complex64 if self.dtype == torch.float32 else torch.complex128
             return Paths(z, z.clone(), z.to(c))
-        return self.tracer.target_paths(ellipsoids=ell, multipath=self.multipath)
+        paths = self.tracer.target_paths(ellipsoids=ell, multipath=self.multipath)
+        # The room's signal is synthesized once; people shadowing it enter as correction paths
+        # ((T - 1) * a at the static delays). SBR static paths have no vertices: no shadowing.
+        vertices = self.tracer.static_vertices() if self.shadowing else None
+        if vertices is not None:
+            correction = shadow_correction_paths(
+                self.tracer.static_paths(), vertices, ell, self.config.wavelength_m,
+            )
+            paths = Paths.cat([paths, correction.map(lambda t: t.to(self.device))])
+        return paths
 
     @torch.no_grad()
     def simulate(
