@@ -510,13 +510,14 @@ def _with_static(moving: Paths, strong: Paths) -> Paths:
     kind_s = s.kind if s.kind is not None else torch.zeros(t, k, dtype=torch.int8, device=dev)
     mask_m = moving.mask if moving.mask is not None else torch.ones(moving.delay_s.shape[:-1], dtype=torch.bool,
                                                                     device=dev)
-    return Paths(
-        delay_s=torch.cat([moving.delay_s, s.delay_s.to(moving.delay_s.dtype)], dim=-2),
-        delay_rate=torch.cat([moving.delay_rate, s.delay_rate.to(moving.delay_rate.dtype)], dim=-2),
-        amplitude=torch.cat([moving.amplitude, s.amplitude.to(moving.amplitude.dtype)], dim=-2),
-        kind=torch.cat([kind_m.to(torch.int8), kind_s.to(torch.int8)], dim=-1),
-        mask=torch.cat([mask_m, torch.ones(t, k, dtype=torch.bool, device=dev)], dim=-1),
-    )
+    # Paths.cat keeps the moving paths' per-chirp delays and gains (static ones get none).
+    return Paths.cat([
+        Paths(moving.delay_s, moving.delay_rate, moving.amplitude, kind_m.to(torch.int8), mask_m,
+              moving.chirp_delay_s, moving.chirp_gain),
+        Paths(s.delay_s.to(moving.delay_s.dtype), s.delay_rate.to(moving.delay_rate.dtype),
+              s.amplitude.to(moving.amplitude.dtype), kind_s.to(torch.int8),
+              torch.ones(t, k, dtype=torch.bool, device=dev)),
+    ])
 
 
 def _write_file(sim: _Simulator, path: Path, walks: list[dict[str, Any]], noise_base: int, attrs: dict[str, Any],

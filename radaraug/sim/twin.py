@@ -2,9 +2,11 @@
 
 One object per process: it traces the static room once (cached by the ray tracer) and then
 simulates any batch of frame times with tensor work only: people give their body segments at
-the frame times (one snapshot per frame, analytic per-chirp motion from the segment velocities),
-the tracer gives the target paths for all frames at once, and the receiver synthesizes the IF
-signal with the sensor effects and the 12-bit ADC.
+sub-frame instants (a few snapshots per frame, as many as the limbs' acceleration needs, chosen
+per frame by :mod:`radaraug.sim.intra_frame`), the tracer gives the target paths for all of them
+at once, each path's delay is interpolated to every chirp (a reference line plus a per-chirp
+residual and amplitude factor), and the receiver synthesizes the IF signal with the sensor
+effects and the 12-bit ADC.
 """
 
 from __future__ import annotations
@@ -22,6 +24,8 @@ from radaraug.scene.scene import Scene
 from radaraug.sensor.paths import Paths
 from radaraug.sensor.profile import as_profile
 from radaraug.sensor.receiver import FMCWReceiver
+from radaraug.sensor.synthesis import ChirpTiming
+from radaraug.sim.intra_frame import DEFAULT_TOL_CYCLES, intra_frame_paths
 
 
 class DigitalTwin:
@@ -42,6 +46,12 @@ class DigitalTwin:
         profile: a fitted twin profile (:class:`~radaraug.sensor.profile.TwinProfile`, its JSON
             path or dict, e.g. written by ``radaraug diagnose``): the receiver is built from it.
             Give ``receiver`` or ``profile``, not both.
+        intra_frame: motion of the people inside a frame: ``"auto"`` (default) traces as many
+            sub-frame snapshots as each frame needs for its paths' delays to be interpolated to
+            every chirp within ``intra_frame_tol_cycles`` (see :mod:`radaraug.sim.intra_frame`);
+            an int fixes the number of knot intervals per frame; ``0`` is one snapshot per frame
+            with each path's delay extrapolated linearly (limb micro-Doppler as sharp lines).
+        intra_frame_tol_cycles: tolerance of the automatic choice, carrier cycles of delay.
     """
 
     def __init__(
@@ -56,6 +66,8 @@ class DigitalTwin:
         dtype: torch.dtype = torch.float32,
         static_signal: torch.Tensor | None = None,
         profile: Any = None,
+        intra_frame: int | str = "auto",
+        intra_frame_tol_cycles: float = DEFAULT_TOL_CYCLES,
     ) -> None:
         self.scene = scene
         self.config = config or scene.config
@@ -72,6 +84,15 @@ class DigitalTwin:
             receiver = as_profile(profile).receiver(self.config)
         self.receiver = (receiver or FMCWReceiver(self.config)).to(self.device)
         self._static_signal = None if static_signal is None else static_signal.to(self.device)
+        if not (intra_frame == "auto" or (isinstance(intra_frame, int) and not isinstance(intra_frame, bool)
+                                          and intra_frame >= 0)):
+            raise ConfigError(f"intra_frame must be 'auto' or a number of knot intervals >= 0, got {intra_frame!r}")
+        if not (intra_frame_tol_cycles > 0):
+            raise ConfigError(f"intra_frame_tol_cycles must be positive, got {intra_frame_tol_cycles!r}")
+        self.intra_frame = intra_frame
+        self.intra_frame_tol_cycles = float(intra_frame_tol_cycles)
+        self.last_intervals: torch.Tensor | None = None
+        """Knot intervals each frame of the last :meth:`paths` call used (``(T,)``; 0: one snapshot)."""
 
     def static_signal(self) -> torch.Tensor:
         """The room's contribution ``(rx, chirps, samples)``: traced and synthesized once.
@@ -100,14 +121,24 @@ class DigitalTwin:
                           e.velocities.to(**cast), e.material)
 
     def paths(self, people: Sequence[Any], times: torch.Tensor) -> Paths:
-        """Paths of the people at each time ``(T, P, RX)`` (the room's are in :meth:`static_signal`)."""
-        ell = self.ellipsoids(people, times)
-        if ell is None:
+        """Paths of the people over the frames starting at ``times`` ``(T, P, RX)`` (the room's are
+        in :meth:`static_signal`), with per-chirp delays and gains ``(T, P, chirps)`` unless
+        ``intra_frame=0``."""
+        if not people:
             rx = self.config.num_rx
             z = torch.zeros(int(times.shape[0]), 0, rx, dtype=self.dtype, device=self.device)
             c = torch.complex64 if self.dtype == torch.float32 else torch.complex128
+            self.last_intervals = torch.zeros(int(times.shape[0]), dtype=torch.long)
             return Paths(z, z.clone(), z.to(c))
-        return self.tracer.target_paths(ellipsoids=ell, multipath=self.multipath)
+
+        def trace(t: torch.Tensor) -> Paths:
+            return self.tracer.target_paths(ellipsoids=self.ellipsoids(people, t), multipath=self.multipath)
+
+        paths, self.last_intervals = intra_frame_paths(
+            trace, times, ChirpTiming.from_config(self.config), intervals=self.intra_frame,
+            tol_cycles=self.intra_frame_tol_cycles,
+        )
+        return paths
 
     @torch.no_grad()
     def simulate(
