@@ -38,7 +38,6 @@ number ``P``: only the slow-time side of the synthesis gains per-chirp terms.
 
 from __future__ import annotations
 
-import math
 from collections.abc import Callable
 
 import torch
@@ -72,15 +71,38 @@ def _hermite(y: torch.Tensor, x: torch.Tensor) -> torch.Tensor:
     k = y.shape[-1] - 1
     if k == 1:
         return y[..., :1] + (y[..., 1:] - y[..., :1]) * x
-    s = torch.empty_like(y)
-    s[..., 1:-1] = (y[..., 2:] - y[..., :-2]) / 2
-    s[..., 0] = (-3 * y[..., 0] + 4 * y[..., 1] - y[..., 2]) / 2
-    s[..., -1] = (3 * y[..., -1] - 4 * y[..., -2] + y[..., -3]) / 2
+    s = _slopes(y)
     i = x.floor().clamp(0, k - 1).long()
     u = x - i
     u2, u3 = u * u, u * u * u
     h00, h10, h01, h11 = 2 * u3 - 3 * u2 + 1, u3 - 2 * u2 + u, -2 * u3 + 3 * u2, u3 - u2
     return (h00 * y[..., i] + h10 * s[..., i] + h01 * y[..., i + 1] + h11 * s[..., i + 1])
+
+
+def _hermite_integral(y: torch.Tensor, x: torch.Tensor) -> torch.Tensor:
+    """``int_0^x`` of :func:`_hermite`'s interpolant of ``y`` ``(..., K+1)`` (knot units), at
+    ``x`` ``(Q,)`` in [0, K]: closed form (the cubic's antiderivative), ``(..., Q)``."""
+    k = y.shape[-1] - 1
+    if k == 1:
+        return y[..., :1] * x + (y[..., 1:] - y[..., :1]) * x * x / 2
+    s = _slopes(y)
+    # Whole intervals: (y_i + y_i+1) / 2 + (s_i - s_i+1) / 12, accumulated.
+    whole = (y[..., :-1] + y[..., 1:]) / 2 + (s[..., :-1] - s[..., 1:]) / 12
+    before = torch.cat([torch.zeros_like(whole[..., :1]), torch.cumsum(whole, dim=-1)], dim=-1)
+    i = x.floor().clamp(0, k - 1).long()
+    u = x - i
+    u2, u3, u4 = u * u, u * u * u, u * u * u * u
+    a00, a10, a01, a11 = u4 / 2 - u3 + u, u4 / 4 - 2 * u3 / 3 + u2 / 2, -u4 / 2 + u3, u4 / 4 - u3 / 3
+    return before[..., i] + a00 * y[..., i] + a10 * s[..., i] + a01 * y[..., i + 1] + a11 * s[..., i + 1]
+
+
+def _slopes(y: torch.Tensor) -> torch.Tensor:
+    """Finite-difference slopes (per knot) of knot values ``(..., K+1)``, ``K >= 2``."""
+    s = torch.empty_like(y)
+    s[..., 1:-1] = (y[..., 2:] - y[..., :-2]) / 2
+    s[..., 0] = (-3 * y[..., 0] + 4 * y[..., 1] - y[..., 2]) / 2
+    s[..., -1] = (3 * y[..., -1] - 4 * y[..., -2] + y[..., -3]) / 2
+    return s
 
 
 def _linear(y: torch.Tensor, x: torch.Tensor) -> torch.Tensor:
@@ -233,15 +255,6 @@ def _assemble(groups, n_frames: int, tc: torch.Tensor, span: float, kind: torch.
     tcd = tc.to(dev)
     t_mean = tcd.mean()
     tcen = tcd - t_mean
-    # Integration grid: [0, t_d] and every chirp interval in SUBSTEPS steps (chirp m's first
-    # sample is grid point n_d + SUBSTEPS m); trapezoid error ~ (h^3 / 12) r'' per step, ~1e-3
-    # carrier cycles over a frame for a foot.
-    sub = 4
-    step = (float(tc[1] - tc[0]) if m > 1 else span) / sub
-    n_d = max(1, int(math.ceil(float(tc[0]) / step)))
-    grid = torch.cat([torch.linspace(0.0, float(tc[0]), n_d + 1, dtype=torch.float64),
-                      tc[0] + step * torch.arange(1, (m - 1) * sub + 1, dtype=torch.float64)]).to(dev)
-    at_chirp = n_d + sub * torch.arange(m, device=dev)
     for idx, k_max, d_all, r_all, a_all, level in groups:
         idx = idx.to(dev)
         level = level.to(dev)
@@ -253,10 +266,9 @@ def _assemble(groups, n_frames: int, tc: torch.Tensor, span: float, kind: torch.
             sel = level == k
             r, a = (t[..., :: k_max // k] for t in (r_all, a_all))
             r_mean = r.mean(dim=-2)  # (F, P, K+1): the RX channels share the motion's shape
-            rg = _hermite(r_mean, (grid / span * k).clamp(max=k))  # (F, P, G)
-            integral = torch.cat([torch.zeros_like(rg[..., :1]), torch.cumsum(
-                (rg[..., 1:] + rg[..., :-1]) * (grid[1:] - grid[:-1]) / 2, dim=-1)], -1)
-            motion = torch.where(sel[..., None], integral[..., at_chirp], motion)  # delay change since t = 0
+            # Delay change since t = 0: the interpolated rate integrated in closed form.
+            integral = _hermite_integral(r_mean, tcd / span * k) * (span / k)  # (F, P, M)
+            motion = torch.where(sel[..., None], integral, motion)
             mag = a.abs().mean(dim=-2)  # (F, P, K+1)
             # Amplitude relative to the first knot where the slot is live (its phase, RX balance).
             live = mag > 0
