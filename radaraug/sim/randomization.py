@@ -521,7 +521,9 @@ def simulate_item(twin: DigitalTwin, people: Sequence[Any], times: torch.Tensor,
     included: it is scaled by the item's gain offset, which by linearity equals tracing the room
     through the offset receiver.
     """
-    paths = people_paths(twin, people, times, draw.rcs_scale_dB)
+    from radaraug.sim.twin import negligible_paths_off
+
+    paths = negligible_paths_off(people_paths(twin, people, times, draw.rcs_scale_dB))  # as DigitalTwin.simulate
     if draw.scatterers:
         paths = Paths.cat([paths, static_scatterer_paths(twin.config, draw.scatterers, paths)])
     pn = None if not draw.phase_noise_rms_Hz else (draw.phase_noise_rms_Hz, phase_noise_paths)
