@@ -28,9 +28,8 @@ from radaraug.sensor.receiver import FMCWReceiver
 from radaraug.sensor.synthesis import ChirpTiming
 from radaraug.sim.intra_frame import DEFAULT_TOL_CYCLES, intra_frame_paths
 
-
 WEAK_PATH_DB = 100.0
-"""A people's path more than this below its frame's strongest people's path is left out of the
+"""A person's path more than this below its frame's strongest person's path is left out of the
 synthesis (:func:`negligible_paths_off`)."""
 
 
