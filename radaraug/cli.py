@@ -9,6 +9,7 @@ Sub-commands::
     radaraug bench training [--json]            recipe training step vs a bare ResNet18 step
     radaraug bench diagnose [--json]            diagnose a 100-frame paper-config capture vs simulating it
     radaraug bench static-room [--json]         room trace: image method vs SBR ray counts, convergence
+    radaraug bench micro-doppler --out PNG      a walker's micro-Doppler: one snapshot vs motion in the frame
     radaraug trace SCENE [--time T] [--json]    the propagation paths of one instant
     radaraug simulate SCENE --frames N --seed S -o out.h5 [--shard i/n] [--profile P]
     radaraug demo [-o DIR]                      the main job on the built-in default
@@ -103,6 +104,10 @@ def _cmd_bench(args: argparse.Namespace) -> int:
         from radaraug.bench.static_room import run_static_room_benchmark
 
         result = run_static_room_benchmark(out=args.out, figure=args.figure)
+    elif args.what == "micro-doppler":
+        from radaraug.bench.micro_doppler import micro_doppler_before_after
+
+        result = micro_doppler_before_after(args.out or "micro_doppler_before_after.png")
     elif args.what == "training":
         from radaraug.bench.training import run_training_benchmark
 
@@ -233,7 +238,8 @@ def build_parser() -> argparse.ArgumentParser:
     fit.set_defaults(func=_cmd_fit_cdr)
 
     bench = sub.add_parser("bench", help="benchmarks (figures as ratios against a same-process baseline)")
-    bench.add_argument("what", choices=["transforms", "twin", "training", "diagnose", "static-room"])
+    bench.add_argument("what", choices=["transforms", "twin", "training", "diagnose", "static-room",
+                                        "micro-doppler"])
     bench.add_argument("--batch", type=int, default=32, help="transforms, training: frames per batch")
     bench.add_argument("--repeats", type=int, default=5, help="transforms: timed repetitions; training: steps")
     bench.add_argument("--blocks", type=int, default=8, help="twin: 16-frame blocks per process")
@@ -241,7 +247,7 @@ def build_parser() -> argparse.ArgumentParser:
     bench.add_argument("--no-compile", action="store_true", help="twin: skip the torch.compile kernel")
     bench.add_argument("--device", default="cpu")
     bench.add_argument("--json", action="store_true", help="print the figures as one JSON object")
-    bench.add_argument("--out", default=None, help="also write the JSON figures to this file")
+    bench.add_argument("--out", default=None, help="also write the JSON figures to this file (micro-doppler: the PNG)")
     bench.add_argument("--figure", default=None, help="static-room: write the range-profile figure (PNG) here")
     bench.set_defaults(func=_cmd_bench)
 

@@ -1,11 +1,13 @@
 """`radaraug bench twin`: end-to-end simulation throughput of the paper's scene, with baselines.
 
 Scene: the built-in corridor with two walkers (``corridor_two_walkers``) at the paper's config
-(3 RX x 64 chirps x 256 samples), first-order multipath on, the default BGT60TR13C receiver.
+(3 RX x 64 chirps x 256 samples), people's multipath on (first order and wall-person-same-wall),
+motion inside the frame on (automatic sub-frame snapshots), the default BGT60TR13C receiver.
 Figures (each against a baseline measured in the same process):
 
 * ``frames_per_s_1proc``: one process, one torch thread, blocks of 16 frames; as a ratio to the
-  sensor's own frame rate (10 frames/s: real time);
+  sensor's own frame rate (10 frames/s: real time); ``frames_per_s_1proc_one_snapshot``: the
+  same with one snapshot per frame (``intra_frame=0``), and the cost ratio of intra-frame motion;
 * ``frames_per_s_workers``: the same work spread over ``workers`` DataLoader processes (the
   on-the-fly training case on a 2-core machine), ratio to real time;
 * ``receiver_speedup_fast_vs_exact``: the fast (GEMM) IF synthesis against the exact sum of
@@ -85,6 +87,18 @@ def run_twin_benchmark(
             run_block(i)
         sync()
         fps_1 = blocks * BLOCK / (time.perf_counter() - t0)
+        knots = float(twin.last_intervals.double().mean())
+
+        # The same blocks with one snapshot per frame (the cost of motion inside the frame).
+        one = DigitalTwin(scene, device=device, static_signal=static, intra_frame=0)
+        one.simulate(scene.people, twin.frame_times(range(BLOCK)), generators=item_generator(0, 0, device=device))
+        sync()
+        t0 = time.perf_counter()
+        for i in range(blocks):
+            times = one.frame_times(range(i * BLOCK, (i + 1) * BLOCK))
+            one.simulate(scene.people, times, generators=item_generator(0, i, device=device))
+        sync()
+        fps_one = blocks * BLOCK / (time.perf_counter() - t0)
 
         # Receiver alone on the twin's own paths: fast (GEMM) vs exact synthesis, same paths.
         paths = twin.paths(scene.people, twin.frame_times(range(BLOCK)))
@@ -96,7 +110,8 @@ def run_twin_benchmark(
 
         def synth(method: str) -> torch.Tensor:
             out = synthesize(*args, timing=timing, dtype=torch.float64 if method == "exact" else st.dtype,
-                             method=method, taylor_tol=rx.taylor_tol)
+                             method=method, taylor_tol=rx.taylor_tol, chirp_delay=st.chirp_delay,
+                             chirp_gain=st.chirp_gain)
             sync()
             return out
 
@@ -128,7 +143,7 @@ def run_twin_benchmark(
     sensor_fps = 1 / twin.config.frame_repetition_time_s
     result: dict[str, Any] = {
         "benchmark": "twin",
-        "scene": "corridor_two_walkers (2 walkers, 20 m corridor, first-order multipath)",
+        "scene": "corridor_two_walkers (2 walkers, 20 m corridor, people's multipath up to wall-person-wall)",
         "frame_shape": [cfg.num_rx, cfg.num_chirps_per_frame, cfg.num_samples_per_chirp],
         "device": device,
         "room_trace_and_synthesis_s": round(room_s, 2),
@@ -136,6 +151,9 @@ def run_twin_benchmark(
         "people_paths_per_frame": int(paths.delay_s.shape[-2]),
         "frames_per_s_1proc": round(fps_1, 1),
         "realtime_ratio_1proc": round(fps_1 / sensor_fps, 2),
+        "frames_per_s_1proc_one_snapshot": round(fps_one, 1),
+        "intra_frame_cost_ratio": round(fps_one / fps_1, 3),
+        "intra_frame_knot_intervals_mean": round(knots, 2),
         "workers": workers,
         "frames_per_s_workers": None if fps_w is None else round(fps_w, 1),
         "realtime_ratio_workers": None if fps_w is None else round(fps_w / sensor_fps, 2),

@@ -145,9 +145,10 @@ class TwinSource:
             paths = Paths(z, z.clone(), z.to(torch.complex128))
         if self.mean_chirp is not None:
             est = self._estimated_paths(rx, chain)
-            paths = Paths(*(torch.cat([a, b[None].expand(num_frames, -1, -1).to(a.dtype)], dim=1)
-                            for a, b in ((paths.delay_s, est.delay_s), (paths.delay_rate, est.delay_rate),
-                                         (paths.amplitude, est.amplitude))))
+            est = Paths(*(b[None].expand(num_frames, -1, -1).to(a.dtype)
+                          for a, b in ((paths.delay_s, est.delay_s), (paths.delay_rate, est.delay_rate),
+                                       (paths.amplitude, est.amplitude))))
+            paths = Paths.cat([paths, est])  # keeps the moving paths' per-chirp motion
         g = torch.Generator().manual_seed(int(seed))
         times = (torch.arange(num_frames, dtype=torch.float64) + first_frame) * self.config.frame_repetition_time_s
         return rx(paths, generator=g, frame_start_s=times, static_signal=static)

@@ -20,6 +20,14 @@ bistatic equivalence theorem, exact for a sphere in geometric optics), times the
 Fresnel coefficient. A path exists when the segment -> image-radar ray first meets the room on
 that plane and the wall -> radar leg is clear.
 
+**Second-order multipath** (same switch): radar -> wall ``k`` -> segment -> wall ``k`` -> radar,
+the person seen monostatically from the radar's image in plane ``k`` (delay ``|img(TX) - p| +
+|p - img(RX)|`` with ``p`` the specular point towards the image, root RCS times ``Gamma_k^2``,
+both bounces at the same angle), valid under the same checks. These are the strongest
+second-order ghosts of a person (both bounces specular); paths via two different walls
+(``j != k``, a corner's double bounce) and higher orders are not traced, and the legs between
+the wall and the segment are not checked against the other body segments (as for first order).
+
 **Meshes** (``SceneGeometry`` with ``vertex_velocity``): monostatic PO of every facet
 (:func:`radaraug.raytrace.po.facet_root_rcs`), lit where the facet faces the radar and its
 centroid sees the radar past the mesh itself and the room. One path per lit facet, at the
@@ -172,7 +180,9 @@ def ellipsoid_paths(
 ) -> Paths:
     """Paths of ellipsoid segments ``(..., S)`` -> :class:`Paths` ``(..., P, RX)`` with a mask.
 
-    ``P = S`` direct paths, plus ``2 S K`` multipath slots when ``mirrors`` (K planes) is given.
+    ``P = S`` direct paths, plus ``3 S K`` multipath slots when ``mirrors`` (K planes) is given:
+    ``S K`` radar -> wall -> segment -> radar, ``S K`` of the reverse and ``S K`` radar -> wall ->
+    segment -> same wall -> radar, each block segment-major.
     With ``convex_room`` (see :meth:`MirrorPlanes.convex_enclosure`) the room cannot block any
     leg and bounce points are checked against the planes instead of cast against the room.
     """
@@ -267,7 +277,11 @@ def ellipsoid_paths(
         vel_k = vel[:, :, None].expand_as(pk)
         a = _bistatic(pk, root_k, radar.tx, radar.rx, q, vel_k, radar, antenna, ok, first_leg_via=True)
         b = _bistatic(pk, root_k, radar.tx, radar.rx, q, vel_k, radar, antenna, ok, first_leg_via=False)
-        for part in (a, b):
+        # Path C (second order, same wall twice): TX -> wall -> segment -> wall -> RX, the segment
+        # seen monostatically from the radar's image in the plane.
+        c2 = _second_order(c, ax, rot, vel, radar, antenna, nrm, off, img, gamma_skin, mirrors, room_bvh,
+                           room_face_material, room_reflectivity, convex_room)
+        for part in (a, b, c2):
             parts.append(tuple(x.reshape(x.shape[0], -1, *x.shape[3:]) for x in part)
                          + (torch.ones(ok.shape[0], ok.shape[1] * k, dtype=torch.int8, device=dev),))
     delay = torch.cat([x[0] for x in parts], dim=1)
@@ -277,6 +291,81 @@ def ellipsoid_paths(
     kind = torch.cat([x[4] for x in parts], dim=1)
     return Paths(delay.reshape(*lead, -1, n_rx), rate.reshape(*lead, -1, n_rx), amp.reshape(*lead, -1, n_rx),
                  kind.reshape(*lead, -1), mask.reshape(*lead, -1))
+
+
+def _second_order(c, ax, rot, vel, radar: RadarGeometry, antenna, nrm, off, img, gamma_skin, mirrors: MirrorPlanes,
+                  room_bvh: TriangleBVH, room_face_material, room_reflectivity, convex_room: bool):
+    """Wall -> segment -> same wall paths ``(N, S, K, RX)``: delay, rate, amplitude, valid.
+
+    Image method: the TX and each RX are mirrored in plane ``k``; the segment scatters
+    monostatically towards the radar's image (specular point ``p`` along the image -> centre
+    direction), the path is ``|img(TX) - p| + |p - img(RX)|``, and both legs cross the plane at
+    the bounce point ``q`` where the ``p`` -> image line meets it (the wall is hit twice at the
+    same angle, so the amplitude carries ``Gamma(theta)^2``). Valid when ``p`` is on the radar's
+    side of the plane, ``q`` lies on that plane's faces (``p`` -> image first meets the room
+    there; convex room: ``q`` is inside every other plane) and the ``q`` -> radar leg is clear.
+    """
+    dev, dt = c.device, c.dtype
+    k = nrm.shape[0]
+
+    def mirror(x: torch.Tensor) -> torch.Tensor:  # (..., 3) -> (..., K, 3)
+        return x[..., None, :] - 2 * ((x[..., None, :] * nrm).sum(-1) - off)[..., None] * nrm
+
+    cc = c[:, :, None]  # (N, S, 1, 3)
+    u = cc - img  # image radar -> centre, (N, S, K, 3)
+    u = u / u.norm(dim=-1, keepdim=True)
+    ax_k = ax[:, :, None].expand(-1, -1, k, -1)
+    rot_k = rot[:, :, None].expand(-1, -1, k, -1, -1)
+    sigma, h = ellipsoid_rcs(ax_k, (rot_k.transpose(-1, -2) @ u[..., None])[..., 0])
+    p = cc - h[..., None] * u  # specular point facing the image radar
+    to_img = img - p
+    r_img = to_img.norm(dim=-1)
+    u_img = to_img / r_img[..., None]
+    denom = (u_img * nrm).sum(-1)
+    t_q = (off - (p * nrm).sum(-1)) / torch.where(denom.abs() < 1e-12, torch.ones_like(denom), denom)
+    q = p + t_q[..., None] * u_img
+    radar_side = (nrm @ radar.centre) - off  # (K,)
+    same_side = ((p * nrm).sum(-1) - off) * radar_side > 0
+    u_wall_in = q - radar.centre
+    u_wall_in = u_wall_in / u_wall_in.norm(dim=-1, keepdim=True)  # radar -> wall
+    if convex_room:
+        side = ((q[..., None, :] * nrm).sum(-1) - off) * torch.sign(radar_side)  # (N, S, K, K)
+        tol = 1e-5 * (1 + off.abs().max())
+        ok = same_side & (side >= -tol).all(-1)
+        wall_material = mirrors.plane_material.to(dev).expand(q.shape[:-1])
+    else:
+        hit = room_bvh.intersect(p.reshape(-1, 3), u_img.reshape(-1, 3), t_min=0.0)
+        plane_id = torch.arange(k, device=dev).expand(q.shape[:-1]).reshape(-1)
+        face = hit.face
+        ok = (face >= 0) & (mirrors.face_plane.to(dev)[face.clamp_min(0)] == plane_id) & same_side.reshape(-1)
+        r_wr = (radar.centre - q).norm(dim=-1).reshape(-1)
+        eps_q = surface_offset(q).reshape(-1)
+        clear = ~room_bvh.any_hit(q.reshape(-1, 3), -u_wall_in.reshape(-1, 3), r_wr - eps_q, t_min=eps_q)
+        ok = (ok & clear).reshape(q.shape[:-1])
+        wall_material = room_face_material[face.clamp_min(0)].reshape(q.shape[:-1])
+    cos_w = (u_wall_in * nrm).sum(-1).abs()
+    g_wall = room_reflectivity(wall_material, cos_w, u_wall_in, nrm.expand_as(u_wall_in), radar.polarization)
+    root = gamma_skin * sigma.sqrt() * g_wall * g_wall
+    tx_img = mirror(radar.tx)  # (K, 3)
+    rx_img = mirror(radar.rx).transpose(0, 1)  # (K, RX, 3)
+    r_t = (p - tx_img).norm(dim=-1)  # (N, S, K)
+    u_rp = p[..., None, :] - rx_img  # (N, S, K, RX, 3): image RX -> p
+    r_r = u_rp.norm(dim=-1)
+    # Antenna gains towards the bounce point (the direction the radar sees the ghost in).
+    g_t = antenna.gain(radar.to_radar_dirs(_unit(q - radar.tx)))
+    g_r = antenna.gain(radar.to_radar_dirs(_unit(q[..., None, :] - radar.rx)))
+    amp = radar_amplitude(root[..., None], r_t[..., None], r_r, g_t[..., None], g_r, radar.wavelength)
+    amp = torch.where(ok[..., None], amp, torch.zeros_like(amp))
+    delay = (r_t[..., None] + r_r) / SPEED_OF_LIGHT
+    # Both legs leave the segment towards the images: d|p - img|/dt = v . (p - img) / |p - img|.
+    rate_t = (vel[:, :, None] * _unit(p - tx_img)).sum(-1)
+    rate_r = (vel[:, :, None, None] * (u_rp / r_r[..., None])).sum(-1)
+    rate = (rate_t[..., None] + rate_r) / SPEED_OF_LIGHT
+    return delay.to(dt), rate.to(dt), amp, ok
+
+
+def _unit(v: torch.Tensor) -> torch.Tensor:
+    return v / v.norm(dim=-1, keepdim=True)
 
 
 def _bistatic(p, root, tx, rx, q, vel, radar: RadarGeometry, antenna, valid, first_leg_via: bool | None = None):

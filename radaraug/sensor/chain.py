@@ -3,8 +3,9 @@
 Until something non-linear or time-domain needs the samples, the signal is kept as
 
 * **paths**: complex coefficients ``C`` (``(…, RX, P)``, ADC float units, coefficient of the
-  positive-frequency component of each real beat tone) with their delays and delay rates, and
-  paths *modulated* by a random process (phase noise);
+  positive-frequency component of each real beat tone) with their delays and delay rates
+  (optionally a per-chirp extra delay and amplitude factor ``(…, 1, P, M)`` for motion inside
+  the frame), and paths *modulated* by a random process (phase noise);
 * **spectrum**: additive signals (thermal noise, spurs, offsets) as the real FFT over fast time
   of each chirp, ``(…, RX, M, N//2 + 1)``.
 
@@ -31,13 +32,16 @@ from radaraug.sensor.synthesis import ChirpTiming, beat_frequency_Hz, synthesize
 class ModulatedPaths:
     """Paths whose contribution is multiplied sample by sample by a real process.
 
-    ``x += multiplier * sum_p Re{coef_p exp(j Phi_p)}``; ``multiplier`` is ``(…, 1 or RX, M, N)``.
+    ``x += multiplier * sum_p Re{coef_p exp(j Phi_p)}``; ``multiplier`` is ``(…, 1 or RX, M, N)``;
+    ``chirp_delay`` / ``chirp_gain`` (``(…, 1, P, M)`` or None) as in :class:`ChainState`.
     """
 
     coef: torch.Tensor
     delay_s: torch.Tensor
     delay_rate: torch.Tensor
     multiplier: torch.Tensor
+    chirp_delay: torch.Tensor | None = None
+    chirp_gain: torch.Tensor | None = None
 
 
 class ChainState:
@@ -53,6 +57,14 @@ class ChainState:
         tx_power_W: transmit power.
         front_end_gain: ADC float units per sqrt(W) at the RX port (0 dB IF gain).
         batch_shape: leading dims of the paths.
+        chirp_delay: ``(…, 1, P, M)`` extra delay of each path at each chirp (intra-frame motion
+            beyond ``tau0 + r t``, shared by the RX channels) or None (zero).
+        chirp_gain: ``(…, 1, P, M)`` real per-chirp amplitude factor or None (one).
+
+    Linear stages scale a path's coefficient by their response at the path's beat frequency from
+    its mean delay and rate (:func:`beat_frequency_Hz`): the per-chirp extra delay of a limb moves
+    its beat frequency by ~ S * 2 * (a few mm) / c, a few hundred Hz, far inside the IF filters'
+    transition bands (tens of kHz wide), so that is not evaluated per chirp.
     """
 
     def __init__(
@@ -69,6 +81,8 @@ class ChainState:
         front_end_gain: float,
         method: str,
         taylor_tol: float,
+        chirp_delay: torch.Tensor | None = None,
+        chirp_gain: torch.Tensor | None = None,
     ) -> None:
         self.config = config
         self.timing = ChirpTiming.from_config(config)
@@ -84,6 +98,8 @@ class ChainState:
         self.coef = coef
         self.delay_s = delay_s
         self.delay_rate = delay_rate
+        self.chirp_delay = chirp_delay
+        self.chirp_gain = chirp_gain
         self.modulated: list[ModulatedPaths] = []
         self.spectrum: torch.Tensor | None = None
         self.samples: torch.Tensor | None = None
@@ -132,11 +148,28 @@ class ChainState:
             ) from e
 
     # ------------------------------------------------------------------ building the signal
-    def add_paths(self, coef: torch.Tensor, delay_s: torch.Tensor, delay_rate: torch.Tensor) -> None:
-        """Append paths ``(…, RX, P')`` (broadcast to the batch shape)."""
+    def add_paths(
+        self, coef: torch.Tensor, delay_s: torch.Tensor, delay_rate: torch.Tensor,
+        chirp_delay: torch.Tensor | None = None, chirp_gain: torch.Tensor | None = None,
+    ) -> None:
+        """Append paths ``(…, RX, P')`` (broadcast to the batch shape), optionally with per-chirp
+        extra delays / gains ``(…, 1, P', M)`` (default zero / one)."""
         if self.samples is not None:
             raise RuntimeError("paths cannot be added after the samples were synthesized")
         shape = (*self.batch_shape, self.num_rx, coef.shape[-1])
+        per_chirp = (*self.batch_shape, 1, coef.shape[-1], self.timing.num_chirps)
+        old_p = self.coef.shape[-1]
+        old_shape = (*self.batch_shape, 1, old_p, self.timing.num_chirps)
+        if self.chirp_delay is not None or chirp_delay is not None:
+            dt = self.delay_s.dtype
+            old = self.chirp_delay if self.chirp_delay is not None else torch.zeros(old_shape, dtype=dt, device=self.device)
+            new = chirp_delay if chirp_delay is not None else torch.zeros((), dtype=dt, device=self.device)
+            self.chirp_delay = torch.cat([old.expand(old_shape), new.to(dt).expand(per_chirp)], dim=-2)
+        if self.chirp_gain is not None or chirp_gain is not None:
+            old = self.chirp_gain if self.chirp_gain is not None else torch.ones(old_shape, dtype=self.dtype,
+                                                                                 device=self.device)
+            new = chirp_gain if chirp_gain is not None else torch.ones((), dtype=self.dtype, device=self.device)
+            self.chirp_gain = torch.cat([old.expand(old_shape), new.to(old.dtype).expand(per_chirp)], dim=-2)
         self.coef = torch.cat([self.coef, coef.to(self.coef.dtype).expand(shape)], dim=-1)
         self.delay_s = torch.cat([self.delay_s, delay_s.to(self.delay_s.dtype).expand(shape)], dim=-1)
         self.delay_rate = torch.cat([self.delay_rate, delay_rate.to(self.delay_rate.dtype).expand(shape)], dim=-1)
@@ -202,15 +235,27 @@ class ChainState:
             h = g[:, None, None] * h
         return h
 
+    def chirp_terms(self, idx: torch.Tensor) -> tuple[torch.Tensor | None, torch.Tensor | None]:
+        """The per-chirp delay and gain ``(…, 1, k, M)`` of the paths ``idx`` ``(…, RX, k)`` (the
+        RX channels pick the same paths), e.g. for a :class:`ModulatedPaths` copy of them."""
+        def pick(t: torch.Tensor | None) -> torch.Tensor | None:
+            if t is None:
+                return None
+            i = idx[..., :1, :, None].expand(*idx.shape[:-2], 1, idx.shape[-1], t.shape[-1])
+            return t.expand(*self.batch_shape, 1, *t.shape[-2:]).gather(-2, i)
+        return pick(self.chirp_delay), pick(self.chirp_gain)
+
     # ------------------------------------------------------------------ samples
     def materialize(self) -> torch.Tensor:
         """Synthesize the samples ``(…, RX, M, N)`` (idempotent)."""
         if self.samples is not None:
             return self.samples
         kw = dict(timing=self.timing, dtype=self.dtype, method=self.method, taylor_tol=self.taylor_tol)
-        x = synthesize(self.coef, self.delay_s, self.delay_rate, **kw)
+        x = synthesize(self.coef, self.delay_s, self.delay_rate, chirp_delay=self.chirp_delay,
+                       chirp_gain=self.chirp_gain, **kw)
         for mod in self.modulated:
-            x = x + mod.multiplier * synthesize(mod.coef, mod.delay_s, mod.delay_rate, **kw)
+            x = x + mod.multiplier * synthesize(mod.coef, mod.delay_s, mod.delay_rate, chirp_delay=mod.chirp_delay,
+                                                chirp_gain=mod.chirp_gain, **kw)
         if self.spectrum is not None:
             x = x + torch.fft.irfft(self.spectrum, n=self.timing.num_samples, dim=-1)
         self.samples = x

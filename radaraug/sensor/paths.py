@@ -5,7 +5,11 @@ with enough information to evaluate them at every chirp of the frame: the receiv
 extrapolates each path's delay linearly over the frame (``tau(t) = delay_s + delay_rate * t``,
 ``t`` measured from the frame's first chirp start). That is accurate while a scatterer's
 acceleration over one frame (~25 ms) moves it by much less than a wavelength's fraction that
-matters for Doppler; a walker's limbs are handled by tracing one snapshot per frame.
+matters for Doppler. A walker's limbs accelerate more than that (a foot's velocity changes by up
+to ~10 Doppler bins in a frame): the optional ``chirp_delay_s`` carries each path's delay
+beyond the linear reference at every chirp, and ``chirp_gain`` a per-chirp amplitude factor
+(a slot that appears or is occluded mid-frame), as :class:`~radaraug.sim.twin.DigitalTwin`
+fills them from sub-frame snapshots.
 """
 
 from __future__ import annotations
@@ -36,6 +40,12 @@ class Paths:
             1 multipath (more than one bounce). Optional.
         mask: ``(..., P)`` bool, False for padding entries (batched snapshots with different
             path counts). Optional; None means all valid.
+        chirp_delay_s: ``(..., P, M)`` extra delay of each path at chirp ``m`` (``M`` chirps of
+            the frame), shared by the RX channels: the delay at chirp ``m``, sample time ``t_n``
+            is ``delay_s + delay_rate * (m T + t_d + t_n) + chirp_delay_s[m]`` (intra-frame
+            acceleration). Optional; None means zero.
+        chirp_gain: ``(..., P, M)`` real amplitude factor of each path at chirp ``m``, shared
+            by the RX channels (``amplitude`` is the reference). Optional; None means one.
     """
 
     delay_s: torch.Tensor
@@ -43,6 +53,8 @@ class Paths:
     amplitude: torch.Tensor
     kind: torch.Tensor | None = None
     mask: torch.Tensor | None = None
+    chirp_delay_s: torch.Tensor | None = None
+    chirp_gain: torch.Tensor | None = None
 
     @property
     def num_paths(self) -> int:
@@ -53,7 +65,8 @@ class Paths:
         """Apply ``fn`` to every tensor (``None`` fields stay ``None``), e.g. to index or expand the batch."""
         return Paths(
             *(fn(t) if t is not None else None for t in
-              (self.delay_s, self.delay_rate, self.amplitude, self.kind, self.mask))
+              (self.delay_s, self.delay_rate, self.amplitude, self.kind, self.mask, self.chirp_delay_s,
+               self.chirp_gain))
         )
 
     def to(self, device: torch.device | str) -> Paths:
@@ -73,10 +86,24 @@ class Paths:
             return torch.cat(full, dim=-1)
 
         d = [p.delay_s for p in items]
+
+        def per_chirp(ts: list[torch.Tensor | None], fill: float) -> torch.Tensor | None:
+            present = [t for t in ts if t is not None]
+            if not present:
+                return None
+            m = present[0].shape[-1]
+            full = [
+                t if t is not None else torch.full((*r.shape[:-1], m), fill, dtype=present[0].dtype, device=r.device)
+                for t, r in zip(ts, d)
+            ]
+            return torch.cat(full, dim=-2)
+
         return Paths(
             delay_s=torch.cat(d, dim=-2),
             delay_rate=torch.cat([p.delay_rate for p in items], dim=-2),
             amplitude=torch.cat([p.amplitude for p in items], dim=-2),
             kind=opt_cat([p.kind for p in items], 0, d),
             mask=opt_cat([p.mask for p in items], True, d),
+            chirp_delay_s=per_chirp([p.chirp_delay_s for p in items], 0.0),
+            chirp_gain=per_chirp([p.chirp_gain for p in items], 1.0),
         )

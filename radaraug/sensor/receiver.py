@@ -240,7 +240,8 @@ class FMCWReceiver(nn.Module):
     def _initial_state(
         self, paths: Paths, generator: torch.Generator | None, frame_start_s: float | torch.Tensor
     ) -> ChainState:
-        delay, rate, amp, mask = _validated(paths, self.config.num_rx)
+        delay, rate, amp, mask, chirp_delay, chirp_gain = _validated(paths, self.config.num_rx,
+                                                                     self.config.num_chirps_per_frame)
         frame_start_s = _validated_start(frame_start_s, tuple(delay.shape[:-2]))
         dtype = delay.dtype
         cdtype = torch.complex64 if dtype == torch.float32 else torch.complex128
@@ -249,11 +250,21 @@ class FMCWReceiver(nn.Module):
         coef = amp.to(cdtype).conj() * (math.sqrt(2 * self.tx_power_W) * self.front_end_gain)
         if mask is not None:
             coef = coef * mask[..., None].to(coef.real.dtype)
+        keep = _live_slots(coef, chirp_gain)
+        if keep is not None:
+            # Slots that are masked (or zero) in every frame of the batch contribute exactly
+            # nothing: dropping them before synthesis saves their GEMM columns (multipath slots
+            # of walls a person cannot be seen in, occluded segments).
+            coef, delay, rate = (t.index_select(-2, keep) for t in (coef, delay, rate))
+            chirp_delay, chirp_gain = (None if t is None else t.index_select(-2, keep)
+                                       for t in (chirp_delay, chirp_gain))
         return ChainState(
             self.config,
             coef.transpose(-1, -2),
             delay.transpose(-1, -2),
             rate.transpose(-1, -2),
+            chirp_delay=None if chirp_delay is None else chirp_delay.to(dtype).unsqueeze(-3),
+            chirp_gain=None if chirp_gain is None else chirp_gain.to(dtype).unsqueeze(-3),
             dtype=dtype,
             generator=generator,
             frame_start_s=frame_start_s,
@@ -316,8 +327,22 @@ def _validated_start(start: float | torch.Tensor, batch_shape: tuple[int, ...]) 
     return value
 
 
-def _validated(paths: Paths, num_rx: int):
-    """Check a Paths object; return (delay, rate, amplitude, mask) tensors."""
+def _live_slots(coef: torch.Tensor, chirp_gain: torch.Tensor | None) -> torch.Tensor | None:
+    """Indices of the path slots ``(…, P, RX)`` that are non-zero in some frame of the batch, or
+    None when all are (nothing to drop)."""
+    if coef.numel() == 0:
+        return None
+    live = coef != 0
+    if chirp_gain is not None:
+        live = live & (chirp_gain != 0).any(-1, keepdim=True)
+    live = live.reshape(-1, *coef.shape[-2:]).any(0).any(-1)  # (P,)
+    if bool(live.all()):
+        return None
+    return live.nonzero()[:, 0]
+
+
+def _validated(paths: Paths, num_rx: int, num_chirps: int):
+    """Check a Paths object; return (delay, rate, amplitude, mask, chirp_delay, chirp_gain) tensors."""
     if not isinstance(paths, Paths):
         raise InputTensorError(f"receiver input must be radaraug.sensor.Paths, got {type(paths).__name__}")
     delay, rate, amp, mask = paths.delay_s, paths.delay_rate, paths.amplitude, paths.mask
@@ -353,4 +378,17 @@ def _validated(paths: Paths, num_rx: int):
             shape = tuple(mask.shape) if isinstance(mask, torch.Tensor) else type(mask).__name__
             raise InputTensorError(f"Paths.mask must be (..., P) = {tuple(delay.shape[:-1])}, got {shape}")
         mask = mask.to(device=delay.device, dtype=torch.bool)
-    return delay, rate.to(delay.dtype), amp, mask
+    per_chirp = []
+    for name in ("chirp_delay_s", "chirp_gain"):
+        t = getattr(paths, name, None)
+        if t is not None:
+            want = (*delay.shape[:-1], num_chirps)
+            if not isinstance(t, torch.Tensor) or tuple(t.shape) != want:
+                got = tuple(t.shape) if isinstance(t, torch.Tensor) else type(t).__name__
+                raise InputTensorError(f"Paths.{name} must be (..., P, chirps) = {want}, got {got}")
+            if not t.is_floating_point() or t.device != delay.device:
+                raise InputTensorError(f"Paths.{name} must be a real tensor on {delay.device}, got {t.dtype} on {t.device}")
+            if not bool(torch.isfinite(t).all()):
+                raise InputTensorError(f"Paths.{name} holds NaN or Inf")
+        per_chirp.append(t)
+    return delay, rate.to(delay.dtype), amp, mask, *per_chirp

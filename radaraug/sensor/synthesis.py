@@ -100,32 +100,48 @@ def _frac(cycles: torch.Tensor) -> torch.Tensor:
     return cycles - torch.round(cycles)
 
 
-def _phase_terms(delay_s: torch.Tensor, delay_rate: torch.Tensor, timing: ChirpTiming):
+def _phase_terms(
+    delay_s: torch.Tensor, delay_rate: torch.Tensor, timing: ChirpTiming, chirp_delay: torch.Tensor | None = None,
+):
     """Per-path phase pieces of the separable form (all float64).
+
+    With ``chirp_delay`` ``d_m`` (``(…, P, M)``, broadcast against ``(…, P)``) the delay at chirp
+    ``m`` is ``tau_m = tau0 + r (m T + t_d) + d_m``; the fast-time rate of the beat is then
+    ``f0 r + S (1 - r) tau_m``, i.e. a coupling ``g_m n`` cycles with
+    ``g_m = S (1 - r) (tau_m - tau0 - r t_d) / fs`` (``g_m = gamma m`` without ``d_m``). It is
+    split about the mid-range ``g_bar`` of ``g_m`` and the centre ``nc`` of the samples:
+    ``g_m n = g_bar n + (g_m - g_bar) nc + (g_m - g_bar)(n - nc)``; the last term is the residual
+    coupling ``theta w_m v_n`` with ``w_m, v_n`` in [-1, 1].
 
     Returns:
         slow: ``(…, P, M)`` slow-time cycles mod 1 (incl. the constant and the centred
-            coupling's slow-linear part);
+            coupling's slow part);
         rate: ``(…, P)`` fast-time cycles per sample (beat + Doppler + centred coupling);
-        theta: ``(…, P)`` largest residual coupling phase (rad), ``theta * u_m * v_n``;
+        theta: ``(…, P)`` largest residual coupling phase (rad), ``theta * w_m * v_n``;
         quad: ``(…, P)`` the fast-time quadratic term ``S r (1 - r/2) t_n^2`` in cycles per
-            sample^2 (in-chirp range migration: 0.046 rad at the last sample at 5 m/s).
+            sample^2 (in-chirp range migration: 0.046 rad at the last sample at 5 m/s);
+        w: ``(…, P, M)`` the slow factor of the residual coupling in [-1, 1] (``u_m`` = the
+            centred chirp index without ``chirp_delay``).
     """
     dev = delay_s.device
     tau0 = delay_s.double()
     r = delay_rate.double()
     m = torch.arange(timing.num_chirps, device=dev, dtype=torch.float64)
-    mc = (timing.num_chirps - 1) / 2
     nc = (timing.num_samples - 1) / 2
-    # Coupling S r (1-r) T m t_n = gamma m n cycles, with m n = m'n' + nc m + mc n - mc nc.
-    gamma = timing.slope * r * (1 - r) * timing.prt / timing.fs
-    tau_m = tau0[..., None] + r[..., None] * (m * timing.prt + timing.adc_delay)
-    slow = tau_m * (timing.f0 - 0.5 * timing.slope * tau_m) + gamma[..., None] * (nc * m - mc * nc)
+    excess = r[..., None] * (m * timing.prt)  # tau_m - tau0 - r t_d
+    if chirp_delay is not None:
+        excess = excess + chirp_delay.double()
+    tau_m = (tau0 + r * timing.adc_delay)[..., None] + excess
+    g = (timing.slope * (1 - r) / timing.fs)[..., None] * excess  # coupling, cycles per sample
+    g_hi, g_lo = g.amax(dim=-1), g.amin(dim=-1)
+    g_bar, half = (g_hi + g_lo) / 2, (g_hi - g_lo) / 2
+    slow = tau_m * (timing.f0 - 0.5 * timing.slope * tau_m) + (g - g_bar[..., None]) * nc
     lin = timing.f0 * r + timing.slope * (tau0 + r * timing.adc_delay) * (1 - r)
-    per_sample = lin / timing.fs + gamma * mc
-    theta = 2 * math.pi * gamma * mc * nc
+    per_sample = lin / timing.fs + g_bar
+    theta = 2 * math.pi * half * nc
+    w = (g - g_bar[..., None]) / torch.where(half > 0, half, torch.ones_like(half))[..., None]
     quad = timing.slope * r * (1 - r / 2) / timing.fs**2
-    return _frac(slow), per_sample, theta, quad
+    return _frac(slow), per_sample, theta, quad, w
 
 
 def _fast_time_cos_sin(
@@ -172,8 +188,10 @@ def synthesize_fast(
     *,
     dtype: torch.dtype,
     taylor_tol: float = DEFAULT_TAYLOR_TOL,
+    chirp_delay: torch.Tensor | None = None,
+    chirp_gain: torch.Tensor | None = None,
 ) -> torch.Tensor:
-    """Separable (GEMM) synthesis of ``sum_p Re{C_p exp(j Phi_p[m, n])}``.
+    """Separable (GEMM) synthesis of ``sum_p Re{C_p g_pm exp(j Phi_p[m, n])}``.
 
     Args:
         coef: ``(…, RX, P)`` complex coefficients.
@@ -182,6 +200,9 @@ def synthesize_fast(
         timing: chirp constants.
         dtype: real output dtype.
         taylor_tol: bound on the largest neglected Taylor term of the coupling.
+        chirp_delay: optional ``(…, 1 or RX, P, M)`` extra delay ``d_m`` of each path at chirp
+            ``m`` (intra-frame motion beyond the linear ``tau0 + r t``), s.
+        chirp_gain: optional ``(…, 1 or RX, P, M)`` real amplitude factor ``g_pm`` per chirp.
 
     Returns:
         ``(…, RX, M, N)`` real samples.
@@ -191,17 +212,20 @@ def synthesize_fast(
     batch = coef.shape[:-1]
     if coef.shape[-1] == 0:
         return torch.zeros(*batch, M, N, dtype=dtype, device=dev)
+    slow, per_sample, theta, quad, w = _phase_terms(delay_s, delay_rate, timing, chirp_delay)
     # Sort paths by their coupling phase so the paths that need Taylor order k form a prefix: each
     # order is then one GEMM on a view, and static clutter (theta = 0) costs one GEMM in all.
-    theta_all = _coupling_theta(delay_rate, timing)
-    theta_p = theta_all.abs().reshape(-1, theta_all.shape[-1]).amax(dim=0)  # (P,) over batch and RX
+    theta_p = theta.reshape(-1, theta.shape[-1]).amax(dim=0)  # (P,) over batch and RX
     order = torch.argsort(theta_p, descending=True)
     theta_sorted = theta_p[order]
-    coef, delay_s, delay_rate = (t.index_select(-1, order) for t in (coef, delay_s, delay_rate))
-    slow, per_sample, theta, quad = _phase_terms(delay_s, delay_rate, timing)
+    coef, per_sample, theta, quad = (t.index_select(-1, order) for t in (coef, per_sample, theta, quad))
+    slow, w = (t.index_select(-2, order) for t in (slow, w))
     slow_rad = (2 * math.pi * slow).to(dtype)
     cr = coef.real.to(dtype)[..., None]
     ci = coef.imag.to(dtype)[..., None]
+    if chirp_gain is not None:
+        g = chirp_gain.to(dtype).index_select(-2, order)
+        cr, ci = cr * g, ci * g
     cs, ss = torch.cos(slow_rad), torch.sin(slow_rad)
     # Slow side interleaved as (…, RX, M, P, 2) = [Re, -Im] of C e^{j slow}, fast side as
     # (…, RX, P, 2, N) = [cos, sin]: Re{A B} is then one real GEMM over (path, re/im), and the
@@ -217,7 +241,6 @@ def synthesize_fast(
     K = _taylor_orders(float(theta_sorted[0]), taylor_tol)
     if K <= 1:
         return out
-    u = torch.linspace(-1, 1, M, dtype=dtype, device=dev)
     v = torch.linspace(-1, 1, N, dtype=dtype, device=dev)
     # Number of leading (sorted) paths that need order k: theta^k / k! >= tol.
     counts = [
@@ -225,25 +248,18 @@ def synthesize_fast(
                          / torch.tensor([math.factorial(k) for k in range(1, K)], dtype=torch.float64)[:, None]
                          >= taylor_tol).sum(dim=1)
     ]
-    th = theta.to(dtype)[..., None]
+    tw = theta.to(dtype)[..., None] * w.to(dtype)  # (…, RX, P, M): theta w_m
     tr, ti = ar, ai
     for k in range(1, K):
         pk = counts[k - 1]
         if pk == 0:
             break
-        # Term k of exp(j theta u v): (j theta u)^k / k! on the slow side, v^k on the fast side.
+        # Term k of exp(j theta w v): (j theta w)^k / k! on the slow side, v^k on the fast side.
         # Multiplying by j swaps (re, im) -> (-im, re).
-        scale = th[..., :pk, :] * u / k
+        scale = tw[..., :pk, :] / k
         tr, ti = -ti[..., :pk, :] * scale, tr[..., :pk, :] * scale
         out = out + torch.matmul(lhs(tr, ti), rhs[..., : 2 * pk, :]) * v.pow(k)
     return out
-
-
-def _coupling_theta(delay_rate: torch.Tensor, timing: ChirpTiming) -> torch.Tensor:
-    """Largest residual coupling phase (rad) of each path after centring: ``(…, P)`` like ``delay_rate``."""
-    r = delay_rate.double()
-    gamma = timing.slope * r * (1 - r) * timing.prt / timing.fs
-    return 2 * math.pi * gamma * ((timing.num_chirps - 1) / 2) * ((timing.num_samples - 1) / 2)
 
 
 def synthesize_exact(
@@ -253,8 +269,11 @@ def synthesize_exact(
     timing: ChirpTiming,
     *,
     dtype: torch.dtype,
+    chirp_delay: torch.Tensor | None = None,
+    chirp_gain: torch.Tensor | None = None,
 ) -> torch.Tensor:
-    """Direct sum of ``Re{C_p exp(j Phi_p[m, n])}`` with ``Phi`` evaluated exactly in float64.
+    """Direct sum of ``Re{C_p g_pm exp(j Phi_p[m, n])}`` with ``Phi`` evaluated exactly in float64
+    (``tau(m, n) = tau0 + r (m T + t_d + t_n) + d_m``).
 
     Memory-chunked over paths. Same arguments and result as :func:`synthesize_fast`.
     """
@@ -277,10 +296,15 @@ def synthesize_exact(
         tau0 = delay_s[..., sl].double()[..., None, None]
         r = delay_rate[..., sl].double()[..., None, None]
         tau = tau0 + r * t_abs
+        if chirp_delay is not None:
+            tau = tau + chirp_delay[..., sl, :].double()[..., None]
         cycles = timing.f0 * tau + timing.slope * tau * t_n - 0.5 * timing.slope * tau**2
         ph = 2 * math.pi * _frac(cycles)
         c = c128[..., sl][..., None, None]
-        out = out + (c.real * torch.cos(ph) - c.imag * torch.sin(ph)).sum(dim=-3)
+        term = c.real * torch.cos(ph) - c.imag * torch.sin(ph)
+        if chirp_gain is not None:
+            term = term * chirp_gain[..., sl, :].double()[..., None]
+        out = out + term.sum(dim=-3)
     return out.to(dtype)
 
 
@@ -293,8 +317,12 @@ def synthesize(
     dtype: torch.dtype,
     method: str = "fast",
     taylor_tol: float = DEFAULT_TAYLOR_TOL,
+    chirp_delay: torch.Tensor | None = None,
+    chirp_gain: torch.Tensor | None = None,
 ) -> torch.Tensor:
     """Dispatch to :func:`synthesize_fast` or :func:`synthesize_exact` (``method``)."""
     if method == "fast":
-        return synthesize_fast(coef, delay_s, delay_rate, timing, dtype=dtype, taylor_tol=taylor_tol)
-    return synthesize_exact(coef, delay_s, delay_rate, timing, dtype=dtype)
+        return synthesize_fast(coef, delay_s, delay_rate, timing, dtype=dtype, taylor_tol=taylor_tol,
+                               chirp_delay=chirp_delay, chirp_gain=chirp_gain)
+    return synthesize_exact(coef, delay_s, delay_rate, timing, dtype=dtype, chirp_delay=chirp_delay,
+                            chirp_gain=chirp_gain)

@@ -76,7 +76,7 @@ def fit_noise_figure(
         iterations: most fixed-point steps (each moves the offset by the floor difference).
         tol_db: stop when the floors agree this well.
         seed: noise seed.
-        tracer_options: the room trace's options (e.g. ``{"rays": 128}``).
+        tracer_options: the room trace's options (e.g. ``{"method": "sbr", "rays": 128}``).
         twin: an existing twin of ``scene`` and ``config`` whose room trace to reuse.
 
     Returns:

@@ -88,7 +88,7 @@ from radaraug.sim.seeding import item_generator, item_seed
 from radaraug.sim.twin import DigitalTwin
 from radaraug.units import DB_CONVENTION, FLOAT_CONVENTION
 
-GENERATOR_VERSION = 2
+GENERATOR_VERSION = 3
 """Bumped whenever the generator's output changes; part of the reuse check."""
 
 MANIFEST_NAME = "proxy.json"
@@ -510,13 +510,14 @@ def _with_static(moving: Paths, strong: Paths) -> Paths:
     kind_s = s.kind if s.kind is not None else torch.zeros(t, k, dtype=torch.int8, device=dev)
     mask_m = moving.mask if moving.mask is not None else torch.ones(moving.delay_s.shape[:-1], dtype=torch.bool,
                                                                     device=dev)
-    return Paths(
-        delay_s=torch.cat([moving.delay_s, s.delay_s.to(moving.delay_s.dtype)], dim=-2),
-        delay_rate=torch.cat([moving.delay_rate, s.delay_rate.to(moving.delay_rate.dtype)], dim=-2),
-        amplitude=torch.cat([moving.amplitude, s.amplitude.to(moving.amplitude.dtype)], dim=-2),
-        kind=torch.cat([kind_m.to(torch.int8), kind_s.to(torch.int8)], dim=-1),
-        mask=torch.cat([mask_m, torch.ones(t, k, dtype=torch.bool, device=dev)], dim=-1),
-    )
+    # Paths.cat keeps the moving paths' per-chirp delays and gains (static ones get none).
+    return Paths.cat([
+        Paths(moving.delay_s, moving.delay_rate, moving.amplitude, kind_m.to(torch.int8), mask_m,
+              moving.chirp_delay_s, moving.chirp_gain),
+        Paths(s.delay_s.to(moving.delay_s.dtype), s.delay_rate.to(moving.delay_rate.dtype),
+              s.amplitude.to(moving.amplitude.dtype), kind_s.to(torch.int8),
+              torch.ones(t, k, dtype=torch.bool, device=dev)),
+    ])
 
 
 def _write_file(sim: _Simulator, path: Path, walks: list[dict[str, Any]], noise_base: int, attrs: dict[str, Any],
@@ -595,7 +596,7 @@ def make_proxy(
         progress: show a progress bar (tqdm, frames).
         device: where to simulate (files are reproducible per device type).
         tracer_options: keyword arguments of :class:`~radaraug.raytrace.RayTracer` for the room's
-            trace (default ``{"rays": 256}``; fewer rays make small test sets faster).
+            trace (default: the image method, no options).
 
     Returns:
         The :class:`ProxySet`.
@@ -615,7 +616,7 @@ def make_proxy(
         device_type = torch.device(device).type
     except (RuntimeError, TypeError):
         raise ConfigError(f"make_proxy: device {device!r} is not a torch device") from None
-    tracer_options = {"rays": 256, **(tracer_options or {})}
+    tracer_options = dict(tracer_options or {})
     settings = _settings(frames_per_count, calibration_frames, seed, counts, device_type, tracer_options)
     out = Path(out_dir)
     found = _reusable(out, settings)

@@ -409,8 +409,9 @@ def scale_people_paths(paths: Paths, segments: Sequence[int], rcs_scale_dB: Sequ
     ``paths`` are the target paths of people traced together (so that they still shadow each
     other), ``segments`` the number of body segments of each person in the order traced. The
     ellipsoid tracer lays out ``S`` direct paths (one per segment), then ``S K`` paths
-    radar -> wall -> segment -> radar and ``S K`` of the reverse, segment-major (``K`` mirror
-    planes); a multipath path scatters off its segment, so it belongs to that segment's person.
+    radar -> wall -> segment -> radar, ``S K`` of the reverse and ``S K`` radar -> wall ->
+    segment -> same wall -> radar, each segment-major (``K`` mirror planes); a multipath path
+    scatters off its segment, so it belongs to that segment's person.
 
     Raises:
         RuntimeError: the paths do not have that layout (the tracer changed: fix this helper).
@@ -421,9 +422,10 @@ def scale_people_paths(paths: Paths, segments: Sequence[int], rcs_scale_dB: Sequ
         return paths
     if len(segments) != len(rcs_scale_dB):
         raise ValueError(f"{len(segments)} people but {len(rcs_scale_dB)} RCS scales")
-    if p < s or (p - s) % (2 * s):
+    blocks = 3  # multipath blocks of S K slots (see ellipsoid_paths)
+    if p < s or (p - s) % (blocks * s):
         raise RuntimeError(f"unexpected target path layout: {p} paths for {s} segments")
-    k = (p - s) // (2 * s)
+    k = (p - s) // (blocks * s)
     if paths.kind is not None and not (bool((paths.kind[..., :s] == 0).all())
                                        and bool((paths.kind[..., s:] == 1).all())):
         raise RuntimeError("unexpected target path layout: direct paths do not come first")
@@ -431,7 +433,7 @@ def scale_people_paths(paths: Paths, segments: Sequence[int], rcs_scale_dB: Sequ
     per_person = torch.tensor([10 ** (db / 20) for db in rcs_scale_dB], dtype=torch.float64)
     per_segment = per_person.repeat_interleave(torch.tensor(list(segments)))
     mp = per_segment.repeat_interleave(k)
-    per_path = torch.cat([per_segment, mp, mp]).to(device=dev, dtype=paths.amplitude.real.dtype)
+    per_path = torch.cat([per_segment, *([mp] * blocks)]).to(device=dev, dtype=paths.amplitude.real.dtype)
     return dataclasses.replace(paths, amplitude=paths.amplitude * per_path[:, None])
 
 
@@ -519,7 +521,9 @@ def simulate_item(twin: DigitalTwin, people: Sequence[Any], times: torch.Tensor,
     included: it is scaled by the item's gain offset, which by linearity equals tracing the room
     through the offset receiver.
     """
-    paths = people_paths(twin, people, times, draw.rcs_scale_dB)
+    from radaraug.sim.twin import negligible_paths_off
+
+    paths = negligible_paths_off(people_paths(twin, people, times, draw.rcs_scale_dB))  # as DigitalTwin.simulate
     if draw.scatterers:
         paths = Paths.cat([paths, static_scatterer_paths(twin.config, draw.scatterers, paths)])
     pn = None if not draw.phase_noise_rms_Hz else (draw.phase_noise_rms_Hz, phase_noise_paths)

@@ -2,13 +2,16 @@
 
 One object per process: it traces the static room once (cached by the ray tracer) and then
 simulates any batch of frame times with tensor work only: people give their body segments at
-the frame times (one snapshot per frame, analytic per-chirp motion from the segment velocities),
-the tracer gives the target paths for all frames at once, and the receiver synthesizes the IF
-signal with the sensor effects and the 12-bit ADC.
+sub-frame instants (a few snapshots per frame, as many as the limbs' acceleration needs, chosen
+per frame by :mod:`radaraug.sim.intra_frame`), the tracer gives the target paths for all of them
+at once, each path's delay is interpolated to every chirp (a reference line plus a per-chirp
+residual and amplitude factor), and the receiver synthesizes the IF signal with the sensor
+effects and the 12-bit ADC.
 """
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Sequence
 from typing import Any
 
@@ -23,6 +26,35 @@ from radaraug.scene.scene import Scene
 from radaraug.sensor.paths import Paths
 from radaraug.sensor.profile import as_profile
 from radaraug.sensor.receiver import FMCWReceiver
+from radaraug.sensor.synthesis import ChirpTiming
+from radaraug.sim.intra_frame import DEFAULT_TOL_CYCLES, intra_frame_paths
+
+WEAK_PATH_DB = 100.0
+"""A person's path more than this below its frame's strongest person's path is left out of the
+synthesis (:func:`negligible_paths_off`)."""
+
+
+def negligible_paths_off(paths: Paths, below_dB: float = WEAK_PATH_DB) -> Paths:
+    """``paths`` ``(T, P, RX)`` with the slots more than ``below_dB`` under their frame's strongest
+    masked off (per frame, so a frame's result does not depend on its batch).
+
+    The receiver drops slots that are zero in every frame of a call before synthesis: multipath
+    slots that exist for no one (a wall a person is not seen in) and such negligible ones then
+    cost nothing. Why 100 dB: with the default chain (ADC-side noise ~2.2 counts RMS) the
+    range-Doppler noise floor of a 64 x 256 frame lies ~98 dB under a full-scale tone, so a path
+    100 dB under the strongest echo is under the floor even when that echo fills the ADC.
+    """
+    if paths.num_paths == 0:
+        return paths
+    mag = paths.amplitude.abs().amax(dim=-1)  # (T, P)
+    if paths.chirp_gain is not None:
+        mag = mag * paths.chirp_gain.abs().amax(dim=-1)
+    if paths.mask is not None:
+        mag = mag * paths.mask
+    strongest = mag.amax(dim=-1, keepdim=True)
+    keep = mag >= strongest * 10 ** (-below_dB / 20)
+    mask = keep if paths.mask is None else paths.mask & keep
+    return dataclasses.replace(paths, mask=mask)
 
 
 class DigitalTwin:
@@ -47,6 +79,12 @@ class DigitalTwin:
         shadowing: the people shadow the room's paths (knife-edge diffraction by their body
             segments, :mod:`radaraug.raytrace.shadow`); needs the static paths' geometry
             (:meth:`RayTracer.static_vertices`, given by the default image method, not by SBR).
+        intra_frame: motion of the people inside a frame: ``"auto"`` (default) traces as many
+            sub-frame snapshots as each frame needs for its paths' delays to be interpolated to
+            every chirp within ``intra_frame_tol_cycles`` (see :mod:`radaraug.sim.intra_frame`);
+            an int fixes the number of knot intervals per frame; ``0`` is one snapshot per frame
+            with each path's delay extrapolated linearly (limb micro-Doppler as sharp lines).
+        intra_frame_tol_cycles: tolerance of the automatic choice, carrier cycles of delay.
     """
 
     def __init__(
@@ -62,6 +100,8 @@ class DigitalTwin:
         static_signal: torch.Tensor | None = None,
         profile: Any = None,
         shadowing: bool = True,
+        intra_frame: int | str = "auto",
+        intra_frame_tol_cycles: float = DEFAULT_TOL_CYCLES,
     ) -> None:
         self.scene = scene
         self.config = config or scene.config
@@ -79,6 +119,15 @@ class DigitalTwin:
             receiver = as_profile(profile).receiver(self.config)
         self.receiver = (receiver or FMCWReceiver(self.config)).to(self.device)
         self._static_signal = None if static_signal is None else static_signal.to(self.device)
+        if not (intra_frame == "auto" or (isinstance(intra_frame, int) and not isinstance(intra_frame, bool)
+                                          and intra_frame >= 0)):
+            raise ConfigError(f"intra_frame must be 'auto' or a number of knot intervals >= 0, got {intra_frame!r}")
+        if not (intra_frame_tol_cycles > 0):
+            raise ConfigError(f"intra_frame_tol_cycles must be positive, got {intra_frame_tol_cycles!r}")
+        self.intra_frame = intra_frame
+        self.intra_frame_tol_cycles = float(intra_frame_tol_cycles)
+        self.last_intervals: torch.Tensor | None = None
+        """Knot intervals each frame of the last :meth:`paths` call used (``(T,)``; 0: one snapshot)."""
 
     def static_signal(self) -> torch.Tensor:
         """The room's contribution ``(rx, chirps, samples)``: traced and synthesized once.
@@ -107,20 +156,30 @@ class DigitalTwin:
                           e.velocities.to(**cast), e.material)
 
     def paths(self, people: Sequence[Any], times: torch.Tensor) -> Paths:
-        """Paths of the people at each time ``(T, P, RX)`` (the room's are in :meth:`static_signal`)."""
-        ell = self.ellipsoids(people, times)
-        if ell is None:
+        """Paths of the people over the frames starting at ``times`` ``(T, P, RX)`` (the room's are
+        in :meth:`static_signal`), with per-chirp delays and gains ``(T, P, chirps)`` unless
+        ``intra_frame=0``."""
+        if not people:
             rx = self.config.num_rx
             z = torch.zeros(int(times.shape[0]), 0, rx, dtype=self.dtype, device=self.device)
             c = torch.complex64 if self.dtype == torch.float32 else torch.complex128
+            self.last_intervals = torch.zeros(int(times.shape[0]), dtype=torch.long)
             return Paths(z, z.clone(), z.to(c))
-        paths = self.tracer.target_paths(ellipsoids=ell, multipath=self.multipath)
+
+        def trace(t: torch.Tensor) -> Paths:
+            return self.tracer.target_paths(ellipsoids=self.ellipsoids(people, t), multipath=self.multipath)
+
+        paths, self.last_intervals = intra_frame_paths(
+            trace, times, ChirpTiming.from_config(self.config), intervals=self.intra_frame,
+            tol_cycles=self.intra_frame_tol_cycles,
+        )
         # The room's signal is synthesized once; people shadowing it enter as correction paths
-        # ((T - 1) * a at the static delays). SBR static paths have no vertices: no shadowing.
+        # ((T - 1) * a at the static delays, the people at each frame's start held for the frame).
+        # SBR static paths have no vertices: no shadowing.
         vertices = self.tracer.static_vertices() if self.shadowing else None
         if vertices is not None:
             correction = shadow_correction_paths(
-                self.tracer.static_paths(), vertices, ell, self.config.wavelength_m,
+                self.tracer.static_paths(), vertices, self.ellipsoids(people, times), self.config.wavelength_m,
             )
             paths = Paths.cat([paths, correction.map(lambda t: t.to(self.device))])
         return paths
@@ -142,7 +201,7 @@ class DigitalTwin:
                 generator's seed, whatever the batch), a single generator for the batch, or
                 None (global RNG).
         """
-        paths = self.paths(list(people or []), times)
+        paths = negligible_paths_off(self.paths(list(people or []), times))
         static = self.static_signal()
         if isinstance(generators, Sequence):
             if len(generators) != times.shape[0]:

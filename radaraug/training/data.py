@@ -107,7 +107,8 @@ class RadarDataModule(L.LightningDataModule):
             fit is skipped; twin randomization draws its gain / noise-figure offsets around the
             profile's values). For ``cdr_profile`` it is used instead of fitting one.
         profile_max_frames: frames of the calibration capture that ``cdr_profile``'s diagnose reads.
-        tracer_rays: SBR rays per axis for the room (None: the twin's default).
+        tracer_rays: trace the room with SBR at this many rays per axis (None: the twin's default
+            image method, which has no ray count).
         cache_dir: folder of the simulate-once cache.
         image_size: network input ``[H, W]`` (None: the RD map's own size).
         clip_percentiles: percentiles of simulated (post-DR) maps that give ``[vmin, vmax]``.
@@ -208,7 +209,7 @@ class RadarDataModule(L.LightningDataModule):
             randomization = TwinRandomization() if r is True else TwinRandomization.from_dict(dict(r))
         twin_options: dict[str, Any] = {}
         if self.hparams.tracer_rays is not None:
-            twin_options["tracer_options"] = {"rays": int(self.hparams.tracer_rays)}
+            twin_options["tracer_options"] = {"method": "sbr", "rays": int(self.hparams.tracer_rays)}
         extra: dict[str, Any] = {} if randomization is None else {"randomization": randomization}
         if self.twin_profile is not None:
             extra["profile"] = self.twin_profile
@@ -359,7 +360,8 @@ class RadarDataModule(L.LightningDataModule):
         path = Path(self.hparams.cache_dir) / f"noise_fit-{key}.json"
         if path.is_file():
             return json.loads(path.read_text())
-        opts = {"rays": int(self.hparams.tracer_rays)} if self.hparams.tracer_rays is not None else None
+        opts = ({"method": "sbr", "rays": int(self.hparams.tracer_rays)} if self.hparams.tracer_rays is not None
+                else None)
         fit = fit_noise_figure(load_scene(self.hparams.scene), self.config, target, tracer_options=opts)
         fit["calibration"] = str(calibration)
         path.parent.mkdir(parents=True, exist_ok=True)

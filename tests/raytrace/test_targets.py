@@ -110,8 +110,9 @@ def test_wall_ghost_at_image_range():
     wall = soup(quad(torch.tensor([-2.0, -w, -5.0]).double(), torch.tensor([0.0, 0.0, 10.0]).double(),
                      torch.tensor([20.0, 0.0, 0.0]).double()))
     paths = _tracer(wall).target_paths(_spheres(target[None], a), multipath=True)
-    ghosts = paths.mask & (paths.kind == 1)
-    assert int(ghosts.sum()) == 2  # radar->wall->target->radar and its reverse
+    # radar->wall->target->radar and its reverse (the second-order ghost is the third slot)
+    ghosts = paths.mask & (paths.kind == 1) & (torch.arange(paths.num_paths) < paths.num_paths - 1)
+    assert int(ghosts.sum()) == 2
     image = torch.tensor([0.0, -2 * w, 0.0], dtype=torch.float64)
     u_in = (target - image) / (target - image).norm()
     u_out = -target / target.norm()
@@ -127,6 +128,34 @@ def test_wall_ghost_at_image_range():
     # The direct echo is there too and the ghost is farther.
     direct = paths.mask & (paths.kind == 0)
     assert int(direct.sum()) == 1 and float(paths.delay_s[direct, 0]) < float(got.min()) / SPEED_OF_LIGHT
+
+
+def test_second_order_wall_target_wall_ghost_is_the_image_radars_echo():
+    """Radar beside a metal wall (plane y = -w), a moving sphere: radar -> wall -> sphere -> wall ->
+    radar is the sphere's monostatic echo seen from the radar's image (closed form): length
+    2 |image - p| with p the sphere's point facing the image, |a| from the radar equation with
+    |Gamma_wall|^2 (two bounces) and the sphere's sqrt(pi) a, rate 2 v . u / c along the image's
+    line of sight."""
+    w, a = 0.5, 0.05
+    target = torch.tensor([4.0, 0.5, 0.0], dtype=torch.float64)
+    v = torch.tensor([-1.0, 0.7, 0.2], dtype=torch.float64)
+    wall = soup(quad(torch.tensor([-2.0, -w, -5.0]).double(), torch.tensor([0.0, 0.0, 10.0]).double(),
+                     torch.tensor([20.0, 0.0, 0.0]).double()))
+    paths = _tracer(wall).target_paths(_spheres(target[None], a, v[None]), multipath=True)
+    assert paths.num_paths == 4 and bool(paths.mask.all())  # direct, two first-order, one second-order
+    image = torch.tensor([0.0, -2 * w, 0.0], dtype=torch.float64)
+    u = (target - image) / (target - image).norm()
+    spec = target - a * u
+    r = float((spec - image).norm())
+    assert float(paths.delay_s[3, 0] * SPEED_OF_LIGHT) == pytest.approx(2 * r, rel=1e-12)
+    gamma = abs(complex(RayTracerMetalGamma.value))
+    expected = LAM * math.sqrt(math.pi) * a * gamma**3 / ((4 * math.pi) ** 1.5 * r * r)
+    assert float(paths.amplitude[3, 0].abs()) == pytest.approx(expected, rel=2e-3)
+    assert float(paths.delay_rate[3, 0]) == pytest.approx(2 * float(v @ u) / SPEED_OF_LIGHT, rel=1e-9)
+    assert int(paths.kind[3]) == 1
+    # Far enough that the bounce point (a third of the way to the target) lies past the wall's end.
+    far = torch.tensor([60.0, 0.5, 0.0], dtype=torch.float64)
+    assert not bool(_tracer(wall).target_paths(_spheres(far[None], a), multipath=True).mask[3])
 
 
 def test_batched_frames_shapes_and_values():

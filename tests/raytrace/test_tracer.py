@@ -47,7 +47,7 @@ def test_corridor_end_to_end(device):
     torch.testing.assert_close(full.amplitude[3, : static.num_paths], static.amplitude)
     # The two walls (y = +-1), floor, ceiling and the two end walls are the mirror planes.
     assert tracer.mirrors.num_planes == 6
-    assert targets.num_paths == 32 + 2 * 32 * 6
+    assert targets.num_paths == 32 + 3 * 32 * 6  # direct, two first-order and one second-order per plane
 
 
 def test_scene_without_people_traces():

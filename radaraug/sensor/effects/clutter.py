@@ -265,4 +265,8 @@ class Multipath(Effect):
         coef = (state.coef[..., None] * ratio.to(state.coef.dtype)).flatten(-2)  # (…, RX, P*K)
         delay = (state.delay_s[..., None] + extra.to(state.delay_s.dtype)).flatten(-2)
         rate = state.delay_rate[..., None].expand(*state.delay_rate.shape, k).flatten(-2)
-        state.add_paths(coef, delay, rate)
+
+        def ghosts(t: torch.Tensor | None) -> torch.Tensor | None:  # (…, 1, P, M) -> (…, 1, P*K, M)
+            return None if t is None else t[..., None, :].expand(*t.shape[:-1], k, t.shape[-1]).flatten(-3, -2)
+
+        state.add_paths(coef, delay, rate, ghosts(state.chirp_delay), ghosts(state.chirp_gain))

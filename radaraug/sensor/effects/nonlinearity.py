@@ -24,6 +24,7 @@ from radaraug.sensor.effects.base import (
     check_nonnegative,
     check_positive,
     register,
+    strongest_index,
     strongest_paths,
 )
 
@@ -95,7 +96,9 @@ class ChirpNonlinearity(Effect):
         if k == 0:
             return
         coef, delay, rate = strongest_paths(state, k)
+        # The modulated copy follows its path's intra-frame motion too (per-chirp delay, gain).
+        chirp = state.chirp_terms(strongest_index(state, k))
         mod_coef = coef * (2j * math.pi) * delay.to(coef.dtype)
         tm = state.timing
         multiplier = self.frequency_error_Hz(state).reshape(1, 1, tm.num_samples).expand(1, tm.num_chirps, -1)
-        state.modulated.append(ModulatedPaths(mod_coef, delay, rate, multiplier))
+        state.modulated.append(ModulatedPaths(mod_coef, delay, rate, multiplier, *chirp))

@@ -19,7 +19,7 @@ import math
 import torch
 
 from radaraug.sensor.chain import ChainState, ModulatedPaths
-from radaraug.sensor.effects.base import Effect, Prior, register, strongest_paths
+from radaraug.sensor.effects.base import Effect, Prior, register, strongest_index, strongest_paths
 
 
 @register
@@ -55,8 +55,10 @@ class PhaseNoise(Effect):
         if k == 0:
             return
         coef, delay, rate = strongest_paths(state, k)
+        # The modulated copy follows its path's intra-frame motion too (per-chirp delay, gain).
+        chirp = state.chirp_terms(strongest_index(state, k))
         mod_coef = coef * (2j * math.pi) * delay.to(coef.dtype)
-        state.modulated.append(ModulatedPaths(mod_coef, delay, rate, self._frequency_noise(state)))
+        state.modulated.append(ModulatedPaths(mod_coef, delay, rate, self._frequency_noise(state), *chirp))
 
     def _frequency_noise(self, state: ChainState) -> torch.Tensor:
         """``nu(m, n)`` in Hz, ``(…, 1, M, N)``."""
