@@ -115,7 +115,9 @@ def plot_diffuse_range_profile(
         ax.plot(r[: prof.numel()], prof.numpy()[: r.size], label=label, lw=1.0, alpha=0.8)
     ax.axvspan(1.0, 5.0, color="0.9", zorder=0, label="fit band 1-5 m")
     ax.set_xlabel("range (m)")
-    ax.set_ylabel("zero-Doppler power (dBFS, 20 log10|X|, FFTs / window sums)")
+    ax.set_ylabel("zero-Doppler power (dBFS)")
+    ax.text(0.01, 0.01, "dBFS: 20 log10|X|, FFTs divided by their window sums; mean over frames and RX",
+            transform=ax.transAxes, fontsize=7, color="0.35")
     ax.set_title(title)
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8)
