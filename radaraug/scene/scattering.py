@@ -45,8 +45,10 @@ hence the diffuse RCS per unit area ``sigma0`` (:meth:`DiffuseScattering.sigma0`
     lambertian:  sigma0 = 4 S^2 |Gamma(theta)|^2 cos^2(theta)
     directive:   sigma0 = 4 pi S^2 |Gamma(theta)|^2 cos(theta) cos^(2 alpha_R)(theta) / F(alpha_R, theta)
 
-(at normal incidence the directive ``F = 2 pi / (alpha_R + 1) * (1 - 2^-(alpha_R+1))``-like
-values make ``sigma0`` larger than the Lambertian one: the lobe points back at the radar).
+At normal incidence ``F(alpha_R, 0) = 2 pi (2^(alpha_R + 1) - 1) / ((alpha_R + 1) 2^alpha_R)``,
+below ``pi`` for ``alpha_R >= 3``, where the directive ``sigma0`` at normal incidence exceeds the
+Lambertian one (the lobe points back at a radar looking at the surface head-on); away from
+normal incidence it falls off as ``cos^(2 alpha_R + 1)``, much faster than the Lambertian ``cos^2``.
 
 Defaults (:data:`DIFFUSE_DEFAULTS`): see the table there and ``docs/diffuse_clutter.md``. A
 scene file overrides them per material (``materials: {plasterboard: {diffuse: {S: 0.5}}}``), a
@@ -152,7 +154,8 @@ def directive_norm(cos_theta_i: torch.Tensor, alpha_R: int) -> torch.Tensor:
 
 # Defaults. Room finishes: one S fitted so that the paper corridor's zero-Doppler clutter at
 # 1-5 m matches the real 48 dB recordings (docs/diffuse_clutter.md, "Fit": S = 0.7 puts the twin
-# at -46.5 dBFS against -42.6 / -45.3 dBFS measured; S = 0.4 left it 7 dB short). The level
+# at -45.4 to -47.3 dBFS over three seeds against -42.6 / -45.3 dBFS measured; S = 0.4 left it
+# 5-7 dB lower). The level
 # carries joints, sockets and fixtures a box corridor lacks, hence one value for every finish
 # rather than a per-material roughness. At 60 GHz (lambda = 5 mm) plaster and concrete
 # textures of 0.2-0.5 mm RMS already give S^2 = 1 - exp(-(4 pi h / lambda)^2) = 0.25-0.7 by the
