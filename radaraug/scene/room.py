@@ -354,6 +354,95 @@ def box(
     )
 
 
+def _placement(position: Sequence[float], yaw_deg: float) -> np.ndarray:
+    """4x4 world-from-object matrix: a turn of ``yaw_deg`` about +z (counter-clockwise from above),
+    then a translation to ``position``."""
+    y = math.radians(float(yaw_deg))
+    m = np.eye(4)
+    m[:3, :3] = [[math.cos(y), -math.sin(y), 0.0], [math.sin(y), math.cos(y), 0.0], [0.0, 0.0, 1.0]]
+    m[:3, 3] = np.asarray(position, dtype=np.float64)
+    return m
+
+
+def _check_vec(value: Sequence[float], n: int, label: str, where: str, positive: bool = False) -> np.ndarray:
+    a = np.asarray(value, dtype=np.float64)
+    if a.shape != (n,) or not np.isfinite(a).all() or (positive and not (a > 0).all()):
+        raise SceneError(f"{where}: {label} must be {n} finite{' positive' if positive else ''} numbers, "
+                         f"got {list(np.atleast_1d(value))}")
+    return a
+
+
+def _from_trimesh(v: np.ndarray, f: np.ndarray, material: str | Material, where: str, max_edge_m: float,
+                  transform: np.ndarray) -> SceneGeometry:
+    import trimesh
+
+    key = _material_key(material, None, where)
+    v, f = trimesh.remesh.subdivide_to_size(v, f, max_edge=max_edge_m)
+    v = np.asarray(v) @ transform[:3, :3].T + transform[:3, 3]
+    return SceneGeometry(
+        vertices=torch.as_tensor(v, dtype=torch.get_default_dtype()),
+        faces=torch.as_tensor(np.asarray(f), dtype=torch.long),
+        face_material=torch.zeros(len(f), dtype=torch.long),
+        materials=(key,),
+        object_id=torch.zeros(len(f), dtype=torch.long),
+    )
+
+
+def placed_box(
+    size: Sequence[float], position: Sequence[float], material: str | Material, *, yaw_deg: float = 0.0,
+    max_edge_m: float = 0.5,
+) -> SceneGeometry:
+    """A box of ``size`` (x, y, z extents before the yaw) standing with its base centre at ``position``.
+
+    A door frame, a radiator, a cabinet: ``position`` is the centre of the bottom face (so
+    ``z = 0`` stands on the floor), ``yaw_deg`` turns it about the vertical. Outward normals,
+    faces no longer than ``max_edge_m``.
+
+    Raises:
+        SceneError: bad size/position or unknown material.
+    """
+    import trimesh
+
+    where = "box object"
+    ext = _check_vec(size, 3, "size", where, positive=True)
+    pos = _check_vec(position, 3, "position", where)
+    mesh = trimesh.creation.box(extents=ext, transform=trimesh.transformations.translation_matrix((0, 0, ext[2] / 2)))
+    return _from_trimesh(mesh.vertices, mesh.faces, material, where, max_edge_m, _placement(pos, yaw_deg))
+
+
+def placed_cylinder(
+    radius: float, height: float, position: Sequence[float], material: str | Material, *,
+    sections: int = 24, max_edge_m: float = 0.5,
+) -> SceneGeometry:
+    """A vertical cylinder (a pillar, a pipe, a bin) with its base centre at ``position``.
+
+    ``sections`` facets around (24: the facets' chords deviate from the circle by
+    ``r (1 - cos(pi / 24))``, 0.9 % of the radius).
+
+    Raises:
+        SceneError: bad radius/height/position/sections or unknown material.
+    """
+    import trimesh
+
+    where = "cylinder object"
+    r, h = _check_vec([radius, height], 2, "radius and height", where, positive=True)
+    pos = _check_vec(position, 3, "position", where)
+    if isinstance(sections, bool) or not isinstance(sections, int) or sections < 3:
+        raise SceneError(f"{where}: sections must be an integer >= 3, got {sections!r}")
+    mesh = trimesh.creation.cylinder(radius=r, height=h, sections=sections,
+                                     transform=trimesh.transformations.translation_matrix((0, 0, h / 2)))
+    return _from_trimesh(mesh.vertices, mesh.faces, material, where, max_edge_m, _placement(pos, 0.0))
+
+
+def placed_mesh(
+    path: str | os.PathLike, position: Sequence[float], material: str | Material, *, scale: float = 1.0,
+    yaw_deg: float = 0.0,
+) -> SceneGeometry:
+    """A mesh file as an object: scaled, turned by ``yaw_deg`` about +z, its origin moved to ``position``."""
+    pos = _check_vec(position, 3, "position", f"mesh file {path}")
+    return load_mesh(path, material=material, scale=scale, transform=_placement(pos, yaw_deg))
+
+
 def merge(geoms: Sequence[SceneGeometry]) -> SceneGeometry:
     """Union of triangle soups.
 
@@ -411,4 +500,7 @@ def merge(geoms: Sequence[SceneGeometry]) -> SceneGeometry:
     )
 
 
-__all__ = ["CORRIDOR_SURFACES", "PAPER_CORRIDOR_MATERIALS", "box", "corridor", "load_mesh", "merge"]
+__all__ = [
+    "CORRIDOR_SURFACES", "PAPER_CORRIDOR_MATERIALS", "box", "corridor", "load_mesh", "merge", "placed_box",
+    "placed_cylinder", "placed_mesh",
+]

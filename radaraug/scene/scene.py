@@ -23,10 +23,25 @@ from radaraug.config import RadarConfig
 from radaraug.errors import ConfigError, SceneError
 from radaraug.scene.geometry import Ellipsoids, RadarPose, SceneGeometry
 from radaraug.scene.materials import MATERIALS, Material, get_material, register_material
-from radaraug.scene.room import CORRIDOR_SURFACES, corridor, load_mesh, merge
+from radaraug.scene.room import (
+    CORRIDOR_SURFACES,
+    corridor,
+    load_mesh,
+    merge,
+    placed_box,
+    placed_cylinder,
+    placed_mesh,
+)
+from radaraug.scene.scattering import DiffuseScattering, as_scattering
 
 _SCENES_DIR = Path(__file__).resolve().parent.parent / "data" / "scenes"
-_TOP_KEYS = {"name", "description", "radar", "room", "people", "materials"}
+_TOP_KEYS = {"name", "description", "radar", "room", "people", "materials", "objects"}
+_OBJECT_KEYS = {
+    "box": ({"type", "size", "position", "yaw_deg", "material", "max_edge", "name"}, {"size", "position", "material"}),
+    "cylinder": ({"type", "radius", "height", "position", "material", "sections", "max_edge", "name"},
+                 {"radius", "height", "position", "material"}),
+    "mesh": ({"type", "file", "scale", "position", "yaw_deg", "material", "name"}, {"file", "position", "material"}),
+}
 _RADAR_KEYS = {"config", "position", "look_at", "up", "rotation", "yaw_pitch_roll_deg", "mounting"}
 _ROOM_KEYS = {
     "corridor": {"type", "length", "width", "height", "materials", "thickness", "end_walls", "max_edge"},
@@ -301,6 +316,74 @@ def _inline_dict(geom: SceneGeometry) -> dict[str, Any]:
     }
 
 
+# ------------------------------------------------------------------------------------- objects
+def _read_object(spec: Any, i: int, rd: _Reader) -> tuple[SceneGeometry, dict[str, Any]]:
+    """One ``objects[i]`` entry: its geometry (object id 0, part of the static room) and spec."""
+    key = f"objects[{i}]"
+    spec = rd.mapping(spec, key)
+    kind = spec.get("type")
+    if kind not in _OBJECT_KEYS:
+        raise rd.fail(f"{key}.type", f"must be one of {sorted(_OBJECT_KEYS)}, got {kind!r}")
+    allowed, required = _OBJECT_KEYS[kind]
+    rd.mapping(spec, key, allowed)
+    for k in sorted(required):
+        if k not in spec:
+            raise rd.fail(f"{key}.{k}", f"is required for a {kind} object")
+    material = spec["material"]
+    try:
+        get_material(material)
+    except SceneError as err:
+        raise rd.fail(f"{key}.material", str(err)) from None
+    norm: dict[str, Any] = {"type": kind}
+    if "name" in spec:
+        if not isinstance(spec["name"], str):
+            raise rd.fail(f"{key}.name", f"must be a string, got {spec['name']!r}")
+        norm["name"] = spec["name"]
+    position = rd.vector(spec["position"], f"{key}.position", 3)
+    norm["position"] = position
+    try:
+        if kind == "box":
+            size = rd.vector(spec["size"], f"{key}.size", 3)
+            for j, x in enumerate(size):
+                rd.number(x, f"{key}.size[{j}]", positive=True)
+            yaw = rd.number(spec.get("yaw_deg", 0.0), f"{key}.yaw_deg")
+            edge = rd.number(spec.get("max_edge", 0.5), f"{key}.max_edge", positive=True)
+            norm.update(size=size, yaw_deg=yaw, max_edge=edge)
+            geom = placed_box(size, position, material, yaw_deg=yaw, max_edge_m=edge)
+        elif kind == "cylinder":
+            radius = rd.number(spec["radius"], f"{key}.radius", positive=True)
+            height = rd.number(spec["height"], f"{key}.height", positive=True)
+            sections = spec.get("sections", 24)
+            if isinstance(sections, bool) or not isinstance(sections, int) or sections < 3:
+                raise rd.fail(f"{key}.sections", f"must be an integer >= 3, got {sections!r}")
+            edge = rd.number(spec.get("max_edge", 0.5), f"{key}.max_edge", positive=True)
+            norm.update(radius=radius, height=height, sections=sections, max_edge=edge)
+            geom = placed_cylinder(radius, height, position, material, sections=sections, max_edge_m=edge)
+        else:
+            path = rd.path(spec["file"], f"{key}.file")
+            if not path.is_file():
+                raise rd.fail(f"{key}.file", f"mesh file {path} not found")
+            scale = rd.number(spec.get("scale", 1.0), f"{key}.scale", positive=True)
+            yaw = rd.number(spec.get("yaw_deg", 0.0), f"{key}.yaw_deg")
+            norm.update(file=str(path), scale=scale, yaw_deg=yaw)
+            geom = placed_mesh(path, position, material, scale=scale, yaw_deg=yaw)
+    except SceneError as err:
+        if str(err).startswith(("scene file ", "scene description")):
+            raise
+        raise rd.fail(key, str(err)) from None
+    norm["material"] = material
+    return geom, norm
+
+
+def _with_objects(room: SceneGeometry, objects: Sequence[SceneGeometry]) -> SceneGeometry:
+    """The room merged with its static objects, every face object id 0 (all static room)."""
+    if not objects:
+        return room
+    merged = merge([room, *objects])
+    merged.object_id = torch.zeros_like(merged.face_material)
+    return merged
+
+
 # -------------------------------------------------------------------------------------- people
 def _people_module() -> Any:
     try:
@@ -363,13 +446,32 @@ def _expand_files(value: Any, key: str, rd: _Reader) -> list[Path]:
     raise rd.fail(key, f"must be a glob pattern or a non-empty list of files, got {value!r}")
 
 
-def _read_materials(spec: Any, rd: _Reader) -> dict[str, dict[str, Any]]:
-    """Register the scene's own materials (``name: {a, b, c, d}`` or ``name: {eps: [re, im]}``)."""
+def _read_materials(spec: Any, rd: _Reader, scattering: dict[str, DiffuseScattering]) -> dict[str, dict[str, Any]]:
+    """Register the scene's own materials (``name: {a, b, c, d}`` or ``name: {eps: [re, im]}``).
+
+    Any entry may carry ``diffuse: {S, pattern, alpha_R}`` (collected into ``scattering``); an
+    entry with only ``diffuse`` sets the diffuse parameters of a known material.
+    """
     spec = rd.mapping(spec, "materials")
     out = {}
     for name, m in spec.items():
         key = f"materials.{name}"
-        m = rd.mapping(m, key, {"a", "b", "c", "d", "eps"})
+        m = dict(rd.mapping(m, key, {"a", "b", "c", "d", "eps", "diffuse"}))
+        if "diffuse" in m:
+            try:
+                scattering[str(name)] = as_scattering(m["diffuse"], f"{key}.diffuse")
+            except SceneError as err:
+                raise rd.fail(f"{key}.diffuse", str(err).split(": ", 1)[-1]) from None
+            if len(m) == 1:
+                # Only the diffuse parameters of an existing material.
+                try:
+                    get_material(str(name))
+                except SceneError as err:
+                    raise rd.fail(key, f"sets only 'diffuse' but {err}") from None
+                out[str(name)] = dict(m)
+                continue
+        full = dict(m)
+        m.pop("diffuse", None)
         if "eps" in m:
             if len(m) != 1:
                 raise rd.fail(key, "give either eps or a, b, c, d")
@@ -388,7 +490,7 @@ def _read_materials(spec: Any, rd: _Reader) -> dict[str, dict[str, Any]]:
             raise rd.fail(key, "redefines a different material with this name")
         if existing is None:
             register_material(mat)
-        out[str(name)] = dict(m)
+        out[str(name)] = full
     return out
 
 
@@ -408,6 +510,10 @@ class Scene:
         room_spec: the description the room was built from (written back by :meth:`to_dict`);
             None for a room built in Python, which is then written inline (every vertex).
         materials_spec: materials the scene file defined (re-written by :meth:`to_dict`).
+        objects_spec: the static objects (``objects:`` of the file) merged into ``room``.
+        scattering: per-material diffuse-scattering overrides from the file's ``materials``
+            section (see :mod:`radaraug.scene.scattering`), for
+            :func:`radaraug.raytrace.diffuse.diffuse_paths` ``(scattering=...)``.
     """
 
     room: SceneGeometry
@@ -418,6 +524,8 @@ class Scene:
     source: Path | None = None
     room_spec: dict[str, Any] | None = None
     materials_spec: dict[str, Any] = field(default_factory=dict)
+    objects_spec: list[dict[str, Any]] = field(default_factory=list)
+    scattering: dict[str, DiffuseScattering] = field(default_factory=dict)
     _person_specs: list[tuple[Any, dict[str, Any]]] = field(default_factory=list, repr=False)
 
     # ------------------------------------------------------------------ reading
@@ -432,15 +540,22 @@ class Scene:
         name = data.get("name", rd.source.stem if rd.source is not None else "scene")
         if not isinstance(name, str):
             raise rd.fail("name", f"must be a string, got {name!r}")
-        materials_spec = _read_materials(data.get("materials", {}), rd)
+        scattering: dict[str, DiffuseScattering] = {}
+        materials_spec = _read_materials(data.get("materials", {}), rd, scattering)
         pose, config = _read_radar(data["radar"], rd)
         room, room_spec = _read_room(data["room"], rd)
+        object_list = data.get("objects") or []
+        if not isinstance(object_list, Sequence) or isinstance(object_list, str):
+            raise rd.fail("objects", "must be a list")
+        objs = [_read_object(o, i, rd) for i, o in enumerate(object_list)]
+        room = _with_objects(room, [g for g, _ in objs])
         people_list = data.get("people") or []
         if not isinstance(people_list, Sequence) or isinstance(people_list, str):
             raise rd.fail("people", "must be a list")
         pairs = [_read_person(p, i, rd) for i, p in enumerate(people_list)]
         return cls(room=room, radar=pose, config=config, people=[p for p, _ in pairs], name=name,
-                   source=rd.source, room_spec=room_spec, materials_spec=materials_spec, _person_specs=pairs)
+                   source=rd.source, room_spec=room_spec, materials_spec=materials_spec,
+                   objects_spec=[o for _, o in objs], scattering=scattering, _person_specs=pairs)
 
     @classmethod
     def from_file(cls, path: str | os.PathLike) -> Scene:
@@ -486,6 +601,12 @@ class Scene:
         if room.get("type") == "mesh":
             room["file"] = _relative(room["file"], folder)
         out["room"] = room
+        if self.objects_spec and self.room_spec is not None:  # an inline room already holds them
+            objs = [dict(o) for o in self.objects_spec]
+            for o in objs:
+                if o.get("type") == "mesh":
+                    o["file"] = _relative(o["file"], folder)
+            out["objects"] = objs
         out["people"] = [self._person_dict(p, folder) for p in self.people]
         return out
 
