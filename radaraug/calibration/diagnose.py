@@ -123,7 +123,7 @@ def _source(config: RadarConfig, scene: Any, fit: torch.Tensor, sim_frames: int,
     static_paths = twin.tracer.static_paths()
     moving = None
     if sc.people:
-        moving = twin.paths(sc.people, twin.frame_times(range(sim_frames * 2)))
+        moving = twin.frame_paths(sc.people, twin.frame_times(range(sim_frames * 2)))
     name = scene if isinstance(scene, str) else str(getattr(sc, "name", "scene"))
     return TwinSource(config, static_paths=static_paths, moving=moving, tx_power_dBm=rx.tx_power_dBm,
                       front_end_gain_dB=rx.front_end_gain_dB), chain, str(name)

@@ -492,7 +492,7 @@ class _Simulator:
                generator: torch.Generator) -> np.ndarray:
         """ADC counts ``(T, rx, chirps, samples)`` uint16."""
         with torch.no_grad():
-            moving = self.twin.paths(people, local_t)
+            moving = self.twin.frame_paths(people, local_t)
             paths = _with_static(moving, self.strong)
             x = self.twin.receiver(paths, generator=generator, static_signal=self.static_signal,
                                    frame_start_s=global_t.to(device=self.device, dtype=torch.float64))

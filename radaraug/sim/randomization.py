@@ -529,6 +529,9 @@ def simulate_item(twin: DigitalTwin, people: Sequence[Any], times: torch.Tensor,
     pn = None if not draw.phase_noise_rms_Hz else (draw.phase_noise_rms_Hz, phase_noise_paths)
     receiver = item_receiver(twin.receiver, draw.system_gain_offset_dB, draw.noise_figure_offset_dB, pn)
     static = twin.static_signal()
+    shadow = twin.shadow_signal(list(people), times)  # geometry only: the RCS scale does not change it
+    if shadow is not None:
+        static = static + shadow
     if draw.system_gain_offset_dB != 0.0:
         static = static * 10 ** (draw.system_gain_offset_dB / 20)
     return receiver(paths, generator=generator, frame_start_s=times.to(torch.float64), static_signal=static)

@@ -19,7 +19,7 @@ import torch
 
 from radaraug.config import RadarConfig
 from radaraug.errors import ConfigError, InputTensorError
-from radaraug.raytrace.shadow import shadow_correction_paths
+from radaraug.raytrace.shadow import shadow_correction_paths, shadow_transmission
 from radaraug.raytrace.tracer import RayTracer
 from radaraug.scene.geometry import Ellipsoids
 from radaraug.scene.scene import Scene
@@ -55,6 +55,10 @@ def negligible_paths_off(paths: Paths, below_dB: float = WEAK_PATH_DB) -> Paths:
     keep = mag >= strongest * 10 ** (-below_dB / 20)
     mask = keep if paths.mask is None else paths.mask & keep
     return dataclasses.replace(paths, mask=mask)
+
+
+SHADOW_TOL = 1e-3
+"""Smallest ``|T - 1|`` of a static path that the shadowing applies (-60 dB of the path)."""
 
 
 class DigitalTwin:
@@ -109,7 +113,7 @@ class DigitalTwin:
         self.dtype = dtype
         self.multipath = multipath
         self.shadowing = shadowing
-        options = dict(tracer_options or {})
+        options = {"scattering": getattr(scene, "scattering", None), **(tracer_options or {})}
         self.tracer = RayTracer(
             scene.room.to(self.device), scene.radar, self.config, device=self.device, dtype=dtype, **options,
         )
@@ -119,6 +123,7 @@ class DigitalTwin:
             receiver = as_profile(profile).receiver(self.config)
         self.receiver = (receiver or FMCWReceiver(self.config)).to(self.device)
         self._static_signal = None if static_signal is None else static_signal.to(self.device)
+        self._static_basis: torch.Tensor | None = None
         if not (intra_frame == "auto" or (isinstance(intra_frame, int) and not isinstance(intra_frame, bool)
                                           and intra_frame >= 0)):
             raise ConfigError(f"intra_frame must be 'auto' or a number of knot intervals >= 0, got {intra_frame!r}")
@@ -173,16 +178,74 @@ class DigitalTwin:
             trace, times, ChirpTiming.from_config(self.config), intervals=self.intra_frame,
             tol_cycles=self.intra_frame_tol_cycles,
         )
-        # The room's signal is synthesized once; people shadowing it enter as correction paths
-        # ((T - 1) * a at the static delays, the people at each frame's start held for the frame).
-        # SBR static paths have no vertices: no shadowing.
-        vertices = self.tracer.static_vertices() if self.shadowing else None
-        if vertices is not None:
-            correction = shadow_correction_paths(
-                self.tracer.static_paths(), vertices, self.ellipsoids(people, times), self.config.wavelength_m,
-            )
-            paths = Paths.cat([paths, correction.map(lambda t: t.to(self.device))])
         return paths
+
+    def shadow_paths(self, people: Sequence[Any], times: torch.Tensor) -> Paths | None:
+        """Correction paths ``(T, P', RX)`` for the room's paths that the people shadow, or None.
+
+        The room's signal is synthesized once (:meth:`static_signal`); people shadowing it enter
+        as ``(T - 1) * a`` at the static paths' delays (:mod:`radaraug.raytrace.shadow`), with
+        the people at each frame's start held for the frame. None without people, with
+        ``shadowing=False``, or for an SBR room (its merged paths have no vertices).
+        """
+        if not people or not self.shadowing:
+            return None
+        vertices = self.tracer.static_vertices()
+        if vertices is None:
+            return None
+        correction = shadow_correction_paths(self.tracer.static_paths(), vertices, self.ellipsoids(people, times),
+                                             self.config.wavelength_m)
+        return correction.map(lambda t: t.to(self.device))
+
+    def static_basis(self) -> torch.Tensor:
+        """``(P, 2, RX, N)`` one chirp of each static path's signal through the linear stages, and of
+        the same path with its amplitude times ``j`` (the in-phase and quadrature basis).
+
+        A static path gives the same samples on every chirp, so a frame in which the people
+        multiply path ``p``'s amplitude by ``T_p`` differs from the cached room signal by
+        ``sum_p Re(T_p - 1) b_p0 + Im(T_p - 1) b_p1`` on every chirp: one small matrix product
+        per batch (:meth:`shadow_signal`) instead of synthesizing thousands of correction paths.
+        Computed once per twin (chunked; about a second for the corridor's ~6,600 paths).
+        """
+        if self._static_basis is None:
+            static = self.tracer.static_paths()
+            parts = []
+            for s in range(0, static.num_paths, 256):
+                one = static.map(lambda x, s=s: x[s: s + 256, None])  # (k, 1, RX): a batch of single paths
+                quad = dataclasses.replace(one, amplitude=one.amplitude * 1j)
+                parts.append(torch.stack([self.receiver.static_signal(one)[:, :, 0],
+                                          self.receiver.static_signal(quad)[:, :, 0]], dim=1))
+            n = self.config.num_samples_per_chirp
+            self._static_basis = (torch.cat(parts) if parts else
+                                  torch.zeros(0, 2, self.config.num_rx, n, device=self.device, dtype=self.dtype))
+        return self._static_basis
+
+    def shadow_signal(self, people: Sequence[Any], times: torch.Tensor) -> torch.Tensor | None:
+        """``(T, RX, 1, N)`` what the people's shadow changes in the room's signal (broadcast over
+        chirps; :meth:`static_basis`), or None (no people, ``shadowing=False``, SBR room)."""
+        if not people or not self.shadowing:
+            return None
+        vertices = self.tracer.static_vertices()
+        if vertices is None or vertices.shape[0] == 0:
+            return None
+        t = shadow_transmission(vertices, self.ellipsoids(people, times), self.config.wavelength_m)  # (T, P)
+        d = (t - 1).to(self.device)
+        hit = (d.abs() > SHADOW_TOL).any(0).nonzero()[:, 0]
+        if hit.numel() == 0:
+            return None
+        basis = self.static_basis()[hit]  # (P', 2, RX, N)
+        coef = torch.stack([d[:, hit].real, d[:, hit].imag], dim=-1).to(basis.dtype)  # (T, P', 2)
+        return torch.einsum("tpc,pcrn->trn", coef, basis)[:, :, None, :]
+
+    def frame_paths(self, people: Sequence[Any], times: torch.Tensor) -> Paths:
+        """The people's paths (negligible ones masked, :func:`negligible_paths_off`) and their shadow
+        corrections as explicit paths (:meth:`shadow_paths`): with the room's cached signal, the
+        same frames as :meth:`simulate` (which applies the shadow through :meth:`shadow_signal`,
+        far cheaper), for code that needs the paths themselves (the calibration, the proxy)."""
+        people = list(people or [])
+        paths = negligible_paths_off(self.paths(people, times))
+        shadow = self.shadow_paths(people, times)
+        return paths if shadow is None else Paths.cat([paths, shadow])
 
     @torch.no_grad()
     def simulate(
@@ -201,14 +264,18 @@ class DigitalTwin:
                 generator's seed, whatever the batch), a single generator for the batch, or
                 None (global RNG).
         """
-        paths = negligible_paths_off(self.paths(list(people or []), times))
+        people = list(people or [])
+        paths = negligible_paths_off(self.paths(people, times))
         static = self.static_signal()
+        shadow = self.shadow_signal(people, times)
+        if shadow is not None:
+            static = static + shadow  # (T, RX, chirps, samples): the shadowed room per frame
         if isinstance(generators, Sequence):
             if len(generators) != times.shape[0]:
                 raise InputTensorError(f"need one generator per frame: {len(generators)} for {times.shape[0]} frames")
             frames = [
                 self.receiver(paths.map(lambda x, k=k: x[k]), generator=g, frame_start_s=float(times[k]),
-                              static_signal=static)
+                              static_signal=static[k] if static.dim() == 4 else static)
                 for k, g in enumerate(generators)
             ]
             return torch.stack(frames)

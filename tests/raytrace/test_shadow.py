@@ -313,7 +313,7 @@ def test_bad_shapes_raise() -> None:
 
 
 def test_twin_adds_the_correction_when_the_tracer_gives_vertices() -> None:
-    """DigitalTwin.paths: correction paths appended when the tracer gives static_vertices() (the
+    """DigitalTwin.frame_paths: correction paths appended when the tracer gives static_vertices() (the
     static geometry is stubbed here with the wall path), none with shadowing=False or with the SBR
     tracer (no vertices)."""
     from radaraug.scene.scene import Scene
@@ -334,8 +334,10 @@ def test_twin_adds_the_correction_when_the_tracer_gives_vertices() -> None:
         twin.tracer.static_paths = lambda static=static: static
         if stub:
             twin.tracer.static_vertices = lambda r=r, wall=wall: torch.stack([r, wall, r])[None].float()
-        base = twin.tracer.target_paths(ellipsoids=twin.ellipsoids([walker], times), multipath=True)
-        counts[(shadowing, stub)] = twin.paths([walker], times).num_paths - base.num_paths
+        shadow = twin.shadow_paths([walker], times)
+        counts[(shadowing, stub)] = 0 if shadow is None else shadow.num_paths
+        assert twin.frame_paths([walker], times).num_paths == twin.paths([walker], times).num_paths + \
+            counts[(shadowing, stub)]
     assert counts == {(True, True): 1, (False, True): 0, (True, False): 0}
 
 
