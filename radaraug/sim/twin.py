@@ -228,7 +228,7 @@ class DigitalTwin:
         vertices = self.tracer.static_vertices()
         if vertices is None or vertices.shape[0] == 0:
             return None
-        t = shadow_transmission(vertices, self.ellipsoids(people, times), self.config.wavelength_m)  # (T, P)
+        t = self._transmission(vertices, self.ellipsoids(people, times))  # (T, P)
         d = (t - 1).to(self.device)
         hit = (d.abs() > SHADOW_TOL).any(0).nonzero()[:, 0]
         if hit.numel() == 0:
@@ -236,6 +236,28 @@ class DigitalTwin:
         basis = self.static_basis()[hit]  # (P', 2, RX, N)
         coef = torch.stack([d[:, hit].real, d[:, hit].imag], dim=-1).to(basis.dtype)  # (T, P', 2)
         return torch.einsum("tpc,pcrn->trn", coef, basis)[:, :, None, :]
+
+    def _transmission(self, vertices: torch.Tensor, ell: Ellipsoids) -> torch.Tensor:
+        """:func:`shadow_transmission` of the static paths, each single-bounce path's one leg once.
+
+        Most static paths (diffuse cells, small-face PO, first-order images) go radar -> point ->
+        radar: out and back along the same line, so their transmission is the square of the
+        one-way leg's, and tracing that leg once halves the work (their padded zero-length legs
+        are not traced at all).
+        """
+        centre = vertices[:, :1]
+        single = (vertices[:, 2:] - centre).abs().amax(dim=(-1, -2)) == 0  # [radar, p, radar, radar...]
+        t = torch.ones(*ell.centers.shape[:-2], vertices.shape[0], dtype=torch.complex64 if self.dtype ==
+                       torch.float32 else torch.complex128, device=vertices.device)
+        wl = self.config.wavelength_m
+        idx = single.nonzero()[:, 0]
+        if idx.numel():
+            one_way = shadow_transmission(vertices[idx, :2], ell, wl)
+            t[..., idx] = (one_way * one_way).to(t.dtype)
+        rest = (~single).nonzero()[:, 0]
+        if rest.numel():
+            t[..., rest] = shadow_transmission(vertices[rest], ell, wl).to(t.dtype)
+        return t
 
     def frame_paths(self, people: Sequence[Any], times: torch.Tensor) -> Paths:
         """The people's paths (negligible ones masked, :func:`negligible_paths_off`) and their shadow

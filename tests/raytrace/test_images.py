@@ -33,7 +33,7 @@ def _db(x: float) -> float:
 def test_metal_wall_is_the_free_space_image(d):
     """|a|^2 = G^2 lambda^2 / (4 pi 2d)^2: -82.0 dB at 10 m with two 6 dBi patches; delays per RX exact."""
     pose = RadarPose.look_at((0.0, 0.0, 0.0), (10.0, 0.0, 0.0))
-    tr = RayTracer(_wall(d), pose, CFG, cache=False, dtype=torch.float64)
+    tr = RayTracer(_wall(d), pose, CFG, cache=False, diffuse=False, dtype=torch.float64)
     p = tr.static_paths()
     assert p.num_paths == 1
     g = tr.antenna.peak_gain
@@ -53,7 +53,7 @@ def test_metal_wall_is_the_free_space_image(d):
 def test_concrete_wall_normal_incidence_fresnel():
     pose = RadarPose.look_at((0.0, 0.0, 0.0), (10.0, 0.0, 0.0))
     tr = RayTracer(_wall(5.0, material="concrete"), pose, monostatic_config(), antenna=IsotropicAntenna(),
-                   cache=False, dtype=torch.float64)
+                   cache=False, diffuse=False, dtype=torch.float64)
     a = complex(tr.static_paths().amplitude[0, 0])
     eps = complex(get_material("concrete").permittivity(CFG.center_frequency_Hz))
     gamma = (1 - eps**0.5) / (1 + eps**0.5)
@@ -66,7 +66,7 @@ def test_trihedral_and_dihedral_corners_are_one_image_each():
     Gamma^3 = -1 at twice the corner distance; each dihedral edge image is one path too."""
     room = box_room((0.0, -1.0, 0.0), (6.0, 1.0, 2.0), materials=("metal",) * 4)
     pose = RadarPose.look_at((1.0, 0.2, 0.6), (6.0, 1.0, 2.0))
-    tr = RayTracer(room, pose, monostatic_config(), antenna=IsotropicAntenna(), cache=False, dtype=torch.float64)
+    tr = RayTracer(room, pose, monostatic_config(), antenna=IsotropicAntenna(), cache=False, diffuse=False, dtype=torch.float64)
     p = tr.static_paths()
     c = tr.radar.centre
     corner = torch.tensor([6.0, 1.0, 2.0], dtype=torch.float64)
@@ -89,11 +89,11 @@ def test_blocked_and_missed_walls_give_no_path():
     pose = RadarPose.look_at((0.0, 0.0, 0.0), (10.0, 0.0, 0.0))
     # A wall whose foot point (0, 0) lies outside it: no specular return.
     off = soup(quad(torch.tensor([5.0, 1.0, -1.0]), torch.tensor([0.0, 2.0, 0]), torch.tensor([0.0, 0, 2.0])))
-    assert RayTracer(off, pose, CFG, cache=False).static_paths().num_paths == 0
+    assert RayTracer(off, pose, CFG, cache=False, diffuse=False).static_paths().num_paths == 0
     # A metal box between the radar and the wall blocks the image path; the box's own small faces
     # (< 1 m^2) scatter by facet PO instead, all closer than the wall.
     room = merge([_wall(8.0), box((3.0, -0.3, -0.3), (3.4, 0.3, 0.3), "metal", max_edge_m=0.2)])
-    p = RayTracer(room, pose, CFG, cache=False).static_paths()
+    p = RayTracer(room, pose, CFG, cache=False, diffuse=False).static_paths()
     assert p.num_paths > 0
     assert float(p.delay_s.max()) * SPEED_OF_LIGHT < 2 * 3.5
 
@@ -113,7 +113,7 @@ def test_facet_po_of_a_plate_matches_the_fresnel_closed_form(distance):
     a = 0.2
     plate = soup(quad(torch.tensor([distance, -a, -a]), torch.tensor([0.0, 2 * a, 0]), torch.tensor([0.0, 0, 2 * a])))
     pose = RadarPose.look_at((0.0, 0.0, 0.0), (10.0, 0.0, 0.0))
-    tr = RayTracer(plate, pose, monostatic_config(), antenna=IsotropicAntenna(), cache=False, dtype=torch.float64,
+    tr = RayTracer(plate, pose, monostatic_config(), antenna=IsotropicAntenna(), cache=False, diffuse=False, dtype=torch.float64,
                    merge_bin_m=None)
     got = abs(carrier_sum(tr.static_paths(), CFG.center_frequency_Hz))
     k = 2 * math.pi / LAM
@@ -136,8 +136,8 @@ def test_mesh_room_with_small_objects_converges_by_construction():
         box((11.0, -0.4, 0.0), (11.6, 0.2, 0.9), "wood", max_edge_m=0.5),     # cabinet
     ])
     pose = RadarPose.look_at((0.1, 0.0, 1.2), (15.0, 0.0, 1.2))
-    base = RayTracer(room, pose, CFG, cache=False)
-    dense = RayTracer(room, pose, CFG, cache=False, density=4.0)
+    base = RayTracer(room, pose, CFG, cache=False, diffuse=False)
+    dense = RayTracer(room, pose, CFG, cache=False, diffuse=False, density=4.0)
     r, ref = static_range_profile(dense.static_paths(), CFG)
     _, got = static_range_profile(base.static_paths(), CFG)
     cmp = compare_profiles(r, got, ref, interval_m=(2.0, min(19.5, CFG.max_range_m)))

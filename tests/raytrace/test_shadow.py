@@ -392,7 +392,7 @@ def test_traced_wall_is_shadowed_by_a_crossing_walker() -> None:
                          ("metal",))
     cfg = RadarConfig.bgt60tr13c()
     pose = RadarPose.look_at((0.0, 0.0, H_RADAR), (WALL, 0.0, H_RADAR))
-    tracer = RayTracer(wall, pose, cfg, cache=False, dtype=torch.float64)
+    tracer = RayTracer(wall, pose, cfg, cache=False, diffuse=False, dtype=torch.float64)
     static, vertices = tracer.static_paths(), tracer.static_vertices()
     assert static.num_paths == 1
     times = torch.linspace(0, 6 / 1.4, 121, dtype=torch.float64)

@@ -9,7 +9,7 @@ import pytest
 import torch
 
 from radaraug.config import SPEED_OF_LIGHT
-from radaraug.sensor.synthesis import ChirpTiming, _taylor_orders, synthesize_exact, synthesize_fast
+from radaraug.sensor.synthesis import ChirpTiming, synthesize_exact, synthesize_fast, taylor_orders_needed
 
 
 def closed_form_beat(config, coef, tau0, rate):
@@ -77,8 +77,12 @@ def test_fast_handles_batch_dims_and_empty(small_cfg):
 
 
 def test_taylor_order_bound():
-    for theta in (0.0, 0.3, 1.1, 3.0):
-        k = _taylor_orders(theta, 1e-6)
-        assert theta**k / math.factorial(k) < 1e-6
-        if k > 1:
-            assert theta ** (k - 1) / math.factorial(k - 1) >= 1e-6
+    """A path keeps order k while |C| theta^k / k! >= tol * (strongest |C|): weak paths need fewer."""
+    theta = torch.tensor([0.0, 0.3, 1.1, 1.1, 1.9], dtype=torch.float64)
+    rel = torch.tensor([1.0, 1.0, 1.0, 1e-3, 1.0], dtype=torch.float64)
+    need = taylor_orders_needed(theta, rel, 1e-6)
+    for t, r, k in zip(theta.tolist(), rel.tolist(), need.tolist()):
+        assert r * t ** (k + 1) / math.factorial(k + 1) < 1e-6
+        if k > 0:
+            assert r * t**k / math.factorial(k) >= 1e-6
+    assert need[0] == 0 and need[3] < need[2]

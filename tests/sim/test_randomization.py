@@ -27,7 +27,9 @@ from radaraug.sim.randomization import (
 )
 from radaraug.sim.twin import DigitalTwin
 
-FAST = {"tracer_options": {"rays": 16}}  # a coarse room trace keeps the tests quick
+# The image-method room without diffuse clutter keeps the tests quick; no shadowing, so that
+# "frame - room signal" is the people's own signal (what the RCS scaling acts on).
+FAST = {"tracer_options": {"diffuse": False}, "shadowing": False}
 SMALL = {"room_variants": 2}
 
 
