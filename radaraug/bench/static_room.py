@@ -6,9 +6,10 @@ Scene: the paper's corridor (``corridor``) at the paper's config, and a furnishe
 * ``image_trace_s`` and, per SBR ray count, ``sbr_trace_s`` with the ratio ``sbr / image`` (the
   baseline is the image-method trace in the same process);
 * the static range profile's error against a reference (ideal receiver, Hann, mean chirp,
-  :mod:`radaraug.raytrace.convergence`): SBR at each ray count against the image method (the end
-  wall and the RMS over 2-19.5 m), and the image method against itself at ``density=4`` (the
-  issue's "4x denser trace" criterion) for both rooms;
+  :mod:`radaraug.raytrace.convergence`): SBR at each ray count against the image method's
+  specular part (the end wall and the RMS over 2-19.5 m), the default trace (with diffuse
+  clutter) and the specular image method against themselves at ``density=4`` (the "4x denser
+  trace" criterion), and the furnished room's small-face PO at ``density=1`` vs ``4``;
 * optionally a figure of the corridor's static range profile for every trace.
 """
 
@@ -59,23 +60,31 @@ def run_static_room_benchmark(
 
     scene = Scene.builtin("corridor")
     cfg = scene.config
+    # The specular part (no diffuse clutter) is what SBR rays compute: compare like with like.
     base = {"room": scene.room, "radar": scene.radar, "config": cfg}
-    image, t_image = _timed_trace(**base)
+    default, t_default = _timed_trace(**base, scattering=scene.scattering)
+    _, prof_default = static_range_profile(default.static_paths(), cfg)
+    default4, _ = _timed_trace(**base, scattering=scene.scattering, density=4.0)
+    _, prof_default4 = static_range_profile(default4.static_paths(), cfg)
+    image, t_image = _timed_trace(**base, diffuse=False)
     r, ref = static_range_profile(image.static_paths(), cfg)
-    dense, t_dense = _timed_trace(**base, density=4.0)
+    dense, t_dense = _timed_trace(**base, density=4.0, diffuse=False)
     _, ref_dense = static_range_profile(dense.static_paths(), cfg)
     interval = (2.0, min(19.5, cfg.max_range_m))
     res: dict[str, Any] = {
         "benchmark": "static-room",
         "scene": "corridor (paper corridor, 20 m x 2 m x 2.7 m)",
         "config_max_range_m": round(cfg.max_range_m, 3),
+        "default_trace_s": round(t_default, 3),
+        "default_static_paths": default.static_paths().num_paths,
+        "default_vs_density4": _cmp(compare_profiles(r, prof_default, prof_default4, interval_m=interval)),
         "image_trace_s": round(t_image, 3),
         "image_static_paths": image.static_paths().num_paths,
         "image_vs_density4": _cmp(compare_profiles(r, ref, ref_dense, interval_m=interval)),
         "image_density4_trace_s": round(t_dense, 3),
         "sbr": [],
     }
-    profiles = {"image method": ref}
+    profiles = {"default (image method + diffuse clutter)": prof_default, "image method": ref}
     for n in rays:
         sbr, t = _timed_trace(**base, method="sbr", rays=n, max_bounces=3)
         _, prof = static_range_profile(sbr.static_paths(), cfg)
@@ -84,8 +93,8 @@ def run_static_room_benchmark(
                            "paths": sbr.static_paths().num_paths,
                            "vs_image": _cmp(compare_profiles(r, prof, ref, interval_m=interval))})
     room, pose = furnished_room()
-    mesh, t_mesh = _timed_trace(room=room, radar=pose, config=cfg)
-    mesh4, t_mesh4 = _timed_trace(room=room, radar=pose, config=cfg, density=4.0)
+    mesh, t_mesh = _timed_trace(room=room, radar=pose, config=cfg, diffuse=False)
+    mesh4, t_mesh4 = _timed_trace(room=room, radar=pose, config=cfg, density=4.0, diffuse=False)
     _, p1 = static_range_profile(mesh.static_paths(), cfg)
     _, p4 = static_range_profile(mesh4.static_paths(), cfg)
     res["mesh_room"] = {"trace_s": round(t_mesh, 3), "density4_trace_s": round(t_mesh4, 3),
@@ -113,8 +122,9 @@ def _plot(r: torch.Tensor, profiles: dict[str, torch.Tensor], path: str | Path) 
 
     fig, ax = plt.subplots(figsize=(8, 4.2))
     for name, prof in profiles.items():
-        ax.plot(r.numpy(), prof.numpy(), lw=2.2 if name == "image method" else 1.0,
-                color="k" if name == "image method" else None, label=name)
+        main = name == "image method"
+        ax.plot(r.numpy(), prof.numpy(), lw=2.2 if main else 1.0, color="k" if main else None,
+                ls=":" if name.startswith("default") else "-", label=name)
     ax.set_xlabel("range (m)")
     ax.set_ylabel("static range profile (dB, ideal receiver)")
     ax.set_title("Paper corridor: static room vs ray density")

@@ -71,6 +71,24 @@ def subdivide(
         src = torch.cat([src[~big], src[big].repeat_interleave(4)])
 
 
+def monostatic_facet_rcs(
+    triangles: torch.Tensor, material: torch.Tensor, radar: RadarGeometry, reflectivity: FaceReflectivity,
+    specular_factor: torch.Tensor | None = None,
+) -> tuple[torch.Tensor, torch.Tensor, torch.Tensor, torch.Tensor]:
+    """``(centroid, range, unit vector to the radar, root RCS)`` of facets ``(F, 3, 3)`` seen by the
+    radar (monostatic PO toward the radar centre, the face's Fresnel coefficient times the
+    optional per-material ``specular_factor``)."""
+    cen = triangles.mean(-2)
+    to_r = radar.centre - cen
+    r = to_r.norm(dim=-1)
+    u = to_r / r[:, None]
+    n = facet_normals(triangles)
+    gamma = reflectivity(material, (n * u).sum(-1).abs(), -u, n, radar.polarization)
+    if specular_factor is not None:
+        gamma = gamma * specular_factor.to(triangles.device)[material]
+    return cen, r, u, facet_root_rcs(triangles, -u, u, radar.wavelength, gamma)
+
+
 def facet_paths(
     triangles: torch.Tensor,
     face: torch.Tensor,
@@ -108,17 +126,7 @@ def facet_paths(
         return (Paths(z, z.clone(), z.to(cdt), torch.zeros(0, dtype=torch.int8, device=dev)),
                 torch.zeros(0, 3, 3, dtype=dt, device=dev))
     tri, src = subdivide(triangles[face], face, radar.centre, radar.wavelength, density)
-    cen = tri.mean(-2)
-    to_r = radar.centre - cen
-    r = to_r.norm(dim=-1)
-    u = to_r / r[:, None]
-    n = facet_normals(tri)
-    cos = (n * u).sum(-1)
-    mat = face_material[src]
-    gamma = reflectivity(mat, cos.abs(), -u, n, radar.polarization)
-    if specular_factor is not None:
-        gamma = gamma * specular_factor.to(dev)[mat]
-    root = facet_root_rcs(tri, -u, u, radar.wavelength, gamma)
+    cen, r, u, root = monostatic_facet_rcs(tri, face_material[src], radar, reflectivity, specular_factor)
     eps = surface_offset(cen)
     lit = root.abs() > 0
     idx = lit.nonzero()[:, 0]

@@ -43,7 +43,8 @@ import torch
 from radaraug.config import SPEED_OF_LIGHT
 from radaraug.errors import SceneError
 from radaraug.raytrace.accel import TriangleBVH
-from radaraug.raytrace.po import facet_normals, facet_root_rcs
+from radaraug.raytrace.facets import monostatic_facet_rcs
+from radaraug.raytrace.po import facet_normals
 from radaraug.raytrace.radar import RadarGeometry, radar_amplitude
 from radaraug.raytrace.reflect import FaceReflectivity
 from radaraug.raytrace.sbr import surface_offset
@@ -253,23 +254,8 @@ def ellipsoid_paths(
         q = pk + t_q[..., None] * u_img
         u_wall_in = (q - radar.centre) / (q - radar.centre).norm(dim=-1, keepdim=True)  # radar -> wall
         same_side = ((pk * nrm).sum(-1) - off) * ((nrm @ radar.centre) - off) > 0
-        if convex_room:
-            # q is on its wall iff it is on the radar's side of every other plane.
-            radar_side = torch.sign((nrm @ radar.centre) - off)  # (K,)
-            side = ((q[..., None, :] * nrm).sum(-1) - off) * radar_side  # (N, S, K, K)
-            tol = 1e-5 * (1 + off.abs().max())
-            ok = same_side & (side >= -tol).all(-1)
-            wall_material = mirrors.plane_material.to(dev).expand(c_k.shape[:-1])
-        else:
-            hit = room_bvh.intersect(pk.reshape(-1, 3), u_img.reshape(-1, 3), t_min=0.0)
-            plane_id = torch.arange(k, device=dev).expand(c_k.shape[:-1]).reshape(-1)
-            face = hit.face
-            ok = (face >= 0) & (mirrors.face_plane.to(dev)[face.clamp_min(0)] == plane_id) & same_side.reshape(-1)
-            r_wr = (radar.centre - q).norm(dim=-1).reshape(-1)
-            eps_q = surface_offset(q).reshape(-1)
-            clear = ~room_bvh.any_hit(q.reshape(-1, 3), -u_wall_in.reshape(-1, 3), r_wr - eps_q, t_min=eps_q)
-            ok = (ok & clear).reshape(q.shape[:-1])
-            wall_material = room_face_material[face.clamp_min(0)].reshape(q.shape[:-1])
+        ok, wall_material = _wall_bounce(pk, u_img, q, u_wall_in, same_side, nrm, off, mirrors, radar,
+                                         convex_room, room_bvh, room_face_material)
         cos_w = (u_wall_in * nrm).sum(-1).abs()
         g_wall = room_reflectivity(wall_material, cos_w, u_wall_in, nrm.expand_as(u_wall_in), radar.polarization)
         root_k = gamma_skin * sigma.sqrt() * g_wall
@@ -305,7 +291,7 @@ def _second_order(c, ax, rot, vel, radar: RadarGeometry, antenna, nrm, off, img,
     side of the plane, ``q`` lies on that plane's faces (``p`` -> image first meets the room
     there; convex room: ``q`` is inside every other plane) and the ``q`` -> radar leg is clear.
     """
-    dev, dt = c.device, c.dtype
+    dt = c.dtype
     k = nrm.shape[0]
 
     def mirror(x: torch.Tensor) -> torch.Tensor:  # (..., 3) -> (..., K, 3)
@@ -328,21 +314,8 @@ def _second_order(c, ax, rot, vel, radar: RadarGeometry, antenna, nrm, off, img,
     same_side = ((p * nrm).sum(-1) - off) * radar_side > 0
     u_wall_in = q - radar.centre
     u_wall_in = u_wall_in / u_wall_in.norm(dim=-1, keepdim=True)  # radar -> wall
-    if convex_room:
-        side = ((q[..., None, :] * nrm).sum(-1) - off) * torch.sign(radar_side)  # (N, S, K, K)
-        tol = 1e-5 * (1 + off.abs().max())
-        ok = same_side & (side >= -tol).all(-1)
-        wall_material = mirrors.plane_material.to(dev).expand(q.shape[:-1])
-    else:
-        hit = room_bvh.intersect(p.reshape(-1, 3), u_img.reshape(-1, 3), t_min=0.0)
-        plane_id = torch.arange(k, device=dev).expand(q.shape[:-1]).reshape(-1)
-        face = hit.face
-        ok = (face >= 0) & (mirrors.face_plane.to(dev)[face.clamp_min(0)] == plane_id) & same_side.reshape(-1)
-        r_wr = (radar.centre - q).norm(dim=-1).reshape(-1)
-        eps_q = surface_offset(q).reshape(-1)
-        clear = ~room_bvh.any_hit(q.reshape(-1, 3), -u_wall_in.reshape(-1, 3), r_wr - eps_q, t_min=eps_q)
-        ok = (ok & clear).reshape(q.shape[:-1])
-        wall_material = room_face_material[face.clamp_min(0)].reshape(q.shape[:-1])
+    ok, wall_material = _wall_bounce(p, u_img, q, u_wall_in, same_side, nrm, off, mirrors, radar, convex_room,
+                                     room_bvh, room_face_material)
     cos_w = (u_wall_in * nrm).sum(-1).abs()
     g_wall = room_reflectivity(wall_material, cos_w, u_wall_in, nrm.expand_as(u_wall_in), radar.polarization)
     root = gamma_skin * sigma.sqrt() * g_wall * g_wall
@@ -367,6 +340,33 @@ def _second_order(c, ax, rot, vel, radar: RadarGeometry, antenna, nrm, off, img,
 def _unit(v: torch.Tensor) -> torch.Tensor:
     return v / v.norm(dim=-1, keepdim=True)
 
+
+
+def _wall_bounce(p, u_img, q, u_wall_in, same_side, nrm, off, mirrors: MirrorPlanes, radar: RadarGeometry,
+                 convex_room: bool, room_bvh: TriangleBVH, room_face_material):
+    """``(ok, wall_material)`` of bounce points ``q`` ``(N, S, K, 3)`` on the mirror planes.
+
+    A bounce is valid when the scatterer ``p`` is on the radar's side of plane ``k``
+    (``same_side``), ``q`` lies on that plane's faces and the ``q`` -> radar leg is clear. In a
+    convex room ``q`` is on its wall iff it is on the radar's side of every other plane and no leg
+    can be blocked; otherwise the ``p`` -> image ray (``u_img``) must first meet a face of plane
+    ``k`` and a shadow ray checks the ``q`` -> radar leg.
+    """
+    k = nrm.shape[0]
+    dev = q.device
+    if convex_room:
+        radar_side = torch.sign((nrm @ radar.centre) - off)  # (K,)
+        side = ((q[..., None, :] * nrm).sum(-1) - off) * radar_side  # (N, S, K, K)
+        tol = 1e-5 * (1 + off.abs().max())
+        return same_side & (side >= -tol).all(-1), mirrors.plane_material.to(dev).expand(q.shape[:-1])
+    hit = room_bvh.intersect(p.reshape(-1, 3), u_img.reshape(-1, 3), t_min=0.0)
+    plane_id = torch.arange(k, device=dev).expand(q.shape[:-1]).reshape(-1)
+    face = hit.face
+    ok = (face >= 0) & (mirrors.face_plane.to(dev)[face.clamp_min(0)] == plane_id) & same_side.reshape(-1)
+    r_wr = (radar.centre - q).norm(dim=-1).reshape(-1)
+    eps_q = surface_offset(q).reshape(-1)
+    clear = ~room_bvh.any_hit(q.reshape(-1, 3), -u_wall_in.reshape(-1, 3), r_wr - eps_q, t_min=eps_q)
+    return (ok & clear).reshape(q.shape[:-1]), room_face_material[face.clamp_min(0)].reshape(q.shape[:-1])
 
 def _bistatic(p, root, tx, rx, q, vel, radar: RadarGeometry, antenna, valid, first_leg_via: bool | None = None):
     """Delay, rate, amplitude ``(..., RX)`` and mask of scatterer ``p`` (optionally via wall point ``q``).
@@ -417,14 +417,7 @@ def mesh_po_paths(
     tri = mesh.triangles.to(device=dev, dtype=dt)
     if tri.ndim != 3 or tri.shape[0] == 0:
         raise SceneError(f"mesh must have (F, 3) faces, got triangles of shape {tuple(tri.shape)}")
-    cen = tri.mean(-2)
-    to_r = radar.centre - cen
-    r = to_r.norm(dim=-1)
-    u = to_r / r[:, None]
-    n = facet_normals(tri)
-    cos = (n * u).sum(-1)
-    gamma = reflectivity(mesh.face_material.to(dev), cos.abs(), -u, n, radar.polarization)
-    root = facet_root_rcs(tri, -u, u, radar.wavelength, gamma)
+    cen, r, u, root = monostatic_facet_rcs(tri, mesh.face_material.to(dev), radar, reflectivity)
     eps = surface_offset(cen)
     start = cen + eps[:, None] * u
     lit = root.abs() > 0

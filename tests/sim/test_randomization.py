@@ -224,7 +224,9 @@ def test_rcs_scale_is_per_person_including_wall_multipath(ideal_twin) -> None:
 
     both = sim([a, b], (6.0, -10.0))
     alone = 10 ** (6 / 20) * sim([a], (0.0,)) + 10 ** (-10 / 20) * sim([b], (0.0,))
-    assert torch.allclose(both, alone, rtol=1e-4, atol=1e-5 * float(alone.abs().max()))
+    # Fast synthesis keeps Taylor terms down to 1e-5 of the call's strongest path: calls with
+    # different people truncate differently, at that level.
+    assert torch.allclose(both, alone, rtol=1e-4, atol=1e-4 * float(alone.abs().max()))
     # 0 dB is exactly the unrandomized twin.
     plain = ideal_twin.simulate([a, b], times)
     assert torch.equal(sim([a, b], (0.0, 0.0)) + static, plain)
