@@ -59,10 +59,11 @@ class ReproduceSettings:
 
     @classmethod
     def quick(cls) -> ReproduceSettings:
-        """Minutes on a 2-core CPU: fewer items and epochs, half-size images, 128x128 room rays, a
-        40-frame diagnose for ``cdr_profile``."""
+        """Minutes on a 2-core CPU: fewer items and epochs, half-size images, a 40-frame diagnose for
+        ``cdr_profile`` (the room: the twin's default image-method trace, faster than a coarse SBR
+        trace and converged)."""
         return cls(train_items=360, val_items=90, epochs=4, image_size=(64, 32), batch_size=32,
-                   proxy_frames_per_count=60, tracer_rays=128, num_workers=0, sim_workers=0, profile_max_frames=40)
+                   proxy_frames_per_count=60, num_workers=0, sim_workers=0, profile_max_frames=40)
 
 
 def parse_test_arg(text: str) -> dict[str, Any]:
