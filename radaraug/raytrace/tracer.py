@@ -51,7 +51,7 @@ FACET_MERGE_VOXEL_M = 0.2
 
 
 class RayTracer:
-    """Vectorized SBR + PO ray tracer of one radar in one static room.
+    """Vectorized ray tracer of one radar in one static room (image method + PO + diffuse, or SBR).
 
     Args:
         room: static scene (walls, floor, ceiling, furniture); its ``vertex_velocity`` is ignored.
@@ -65,7 +65,8 @@ class RayTracer:
         fov_deg: half field of view of the SBR grid per axis, degrees (``method="sbr"``).
         antenna: TX/RX pattern with ``gain(dirs)`` (default :class:`PatchAntenna`, 6 dBi assumed).
         polarization: radar E-field direction in the radar frame (default ``y``, an assumption).
-        merge_bin_m: path-length bin of the coherent merge of the static SBR paths (None: no merge).
+        merge_bin_m: path-length bin of the coherent merge of the static SBR paths (None: no merge;
+            ``method="sbr"`` only: the image method's merges are fixed, see its comments).
         floor_dB: merged static paths weaker than this relative to the strongest are dropped.
         mirror_min_area_m2: planar face groups at least this large act as mirrors (image method
             and people's multipath); smaller faces are scattered by facet PO.

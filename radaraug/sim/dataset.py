@@ -178,7 +178,7 @@ class SimulatedRadarDataset(Dataset):
     def prepare(self) -> SimulatedRadarDataset:
         """Trace the room now (once), so DataLoader workers inherit it instead of each tracing it.
 
-        With randomization, every room variant of the pool is traced (one SBR trace each).
+        With randomization, every room variant of the pool is traced (one room trace each, cached on disk).
         """
         if self.randomized:
             for k in range(len(self._rooms)):

@@ -110,7 +110,8 @@ class TwinRandomization:
             (itself ~18 dB brighter than independently generated data) real people sit on, so
             the range also reaches +10 dB; human RCS at 60 GHz alone fluctuates by several dB.
         room_variants: size of the room pool. Each variant is one ray trace of the room
-            (about 7 s at 256 x 256 rays on a laptop CPU, done once by ``prepare()``).
+            (about a second each with diffuse clutter on a 2-core CPU, done once by ``prepare()`` and
+            cached on disk).
         length_m: corridor length. Default (8, 25): short rooms to ones reaching past the
             BGT60TR13C default's ~21.7 m maximum range (the paper's corridor is 20 m).
         width_m: corridor width (1.5, 3.5): a narrow corridor to a wide hall.

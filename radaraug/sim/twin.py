@@ -1,12 +1,14 @@
 """`DigitalTwin`: a scene's people at frame times -> ray-traced paths -> raw ADC frames.
 
-One object per process: it traces the static room once (cached by the ray tracer) and then
+One object per process: it traces the static room once (cached by the ray tracer, in memory and
+on disk) and then
 simulates any batch of frame times with tensor work only: people give their body segments at
 sub-frame instants (a few snapshots per frame, as many as the limbs' acceleration needs, chosen
 per frame by :mod:`radaraug.sim.intra_frame`), the tracer gives the target paths for all of them
 at once, each path's delay is interpolated to every chirp (a reference line plus a per-chirp
-residual and amplitude factor), and the receiver synthesizes the IF signal with the sensor
-effects and the 12-bit ADC.
+residual and amplitude factor), the people's shadow on the room's paths changes the cached room
+signal per frame (:meth:`DigitalTwin.shadow_signal`), and the receiver synthesizes the IF signal
+with the sensor effects and the 12-bit ADC.
 """
 
 from __future__ import annotations
