@@ -60,6 +60,7 @@ import torch
 from radaraug.config import SPEED_OF_LIGHT
 from radaraug.errors import SceneError
 from radaraug.raytrace.accel import TriangleBVH
+from radaraug.raytrace.merge import coherent_sum, weighted_mean
 from radaraug.raytrace.radar import RadarGeometry, radar_amplitude
 from radaraug.raytrace.reflect import FaceReflectivity
 from radaraug.raytrace.sbr import surface_offset
@@ -286,26 +287,12 @@ def merge_cells(
         return paths, points
     if not (bin_m > 0 and voxel_m > 0):
         raise SceneError(f"merge_cells: bin_m and voxel_m must be positive, got {bin_m!r}, {voxel_m!r}")
-    delay, amp = paths.delay_s, paths.amplitude
-    length_bin = torch.round(delay.mean(-1) * SPEED_OF_LIGHT / bin_m).long()
+    length_bin = torch.round(paths.delay_s.mean(-1) * SPEED_OF_LIGHT / bin_m).long()
     vox = torch.floor(points / voxel_m).long()
-    key = torch.cat([length_bin[:, None], vox], dim=1)
-    _, inv = torch.unique(key, dim=0, return_inverse=True)
-    g = int(inv.max()) + 1
-    n_rx = delay.shape[1]
-    power = (amp.abs() ** 2).clamp_min(torch.finfo(delay.dtype).tiny)
-    idx = inv[:, None].expand(-1, n_rx)
-    wsum = torch.zeros(g, n_rx, dtype=delay.dtype, device=delay.device).scatter_add_(0, idx, power)
-    tau_bar = torch.zeros_like(wsum).scatter_add_(0, idx, power * delay) / wsum
-    phase = -2 * math.pi * frequency_Hz * (delay - tau_bar[inv])
-    merged = torch.zeros(g, n_rx, dtype=amp.dtype, device=amp.device).scatter_add_(
-        0, idx, amp * torch.polar(torch.ones_like(phase), phase))
-    pw = power.mean(-1)
-    psum = torch.zeros(g, dtype=pw.dtype, device=pw.device).scatter_add_(0, inv, pw)
-    centroid = torch.zeros(g, 3, dtype=points.dtype, device=points.device).index_add_(
-        0, inv, points * pw[:, None]) / psum[:, None]
-    out = Paths(tau_bar, torch.zeros_like(tau_bar), merged, torch.zeros(g, dtype=torch.int8, device=delay.device))
-    return out, centroid
+    _, inv = torch.unique(torch.cat([length_bin[:, None], vox], dim=1), dim=0, return_inverse=True)
+    tau_bar, merged, kinds, weight = coherent_sum(paths, inv, frequency_Hz)
+    centroid = weighted_mean(points, inv, weight, tau_bar.shape[0])
+    return Paths(tau_bar, torch.zeros_like(tau_bar), merged, kinds), centroid
 
 
 __all__ = ["DEFAULT_CELL_M", "diffuse_paths", "merge_cells", "occluder_faces", "surface_cells"]
