@@ -83,6 +83,8 @@ _SERIES_MAX = 3.5  # |x| below which the power series is used (its cancellation 
 _SERIES_TERMS = 85  # (pi x^2 / 2)^n / n! * x < 1e-16 at x = 3.5 for n >= 85
 _ASYMPTOTIC_TERMS = 9  # smallest asymptotic term at x = 3.5 is ~1e-9 relative
 _DENSE_TABLE_MAX = 2**24  # entries of the dominant-edge table; beyond, the keys are sorted instead
+SHADOW_TOL = 1e-3
+"""Smallest ``|T - 1|`` of a static path that is corrected (-60 dB of the path)."""
 
 
 def fresnel_integrals(x: torch.Tensor) -> tuple[torch.Tensor, torch.Tensor]:
@@ -306,6 +308,31 @@ def shadow_transmission(
         raise InputTensorError(f"shadow: combine must be 'dominant' or 'product', got {combine!r}")
     if not (0 <= nu_full < nu_cut):
         raise InputTensorError(f"shadow: need 0 <= nu_full < nu_cut, got {nu_full}, {nu_cut}")
+    options = {"segments_per_person": segments_per_person, "nu_full": nu_full, "nu_cut": nu_cut, "combine": combine}
+    # Most static paths go radar -> point -> radar (diffuse cells, small-face PO, first-order
+    # images): out and back along one line, whose factor is the same both ways. Their transmission
+    # is the square of the one-way leg's, traced once (and their padded zero-length legs not at all).
+    if vertices.shape[1] < 3:
+        return _leg_transmission(vertices, ellipsoids, wavelength, **options)
+    single = (vertices[:, 2:] - vertices[:, :1]).abs().amax(dim=(-1, -2)) == 0
+    if not bool(single.any()):
+        return _leg_transmission(vertices, ellipsoids, wavelength, **options)
+    cplx = torch.complex64 if ellipsoids.centers.dtype == torch.float32 else torch.complex128
+    t = torch.ones(*ellipsoids.centers.shape[:-2], vertices.shape[0], dtype=cplx, device=ellipsoids.centers.device)
+    idx = single.nonzero()[:, 0]
+    one_way = _leg_transmission(vertices[idx, :2], ellipsoids, wavelength, **options)
+    t[..., idx.to(t.device)] = one_way * one_way
+    rest = (~single).nonzero()[:, 0]
+    if rest.numel():
+        t[..., rest.to(t.device)] = _leg_transmission(vertices[rest], ellipsoids, wavelength, **options)
+    return t
+
+
+def _leg_transmission(
+    vertices: torch.Tensor, ellipsoids: Ellipsoids, wavelength: float, *, segments_per_person: int,
+    nu_full: float, nu_cut: float, combine: str,
+) -> torch.Tensor:
+    """:func:`shadow_transmission` of every leg of every path (the product over its legs)."""
     centres = ellipsoids.centers
     dtype, device = centres.dtype, centres.device
     cplx = torch.complex64 if dtype == torch.float32 else torch.complex128
@@ -436,7 +463,7 @@ def shadow_correction_paths(
     ellipsoids: Ellipsoids,
     wavelength: float,
     *,
-    tol: float = 1e-3,
+    tol: float = SHADOW_TOL,
     **options: Any,
 ) -> Paths:
     """Paths to add to the people's so that static + correction = the shadowed static paths.
@@ -468,7 +495,12 @@ def shadow_correction_paths(
         raise InputTensorError(
             f"shadow: {vertices.shape[0]} path geometries for {static.delay_s.shape[0]} static paths"
         )
-    t = shadow_transmission(vertices, ellipsoids, wavelength, **options)  # (..., P)
+    return correction_paths(static, shadow_transmission(vertices, ellipsoids, wavelength, **options), tol=tol)
+
+
+def correction_paths(static: Paths, t: torch.Tensor, *, tol: float = SHADOW_TOL) -> Paths:
+    """The correction paths of :func:`shadow_correction_paths` for given transmissions ``t``
+    ``(..., P)`` of the static paths ``(P, RX)``."""
     batch = t.shape[:-1]
     dev = (t - 1).abs().reshape(-1, t.shape[-1])
     sel = torch.nonzero((dev > tol).any(0))[:, 0] if dev.shape[0] else torch.zeros(0, dtype=torch.long)

@@ -21,7 +21,7 @@ import torch
 
 from radaraug.config import RadarConfig
 from radaraug.errors import ConfigError, InputTensorError
-from radaraug.raytrace.shadow import shadow_correction_paths, shadow_transmission
+from radaraug.raytrace.shadow import SHADOW_TOL, correction_paths, shadow_transmission
 from radaraug.raytrace.tracer import RayTracer
 from radaraug.scene.geometry import Ellipsoids
 from radaraug.scene.scene import Scene
@@ -57,10 +57,6 @@ def negligible_paths_off(paths: Paths, below_dB: float = WEAK_PATH_DB) -> Paths:
     keep = mag >= strongest * 10 ** (-below_dB / 20)
     mask = keep if paths.mask is None else paths.mask & keep
     return dataclasses.replace(paths, mask=mask)
-
-
-SHADOW_TOL = 1e-3
-"""Smallest ``|T - 1|`` of a static path that the shadowing applies (-60 dB of the path)."""
 
 
 class DigitalTwin:
@@ -182,22 +178,27 @@ class DigitalTwin:
         )
         return paths
 
+    def shadow_transmission(self, people: Sequence[Any], times: torch.Tensor) -> torch.Tensor | None:
+        """``(T, P)`` field transmission of the room's paths through the people at each frame's
+        start (:func:`~radaraug.raytrace.shadow.shadow_transmission`, held for the frame), or None:
+        no people, ``shadowing=False``, or an SBR room (its merged paths have no vertices)."""
+        if not people or not self.shadowing:
+            return None
+        vertices = self.tracer.static_vertices()
+        if vertices is None or vertices.shape[0] == 0:
+            return None
+        return shadow_transmission(vertices, self.ellipsoids(people, times), self.config.wavelength_m)
+
     def shadow_paths(self, people: Sequence[Any], times: torch.Tensor) -> Paths | None:
         """Correction paths ``(T, P', RX)`` for the room's paths that the people shadow, or None.
 
         The room's signal is synthesized once (:meth:`static_signal`); people shadowing it enter
-        as ``(T - 1) * a`` at the static paths' delays (:mod:`radaraug.raytrace.shadow`), with
-        the people at each frame's start held for the frame. None without people, with
-        ``shadowing=False``, or for an SBR room (its merged paths have no vertices).
+        as ``(T - 1) * a`` at the static paths' delays (:func:`shadow_transmission`).
         """
-        if not people or not self.shadowing:
+        t = self.shadow_transmission(people, times)
+        if t is None:
             return None
-        vertices = self.tracer.static_vertices()
-        if vertices is None:
-            return None
-        correction = shadow_correction_paths(self.tracer.static_paths(), vertices, self.ellipsoids(people, times),
-                                             self.config.wavelength_m)
-        return correction.map(lambda t: t.to(self.device))
+        return correction_paths(self.tracer.static_paths(), t).map(lambda x: x.to(self.device))
 
     def static_basis(self) -> torch.Tensor:
         """``(P, 2, RX, N)`` one chirp of each static path's signal through the linear stages, and of
@@ -225,12 +226,9 @@ class DigitalTwin:
     def shadow_signal(self, people: Sequence[Any], times: torch.Tensor) -> torch.Tensor | None:
         """``(T, RX, 1, N)`` what the people's shadow changes in the room's signal (broadcast over
         chirps; :meth:`static_basis`), or None (no people, ``shadowing=False``, SBR room)."""
-        if not people or not self.shadowing:
+        t = self.shadow_transmission(people, times)  # (T, P)
+        if t is None:
             return None
-        vertices = self.tracer.static_vertices()
-        if vertices is None or vertices.shape[0] == 0:
-            return None
-        t = self._transmission(vertices, self.ellipsoids(people, times))  # (T, P)
         d = (t - 1).to(self.device)
         hit = (d.abs() > SHADOW_TOL).any(0).nonzero()[:, 0]
         if hit.numel() == 0:
@@ -238,28 +236,6 @@ class DigitalTwin:
         basis = self.static_basis()[hit]  # (P', 2, RX, N)
         coef = torch.stack([d[:, hit].real, d[:, hit].imag], dim=-1).to(basis.dtype)  # (T, P', 2)
         return torch.einsum("tpc,pcrn->trn", coef, basis)[:, :, None, :]
-
-    def _transmission(self, vertices: torch.Tensor, ell: Ellipsoids) -> torch.Tensor:
-        """:func:`shadow_transmission` of the static paths, each single-bounce path's one leg once.
-
-        Most static paths (diffuse cells, small-face PO, first-order images) go radar -> point ->
-        radar: out and back along the same line, so their transmission is the square of the
-        one-way leg's, and tracing that leg once halves the work (their padded zero-length legs
-        are not traced at all).
-        """
-        centre = vertices[:, :1]
-        single = (vertices[:, 2:] - centre).abs().amax(dim=(-1, -2)) == 0  # [radar, p, radar, radar...]
-        t = torch.ones(*ell.centers.shape[:-2], vertices.shape[0], dtype=torch.complex64 if self.dtype ==
-                       torch.float32 else torch.complex128, device=vertices.device)
-        wl = self.config.wavelength_m
-        idx = single.nonzero()[:, 0]
-        if idx.numel():
-            one_way = shadow_transmission(vertices[idx, :2], ell, wl)
-            t[..., idx] = (one_way * one_way).to(t.dtype)
-        rest = (~single).nonzero()[:, 0]
-        if rest.numel():
-            t[..., rest] = shadow_transmission(vertices[rest], ell, wl).to(t.dtype)
-        return t
 
     def frame_paths(self, people: Sequence[Any], times: torch.Tensor) -> Paths:
         """The people's paths (negligible ones masked, :func:`negligible_paths_off`) and their shadow
