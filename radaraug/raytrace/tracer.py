@@ -180,7 +180,7 @@ class RayTracer:
         parts: list[Any] = [
             "static-room", static_cache.TRACER_VERSION, self.method, self.max_bounces, self.density,
             self.mirror_min_area_m2, repr(self.antenna), self.polarization, self.merge_bin_m, self.floor_dB,
-            str(self.dtype), room.vertices.to(torch.float64), room.faces.long(), room.face_material.long(),
+            str(self.dtype), *self._room_parts(),
             [repr(get_material(m)) for m in room.materials], self.radar.tx.double(), self.radar.rx.double(),
             self.radar.rotation.double(), float(self.config.center_frequency_Hz),
         ]
@@ -195,10 +195,12 @@ class RayTracer:
         """Seed of the diffuse scatterers: given, or from the room's geometry and materials."""
         if self.diffuse_seed is not None:
             return int(self.diffuse_seed)
+        return int(static_cache.digest([*self._room_parts(), list(self.room.materials)])[:15], 16)
+
+    def _room_parts(self) -> list[torch.Tensor]:
+        """The room's geometry as digest parts (of the cache key and the diffuse seed)."""
         room = self.room
-        key = static_cache.digest([room.vertices.to(torch.float64), room.faces.long(), room.face_material.long(),
-                                   list(room.materials)])
-        return int(key[:15], 16)
+        return [room.vertices.to(torch.float64), room.faces.long(), room.face_material.long()]
 
     def _trace_static(self) -> None:
         key = self.cache_key() if self.cache_dir is not None else ""
