@@ -32,6 +32,8 @@ bench: $(STAMP)
 	$(VENV)/bin/radaraug bench transforms --out benchmarks/transforms_cpu.json
 	$(VENV)/bin/radaraug bench twin --out benchmarks/twin_cpu.json
 	$(VENV)/bin/radaraug bench training --out benchmarks/training_cpu.json
+	$(VENV)/bin/radaraug bench diagnose --out benchmarks/diagnose_cpu.json
+	$(VENV)/bin/radaraug bench static-room --out benchmarks/static_room_cpu.json --figure docs/img/twin/static_profile_vs_density.png
 
 clean:
 	rm -rf $(VENV) demo_out build *.egg-info
