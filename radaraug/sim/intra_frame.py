@@ -145,6 +145,15 @@ def _refinement_error(r_coarse: torch.Tensor, r_mid: torch.Tensor, amp: torch.Te
     return err * (2 / 3) * interval_s * f0
 
 
+def check_intra_frame(intervals: int | str, tol_cycles: float) -> None:
+    """Raise ConfigError unless ``intervals`` is ``"auto"`` or an int >= 0 and ``tol_cycles`` > 0."""
+    if not (intervals == "auto" or (isinstance(intervals, int) and not isinstance(intervals, bool)
+                                    and intervals >= 0)):
+        raise ConfigError(f"intra_frame must be 'auto' or a number of knot intervals >= 0, got {intervals!r}")
+    if not (tol_cycles > 0):
+        raise ConfigError(f"intra-frame tolerance must be positive, got {tol_cycles!r}")
+
+
 def intra_frame_paths(
     trace: Callable[[torch.Tensor], Paths],
     times: torch.Tensor,
@@ -180,14 +189,8 @@ def intra_frame_paths(
     max_k = 1
     while max_k < timing.num_chirps - 1:
         max_k *= 2
-    if intervals == "auto":
-        if not (tol_cycles > 0):
-            raise ConfigError(f"intra-frame tolerance must be positive, got {tol_cycles!r}")
-        fixed = None
-    elif isinstance(intervals, int) and not isinstance(intervals, bool) and intervals > 0:
-        fixed = int(intervals)
-    else:
-        raise ConfigError(f"intra_frame must be 'auto' or a number of knot intervals >= 0, got {intervals!r}")
+    check_intra_frame(intervals, tol_cycles)
+    fixed = None if intervals == "auto" else int(intervals)
 
     def knots_of(t_idx: torch.Tensor, k: int, odd_only: bool = False) -> torch.Tensor:
         j = torch.arange(1, k, 2) if odd_only else torch.arange(k + 1)

@@ -29,7 +29,7 @@ from radaraug.sensor.paths import Paths
 from radaraug.sensor.profile import as_profile
 from radaraug.sensor.receiver import FMCWReceiver
 from radaraug.sensor.synthesis import ChirpTiming
-from radaraug.sim.intra_frame import DEFAULT_TOL_CYCLES, intra_frame_paths
+from radaraug.sim.intra_frame import DEFAULT_TOL_CYCLES, check_intra_frame, intra_frame_paths
 
 WEAK_PATH_DB = 100.0
 """A person's path more than this below its frame's strongest person's path is left out of the
@@ -122,11 +122,7 @@ class DigitalTwin:
         self.receiver = (receiver or FMCWReceiver(self.config)).to(self.device)
         self._static_signal = None if static_signal is None else static_signal.to(self.device)
         self._static_basis: torch.Tensor | None = None
-        if not (intra_frame == "auto" or (isinstance(intra_frame, int) and not isinstance(intra_frame, bool)
-                                          and intra_frame >= 0)):
-            raise ConfigError(f"intra_frame must be 'auto' or a number of knot intervals >= 0, got {intra_frame!r}")
-        if not (intra_frame_tol_cycles > 0):
-            raise ConfigError(f"intra_frame_tol_cycles must be positive, got {intra_frame_tol_cycles!r}")
+        check_intra_frame(intra_frame, intra_frame_tol_cycles)
         self.intra_frame = intra_frame
         self.intra_frame_tol_cycles = float(intra_frame_tol_cycles)
         self.last_intervals: torch.Tensor | None = None
