@@ -8,7 +8,8 @@ anything else the receiver applies later), the tracer's options and :data:`TRACE
 
 Folder: ``$RADARAUG_CACHE_DIR``, else ``$XDG_CACHE_HOME/radaraug``, else ``~/.cache/radaraug``;
 files ``static-<key>.pt`` (plain tensors, loaded with ``weights_only=True``). Writes are atomic
-(temporary file + rename), so a killed process never leaves a half-written entry; an unreadable
+(temporary file + rename), so a killed process never leaves a half-written entry (its temporary
+file is removed by the next write of that entry once it is an hour old); an unreadable
 entry is traced again and replaced, a folder that cannot be written is warned about once and the
 trace is simply not cached.
 """
@@ -18,6 +19,7 @@ from __future__ import annotations
 import hashlib
 import os
 import tempfile
+import time
 import warnings
 from pathlib import Path
 from typing import Any
@@ -73,6 +75,7 @@ def store(folder: Path, key: str, data: dict[str, Any]) -> None:
     """Write an entry atomically; warn once per folder when it cannot be written."""
     try:
         folder.mkdir(parents=True, exist_ok=True)
+        _remove_stale_temporaries(folder, key)
         fd, tmp = tempfile.mkstemp(prefix=f".static-{key}.", suffix=".tmp", dir=folder)
         try:
             with os.fdopen(fd, "wb") as f:
@@ -89,3 +92,18 @@ def store(folder: Path, key: str, data: dict[str, Any]) -> None:
             warnings.warn(f"cannot write the static-room cache in {folder} ({err}); the room will be traced "
                           "again by every process (set RADARAUG_CACHE_DIR to a writable folder)",
                           RuntimeWarning, stacklevel=3)
+
+
+STALE_TEMPORARY_S = 3600.0
+"""A temporary file of an entry older than this was left by a killed writer (a live write takes
+seconds): the next write of that entry removes it."""
+
+
+def _remove_stale_temporaries(folder: Path, key: str) -> None:
+    now = time.time()
+    for tmp in folder.glob(f".static-{key}.*.tmp"):
+        try:
+            if now - tmp.stat().st_mtime > STALE_TEMPORARY_S:
+                tmp.unlink()
+        except OSError:
+            pass  # another process removed or is replacing it

@@ -70,3 +70,22 @@ def test_default_folder_follows_the_environment(monkeypatch, tmp_path):
     monkeypatch.delenv("RADARAUG_CACHE_DIR")
     monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "xdg"))
     assert static_cache.default_cache_dir() == tmp_path / "xdg" / "radaraug"
+
+
+def test_a_killed_writers_temporary_is_removed_by_the_next_write(tmp_path):
+    """A writer killed mid-write leaves only its temporary file (never a partial entry); the next
+    write of the entry removes it once stale, and leaves a fresh one (a live writer's) alone."""
+    import os
+    import time
+
+    tracer = RayTracer(_room(), POSE, CFG, cache=tmp_path)
+    key = tracer.cache_key()
+    stale = tmp_path / f".static-{key}.dead.tmp"
+    live = tmp_path / f".static-{key}.live.tmp"
+    for f in (stale, live):
+        f.write_bytes(b"half a torch file")
+    old = time.time() - 2 * static_cache.STALE_TEMPORARY_S
+    os.utime(stale, (old, old))
+    tracer.static_paths()
+    assert not stale.exists() and live.exists()
+    assert (tmp_path / f"static-{key}.pt").is_file()
