@@ -83,6 +83,7 @@ _SERIES_MAX = 3.5  # |x| below which the power series is used (its cancellation 
 _SERIES_TERMS = 85  # (pi x^2 / 2)^n / n! * x < 1e-16 at x = 3.5 for n >= 85
 _ASYMPTOTIC_TERMS = 9  # smallest asymptotic term at x = 3.5 is ~1e-9 relative
 _DENSE_TABLE_MAX = 2**24  # entries of the dominant-edge table; beyond, the keys are sorted instead
+_CULL_CHUNK = 2**18  # (segment, leg) pairs per chunk of the bounding-sphere cull
 SHADOW_TOL = 1e-3
 """Smallest ``|T - 1|`` of a static path that is corrected (-60 dB of the path)."""
 
@@ -390,7 +391,8 @@ def _leg_transmission(
     c2 = (cs * cs).sum(-1)
     half_lam, inv_l = 0.5 * wavelength, 1 / l_k.clamp(min=1e-12)
     hits = []
-    rows = max(1, int(2**22 // max(1, legs.shape[0])))
+    # Chunks of ~2**18 (segment, leg) pairs: the dozen full-size passes below stay in the cache.
+    rows = max(1, int(_CULL_CHUNK // max(1, legs.shape[0])))
     for r0 in range(0, cs.shape[0], rows):
         cc = cs[r0:r0 + rows]
         d1 = cc @ u_k.T - au
@@ -404,31 +406,39 @@ def _leg_transmission(
     idx = torch.cat(hits)
     if idx.shape[0] == 0:
         return out_log.exp().reshape(*batch, num_p)
-    flat_leg = legs[idx[:, 1]]
-    bi, si = idx[:, 0] // s_count, idx[:, 0] % s_count
-    pi_, li = flat_leg // num_legs, flat_leg % num_legs
-    start, direction, leg_len = a0[flat_leg], uf[flat_leg], lf[flat_leg]
-    rel = c0[bi, si] - start
+    # The candidates are carried as index tensors and gathered once per stage (boolean masks over
+    # nine tensors per stage cost more than the geometry itself: ~0.5 M candidates per 16 frames
+    # in the two-walker corridor).
+    # Flat index_select gathers: advanced indexing with (bi, si) pairs costs several times more.
+    seg_row = idx[:, 0]  # snapshot * S + segment
+    flat_leg = legs.index_select(0, idx[:, 1])
+    start, direction, leg_len = (x.index_select(0, flat_leg) for x in (a0, uf, lf))
+    rel = cs.index_select(0, seg_row) - start
     d1 = (rel * direction).sum(-1)
-    keep = (d1 > 0) & (d1 < leg_len)
-    bi, si, pi_, li, d1, rel, direction, leg_len, flat_leg = (
-        x[keep] for x in (bi, si, pi_, li, d1, rel, direction, leg_len, flat_leg))
+    # The exact d1 (not the expanded form of the cull) decides; a candidate outside the leg is
+    # dropped with the dominance prune below (or on its own without it).
+    inside = (d1 > 0) & (d1 < leg_len)
     table = nb * num_p * num_legs * ng
-    if combine == "dominant" and table <= _DENSE_TABLE_MAX and bi.shape[0]:
+    if combine == "dominant" and table <= _DENSE_TABLE_MAX:
         # Prune segments that cannot be their person's dominant edge on this leg: the clearance
         # lies between (smallest semi-axis - distance) and (largest semi-axis - distance) (the
         # silhouette contains the disk of the smallest semi-axis and lies in the sphere of the largest).
         k_nu = torch.sqrt(2.0 / wavelength * (1 / d1.clamp(min=1e-9) + 1 / (leg_len - d1).clamp(min=1e-9)))
         perp = torch.sqrt(((rel * rel).sum(-1) - d1 * d1).clamp(min=0))
-        key = ((bi * num_p + pi_) * num_legs + li) * ng + si // g
+        bi = seg_row // s_count
+        key = ((bi * num_p + flat_leg // num_legs) * num_legs + flat_leg % num_legs) * ng + (seg_row - bi * s_count) // g
+        lower = torch.where(inside, k_nu * (semi.amin(-1).reshape(-1).index_select(0, seg_row) - perp), -math.inf)
         best_lower = torch.full((table,), -math.inf, dtype=dtype, device=device)
-        best_lower.scatter_reduce_(0, key, k_nu * (semi[bi, si].amin(-1) - perp), reduce="amax")
+        best_lower.scatter_reduce_(0, key, lower, reduce="amax")
         # 1e-4 of slack in nu for rounding; ties keep both.
-        keep = k_nu * (seg_r[bi, si] - perp) >= best_lower[key] - 1e-4
-        bi, si, pi_, li, d1, rel, direction, leg_len, flat_leg = (
-            x[keep] for x in (bi, si, pi_, li, d1, rel, direction, leg_len, flat_leg))
-    e1f, e2f = e1.reshape(-1, 3)[flat_leg], e2.reshape(-1, 3)[flat_leg]
-    h = silhouette_clearance(rel, d1, direction, e1f, e2f, shape_all[bi, si])
+        inside &= k_nu * (r_s.index_select(0, seg_row) - perp) >= best_lower.index_select(0, key) - 1e-4
+    sel = inside.nonzero()[:, 0]
+    seg_row, flat_leg, d1, rel, direction, leg_len = (
+        x.index_select(0, sel) for x in (seg_row, flat_leg, d1, rel, direction, leg_len))
+    bi, si = seg_row // s_count, seg_row % s_count
+    pi_, li = flat_leg // num_legs, flat_leg % num_legs
+    e1f, e2f = e1.reshape(-1, 3).index_select(0, flat_leg), e2.reshape(-1, 3).index_select(0, flat_leg)
+    h = silhouette_clearance(rel, d1, direction, e1f, e2f, shape_all.reshape(-1, 3, 3).index_select(0, seg_row))
     d2 = leg_len - d1
     nu = h * torch.sqrt(2.0 / wavelength * (1 / d1.clamp(min=1e-9) + 1 / d2.clamp(min=1e-9)))
     keep = nu > -nu_cut

@@ -50,6 +50,7 @@ DEFAULT_TAYLOR_TOL = 1e-5
 relative to the amplitude of the strongest path of the call."""
 
 _EXACT_CHUNK_ELEMENTS = 1 << 22
+_FAST_CHUNK_ELEMENTS = 1 << 19  # fast-time factors per chunk of rows (2 MiB in float32)
 _MAX_TAYLOR_ORDERS = 60
 
 
@@ -150,7 +151,7 @@ def _phase_terms(
 def _fast_time_cos_sin(
     per_sample: torch.Tensor, quad: torch.Tensor, num_samples: int, dtype: torch.dtype
 ) -> torch.Tensor:
-    """``[cos, sin](2 pi (c n + q n^2))`` for n = 0..N-1 as ``(…, P, 2, N)`` in ``dtype``.
+    """``[cos, sin](2 pi (c n + q n^2))`` for n = 0..N-1 as ``(…, 2, P, N)`` in ``dtype``.
 
     ``n = L a + b`` with ``L ~ sqrt(N)``: the phase is ``frac(L c) a + frac(c) b`` cycles, with
     both fractions taken in float64 per path, so the full-size work is one add and one cosine
@@ -165,13 +166,15 @@ def _fast_time_cos_sin(
     a = torch.arange(A, device=dev, dtype=dtype)
     b = torch.arange(L, device=dev, dtype=dtype)
     quarter = torch.tensor([0.0, -0.5 * math.pi], device=dev, dtype=dtype)  # cos(x - pi/2) = sin(x)
-    coarse = (hi[..., None] * a)[..., None, :, None]  # (…, P, 1, A, 1)
-    fine = (lo[..., None] * b)[..., None, None, :] + quarter[:, None, None]  # (…, P, 2, 1, L)
+    coarse = (hi[..., None] * a)[..., None, :, :, None]  # (…, 1, P, A, 1)
+    fine = (lo[..., None] * b)[..., None, :, None, :] + quarter[:, None, None, None]  # (…, 2, P, 1, L)
     ph = (coarse + fine).flatten(-2)[..., :num_samples]
     # The quadratic term (in-chirp range migration, ~0.05 rad at 5 m/s) is small: dtype suffices.
     n2 = torch.arange(num_samples, device=dev, dtype=torch.float64) ** 2
-    ph = ph + ((two_pi * quad)[..., None] * n2).to(dtype)[..., None, :]
-    return torch.cos_(ph) if ph.is_contiguous() else torch.cos(ph)
+    quad_phase = ((two_pi * quad)[..., None] * n2).to(dtype)[..., None, :, :]
+    if ph.is_contiguous():  # in place: one pass less over the full-size tensor
+        return ph.add_(quad_phase).cos_()
+    return torch.cos(ph + quad_phase)
 
 
 def synthesize_fast(
@@ -206,56 +209,100 @@ def synthesize_fast(
     batch = coef.shape[:-1]
     if coef.shape[-1] == 0:
         return torch.zeros(*batch, M, N, dtype=dtype, device=dev)
-    slow, per_sample, theta, quad, w = _phase_terms(delay_s, delay_rate, timing, chirp_delay)
     # Taylor orders per path: term k of a path is at most theta^k / k! times its amplitude; it is
     # kept while that is at least ``taylor_tol`` times the strongest path of the call (so weak
     # multipath needs fewer orders than the torso for the same error bound on the frame). Paths
     # are sorted by the orders they need, so those that need order k form a prefix: each order is
     # one GEMM on a view, and static clutter (theta = 0) costs one GEMM in all.
     P = coef.shape[-1]
-    theta_p = theta.reshape(-1, P).amax(dim=0).double()  # (P,) over batch and RX
+    theta_p = _coupling_phase(delay_rate, timing, chirp_delay).reshape(-1, P).amax(dim=0)  # (P,) over batch and RX
     mag = coef.abs().reshape(-1, P).amax(dim=0).double()
     if chirp_gain is not None:
         mag = mag * chirp_gain.abs().reshape(-1, P, chirp_gain.shape[-1]).amax(dim=(0, 2)).double()
     need = taylor_orders_needed(theta_p, mag / mag.max().clamp_min(1e-300), taylor_tol)
     order = torch.argsort(need, descending=True, stable=True)
-    coef, per_sample, theta, quad = (t.index_select(-1, order) for t in (coef, per_sample, theta, quad))
-    slow, w = (t.index_select(-2, order) for t in (slow, w))
-    slow_rad = (2 * math.pi * slow).to(dtype)
-    cr = coef.real.to(dtype)[..., None]
-    ci = coef.imag.to(dtype)[..., None]
-    if chirp_gain is not None:
-        g = chirp_gain.to(dtype).index_select(-2, order)
-        cr, ci = cr * g, ci * g
-    cs, ss = torch.cos(slow_rad), torch.sin(slow_rad)
-    # Slow side interleaved as (…, RX, M, P, 2) = [Re, -Im] of C e^{j slow}, fast side as
-    # (…, RX, P, 2, N) = [cos, sin]: Re{A B} is then one real GEMM over (path, re/im), and the
-    # paths that need Taylor order k are a prefix of that inner dimension.
-    ar = cr * cs - ci * ss  # (…, RX, P, M)
-    ai = cr * ss + ci * cs
-    rhs = _fast_time_cos_sin(per_sample, quad, N, dtype).flatten(-3, -2)  # (…, RX, 2P, N)
-
-    def lhs(re: torch.Tensor, im: torch.Tensor) -> torch.Tensor:
-        return torch.stack([re, -im], dim=-1).transpose(-3, -2).flatten(-2)  # (…, RX, M, 2P')
-
-    out = torch.matmul(lhs(ar, ai), rhs)
+    coef, delay_s, delay_rate = (t.index_select(-1, order) for t in (coef, delay_s, delay_rate))
+    chirp_delay, chirp_gain = (None if t is None else t.index_select(-2, order) for t in (chirp_delay, chirp_gain))
     K = int(need.max()) + 1
-    if K <= 1:
-        return out
-    v = torch.linspace(-1, 1, N, dtype=dtype, device=dev)
-    # Number of leading (sorted) paths that need order k.
     counts = [int(c) for c in (need[None, :] >= torch.arange(1, K, device=dev)[:, None]).sum(dim=1).cpu()]
-    tw = theta.to(dtype)[..., None] * w.to(dtype)  # (…, RX, P, M): theta w_m
+    v = torch.linspace(-1, 1, N, dtype=dtype, device=dev)
+    v_pow = [v.pow(k) for k in range(1, K)]
+    # The batch rows (frames x RX) are done in chunks whose per-path work (phases, slow factors
+    # P x M, fast-time factors 2P x N per row) stays in the CPU's cache: the trig, the GEMMs and
+    # the Taylor updates then run at cache speed instead of streaming (frames x RX x P x M) and
+    # (frames x RX x 2P x N) tensors through memory many times (measured ~2x faster for a
+    # 16-frame corridor batch on a 2-core CPU).
+    rows = math.prod(batch)
+    step = max(1, _FAST_CHUNK_ELEMENTS // (2 * P * N))
+    out = torch.empty(rows, M, N, dtype=dtype, device=dev)
+    for r0 in range(0, rows, step):
+        idx = torch.unravel_index(torch.arange(r0, min(r0 + step, rows), device=dev), batch)
+
+        def pick(t: torch.Tensor | None, tail: int, idx: tuple[torch.Tensor, ...] = idx) -> torch.Tensor | None:
+            """Rows ``idx`` of ``t`` broadcast to (*batch, ...) -> (c, ...) (no full-size copy)."""
+            if t is None:
+                return None
+            return t.expand(*batch, *t.shape[len(t.shape) - tail:])[idx]
+
+        slow, per_sample, theta, quad, w = _phase_terms(pick(delay_s, 1), pick(delay_rate, 1), timing,
+                                                        pick(chirp_delay, 2))
+        c = pick(coef, 1)
+        cr, ci = c.real.to(dtype)[..., None], c.imag.to(dtype)[..., None]
+        g = pick(chirp_gain, 2)
+        if g is not None:
+            g = g.to(dtype)
+            cr, ci = cr * g, ci * g
+        slow_rad = (2 * math.pi * slow).to(dtype)
+        cs, ss = torch.cos(slow_rad), torch.sin(slow_rad)
+        # Slow side: Re, Im of C e^{j slow} (c, P, M); fast side: cos, sin (:func:`_fast_rows`).
+        tw = theta.to(dtype)[..., None] * w.to(dtype) if K > 1 else None
+        out[r0:r0 + step] = _fast_rows(cr * cs - ci * ss, cr * ss + ci * cs, per_sample, quad, tw, counts,
+                                       v_pow, N, dtype)
+    return out.reshape(*batch, M, N)
+
+
+def _coupling_phase(delay_rate: torch.Tensor, timing: ChirpTiming, chirp_delay: torch.Tensor | None) -> torch.Tensor:
+    """``theta`` of :func:`_phase_terms` (the largest residual coupling phase, rad) without the rest.
+
+    The coupling ``g_m = S (1 - r) e_m / fs`` with ``e_m = r m T + d_m``: its half range over the
+    chirps is ``S (1 - r) (max e - min e) / (2 fs)`` (``1 - r > 0``).
+    """
+    r = delay_rate.double()
+    if chirp_delay is None:
+        span = r.abs() * ((timing.num_chirps - 1) * timing.prt)
+    else:
+        m = torch.arange(timing.num_chirps, device=r.device, dtype=torch.float64) * timing.prt
+        e = r[..., None] * m + chirp_delay.double()
+        span = e.amax(dim=-1) - e.amin(dim=-1)
+    half = timing.slope * (1 - r) / timing.fs * span / 2
+    return 2 * math.pi * half * ((timing.num_samples - 1) / 2)
+
+
+def _fast_rows(
+    ar: torch.Tensor, ai: torch.Tensor, per_sample: torch.Tensor, quad: torch.Tensor, tw: torch.Tensor | None,
+    counts: list[int], v_pow: list[torch.Tensor], num_samples: int, dtype: torch.dtype,
+) -> torch.Tensor:
+    """:func:`synthesize_fast` of a chunk of rows: slow factors ``ar, ai`` ``(c, P, M)`` (Re and Im of
+    ``C e^{j slow}``), paths sorted by Taylor order (``counts[k - 1]`` of them need order ``k``),
+    ``tw`` the coupling ``theta w_m``.
+
+    ``Re{A B}`` with ``B = cos + j sin`` is ``Re(A) cos - Im(A) sin``: two GEMMs whose slow side is
+    a transposed view (no copies), accumulated in place; the paths that need order ``k`` are a
+    prefix of both.
+    """
+    cos_sin = _fast_time_cos_sin(per_sample, quad, num_samples, dtype)  # (c, 2, P, N)
+    cos, sin = cos_sin[:, 0], cos_sin[:, 1]
+    out = torch.bmm(ar.transpose(-1, -2), cos).baddbmm_(ai.transpose(-1, -2), sin, alpha=-1)
     tr, ti = ar, ai
-    for k in range(1, K):
-        pk = counts[k - 1]
+    for k, pk in enumerate(counts, start=1):
         if pk == 0:
             break
         # Term k of exp(j theta w v): (j theta w)^k / k! on the slow side, v^k on the fast side.
         # Multiplying by j swaps (re, im) -> (-im, re).
-        scale = tw[..., :pk, :] / k
-        tr, ti = -ti[..., :pk, :] * scale, tr[..., :pk, :] * scale
-        out = out + torch.matmul(lhs(tr, ti), rhs[..., : 2 * pk, :]) * v.pow(k)
+        scale = tw[:, :pk, :] / k
+        tr, ti = -ti[:, :pk, :] * scale, tr[:, :pk, :] * scale
+        term = torch.bmm(tr.transpose(-1, -2), cos[:, :pk]).baddbmm_(ti.transpose(-1, -2), sin[:, :pk], alpha=-1)
+        out.addcmul_(term, v_pow[k - 1])
     return out
 
 

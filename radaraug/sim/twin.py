@@ -226,12 +226,16 @@ class DigitalTwin:
         if t is None:
             return None
         d = (t - 1).to(self.device)
-        hit = (d.abs() > SHADOW_TOL).any(0).nonzero()[:, 0]
-        if hit.numel() == 0:
+        hit = (d.abs() > SHADOW_TOL).any(0)  # (P,) the paths some frame's people touch
+        if not bool(hit.any()):
             return None
-        basis = self.static_basis()[hit]  # (P', 2, RX, N)
-        coef = torch.stack([d[:, hit].real, d[:, hit].imag], dim=-1).to(basis.dtype)  # (T, P', 2)
-        return torch.einsum("tpc,pcrn->trn", coef, basis)[:, :, None, :]
+        d = d * hit
+        basis = self.static_basis()  # (P, 2, RX, N)
+        # One GEMM over every static path (those the people do not touch have zero coefficients):
+        # cheaper than gathering the touched paths' basis rows (a copy of tens of MB per batch).
+        coef = torch.view_as_real(d).to(basis.dtype).reshape(d.shape[0], -1)  # (T, 2P): [Re, Im] per path
+        out = coef @ basis.reshape(coef.shape[1], -1)
+        return out.reshape(d.shape[0], *basis.shape[2:])[:, :, None, :]
 
     def frame_paths(self, people: Sequence[Any], times: torch.Tensor) -> Paths:
         """The people's paths (negligible ones masked, :func:`negligible_paths_off`) and their shadow
