@@ -115,6 +115,17 @@ def _linear(y: torch.Tensor, x: torch.Tensor) -> torch.Tensor:
     return y[..., i] * (1 - u) + y[..., i + 1] * u
 
 
+def _weights(interpolant: Callable[[torch.Tensor, torch.Tensor], torch.Tensor], knots: int, x: torch.Tensor,
+             like: torch.Tensor) -> torch.Tensor:
+    """The ``(knots, Q)`` matrix ``W`` with ``interpolant(y, x) == y @ W`` for any knot values ``y``.
+
+    The interpolants (and their closed-form integral) are linear in the knot values, so applying
+    one to the identity gives its weights: one small GEMM per call then replaces the gathers of
+    every (frame, slot) row at every query point.
+    """
+    return interpolant(torch.eye(knots, dtype=like.dtype, device=like.device), x.to(like.device, like.dtype))
+
+
 def _knot_tensors(p: Paths, t: int, knots: int) -> tuple[torch.Tensor, torch.Tensor, torch.Tensor]:
     """Delay and rate ``(T, P, RX, K+1)`` float64 and amplitude ``(T, P, RX, K+1)`` (masked -> 0)."""
     d = p.delay_s.double().reshape(t, knots, *p.delay_s.shape[1:])
@@ -136,7 +147,7 @@ def _refinement_error(r_coarse: torch.Tensor, r_mid: torch.Tensor, amp: torch.Te
     the fine knots."""
     k = r_coarse.shape[-1] - 1
     x = torch.arange(k, dtype=torch.float64, device=r_coarse.device) + 0.5
-    err = (_hermite(r_coarse, x) - r_mid).abs().mean(dim=-2)  # (T, P, K), mean over RX
+    err = (r_coarse @ _weights(_hermite, k + 1, x, r_coarse) - r_mid).abs().mean(dim=-2)  # (T, P, K), mean over RX
     mag = amp.abs().mean(dim=-2)  # (T, P, 2K+1)
     floor = mag.flatten(1).amax(dim=1).clamp_min(1e-300) * 10 ** (-LIVE_BELOW_DB / 20)
     live = (mag[..., 0:-1:2] > floor[:, None, None]) & (mag[..., 1::2] > floor[:, None, None]) \
@@ -273,7 +284,7 @@ def _assemble(groups, n_frames: int, tc: torch.Tensor, span: float, kind: torch.
             r, a = (t[..., :: k_max // k] for t in (r_all, a_all))
             r_mean = r.mean(dim=-2)  # (F, P, K+1): the RX channels share the motion's shape
             # Delay change since t = 0: the interpolated rate integrated in closed form.
-            integral = _hermite_integral(r_mean, tcd / span * k) * (span / k)  # (F, P, M)
+            integral = r_mean @ (_weights(_hermite_integral, k + 1, tcd / span * k, r_mean) * (span / k))  # (F, P, M)
             motion = torch.where(sel[..., None], integral, motion)
             mag = a.abs().mean(dim=-2)  # (F, P, K+1)
             # Amplitude relative to the first knot where the slot is live (its phase, RX balance).
@@ -282,8 +293,8 @@ def _assemble(groups, n_frames: int, tc: torch.Tensor, span: float, kind: torch.
             m_ref = mag.gather(-1, ref_k[..., None])  # (F, P, 1)
             a_k = a.gather(-1, ref_k[..., None, None].expand(*a.shape[:-1], 1))[..., 0]  # (F, P, RX)
             a_ref = torch.where(sel[..., None], a_k, a_ref)
-            g = torch.where(sel[..., None], _linear(mag / torch.where(m_ref > 0, m_ref, torch.ones_like(m_ref)),
-                                                    tcd / span * k), g)
+            rel = mag / torch.where(m_ref > 0, m_ref, torch.ones_like(m_ref))
+            g = torch.where(sel[..., None], rel @ _weights(_linear, k + 1, tcd / span * k, rel), g)
         # Bistatic rate offset of each RX from the RX mean, from the frame's end knots (which every
         # level shares): ~1e-3 of the rate, constant over a frame to well below that.
         ends = r_all[..., [0, -1]]
