@@ -76,6 +76,7 @@ from typing import Any
 import torch
 
 from radaraug.errors import InputTensorError, SceneError
+from radaraug.raytrace.vec import dot, matvec
 from radaraug.scene.geometry import Ellipsoids
 from radaraug.sensor.paths import Paths
 
@@ -228,9 +229,8 @@ def silhouette_clearance(
         (obstructed), negative outside.
     """
     w = t[:, None] * u - rel  # from the centre to the leg, normal to the leg
-    me1 = (shape * e1[:, None, :]).sum(-1)
-    me2 = (shape * e2[:, None, :]).sum(-1)
-    n11, n12, n22 = (e1 * me1).sum(-1), (e1 * me2).sum(-1), (e2 * me2).sum(-1)
+    me1, me2 = matvec(shape, e1), matvec(shape, e2)
+    n11, n12, n22 = dot(e1, me1), dot(e1, me2), dot(e2, me2)
     # Principal axes of the silhouette ellipse (2x2 symmetric eigenproblem, closed form).
     mean = 0.5 * (n11 + n22)
     dev = torch.sqrt((0.5 * (n11 - n22)) ** 2 + n12**2)
@@ -238,7 +238,7 @@ def silhouette_clearance(
     a2 = (mean + dev).clamp(min=tiny)
     b2 = (mean - dev).clamp(min=tiny)
     phi = 0.5 * torch.atan2(2 * n12, n11 - n22)
-    w1, w2 = (w * e1).sum(-1), (w * e2).sum(-1)
+    w1, w2 = dot(w, e1), dot(w, e2)
     cp, sp = torch.cos(phi), torch.sin(phi)
     x = w1 * cp + w2 * sp
     y = -w1 * sp + w2 * cp
@@ -375,9 +375,10 @@ def _leg_transmission(
     pc = cb.mean(1)  # (ng, 3)
     pr = ((cb - pc[:, None]).norm(dim=-1) + seg_r.reshape(nb, ng, g).transpose(0, 1).reshape(ng, -1)).amax(-1)
     rel = pc[:, None] - a0  # (ng, P*Lg, 3)
-    t = torch.minimum((rel * uf).sum(-1).clamp(min=0), lf)
+    t = torch.minimum(dot(rel, uf).clamp(min=0), lf)
     reach = pr[:, None] + mf
-    legs = torch.nonzero((((rel - t[..., None] * uf) ** 2).sum(-1) < reach * reach).any(0) & (lf > 0))[:, 0]
+    off = rel - t[..., None] * uf
+    legs = torch.nonzero((dot(off, off) < reach * reach).any(0) & (lf > 0))[:, 0]
     if legs.shape[0] == 0:
         return out_log.exp().reshape(*batch, num_p)
     a_k, u_k, l_k = a0[legs], uf[legs], lf[legs]
@@ -386,9 +387,9 @@ def _leg_transmission(
     # d1 = (c - a) . u along the leg, perpendicular distance^2 = |c - a|^2 - d1^2.
     cs = c0.reshape(-1, 3)  # (nb*S, 3)
     r_s = seg_r.reshape(-1)
-    au = (a_k * u_k).sum(-1)
-    a2 = (a_k * a_k).sum(-1)
-    c2 = (cs * cs).sum(-1)
+    au = dot(a_k, u_k)
+    a2 = dot(a_k, a_k)
+    c2 = dot(cs, cs)
     half_lam, inv_l = 0.5 * wavelength, 1 / l_k.clamp(min=1e-12)
     hits = []
     # Chunks of ~2**18 (segment, leg) pairs: the dozen full-size passes below stay in the cache.
@@ -414,7 +415,7 @@ def _leg_transmission(
     flat_leg = legs.index_select(0, idx[:, 1])
     start, direction, leg_len = (x.index_select(0, flat_leg) for x in (a0, uf, lf))
     rel = cs.index_select(0, seg_row) - start
-    d1 = (rel * direction).sum(-1)
+    d1 = dot(rel, direction)
     # The exact d1 (not the expanded form of the cull) decides; a candidate outside the leg is
     # dropped with the dominance prune below (or on its own without it).
     inside = (d1 > 0) & (d1 < leg_len)
@@ -424,7 +425,7 @@ def _leg_transmission(
         # lies between (smallest semi-axis - distance) and (largest semi-axis - distance) (the
         # silhouette contains the disk of the smallest semi-axis and lies in the sphere of the largest).
         k_nu = torch.sqrt(2.0 / wavelength * (1 / d1.clamp(min=1e-9) + 1 / (leg_len - d1).clamp(min=1e-9)))
-        perp = torch.sqrt(((rel * rel).sum(-1) - d1 * d1).clamp(min=0))
+        perp = torch.sqrt((dot(rel, rel) - d1 * d1).clamp(min=0))
         bi = seg_row // s_count
         key = ((bi * num_p + flat_leg // num_legs) * num_legs + flat_leg % num_legs) * ng + (seg_row - bi * s_count) // g
         lower = torch.where(inside, k_nu * (semi.amin(-1).reshape(-1).index_select(0, seg_row) - perp), -math.inf)

@@ -48,6 +48,7 @@ from radaraug.raytrace.po import facet_normals
 from radaraug.raytrace.radar import RadarGeometry, radar_amplitude
 from radaraug.raytrace.reflect import FaceReflectivity
 from radaraug.raytrace.sbr import surface_offset
+from radaraug.raytrace.vec import dot, matvec
 from radaraug.scene.geometry import Ellipsoids, SceneGeometry
 from radaraug.scene.materials import get_material
 from radaraug.sensor.paths import Paths
@@ -69,11 +70,11 @@ def ray_hits_ellipsoids(
     # Into each ellipsoid's unit-sphere frame: x' = R^T (x - c) / axes.  Shapes (N, S_i, S_j, 3).
     rot_t = rotations.transpose(-1, -2)[:, None]  # (N, 1, Sj, 3, 3)
     rel = origins[:, :, None] - centers[:, None]
-    o_l = (rot_t @ rel[..., None])[..., 0] / semi_axes[:, None]
-    d_l = (rot_t @ dirs[:, :, None, :, None].expand(-1, -1, centers.shape[1], -1, -1))[..., 0] / semi_axes[:, None]
-    a = (d_l * d_l).sum(-1)
-    b = (o_l * d_l).sum(-1)
-    c = (o_l * o_l).sum(-1) - 1
+    o_l = matvec(rot_t, rel) / semi_axes[:, None]
+    d_l = matvec(rot_t, dirs[:, :, None, :]) / semi_axes[:, None]
+    a = dot(d_l, d_l)
+    b = dot(o_l, d_l)
+    c = dot(o_l, o_l) - 1
     disc = b * b - a * c
     root = disc.clamp_min(0).sqrt()
     t1, t2 = (-b - root) / a, (-b + root) / a
