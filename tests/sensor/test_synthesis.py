@@ -86,3 +86,28 @@ def test_taylor_order_bound():
         if k > 0:
             assert r * t**k / math.factorial(k) >= 1e-6
     assert need[0] == 0 and need[3] < need[2]
+
+
+@pytest.mark.parametrize("chunk", [1, 3, 1 << 30])
+def test_fast_chunked_rows_agree_with_exact_and_broadcast_chirp_terms(small_cfg, monkeypatch, chunk):
+    """The fast synthesis works through the (frames x RX) rows in cache-sized chunks: any chunking
+    (one row, uneven chunks, everything at once) gives the exact sum, with per-chirp delays and
+    gains shared by the RX channels (``(T, 1, P, M)``, broadcast) as intra-frame motion gives them."""
+    import radaraug.sensor.synthesis as synthesis
+
+    timing = ChirpTiming.from_config(small_cfg)
+    g = torch.Generator().manual_seed(4)
+    T, RX, P, M = 5, 3, 7, timing.num_chirps
+    tau = (2 * (1 + 9 * torch.rand(T, 1, P, generator=g, dtype=torch.float64)) / SPEED_OF_LIGHT
+           + 1e-12 * torch.arange(RX, dtype=torch.float64)[:, None])
+    rate = (2 * (torch.rand(T, 1, P, generator=g, dtype=torch.float64) * 8 - 4) / SPEED_OF_LIGHT).expand(T, RX, P)
+    coef = torch.polar(torch.rand(T, RX, P, generator=g, dtype=torch.float64),
+                       2 * math.pi * torch.rand(T, RX, P, generator=g, dtype=torch.float64))
+    chirp_delay = 2e-12 * torch.sin(torch.linspace(0, 3, M, dtype=torch.float64) + torch.rand(T, 1, P, 1, generator=g))
+    chirp_gain = 1 + 0.2 * torch.rand(T, 1, P, M, generator=g, dtype=torch.float64)
+    monkeypatch.setattr(synthesis, "_FAST_CHUNK_ELEMENTS", chunk * 2 * P * timing.num_samples)
+    kw = dict(dtype=torch.float64, chirp_delay=chirp_delay, chirp_gain=chirp_gain)
+    fast = synthesize_fast(coef, tau, rate, timing, **kw)
+    exact = synthesize_exact(coef, tau, rate, timing, **kw)
+    assert fast.shape == (T, RX, M, timing.num_samples)
+    assert ((fast - exact).pow(2).mean() / exact.pow(2).mean()).sqrt() < 1e-5

@@ -171,3 +171,21 @@ def test_intra_frame_choice_is_per_frame_and_validated(scene) -> None:
     bad = Paths(both.delay_s, both.delay_rate, both.amplitude, both.kind, both.mask, both.chirp_delay_s[..., :3])
     with pytest.raises(InputTensorError):
         twin.receiver(bad)
+
+
+def test_interpolation_weights_reproduce_the_interpolants() -> None:
+    """The intra-frame interpolants are linear in the knot values: ``y @ W`` (``W`` from the identity)
+    equals the interpolant, and the closed-form integral of the cubic matches a fine trapezoid."""
+    from radaraug.sim.intra_frame import _hermite, _hermite_integral, _linear, _weights
+
+    g = torch.Generator().manual_seed(3)
+    x = torch.linspace(0, 4, 37, dtype=torch.float64)
+    for k in (1, 2, 4):
+        y = torch.randn(5, 2, k + 1, generator=g, dtype=torch.float64)
+        xs = x * k / 4
+        for fn in (_hermite, _hermite_integral, _linear):
+            torch.testing.assert_close(y @ _weights(fn, k + 1, xs, y), fn(y, xs))
+        fine = torch.linspace(0, k, 4001, dtype=torch.float64)
+        trap = torch.trapezoid(_hermite(y, fine), fine, dim=-1)
+        torch.testing.assert_close(_hermite_integral(y, torch.tensor([float(k)], dtype=torch.float64))[..., 0],
+                                   trap, atol=1e-6, rtol=1e-6)
