@@ -214,18 +214,22 @@ def intra_frame_paths(
 
     all_idx = torch.arange(n_frames)
     first = fixed if fixed is not None else FIRST_INTERVALS
-    d, r, a, p0 = traced(all_idx, first)
-    kind = None if p0.kind is None else p0.kind.reshape(n_frames, first + 1, -1)[:, 0]
+    # The automatic choice always needs the first level's midpoints: trace both levels' knots
+    # in one call (one tracer call less per batch) and split them.
+    d, r, a, p0 = traced(all_idx, first if fixed is not None else 2 * first)
+    kind = None if p0.kind is None else p0.kind.reshape(n_frames, -1, p0.kind.shape[-1])[:, 0]
     groups: list[tuple] = []  # (frames, K, delays, rates, amps, slot levels) per finest level
     if fixed is not None:
         groups.append((all_idx, first, d, r, a, torch.full(d.shape[:2], first, dtype=torch.long)))
     else:
         # Each slot takes the first level at which its own check passes, so a person's paths do
         # not depend on who else is in the frame; a frame is refined while any slot needs it.
+        (d, dm), (r, rm), (a, am) = ((t[..., 0::2], t[..., 1::2]) for t in (d, r, a))
         idx, k = all_idx, first
         level = torch.zeros(d.shape[:2], dtype=torch.long)  # 0: not converged yet
         while True:
-            dm, rm, am, _ = traced(idx, 2 * k, odd_only=True)
+            if k > first:
+                dm, rm, am, _ = traced(idx, 2 * k, odd_only=True)
             fine = [_interleave(c, m) for c, m in ((d, dm), (r, rm), (a, am))]
             if 2 * k >= max_k:
                 level = torch.where(level == 0, torch.full_like(level, 2 * k), level)
