@@ -262,7 +262,7 @@ def diagnose(
     source, chain, scene_name = _source(config, scene, fit, settings.sim_frames, receiver, tracer_options)
     say = (lambda s: print(f"diagnose: {s}", flush=True)) if progress else None
     search = Search(source, fit, held, settings, progress=say)
-    room = {}
+    room: dict[str, float] = {}
     if start is not None:
         # The start profile's room values where this scene has them (clipped to the prior).
         room = {k: min(max(v, ROOM_PRIORS[k].lo), ROOM_PRIORS[k].hi) for k, v in start.room.items()
@@ -272,9 +272,9 @@ def diagnose(
     runtime = time.perf_counter() - t0
     full_chain = profile_chain(result.chain_after, default_chain, source.mode)
     rx_dict = {**receiver.to_dict(), "effects": full_chain}
-    # Scene mode: the room parameters fitted (none when the room has no diffuse paths). Estimated
-    # mode did not see the room: a start profile's room section is kept, like the static stages.
-    fitted_room = result.room_after if source.mode == "scene" else (dict(start.room) if start is not None else {})
+    # The room parameters fitted (scene mode, a room with diffuse paths); what the loop could not
+    # see (estimated mode, no diffuse paths) is kept from a start profile, like the static stages.
+    fitted_room = {**(start.room if start is not None else {}), **result.room_after}
     profile = TwinProfile(rx_dict, {
         "capture": Path(path).name,
         "scene": scene_name,
