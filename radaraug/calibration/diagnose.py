@@ -352,7 +352,7 @@ def summary_text(diag: Diagnosis, report: dict[str, Any]) -> str:
     for s in r.steps:
         lines.append(f"1. `{s['effect']}`{' (refit)' if s['refit'] else ''}: {s['error_before']:.3f} -> "
                      f"{s['error_after']:.3f} dB; {_fmt_params(s['params'])}")
-    lines += ["", "## Room (scene mode)", ""]
+    lines += ["", "## Room", ""]
     if r.room_after:
         lines += [f"- `{k}`: {r.room_before[k]:.2f} -> base refit {r.room_base[k]:.2f} -> final "
                   f"**{r.room_after[k]:.2f}**" for k in sorted(r.room_after)]
