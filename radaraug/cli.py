@@ -214,6 +214,8 @@ def _cmd_diagnose(args: argparse.Namespace) -> int:
     print(f"{out / 'report.json'} ({diag.mode} mode, {diag.runtime_s:.1f} s)")
     print(f"  held-out error: default {r.before.overall:.2f} dB -> base refit {r.base.overall:.2f} dB -> "
           f"final {r.after.overall:.2f} dB")
+    for k, v in sorted(r.room_after.items()):
+        print(f"  room {k}: {r.room_before[k]:.2f} -> {v:.2f}")
     for s in r.steps:
         print(f"  + {s['effect']}: {s['error_before']:.3f} -> {s['error_after']:.3f} dB")
     print(f"  unexplained: {len(diag.unexplained)} item(s); profile {out / 'profile.json'}")

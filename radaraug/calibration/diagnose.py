@@ -20,6 +20,7 @@ from typing import Any
 import torch
 
 from radaraug.calibration.catalog import BASE_STAGES, CATALOG_NAMES, Chain, find
+from radaraug.calibration.room import ROOM_PRIORS
 from radaraug.calibration.search import Search, SearchResult, SearchSettings
 from radaraug.calibration.twin_source import STATIC_STAGES, TwinSource
 from radaraug.calibration.views import VIEW_UNITS, Views, _db
@@ -67,6 +68,8 @@ class Diagnosis:
             "error_after": {**r.after.as_dict(), "units": units},
             "base_refit": {"params": _base_params(r.chain_base), "params_before": _base_params(r.chain_before),
                            "params_final": _base_params(r.chain_after)},
+            "room": {"fitted": sorted(r.room_after), "params_before": r.room_before, "params": r.room_base,
+                     "params_final": r.room_after, "note": _room_note(self.mode, r.room_after)},
             "steps": [{k: v for k, v in s.items() if k not in ("views_before", "views_after")} | {
                 "views_before": s["views_before"], "views_after": s["views_after"]} for s in r.steps],
             "candidates_tried": r.tried,
@@ -85,6 +88,14 @@ _MODE_TEXT = {
                  "frames), so static stages (TX->RX leakage, room clutter, multipath) are taken as measured and "
                  "only what varies was diagnosed",
 }
+
+
+def _room_note(mode: str, room: dict[str, float]) -> str:
+    if room:
+        return "room parameters fitted with the base (RayTracer options; the profile's room section)"
+    if mode == "scene":
+        return "the scene's room has no diffuse scattering paths: no room parameter to fit"
+    return "no scene: the room is part of the estimated static scene, no room parameter is fitted"
 
 
 def _base_params(chain: Chain) -> dict[str, Any]:
@@ -120,12 +131,15 @@ def _source(config: RadarConfig, scene: Any, fit: torch.Tensor, sim_frames: int,
 
     sc = load_scene(scene)
     twin = DigitalTwin(sc, config=config, tracer_options=tracer_options, dtype=torch.float64)
-    static_paths = twin.tracer.static_paths()
+    tracer = twin.tracer
+    # Specular and diffuse parts apart: the search scales the diffuse one (the room's diffuse gain).
+    specular, diffuse = tracer.static_paths("specular"), tracer.static_paths("diffuse")
     moving = None
     if sc.people:
         moving = twin.frame_paths(sc.people, twin.frame_times(range(sim_frames * 2)))
     name = scene if isinstance(scene, str) else str(getattr(sc, "name", "scene"))
-    return TwinSource(config, static_paths=static_paths, moving=moving, tx_power_dBm=rx.tx_power_dBm,
+    return TwinSource(config, static_paths=specular, diffuse_paths=diffuse, diffuse_gain_dB=tracer.diffuse_gain_dB,
+                      moving=moving, tx_power_dBm=rx.tx_power_dBm,
                       front_end_gain_dB=rx.front_end_gain_dB), chain, str(name)
 
 
@@ -225,8 +239,10 @@ def diagnose(
             name); ``None`` estimates the static scene from the capture.
         max_frames: frames read (the first half fits, the second half scores).
         settings: search knobs (:class:`SearchSettings`).
-        start_profile: start from this twin profile instead of the default chain.
-        tracer_options: the room trace's options in scene mode.
+        start_profile: start from this twin profile instead of the default chain (and, in scene
+            mode, from its room section's diffuse gain).
+        tracer_options: the room trace's options in scene mode (``diffuse_gain_dB`` there is the
+            start of the fitted diffuse gain unless ``start_profile`` has one).
         progress: print one line per decision.
 
     Returns:
@@ -246,11 +262,19 @@ def diagnose(
     source, chain, scene_name = _source(config, scene, fit, settings.sim_frames, receiver, tracer_options)
     say = (lambda s: print(f"diagnose: {s}", flush=True)) if progress else None
     search = Search(source, fit, held, settings, progress=say)
-    result = search.run(chain)
+    room: dict[str, float] = {}
+    if start is not None:
+        # The start profile's room values where this scene has them (clipped to the prior).
+        room = {k: min(max(v, ROOM_PRIORS[k].lo), ROOM_PRIORS[k].hi) for k, v in start.room.items()
+                if k in source.room_params}
+    result = search.run(chain, room=room)
     unexplained = locate_unexplained(search.cap_held, result.after.twin, config)
     runtime = time.perf_counter() - t0
     full_chain = profile_chain(result.chain_after, default_chain, source.mode)
     rx_dict = {**receiver.to_dict(), "effects": full_chain}
+    # The room parameters fitted (scene mode, a room with diffuse paths); what the loop could not
+    # see (estimated mode, no diffuse paths) is kept from a start profile, like the static stages.
+    fitted_room = {**(start.room if start is not None else {}), **result.room_after}
     profile = TwinProfile(rx_dict, {
         "capture": Path(path).name,
         "scene": scene_name,
@@ -259,7 +283,8 @@ def diagnose(
         "error_before_dB": round(result.before.overall, 4),
         "error_after_dB": round(result.after.overall, 4),
         "effects_added": [s["effect"] for s in result.steps],
-    })
+        "room_fitted": sorted(result.room_after),
+    }, room=fitted_room)
     return Diagnosis(path, scene_name, source.mode, config, result, unexplained, profile,
                      {"read": int(frames.shape[0]), "fit": int(half), "held_out": int(frames.shape[0] - half),
                       "simulated_per_evaluation": search.n_fit}, runtime, search.cap_held,
@@ -327,6 +352,12 @@ def summary_text(diag: Diagnosis, report: dict[str, Any]) -> str:
     for s in r.steps:
         lines.append(f"1. `{s['effect']}`{' (refit)' if s['refit'] else ''}: {s['error_before']:.3f} -> "
                      f"{s['error_after']:.3f} dB; {_fmt_params(s['params'])}")
+    lines += ["", "## Room", ""]
+    if r.room_after:
+        lines += [f"- `{k}`: {r.room_before[k]:.2f} -> base refit {r.room_base[k]:.2f} -> final "
+                  f"**{r.room_after[k]:.2f}**" for k in sorted(r.room_after)]
+    else:
+        lines.append(_room_note(diag.mode, r.room_after) + ".")
     lines += ["", "## Error per view (dB, held-out)", "", "| view | default twin | base refit | final |",
               "|---|---|---|---|"]
     for k in r.before.views:

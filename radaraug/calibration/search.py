@@ -14,6 +14,11 @@ Gradients through the receiver would work for a few parameters, but half the vie
 statistics (quantiles, medians, peaks) and a spur's frequency objective is a comb of local
 minima; a start in closed form plus a short local search is both faster and more reliable here.
 
+Room parameters: in scene mode, when the room has diffuse scattering, the base refit also fits
+the room's diffuse power gain (:mod:`radaraug.calibration.room`). It is not a receiver effect, so
+it is not in the chain: every method carries a ``room`` dict beside the chain, and parameter lists
+name it with the pseudo-stage :data:`~radaraug.calibration.room.ROOM_STAGE`.
+
 Decision rule (documented margin): a candidate is added when it lowers the held-out overall error
 by at least ``max(min_gain_db, min_gain_rel * current)``; the search stops when none does.
 """
@@ -38,6 +43,7 @@ from radaraug.calibration.catalog import (
     set_params,
     with_effect,
 )
+from radaraug.calibration.room import ROOM_PRIORS, ROOM_STAGE, Room
 from radaraug.calibration.twin_source import TwinSource
 from radaraug.calibration.views import ADC_QUANTILES, Views, compute_views, overall_error, view_errors
 from radaraug.sensor.effects import EFFECTS
@@ -81,7 +87,8 @@ class Score:
 
 @dataclass
 class SearchResult:
-    """What the search found."""
+    """What the search found (``room_*``: the room parameters with each chain; empty when the
+    source has none to fit)."""
 
     chain_before: Chain
     chain_base: Chain
@@ -92,6 +99,9 @@ class SearchResult:
     steps: list[dict[str, Any]] = field(default_factory=list)
     tried: list[dict[str, Any]] = field(default_factory=list)
     evaluations: int = 0
+    room_before: Room = field(default_factory=dict)
+    room_base: Room = field(default_factory=dict)
+    room_after: Room = field(default_factory=dict)
 
 
 Progress = Callable[[str], None]
@@ -122,32 +132,36 @@ class Search:
         self.evaluations = 0
 
     # ------------------------------------------------------------------ scoring
-    def _score(self, chain: Chain, held: bool) -> Score:
+    def _score(self, chain: Chain, held: bool, room: Room | None) -> Score:
         self.evaluations += 1
         s = self.settings.seed
         if held:
-            x = self.source.frames(chain, self.n_held, seed=s * 7919 + 2, first_frame=self.first_held)
+            x = self.source.frames(chain, self.n_held, seed=s * 7919 + 2, first_frame=self.first_held, room=room)
             cap = self.cap_held
         else:
-            x = self.source.frames(chain, self.n_fit, seed=s * 7919 + 1)
+            x = self.source.frames(chain, self.n_fit, seed=s * 7919 + 1, room=room)
             cap = self.cap_fit
         tv = compute_views(x, self.config)
         errs = view_errors(tv, cap)
         return Score(overall_error(errs), errs, tv)
 
-    def fit_score(self, chain: Chain) -> Score:
-        """Error of ``chain`` against the fitting half."""
-        return self._score(chain, held=False)
+    def fit_score(self, chain: Chain, room: Room | None = None) -> Score:
+        """Error of ``chain`` (with room parameters ``room``, default: as traced) against the fitting half."""
+        return self._score(chain, False, room)
 
-    def held_score(self, chain: Chain) -> Score:
-        """Error of ``chain`` against the held-out half."""
-        return self._score(chain, held=True)
+    def held_score(self, chain: Chain, room: Room | None = None) -> Score:
+        """Error of ``chain`` (with room parameters ``room``) against the held-out half."""
+        return self._score(chain, True, room)
 
     # ------------------------------------------------------------------ optimizer
-    def optimize(self, chain: Chain, specs: Sequence[tuple[str, ParamSpec]]) -> tuple[Chain, Score]:
-        """Nelder-Mead over ``specs`` (``(effect, spec)``) from the values in ``chain``, in each prior's
-        scale; returns the best chain evaluated and its fit score."""
+    def optimize(self, chain: Chain, specs: Sequence[tuple[str, ParamSpec]],
+                 room: Room | None = None) -> tuple[Chain, Room, Score]:
+        """Nelder-Mead over ``specs`` (``(stage, spec)``: an effect of ``chain``, or
+        :data:`~radaraug.calibration.room.ROOM_STAGE` for a room parameter of ``room``) from their
+        current values, in each prior's scale; returns the best chain and room evaluated and the
+        fit score."""
         R = self.config.num_rx
+        room = self.source.check_room(room)
 
         def to_u(v: float, sp: ParamSpec) -> float:
             v = min(max(v, sp.prior.lo), sp.prior.hi)
@@ -159,39 +173,42 @@ class Search:
         def bounds(sp: ParamSpec) -> tuple[float, float]:
             return (math.log10(sp.prior.lo), math.log10(sp.prior.hi)) if sp.prior.scale == "log" else (sp.prior.lo, sp.prior.hi)
 
-        def build(us: list[float]) -> Chain:
-            ch = chain
+        def build(us: list[float]) -> tuple[Chain, Room]:
+            ch, rm = chain, dict(room)
             for (eff, sp), u in zip(specs, us):
-                ch = set_params(ch, eff, [sp], [from_u(u, sp)], R)
-            return ch
+                if eff == ROOM_STAGE:
+                    rm[sp.name] = from_u(u, sp)
+                else:
+                    ch = set_params(ch, eff, [sp], [from_u(u, sp)], R)
+            return ch, rm
 
-        us = [to_u(get_param(chain, eff, sp), sp) for eff, sp in specs]
+        us = [to_u(room[sp.name] if eff == ROOM_STAGE else get_param(chain, eff, sp), sp) for eff, sp in specs]
         lo = [bounds(sp)[0] for _, sp in specs]
         hi = [bounds(sp)[1] for _, sp in specs]
-        cache: dict[tuple[float, ...], tuple[Score, Chain]] = {}
+        cache: dict[tuple[float, ...], tuple[Score, Chain, Room]] = {}
 
         def f(u: list[float]) -> float:
             u = [min(max(v, a), b) for v, a, b in zip(u, lo, hi)]
             key = tuple(round(v, 9) for v in u)
             if key not in cache:
-                ch = build(u)
-                cache[key] = (self.fit_score(ch), ch)
+                ch, rm = build(u)
+                cache[key] = (self.fit_score(ch, rm), ch, rm)
             return cache[key][0].overall
 
         nelder_mead(f, us, [(b - a) / 4 for a, b in zip(lo, hi)], lo, hi,
                     max_evals=self.settings.evals_per_param * len(specs) + 4)
-        best, best_chain = min(cache.values(), key=lambda t: t[0].overall)
-        return best_chain, best
+        best, best_chain, best_room = min(cache.values(), key=lambda t: t[0].overall)
+        return best_chain, best_room, best
 
     # ------------------------------------------------------------------ closed forms
-    def dc_closed_form(self, chain: Chain, iterations: int = 2) -> Chain:
+    def dc_closed_form(self, chain: Chain, iterations: int = 2, room: Room | None = None) -> Chain:
         """Move each RX's DC level by the capture-minus-twin median ADC code."""
         if find(chain, "dc_offset") is None:
             return chain
         mid = ADC_QUANTILES.index(0.5)
         R = self.config.num_rx
         for _ in range(iterations):
-            tv = self.fit_score(chain).twin
+            tv = self.fit_score(chain, room).twin
             d = (self.cap_fit["adc_histogram"][:, mid] - tv["adc_histogram"][:, mid]).tolist()
             cur = find(chain, "dc_offset")["params"]["level_counts"]
             cur = list(cur) if isinstance(cur, list) else [float(cur)] * R
@@ -201,7 +218,9 @@ class Search:
         return chain
 
     def base_specs(self, chain: Chain) -> list[tuple[str, ParamSpec]]:
-        """The base parameters present in ``chain`` that the search refits."""
+        """The base parameters present in ``chain`` that the search refits, then the source's room
+        parameters (stage :data:`~radaraug.calibration.room.ROOM_STAGE`: the diffuse gain in scene
+        mode when the room scatters diffusely)."""
         names = [("thermal_noise", "noise_figure_dB"), ("adc_noise", "rms_counts"), ("anti_alias_lowpass", "cutoff_Hz")]
         if self.source.mode == "scene":
             # With an estimated static scene the high-pass only shapes the thermal noise (weak at
@@ -220,52 +239,61 @@ class Search:
                            else self.config.effective_aaf_cutoff_Hz)
                 prior = Prior(max(nominal / 2, prior.lo), min(nominal * 2, prior.hi), "log")
             specs.append((eff, ParamSpec(p, prior)))
+        specs += [(ROOM_STAGE, ParamSpec(p, ROOM_PRIORS[p])) for p in self.source.room_params]
         return specs
 
-    def refit_base(self, chain: Chain, extra: Sequence[tuple[str, ParamSpec]] = ()) -> tuple[Chain, Score]:
+    def refit_base(self, chain: Chain, extra: Sequence[tuple[str, ParamSpec]] = (),
+                   room: Room | None = None) -> tuple[Chain, Room, Score]:
         """Refit the base stages present in ``chain`` (noise figure, anti-alias cutoff, ADC-side
-        noise; high-pass cutoff and system gain in scene mode) and the DC offsets, together with
-        ``extra`` parameters (the effect just added: the base was bent to imitate it before)."""
-        chain = self.dc_closed_form(chain)
-        chain, _ = self.optimize(chain, self.base_specs(chain) + list(extra))
-        chain = self.dc_closed_form(chain, iterations=1)
-        return chain, self.fit_score(chain)
+        noise; high-pass cutoff and system gain in scene mode), the room parameters and the DC
+        offsets, together with ``extra`` parameters (the effect just added: the base was bent to
+        imitate it before)."""
+        chain = self.dc_closed_form(chain, room=room)
+        chain, room, _ = self.optimize(chain, self.base_specs(chain) + list(extra), room)
+        chain = self.dc_closed_form(chain, iterations=1, room=room)
+        return chain, room, self.fit_score(chain, room)
 
     # ------------------------------------------------------------------ the loop
-    def _context(self, chain: Chain, twin_views: Views) -> Context:
+    def _context(self, chain: Chain, twin_views: Views, room: Room | None = None) -> Context:
         return Context(self.config, self.source.mode, chain, self.cap_fit, twin_views,
-                       probe=lambda ch: self.fit_score(ch).twin)
+                       probe=lambda ch: self.fit_score(ch, room).twin)
 
-    def try_candidate(self, chain: Chain, cand: Candidate, ctx: Context) -> tuple[Chain, Score] | None:
-        """Screen a candidate's starts; ``None`` when it has none."""
+    def try_candidate(self, chain: Chain, cand: Candidate, ctx: Context,
+                      room: Room | None = None) -> tuple[Chain, Score] | None:
+        """Screen a candidate's starts (room parameters fixed at ``room``); ``None`` when it has none."""
         best: tuple[Chain, Score] | None = None
         for start in cand.starts(ctx):
             ch = with_effect(chain, cand.name, start)
-            sc = self.fit_score(ch)
+            sc = self.fit_score(ch, room)
             if best is None or sc.overall < best[1].overall:
                 best = (ch, sc)
         return best
 
-    def run(self, chain: Chain) -> SearchResult:
-        """Refit the base, then add effects while they improve the held-out error."""
+    def run(self, chain: Chain, room: Room | None = None) -> SearchResult:
+        """Refit the base, then add effects while they improve the held-out error.
+
+        ``room``: the room parameters to start from (default: as the source traced them).
+        """
         st = self.settings
-        before = self.held_score(chain)
+        room_before = self.source.check_room(room)
+        before = self.held_score(chain, room_before)
         self.progress(f"twin as given: held-out error {before.overall:.3f} dB")
-        base_chain, _ = self.refit_base(chain)
-        base = self.held_score(base_chain)
-        self.progress(f"base chain refitted: held-out error {base.overall:.3f} dB")
-        current, cur_held = base_chain, base
+        base_chain, base_room, _ = self.refit_base(chain, room=room_before)
+        base = self.held_score(base_chain, base_room)
+        fitted_room = "".join(f", {k} {v:.2f}" for k, v in base_room.items())
+        self.progress(f"base chain refitted: held-out error {base.overall:.3f} dB{fitted_room}")
+        current, cur_room, cur_held = base_chain, base_room, base
         steps: list[dict[str, Any]] = []
         tried: list[dict[str, Any]] = []
         added: set[str] = set()
         for _ in range(st.max_steps):
-            fit_now = self.fit_score(current)
-            ctx = self._context(current, fit_now.twin)
+            fit_now = self.fit_score(current, cur_room)
+            ctx = self._context(current, fit_now.twin, cur_room)
             screened = []
             for cand in catalog():
                 if self.source.mode not in cand.modes or cand.name in added:
                     continue
-                res = self.try_candidate(current, cand, ctx)
+                res = self.try_candidate(current, cand, ctx, cur_room)
                 if res is not None and res[1].overall < fit_now.overall:
                     screened.append((res[1].overall, cand, res[0]))
             screened.sort(key=lambda t: t[0])
@@ -275,9 +303,9 @@ class Search:
                 specs = [(cand.name, sp) for sp in cand.specs(ctx, start)]
                 joint = set(cand.joint)
                 specs += [(e, sp) for e, sp in self.base_specs(ch) if (e, sp.name) in joint]
-                fitted, fit_sc = self.optimize(ch, specs)
-                fitted = self.dc_closed_form(fitted, iterations=1)
-                held = self.held_score(fitted)
+                fitted, _, fit_sc = self.optimize(ch, specs, cur_room)
+                fitted = self.dc_closed_form(fitted, iterations=1, room=cur_room)
+                held = self.held_score(fitted, cur_room)
                 results.append((held, cand, fitted, fit_sc, specs))
                 tried.append({"step": len(steps) + 1, "effect": cand.name, "fit_error": round(fit_sc.overall, 4),
                               "held_out_error": round(held.overall, 4)})
@@ -306,13 +334,17 @@ class Search:
             # The base was bent to imitate the new stage before it existed (a higher floor, a lower
             # anti-alias cutoff...): refit the base together with the new stage's parameters,
             # kept only when the held-out error does not get worse.
-            rebased, _ = self.refit_base(current, [(e, sp) for e, sp in cand_specs if e == cand.name])
-            rebased_held = self.held_score(rebased)
+            rebased, rebased_room, _ = self.refit_base(current, [(e, sp) for e, sp in cand_specs if e == cand.name],
+                                                       room=cur_room)
+            rebased_held = self.held_score(rebased, rebased_room)
             if rebased_held.overall <= cur_held.overall:
-                current, cur_held = rebased, rebased_held
+                current, cur_room, cur_held = rebased, rebased_room, rebased_held
                 steps[-1]["error_after_base_refit"] = round(rebased_held.overall, 4)
                 steps[-1]["params"] = find(current, cand.name)["params"]
-        return SearchResult(chain, base_chain, current, before, base, cur_held, steps, tried, self.evaluations)
+                if cur_room:
+                    steps[-1]["room_after_base_refit"] = dict(cur_room)
+        return SearchResult(chain, base_chain, current, before, base, cur_held, steps, tried, self.evaluations,
+                            room_before, base_room, cur_room)
 
 
 def nelder_mead(f: Callable[[list[float]], float], x0: Sequence[float], step: Sequence[float],

@@ -5,7 +5,12 @@ Two modes (:attr:`TwinSource.mode`):
 * ``"scene"``: a scene is given. Its room is ray-traced once with the capture's radar config;
   the room's static paths go through each candidate chain's linear stages
   (:meth:`FMCWReceiver.static_signal`, recomputed only when a linear stage changes) and the
-  scene's people, if any, are traced once for the simulated frame times.
+  scene's people, if any, are traced once for the simulated frame times. The room's diffuse
+  paths are kept apart from its specular ones and synthesized separately, so a candidate
+  diffuse gain ``g`` (a room parameter, :mod:`radaraug.calibration.room`) gives the static
+  signal ``S_spec + 10**((g - g_traced)/20) S_diff`` without tracing again: exact, because the
+  linear stages are linear in the paths' amplitudes and the tracer's own ``diffuse_gain_dB``
+  only scales the diffuse paths' amplitudes (the specular part does not change with it).
 * ``"estimated"``: no scene. An empty room is static, so the static scene *is* the capture's
   mean chirp (per RX, over the fitting frames, its own mean over samples removed: the DC
   offset is a separate, fitted stage), made into one static path per range bin (see
@@ -23,7 +28,9 @@ from typing import Any
 
 import torch
 
+from radaraug.calibration.room import ROOM_PRIORS, Room
 from radaraug.config import RadarConfig
+from radaraug.errors import CalibrationError
 from radaraug.sensor.effects import effect_from_dict
 from radaraug.sensor.paths import Paths
 from radaraug.sensor.receiver import FMCWReceiver
@@ -49,11 +56,15 @@ class TwinSource:
 
     Args:
         config: the capture's radar config.
-        static_paths: the room's paths ``(P, RX)`` (scene mode).
+        static_paths: the room's paths ``(P, RX)`` (scene mode): all of them, or only the
+            specular ones when ``diffuse_paths`` is given.
+        diffuse_paths: the room's diffuse scattering paths ``(P_d, RX)`` (scene mode), traced
+            with the power gain ``diffuse_gain_dB``: the room parameter ``diffuse_gain_dB`` can
+            then be fitted (:attr:`room_params`).
+        diffuse_gain_dB: the diffuse gain ``diffuse_paths`` were traced with (the start value).
         mean_chirp: the capture's mean chirp ``(rx, samples)`` in SDK floats (estimated mode;
             its mean over samples is the DC stage's and is left out).
         moving: people's paths per simulated frame ``(T, P, RX)`` (scene mode with people).
-        frame_period_s: frame period (frame start times for time-locked effects).
         tx_power_dBm, front_end_gain_dB: receiver constants (default: the library's).
     """
 
@@ -62,6 +73,8 @@ class TwinSource:
         config: RadarConfig,
         *,
         static_paths: Paths | None = None,
+        diffuse_paths: Paths | None = None,
+        diffuse_gain_dB: float = 0.0,
         mean_chirp: torch.Tensor | None = None,
         moving: Paths | None = None,
         tx_power_dBm: float | None = None,
@@ -69,8 +82,16 @@ class TwinSource:
     ) -> None:
         if (static_paths is None) == (mean_chirp is None):
             raise ValueError("give exactly one of static_paths (scene mode) or mean_chirp (estimated mode)")
+        if diffuse_paths is not None and static_paths is None:
+            raise ValueError("diffuse_paths belong to a scene: give them with static_paths")
+        if not math.isfinite(float(diffuse_gain_dB)):
+            raise CalibrationError(f"TwinSource: diffuse_gain_dB must be finite, got {diffuse_gain_dB!r}")
         self.config = config
         self.static_paths = static_paths
+        # A room without diffuse paths (diffuse scattering off, or no material scatters) has
+        # nothing for the gain to act on: the parameter is then not offered to the search.
+        self.diffuse_paths = diffuse_paths if diffuse_paths is not None and diffuse_paths.num_paths else None
+        self.diffuse_gain_dB = float(diffuse_gain_dB)
         self.mean_chirp = None if mean_chirp is None else mean_chirp.to(torch.float64)
         self.moving = moving
         self.tx_power_dBm = tx_power_dBm
@@ -81,6 +102,30 @@ class TwinSource:
     def mode(self) -> str:
         """``"scene"`` or ``"estimated"``."""
         return "scene" if self.static_paths is not None else "estimated"
+
+    @property
+    def room_params(self) -> tuple[str, ...]:
+        """Room parameters this source can vary (``("diffuse_gain_dB",)`` when the room has
+        diffuse paths, else empty)."""
+        return ("diffuse_gain_dB",) if self.diffuse_paths is not None else ()
+
+    def room_start(self) -> Room:
+        """The room parameters as traced (the search's start)."""
+        return {"diffuse_gain_dB": self.diffuse_gain_dB} if self.diffuse_paths is not None else {}
+
+    def check_room(self, room: Mapping[str, float] | None) -> Room:
+        """``room`` completed with the traced values; :class:`CalibrationError` for a parameter
+        this source cannot vary or a value outside its prior."""
+        out = self.room_start()
+        for k, v in (room or {}).items():
+            if k not in out:
+                raise CalibrationError(f"room parameter {k!r} cannot be varied here (the source varies: "
+                                       f"{', '.join(self.room_params) or 'nothing'})")
+            if not (math.isfinite(float(v)) and ROOM_PRIORS[k].lo <= float(v) <= ROOM_PRIORS[k].hi):
+                raise CalibrationError(f"room parameter {k}={v!r} is outside [{ROOM_PRIORS[k].lo}, "
+                                       f"{ROOM_PRIORS[k].hi}]")
+            out[k] = float(v)
+        return out
 
     def receiver(self, chain: Sequence[Mapping[str, Any]]) -> FMCWReceiver:
         """The receiver of ``chain`` with this source's constants."""
@@ -116,25 +161,36 @@ class TwinSource:
             self._static_cache[key] = Paths(delay, torch.zeros_like(delay), amp)
         return self._static_cache[key]
 
-    def _static(self, rx: FMCWReceiver, chain: Sequence[Mapping[str, Any]]) -> torch.Tensor | None:
+    def _synth(self, rx: FMCWReceiver, key: str, paths: Paths) -> torch.Tensor:
+        if key not in self._static_cache:
+            if len(self._static_cache) > 64:
+                self._static_cache.clear()
+            p64 = paths.map(
+                lambda t: t.to(torch.complex128) if t.is_complex() else t.to(torch.float64) if t.is_floating_point() else t)
+            self._static_cache[key] = rx.static_signal(p64)
+        return self._static_cache[key]
+
+    def _static(self, rx: FMCWReceiver, chain: Sequence[Mapping[str, Any]], room: Room) -> torch.Tensor | None:
         if self.mean_chirp is not None:
             return None
         linear = [e for e, m in zip(chain, rx.effects) if m.kind == "linear"]
         key = json.dumps(linear, sort_keys=True)
-        if key not in self._static_cache:
-            if len(self._static_cache) > 64:
-                self._static_cache.clear()
-            paths = self.static_paths.map(
-                lambda t: t.to(torch.complex128) if t.is_complex() else t.to(torch.float64) if t.is_floating_point() else t)
-            self._static_cache[key] = rx.static_signal(paths)
-        return self._static_cache[key]
+        spec = self._synth(rx, key, self.static_paths)
+        if self.diffuse_paths is None:
+            return spec
+        # Each part is synthesized once per linear chain; a gain is a factor on the field.
+        diff = self._synth(rx, "diffuse:" + key, self.diffuse_paths)
+        return spec + 10 ** ((room["diffuse_gain_dB"] - self.diffuse_gain_dB) / 20) * diff
 
     @torch.no_grad()
     def frames(self, chain: Sequence[Mapping[str, Any]], num_frames: int, seed: int,
-               first_frame: int = 0) -> torch.Tensor:
-        """``(num_frames, rx, chirps, samples)`` SDK floats (float64) of ``chain``, seeded."""
+               first_frame: int = 0, room: Mapping[str, float] | None = None) -> torch.Tensor:
+        """``(num_frames, rx, chirps, samples)`` SDK floats (float64) of ``chain``, seeded.
+
+        ``room``: room parameters (:attr:`room_params`; missing ones stay as traced).
+        """
         rx = self.receiver(chain)
-        static = self._static(rx, chain)
+        static = self._static(rx, chain, self.check_room(room))
         R = self.config.num_rx
         if self.moving is not None:
             T = self.moving.delay_s.shape[0]

@@ -44,6 +44,8 @@ from radaraug.scene.scattering import get_scattering, specular_reduction
 from radaraug.sensor.paths import Paths
 
 STATIC_METHODS = ("image", "sbr")
+STATIC_PARTS = ("all", "specular", "diffuse")
+"""What :meth:`RayTracer.static_paths` can return."""
 FACET_MERGE_BIN_M = 0.002
 """Path-length bin of the coherent merge of small-face PO paths (see the tracer's comment)."""
 FACET_MERGE_VOXEL_M = 0.2
@@ -158,13 +160,36 @@ class RayTracer:
             self.cache_dir = Path(cache)
         self._static: Paths | None = None
         self._static_vertices: torch.Tensor | None = None
+        self._static_diffuse: torch.Tensor | None = None
 
-    def static_paths(self) -> Paths:
-        """The room's paths ``(P, RX)`` (traced on the first call, then kept in memory and on disk)."""
+    def static_paths(self, part: str = "all") -> Paths:
+        """The room's paths ``(P, RX)`` (traced on the first call, then kept in memory and on disk).
+
+        Args:
+            part: ``"all"`` (default), ``"specular"`` (image-method reflections and facet PO:
+                everything but the diffuse scattering) or ``"diffuse"`` (the diffuse scatterers of
+                :mod:`radaraug.raytrace.diffuse`, already scaled by ``diffuse_gain_dB``). The two
+                parts partition ``"all"``: a calibration synthesizes them apart and scales the
+                diffuse one (a power gain ``g`` is a field factor ``10**(g/20)`` on every diffuse
+                path) without tracing again.
+        """
+        if part not in STATIC_PARTS:
+            raise SceneError(f"static_paths: part must be one of {STATIC_PARTS}, got {part!r}")
         if self._static is None:
             self._trace_static()
         assert self._static is not None
-        return self._static
+        if part == "all":
+            return self._static
+        mask = self.static_diffuse_mask()
+        keep = mask if part == "diffuse" else ~mask
+        return self._static.map(lambda x: x[keep])
+
+    def static_diffuse_mask(self) -> torch.Tensor:
+        """``(P,)`` bool over :meth:`static_paths`: True for the diffuse scattering paths."""
+        if self._static is None:
+            self._trace_static()
+        assert self._static_diffuse is not None
+        return self._static_diffuse
 
     def static_vertices(self) -> torch.Tensor | None:
         """``(P, V, 3)`` vertices of :meth:`static_paths`: ``[radar centre, interaction points...,
@@ -206,35 +231,42 @@ class RayTracer:
         key = self.cache_key() if self.cache_dir is not None else ""
         if self.cache_dir is not None:
             hit = static_cache.load(self.cache_dir, key)
-            if hit is not None:
+            # An entry written before the diffuse mask was stored cannot say which paths are
+            # diffuse: traced again (and replaced) when the room has any.
+            if hit is not None and ("diffuse" in hit or not self.diffuse):
                 mv = {"device": self.device}
                 self._static = Paths(hit["delay_s"].to(**mv), hit["delay_rate"].to(**mv), hit["amplitude"].to(**mv),
                                      hit["kind"].to(**mv))
                 v = hit.get("vertices")
                 self._static_vertices = None if v is None else v.to(**mv)
+                d = hit.get("diffuse")
+                self._static_diffuse = (d.to(device=self.device, dtype=torch.bool) if d is not None else
+                                        torch.zeros(self._static.num_paths, dtype=torch.bool, device=self.device))
                 return
-        paths, vertices = self._trace_static_uncached()
-        self._static, self._static_vertices = paths, vertices
+        paths, vertices, diffuse = self._trace_static_uncached()
+        self._static, self._static_vertices, self._static_diffuse = paths, vertices, diffuse
         if self.cache_dir is not None:
             data = {"delay_s": paths.delay_s.cpu(), "delay_rate": paths.delay_rate.cpu(),
-                    "amplitude": paths.amplitude.cpu(), "kind": paths.kind.cpu()}
+                    "amplitude": paths.amplitude.cpu(), "kind": paths.kind.cpu(), "diffuse": diffuse.cpu()}
             if vertices is not None:
                 data["vertices"] = vertices.cpu()
             static_cache.store(self.cache_dir, key, data)
 
-    def _trace_static_uncached(self) -> tuple[Paths, torch.Tensor | None]:
+    def _trace_static_uncached(self) -> tuple[Paths, torch.Tensor | None, torch.Tensor]:
+        """``(paths, vertices, diffuse mask)`` of the static room."""
         n_rx = self.radar.rx.shape[0]
         if self.bvh is None:
             z = torch.zeros(0, n_rx, dtype=self.dtype, device=self.device)
             empty = Paths(z, z.clone(), z.to(_complex(self.dtype)), torch.zeros(0, dtype=torch.int8, device=self.device))
-            return empty, torch.zeros(0, self.max_bounces + 2, 3, dtype=self.dtype, device=self.device)
+            return (empty, torch.zeros(0, self.max_bounces + 2, 3, dtype=self.dtype, device=self.device),
+                    torch.zeros(0, dtype=torch.bool, device=self.device))
         if self.method == "sbr":
             tubes = ray_grid(self.rays, self.fov_deg, self.radar.tx, self.radar.rotation)
             paths = shoot_and_bounce(self.bvh, self.face_material, self.reflectivity, self.radar, tubes,
                                      self.antenna, max_bounces=self.max_bounces)
             if self.merge_bin_m:
                 paths = merge_paths(paths, self.frequency_Hz, bin_m=self.merge_bin_m, floor_dB=self.floor_dB)
-            return paths, None
+            return paths, None, torch.zeros(paths.num_paths, dtype=torch.bool, device=self.device)
         v_count = self.max_bounces + 2
         assert self.mirrors is not None
         room = self.room.to(self.device)
@@ -261,7 +293,10 @@ class RayTracer:
             parts.append((dp, _pad_vertices(dv, v_count)))
         paths = Paths.cat([p for p, _ in parts])
         vertices = torch.cat([v for _, v in parts])
-        return paths, vertices
+        diffuse = torch.zeros(paths.num_paths, dtype=torch.bool, device=self.device)
+        if self.diffuse:
+            diffuse[paths.num_paths - parts[-1][0].num_paths:] = True  # the diffuse part comes last
+        return paths, vertices, diffuse
 
     def target_paths(
         self,

@@ -8,12 +8,21 @@ figure, ADC-side noise, filter cutoffs, DC levels, spurs, drift...) is the senso
 
 Applying a profile to a config with another RX count fails with a clear error for per-RX
 parameters (a per-RX list for 3 channels cannot serve 1).
+
+A profile fitted in scene mode also carries a ``room`` section: parameters of the traced room
+that the calibration fitted (:data:`ROOM_PARAMS`, today the diffuse-scattering power gain
+``diffuse_gain_dB``). They are not receiver effects: :meth:`TwinProfile.tracer_options` turns
+them into :class:`~radaraug.raytrace.RayTracer` options, which ``DigitalTwin(profile=...)`` and
+``SimulatedRadarDataset(profile=...)`` pass to their tracer unless the caller set them.
+
+Format versions: 2 added ``room``; version 1 files (no room section) still load.
 """
 
 from __future__ import annotations
 
 import copy
 import json
+import math
 import os
 from collections.abc import Mapping
 from pathlib import Path
@@ -25,22 +34,33 @@ from radaraug.sensor.receiver import FMCWReceiver
 from radaraug.units import DB_CONVENTION, FLOAT_CONVENTION
 
 PROFILE_FORMAT = "radaraug-twin-profile"
-PROFILE_VERSION = 1
+PROFILE_VERSION = 2
+READABLE_VERSIONS = (1, 2)
+"""Versions this radaraug reads (1: no ``room`` section)."""
+ROOM_PARAMS = {"diffuse_gain_dB": "power gain on every diffuse scattering path of the room, dB (tracer option)"}
+"""Parameters a profile's ``room`` section may hold (each a finite number, a RayTracer option)."""
 CONFIG_OWNED = {"if_gain": ("gain_dB",)}
 """Effect parameters that follow the radar config (stored as null)."""
 
 
 class TwinProfile:
-    """A fitted receiver chain.
+    """A fitted receiver chain, and the room parameters fitted with it.
 
     Args:
         receiver: the receiver description (:meth:`FMCWReceiver.to_dict`).
         fitted_on: provenance (capture, scene, mode, config, errors).
+        room: fitted room parameters (keys of :data:`ROOM_PARAMS`, e.g.
+            ``{"diffuse_gain_dB": 4.2}``); empty when the room was not fitted.
+
+    Raises:
+        CalibrationError: no effect list, or a room parameter that is unknown or not a finite number.
     """
 
-    def __init__(self, receiver: Mapping[str, Any], fitted_on: Mapping[str, Any] | None = None) -> None:
+    def __init__(self, receiver: Mapping[str, Any], fitted_on: Mapping[str, Any] | None = None,
+                 room: Mapping[str, Any] | None = None) -> None:
         if not isinstance(receiver, Mapping) or not isinstance(receiver.get("effects"), list):
             raise CalibrationError("a twin profile needs a receiver description with an 'effects' list")
+        self.room = _check_room(room)
         rec = copy.deepcopy(dict(receiver))
         for e in rec["effects"]:
             for p in CONFIG_OWNED.get(e.get("name"), ()):
@@ -61,12 +81,17 @@ class TwinProfile:
         except ConfigError as e:
             raise CalibrationError(f"twin profile {self.fitted_on.get('capture', '')}: {e}") from None
 
+    def tracer_options(self) -> dict[str, float]:
+        """The room section as :class:`~radaraug.raytrace.RayTracer` keyword arguments."""
+        return dict(self.room)
+
     def to_dict(self) -> dict[str, Any]:
         """JSON-friendly dict."""
         return {
             "format": PROFILE_FORMAT,
             "version": PROFILE_VERSION,
             "receiver": self.receiver_dict,
+            "room": dict(self.room),
             "fitted_on": self.fitted_on,
             "units": FLOAT_CONVENTION,
             "db_convention": DB_CONVENTION,
@@ -86,10 +111,15 @@ class TwinProfile:
         """Inverse of :meth:`to_dict`; :class:`CalibrationError` for anything else."""
         if not isinstance(data, Mapping) or data.get("format") != PROFILE_FORMAT:
             raise CalibrationError(f"{source}: not a radaraug twin profile (format must be {PROFILE_FORMAT!r})")
-        if data.get("version") != PROFILE_VERSION:
-            raise CalibrationError(f"{source}: twin profile version {data.get('version')!r}, this radaraug reads "
-                                   f"{PROFILE_VERSION}")
-        prof = cls(data.get("receiver") or {}, data.get("fitted_on"))
+        version = data.get("version")
+        if isinstance(version, bool) or version not in READABLE_VERSIONS:
+            raise CalibrationError(f"{source}: twin profile version {version!r}, this radaraug reads "
+                                   f"{', '.join(map(str, READABLE_VERSIONS))}")
+        room = data.get("room") if version >= 2 else None
+        try:
+            prof = cls(data.get("receiver") or {}, data.get("fitted_on"), room)
+        except CalibrationError as e:
+            raise CalibrationError(f"{source}: {e}") from None
         try:
             prof.receiver(RadarConfig.from_dict(prof.fitted_on["config"])) if "config" in prof.fitted_on else None
         except (CalibrationError, ConfigError) as e:
@@ -107,6 +137,22 @@ class TwinProfile:
         except (OSError, UnicodeDecodeError, ValueError, RecursionError) as e:
             raise CalibrationError(f"{p}: not a readable JSON twin profile ({type(e).__name__})") from None
         return cls.from_dict(data, source=str(p))
+
+
+def _check_room(room: Mapping[str, Any] | None) -> dict[str, float]:
+    """The room section as ``{name: float}``; :class:`CalibrationError` for anything else."""
+    if room is None:
+        return {}
+    if not isinstance(room, Mapping):
+        raise CalibrationError(f"the profile's room section must be a mapping, got {type(room).__name__}")
+    out = {}
+    for k, v in room.items():
+        if k not in ROOM_PARAMS:
+            raise CalibrationError(f"unknown room parameter {k!r} (known: {', '.join(ROOM_PARAMS)})")
+        if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
+            raise CalibrationError(f"room parameter {k!r} must be a finite number, got {v!r}")
+        out[k] = float(v)
+    return out
 
 
 def as_profile(profile: TwinProfile | str | os.PathLike | Mapping[str, Any] | None) -> TwinProfile | None:

@@ -73,7 +73,9 @@ class SimulatedRadarDataset(Dataset):
             person's RCS and the receiver's gain and noise figure are drawn per item.
         profile: a fitted twin profile (:class:`~radaraug.sensor.profile.TwinProfile`, its JSON
             path or dict, from ``radaraug diagnose``): the twin's receiver carries its effects
-            (randomization then draws its offsets around the profile's gain and noise figure).
+            (randomization then draws its offsets around the profile's gain and noise figure)
+            and its room section (the fitted ``diffuse_gain_dB``) goes to the tracer unless
+            ``twin_options["tracer_options"]`` sets it.
     """
 
     def __init__(
@@ -115,6 +117,10 @@ class SimulatedRadarDataset(Dataset):
             if "receiver" in self.twin_options or "profile" in self.twin_options:
                 raise ConfigError("give the twin's receiver as profile= or twin_options['receiver'], not both")
             self.twin_options["receiver"] = self.profile.receiver(self.config)
+            if self.profile.room:
+                # The profile's room section is a tracer option (the caller's tracer_options win).
+                self.twin_options["tracer_options"] = {**self.profile.tracer_options(),
+                                                       **(self.twin_options.get("tracer_options") or {})}
         self._twin: DigitalTwin | None = None
         self._static_signal: torch.Tensor | None = None
         if isinstance(randomization, dict):

@@ -129,6 +129,8 @@ def simulate_capture(
     prof = as_profile(profile)
     if prof is not None:
         job["profile"] = prof.to_dict()["receiver"]
+        if prof.room:
+            job["profile_room"] = dict(prof.room)  # only when present: older jobs keep their identity
         twin_options = {**(twin_options or {}), "profile": prof}
     attrs = {
         "source": "radaraug simulate",

@@ -76,8 +76,9 @@ class DigitalTwin:
         static_signal: the room's signal from an earlier :meth:`static_signal` of the same
             scene, config and receiver (skips the room's trace and synthesis).
         profile: a fitted twin profile (:class:`~radaraug.sensor.profile.TwinProfile`, its JSON
-            path or dict, e.g. written by ``radaraug diagnose``): the receiver is built from it.
-            Give ``receiver`` or ``profile``, not both.
+            path or dict, e.g. written by ``radaraug diagnose``): the receiver is built from it,
+            and its room section (the fitted ``diffuse_gain_dB``) goes to the tracer unless
+            ``tracer_options`` sets it. Give ``receiver`` or ``profile``, not both.
         shadowing: the people shadow the room's paths (knife-edge diffraction by their body
             segments, :mod:`radaraug.raytrace.shadow`); needs the static paths' geometry
             (:meth:`RayTracer.static_vertices`, given by the default image method, not by SBR).
@@ -111,14 +112,17 @@ class DigitalTwin:
         self.dtype = dtype
         self.multipath = multipath
         self.shadowing = shadowing
-        options = {"scattering": getattr(scene, "scattering", None), **(tracer_options or {})}
+        profile = as_profile(profile)
+        # A profile's room section (its fitted diffuse gain) is a tracer option; the caller's win.
+        room = profile.tracer_options() if profile is not None else {}
+        options = {"scattering": getattr(scene, "scattering", None), **room, **(tracer_options or {})}
         self.tracer = RayTracer(
             scene.room.to(self.device), scene.radar, self.config, device=self.device, dtype=dtype, **options,
         )
         if profile is not None:
             if receiver is not None:
                 raise ConfigError("DigitalTwin: give a receiver or a profile, not both")
-            receiver = as_profile(profile).receiver(self.config)
+            receiver = profile.receiver(self.config)
         self.receiver = (receiver or FMCWReceiver(self.config)).to(self.device)
         self._static_signal = None if static_signal is None else static_signal.to(self.device)
         self._static_basis: torch.Tensor | None = None
