@@ -133,9 +133,17 @@ def _reset_flags(fd: int, path: Path) -> bool:
     flags, end = _superblock(head, path)
     if flags == 0:
         return False
+    so = head[9]
+    base = int.from_bytes(head[12 : 12 + so], "little")
+    eof = base + int.from_bytes(head[12 + 2 * so : 12 + 3 * so], "little")
     fixed = bytearray(head[:end])
     fixed[_FLAGS_OFFSET] = 0
     try:
+        # A writer stopped by a full disk may have recorded an end of file that its last (failed)
+        # write never reached; HDF5 refuses such a file as truncated. Nothing committed lives
+        # there (readers serve only frames_written), so the gap is filled with (sparse) zeros.
+        if os.fstat(fd).st_size < eof:
+            os.ftruncate(fd, eof)
         os.pwrite(fd, bytes(fixed) + lookup3(bytes(fixed)).to_bytes(4, "little"), 0)
         os.fsync(fd)
     except OSError as e:
@@ -165,7 +173,8 @@ def clear_status_flags(path: str | os.PathLike) -> bool:
     """Reset the consistency flags left by a killed writer, like ``h5clear -s`` (superblock v2/v3).
 
     The superblock is rewritten in place (flags byte and checksum) while an exclusive ``flock``
-    on the file proves that no live writer holds it.
+    on the file proves that no live writer holds it. A file shorter than the end of file its
+    superblock records (a writer stopped by a full disk) is first extended to it with zeros.
 
     Returns:
         True when flags were set and reset, False when the file was already clean.
