@@ -17,8 +17,8 @@ computes it (``H5_checksum_lookup3``).
 A set flag alone cannot tell a dead writer from a live one (HDF5 drops its own file lock once
 SWMR writing starts), so radaraug's writer holds a shared ``flock`` on the file for as long as it
 writes (:func:`hold_writer_lock`). The flags are reset only when an exclusive lock can be taken,
-that is when no process holds the file open through radaraug's writer (or through HDF5 without
-SWMR, which locks files too).
+that is when no process holds the file open through radaraug's writer or through HDF5 (whose
+readers hold a shared lock while a file is open: a file being read is never reset either).
 """
 
 from __future__ import annotations
@@ -112,8 +112,8 @@ def status_flags(path: str | os.PathLike) -> int:
 
 
 def writer_is_alive(path: str | os.PathLike) -> bool:
-    """True when a process holds ``path`` open for writing (radaraug's writer lock, or HDF5's own
-    lock of a non-SWMR open); False when nobody does."""
+    """True when another process holds a lock on ``path``: radaraug's writer lock, or the lock HDF5
+    takes while a file is open (readers included); False when nobody does."""
     try:
         fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK)
     except OSError as e:
@@ -161,7 +161,7 @@ def _open_exclusive(path: Path, flags: int) -> int:
     except BlockingIOError:
         os.close(fd)
         raise CaptureError(
-            f"{path}: another process is writing this file; wait for it to finish (or stop it)"
+            f"{path}: another process has this file open (a writer, or a reader: HDF5 readers lock files too); wait for it to finish or close it"
         ) from None
     except BaseException:
         os.close(fd)
@@ -222,7 +222,7 @@ def hold_writer_lock(path: str | os.PathLike, *, create: bool = False, reset_fla
             fcntl.flock(fd, fcntl.LOCK_SH | fcntl.LOCK_NB)
         except BlockingIOError:
             raise CaptureError(
-                f"{path}: another process is writing this file; wait for it to finish (or stop it)"
+                f"{path}: another process has this file open (a writer, or a reader: HDF5 readers lock files too); wait for it to finish or close it"
             ) from None
     except BaseException:
         os.close(fd)

@@ -129,7 +129,7 @@ class CaptureWriter:
         if self.path.is_dir():
             raise CaptureError(f"{self.path}: is a folder; cannot create a capture file there")
         if self.path.exists() and writer_is_alive(self.path):
-            raise CaptureError(f"{self.path}: another process is writing this file; choose another output")
+            raise CaptureError(f"{self.path}: another process has this file open (a writer, or a reader: HDF5 readers lock files too); close it or choose another output")
         tmp = self.path.with_name(f".{self.path.name}.{os.getpid()}.{secrets.token_hex(4)}.partial")
         try:
             # O_EXCL: a fresh name; mode 0o666 minus the umask, as for any file the user creates.

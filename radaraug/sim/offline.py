@@ -202,7 +202,7 @@ def _existing_frames(path: Path, job: dict[str, Any]) -> int:
     if not path.is_file():
         raise refuse
     if writer_is_alive(path):
-        raise CaptureError(f"{path}: another process is writing this file; wait for it or choose another output")
+        raise CaptureError(f"{path}: another process has this file open (a writer, or a reader: HDF5 readers lock files too); wait for it, close it or choose another output")
     if fmt.looks_like_hdf5(path):
         # Check the superblock (checksum, length) before HDF5 opens the file: a damaged file is not
         # ours (the writer only ever gives its name to a file that opens), and HDF5 can hang for a

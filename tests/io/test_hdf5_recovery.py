@@ -160,11 +160,11 @@ def test_a_live_writer_is_never_touched_and_a_killed_one_resumes(tmp_path, tiny_
         assert status_flags(path) == 0x05 and writer_is_alive(path)
         with open_capture(path) as cap:
             assert cap.num_frames == 5
-        with pytest.raises(CaptureError, match="another process is writing"):
+        with pytest.raises(CaptureError, match="another process has this file open"):
             clear_status_flags(path)
-        with pytest.raises(CaptureError, match="another process is writing"):
+        with pytest.raises(CaptureError, match="another process has this file open"):
             CaptureWriter.resume(path, tiny_config)
-        with pytest.raises(CaptureError, match="another process is writing"):
+        with pytest.raises(CaptureError, match="another process has this file open"):
             CaptureWriter(path, tiny_config)
         assert status_flags(path) == 0x05
     finally:
