@@ -23,6 +23,7 @@ readers hold a shared lock while a file is open: a file being read is never rese
 
 from __future__ import annotations
 
+import errno
 import fcntl
 import os
 from pathlib import Path
@@ -31,6 +32,8 @@ from radaraug.errors import CaptureError
 from radaraug.io import hdf5_format as fmt
 
 _MASK = 0xFFFFFFFF
+_BUSY = ("another process has this file open (a writer, or a reader: HDF5 readers lock files too); "
+         "wait for it to finish or close it")
 _FLAGS_OFFSET = 11
 
 
@@ -111,6 +114,18 @@ def status_flags(path: str | os.PathLike) -> int:
     return _superblock(head, path)[0]
 
 
+def _flock(fd: int, how: int) -> None:
+    """``flock(fd, how | LOCK_NB)``; a filesystem without flock support (some network filesystems)
+    is treated as unlocked: there radaraug cannot tell a live writer from a killed one."""
+    try:
+        fcntl.flock(fd, how | fcntl.LOCK_NB)
+    except BlockingIOError:
+        raise
+    except OSError as e:
+        if e.errno not in (errno.ENOLCK, errno.EOPNOTSUPP, errno.ENOSYS, errno.EINVAL):
+            raise
+
+
 def writer_is_alive(path: str | os.PathLike) -> bool:
     """True when another process holds a lock on ``path``: radaraug's writer lock, or the lock HDF5
     takes while a file is open (readers included); False when nobody does."""
@@ -119,7 +134,7 @@ def writer_is_alive(path: str | os.PathLike) -> bool:
     except OSError as e:
         raise CaptureError(f"{path}: cannot open ({e.strerror})") from None
     try:
-        fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        _flock(fd, fcntl.LOCK_EX)
     except BlockingIOError:
         return True
     finally:
@@ -157,11 +172,11 @@ def _open_exclusive(path: Path, flags: int) -> int:
     except OSError as e:
         raise CaptureError(f"{path}: cannot open for writing ({e.strerror})") from None
     try:
-        fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        _flock(fd, fcntl.LOCK_EX)
     except BlockingIOError:
         os.close(fd)
         raise CaptureError(
-            f"{path}: another process has this file open (a writer, or a reader: HDF5 readers lock files too); wait for it to finish or close it"
+            f"{path}: {_BUSY}"
         ) from None
     except BaseException:
         os.close(fd)
@@ -219,10 +234,10 @@ def hold_writer_lock(path: str | os.PathLike, *, create: bool = False, reset_fla
         if reset_flags:
             _reset_flags(fd, path)
         try:
-            fcntl.flock(fd, fcntl.LOCK_SH | fcntl.LOCK_NB)
+            _flock(fd, fcntl.LOCK_SH)
         except BlockingIOError:
             raise CaptureError(
-                f"{path}: another process has this file open (a writer, or a reader: HDF5 readers lock files too); wait for it to finish or close it"
+                f"{path}: {_BUSY}"
             ) from None
     except BaseException:
         os.close(fd)
