@@ -32,8 +32,10 @@ from radaraug.errors import CaptureError
 from radaraug.io import hdf5_format as fmt
 
 _MASK = 0xFFFFFFFF
-_BUSY = ("another process has this file open (a writer, or a reader: HDF5 readers lock files too); "
-         "wait for it to finish or close it")
+BUSY = (  # the refusal when another process holds the file
+    "another process has this file open (a writer, or a reader: HDF5 readers lock files too); "
+    "wait for it to finish or close it"
+)
 _FLAGS_OFFSET = 11
 
 
@@ -176,7 +178,7 @@ def _open_exclusive(path: Path, flags: int) -> int:
     except BlockingIOError:
         os.close(fd)
         raise CaptureError(
-            f"{path}: {_BUSY}"
+            f"{path}: {BUSY}"
         ) from None
     except BaseException:
         os.close(fd)
@@ -237,7 +239,7 @@ def hold_writer_lock(path: str | os.PathLike, *, create: bool = False, reset_fla
             _flock(fd, fcntl.LOCK_SH)
         except BlockingIOError:
             raise CaptureError(
-                f"{path}: {_BUSY}"
+                f"{path}: {BUSY}"
             ) from None
     except BaseException:
         os.close(fd)

@@ -42,7 +42,7 @@ from radaraug.errors import CaptureError, ConfigError
 from radaraug.io import hdf5_format as fmt
 from radaraug.io.counts import as_counts
 from radaraug.io.hdf5_reader import committed_frame_count
-from radaraug.io.hdf5_recovery import hold_writer_lock, release_writer_lock, writer_is_alive
+from radaraug.io.hdf5_recovery import BUSY, hold_writer_lock, release_writer_lock, writer_is_alive
 from radaraug.units import DB_CONVENTION, FLOAT_CONVENTION
 
 _COMPRESSION = {
@@ -129,7 +129,7 @@ class CaptureWriter:
         if self.path.is_dir():
             raise CaptureError(f"{self.path}: is a folder; cannot create a capture file there")
         if self.path.exists() and writer_is_alive(self.path):
-            raise CaptureError(f"{self.path}: another process has this file open (a writer, or a reader: HDF5 readers lock files too); close it or choose another output")
+            raise CaptureError(f"{self.path}: {BUSY}")
         tmp = self.path.with_name(f".{self.path.name}.{os.getpid()}.{secrets.token_hex(4)}.partial")
         try:
             # O_EXCL: a fresh name; mode 0o666 minus the umask, as for any file the user creates.
@@ -159,9 +159,11 @@ class CaptureWriter:
             self._written = self._file.create_dataset(fmt.FRAMES_WRITTEN, data=np.zeros(1, np.int64))
             self._file.flush()
         except BaseException as e:
+            if isinstance(e, (OSError, RuntimeError)):
+                self._failed = _short_reason(e)  # a full disk already: drop what HDF5 cannot write
             self._abort()
             if isinstance(e, (OSError, RuntimeError)):
-                raise CaptureError(f"{self.path}: cannot create capture file ({e})") from None
+                raise CaptureError(f"{self.path}: cannot create capture file ({self._failed})") from None
             raise
 
     def _init_state(self) -> None:
@@ -329,6 +331,8 @@ class CaptureWriter:
             self._started = started
             f.flush()
         except BaseException as e:
+            if isinstance(e, (OSError, RuntimeError)):
+                self._failed = _short_reason(e)  # e.g. a full disk: drop what HDF5 cannot write
             self._abort()
             if isinstance(e, (OSError, RuntimeError, KeyError, ValueError)) and not isinstance(e, CaptureError):
                 raise CaptureError(f"{self.path}: cannot resume this capture ({e})") from None
