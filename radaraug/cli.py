@@ -18,7 +18,17 @@ Sub-commands::
     radaraug make-proxy -o DIR [--frames-per-count N]   the held-out proxy test set
     radaraug diagnose CAPTURE [--scene SCENE] -o REPORT_DIR   twin vs capture, fitted twin profile
 
-Bad input ends with one line ``error: <message>`` and exit status 2, never a traceback.
+Exit status (never a traceback for any of these):
+
+====  ======================================================================================
+0     success
+2     usage error: unknown command or option, missing or malformed argument (argparse)
+3     bad input or unwritable output: a :class:`~radaraug.errors.RadarAugError` (a file that is
+      missing, truncated or not what it claims, a config that does not fit, no space left...) or
+      an ``OSError`` of the file system; one line ``error: <message>`` on stderr
+130   interrupted (Ctrl-C)
+141   stdout was closed early (``radaraug trace --json | head -1``): the output stops quietly
+====  ======================================================================================
 """
 
 from __future__ import annotations
@@ -26,11 +36,22 @@ from __future__ import annotations
 import argparse
 import json
 import math
+import os
 import sys
 from collections.abc import Sequence
 from pathlib import Path
 
 from radaraug.errors import ConfigError, RadarAugError
+
+EXIT_OK = 0
+EXIT_USAGE = 2
+"""argparse's own status for a usage error."""
+EXIT_DATA = 3
+"""Bad input or an output that cannot be written (RadarAugError, OSError)."""
+EXIT_INTERRUPTED = 130
+"""128 + SIGINT, what shells report for Ctrl-C."""
+EXIT_BROKEN_PIPE = 141
+"""128 + SIGPIPE, what shells report for a writer whose reader went away."""
 
 
 def _cmd_info(args: argparse.Namespace) -> int:
@@ -312,23 +333,45 @@ def build_parser() -> argparse.ArgumentParser:
     return p
 
 
+def _run(func, *args) -> int:
+    """Call a command and map how it ends to the documented exit status (module docstring)."""
+    try:
+        code = int(func(*args) or 0)
+        sys.stdout.flush()  # a closed pipe shows up here, not at interpreter exit
+        return code
+    except BrokenPipeError:
+        # The reader of our stdout went away (`| head`): stop quietly. Point stdout at /dev/null so
+        # the interpreter's final flush does not raise again (Python's documented recipe).
+        try:
+            devnull = os.open(os.devnull, os.O_WRONLY)
+            os.dup2(devnull, sys.stdout.fileno())
+            os.close(devnull)
+        except (OSError, ValueError):
+            pass
+        return EXIT_BROKEN_PIPE
+    except KeyboardInterrupt:
+        print("interrupted", file=sys.stderr)
+        return EXIT_INTERRUPTED
+    except RadarAugError as e:
+        print(f"error: {e}", file=sys.stderr)
+        return EXIT_DATA
+    except OSError as e:
+        # A file-system problem outside radaraug's own checks (an output folder that is read-only,
+        # a full disk while writing a report): one line naming the file.
+        where = f": {e.filename}" if getattr(e, "filename", None) else ""
+        print(f"error: {e.strerror or e}{where}", file=sys.stderr)
+        return EXIT_DATA
+
+
 def main(argv: Sequence[str] | None = None) -> int:
-    """Entry point of the `radaraug` script."""
+    """Entry point of the `radaraug` script; returns the exit status (module docstring)."""
     argv = list(sys.argv[1:] if argv is None else argv)
     if argv[:1] == ["train"]:
         from radaraug.training.cli import main as train_main
 
-        try:
-            return train_main(argv[1:])
-        except RadarAugError as e:
-            print(f"error: {e}", file=sys.stderr)
-            return 2
-    args = build_parser().parse_args(argv)
-    try:
-        return int(args.func(args) or 0)
-    except RadarAugError as e:
-        print(f"error: {e}", file=sys.stderr)
-        return 2
+        return _run(train_main, argv[1:])
+    args = build_parser().parse_args(argv)  # usage errors: SystemExit(2) from argparse
+    return _run(args.func, args)
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -392,8 +392,9 @@ class RadarConfig:
         """JSON text of :meth:`to_dict`; also written to ``path`` when given."""
         text = json.dumps(self.to_dict(), indent=2, sort_keys=True)
         if path is not None:
-            with open(path, "w") as fh:
-                fh.write(text + "\n")
+            from radaraug.io.atomic import atomic_write_text
+
+            atomic_write_text(path, text + "\n")
         return text
 
     @classmethod

@@ -11,10 +11,11 @@ with the paper's chain, fits CalibratedDR on it, and writes:
 
 from __future__ import annotations
 
-import json
 from pathlib import Path
 
 import torch
+
+from radaraug.io.atomic import atomic_savefig, atomic_write_json
 
 
 def run_demo(out_dir: Path, *, capture: str | Path | None = None) -> dict:
@@ -80,7 +81,7 @@ def run_demo(out_dir: Path, *, capture: str | Path | None = None) -> dict:
     ax.legend(fontsize=8)
     fig.text(0.01, 0.01, DB_CONVENTION, fontsize=5)
     fig.tight_layout()
-    fig.savefig(out_dir / "noise_floor_histogram.png")
+    atomic_savefig(fig, out_dir / "noise_floor_histogram.png")
     plt.close(fig)
 
     result = {
@@ -92,6 +93,6 @@ def run_demo(out_dir: Path, *, capture: str | Path | None = None) -> dict:
         "info": summary,
         "db_convention": DB_CONVENTION,
     }
-    (out_dir / "summary.json").write_text(json.dumps(result, indent=2))
+    atomic_write_json(out_dir / "summary.json", result, newline=False, indent=2)
     print(f"[demo] wrote {len(images)} RD images, noise_floor_histogram.png, cdr.json, summary.json to {out_dir}")
     return result

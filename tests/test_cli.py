@@ -61,10 +61,10 @@ def test_fit_cdr_writes_calibration(tmp_path, capsys) -> None:
 def test_bad_input_is_one_line_error(tmp_path, capsys) -> None:
     bad = tmp_path / "broken.h5"
     bad.write_bytes(b"\x89HDF\r\n\x1a\n" + b"\x00" * 100)
-    assert main(["info", str(bad)]) == 2
+    assert main(["info", str(bad)]) == 3
     err = capsys.readouterr().err
     assert err.startswith("error: ") and "broken.h5" in err and "Traceback" not in err
-    assert main(["info", str(tmp_path / "missing.h5")]) == 2
+    assert main(["info", str(tmp_path / "missing.h5")]) == 3
 
 
 def test_bench_transforms_json(tmp_path, capsys) -> None:
@@ -89,7 +89,7 @@ def test_info_max_frames_must_be_positive(tmp_path, capsys) -> None:
     _empty_room(path)
     # Before: 0 gave a confusing "cannot read frames 0:0", -3 silently analysed all but 3 frames.
     for bad in ("0", "-3"):
-        assert main(["info", str(path), "--max-frames", bad, "--json"]) == 2
+        assert main(["info", str(path), "--max-frames", bad, "--json"]) == 3
         err = capsys.readouterr().err
         assert "max_frames must be a positive integer" in err and "room.h5" in err
 
@@ -109,15 +109,15 @@ def test_fit_cdr_bad_input_and_unwritable_output_are_one_line_errors(tmp_path, c
     _empty_room(path)
     # Before: a bare FileNotFoundError traceback from CalibratedDR.save.
     out = tmp_path / "no_such_dir" / "cdr.json"
-    assert main(["fit-cdr", str(path), "-o", str(out)]) == 2
+    assert main(["fit-cdr", str(path), "-o", str(out)]) == 3
     err = capsys.readouterr().err.split("\r")[-1]  # after the progress bar
     assert err.startswith("error: ") and "cdr.json" in err and "Traceback" not in err
     # Before: --max-frames -3 silently fitted on all but the last 3 frames of a tensor source.
-    assert main(["fit-cdr", str(path), "-o", str(tmp_path / "c.json"), "--max-frames", "-3"]) == 2
+    assert main(["fit-cdr", str(path), "-o", str(tmp_path / "c.json"), "--max-frames", "-3"]) == 3
     assert "max_frames must be a positive integer" in capsys.readouterr().err
     trunc = tmp_path / "trunc.h5"
     trunc.write_bytes(path.read_bytes()[: path.stat().st_size // 2])
-    assert main(["fit-cdr", str(trunc), "-o", str(tmp_path / "c.json")]) == 2
+    assert main(["fit-cdr", str(trunc), "-o", str(tmp_path / "c.json")]) == 3
     assert "trunc.h5" in capsys.readouterr().err
 
 
@@ -132,11 +132,89 @@ def test_diagnose_on_bundled_recording_writes_report_and_profile(tmp_path, capsy
 
 
 def test_diagnose_and_simulate_profile_bad_input_are_one_line_errors(tmp_path, capsys) -> None:
-    assert main(["diagnose", str(tmp_path / "missing.h5"), "-o", str(tmp_path / "d")]) == 2
-    assert main(["diagnose", str(sample_recording_path()), "-o", str(tmp_path / "d"), "--max-frames", "2"]) == 2
+    assert main(["diagnose", str(tmp_path / "missing.h5"), "-o", str(tmp_path / "d")]) == 3
+    assert main(["diagnose", str(sample_recording_path()), "-o", str(tmp_path / "d"), "--max-frames", "2"]) == 3
     bad = tmp_path / "profile.json"
     bad.write_text('{"format": "something else"}')
-    assert main(["simulate", "corridor", "--frames", "1", "-o", str(tmp_path / "s.h5"), "--profile", str(bad)]) == 2
+    assert main(["simulate", "corridor", "--frames", "1", "-o", str(tmp_path / "s.h5"), "--profile", str(bad)]) == 3
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 3 and all(line.startswith("error: ") for line in err)
     assert "twin profile" in err[-1]
+
+
+# --------------------------------------------------------------------------- exit status
+def _cli(*argv: str, limit: int | None = None, cwd=None):
+    """Run the real `radaraug` in a separate process (optionally under a file-size limit that
+    stands in for a full disk: SIGXFSZ ignored, so writes past it fail with EFBIG)."""
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    pre = ""
+    if limit is not None:
+        pre = ("import resource, signal; signal.signal(signal.SIGXFSZ, signal.SIG_IGN); "
+               f"resource.setrlimit(resource.RLIMIT_FSIZE, ({limit}, resource.RLIM_INFINITY)); ")
+    code = pre + "import sys; from radaraug.cli import main; sys.exit(main(sys.argv[1:]))"
+    root = Path(__file__).resolve().parents[1]
+    return subprocess.run([sys.executable, "-c", code, *argv], capture_output=True, text=True,
+                          cwd=cwd or root, timeout=300)
+
+
+def test_exit_status_usage_2_data_3_interrupted_130(tmp_path, capsys, monkeypatch) -> None:
+    import radaraug.cli as cli
+
+    with pytest.raises(SystemExit) as usage:
+        main(["info"])  # missing argument: argparse
+    assert usage.value.code == cli.EXIT_USAGE == 2
+    with pytest.raises(SystemExit) as usage:
+        main(["no-such-command"])
+    assert usage.value.code == 2
+    capsys.readouterr()
+    assert main(["info", str(tmp_path / "missing.h5")]) == cli.EXIT_DATA == 3
+    assert capsys.readouterr().err.startswith("error: ")
+
+    def interrupted(args):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(cli, "_cmd_info", interrupted)
+    assert main(["info", "x"]) == cli.EXIT_INTERRUPTED == 130
+    assert capsys.readouterr().err.strip() == "interrupted"
+
+
+def test_exit_status_of_the_real_command(tmp_path) -> None:
+    usage = _cli("info")
+    assert usage.returncode == 2 and "required: path" in usage.stderr
+    data = _cli("info", str(tmp_path / "missing.h5"))
+    assert data.returncode == 3 and data.stderr.count("\n") == 1 and "Traceback" not in data.stderr
+
+
+def test_trace_json_into_a_closed_pipe_is_quiet() -> None:
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    # `radaraug trace --json | head -1`: the reader goes away after its first bytes.
+    code = "import sys; from radaraug.cli import main; sys.exit(main(sys.argv[1:]))"
+    proc = subprocess.Popen([sys.executable, "-c", code, "trace", "corridor", "--json"],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                            cwd=Path(__file__).resolve().parents[1])
+    assert proc.stdout.read(100).startswith(b'{"scene"')  # the JSON is ~1 MB, far beyond a pipe's buffer
+    proc.stdout.close()
+    err = proc.stderr.read().decode()
+    proc.wait(timeout=120)
+    assert proc.returncode == 141
+    assert "Traceback" not in err and "BrokenPipeError" not in err and err == ""
+
+
+def test_fit_cdr_on_a_full_disk_keeps_the_old_calibration(tmp_path) -> None:
+    path = tmp_path / "room.h5"
+    _empty_room(path)
+    out = tmp_path / "cdr.json"
+    out.write_text("old calibration\n")
+    # 200 bytes: the capture is read, but cdr.json (~1.4 kB) cannot be written.
+    run = _cli("fit-cdr", str(path), "-o", str(out), limit=200)
+    assert run.returncode == 3, run.stderr[-2000:]
+    last = run.stderr.strip().split("\r")[-1].splitlines()[-1]
+    assert last.startswith("error: ") and "cdr.json" in last and "Traceback" not in run.stderr
+    assert out.read_text() == "old calibration\n"  # not a 0-byte file
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["cdr.json", "room.h5"]  # no temporary left

@@ -9,7 +9,6 @@ baseline is simulating that capture (100 frames through the receiver): the ratio
 
 from __future__ import annotations
 
-import json
 import math
 import platform
 import tempfile
@@ -21,6 +20,7 @@ import numpy as np
 import torch
 
 from radaraug.config import SPEED_OF_LIGHT, RadarConfig
+from radaraug.io.atomic import atomic_write_json
 from radaraug.sensor import FMCWReceiver, Paths
 from radaraug.sensor.effects import FrameDrift, SpurTone, insert_in_order
 
@@ -74,5 +74,5 @@ def run_diagnose_benchmark(*, frames: int = 100, out: str | Path | None = None) 
     }
     if out is not None:
         Path(out).parent.mkdir(parents=True, exist_ok=True)
-        Path(out).write_text(json.dumps(result, indent=2) + "\n")
+        atomic_write_json(out, result, indent=2)
     return result

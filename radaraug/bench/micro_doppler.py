@@ -18,6 +18,8 @@ from typing import Any
 
 import torch
 
+from radaraug.io.atomic import atomic_savefig
+
 
 def doppler_spectrogram(frames: torch.Tensor) -> torch.Tensor:
     """Doppler power in dB (peak 0 dB) ``(T, M)`` of frames ``(T, RX, M, N)``, zero Doppler centred
@@ -75,7 +77,7 @@ def micro_doppler_before_after(
         fig.colorbar(im, ax=axes, label="Doppler power (dB)")
         fig.suptitle(f"Walker approaching at {speed_m_s} m/s, one {window * 1e3:.0f} ms frame per column")
         Path(out).parent.mkdir(parents=True, exist_ok=True)
-        fig.savefig(out, dpi=110)
+        atomic_savefig(fig, out, dpi=110)
         plt.close(fig)
     return {
         "figure": None if out is None else str(out),

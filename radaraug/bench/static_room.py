@@ -15,13 +15,14 @@ Scene: the paper's corridor (``corridor``) at the paper's config, and a furnishe
 
 from __future__ import annotations
 
-import json
 import platform
 import time
 from pathlib import Path
 from typing import Any
 
 import torch
+
+from radaraug.io.atomic import atomic_savefig, atomic_write_json
 
 SBR_RAYS = (128, 256, 512, 1024)
 
@@ -103,7 +104,7 @@ def run_static_room_benchmark(
     res.update(torch_version=torch.__version__, cpu=platform.machine(), threads=torch.get_num_threads())
     if out is not None:
         Path(out).parent.mkdir(parents=True, exist_ok=True)
-        Path(out).write_text(json.dumps(res, indent=2) + "\n")
+        atomic_write_json(out, res, indent=2)
     if figure is not None:
         _plot(r, profiles, figure)
     return res
@@ -133,5 +134,5 @@ def _plot(r: torch.Tensor, profiles: dict[str, torch.Tensor], path: str | Path) 
     ax.legend(fontsize=8)
     fig.tight_layout()
     Path(path).parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=110)
+    atomic_savefig(fig, path, dpi=110)
     plt.close(fig)

@@ -8,7 +8,6 @@ the same step. The ratio says what the radar chain costs on top of the network.
 
 from __future__ import annotations
 
-import json
 import platform
 import time
 from pathlib import Path
@@ -19,6 +18,7 @@ import torch.nn.functional as F
 import torchvision
 
 from radaraug.config import RadarConfig
+from radaraug.io.atomic import atomic_write_json
 from radaraug.training.chain import image_chain
 from radaraug.transforms import CalibratedDR
 
@@ -80,5 +80,5 @@ def run_training_benchmark(
     }
     if out is not None:
         Path(out).parent.mkdir(parents=True, exist_ok=True)
-        Path(out).write_text(json.dumps(res, indent=2))
+        atomic_write_json(out, res, newline=False, indent=2)
     return res

@@ -7,7 +7,6 @@ that matters is the ratio torch/NumPy frames per second (target >= 5 on CPU).
 
 from __future__ import annotations
 
-import json
 import platform
 import time
 from pathlib import Path
@@ -18,6 +17,7 @@ import torch
 
 from radaraug.bench.numpy_reference import numpy_rd_chain
 from radaraug.config import RadarConfig
+from radaraug.io.atomic import atomic_write_json
 
 
 def _best_time(fn, repeats: int) -> float:
@@ -128,5 +128,5 @@ def run_transforms_benchmark(
         result["gpu"] = torch.cuda.get_device_name(dev)
     if out is not None:
         Path(out).parent.mkdir(parents=True, exist_ok=True)
-        Path(out).write_text(json.dumps(result, indent=2) + "\n")
+        atomic_write_json(out, result, indent=2)
     return result

@@ -17,7 +17,6 @@ Figures (each against a baseline measured in the same process):
 
 from __future__ import annotations
 
-import json
 import os
 import platform
 import time
@@ -26,6 +25,8 @@ from typing import Any
 
 import torch
 from torch.utils.data import DataLoader, Dataset
+
+from radaraug.io.atomic import atomic_write_json
 
 BLOCK = 16
 
@@ -202,5 +203,5 @@ def run_twin_benchmark(
     }
     if out is not None:
         Path(out).parent.mkdir(parents=True, exist_ok=True)
-        Path(out).write_text(json.dumps(result, indent=2) + "\n")
+        atomic_write_json(out, result, indent=2)
     return result

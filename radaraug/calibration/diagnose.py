@@ -9,7 +9,6 @@ fitted twin profile (``profile.json``).
 
 from __future__ import annotations
 
-import json
 import math
 import os
 import time
@@ -26,6 +25,7 @@ from radaraug.calibration.twin_source import STATIC_STAGES, TwinSource
 from radaraug.calibration.views import VIEW_UNITS, Views, _db
 from radaraug.config import RadarConfig
 from radaraug.errors import CalibrationError
+from radaraug.io.atomic import atomic_write_json, atomic_write_text
 from radaraug.sensor.profile import TwinProfile, as_profile
 from radaraug.sensor.receiver import FMCWReceiver
 from radaraug.units import DB_CONVENTION, FLOAT_CONVENTION
@@ -305,10 +305,8 @@ def write_report(diag: Diagnosis, out_dir: str | os.PathLike, figures: bool = Tr
         from radaraug.calibration.figures import view_figures
 
         report["figures"] = view_figures(diag, out)
-    tmp = out / "report.json.tmp"
-    tmp.write_text(json.dumps(report, indent=1, default=_json_default))
-    os.replace(tmp, out / "report.json")
-    (out / "summary.md").write_text(summary_text(diag, report))
+    atomic_write_json(out / "report.json", report, newline=False, indent=1, default=_json_default)
+    atomic_write_text(out / "summary.md", summary_text(diag, report))
     return out
 
 

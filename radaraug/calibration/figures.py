@@ -8,6 +8,7 @@ from typing import TYPE_CHECKING
 import torch
 
 from radaraug.calibration.views import ADC_QUANTILES, RD_QUANTILES, _db
+from radaraug.io.atomic import atomic_savefig
 
 if TYPE_CHECKING:
     from radaraug.calibration.diagnose import Diagnosis
@@ -30,7 +31,7 @@ def view_figures(diag: Diagnosis, out: Path) -> list[str]:
 
     def save(fig, name: str) -> None:
         fig.tight_layout()
-        fig.savefig(out / name, dpi=90)
+        atomic_savefig(fig, out / name, dpi=90)
         plt.close(fig)
         names.append(name)
 

@@ -15,7 +15,7 @@ import torch
 from torch.utils.data import Dataset
 
 from radaraug.config import RadarConfig
-from radaraug.errors import CaptureError
+from radaraug.errors import CaptureError, ConfigError
 from radaraug.io.base import CaptureReader, CaptureWarning
 from radaraug.io.dispatch import open_capture
 
@@ -61,6 +61,12 @@ class RadarCaptureDataset(Dataset):
         target_transform: applied to the label.
         as_float: float32 SDK floats (default) or int32 raw counts.
         max_open_files: open readers kept per process (least recently used are closed).
+        augmentation: ``"stream"`` (default: random transforms draw from their own generator or
+            the global RNG, per DataLoader worker) or ``"per_item"`` (they draw from a generator
+            of ``(augmentation_seed, index, epoch)``: item ``i`` is the same with any
+            ``num_workers``; call :meth:`set_epoch` each epoch). See
+            :mod:`radaraug.transforms.per_item`.
+        augmentation_seed: seed of the ``"per_item"`` draws.
 
     Attributes:
         config: the shared :class:`RadarConfig` of every file.
@@ -84,7 +90,19 @@ class RadarCaptureDataset(Dataset):
         target_transform: Callable[[Any], Any] | None = None,
         as_float: bool = True,
         max_open_files: int = 16,
+        augmentation: str = "stream",
+        augmentation_seed: int = 0,
     ) -> None:
+        from radaraug.transforms.per_item import check_augmentation
+
+        try:
+            self.augmentation = check_augmentation(augmentation, "RadarCaptureDataset")
+        except ConfigError as e:
+            raise CaptureError(str(e)) from None
+        if isinstance(augmentation_seed, bool) or not isinstance(augmentation_seed, (int, np.integer)):
+            raise CaptureError(f"RadarCaptureDataset: augmentation_seed must be an integer, got {augmentation_seed!r}")
+        self.augmentation_seed = int(augmentation_seed)
+        self.epoch = 0
         self.paths = [Path(paths)] if isinstance(paths, (str, os.PathLike)) else [Path(p) for p in paths]
         if not self.paths:
             raise CaptureError("RadarCaptureDataset: no capture paths given")
@@ -202,6 +220,16 @@ class RadarCaptureDataset(Dataset):
     def __len__(self) -> int:
         return int(self._offsets[-1])
 
+    def set_epoch(self, epoch: int) -> None:
+        """The epoch of ``augmentation="per_item"`` draws (call before each epoch; DataLoader
+        workers started afterwards see it, persistent workers keep the one they started with)."""
+        from radaraug.transforms.per_item import check_epoch
+
+        try:
+            self.epoch = check_epoch(epoch, "RadarCaptureDataset")
+        except ConfigError as e:
+            raise CaptureError(str(e)) from None
+
     def __getitem__(self, index: int) -> Any:
         k, start = self._file_index(index)
         t = self.frames_per_sample
@@ -209,7 +237,14 @@ class RadarCaptureDataset(Dataset):
         if t == 1:
             x = x[0]
         if self.transform is not None:
-            x = self.transform(x)
+            if self.augmentation == "per_item":
+                from radaraug.transforms.per_item import transform_item
+
+                item = int(self._offsets[k]) + (start // self.stride)  # the global index, >= 0
+                x = transform_item(self.transform, x, mode="per_item", seed=self.augmentation_seed,
+                                   index=item, epoch=self.epoch)
+            else:
+                x = self.transform(x)
         if self.label is None:
             return x
         y = self._label_for(k, start + t - 1)

@@ -8,6 +8,12 @@ Layout of a version 1.x file::
     /frames             uint16 (F, rx, chirps, samples), one chunk per frame
     /timestamps         float64 (F,) Unix seconds                       (optional)
     /labels/<name>      (F,) per-frame label, e.g. labels/count int64    (optional)
+    /frames_written     int64 (1,) frames completely written and flushed  (1.1, optional)
+
+Since 1.1 the writer records in ``frames_written`` how many frames reached the file completely
+(data, then flush, then the count, then a second flush). A reader serves no more frames than
+that count: a writer stopped by a full disk or a kill mid-append may have extended ``frames``
+over a frame whose data never reached the disk.
 
 Readers accept any ``1.x`` version (minor versions only add optional content) and refuse
 other major versions.
@@ -19,12 +25,13 @@ import os
 from pathlib import Path
 
 FORMAT_NAME = "radaraug-capture"
-FORMAT_VERSION = "1.0"
+FORMAT_VERSION = "1.1"
 SAMPLE_UNITS = "adc_counts"
 
 FRAMES = "frames"
 TIMESTAMPS = "timestamps"
 LABELS_GROUP = "labels"
+FRAMES_WRITTEN = "frames_written"
 FILE_LABEL_PREFIX = "label_"
 FILE_LABELS_JSON = "labels"
 

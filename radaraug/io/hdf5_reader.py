@@ -28,6 +28,26 @@ def _plain(value: Any) -> Any:
     return value
 
 
+def committed_frame_count(file: h5py.File, stored: int) -> int:
+    """Frames of an open capture that were completely written: ``stored`` (the length of
+    ``frames``) capped by the writer's ``frames_written`` count when the file has one (format 1.1).
+
+    Raises:
+        CaptureError: ``frames_written`` exists but is not one readable integer.
+    """
+    ds = file.get(fmt.FRAMES_WRITTEN)
+    if ds is None:
+        return stored
+    try:
+        if not isinstance(ds, h5py.Dataset) or ds.shape != (1,) or ds.dtype.kind not in "iu":
+            raise ValueError(f"expected one integer, found {getattr(ds, 'dtype', type(ds).__name__)} "
+                             f"{getattr(ds, 'shape', '')}")
+        written = int(ds[0])
+    except (OSError, RuntimeError, ValueError, TypeError) as e:
+        raise CaptureError(f"{file.filename}: '{fmt.FRAMES_WRITTEN}' is unreadable ({e})") from None
+    return max(0, min(stored, written))
+
+
 class HDF5Capture(CaptureReader):
     """A radaraug HDF5 capture file, opened read-only (SWMR, so crashed recordings open).
 
@@ -108,7 +128,11 @@ class HDF5Capture(CaptureReader):
             )
         self.config = self._load_config()
         self._frames = self._load_frames()
-        self.num_frames = int(self._frames.shape[0])
+        # Frames past the writer's committed count may have no data on disk (a full disk or a
+        # kill mid-append); they are never served.
+        self.num_frames = committed_frame_count(f, int(self._frames.shape[0]))
+        if self.num_frames == 0:
+            raise self._fail(f"empty capture: '{fmt.FRAMES_WRITTEN}' says no frame was completely written")
         self.timestamps = self._load_timestamps()
         self.labels = self._load_labels()
 

@@ -4,12 +4,30 @@ Crash safety follows what was measured with h5py (FIELD_NOTES): every attribute 
 created first, then the file switches to SWMR mode, and each :meth:`CaptureWriter.append`
 ends with a flush. A process killed (even SIGKILL) while recording leaves a file that opens
 with every frame flushed before the kill; without SWMR such a file is unreadable.
+
+On top of that:
+
+- The file is built under a temporary name in the target folder and renamed to its name once
+  it is in SWMR mode (first append) or closed, so a file at the target name is always one that
+  opens; a kill before that leaves only the hidden temporary ``.<name>.*.partial``.
+- After each append's data is flushed, the count of complete frames is written to
+  ``frames_written`` and flushed again; readers serve no frame past it.
+- The writer holds a ``flock`` on the file while it writes (:mod:`radaraug.io.hdf5_recovery`),
+  so :meth:`CaptureWriter.resume` can tell a killed writer from a live one, and resets the
+  HDF5 consistency flags that a killed writer leaves (what ``h5clear -s`` does) only then.
+- A failed write or flush (full disk, file-size limit, I/O error) closes the file and raises
+  :class:`~radaraug.errors.CaptureError`; the file keeps every frame completed before it.
+  Given ``expected_frames``, the free space is checked before anything is written.
 """
 
 from __future__ import annotations
 
 import json
 import os
+import re
+import resource
+import secrets
+import shutil
 from collections.abc import Mapping
 from datetime import datetime, timezone
 from pathlib import Path
@@ -23,6 +41,8 @@ from radaraug.config import RadarConfig
 from radaraug.errors import CaptureError, ConfigError
 from radaraug.io import hdf5_format as fmt
 from radaraug.io.counts import as_counts
+from radaraug.io.hdf5_reader import committed_frame_count
+from radaraug.io.hdf5_recovery import BUSY, hold_writer_lock, release_writer_lock, writer_is_alive
 from radaraug.units import DB_CONVENTION, FLOAT_CONVENTION
 
 _COMPRESSION = {
@@ -31,6 +51,9 @@ _COMPRESSION = {
     "lzf": {"compression": "lzf", "shuffle": True},
 }
 _AUX_CHUNK = 1024  # timestamps / labels: small values, many per chunk
+SPACE_MARGIN_BYTES = 1 << 20
+"""Head room of the free-space check, on top of the frames' uncompressed size (metadata)."""
+_FRAME_OVERHEAD_BYTES = 256  # per frame: chunk index entry, timestamp, labels (generous)
 
 
 def _attr_value(key: str, value: Any, where: str) -> Any:
@@ -66,13 +89,19 @@ class CaptureWriter:
             h5py only) or ``None``.
         attrs: extra file attributes (``source``, ``description``, file-level labels such as
             ``label_count=2`` or ``labels={"count": 2}``); dicts and lists are stored as JSON.
+        expected_frames: frames this run will write, when known: the folder's free space (and
+            the process's file-size limit) must hold their uncompressed size plus
+            :data:`SPACE_MARGIN_BYTES`, else nothing is written and CaptureError is raised.
 
     Timestamps: pass one with every append or with none; the choice made by the first append
     holds for the file (SWMR files cannot gain datasets later).
 
     Raises:
-        CaptureError: the file cannot be created, an attribute is reserved or not storable, an
-            append breaks the file's timestamp/label layout, or the writer is closed.
+        CaptureError: the file cannot be created (missing or read-only folder, a file in the way,
+            another process writing it, not enough space), an attribute is reserved or not
+            storable, an append breaks the file's timestamp/label layout, a write or flush fails
+            (full disk: the writer closes, the file keeps the frames completed before), or the
+            writer is closed.
         radaraug.errors.InputTensorError: frames of the wrong dtype, shape or value range
             (see :func:`radaraug.io.counts.as_counts`).
     """
@@ -85,6 +114,7 @@ class CaptureWriter:
         labels_schema: Mapping[str, Any] | None = None,
         compression: str | None = "gzip",
         attrs: Mapping[str, Any] | None = None,
+        expected_frames: int | None = None,
     ) -> None:
         self.path = Path(path)
         if not isinstance(config, RadarConfig):
@@ -92,16 +122,29 @@ class CaptureWriter:
         if compression not in _COMPRESSION:
             raise CaptureError(f"{self.path}: compression must be 'gzip', 'lzf' or None, got {compression!r}")
         self.config = config
-        self._n = 0
-        self._started = False
-        self._has_timestamps = False
+        self._init_state()
         self._schema = self._check_schema(labels_schema) if labels_schema is not None else None
         file_attrs = self._file_attrs(attrs or {})
+        self._check_space(expected_frames)
+        if self.path.is_dir():
+            raise CaptureError(f"{self.path}: is a folder; cannot create a capture file there")
+        if self.path.exists() and writer_is_alive(self.path):
+            raise CaptureError(f"{self.path}: {BUSY}")
+        tmp = self.path.with_name(f".{self.path.name}.{os.getpid()}.{secrets.token_hex(4)}.partial")
         try:
-            self._file: h5py.File | None = h5py.File(self.path, "w", libver="latest")
+            # O_EXCL: a fresh name; mode 0o666 minus the umask, as for any file the user creates.
+            os.close(os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666))
         except OSError as e:
-            raise CaptureError(f"{self.path}: cannot create capture file ({e})") from None
+            raise CaptureError(f"{self.path}: cannot create capture file ({e.strerror or e})") from None
+        self._tmp = tmp
         try:
+            self._lock_fd = hold_writer_lock(self._tmp)
+            try:
+                # HDF5's own lock is off: it drops it in SWMR mode anyway; radaraug's lock is held
+                # for the writer's whole life instead (radaraug.io.hdf5_recovery).
+                self._file = h5py.File(self._tmp, "w", libver="latest", locking=False)
+            except OSError as e:
+                raise CaptureError(f"{self.path}: cannot create capture file ({e})") from None
             self._file.attrs.update(file_attrs)
             c = config
             shape = (c.num_rx, c.num_chirps_per_frame, c.num_samples_per_chirp)
@@ -113,11 +156,28 @@ class CaptureWriter:
                 dtype=np.uint16,
                 **_COMPRESSION[compression],
             )
+            self._written = self._file.create_dataset(fmt.FRAMES_WRITTEN, data=np.zeros(1, np.int64))
             self._file.flush()
-        except BaseException:
-            self._file.close()
-            self._file = None
+        except BaseException as e:
+            if isinstance(e, (OSError, RuntimeError)):
+                self._failed = _short_reason(e)  # a full disk already: drop what HDF5 cannot write
+            self._abort()
+            if isinstance(e, (OSError, RuntimeError)):
+                raise CaptureError(f"{self.path}: cannot create capture file ({self._failed})") from None
             raise
+
+    def _init_state(self) -> None:
+        self._file: h5py.File | None = None
+        self._n = 0
+        self._started = False
+        self._has_timestamps = False
+        self._lock_fd: int | None = None
+        self._tmp: Path | None = None  # the file's name until it is published under self.path
+        self._failed: str | None = None
+
+    def _check_space(self, frames: int | None, existing: int = 0) -> None:
+        if frames is not None:
+            check_free_space(self.path, self.config, frames, existing=existing)
 
     # ------------------------------------------------------------------ setup
     def _check_schema(self, schema: Mapping[str, Any]) -> dict[str, np.dtype]:
@@ -172,36 +232,86 @@ class CaptureWriter:
         self._has_timestamps = with_timestamps
         f.swmr_mode = True
         self._started = True
+        f.flush()
+        self._publish()
+
+    def _publish(self) -> None:
+        """Give the temporary file its real name (it opens from now on)."""
+        if self._tmp is None:
+            return
+        os.replace(self._tmp, self.path)
+        self._tmp = None
+        try:  # make the rename itself durable
+            dfd = os.open(self.path.parent, os.O_RDONLY)
+            try:
+                os.fsync(dfd)
+            finally:
+                os.close(dfd)
+        except OSError:
+            pass
+
+    def _abort(self) -> None:
+        """Close after a failure without raising: the file keeps what was flushed before."""
+        f, self._file = self._file, None
+        if f is not None:
+            if self._failed is not None:
+                _discard_pending_writes(f)
+            try:
+                f.close()
+            except Exception:  # noqa: BLE001 - a broken file (full disk) may fail to close; h5py drops the id
+                pass
+        if self._tmp is not None:  # never published: holds no frame, nothing to keep
+            self._tmp.unlink(missing_ok=True)
+            self._tmp = None
+        release_writer_lock(self._lock_fd)
+        self._lock_fd = None
 
     # ------------------------------------------------------------------ recording
     @classmethod
-    def resume(cls, path: str | os.PathLike, config: RadarConfig) -> CaptureWriter:
+    def resume(
+        cls, path: str | os.PathLike, config: RadarConfig, *, expected_frames: int | None = None
+    ) -> CaptureWriter:
         """Reopen a capture written by a :class:`CaptureWriter` to append more frames.
 
-        Frames, timestamps and labels already flushed (also by a writer that was killed) are
-        kept; ``num_frames`` starts at their count. Where a kill left timestamps or labels
-        ahead of the frames, they are cut back to the frame count.
+        Frames, timestamps and labels already completed (also by a writer that was killed, even
+        with SIGKILL) are kept; ``num_frames`` starts at their count. Whatever a kill or a full
+        disk left past that count (frames whose data may be missing, timestamps or labels ahead
+        of the frames) is cut off. The HDF5 consistency flags a killed writer leaves are reset
+        (as ``h5clear -s`` does) when no live process holds the file.
+
+        Args:
+            path: the capture.
+            config: the radar config of the frames to append (must equal the file's).
+            expected_frames: frames still to write, for the free-space check (see the class).
 
         Raises:
-            CaptureError: the file is missing, not a radaraug capture, or was made with another
-                radar config.
+            CaptureError: the file is missing, another process is writing it, it is not a
+                radaraug capture, was made with another radar config, or there is not enough
+                space for ``expected_frames``.
         """
         self = cls.__new__(cls)
         self.path = Path(path)
         self.config = config
+        self._init_state()
+        if not self.path.is_file():
+            raise CaptureError(f"{self.path}: no capture file to resume")
+        self._lock_fd = hold_writer_lock(self.path, reset_flags=True)
         try:
-            f = h5py.File(self.path, "a", libver="latest")
-        except (OSError, RuntimeError) as e:
-            raise CaptureError(f"{self.path}: cannot reopen capture for appending ({e})") from None
-        try:
+            self._check_space(expected_frames, existing=self.path.stat().st_size)
+            try:
+                f = h5py.File(self.path, "a", libver="latest", locking=False)
+            except (OSError, RuntimeError) as e:
+                raise CaptureError(f"{self.path}: cannot reopen capture for appending ({e})") from None
+            self._file = f
             if f.attrs.get("format") != fmt.FORMAT_NAME or fmt.FRAMES not in f:
                 raise CaptureError(f"{self.path}: not a radaraug capture; cannot resume it")
             stored = json.loads(f.attrs["radar_config"])
             if RadarConfig.from_dict(stored) != config:
                 raise CaptureError(f"{self.path}: was recorded with another radar config; cannot resume it")
-            self._file = f
             self._frames = f[fmt.FRAMES]
-            self._n = int(self._frames.shape[0])
+            self._n = committed_frame_count(f, int(self._frames.shape[0]))
+            if self._frames.shape[0] > self._n:
+                self._frames.resize((self._n, *self._frames.shape[1:]))
             self._has_timestamps = fmt.TIMESTAMPS in f
             group = f.get(fmt.LABELS_GROUP)
             self._schema = {name: group[name].dtype for name in group} if group is not None else {}
@@ -211,12 +321,21 @@ class CaptureWriter:
             ):
                 if ds.shape[0] > self._n:
                     ds.resize((self._n,))
+            if fmt.FRAMES_WRITTEN in f:  # files of format 1.0 get the count now (SWMR cannot add it later)
+                self._written = f[fmt.FRAMES_WRITTEN]
+                self._written[0] = self._n
+            else:
+                self._written = f.create_dataset(fmt.FRAMES_WRITTEN, data=np.array([self._n], np.int64))
             if started:
                 f.swmr_mode = True
             self._started = started
             f.flush()
-        except BaseException:
-            f.close()
+        except BaseException as e:
+            if isinstance(e, (OSError, RuntimeError)):
+                self._failed = _short_reason(e)  # e.g. a full disk: drop what HDF5 cannot write
+            self._abort()
+            if isinstance(e, (OSError, RuntimeError, KeyError, ValueError)) and not isinstance(e, CaptureError):
+                raise CaptureError(f"{self.path}: cannot resume this capture ({e})") from None
             raise
         return self
 
@@ -238,31 +357,53 @@ class CaptureWriter:
             timestamp: Unix time in seconds: a number for one frame, ``(k,)`` for a block.
             labels: per-frame label name -> value (scalar, repeated over a block, or ``(k,)``).
         """
+        if self._failed is not None:
+            raise CaptureError(f"{self.path}: recording stopped after an error ({self._failed})")
         if self._file is None:
             raise CaptureError(f"{self.path}: writer is closed")
         where = str(self.path)
         counts = as_counts(frame_counts, self.config, where)
         k = len(counts)
         if not self._started:
-            self._start(timestamp is not None, labels)
+            try:
+                self._start(timestamp is not None, labels)
+            except (OSError, RuntimeError) as e:
+                self._fail(e, 0, k)
         ts = self._check_timestamps(timestamp, k)
         lab = self._check_labels(labels, k)
 
         f = self._file
         n0, n1 = self._n, self._n + k
-        # Timestamps and labels before the frames: a kill between the two leaves them ahead
-        # of the frames (the reader trims), never behind.
-        if ts is not None:
-            f[fmt.TIMESTAMPS].resize((n1,))
-            f[fmt.TIMESTAMPS][n0:n1] = ts
-        for name, values in lab.items():
-            ds = f[fmt.LABELS_GROUP][name]
-            ds.resize((n1,))
-            ds[n0:n1] = values
-        self._frames.resize((n1, *counts.shape[1:]))
-        self._frames[n0:n1] = counts
-        f.flush()
+        try:
+            # Timestamps and labels before the frames: a kill between the two leaves them ahead
+            # of the frames (the reader trims), never behind.
+            if ts is not None:
+                f[fmt.TIMESTAMPS].resize((n1,))
+                f[fmt.TIMESTAMPS][n0:n1] = ts
+            for name, values in lab.items():
+                ds = f[fmt.LABELS_GROUP][name]
+                ds.resize((n1,))
+                ds[n0:n1] = values
+            self._frames.resize((n1, *counts.shape[1:]))
+            self._frames[n0:n1] = counts
+            f.flush()
+            # Only now are the frames on disk: claim them (a second flush, so the count never
+            # reaches the file before the data it counts).
+            self._written[0] = n1
+            f.flush()
+        except (OSError, RuntimeError) as e:
+            self._fail(e, n0, n1)
         self._n = n1
+
+    def _fail(self, err: BaseException, n0: int, n1: int) -> None:
+        """Stop recording after a failed write or flush: close the file, raise CaptureError."""
+        reason = _short_reason(err)
+        self._failed = reason
+        self._abort()
+        raise CaptureError(
+            f"{self.path}: cannot write frames {n0}:{n1} ({reason}); recording stopped and the file was "
+            f"closed with the {n0} frames completed before (run again with more space to resume)"
+        ) from None
 
     def _check_timestamps(self, timestamp: Any, k: int) -> np.ndarray | None:
         if not self._has_timestamps:
@@ -304,13 +445,35 @@ class CaptureWriter:
 
     # ------------------------------------------------------------------ closing
     def close(self) -> None:
-        """Flush and close the file (idempotent)."""
-        if self._file is not None:
-            try:
-                self._file.flush()
-                self._file.close()
-            finally:
-                self._file = None
+        """Flush and close the file (idempotent); a file never appended to is published now.
+
+        Raises:
+            CaptureError: the final flush or close failed (the file keeps the frames completed
+                before; the writer is closed all the same).
+        """
+        f = self._file
+        if f is None:
+            release_writer_lock(self._lock_fd)
+            self._lock_fd = None
+            return
+        try:
+            f.flush()
+            f.close()
+        except (OSError, RuntimeError) as e:
+            self._failed = str(e)
+            self._abort()
+            raise CaptureError(f"{self.path}: cannot close the capture ({e}); it keeps {self._n} frames") from None
+        self._file = None
+        try:
+            self._publish()
+        except OSError as e:
+            raise CaptureError(f"{self.path}: cannot give the capture its name ({e.strerror or e})") from None
+        finally:
+            if self._tmp is not None:
+                self._tmp.unlink(missing_ok=True)
+                self._tmp = None
+            release_writer_lock(self._lock_fd)
+            self._lock_fd = None
 
     def __enter__(self) -> CaptureWriter:
         return self
@@ -318,9 +481,80 @@ class CaptureWriter:
     def __exit__(self, *exc: object) -> None:
         self.close()
 
+    def __del__(self) -> None:
+        # A writer dropped without close(): close the file here, not at interpreter exit, where
+        # h5py closing a file in a broken state (full disk) has crashed the process.
+        try:
+            self._abort() if self._failed else self.close()
+        except Exception:  # noqa: BLE001 - nothing to report to at garbage collection
+            pass
+
     def __repr__(self) -> str:
         state = "closed" if self._file is None else "open"
         return f"CaptureWriter({str(self.path)!r}, {self._n} frames, {state})"
+
+
+def check_free_space(path: str | os.PathLike, config: RadarConfig, frames: int, *, existing: int = 0) -> None:
+    """Refuse, before anything is written, a run whose frames cannot fit next to ``path``.
+
+    The bound is the frames' uncompressed size (compression of noisy ADC data saves little, and a
+    run must not fail halfway) plus :data:`SPACE_MARGIN_BYTES`, against the free space of the
+    folder and the process's file-size limit (``ulimit -f``, less ``existing`` bytes the file
+    already has when it is resumed).
+
+    Raises:
+        CaptureError: not enough space (the message gives both figures), or the folder cannot be
+            examined.
+    """
+    path = Path(path)
+    c = config
+    per_frame = 2 * c.num_rx * c.num_chirps_per_frame * c.num_samples_per_chirp + _FRAME_OVERHEAD_BYTES
+    need = int(frames) * per_frame + SPACE_MARGIN_BYTES
+    folder = path.parent
+    while not folder.exists() and folder != folder.parent:  # a folder the run will create
+        folder = folder.parent
+    try:
+        free = shutil.disk_usage(folder).free
+    except OSError as e:
+        raise CaptureError(f"{path}: cannot write in {folder} ({e.strerror or e})") from None
+    where, room = f"free in {folder}", free
+    soft = resource.getrlimit(resource.RLIMIT_FSIZE)[0]
+    if soft != resource.RLIM_INFINITY and soft - existing < room:
+        where, room = "left under this process's file-size limit (ulimit -f)", max(0, soft - existing)
+    if need > room:
+        raise CaptureError(
+            f"{path}: not enough space: {frames} frames need about {need / 2**20:.1f} MiB "
+            f"(uncompressed, with margin), only {room / 2**20:.1f} MiB {where}; nothing was written"
+        )
+
+
+def _short_reason(err: BaseException) -> str:
+    """One line for a failed HDF5 write: the OS error when HDF5 names one (full disk...)."""
+    text = str(err)
+    m = re.search(r"errno = (\d+), error message = '([^']*)'", text)
+    if m:
+        code = int(m.group(1))
+        hint = {28: "the disk is full", 27: "the file-size limit (ulimit -f) is reached",
+                122: "the disk quota is exceeded"}.get(code, "a write failed")
+        return f"{hint}: {m.group(2)} [errno {code}]"
+    return " ".join(text.split()) or type(err).__name__
+
+
+def _discard_pending_writes(f: h5py.File) -> None:
+    """Point HDF5's file descriptor at /dev/null so that closing a file whose writes fail (a full
+    disk) succeeds: what HDF5 still holds in its caches is dropped, the file stays as it was at the
+    failure (every frame counted in ``frames_written`` is complete; its consistency flags stay set
+    and :meth:`CaptureWriter.resume` resets them). A file HDF5 cannot close makes the process
+    crash at exit, when HDF5 shuts down and tries once more."""
+    try:
+        handle = f.id.get_vfd_handle()
+        null = os.open(os.devnull, os.O_RDWR)
+        try:
+            os.dup2(null, handle)
+        finally:
+            os.close(null)
+    except (OSError, RuntimeError, ValueError, TypeError):
+        pass  # not the default (sec2) driver: close as it is
 
 
 def write_capture(

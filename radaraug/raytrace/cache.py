@@ -18,13 +18,14 @@ from __future__ import annotations
 
 import hashlib
 import os
-import tempfile
 import time
 import warnings
 from pathlib import Path
 from typing import Any
 
 import torch
+
+from radaraug.io.atomic import atomic_save
 
 TRACER_VERSION = 2
 """Bump when a change to the tracer changes the static paths of an unchanged scene."""
@@ -76,16 +77,8 @@ def store(folder: Path, key: str, data: dict[str, Any]) -> None:
     try:
         folder.mkdir(parents=True, exist_ok=True)
         _remove_stale_temporaries(folder, key)
-        fd, tmp = tempfile.mkstemp(prefix=f".static-{key}.", suffix=".tmp", dir=folder)
-        try:
-            with os.fdopen(fd, "wb") as f:
-                torch.save({**data, "version": TRACER_VERSION}, f)
-                f.flush()
-                os.fsync(f.fileno())
-            os.replace(tmp, folder / f"static-{key}.pt")
-        except BaseException:
-            Path(tmp).unlink(missing_ok=True)
-            raise
+        # Temporary name .static-<key>.pt.<pid>.<random>.tmp (radaraug.io.atomic).
+        atomic_save(folder / f"static-{key}.pt", lambda f: torch.save({**data, "version": TRACER_VERSION}, f))
     except OSError as err:
         if str(folder) not in _warned_dirs:
             _warned_dirs.add(str(folder))

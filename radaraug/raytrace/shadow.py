@@ -76,6 +76,7 @@ from typing import Any
 import torch
 
 from radaraug.errors import InputTensorError, SceneError
+from radaraug.io.atomic import atomic_savefig
 from radaraug.raytrace.vec import dot, matvec
 from radaraug.scene.geometry import Ellipsoids
 from radaraug.sensor.paths import Paths
@@ -654,7 +655,7 @@ def plot_walker_shadowing(path: str | FilePath, *, wall_m: float = 8.0, radar_he
     axes[1].legend(fontsize=8, loc="lower left")
     fig.tight_layout()
     FilePath(path).parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=120)
+    atomic_savefig(fig, path, dpi=120)
     plt.close(fig)
     xs = along["x"]
     middle = (xs > wall_m / 4) & (xs < 3 * wall_m / 4)

@@ -21,6 +21,7 @@ import yaml
 
 from radaraug.config import RadarConfig
 from radaraug.errors import ConfigError, SceneError
+from radaraug.io.atomic import atomic_write_text
 from radaraug.scene.geometry import Ellipsoids, RadarPose, SceneGeometry
 from radaraug.scene.materials import MATERIALS, Material, get_material, register_material
 from radaraug.scene.room import (
@@ -636,7 +637,7 @@ class Scene:
         data = self.to_dict(relative_to=path.parent)
         text = (json.dumps(data, indent=2) + "\n" if suffix == ".json"
                 else yaml.safe_dump(data, sort_keys=False, default_flow_style=None))
-        path.write_text(text)
+        atomic_write_text(path, text)
         return path
 
     # ------------------------------------------------------------------ people

@@ -98,13 +98,12 @@ class TwinProfile:
         }
 
     def save(self, path: str | os.PathLike) -> Path:
-        """Write the profile atomically (a temporary file of this process + rename, so concurrent
-        writers of the same profile never mix their bytes)."""
-        p = Path(path)
-        tmp = p.with_name(f"{p.name}.{os.getpid()}.tmp")
-        tmp.write_text(json.dumps(self.to_dict(), indent=1))
-        os.replace(tmp, p)
-        return p
+        """Write the profile atomically (:mod:`radaraug.io.atomic`: a temporary file of this process,
+        fsync, rename; concurrent writers of the same profile never mix their bytes, a full disk
+        leaves the old file)."""
+        from radaraug.io.atomic import atomic_write_json
+
+        return atomic_write_json(path, self.to_dict(), newline=False, indent=1)
 
     @classmethod
     def from_dict(cls, data: Mapping[str, Any], source: str = "twin profile") -> TwinProfile:

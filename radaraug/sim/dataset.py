@@ -28,6 +28,7 @@ from radaraug.sim.randomization import RoomDraw, TwinRandomization, check_receiv
 from radaraug.sim.scenarios import Scenario, ScenarioSampler
 from radaraug.sim.seeding import item_generator
 from radaraug.sim.twin import DigitalTwin
+from radaraug.transforms.per_item import check_augmentation, check_epoch, transform_item
 
 TARGETS = ("count", "occupancy", "both", "none")
 
@@ -64,6 +65,10 @@ class SimulatedRadarDataset(Dataset):
         target_transform: applied to the label.
         as_counts: return uint16 ADC codes instead of SDK floats (before ``transform``).
         device: where the twin runs (the item is returned on that device).
+        augmentation: ``"stream"`` (default: random transforms draw from their own generator or
+            the global RNG, per DataLoader worker) or ``"per_item"`` (they draw from a generator
+            of ``(seed, index, epoch)``: item ``i`` is the same with any ``num_workers``; call
+            :meth:`set_epoch` each epoch). See :mod:`radaraug.transforms.per_item`.
         twin_options: keyword arguments of :class:`DigitalTwin` (``tracer_options``,
             ``receiver``, ``multipath``); with randomization they apply to every room variant.
         randomization: twin randomization (a :class:`TwinRandomization` or a dict of its fields);
@@ -95,7 +100,10 @@ class SimulatedRadarDataset(Dataset):
         twin_options: dict[str, Any] | None = None,
         randomization: TwinRandomization | dict[str, Any] | None = None,
         profile: Any = None,
+        augmentation: str = "stream",
     ) -> None:
+        self.augmentation = check_augmentation(augmentation, "SimulatedRadarDataset")
+        self.epoch = 0
         if target not in TARGETS:
             raise ConfigError(f"target must be one of {TARGETS}, got {target!r}")
         if length < 0 or frames_per_item < 1:
@@ -249,6 +257,11 @@ class SimulatedRadarDataset(Dataset):
         given = self.twin_options.get("receiver")
         return given if given is not None else FMCWReceiver(self.config)
 
+    def set_epoch(self, epoch: int) -> None:
+        """The epoch of ``augmentation="per_item"`` draws (call before each epoch; DataLoader
+        workers started afterwards see it, persistent workers keep the one they started with)."""
+        self.epoch = check_epoch(epoch, "SimulatedRadarDataset")
+
     def _check_index(self, index: int) -> int:
         if not -self.length <= index < self.length:
             raise IndexError(f"index {index} out of range for a dataset of {self.length} items")
@@ -272,7 +285,8 @@ class SimulatedRadarDataset(Dataset):
         if self.frames_per_item == 1:
             x = x[0]
         if self.transform is not None:
-            x = self.transform(x)
+            x = transform_item(self.transform, x, mode=self.augmentation, seed=self.seed, index=index,
+                               epoch=self.epoch, device=self.device)
         if self.target == "none":
             return x
         label: Any

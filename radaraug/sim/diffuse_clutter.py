@@ -16,6 +16,7 @@ from typing import Any
 import torch
 
 from radaraug.config import RadarConfig
+from radaraug.io.atomic import atomic_savefig
 from radaraug.raytrace.diffuse import diffuse_paths
 from radaraug.scene.scene import Scene
 from radaraug.sensor.paths import Paths
@@ -122,7 +123,7 @@ def plot_diffuse_range_profile(
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8)
     fig.tight_layout()
-    fig.savefig(path)
+    atomic_savefig(fig, path)
     plt.close(fig)
 
 

@@ -8,9 +8,12 @@ a pure function of ``(scene, seed, k)`` however the job is split.
 ``--shard i/n`` takes the ``i``-th of ``n`` contiguous, block-aligned ranges of frames and writes
 ``<out stem>.shard-<i>-of-<n>.h5``; a cluster scheduler runs the pieces independently. Re-running
 the same command resumes: frames already flushed to the output (the capture format flushes every
-append in SWMR mode, so they survive a crash) are kept and simulation continues after them. A file
-that another job wrote (other scene, seed, frame count, shard or device type) or that is not a
-simulated capture at all is refused, never overwritten.
+append in SWMR mode, so they survive a crash, even SIGKILL) are kept and simulation continues after
+them; the HDF5 consistency flags a killed run leaves are reset first (only when no live process
+writes the file; see :mod:`radaraug.io.hdf5_recovery`). A file that another job wrote (other scene,
+seed, frame count, shard or device type), that another process is writing, or that is not a
+simulated capture at all (also a damaged or truncated HDF5 file) is refused, never overwritten.
+The free space for the frames still to write is checked before the run starts.
 
 The noise streams of a CPU and a CUDA ``torch.Generator`` differ for the same seed, so frames are
 reproducible per device type (CPU or CUDA); a job is resumed only on the device type that began it.
@@ -27,6 +30,9 @@ import torch
 
 from radaraug.errors import CaptureError, ConfigError
 from radaraug.io import CaptureWriter, open_capture
+from radaraug.io import hdf5_format as fmt
+from radaraug.io.hdf5_recovery import status_flags, writer_is_alive
+from radaraug.io.hdf5_writer import check_free_space
 from radaraug.scene.scene import Scene
 from radaraug.sensor.profile import as_profile
 from radaraug.sim.dataset import load_scene
@@ -111,7 +117,10 @@ def simulate_capture(
 
     Raises:
         SceneError: bad scene; ConfigError: ``frames < 1`` or a bad shard or device;
-        CaptureError: ``out`` exists and was not written by this same job.
+        CaptureError: ``out`` exists and was not written by this same job, another process is
+            writing it, it cannot be created (read-only folder, a file in the way), there is not
+            enough space for the frames to write, or the disk fills up while writing (the file
+            then keeps every frame completed before and a re-run resumes it).
     """
     scene = load_scene(scene)
     if isinstance(frames, bool) or not isinstance(frames, int) or frames < 1:
@@ -142,14 +151,21 @@ def simulate_capture(
         raise CaptureError(f"{path} holds {done} frames, more than this job's {stop - start}; remove it")
     if done == stop - start:
         return {"path": str(path), "frames": [start, stop], "resumed_from": stop, "simulated": 0}
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+    except OSError as e:
+        raise CaptureError(f"{path}: cannot create its folder {path.parent} ({e.strerror or e})") from None
+    todo = stop - start - done
+    # Before the twin is built (tracing the room takes a while): refuse what cannot fit.
+    config = (twin_options or {}).get("config") or scene.config
+    check_free_space(path, config, todo, existing=path.stat().st_size if done else 0)
     twin = DigitalTwin(scene, device=device, **(twin_options or {}))
     period = twin.config.frame_repetition_time_s
-    path.parent.mkdir(parents=True, exist_ok=True)
     if done:
-        writer = CaptureWriter.resume(path, twin.config)
+        writer = CaptureWriter.resume(path, twin.config, expected_frames=todo)
     else:
         writer = CaptureWriter(path, twin.config, labels_schema={"count": "int64", "occupancy": "int64"},
-                               attrs=attrs)
+                               attrs=attrs, expected_frames=todo)
     with writer:
         first = start + done
         blocks = range(first // BLOCK_FRAMES, -(-stop // BLOCK_FRAMES))
@@ -179,7 +195,7 @@ def _existing_frames(path: Path, job: dict[str, Any]) -> int:
     Raises:
         CaptureError: ``path`` is something else (another job's capture, or not ours at all).
     """
-    if not path.exists():
+    if not path.exists() and not path.is_symlink():
         return 0
     refuse = CaptureError(
         f"{path} exists and was not made by this job (other scene, seed, frame count, shard or device "
@@ -187,15 +203,27 @@ def _existing_frames(path: Path, job: dict[str, Any]) -> int:
     )
     if not path.is_file():
         raise refuse
+    if writer_is_alive(path):
+        raise CaptureError(f"{path}: another process has this file open (a writer, or a reader: HDF5 readers lock files too); wait for it, close it or choose another output")
+    if fmt.looks_like_hdf5(path):
+        # Check the superblock (checksum, length) before HDF5 opens the file: a damaged file is not
+        # ours (the writer only ever gives its name to a file that opens), and HDF5 can hang for a
+        # long time on damaged metadata.
+        try:
+            status_flags(path)
+        except CaptureError as e:
+            raise CaptureError(f"{refuse} [{e}]") from None
+        if fmt.stored_eof_shortfall(path):
+            raise CaptureError(f"{refuse} [it is a truncated HDF5 file]")
     try:
         with open_capture(path) as cap:
             sim, done = cap.attrs.get("simulation"), cap.num_frames
     except CaptureError:
-        # Not a readable capture: a run killed before its first frame (no frames yet) or before its
-        # first flush (HDF5 that cannot be opened) starts again; anything else is not ours to overwrite.
+        # A run killed before its first complete frame holds no frame yet: it starts again;
+        # anything else that does not open is not ours to overwrite.
         sim, done = _raw_simulation_attr(path), 0
         if sim is _BROKEN_HDF5:
-            return 0
+            raise refuse from None
     if isinstance(sim, bytes):
         sim = sim.decode()
     if isinstance(sim, str):
@@ -218,16 +246,17 @@ _BROKEN_HDF5 = object()
 
 def _raw_simulation_attr(path: Path) -> Any:
     """The ``simulation`` attribute read with h5py alone; :data:`_BROKEN_HDF5` for an HDF5 file
-    h5py cannot open (a run killed before its first flush); None when there is none."""
+    h5py cannot open; None when there is none. The superblock was checked by the caller."""
     import h5py
 
-    with open(path, "rb") as f:
-        if f.read(8) != b"\x89HDF\r\n\x1a\n":
-            return None
+    if not fmt.looks_like_hdf5(path):
+        return None
+    # A killed SWMR writer leaves the SWMR-write flag (bit 2): only SWMR reading opens such a file.
+    swmr = bool(status_flags(path) & 0x04)
     try:
-        with h5py.File(path, "r") as f:
+        with h5py.File(path, "r", swmr=swmr) as f:
             return f.attrs.get("simulation")
-    except OSError:
+    except (OSError, RuntimeError):
         return _BROKEN_HDF5
 
 

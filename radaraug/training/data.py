@@ -24,7 +24,6 @@
 from __future__ import annotations
 
 import json
-import os
 import warnings
 from pathlib import Path
 from typing import Any
@@ -36,6 +35,7 @@ from torch.utils.data import ConcatDataset, DataLoader, Dataset, Subset
 from radaraug.config import RadarConfig
 from radaraug.errors import CalibrationError, ConfigError
 from radaraug.io import RadarCaptureDataset, open_capture
+from radaraug.io.atomic import atomic_write_json
 from radaraug.sensor.profile import PROFILE_VERSION, TwinProfile
 from radaraug.sim.dataset import SimulatedRadarDataset
 from radaraug.training.cache import CachedMaps, build_map_cache, cache_key, content_digest
@@ -365,9 +365,7 @@ class RadarDataModule(L.LightningDataModule):
         fit = fit_noise_figure(load_scene(self.hparams.scene), self.config, target, tracer_options=opts)
         fit["calibration"] = str(calibration)
         path.parent.mkdir(parents=True, exist_ok=True)
-        tmp = path.with_suffix(f".{os.getpid()}.tmp")
-        tmp.write_text(json.dumps(fit, indent=2))
-        os.replace(tmp, path)
+        atomic_write_json(path, fit, newline=False, indent=2)
         return fit
 
     def _estimate_clip(self, train: CachedMaps) -> tuple[float, float]:
@@ -391,7 +389,7 @@ class RadarDataModule(L.LightningDataModule):
                 "twin_profile": self.profile_info,
                 "classes": list(self.class_names), "config": self.config.to_dict(),
                 "train_class_counts": None if self.train_class_counts is None else self.train_class_counts.tolist()}
-        (Path(out) / "clip_range.json").write_text(json.dumps(info, indent=2))
+        atomic_write_json(Path(out) / "clip_range.json", info, newline=False, indent=2)
 
     def receiver_kind(self) -> str:
         """What the twin's receiver is: ``profile``, ``noise_fit`` or ``default``."""

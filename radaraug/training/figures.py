@@ -14,6 +14,7 @@ from typing import Any
 
 import torch
 
+from radaraug.io.atomic import atomic_savefig
 from radaraug.training.metrics import balanced_accuracy
 from radaraug.transforms import CombineRx
 
@@ -31,7 +32,7 @@ def _save(fig: Any, path: str | os.PathLike) -> Path:
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     fig.tight_layout()
-    fig.savefig(path, dpi=110)
+    atomic_savefig(fig, path, dpi=110)
     _plt().close(fig)
     return path
 
@@ -81,7 +82,7 @@ def rd_triplets(rows: Mapping[str, Sequence[tuple[str, torch.Tensor]]], path: st
     fig.suptitle("Range-Doppler maps: " + ", ".join(name for name, _ in next(iter(rows.values()))), fontsize=10)
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=110)
+    atomic_savefig(fig, path, dpi=110)
     plt.close(fig)
     return path
 

@@ -9,7 +9,6 @@ counting model must not be penalised for the absent class 2.
 
 from __future__ import annotations
 
-import json
 import os
 from collections.abc import Sequence
 from pathlib import Path
@@ -18,6 +17,7 @@ from typing import Any
 import torch
 
 from radaraug.errors import ConfigError
+from radaraug.io.atomic import atomic_savefig, atomic_write_json
 
 
 def confusion_matrix(preds: torch.Tensor, targets: torch.Tensor, num_classes: int) -> torch.Tensor:
@@ -103,7 +103,7 @@ def plot_confusion_matrix(
     fig.tight_layout()
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=110)
+    atomic_savefig(fig, path, dpi=110)
     plt.close(fig)
     return path
 
@@ -116,7 +116,7 @@ def save_metrics(
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     report = {**classification_report(cm, class_names), **(extra or {})}
-    (out / f"{name}_metrics.json").write_text(json.dumps(report, indent=2))
+    atomic_write_json(out / f"{name}_metrics.json", report, newline=False, indent=2)
     plot_confusion_matrix(cm, class_names, out / f"{name}_confusion.png",
                           title=f"{name}: balanced accuracy {report['balanced_accuracy']:.3f}")
     return report

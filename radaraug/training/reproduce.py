@@ -14,7 +14,6 @@ set: the spread reported is that of training, for a fixed twin sample.
 
 from __future__ import annotations
 
-import json
 import logging
 import os
 import platform
@@ -29,6 +28,7 @@ from typing import Any
 import torch
 
 from radaraug.errors import ConfigError
+from radaraug.io.atomic import atomic_write_json, atomic_write_text
 from radaraug.training.chain import METHODS, PROFILE_METHODS, TASKS, is_calibration_json
 from radaraug.units import DB_CONVENTION
 
@@ -109,7 +109,7 @@ def _run_one(task: str, method: str, seed: int, *, settings: ReproduceSettings, 
     report = dict(model.last_test_report or {})
     report.update({"task": task, "method": method, "seed": seed, "fit_seconds": fit_s,
                    "clip_range_db": list(dm.clip), "val_balanced_accuracy": None if val_bacc is None else float(val_bacc)})
-    (run_dir / "run.json").write_text(json.dumps(report, indent=2))
+    atomic_write_json(run_dir / "run.json", report, newline=False, indent=2)
     return report, model, dm
 
 
@@ -233,8 +233,8 @@ def reproduce(
                     "threads": torch.get_num_threads()},
         "db_convention": DB_CONVENTION,
     }
-    (out / "report.json").write_text(json.dumps(report, indent=2))
-    (out / "report.md").write_text(_markdown(report))
+    atomic_write_json(out / "report.json", report, newline=False, indent=2)
+    atomic_write_text(out / "report.md", _markdown(report))
     return report
 
 

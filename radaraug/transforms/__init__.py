@@ -11,10 +11,12 @@ Typical training pipeline (raw cube -> network image)::
 Units: ``radaraug.units.DB_CONVENTION`` (dBFS: both FFTs divided by their window sums).
 """
 
+from radaraug.transforms._rng import use_generator
 from radaraug.transforms.base import RadarTransform, RandomRadarTransform
 from radaraug.transforms.compose import RadarCompose
 from radaraug.transforms.dr import CalibratedDR, RandomDR
 from radaraug.transforms.image import ClipNormalize, Colormap, Resize
+from radaraug.transforms.per_item import augmentation_generator
 from radaraug.transforms.spectral import (
     CombineRx,
     DopplerFFT,
@@ -27,6 +29,8 @@ from radaraug.transforms.spectral import (
 from radaraug.transforms.windows import WINDOWS, get_window, noise_power_gain
 
 __all__ = [
+    "use_generator",
+    "augmentation_generator",
     "RadarTransform",
     "RandomRadarTransform",
     "RadarCompose",

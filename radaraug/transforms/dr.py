@@ -32,6 +32,7 @@ import torch
 
 from radaraug.config import RadarConfig
 from radaraug.errors import CalibrationError, ConfigError, RadarAugError
+from radaraug.io.atomic import atomic_write_text
 from radaraug.transforms._fit_sources import iter_source
 from radaraug.transforms._motion import DEFAULT_THRESHOLD_DB, WARN_FRACTION, motion_fraction
 from radaraug.transforms.base import Params, RandomRadarTransform
@@ -343,16 +344,17 @@ class CalibratedDR(_DRClamp):
         }
 
     def save(self, path: str | os.PathLike) -> None:
-        """Write the calibration as a small JSON file.
+        """Write the calibration as a small JSON file, atomically (:mod:`radaraug.io.atomic`: a
+        full disk or a crash leaves the previous file, or none, never a partial one).
 
         Raises:
             CalibrationError: the file cannot be written (the message names it).
         """
         text = json.dumps(self.to_dict(), indent=2) + "\n"
         try:
-            Path(path).write_text(text)
+            atomic_write_text(path, text)
         except OSError as e:
-            raise CalibrationError(f"cannot write calibration file {path}: {e}") from None
+            raise CalibrationError(f"cannot write calibration file {path}: {e.strerror or e}") from None
 
     @classmethod
     def load(cls, path: str | os.PathLike, **kwargs: Any) -> CalibratedDR:

@@ -25,7 +25,7 @@ def test_file_layout_and_attributes(h5_capture, tiny_config):
     with h5py.File(h5_capture, "r") as f:
         a = f.attrs
         assert a["format"] == "radaraug-capture"
-        assert a["format_version"] == "1.0"
+        assert a["format_version"] == "1.1"
         assert a["sample_units"] == "adc_counts"
         assert a["float_convention"] == FLOAT_CONVENTION
         assert a["db_convention"] == DB_CONVENTION
@@ -41,6 +41,7 @@ def test_file_layout_and_attributes(h5_capture, tiny_config):
         assert frames.compression == "gzip" and frames.shuffle
         assert f["timestamps"].dtype == np.float64
         np.testing.assert_array_equal(f["labels/count"][()], [0, 0, 1, 1, 2, 2])
+        assert f["frames_written"][()].tolist() == [6]
 
 
 def test_round_trip_is_exact(tmp_path, tiny_config):

@@ -108,7 +108,7 @@ def test_simulate_capture_python_api_validates() -> None:
 ])
 def test_cli_bad_input_is_one_line_error(argv, message, tmp_path, monkeypatch, capsys) -> None:
     monkeypatch.chdir(tmp_path)
-    assert main(argv) == 2
+    assert main(argv) == 3
     err = capsys.readouterr().err.strip()
     assert err.startswith("error: ") and message in err and "\n" not in err
     assert not (tmp_path / "x.h5").exists()
@@ -116,7 +116,7 @@ def test_cli_bad_input_is_one_line_error(argv, message, tmp_path, monkeypatch, c
 
 @pytest.mark.skipif(torch.cuda.is_available(), reason="checks the message on a machine without CUDA")
 def test_cli_cuda_without_a_gpu_is_one_line_error(tmp_path, capsys) -> None:
-    assert main(["simulate", "corridor", "--frames", "2", "-o", str(tmp_path / "x.h5"), "--device", "cuda"]) == 2
+    assert main(["simulate", "corridor", "--frames", "2", "-o", str(tmp_path / "x.h5"), "--device", "cuda"]) == 3
     assert "CUDA is not available" in capsys.readouterr().err
 
 

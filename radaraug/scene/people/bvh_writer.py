@@ -7,6 +7,7 @@ from pathlib import Path
 import torch
 
 from radaraug.errors import SceneError
+from radaraug.io.atomic import atomic_write_text
 from radaraug.scene.people import _rotations as rot
 from radaraug.scene.people.bvh_person import _BVH_TO_WORLD, UNIT_SCALES
 from radaraug.scene.people.skeleton import ANKLE_HEIGHT_FRACTION
@@ -132,7 +133,7 @@ def write_bvh(
     lines += ["MOTION", f"Frames: {n}", f"Frame Time: {1.0 / fps:.9f}"]
     lines += [" ".join(f"{float(v):.6f}" for v in row) for row in motion]
     out = Path(path)
-    out.write_text("\n".join(lines) + "\n", encoding="utf-8")
+    atomic_write_text(out, "\n".join(lines) + "\n")
     return out
 
 

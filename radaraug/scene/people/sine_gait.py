@@ -44,6 +44,7 @@ from typing import Any
 import torch
 
 from radaraug.errors import SceneError
+from radaraug.io.atomic import atomic_write_text
 from radaraug.scene.people import _rotations as rot
 from radaraug.scene.people.bvh_person import UNIT_SCALES
 from radaraug.scene.people.bvh_writer import hierarchy_lines
@@ -269,7 +270,7 @@ def write_sine_gait_bvh(gait: SineGait, path: str | Path, *, fps: float = 100.0,
     lines += ["MOTION", f"Frames: {motion.shape[0]}", f"Frame Time: {frame_time:.9f}"]
     lines += [" ".join(f"{float(x):.6f}" for x in row) for row in motion]
     out = Path(path)
-    out.write_text("\n".join(lines) + "\n", encoding="utf-8")
+    atomic_write_text(out, "\n".join(lines) + "\n")
     return out
 
 

@@ -1,0 +1,256 @@
+"""Recovering an HDF5 capture whose writer was killed, and knowing whether a writer is alive.
+
+A writer that opens an HDF5 file for (SWMR) writing sets the *file consistency flags* of the
+superblock and clears them when it closes the file. A writer killed with SIGKILL (or a power
+cut) never clears them, and HDF5 then refuses every later open for writing ("file is already
+open for write/SWMR write"); ``h5clear -s`` resets them through a file-access property that is
+internal to HDF5 and that h5py does not expose. radaraug does the same reset itself, on the
+superblock versions 2 and 3 that every radaraug capture has (``libver="latest"``):
+
+    signature (8) | version (1) | size of offsets O (1) | size of lengths (1) | flags (1)
+    | base address (O) | superblock extension address (O) | end-of-file address (O)
+    | root group object header address (O) | checksum (4)
+
+The checksum is Jenkins' lookup3 ``hashlittle`` (seed 0) of every byte before it, as HDF5
+computes it (``H5_checksum_lookup3``).
+
+A set flag alone cannot tell a dead writer from a live one (HDF5 drops its own file lock once
+SWMR writing starts), so radaraug's writer holds a shared ``flock`` on the file for as long as it
+writes (:func:`hold_writer_lock`). The flags are reset only when an exclusive lock can be taken,
+that is when no process holds the file open through radaraug's writer or through HDF5 (whose
+readers hold a shared lock while a file is open: a file being read is never reset either).
+"""
+
+from __future__ import annotations
+
+import errno
+import fcntl
+import os
+from pathlib import Path
+
+from radaraug.errors import CaptureError
+from radaraug.io import hdf5_format as fmt
+
+_MASK = 0xFFFFFFFF
+BUSY = (  # the refusal when another process holds the file
+    "another process has this file open (a writer, or a reader: HDF5 readers lock files too); "
+    "wait for it to finish or close it"
+)
+_FLAGS_OFFSET = 11
+
+
+def _rot(x: int, k: int) -> int:
+    return ((x << k) | (x >> (32 - k))) & _MASK
+
+
+def lookup3(data: bytes, seed: int = 0) -> int:
+    """Bob Jenkins' lookup3 ``hashlittle`` of ``data`` (the checksum HDF5 puts in its metadata).
+
+    Args:
+        data: the bytes to hash.
+        seed: the initial value (HDF5 uses 0).
+
+    Returns:
+        The 32-bit hash (HDF5 stores it little endian).
+    """
+    n = len(data)
+    a = b = c = (0xDEADBEEF + n + seed) & _MASK
+    i = 0
+    while n - i > 12:
+        a = (a + int.from_bytes(data[i : i + 4], "little")) & _MASK
+        b = (b + int.from_bytes(data[i + 4 : i + 8], "little")) & _MASK
+        c = (c + int.from_bytes(data[i + 8 : i + 12], "little")) & _MASK
+        # mix(a, b, c)
+        a = (a - c) & _MASK; a ^= _rot(c, 4); c = (c + b) & _MASK  # noqa: E702
+        b = (b - a) & _MASK; b ^= _rot(a, 6); a = (a + c) & _MASK  # noqa: E702
+        c = (c - b) & _MASK; c ^= _rot(b, 8); b = (b + a) & _MASK  # noqa: E702
+        a = (a - c) & _MASK; a ^= _rot(c, 16); c = (c + b) & _MASK  # noqa: E702
+        b = (b - a) & _MASK; b ^= _rot(a, 19); a = (a + c) & _MASK  # noqa: E702
+        c = (c - b) & _MASK; c ^= _rot(b, 4); b = (b + a) & _MASK  # noqa: E702
+        i += 12
+    tail = data[i:]
+    if not tail:  # only for empty input: the loop above leaves 1..12 bytes otherwise
+        return c
+    tail = tail + bytes(12 - len(tail))  # the byte-wise tail of hashlittle adds zeros for the rest
+    a = (a + int.from_bytes(tail[0:4], "little")) & _MASK
+    b = (b + int.from_bytes(tail[4:8], "little")) & _MASK
+    c = (c + int.from_bytes(tail[8:12], "little")) & _MASK
+    # final(a, b, c)
+    c ^= b; c = (c - _rot(b, 14)) & _MASK  # noqa: E702
+    a ^= c; a = (a - _rot(c, 11)) & _MASK  # noqa: E702
+    b ^= a; b = (b - _rot(a, 25)) & _MASK  # noqa: E702
+    c ^= b; c = (c - _rot(b, 16)) & _MASK  # noqa: E702
+    a ^= c; a = (a - _rot(c, 4)) & _MASK  # noqa: E702
+    b ^= a; b = (b - _rot(a, 14)) & _MASK  # noqa: E702
+    c ^= b; c = (c - _rot(b, 24)) & _MASK  # noqa: E702
+    return c
+
+
+def _superblock(head: bytes, path: Path) -> tuple[int, int]:
+    """``(flags, checksum offset)`` of a version 2/3 superblock at the start of ``head``."""
+    if len(head) < 12 or not head.startswith(fmt.HDF5_SIGNATURE):
+        raise CaptureError(f"{path}: not an HDF5 file (no HDF5 signature at its start)")
+    if head[8] not in (2, 3):
+        raise CaptureError(
+            f"{path}: HDF5 superblock version {head[8]} (radaraug captures have version 2 or 3); "
+            "cannot reset its consistency flags"
+        )
+    so = head[9]
+    end = 12 + 4 * so
+    if so not in (2, 4, 8) or len(head) < end + 4:
+        raise CaptureError(f"{path}: damaged HDF5 superblock (size of offsets {so})")
+    if int.from_bytes(head[end : end + 4], "little") != lookup3(head[:end]):
+        raise CaptureError(f"{path}: damaged HDF5 superblock (checksum mismatch)")
+    return head[_FLAGS_OFFSET], end
+
+
+def status_flags(path: str | os.PathLike) -> int:
+    """The file consistency flags of a version 2/3 superblock (0: closed cleanly).
+
+    Raises:
+        CaptureError: not HDF5, another superblock version, or a damaged superblock.
+    """
+    path = Path(path)
+    with open(path, "rb") as fh:
+        head = fh.read(12 + 4 * 8 + 4)
+    return _superblock(head, path)[0]
+
+
+def _flock(fd: int, how: int) -> None:
+    """``flock(fd, how | LOCK_NB)``; a filesystem without flock support (some network filesystems)
+    is treated as unlocked: there radaraug cannot tell a live writer from a killed one."""
+    try:
+        fcntl.flock(fd, how | fcntl.LOCK_NB)
+    except BlockingIOError:
+        raise
+    except OSError as e:
+        if e.errno not in (errno.ENOLCK, errno.EOPNOTSUPP, errno.ENOSYS, errno.EINVAL):
+            raise
+
+
+def writer_is_alive(path: str | os.PathLike) -> bool:
+    """True when another process holds a lock on ``path``: radaraug's writer lock, or the lock HDF5
+    takes while a file is open (readers included); False when nobody does."""
+    try:
+        fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK)
+    except OSError as e:
+        raise CaptureError(f"{path}: cannot open ({e.strerror})") from None
+    try:
+        _flock(fd, fcntl.LOCK_EX)
+    except BlockingIOError:
+        return True
+    finally:
+        os.close(fd)  # closing releases the lock when it was taken
+    return False
+
+
+def _reset_flags(fd: int, path: Path) -> bool:
+    """Reset the flags through ``fd`` (the caller holds the exclusive lock); True when they were set."""
+    head = os.pread(fd, 12 + 4 * 8 + 4, 0)
+    flags, end = _superblock(head, path)
+    if flags == 0:
+        return False
+    so = head[9]
+    base = int.from_bytes(head[12 : 12 + so], "little")
+    eof = base + int.from_bytes(head[12 + 2 * so : 12 + 3 * so], "little")
+    fixed = bytearray(head[:end])
+    fixed[_FLAGS_OFFSET] = 0
+    try:
+        # A writer stopped by a full disk may have recorded an end of file that its last (failed)
+        # write never reached; HDF5 refuses such a file as truncated. Nothing committed lives
+        # there (readers serve only frames_written), so the gap is filled with (sparse) zeros.
+        if os.fstat(fd).st_size < eof:
+            os.ftruncate(fd, eof)
+        os.pwrite(fd, bytes(fixed) + lookup3(bytes(fixed)).to_bytes(4, "little"), 0)
+        os.fsync(fd)
+    except OSError as e:
+        raise CaptureError(f"{path}: cannot rewrite the HDF5 superblock ({e.strerror})") from None
+    return True
+
+
+def _open_exclusive(path: Path, flags: int) -> int:
+    try:
+        fd = os.open(path, flags | os.O_NONBLOCK)
+    except OSError as e:
+        raise CaptureError(f"{path}: cannot open for writing ({e.strerror})") from None
+    try:
+        _flock(fd, fcntl.LOCK_EX)
+    except BlockingIOError:
+        os.close(fd)
+        raise CaptureError(
+            f"{path}: {BUSY}"
+        ) from None
+    except BaseException:
+        os.close(fd)
+        raise
+    return fd
+
+
+def clear_status_flags(path: str | os.PathLike) -> bool:
+    """Reset the consistency flags left by a killed writer, like ``h5clear -s`` (superblock v2/v3).
+
+    The superblock is rewritten in place (flags byte and checksum) while an exclusive ``flock``
+    on the file proves that no live writer holds it. A file shorter than the end of file its
+    superblock records (a writer stopped by a full disk) is first extended to it with zeros.
+
+    Returns:
+        True when flags were set and reset, False when the file was already clean.
+
+    Raises:
+        CaptureError: a live process holds the file for writing, or the file is not an HDF5 file
+            with a version 2/3 superblock, or its superblock is damaged or cannot be written.
+    """
+    path = Path(path)
+    fd = _open_exclusive(path, os.O_RDWR)
+    try:
+        return _reset_flags(fd, path)
+    finally:
+        os.close(fd)
+
+
+def hold_writer_lock(path: str | os.PathLike, *, create: bool = False, reset_flags: bool = False) -> int:
+    """Take the writer lock of ``path``: a shared ``flock`` on the file itself, held until released.
+
+    An exclusive lock is taken first, so a second writer (or a flag reset) is refused while the
+    first is alive; with ``reset_flags`` the flags a killed writer left are reset under that
+    exclusive lock (:func:`clear_status_flags`). The lock is then turned into a shared one so
+    that readers which lock the file (HDF5 does, shared) can open it while it is recorded. (flock
+    converts by dropping and re-taking; a second writer slipping into that gap would itself hold
+    the lock, and this one fails with the same error.)
+
+    Args:
+        path: the capture file.
+        create: create an empty file when there is none (a new capture).
+        reset_flags: reset stale consistency flags (a resume).
+
+    Returns:
+        The file descriptor holding the lock; :func:`release_writer_lock` closes it.
+
+    Raises:
+        CaptureError: the file cannot be opened (missing folder, permissions, a folder in the
+            way), another process holds it, or its flags cannot be reset.
+    """
+    path = Path(path)
+    fd = _open_exclusive(path, os.O_RDWR | (os.O_CREAT if create else 0))
+    try:
+        if reset_flags:
+            _reset_flags(fd, path)
+        try:
+            _flock(fd, fcntl.LOCK_SH)
+        except BlockingIOError:
+            raise CaptureError(
+                f"{path}: {BUSY}"
+            ) from None
+    except BaseException:
+        os.close(fd)
+        raise
+    return fd
+
+
+def release_writer_lock(fd: int | None) -> None:
+    """Release a lock taken by :func:`hold_writer_lock` (None: nothing to do)."""
+    if fd is not None:
+        try:
+            os.close(fd)
+        except OSError:
+            pass
