@@ -194,6 +194,7 @@ class CalibratedDR(_DRClamp):
             if value is not None and not ok(value):
                 raise CalibrationError(f"CalibratedDR: {name} has an invalid value {safe_repr(value)}")
         self.source = source
+        self.file: str | None = None  # the calibration file it was loaded from, if any
         self.num_frames = num_frames
         self.motion = motion
 
@@ -202,7 +203,8 @@ class CalibratedDR(_DRClamp):
         x = super().check_input(x)
         if self.map_shape is not None and tuple(x.shape[-3:]) != self.map_shape:
             raise CalibrationError(
-                f"CalibratedDR fitted on maps of shape (rx, range, doppler) = {self.map_shape}"
+                f"CalibratedDR{f' ({self.file})' if self.file else ''} fitted on maps of shape "
+                f"(rx, range, doppler) = {self.map_shape}"
                 f"{f' from {self.source}' if self.source else ''}, got {tuple(x.shape[-3:])}"
             )
         return x
@@ -419,7 +421,7 @@ class CalibratedDR(_DRClamp):
                 isinstance(chain, list) and all(isinstance(s, dict) for s in chain)
             ):
                 raise TypeError("chain must be a list of step objects")
-            return cls(
+            loaded = cls(
                 float(mean),
                 float(std),
                 chain=chain,
@@ -430,6 +432,8 @@ class CalibratedDR(_DRClamp):
                 motion=data.get("motion_fraction"),
                 **kwargs,
             )
+            loaded.file = str(path)  # named by the errors raised when it is used
+            return loaded
         except KeyError as e:
             raise CalibrationError(f"calibration file {path} lacks the key {e}") from None
         except CalibrationError as e:

@@ -548,6 +548,11 @@ def run_one(case: Case, case_dir: Path) -> str:
 
 
 def _child(cases: list[Case], start: int, root: Path, conn, memory_bytes: int) -> None:
+    import torch
+
+    # The parent's OpenMP thread pool does not survive fork(): a parallel torch op in the child
+    # would wait for threads that do not exist. Single-threaded ops never enter the pool.
+    torch.set_num_threads(1)
     # Bound the address space so an unbounded allocation becomes a MemoryError (a finding),
     # not a machine that swaps.
     vm = 0

@@ -42,7 +42,7 @@ def test_round_trip(tmp_path) -> None:
 )
 def test_hostile_shapes(tmp_path, shape, fragment) -> None:
     p = tmp_path / "radar.npy"
-    _with_header(p, "{'descr': '<u2', 'fortran_order': False, 'shape': %s, }" % shape, bytes(144))
+    _with_header(p, "{'descr': '<u2', 'fortran_order': False, 'shape': " + shape + ", }", bytes(144))
     t = time.monotonic()
     with pytest.raises(CaptureError, match=fragment) as err:
         open_npy(p)
