@@ -21,12 +21,16 @@ from __future__ import annotations
 import dataclasses
 import json
 import math
+import numbers
 import os
 from collections.abc import Mapping
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, NoReturn
+
+import numpy as np
 
 from radaraug.errors import ConfigError
+from radaraug.safe_read import load_json, parse_json, safe_repr
 
 SPEED_OF_LIGHT = 299_792_458.0
 """Speed of light in vacuum, m/s."""
@@ -53,6 +57,20 @@ _REQUIRED_INFINEON_KEYS = _INFINEON_KEYS[:11]
 DEFAULT_HP_CUTOFF_HZ = 80_000.0
 DEFAULT_AAF_CUTOFF_HZ = 500_000.0
 DEFAULT_ADC_DELAY_S = 3.1e-6
+
+# Plausible ranges (docs/radar_config.md): wide enough for any FMCW sensor radaraug may model,
+# narrow enough that a corrupted value cannot pass as physics or size a huge allocation.
+FREQUENCY_RANGE_HZ = (1e9, 1e12)
+MAX_SAMPLE_RATE_HZ = 1e10
+MAX_CHIRP_REPETITION_TIME_S = 1.0
+MAX_FRAME_REPETITION_TIME_S = 3600.0
+MAX_SAMPLES_PER_CHIRP = 65536
+MAX_CHIRPS_PER_FRAME = 65536
+MAX_SAMPLES_PER_FRAME = 2**24
+"""Largest frame, rx x chirps x samples (32 MiB of uint16 counts)."""
+MAX_ANTENNAS = 16
+ADC_BITS_RANGE = (8, 16)
+"""ADC resolutions accepted: captures store counts as uint16."""
 
 
 def _default_rx_positions(n_rx: int, wavelength: float) -> tuple[tuple[float, float, float], ...]:
@@ -115,84 +133,123 @@ class RadarConfig:
 
     # ------------------------------------------------------------------ validation
     def __post_init__(self) -> None:
-        def fail(msg: str) -> None:
+        # Every field is checked for its type and a physically plausible range here, the one
+        # validation layer for configs from code, radaraug JSON, HDF5 attributes and Infineon
+        # config.json files (docs/radar_config.md lists the ranges).
+        def fail(msg: str) -> NoReturn:
             raise ConfigError(f"invalid RadarConfig: {msg}")
 
-        # Normalise containers to tuples so the object is hashable and truly immutable.
-        for name in ("rx_antennas", "tx_antennas"):
-            value = getattr(self, name)
-            try:
-                value = tuple(int(v) for v in value)
-            except (TypeError, ValueError):
-                fail(f"{name} must be a list of antenna numbers, got {value!r}")
+        def set_(name: str, value: Any) -> None:
             object.__setattr__(self, name, value)
-        if self.rx_positions_m is not None:
-            try:
-                pos = tuple(tuple(float(c) for c in p) for p in self.rx_positions_m)
-            except (TypeError, ValueError):
-                fail("rx_positions_m must be a list of (x, y, z) triples")
-            if any(len(p) != 3 for p in pos):
-                fail("rx_positions_m must be a list of (x, y, z) triples")
-            object.__setattr__(self, "rx_positions_m", pos)
-        try:
-            object.__setattr__(self, "tx_position_m", tuple(float(c) for c in self.tx_position_m))
-        except (TypeError, ValueError):
-            fail("tx_position_m must be an (x, y, z) triple")
 
-        for name in (
-            "start_frequency_Hz",
-            "end_frequency_Hz",
-            "sample_rate_Hz",
-            "chirp_repetition_time_s",
-            "frame_repetition_time_s",
-        ):
+        def real(name: str, lo: float, hi: float, *, lo_open: bool = True) -> float:
             v = getattr(self, name)
-            if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) or v <= 0:
-                fail(f"{name} must be a finite positive number, got {v!r}")
-        for name in ("num_samples_per_chirp", "num_chirps_per_frame", "adc_bits"):
+            if isinstance(v, (bool, np.bool_)) or not isinstance(v, (numbers.Real, np.floating, np.integer)):
+                fail(f"{name} must be a number, got {safe_repr(v)} ({type(v).__name__})")
+            if isinstance(v, (np.floating, np.integer)):
+                v = v.item()  # plain Python numbers, so to_dict() stays JSON-able
+                set_(name, v)
+            try:
+                ok = math.isfinite(v) and (v > lo if lo_open else v >= lo) and v <= hi
+            except OverflowError:  # an int too large for a float
+                ok = False
+            if not ok:
+                kind = "a finite positive number" if lo_open and lo == 0 else "a finite number"
+                bound = "(" if lo_open else "["
+                fail(f"{name} must be {kind} in {bound}{lo:g}, {hi:g}], got {safe_repr(v)}")
+            return v
+
+        def integer(name: str, lo: int, hi: int) -> int:
             v = getattr(self, name)
-            if isinstance(v, bool) or not isinstance(v, int) or v <= 0:
-                fail(f"{name} must be a positive integer, got {v!r}")
-        if self.end_frequency_Hz <= self.start_frequency_Hz:
-            fail(
-                f"end_frequency_Hz ({self.end_frequency_Hz:g}) must exceed start_frequency_Hz "
-                f"({self.start_frequency_Hz:g})"
-            )
-        if self.num_samples_per_chirp < 2 or self.num_chirps_per_frame < 1:
-            fail("need at least 2 samples per chirp and 1 chirp per frame")
-        if not self.rx_antennas:
-            fail("rx_antennas must name at least one antenna")
-        if not self.tx_antennas:
-            fail("tx_antennas must name at least one antenna")
-        if len(set(self.rx_antennas)) != len(self.rx_antennas):
-            fail(f"rx_antennas has duplicates: {self.rx_antennas}")
-        if not 0 <= int(self.tx_power_level) <= 31:
-            fail(f"tx_power_level must be in 0..31, got {self.tx_power_level}")
-        if not 0 <= float(self.if_gain_dB) <= 80:
-            fail(f"if_gain_dB must be in 0..80 dB, got {self.if_gain_dB}")
-        if not math.isfinite(self.adc_delay_s) or self.adc_delay_s < 0:
-            fail(f"adc_delay_s must be >= 0, got {self.adc_delay_s}")
+            kind = "a positive integer" if lo >= 1 else "an integer"
+            if isinstance(v, (bool, np.bool_)) or not isinstance(v, (numbers.Integral, np.integer)):
+                fail(f"{name} must be {kind}, got {safe_repr(v)} ({type(v).__name__})")
+            v = int(v)
+            if not lo <= v <= hi:
+                fail(f"{name} must be {kind} in {lo}..{hi}, got {safe_repr(v)}")
+            set_(name, v)
+            return v
+
+        def antennas(name: str) -> tuple[int, ...]:
+            value = getattr(self, name)
+            # A string is iterable too: "64" must not become antennas (6, 4).
+            if not isinstance(value, (list, tuple, np.ndarray)):
+                fail(f"{name} must be a list of antenna numbers, got {safe_repr(value)} ({type(value).__name__})")
+            out = []
+            for v in value:
+                if isinstance(v, float) and v.is_integer():
+                    v = int(v)
+                if isinstance(v, (bool, np.bool_)) or not isinstance(v, (numbers.Integral, np.integer)):
+                    fail(f"{name} must hold integer antenna numbers, got {safe_repr(value)}")
+                if not 1 <= int(v) <= MAX_ANTENNAS:
+                    fail(f"{name} must hold antenna numbers 1..{MAX_ANTENNAS}, got {safe_repr(value)}")
+                out.append(int(v))
+            if not out:
+                fail(f"{name} must name at least one antenna")
+            if len(set(out)) != len(out):
+                fail(f"{name} has duplicates: {tuple(out)}")
+            set_(name, tuple(out))
+            return tuple(out)
+
+        def position(value: Any, what: str) -> tuple[float, float, float]:
+            if not isinstance(value, (list, tuple, np.ndarray)) or len(value) != 3:
+                fail(f"{what} must be an (x, y, z) triple in metres, got {safe_repr(value)}")
+            try:
+                pos = tuple(float(c) for c in value)
+                bad = any(isinstance(c, (bool, str, bytes)) for c in value) or not all(
+                    math.isfinite(c) for c in pos
+                )
+            except (TypeError, ValueError, OverflowError):
+                bad = True
+            if bad:
+                fail(f"{what} must be an (x, y, z) triple of finite numbers, got {safe_repr(value)}")
+            return pos  # type: ignore[return-value]
+
+        rx = antennas("rx_antennas")
+        tx = antennas("tx_antennas")
+        mimo = self.mimo_mode
+        if not isinstance(mimo, str) or mimo != "off":
+            fail(f"mimo_mode must be \"off\": MIMO is not supported, got {safe_repr(mimo)}")
+        if len(tx) != 1:
+            fail(f"exactly one TX antenna is supported (MIMO is not), got tx_antennas {tx}")
+        if self.rx_positions_m is not None:
+            if not isinstance(self.rx_positions_m, (list, tuple, np.ndarray)):
+                fail(f"rx_positions_m must be a list of (x, y, z) triples, got {safe_repr(self.rx_positions_m)}")
+            set_("rx_positions_m", tuple(position(p, "each rx_positions_m entry") for p in self.rx_positions_m))
+            if len(self.rx_positions_m) != len(rx):
+                fail(f"rx_positions_m has {len(self.rx_positions_m)} entries for {len(rx)} RX antennas")
+        set_("tx_position_m", position(self.tx_position_m, "tx_position_m"))
+
+        start = real("start_frequency_Hz", *FREQUENCY_RANGE_HZ, lo_open=False)
+        end = real("end_frequency_Hz", *FREQUENCY_RANGE_HZ, lo_open=False)
+        real("sample_rate_Hz", 0, MAX_SAMPLE_RATE_HZ)
+        prt = real("chirp_repetition_time_s", 0, MAX_CHIRP_REPETITION_TIME_S)
+        frame_time = real("frame_repetition_time_s", 0, MAX_FRAME_REPETITION_TIME_S)
+        n = integer("num_samples_per_chirp", 2, MAX_SAMPLES_PER_CHIRP)
+        m = integer("num_chirps_per_frame", 1, MAX_CHIRPS_PER_FRAME)
+        integer("adc_bits", *ADC_BITS_RANGE)
+        integer("tx_power_level", 0, 31)
+        real("if_gain_dB", 0, 80, lo_open=False)
+        real("adc_delay_s", 0, MAX_CHIRP_REPETITION_TIME_S, lo_open=False)
         for name in ("hp_cutoff_Hz", "aaf_cutoff_Hz"):
-            v = getattr(self, name)
-            if v is not None and (not math.isfinite(v) or v <= 0):
-                fail(f"{name} must be positive or None, got {v!r}")
-        if self.chirp_time_s > self.chirp_repetition_time_s * (1 + 1e-9):
+            if getattr(self, name) is not None:
+                real(name, 0, MAX_SAMPLE_RATE_HZ)
+        if end <= start:
+            fail(f"end_frequency_Hz ({end:g}) must exceed start_frequency_Hz ({start:g})")
+        if len(rx) * m * n > MAX_SAMPLES_PER_FRAME:
             fail(
-                f"chirp (ADC delay + {self.num_samples_per_chirp} samples = "
-                f"{self.chirp_time_s * 1e6:.2f} us) is longer than the chirp repetition time "
-                f"({self.chirp_repetition_time_s * 1e6:.2f} us)"
+                f"a frame of {len(rx)} RX x {m} chirps x {n} samples holds more than "
+                f"{MAX_SAMPLES_PER_FRAME} samples"
             )
-        if self.num_chirps_per_frame * self.chirp_repetition_time_s > self.frame_repetition_time_s * (
-            1 + 1e-9
-        ):
+        if self.chirp_time_s > prt * (1 + 1e-9):
             fail(
-                f"{self.num_chirps_per_frame} chirps x {self.chirp_repetition_time_s * 1e6:.1f} us do "
-                f"not fit in the frame repetition time {self.frame_repetition_time_s * 1e3:.2f} ms"
+                f"chirp (ADC delay + {n} samples = {self.chirp_time_s * 1e6:.2f} us) is longer than the "
+                f"chirp repetition time ({prt * 1e6:.2f} us)"
             )
-        if self.rx_positions_m is not None and len(self.rx_positions_m) != len(self.rx_antennas):
+        if m * prt > frame_time * (1 + 1e-9):
             fail(
-                f"rx_positions_m has {len(self.rx_positions_m)} entries for "
-                f"{len(self.rx_antennas)} RX antennas"
+                f"{m} chirps x {prt * 1e6:.1f} us do not fit in the frame repetition time "
+                f"{frame_time * 1e3:.2f} ms"
             )
 
     # ------------------------------------------------------------------ presets
@@ -385,7 +442,7 @@ class RadarConfig:
             return cls(**dict(data))
         except ConfigError as e:
             raise ConfigError(f"{e}{where}") from None
-        except TypeError as e:
+        except (TypeError, ValueError, OverflowError) as e:
             raise ConfigError(f"invalid radar config{where}: {e}") from None
 
     def to_json(self, path: str | os.PathLike | None = None) -> str:
@@ -404,15 +461,9 @@ class RadarConfig:
         text = str(text_or_path)
         if not text.lstrip().startswith("{"):
             source = text
-            try:
-                with open(text_or_path) as fh:
-                    text = fh.read()
-            except OSError as e:
-                raise ConfigError(f"cannot read radar config {source}: {e.strerror or e}") from None
-        try:
-            data = json.loads(text)
-        except json.JSONDecodeError as e:
-            raise ConfigError(f"radar config {source or '(text)'} is not valid JSON: {e}") from None
+            data = load_json(text_or_path, error=ConfigError, what="radar config")
+        else:
+            data = parse_json(text, source="radar config (text)", error=ConfigError)
         # radaraug's own JSON always carries adc_bits; Infineon's never does.
         if isinstance(data, Mapping) and "adc_bits" not in data:
             return cls.from_infineon(data, source=source)
@@ -447,15 +498,9 @@ class RadarConfig:
         """
         if not isinstance(data, Mapping):
             source = str(data)
-            try:
-                with open(data) as fh:
-                    data = json.load(fh)
-            except FileNotFoundError:
-                raise ConfigError(f"radar config {source} does not exist") from None
-            except OSError as e:
-                raise ConfigError(f"cannot read radar config {source}: {e.strerror or e}") from None
-            except json.JSONDecodeError as e:
-                raise ConfigError(f"radar config {source} is not valid JSON: {e}") from None
+            data = load_json(data, error=ConfigError, what="radar config")
+            if not isinstance(data, Mapping):
+                raise ConfigError(f"{source}: radar config must be a JSON object, got {type(data).__name__}")
         where = source or "(dict)"
         shape: Any = data
         if "device_config" in data:
@@ -482,6 +527,8 @@ class RadarConfig:
             return cls(**kwargs)
         except ConfigError as e:
             raise ConfigError(f"{e} (in {where})") from None
+        except (TypeError, ValueError, OverflowError) as e:
+            raise ConfigError(f"invalid radar config (in {where}): {e}") from None
 
     def describe(self) -> str:
         """A short human-readable summary with the derived values."""

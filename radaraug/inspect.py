@@ -7,6 +7,7 @@ whether anything moves (energy off zero Doppler against what noise alone gives).
 
 from __future__ import annotations
 
+import collections
 import numbers
 from typing import Any
 
@@ -15,6 +16,9 @@ import torch
 
 from radaraug.errors import RadarAugError
 from radaraug.units import DB_CONVENTION, counts_to_float
+
+MAX_SUMMARY_SAMPLES = 2**24
+"""Most ADC samples ``summarize_capture`` analyses (frames beyond this are left out)."""
 
 
 def noise_floor_db(db: torch.Tensor) -> float | None:
@@ -34,7 +38,8 @@ def summarize_capture(reader: Any, *, max_frames: int = 256) -> dict[str, Any]:
 
     Args:
         reader: an open capture reader.
-        max_frames: frames read for the statistics (evenly from the start).
+        max_frames: frames read for the statistics (from the start), at most
+            :data:`MAX_SUMMARY_SAMPLES` samples in all.
 
     Returns:
         A JSON-able dict.
@@ -48,7 +53,9 @@ def summarize_capture(reader: Any, *, max_frames: int = 256) -> dict[str, Any]:
     from radaraug.transforms._motion import WARN_FRACTION, motion_fraction
 
     cfg = reader.config
-    n = min(reader.num_frames, int(max_frames))
+    frame_samples = cfg.num_rx * cfg.num_chirps_per_frame * cfg.num_samples_per_chirp
+    # The statistics hold a few float64 copies of the frames read: cap them, whatever max_frames says.
+    n = min(reader.num_frames, int(max_frames), max(1, MAX_SUMMARY_SAMPLES // frame_samples))
     raw = reader.read(0, n, as_float=False)  # (F, rx, chirps, samples) int32 codes, read once
     counts = raw.to(torch.float64)
     full = cfg.adc_full_scale_counts
@@ -101,5 +108,12 @@ def summarize_capture(reader: Any, *, max_frames: int = 256) -> dict[str, Any]:
 
 
 def _label_summary(values: np.ndarray) -> dict[str, Any]:
-    uniq, cnt = np.unique(np.asarray(values), return_counts=True)
-    return {str(u): int(c) for u, c in zip(uniq.tolist(), cnt.tolist())}
+    """``{value as text: frame count}`` of one label."""
+    arr = np.asarray(values)
+    if arr.dtype.kind in "biufU":
+        uniq, cnt = np.unique(arr, return_counts=True)
+        return {str(u): int(c) for u, c in zip(uniq.tolist(), cnt.tolist())}
+    # The readers only serve numbers, bools and strings; anything else (a reader from elsewhere)
+    # is summarized by its text, never sorted (mixed types cannot be).
+    counts = collections.Counter(str(v) for v in arr.reshape(-1).tolist())
+    return dict(sorted(counts.items()))

@@ -166,3 +166,36 @@ def test_infineon_errors_name_the_file(tmp_path) -> None:
     other.write_text(json.dumps({"device_config": {"fmcw_multi_shape": {}}}))
     with pytest.raises(ConfigError, match="fmcw_single_shape"):
         RadarConfig.from_infineon(other)
+
+
+HOSTILE_FIELDS = [
+    ("tx_power_level", None), ("tx_power_level", [1]), ("tx_power_level", {}), ("tx_power_level", "abc"),
+    ("tx_power_level", float("nan")), ("tx_power_level", float("inf")), ("tx_power_level", -float("inf")),
+    ("if_gain_dB", None), ("if_gain_dB", "abc"), ("if_gain_dB", "64"), ("hp_cutoff_Hz", "abc"),
+    ("aaf_cutoff_Hz", "500k"), ("rx_antennas", [0]), ("rx_antennas", [-2]), ("rx_antennas", [99]),
+    ("rx_antennas", "1"), ("rx_antennas", [1.9]), ("tx_antennas", "64"), ("tx_antennas", [1, 2]),
+    ("start_frequency_Hz", 64.5), ("end_frequency_Hz", 1e308), ("sample_rate_Hz", 1e308),
+    ("frame_repetition_time_s", 1e308), ("mimo_mode", "tdm"), ("adc_bits", 64), ("adc_bits", 1000),
+    ("adc_bits", True), ("num_samples_per_chirp", 2**22), ("tx_power_level", 10**5000),
+    ("rx_positions_m", [[0, 0, float("nan")]] * 3), ("tx_position_m", "abc"),
+]
+
+
+@pytest.mark.parametrize("field, value", HOSTILE_FIELDS, ids=[f"{f}-{i}" for i, (f, _) in enumerate(HOSTILE_FIELDS)])
+def test_hostile_values_are_one_config_error_naming_the_field(field, value) -> None:
+    """Every field is checked for type and plausible range (docs/radar_config.md); before, these
+    gave bare TypeError/ValueError/OverflowError or were accepted ("64" as antennas (6, 4))."""
+    with pytest.raises(ConfigError, match=field):
+        RadarConfig.bgt60tr13c(**{field: value})
+    data = RadarConfig.bgt60tr13c().to_dict()
+    data[field] = value
+    with pytest.raises(ConfigError, match=f"{field}.*in cfg.json"):
+        RadarConfig.from_dict(data, source="cfg.json")
+
+
+def test_numpy_scalars_become_plain_numbers() -> None:
+    import numpy as np
+
+    cfg = RadarConfig.bgt60tr13c(num_chirps_per_frame=np.int64(32), sample_rate_Hz=np.float32(1e6))
+    assert type(cfg.num_chirps_per_frame) is int and type(cfg.sample_rate_Hz) is float
+    json.dumps(cfg.to_dict())

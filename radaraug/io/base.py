@@ -148,9 +148,46 @@ class CaptureReader(abc.ABC):
         return s, e
 
 
+def timestamp_problem(ts: np.ndarray) -> str | None:
+    """Why per-frame timestamps cannot be used (NaN/Inf, or going backwards), or None."""
+    if not np.isfinite(ts).all():
+        return "timestamps hold NaN or Inf"
+    back = np.flatnonzero(np.diff(ts) < 0)
+    if len(back):
+        # A negative duration or frame interval is never right; which stamps are wrong is unknowable.
+        return f"timestamps go backwards (frame {int(back[0]) + 1} is earlier than frame {int(back[0])})"
+    return None
+
+
+_LABEL_SCALARS = (bool, int, float, str, np.bool_, np.integer, np.floating, np.str_)
+
+
 def broadcast_label(name: str, value: Any, num_frames: int, source: Path) -> np.ndarray:
-    """A file-level label value as a per-frame array (scalars repeat; arrays must fit)."""
-    arr = np.asarray(value)
+    """A file-level label value as a per-frame array (scalars repeat; arrays must fit).
+
+    A label is a number, a bool or a string, or ``num_frames`` of them of one kind. Anything else
+    (null, objects, nested or mixed lists, an empty HDF5 attribute) is a :class:`CaptureError`:
+    a training label must never be guessed.
+    """
+    if isinstance(value, bytes):
+        value = value.decode("utf-8", errors="replace")
+    if isinstance(value, (list, tuple)) and not all(isinstance(v, _LABEL_SCALARS) for v in value):
+        kinds = sorted({type(v).__name__ for v in value})
+        raise CaptureError(f"{source}: label {name!r} holds {kinds} values; labels must be numbers, bools or strings")
+    if isinstance(value, (list, tuple)) and len({type(v) for v in value}) > 1 and not all(
+        isinstance(v, (int, float)) and not isinstance(v, bool) for v in value
+    ):
+        raise CaptureError(f"{source}: label {name!r} mixes kinds of values ({sorted({type(v).__name__ for v in value})})")
+    if not isinstance(value, (*_LABEL_SCALARS, list, tuple, np.ndarray)):
+        raise CaptureError(
+            f"{source}: label {name!r} is {type(value).__name__}; labels must be numbers, bools or strings"
+        )
+    try:
+        arr = np.asarray(value)
+    except (ValueError, OverflowError) as e:
+        raise CaptureError(f"{source}: label {name!r} is not a usable value ({e})") from None
+    if arr.dtype.kind not in "biufU":
+        raise CaptureError(f"{source}: label {name!r} has dtype {arr.dtype}; labels must be numbers, bools or strings")
     if arr.ndim == 0:
         return np.full(num_frames, arr.item() if arr.dtype.kind != "U" else str(arr), dtype=arr.dtype)
     if arr.shape != (num_frames,):

@@ -10,6 +10,7 @@ from radaraug.io import hdf5_format as fmt
 from radaraug.io.base import CaptureReader
 from radaraug.io.hdf5_reader import HDF5Capture
 from radaraug.io.infineon import InfineonRecording
+from radaraug.safe_read import regular_file_size
 
 
 def open_capture(path: str | os.PathLike) -> CaptureReader:
@@ -25,13 +26,16 @@ def open_capture(path: str | os.PathLike) -> CaptureReader:
         ...     x = cap.read(0, 10)          # float32 (10, rx, chirps, samples)
 
     Raises:
-        CaptureError: the path does not exist, is of no known kind, or its reader refuses it.
+        CaptureError: the path does not exist, is of no known kind, is not a regular file or
+            folder (a FIFO, a device), or its reader refuses it.
     """
     p = Path(path)
-    if not p.exists():
+    if not os.path.lexists(p):
         raise CaptureError(f"{p}: capture does not exist")
     if p.is_dir() or p.name in ("radar.npy", "config.json"):
         return InfineonRecording(p)
+    # A FIFO would block the signature check's open(); /dev/zero would pass any size check.
+    regular_file_size(p, error=CaptureError, what="capture")
     if p.suffix.lower() in fmt.HDF5_SUFFIXES or fmt.looks_like_hdf5(p):
         return HDF5Capture(p)
     raise CaptureError(

@@ -22,7 +22,11 @@ other major versions.
 from __future__ import annotations
 
 import os
+from dataclasses import dataclass
 from pathlib import Path
+
+from radaraug.errors import CaptureError
+from radaraug.safe_read import open_regular
 
 FORMAT_NAME = "radaraug-capture"
 FORMAT_VERSION = "1.1"
@@ -52,38 +56,120 @@ RESERVED_ATTRS = frozenset(
 )
 
 
+MASK32 = 0xFFFFFFFF
+
+
+def _rot(x: int, k: int) -> int:
+    return ((x << k) | (x >> (32 - k))) & MASK32
+
+
+def lookup3(data: bytes, initval: int = 0) -> int:
+    """Bob Jenkins' lookup3 ``hashlittle``: the checksum HDF5 stores after its v2/v3 superblocks
+    and other metadata (``H5_checksum_lookup3``)."""
+    length = len(data)
+    a = b = c = (0xDEADBEEF + length + initval) & MASK32
+    if length == 0:
+        return c
+    pos = 0
+    while length - pos > 12:
+        a = (a + int.from_bytes(data[pos : pos + 4], "little")) & MASK32
+        b = (b + int.from_bytes(data[pos + 4 : pos + 8], "little")) & MASK32
+        c = (c + int.from_bytes(data[pos + 8 : pos + 12], "little")) & MASK32
+        # mix(a, b, c)
+        a = (a - c) & MASK32; a ^= _rot(c, 4); c = (c + b) & MASK32  # noqa: E702
+        b = (b - a) & MASK32; b ^= _rot(a, 6); a = (a + c) & MASK32  # noqa: E702
+        c = (c - b) & MASK32; c ^= _rot(b, 8); b = (b + a) & MASK32  # noqa: E702
+        a = (a - c) & MASK32; a ^= _rot(c, 16); c = (c + b) & MASK32  # noqa: E702
+        b = (b - a) & MASK32; b ^= _rot(a, 19); a = (a + c) & MASK32  # noqa: E702
+        c = (c - b) & MASK32; c ^= _rot(b, 4); b = (b + a) & MASK32  # noqa: E702
+        pos += 12
+    tail = data[pos:] + bytes(12 - (length - pos))  # the last 1..12 bytes, zero padded
+    a = (a + int.from_bytes(tail[0:4], "little")) & MASK32
+    b = (b + int.from_bytes(tail[4:8], "little")) & MASK32
+    c = (c + int.from_bytes(tail[8:12], "little")) & MASK32
+    # final(a, b, c)
+    c ^= b; c = (c - _rot(b, 14)) & MASK32  # noqa: E702
+    a ^= c; a = (a - _rot(c, 11)) & MASK32  # noqa: E702
+    b ^= a; b = (b - _rot(a, 25)) & MASK32  # noqa: E702
+    c ^= b; c = (c - _rot(b, 16)) & MASK32  # noqa: E702
+    a ^= c; a = (a - _rot(c, 4)) & MASK32  # noqa: E702
+    b ^= a; b = (b - _rot(a, 14)) & MASK32  # noqa: E702
+    c ^= b; c = (c - _rot(b, 24)) & MASK32  # noqa: E702
+    return c
+
+
+@dataclass(frozen=True)
+class Superblock:
+    """What radaraug checks in an HDF5 superblock before handing the file to HDF5.
+
+    Attributes:
+        version: superblock version (0..3; SWMR and ``libver="latest"`` files have 2 or 3).
+        file_size: size of the file in bytes.
+        flags: file consistency flags (v2/v3; non-zero while a writer has the file open, and
+            after a writer was killed); 0 for v0/v1.
+        eof: stored end-of-file address plus base address (v2/v3), else None.
+        checksum_ok: the stored lookup3 checksum matches (v2/v3), else None.
+    """
+
+    version: int
+    file_size: int
+    flags: int
+    eof: int | None
+    checksum_ok: bool | None
+
+    @property
+    def open_for_write(self) -> bool:
+        """A writer had the file open and did not close it (or still has it open)."""
+        return self.flags != 0
+
+
+def read_superblock(path: str | os.PathLike) -> Superblock | None:
+    """The superblock fields of an HDF5 file without a user block, or None when the file does
+    not start with the HDF5 signature. Reads 64 bytes of a regular file (never blocks on a FIFO).
+
+    Raises:
+        CaptureError: the path is not a readable regular file.
+    """
+    fd = open_regular(path, error=CaptureError, what="HDF5 file")
+    with os.fdopen(fd, "rb") as fh:
+        head = fh.read(64)
+        size = os.fstat(fh.fileno()).st_size
+    if len(head) < 9 or not head.startswith(HDF5_SIGNATURE):
+        return None
+    version = head[8]
+    if version not in (2, 3):
+        return Superblock(version, size, 0, None, None)
+    so = head[9] if len(head) > 9 else 0
+    end = 12 + 4 * so
+    if so not in (2, 4, 8) or len(head) < end + 4:
+        return Superblock(version, size, head[11] if len(head) > 11 else 0, None, False)
+    base = int.from_bytes(head[12 : 12 + so], "little")
+    eof = int.from_bytes(head[12 + 2 * so : 12 + 3 * so], "little")
+    stored = int.from_bytes(head[end : end + 4], "little")
+    return Superblock(version, size, head[11], base + eof, lookup3(head[:end]) == stored)
+
+
 def stored_eof_shortfall(path: str | os.PathLike) -> int:
     """Bytes missing from the end of an HDF5 file according to its superblock (0 if complete).
 
-    HDF5 skips its own truncation check when a file is opened for SWMR reading, which is how
-    radaraug opens captures (so a file left by a crashed writer still opens). This re-does the
-    check for superblock versions 2 and 3, the ones ``libver="latest"`` (and SWMR) files have:
-    signature, version, offset size, length size, flags, then base address, superblock
-    extension address and end-of-file address, each ``offset size`` bytes, little endian.
-    Older superblocks (never SWMR-written) return 0 here; HDF5 or the first read catches them.
-    So does a file whose consistency flags are still set (a writer was killed): its stored
-    end-of-file may legitimately run ahead of what reached the disk, and the frames flushed
-    before the kill must stay readable.
+    HDF5 skips its own truncation check when a file is opened for SWMR reading. This re-does the
+    check for superblock versions 2 and 3, the ones ``libver="latest"`` (and SWMR) files have.
+    Older superblocks return 0 here; HDF5 catches them. So does a file whose consistency flags
+    are still set (a writer was killed): its stored end-of-file may legitimately run ahead of
+    what reached the disk, and the frames flushed before the kill must stay readable.
     """
-    with open(path, "rb") as fh:
-        head = fh.read(48)
-        size = os.fstat(fh.fileno()).st_size
-    if len(head) < 12 or not head.startswith(HDF5_SIGNATURE) or head[8] not in (2, 3):
+    try:
+        sb = read_superblock(path)
+    except CaptureError:
         return 0
-    if head[11] != 0:  # file consistency flags: open for (SWMR) write when the writer died
+    if sb is None or sb.eof is None or sb.open_for_write:
         return 0
-    so = head[9]
-    if so not in (2, 4, 8) or len(head) < 12 + 3 * so:
-        return 0
-    base = int.from_bytes(head[12 : 12 + so], "little")
-    eof = int.from_bytes(head[12 + 2 * so : 12 + 3 * so], "little")
-    return max(0, base + eof - size)
+    return max(0, sb.eof - sb.file_size)
 
 
 def looks_like_hdf5(path: Path) -> bool:
-    """True when the file starts with the HDF5 signature (no user block)."""
+    """True when ``path`` is a regular file that starts with the HDF5 signature (no user block)."""
     try:
-        with open(path, "rb") as fh:
-            return fh.read(8) == HDF5_SIGNATURE
-    except OSError:
+        return read_superblock(path) is not None
+    except CaptureError:
         return False

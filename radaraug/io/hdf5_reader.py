@@ -2,9 +2,9 @@
 
 from __future__ import annotations
 
-import json
 import os
 import warnings
+from collections import Counter
 from pathlib import Path
 from typing import Any
 
@@ -12,13 +12,21 @@ import h5py
 import numpy as np
 
 from radaraug.config import RadarConfig
-from radaraug.errors import CaptureError, ConfigError
+from radaraug.errors import CaptureError, ConfigError, RadarAugError
 from radaraug.io import hdf5_format as fmt
-from radaraug.io.base import CaptureReader, CaptureWarning, broadcast_label
+from radaraug.io.base import CaptureReader, CaptureWarning, broadcast_label, timestamp_problem
+from radaraug.io.hdf5_open import open_hdf5_readonly
+from radaraug.safe_read import parse_json, regular_file_size
+
+# What h5py raises for damaged or unexpected HDF5 content (RadarAugError is a ValueError too,
+# and is re-raised untouched).
+H5_ERRORS = (OSError, RuntimeError, KeyError, ValueError, TypeError, AttributeError, IndexError)
 
 
 def _plain(value: Any) -> Any:
     """HDF5 attribute value -> plain Python (str, int, float, bool, list)."""
+    if isinstance(value, h5py.Empty):
+        return None
     if isinstance(value, bytes):
         return value.decode("utf-8", errors="replace")
     if isinstance(value, np.generic):
@@ -67,43 +75,28 @@ class HDF5Capture(CaptureReader):
     def __init__(self, path: str | os.PathLike) -> None:
         self.path = Path(path)
         self._file: h5py.File | None = None
-        if not self.path.exists():
+        if not os.path.lexists(self.path):
             raise CaptureError(f"{self.path}: capture file does not exist")
-        if not self.path.is_file():
+        if self.path.is_dir():
             raise CaptureError(f"{self.path}: expected an HDF5 capture file, found a folder")
-        if not fmt.looks_like_hdf5(self.path):
-            raise CaptureError(f"{self.path}: not an HDF5 file (no HDF5 signature at its start)")
-        missing = fmt.stored_eof_shortfall(self.path)
-        if missing:
-            raise CaptureError(
-                f"{self.path}: HDF5 file is truncated ({missing} bytes missing from its end); "
-                "it was cut short while copying or downloading"
-            )
-        self._file = self._open()
+        regular_file_size(self.path, error=CaptureError, what="capture file")
+        self._file = open_hdf5_readonly(self.path)
         try:
-            self._load_metadata()
-            # Decompress the first and last frame now, so a damaged file fails at open time
-            # with a clear message rather than deep inside a DataLoader worker later.
-            self._read_counts(0, 1)
-            self._read_counts(self.num_frames - 1, self.num_frames)
+            try:
+                self._load_metadata()
+                # Decompress the first and last frame now, so a damaged file fails at open time
+                # with a clear message rather than deep inside a DataLoader worker later.
+                self._read_counts(0, 1)
+                self._read_counts(self.num_frames - 1, self.num_frames)
+            except RadarAugError:
+                raise
+            except H5_ERRORS as e:
+                raise self._fail(
+                    f"cannot read the HDF5 metadata ({type(e).__name__}: {e}); the file is damaged"
+                ) from None
         except BaseException:
             self.close()
             raise
-
-    def _open(self) -> h5py.File:
-        # SWMR read skips the "file is already open for write" consistency flag that a writer
-        # killed while recording leaves behind (FIELD_NOTES: the frames flushed so far survive).
-        # h5py raises OSError for most damage but RuntimeError for a corrupted superblock.
-        try:
-            return h5py.File(self.path, "r", swmr=True)
-        except (OSError, RuntimeError) as swmr_error:
-            try:
-                return h5py.File(self.path, "r")
-            except (OSError, RuntimeError) as e:
-                hint = ""
-                if "already open for write" in str(e):
-                    hint = "; a writer was killed before switching to SWMR: `h5clear -s FILE` may recover it"
-                raise CaptureError(f"{self.path}: cannot open HDF5 file ({e or swmr_error}){hint}") from None
 
     # ------------------------------------------------------------------ metadata
     def _fail(self, problem: str) -> CaptureError:
@@ -112,10 +105,14 @@ class HDF5Capture(CaptureReader):
     def _load_metadata(self) -> None:
         f = self._file
         assert f is not None
-        try:
-            self.attrs = {k: _plain(v) for k, v in f.attrs.items()}
-        except (OSError, RuntimeError) as e:
-            raise self._fail(f"cannot read file attributes ({e})") from None
+        self.attrs = {}
+        for key in list(f.attrs):
+            try:
+                self.attrs[key] = _plain(f.attrs[key])
+            except H5_ERRORS as e:
+                if key in fmt.RESERVED_ATTRS or key == fmt.FILE_LABELS_JSON or key.startswith(fmt.FILE_LABEL_PREFIX):
+                    raise self._fail(f"cannot read attribute {key!r} ({type(e).__name__}: {e})") from None
+                warnings.warn(f"{self.path}: unreadable attribute {key!r} ignored ({e})", CaptureWarning, stacklevel=4)
         name = self.attrs.get("format")
         if name != fmt.FORMAT_NAME:
             raise self._fail(
@@ -129,10 +126,12 @@ class HDF5Capture(CaptureReader):
         self.config = self._load_config()
         self._frames = self._load_frames()
         # Frames past the writer's committed count may have no data on disk (a full disk or a
-        # kill mid-append); they are never served.
-        self.num_frames = committed_frame_count(f, int(self._frames.shape[0]))
-        if self.num_frames == 0:
+        # kill mid-append); they are never served. Within that count, a frame without stored data
+        # (a file from another writer) is refused or cut off too (:meth:`_written_frames`).
+        committed = committed_frame_count(f, int(self._frames.shape[0]))
+        if committed == 0:
             raise self._fail(f"empty capture: '{fmt.FRAMES_WRITTEN}' says no frame was completely written")
+        self.num_frames = self._written_frames(self._frames, committed)
         self.timestamps = self._load_timestamps()
         self.labels = self._load_labels()
 
@@ -140,18 +139,101 @@ class HDF5Capture(CaptureReader):
         text = self.attrs.get("radar_config")
         if text is None:
             raise self._fail("has no 'radar_config' attribute (the radar configuration of the frames)")
+        data = parse_json(text, source=self.path, error=CaptureError, what="attribute 'radar_config'")
         try:
-            data = json.loads(text)
             return RadarConfig.from_dict(data, source=str(self.path))
-        except (TypeError, json.JSONDecodeError) as e:
-            raise self._fail(f"attribute 'radar_config' is not valid JSON ({e})") from e
         except ConfigError as e:
             raise self._fail(f"attribute 'radar_config' is invalid: {e}") from e
+
+    def _dataset(self, group: h5py.Group, name: str, where: str) -> h5py.Dataset | h5py.Group | None:
+        """``group[name]`` when it is an object stored in this file, None when absent.
+
+        Soft and external links are refused before they are followed: a soft link can point at
+        itself or nowhere, and an external link reads another file.
+        """
+        link = group.get(name, getlink=True)
+        if link is None:
+            return None
+        if not isinstance(link, h5py.HardLink):
+            kind = "an external link to another file" if isinstance(link, h5py.ExternalLink) else "a soft link"
+            raise self._fail(f"'{where}' is {kind}; radaraug reads only objects stored in the capture itself")
+        obj = group.get(name)
+        if isinstance(obj, h5py.Dataset) and (obj.is_virtual or obj.external):
+            raise self._fail(f"'{where}' keeps its data in other files (virtual or external storage); refused")
+        return obj
+
+    def _written_rows(self, ds: h5py.Dataset) -> tuple[int, int | None]:
+        """``(w, gap_end)``: rows ``0..w-1`` of ``ds`` (axis 0) have stored data. ``gap_end`` is
+        None when no row from ``w`` on has stored data, else the first row after ``w`` that has
+        some (the unwritten rows ``w..gap_end-1`` then lie between written ones).
+
+        A row without stored data would read as the dataset's fill value (2048 counts, a 0
+        timestamp), which must never pass as data. This costs one step per stored chunk, never
+        per declared row, so a file declaring 2**40 frames is checked as fast as its real size.
+        """
+        n = int(ds.shape[0])
+        if n == 0 or ds.size == 0:
+            return n, None
+        layout = ds.id.get_create_plist().get_layout()
+        if layout == h5py.h5d.COMPACT:
+            return n, None
+        if layout == h5py.h5d.CONTIGUOUS:
+            written = ds.id.get_storage_size() >= ds.size * ds.dtype.itemsize
+            return (n, None) if written else (0, None)
+        chunks = ds.chunks
+        per_row = 1  # chunks that make up one row of chunks along axis 0
+        for size, chunk in zip(ds.shape[1:], chunks[1:]):
+            per_row *= -(-size // chunk)
+        if ds.id.get_num_chunks() >= -(-n // chunks[0]) * per_row:
+            return n, None
+        rows: Counter[int] = Counter()
+
+        def count(info: Any) -> None:
+            rows[info.chunk_offset[0] // chunks[0]] += 1
+
+        if hasattr(ds.id, "chunk_iter"):
+            ds.id.chunk_iter(count)
+        else:  # older HDF5: one lookup per stored chunk
+            for i in range(ds.id.get_num_chunks()):
+                count(ds.id.get_chunk_info(i))
+        r = 0
+        while rows.get(r, 0) >= per_row:
+            r += 1
+        w = min(n, r * chunks[0])
+        later = [k for k in rows if k > r or (k == r and rows[k] > 0)]
+        if not later:
+            return w, None
+        gap_end = min(later)
+        return w, min(n, max(w + 1, gap_end * chunks[0]))
+
+    def _written_frames(self, frames: h5py.Dataset, committed: int) -> int:
+        """Frames to serve: the first ``committed`` rows of ``frames``, all of which must have
+        stored data (a gap is a CaptureError; unwritten rows at the end are cut with a warning)."""
+        n = committed
+        w, gap_end = self._written_rows(frames)
+        w = min(w, n)
+        if gap_end is not None and gap_end >= n:
+            gap_end = None  # the written rows after the gap lie past the committed count
+        if gap_end is not None:
+            raise self._fail(
+                f"frames {w}..{gap_end - 1} of {n} were never written (no stored data: they would read "
+                "as fill values), but later frames were"
+            )
+        if w == 0:
+            raise self._fail(f"none of its {n} frames was ever written (no stored data)")
+        if w < n:
+            warnings.warn(
+                f"{self.path}: frames {w}..{n - 1} were declared but never written (a writer stopped "
+                f"mid-append); reading the {w} written frames",
+                CaptureWarning,
+                stacklevel=4,
+            )
+        return w
 
     def _load_frames(self) -> h5py.Dataset:
         f = self._file
         assert f is not None
-        frames = f.get(fmt.FRAMES)
+        frames = self._dataset(f, fmt.FRAMES, fmt.FRAMES)
         if not isinstance(frames, h5py.Dataset):
             raise self._fail(f"has no '{fmt.FRAMES}' dataset")
         if frames.dtype != np.uint16:
@@ -178,25 +260,28 @@ class HDF5Capture(CaptureReader):
     def _load_timestamps(self) -> np.ndarray | None:
         f = self._file
         assert f is not None
-        if fmt.TIMESTAMPS not in f:
+        ds = self._dataset(f, fmt.TIMESTAMPS, fmt.TIMESTAMPS)
+        if ds is None:
             return None
-        ds = f[fmt.TIMESTAMPS]
         # Timestamps are optional: unusable ones are dropped with a warning (the frames stay
         # readable), never returned as garbage (NaN durations, a 2-D array flattened).
         if not isinstance(ds, h5py.Dataset) or ds.ndim != 1 or ds.dtype.kind not in "iuf":
             what = "not a dataset" if not isinstance(ds, h5py.Dataset) else f"{ds.dtype} {ds.shape}"
             return self._drop_timestamps(f"'{fmt.TIMESTAMPS}' is {what}, expected float64 (frames,)")
-        try:
-            ts = np.asarray(ds[()], dtype=np.float64)
-        except (OSError, RuntimeError) as e:
-            return self._drop_timestamps(f"cannot read '{fmt.TIMESTAMPS}' ({e})")
         # The writer stores timestamps before the frame data of each append, so a writer killed
         # mid-append can leave timestamps ahead of the frames, never behind.
-        if len(ts) < self.num_frames:
-            return self._drop_timestamps(f"{len(ts)} timestamps for {self.num_frames} frames")
-        ts = ts[: self.num_frames]
-        if not np.isfinite(ts).all():
-            return self._drop_timestamps("timestamps hold NaN or Inf")
+        if ds.shape[0] < self.num_frames:
+            return self._drop_timestamps(f"{ds.shape[0]} timestamps for {self.num_frames} frames")
+        written, _ = self._written_rows(ds)
+        if written < self.num_frames:
+            return self._drop_timestamps(f"the timestamps of frames {written}.. were never written")
+        try:
+            ts = np.asarray(ds[: self.num_frames], dtype=np.float64)  # only what the frames need
+        except H5_ERRORS as e:
+            return self._drop_timestamps(f"cannot read '{fmt.TIMESTAMPS}' ({e})")
+        problem = timestamp_problem(ts)
+        if problem is not None:
+            return self._drop_timestamps(problem)
         return ts
 
     def _drop_timestamps(self, problem: str) -> None:
@@ -211,10 +296,7 @@ class HDF5Capture(CaptureReader):
         # File-level labels first; per-frame datasets of the same name override them.
         text = self.attrs.get(fmt.FILE_LABELS_JSON)
         if text is not None:
-            try:
-                file_labels = json.loads(text)
-            except (TypeError, json.JSONDecodeError) as e:
-                raise self._fail(f"attribute 'labels' is not valid JSON ({e})") from e
+            file_labels = parse_json(text, source=self.path, error=CaptureError, what="attribute 'labels'")
             if not isinstance(file_labels, dict):
                 raise self._fail("attribute 'labels' must be a JSON object of name -> value")
             for key, value in file_labels.items():
@@ -223,18 +305,24 @@ class HDF5Capture(CaptureReader):
             if key.startswith(fmt.FILE_LABEL_PREFIX) and len(key) > len(fmt.FILE_LABEL_PREFIX):
                 name = key[len(fmt.FILE_LABEL_PREFIX) :]
                 labels[name] = broadcast_label(name, value, n, self.path)
-        group = f.get(fmt.LABELS_GROUP)
+        group = self._dataset(f, fmt.LABELS_GROUP, fmt.LABELS_GROUP)
         if group is None:
             return labels
         if not isinstance(group, h5py.Group):
             raise self._fail(f"'{fmt.LABELS_GROUP}' must be a group of per-frame datasets")
-        for name, ds in group.items():
+        for name in list(group):
+            where = f"{fmt.LABELS_GROUP}/{name}"
+            ds = self._dataset(group, name, where)
             if not isinstance(ds, h5py.Dataset) or ds.ndim != 1:
-                raise self._fail(f"label '{fmt.LABELS_GROUP}/{name}' must be a 1-D per-frame dataset")
-            values = ds[()]
-            if len(values) < n:
-                raise self._fail(f"label '{fmt.LABELS_GROUP}/{name}' has {len(values)} values for {n} frames")
-            labels[name] = values[:n]
+                raise self._fail(f"label '{where}' must be a 1-D per-frame dataset")
+            if ds.dtype.kind not in "biuf":
+                raise self._fail(f"label '{where}' has dtype {ds.dtype}; per-frame labels must be numbers or bools")
+            if ds.shape[0] < n:
+                raise self._fail(f"label '{where}' has {ds.shape[0]} values for {n} frames")
+            written, _ = self._written_rows(ds)
+            if written < n:
+                raise self._fail(f"label '{where}' was never written for frames {written}..{n - 1}")
+            labels[name] = ds[:n]  # only what the frames need, whatever length it declares
         return labels
 
     # ------------------------------------------------------------------ data
@@ -243,7 +331,7 @@ class HDF5Capture(CaptureReader):
             raise CaptureError(f"{self.path}: capture is closed")
         try:
             return self._frames[start:stop]
-        except (OSError, RuntimeError, ValueError) as e:
+        except H5_ERRORS as e:
             raise CaptureError(
                 f"{self.path}: cannot read frames {start}:{stop} ({e}); the file is corrupt or truncated"
             ) from None

@@ -30,8 +30,10 @@ import torch
 
 from radaraug.config import DEFAULT_ADC_DELAY_S, RadarConfig
 from radaraug.errors import CaptureError, ConfigError
-from radaraug.io.base import CaptureReader, CaptureWarning
+from radaraug.io.base import CaptureReader, CaptureWarning, timestamp_problem
 from radaraug.io.counts import as_counts
+from radaraug.io.npy import open_npy
+from radaraug.safe_read import MAX_TEXT_BYTES, load_json, read_bytes
 
 DEVICE_FOLDER = "RadarIfxAvian_00"
 FORMAT_VERSION = "1.0.0"
@@ -43,7 +45,8 @@ def find_device_folder(path: str | os.PathLike) -> Path:
     p = Path(path)
     if not p.exists():
         raise CaptureError(f"{p}: recording does not exist")
-    if p.is_file():
+    if not p.is_dir():
+        # Not only regular files: a FIFO named radar.npy is refused later without being opened.
         if p.name in ("radar.npy", "config.json"):
             return p.parent
         raise CaptureError(f"{p}: not an Infineon recording folder")
@@ -54,49 +57,42 @@ def find_device_folder(path: str | os.PathLike) -> Path:
     raise CaptureError(f"{p}: not an Infineon recording (no {DEVICE_FOLDER}/ folder and no radar.npy inside)")
 
 
+MAX_VERSION_BYTES = 4096
+"""Largest ``format.version`` read (it holds ``1.0.0``)."""
+
+MAX_TEMPERATURE_BYTES = 64 * 1024 * 1024
+"""Largest ``temperature.npy`` read (a reading per frame is a few kB)."""
+
+
+def _exists(path: Path) -> bool:
+    # lexists: a dangling link is still "there" and gets a clear error instead of being skipped.
+    return os.path.lexists(path)
+
+
 def _read_json(path: Path, *, required: bool) -> dict[str, Any]:
-    if not path.exists():
+    """A JSON object file: required ones raise :class:`CaptureError`, optional ones (``meta.json``)
+    that are unreadable give a :class:`CaptureWarning` and ``{}``."""
+    if not _exists(path):
         if required:
             raise CaptureError(f"{path.parent}: Infineon recording has no {path.name}")
         return {}
     try:
-        with open(path, encoding="utf-8") as fh:
-            data = json.load(fh)
-    except (OSError, UnicodeDecodeError, json.JSONDecodeError) as e:
-        raise CaptureError(f"{path}: cannot read JSON ({e})") from None
-    if not isinstance(data, dict):
-        raise CaptureError(f"{path}: expected a JSON object, got {type(data).__name__}")
+        data = load_json(path, error=CaptureError, what=path.name)
+        if not isinstance(data, dict):
+            raise CaptureError(f"{path}: expected a JSON object, got {type(data).__name__}")
+    except CaptureError as e:
+        if required:
+            raise
+        warnings.warn(f"{e}; optional {path.name} ignored", CaptureWarning, stacklevel=4)
+        return {}
     return data
 
 
-def _open_npy(path: Path) -> np.memmap | np.ndarray:
-    """Memory-map a .npy file after checking its header against the file size."""
-    if not path.exists():
+def _open_npy(path: Path) -> np.ndarray:
+    """Memory-map ``radar.npy`` after checking its header against the file size (see ``npy.py``)."""
+    if not _exists(path):
         raise CaptureError(f"{path.parent}: Infineon recording has no radar.npy")
-    try:
-        with open(path, "rb") as fh:
-            version = np.lib.format.read_magic(fh)
-            if version == (1, 0):
-                shape, fortran, dtype = np.lib.format.read_array_header_1_0(fh)
-            else:
-                shape, fortran, dtype = np.lib.format.read_array_header_2_0(fh)
-            offset = fh.tell()
-            size = os.fstat(fh.fileno()).st_size
-    except (OSError, ValueError, EOFError) as e:
-        raise CaptureError(f"{path}: not a readable .npy file ({e})") from None
-    if dtype.hasobject:
-        raise CaptureError(f"{path}: holds Python objects, expected uint16 ADC counts")
-    need = offset + int(np.prod(shape, dtype=np.int64)) * dtype.itemsize
-    if size < need:
-        raise CaptureError(
-            f"{path}: truncated .npy file ({size} bytes, its header {shape} {dtype} needs {need})"
-        )
-    if 0 in shape:
-        return np.empty(shape, dtype)
-    try:
-        return np.load(path, mmap_mode="r", allow_pickle=False)
-    except (OSError, ValueError) as e:
-        raise CaptureError(f"{path}: cannot memory-map .npy file ({e})") from None
+    return open_npy(path, kinds="iufcbmMUSV")  # every plain kind: _load_radar names a wrong one
 
 
 class InfineonRecording(CaptureReader):
@@ -142,10 +138,13 @@ class InfineonRecording(CaptureReader):
         self.temperature_C = self._load_temperature(dev / "temperature.npy")
         self.labels = {}
         version_file = dev / "format.version"
-        try:
-            version = version_file.read_text(errors="replace").strip() if version_file.exists() else None
-        except OSError as e:
-            raise CaptureError(f"{version_file}: cannot read ({e})") from None
+        version = None
+        if _exists(version_file):
+            try:
+                raw = read_bytes(version_file, limit=MAX_VERSION_BYTES, error=CaptureError, what="format.version")
+            except CaptureError as e:
+                raise CaptureError(f"{version_file}: cannot read ({str(e).removeprefix(f'{version_file}: ')})") from None
+            version = raw.decode("utf-8", errors="replace").strip()
         if version is not None and version.split(".")[0] != FORMAT_VERSION.split(".")[0]:
             warnings.warn(
                 f"{version_file}: format.version {version!r} is not {FORMAT_VERSION}; reading it anyway",
@@ -181,31 +180,44 @@ class InfineonRecording(CaptureReader):
         return data
 
     def _load_timestamps(self, path: Path) -> np.ndarray | None:
-        if not path.exists():
+        if not _exists(path):
             return None
+        raw = read_bytes(path, limit=MAX_TEXT_BYTES, error=CaptureError, what="timestamp file")
         try:
-            lines = [ln.strip() for ln in path.read_text().splitlines()]
+            lines = [ln.strip() for ln in raw.decode("utf-8").splitlines()]
             ts = np.array([float(ln) for ln in lines if ln], dtype=np.float64)
-        except (OSError, UnicodeDecodeError, ValueError) as e:
-            raise CaptureError(f"{path}: cannot parse timestamps ({e})") from None
+        except (UnicodeDecodeError, ValueError, OverflowError) as e:
+            raise CaptureError(f"{path}: cannot parse timestamps ({str(e)[:200]})") from None
         problem = None
         if len(ts) != self.num_frames:
             problem = f"{len(ts)} timestamps for {self.num_frames} frames"
-        elif not np.isfinite(ts).all():
-            problem = "timestamps hold NaN or Inf"
+        else:
+            problem = timestamp_problem(ts)
         if problem is not None:
             warnings.warn(f"{path}: {problem}; timestamps ignored", CaptureWarning, stacklevel=3)
             return None
         return ts
 
     def _load_temperature(self, path: Path) -> np.ndarray | None:
-        if not path.exists():
+        # Optional: anything wrong with it is a warning, and the recording still reads.
+        if not _exists(path):
             return None
         try:
-            return np.load(path, allow_pickle=False).astype(np.float64).reshape(-1)
-        except (OSError, ValueError, EOFError) as e:
-            warnings.warn(f"{path}: unreadable temperature file ignored ({e})", CaptureWarning, stacklevel=3)
+            data = open_npy(path, kinds="iuf", mmap=False) if self._small(path) else None
+            if data is None:
+                raise CaptureError(f"{path}: larger than {MAX_TEMPERATURE_BYTES} bytes")
+            temps = np.asarray(data, dtype=np.float64).reshape(-1)
+        except CaptureError as e:
+            warnings.warn(f"{e}; unreadable temperature file ignored", CaptureWarning, stacklevel=3)
             return None
+        return temps
+
+    @staticmethod
+    def _small(path: Path) -> bool:
+        try:
+            return os.stat(path).st_size <= MAX_TEMPERATURE_BYTES
+        except OSError:
+            return True  # open_npy names the problem
 
     def _read_counts(self, start: int, stop: int) -> np.ndarray:
         if self._data is None:

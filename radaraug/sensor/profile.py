@@ -21,7 +21,6 @@ Format versions: 2 added ``room``; version 1 files (no room section) still load.
 from __future__ import annotations
 
 import copy
-import json
 import math
 import os
 from collections.abc import Mapping
@@ -30,6 +29,7 @@ from typing import Any
 
 from radaraug.config import RadarConfig
 from radaraug.errors import CalibrationError, ConfigError
+from radaraug.safe_read import load_json
 from radaraug.sensor.receiver import FMCWReceiver
 from radaraug.units import DB_CONVENTION, FLOAT_CONVENTION
 
@@ -129,12 +129,7 @@ class TwinProfile:
     def load(cls, path: str | os.PathLike) -> TwinProfile:
         """Read a profile JSON; :class:`CalibrationError` naming the file for anything wrong."""
         p = Path(path)
-        try:
-            data = json.loads(p.read_text())
-        except FileNotFoundError:
-            raise CalibrationError(f"{p}: twin profile does not exist") from None
-        except (OSError, UnicodeDecodeError, ValueError, RecursionError) as e:
-            raise CalibrationError(f"{p}: not a readable JSON twin profile ({type(e).__name__})") from None
+        data = load_json(p, error=CalibrationError, what="twin profile")
         return cls.from_dict(data, source=str(p))
 
 

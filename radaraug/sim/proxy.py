@@ -62,6 +62,7 @@ import torch
 from radaraug.config import RadarConfig
 from radaraug.errors import ConfigError
 from radaraug.io.atomic import atomic_write_json
+from radaraug.safe_read import load_json
 from radaraug.scene.geometry import RadarPose, SceneGeometry
 from radaraug.scene.materials import MATERIALS, Material, register_material
 from radaraug.scene.room import box, corridor, merge
@@ -431,10 +432,10 @@ def load_proxy(out_dir: str | os.PathLike) -> ProxySet:
     out = Path(out_dir)
     path = out / MANIFEST_NAME
     try:
-        data = json.loads(path.read_text())
-    except (OSError, ValueError) as err:
+        data = load_json(path, error=ConfigError, what="proxy manifest")
+    except ConfigError as err:
         raise ConfigError(f"{path}: no readable proxy manifest ({err})") from None
-    if data.get("format") != MANIFEST_FORMAT:
+    if not isinstance(data, dict) or data.get("format") != MANIFEST_FORMAT:
         raise ConfigError(f"{path}: not a radaraug proxy manifest")
     files = data["files"]
     cal = out / files["calibration"]["path"]

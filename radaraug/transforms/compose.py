@@ -72,8 +72,9 @@ class RadarCompose(nn.Module):
             if isinstance(step, CalibratedDR) and step.chain is not None:
                 fitted = canonical_chain(step.chain)
                 if prefix != fitted:
+                    where = f" (loaded from {step.file})" if getattr(step, "file", None) else ""
                     raise CalibrationError(
-                        f"RadarCompose: CalibratedDR at position {i} was fitted on maps made by "
+                        f"RadarCompose: CalibratedDR at position {i}{where} was fitted on maps made by "
                         f"{describe_chain(step.chain)}, but here it follows {describe_chain(before)}"
                     )
 

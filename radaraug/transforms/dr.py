@@ -25,14 +25,16 @@ import math
 import numbers
 import os
 import warnings
-from pathlib import Path
+from collections.abc import Mapping
 from typing import Any
 
+import numpy as np
 import torch
 
 from radaraug.config import RadarConfig
 from radaraug.errors import CalibrationError, ConfigError, RadarAugError
 from radaraug.io.atomic import atomic_write_text
+from radaraug.safe_read import load_json, safe_repr
 from radaraug.transforms._fit_sources import iter_source
 from radaraug.transforms._motion import DEFAULT_THRESHOLD_DB, WARN_FRACTION, motion_fraction
 from radaraug.transforms.base import Params, RandomRadarTransform
@@ -105,6 +107,22 @@ class RandomDR(_DRClamp):
         return {"mean_db": list(self.mean_db), "std_db": list(self.std_db), **super().extra_spec()}
 
 
+def _valid_chain(chain: Any) -> list[dict[str, Any]]:
+    """A recorded DSP chain: a list of step objects, each with a string ``name`` (as
+    ``chain_spec()`` makes them). Checked when a calibration is made or loaded, so a malformed
+    one fails there with :class:`CalibrationError`, not later where the chain is compared."""
+    if not isinstance(chain, (list, tuple)):
+        raise CalibrationError(f"CalibratedDR: chain must be a list of step objects, got {safe_repr(chain)}")
+    steps = []
+    for step in chain:
+        if not isinstance(step, Mapping) or not isinstance(step.get("name"), str):
+            raise CalibrationError(
+                f"CalibratedDR: each chain step must be an object with a string 'name', got {safe_repr(step)}"
+            )
+        steps.append(dict(step))
+    return steps
+
+
 class CalibratedDR(_DRClamp):
     """Calibrated noise-floor clamp ``max(S, N)``, ``N ~ Normal(mean_db, std_db**2)`` per cell.
 
@@ -147,7 +165,7 @@ class CalibratedDR(_DRClamp):
             raise CalibrationError(
                 f"CalibratedDR: need finite mean_db and std_db >= 0, got {mean_db}, {std_db}"
             )
-        self.chain = None if chain is None else [dict(s) for s in chain]
+        self.chain = None if chain is None else _valid_chain(chain)
         if isinstance(config, dict):
             try:
                 config = RadarConfig.from_dict(config)
@@ -158,10 +176,25 @@ class CalibratedDR(_DRClamp):
                 f"CalibratedDR: config must be a RadarConfig or its dict, got {type(config).__name__}"
             )
         self.config = config
+        if map_shape is not None and not (
+            isinstance(map_shape, (list, tuple))
+            and len(map_shape) == 3
+            and all(isinstance(v, (int, np.integer)) and not isinstance(v, bool) and 0 < v <= 2**20 for v in map_shape)
+        ):
+            raise CalibrationError(
+                f"CalibratedDR: map_shape must be (rx, range, doppler) positive integers, got {safe_repr(map_shape)}"
+            )
         self.map_shape = None if map_shape is None else tuple(int(v) for v in map_shape)
-        if self.map_shape is not None and len(self.map_shape) != 3:
-            raise CalibrationError(f"CalibratedDR: map_shape must be (rx, range, doppler), got {map_shape}")
+        for name, value in (("source", source), ("num_frames", num_frames), ("motion", motion)):
+            ok = {
+                "source": lambda v: isinstance(v, str),
+                "num_frames": lambda v: isinstance(v, (int, np.integer)) and not isinstance(v, bool) and v >= 0,
+                "motion": lambda v: isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v),
+            }[name]
+            if value is not None and not ok(value):
+                raise CalibrationError(f"CalibratedDR: {name} has an invalid value {safe_repr(value)}")
         self.source = source
+        self.file: str | None = None  # the calibration file it was loaded from, if any
         self.num_frames = num_frames
         self.motion = motion
 
@@ -170,7 +203,8 @@ class CalibratedDR(_DRClamp):
         x = super().check_input(x)
         if self.map_shape is not None and tuple(x.shape[-3:]) != self.map_shape:
             raise CalibrationError(
-                f"CalibratedDR fitted on maps of shape (rx, range, doppler) = {self.map_shape}"
+                f"CalibratedDR{f' ({self.file})' if self.file else ''} fitted on maps of shape "
+                f"(rx, range, doppler) = {self.map_shape}"
                 f"{f' from {self.source}' if self.source else ''}, got {tuple(x.shape[-3:])}"
             )
         return x
@@ -364,14 +398,7 @@ class CalibratedDR(_DRClamp):
             CalibrationError: missing, unreadable or malformed file, another ``format_version``,
                 or another ``db_convention`` (the message names the file).
         """
-        try:
-            data = json.loads(Path(path).read_text())
-        except FileNotFoundError:
-            raise CalibrationError(f"calibration file {path} does not exist") from None
-        except (OSError, UnicodeDecodeError) as e:
-            raise CalibrationError(f"cannot read calibration file {path}: {e}") from None
-        except json.JSONDecodeError as e:
-            raise CalibrationError(f"calibration file {path} is not valid JSON: {e}") from None
+        data = load_json(path, error=CalibrationError, what="calibration file")
         if not isinstance(data, dict) or data.get("format") != FORMAT:
             raise CalibrationError(f"calibration file {path} is not a {FORMAT} record")
         version = data.get("format_version", FORMAT_VERSION)
@@ -395,7 +422,7 @@ class CalibratedDR(_DRClamp):
                 isinstance(chain, list) and all(isinstance(s, dict) for s in chain)
             ):
                 raise TypeError("chain must be a list of step objects")
-            return cls(
+            loaded = cls(
                 float(mean),
                 float(std),
                 chain=chain,
@@ -406,9 +433,11 @@ class CalibratedDR(_DRClamp):
                 motion=data.get("motion_fraction"),
                 **kwargs,
             )
+            loaded.file = str(path)  # named by the errors raised when it is used
+            return loaded
         except KeyError as e:
             raise CalibrationError(f"calibration file {path} lacks the key {e}") from None
         except CalibrationError as e:
             raise CalibrationError(f"calibration file {path}: {e}") from None
-        except (TypeError, ValueError) as e:
-            raise CalibrationError(f"calibration file {path} is malformed: {e}") from None
+        except (TypeError, ValueError, OverflowError) as e:
+            raise CalibrationError(f"calibration file {path} is malformed: {str(e)[:200]}") from None

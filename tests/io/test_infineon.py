@@ -102,7 +102,7 @@ def test_folder_without_config_json(infineon_recording):
 def test_invalid_config_json(infineon_recording):
     path = infineon_recording / "RadarIfxAvian_00" / "config.json"
     path.write_text("{broken")
-    _expect_error(infineon_recording, "config.json: cannot read JSON")
+    _expect_error(infineon_recording, r"config.json: config.json is not valid JSON")
     path.write_text(json.dumps({"device_config": {"fmcw_single_shape": {"rx_antennas": [1]}}}))
     err = _expect_error(infineon_recording, "invalid radar configuration.*lacks required keys")
     assert isinstance(err.__cause__, ConfigError)
@@ -221,3 +221,67 @@ def test_unreadable_format_version_is_a_capture_error(infineon_recording):
     version.mkdir()
     err = _expect_error(infineon_recording, "format.version: cannot read")
     assert str(version) in str(err)
+
+
+# --------------------------------------------------------------------------- hostile folders
+@pytest.mark.parametrize("name", ["radar.npy", "config.json", "radar_timestamp.csv", "format.version"])
+@pytest.mark.parametrize("kind", ["fifo", "devzero"])
+def test_special_files_are_refused_without_blocking(infineon_recording, name, kind):
+    import os
+    import time
+
+    path = infineon_recording / "RadarIfxAvian_00" / name
+    path.unlink()
+    if kind == "fifo":
+        os.mkfifo(path)  # open() would block until a writer appears
+    else:
+        os.symlink("/dev/zero", path)  # would be read without end
+    t = time.monotonic()
+    err = _expect_error(infineon_recording, "not a regular file")
+    assert time.monotonic() - t < 2 and name in str(err)
+
+
+def test_bad_optional_files_warn_and_the_recording_reads(infineon_recording):
+    dev = infineon_recording / "RadarIfxAvian_00"
+    # The 144 bytes of data under a header declaring 2**40 float32 values (4 TiB).
+    header = b"{'descr': '<f4', 'fortran_order': False, 'shape': (1099511627776,), }"
+    text = header + b" " * (128 - 10 - len(header) - 1) + b"\n"
+    (dev / "temperature.npy").write_bytes(b"\x93NUMPY\x01\x00" + len(text).to_bytes(2, "little") + text + bytes(144))
+    (infineon_recording / "meta.json").write_text("[" * 100_000 + "]" * 100_000)
+    with pytest.warns(CaptureWarning) as caught:
+        cap = open_capture(infineon_recording)
+    messages = " | ".join(str(w.message) for w in caught)
+    assert "temperature.npy" in messages and "meta.json" in messages
+    with cap:
+        assert cap.temperature_C is None and cap.attrs["recording_meta"] == {}
+        assert cap.read().shape == (5, 3, 4, 32)
+
+
+def test_backwards_timestamps_warn_and_are_dropped(infineon_recording):
+    csv = infineon_recording / "RadarIfxAvian_00" / "radar_timestamp.csv"
+    csv.write_text("5.0\n4.0\n3.0\n2.0\n1.0\n")
+    with pytest.warns(CaptureWarning, match="timestamps go backwards"):
+        cap = open_capture(infineon_recording)
+    assert cap.timestamps is None and cap.duration_s > 0
+
+
+@pytest.mark.parametrize(
+    "key, value, fragment",
+    [
+        ("tx_power_level", "NaN", "tx_power_level must be an integer"),
+        ("if_gain_dB", '"64"', "if_gain_dB must be a number"),
+        ("rx_antennas", '"1"', "rx_antennas must be a list"),
+        ("tx_antennas", '"64"', "tx_antennas must be a list"),
+        ("aaf_cutoff_Hz", '"500k"', "aaf_cutoff_Hz must be a number"),
+        ("start_frequency_Hz", "64.5", "start_frequency_Hz must be a finite number in"),
+        ("mimo_mode", '"tdm"', "MIMO is not supported"),
+        ("tx_power_level", "1" * 401, "401 digits"),
+    ],
+)
+def test_hostile_config_values_name_the_file_and_field(infineon_recording, key, value, fragment):
+    path = infineon_recording / "RadarIfxAvian_00" / "config.json"
+    data = json.loads(path.read_text())
+    data["device_config"]["fmcw_single_shape"][key] = "@@"
+    path.write_text(json.dumps(data).replace('"@@"', value))
+    err = _expect_error(infineon_recording, fragment)
+    assert "config.json" in str(err)

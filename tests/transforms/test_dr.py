@@ -119,6 +119,13 @@ def test_save_load_round_trip(tmp_path, cfg):
             '{"format": "radaraug.CalibratedDR", "db_convention": "dB = 10*log10(|X|)", "mean_db": -90, "std_db": 1}',
             "another dB convention",
         ),
+        # before: KeyError 'name' when the chain was compared
+        ('{"format": "radaraug.CalibratedDR", "mean_db": -90, "std_db": 1, "chain": [{"x": 1}]}', "string 'name'"),
+        # before: OverflowError
+        ('{"format": "radaraug.CalibratedDR", "mean_db": ' + "1" * 401 + ', "std_db": 1}', "401 digits"),
+        # before: RecursionError
+        ("[" * 100_000 + "]" * 100_000, "nested too deeply"),
+        ('{"format": "radaraug.CalibratedDR", "mean_db": -90, "std_db": 1, "map_shape": [3, true, 4]}', "map_shape"),
     ],
 )
 def test_load_malformed_names_the_file(tmp_path, text, match):
