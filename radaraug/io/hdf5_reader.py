@@ -128,9 +128,18 @@ class HDF5Capture(CaptureReader):
         # Frames past the writer's committed count may have no data on disk (a full disk or a
         # kill mid-append); they are never served. Within that count, a frame without stored data
         # (a file from another writer) is refused or cut off too (:meth:`_written_frames`).
-        committed = committed_frame_count(f, int(self._frames.shape[0]))
+        declared = int(self._frames.shape[0])
+        committed = committed_frame_count(f, declared)
         if committed == 0:
             raise self._fail(f"empty capture: '{fmt.FRAMES_WRITTEN}' says no frame was completely written")
+        if committed < declared:
+            warnings.warn(
+                f"{self.path}: frames {committed}..{declared - 1} were declared but never written (the "
+                f"writer's '{fmt.FRAMES_WRITTEN}' count is {committed}: it stopped mid-append); reading "
+                f"the {committed} written frames",
+                CaptureWarning,
+                stacklevel=3,
+            )
         self.num_frames = self._written_frames(self._frames, committed)
         self.timestamps = self._load_timestamps()
         self.labels = self._load_labels()

@@ -31,59 +31,11 @@ from pathlib import Path
 from radaraug.errors import CaptureError
 from radaraug.io import hdf5_format as fmt
 
-_MASK = 0xFFFFFFFF
 BUSY = (  # the refusal when another process holds the file
     "another process has this file open (a writer, or a reader: HDF5 readers lock files too); "
     "wait for it to finish or close it"
 )
 _FLAGS_OFFSET = 11
-
-
-def _rot(x: int, k: int) -> int:
-    return ((x << k) | (x >> (32 - k))) & _MASK
-
-
-def lookup3(data: bytes, seed: int = 0) -> int:
-    """Bob Jenkins' lookup3 ``hashlittle`` of ``data`` (the checksum HDF5 puts in its metadata).
-
-    Args:
-        data: the bytes to hash.
-        seed: the initial value (HDF5 uses 0).
-
-    Returns:
-        The 32-bit hash (HDF5 stores it little endian).
-    """
-    n = len(data)
-    a = b = c = (0xDEADBEEF + n + seed) & _MASK
-    i = 0
-    while n - i > 12:
-        a = (a + int.from_bytes(data[i : i + 4], "little")) & _MASK
-        b = (b + int.from_bytes(data[i + 4 : i + 8], "little")) & _MASK
-        c = (c + int.from_bytes(data[i + 8 : i + 12], "little")) & _MASK
-        # mix(a, b, c)
-        a = (a - c) & _MASK; a ^= _rot(c, 4); c = (c + b) & _MASK  # noqa: E702
-        b = (b - a) & _MASK; b ^= _rot(a, 6); a = (a + c) & _MASK  # noqa: E702
-        c = (c - b) & _MASK; c ^= _rot(b, 8); b = (b + a) & _MASK  # noqa: E702
-        a = (a - c) & _MASK; a ^= _rot(c, 16); c = (c + b) & _MASK  # noqa: E702
-        b = (b - a) & _MASK; b ^= _rot(a, 19); a = (a + c) & _MASK  # noqa: E702
-        c = (c - b) & _MASK; c ^= _rot(b, 4); b = (b + a) & _MASK  # noqa: E702
-        i += 12
-    tail = data[i:]
-    if not tail:  # only for empty input: the loop above leaves 1..12 bytes otherwise
-        return c
-    tail = tail + bytes(12 - len(tail))  # the byte-wise tail of hashlittle adds zeros for the rest
-    a = (a + int.from_bytes(tail[0:4], "little")) & _MASK
-    b = (b + int.from_bytes(tail[4:8], "little")) & _MASK
-    c = (c + int.from_bytes(tail[8:12], "little")) & _MASK
-    # final(a, b, c)
-    c ^= b; c = (c - _rot(b, 14)) & _MASK  # noqa: E702
-    a ^= c; a = (a - _rot(c, 11)) & _MASK  # noqa: E702
-    b ^= a; b = (b - _rot(a, 25)) & _MASK  # noqa: E702
-    c ^= b; c = (c - _rot(b, 16)) & _MASK  # noqa: E702
-    a ^= c; a = (a - _rot(c, 4)) & _MASK  # noqa: E702
-    b ^= a; b = (b - _rot(a, 14)) & _MASK  # noqa: E702
-    c ^= b; c = (c - _rot(b, 24)) & _MASK  # noqa: E702
-    return c
 
 
 def _superblock(head: bytes, path: Path) -> tuple[int, int]:
@@ -99,7 +51,7 @@ def _superblock(head: bytes, path: Path) -> tuple[int, int]:
     end = 12 + 4 * so
     if so not in (2, 4, 8) or len(head) < end + 4:
         raise CaptureError(f"{path}: damaged HDF5 superblock (size of offsets {so})")
-    if int.from_bytes(head[end : end + 4], "little") != lookup3(head[:end]):
+    if int.from_bytes(head[end : end + 4], "little") != fmt.lookup3(head[:end]):
         raise CaptureError(f"{path}: damaged HDF5 superblock (checksum mismatch)")
     return head[_FLAGS_OFFSET], end
 
@@ -161,7 +113,7 @@ def _reset_flags(fd: int, path: Path) -> bool:
         # there (readers serve only frames_written), so the gap is filled with (sparse) zeros.
         if os.fstat(fd).st_size < eof:
             os.ftruncate(fd, eof)
-        os.pwrite(fd, bytes(fixed) + lookup3(bytes(fixed)).to_bytes(4, "little"), 0)
+        os.pwrite(fd, bytes(fixed) + fmt.lookup3(bytes(fixed)).to_bytes(4, "little"), 0)
         os.fsync(fd)
     except OSError as e:
         raise CaptureError(f"{path}: cannot rewrite the HDF5 superblock ({e.strerror})") from None

@@ -22,7 +22,8 @@ from radaraug_tests_io_data import frame_pattern, pattern_counts
 
 from radaraug.errors import CaptureError
 from radaraug.io import CaptureWriter, hdf5_writer, open_capture, write_capture
-from radaraug.io.hdf5_recovery import clear_status_flags, lookup3, status_flags, writer_is_alive
+from radaraug.io.hdf5_format import lookup3
+from radaraug.io.hdf5_recovery import clear_status_flags, status_flags, writer_is_alive
 
 REPO = Path(__file__).resolve().parents[2]
 DATA = Path(__file__).with_name("data.py")

@@ -52,8 +52,29 @@ def test_external_links_are_refused(h5_capture, tmp_path) -> None:
         open_capture(h5_capture)
 
 
+def _without_count(f) -> None:
+    """A file from a writer that keeps no ``frames_written`` count (format 1.0, other tools): only
+    the stored chunks tell which frames hold data."""
+    if "frames_written" in f:
+        del f["frames_written"]
+
+
+def test_frames_past_the_committed_count_are_not_served(h5_capture, tiny_config) -> None:
+    # radaraug's writer extends, writes, flushes, then commits the count: a kill in between
+    # leaves declared frames past the count, which are never served (with a warning).
+    _edit(h5_capture, lambda f: f["frames"].resize(9, axis=0))
+    with pytest.warns(CaptureWarning, match=r"frames 6\.\.8 were declared but never written .*'frames_written'"):
+        cap = open_capture(h5_capture)
+    with cap:
+        assert cap.num_frames == 6
+
+
 def test_trailing_unwritten_frames_are_not_served(h5_capture, tiny_config) -> None:
-    _edit(h5_capture, lambda f: f["frames"].resize(9, axis=0))  # frames 6..8 have no chunk
+    def edit(f):
+        _without_count(f)
+        f["frames"].resize(9, axis=0)  # frames 6..8 have no chunk
+
+    _edit(h5_capture, edit)
     with pytest.warns(CaptureWarning, match="frames 6..8 were declared but never written"):
         cap = open_capture(h5_capture)
     with cap:
@@ -63,6 +84,7 @@ def test_trailing_unwritten_frames_are_not_served(h5_capture, tiny_config) -> No
 
 def test_an_unwritten_frame_between_written_ones_is_an_error(h5_capture) -> None:
     def gap(f):
+        _without_count(f)
         f["frames"].resize(12, axis=0)
         f["frames"][11] = f["frames"][0]
         f["timestamps"].resize(12, axis=0)
@@ -109,6 +131,7 @@ def test_huge_declared_sizes_cost_nothing(h5_capture, edit, warns) -> None:
 
 def test_unwritten_timestamps_are_dropped_not_served(h5_capture) -> None:
     def ts_gap(f):
+        _without_count(f)
         f["frames"].resize(9, axis=0)
         for i in range(6, 9):
             f["frames"][i] = f["frames"][0]
