@@ -126,16 +126,19 @@ def _open_exclusive(path: Path, flags: int) -> int:
     except OSError as e:
         raise CaptureError(f"{path}: cannot open for writing ({e.strerror})") from None
     try:
-        _flock(fd, fcntl.LOCK_EX)
-    except BlockingIOError:
-        os.close(fd)
-        raise CaptureError(
-            f"{path}: {BUSY}"
-        ) from None
+        _lock_or_busy(fd, fcntl.LOCK_EX, path)
     except BaseException:
         os.close(fd)
         raise
     return fd
+
+
+def _lock_or_busy(fd: int, how: int, path: Path) -> None:
+    """:func:`_flock`, with the one documented refusal when another process holds the file."""
+    try:
+        _flock(fd, how)
+    except BlockingIOError:
+        raise CaptureError(f"{path}: {BUSY}") from None
 
 
 def clear_status_flags(path: str | os.PathLike) -> bool:
@@ -187,12 +190,7 @@ def hold_writer_lock(path: str | os.PathLike, *, create: bool = False, reset_fla
     try:
         if reset_flags:
             _reset_flags(fd, path)
-        try:
-            _flock(fd, fcntl.LOCK_SH)
-        except BlockingIOError:
-            raise CaptureError(
-                f"{path}: {BUSY}"
-            ) from None
+        _lock_or_busy(fd, fcntl.LOCK_SH, path)
     except BaseException:
         os.close(fd)
         raise

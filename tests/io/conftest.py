@@ -9,21 +9,21 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-HELPERS = "radaraug_tests_io_data"
 
-
-def _load_helpers():
-    # Register tests/io/data.py under a unique name: a bare "data" module could clash with
-    # another test folder's helper of the same name on sys.path.
-    if HELPERS not in sys.modules:
-        spec = importlib.util.spec_from_file_location(HELPERS, Path(__file__).with_name("data.py"))
+def _load_helpers(name: str, filename: str):
+    # Register a helper file of this folder under a unique module name: a bare "data" module
+    # could clash with another test folder's helper of the same name on sys.path.
+    if name not in sys.modules:
+        spec = importlib.util.spec_from_file_location(name, Path(__file__).with_name(filename))
         module = importlib.util.module_from_spec(spec)
-        sys.modules[HELPERS] = module
+        sys.modules[name] = module
         spec.loader.exec_module(module)
-    return sys.modules[HELPERS]
+    return sys.modules[name]
 
 
-io_data = _load_helpers()
+io_data = _load_helpers("radaraug_tests_io_data", "data.py")
+# The fuzz corpus generator (imported by test_fuzz.py as radaraug_tests_io_fuzz_data).
+_load_helpers("radaraug_tests_io_fuzz_data", "fuzz_data.py")
 
 
 @pytest.fixture

@@ -4,27 +4,13 @@ warning), never another exception type, a hang or unbounded memory (see ``fuzz_d
 from __future__ import annotations
 
 import collections
-import importlib.util
-import sys
 from pathlib import Path
 
 import pytest
 
-FUZZ = "radaraug_tests_io_fuzz_data"
-
-
-def _fuzz_module():
-    # Loaded under a unique name like tests/io/data.py (see conftest.py).
-    if FUZZ not in sys.modules:
-        spec = importlib.util.spec_from_file_location(FUZZ, Path(__file__).with_name("fuzz_data.py"))
-        module = importlib.util.module_from_spec(spec)
-        sys.modules[FUZZ] = module
-        spec.loader.exec_module(module)
-    return sys.modules[FUZZ]
-
 
 def _run(tmp_path: Path, seed: int, scale: int) -> None:
-    fz = _fuzz_module()
+    import radaraug_tests_io_fuzz_data as fz  # registered by conftest.py
     bases = fz.make_bases(tmp_path / "bases")
     cases = fz.generate_cases(bases, seed=seed, scale=scale)
     outcomes = fz.run_cases(cases, tmp_path / "cases")
