@@ -30,6 +30,7 @@ import torch
 
 from radaraug.config import DEFAULT_ADC_DELAY_S, RadarConfig
 from radaraug.errors import CaptureError, ConfigError
+from radaraug.io.atomic import atomic_open, atomic_write_text
 from radaraug.io.base import CaptureReader, CaptureWarning, timestamp_problem
 from radaraug.io.counts import as_counts
 from radaraug.io.npy import open_npy
@@ -296,17 +297,20 @@ def write_infineon_recording(
             "writer": "radaraug",
         }
         host_meta.update(meta or {})
-        (folder / "meta.json").write_text(json.dumps(host_meta, indent=4, sort_keys=True) + "\n")
-        (dev / "config.json").write_text(json.dumps(config.to_infineon(), indent=4, sort_keys=True) + "\n")
+        # Each file is written atomically (a crash or a full disk leaves the old file or none),
+        # radar.npy last: its presence is what marks a folder as a recording.
+        atomic_write_text(folder / "meta.json", json.dumps(host_meta, indent=4, sort_keys=True) + "\n")
+        atomic_write_text(dev / "config.json", json.dumps(config.to_infineon(), indent=4, sort_keys=True) + "\n")
         device_meta = {"adc_resolution": config.adc_bits, "description": "BGT60TR13C FMCW Radar Sensor"}
-        (dev / "meta.json").write_text(json.dumps(device_meta, indent=4, sort_keys=True) + "\n")
-        (dev / "format.version").write_text(FORMAT_VERSION + "\n")
-        np.save(dev / "radar.npy", np.ascontiguousarray(data, dtype=np.uint16))
+        atomic_write_text(dev / "meta.json", json.dumps(device_meta, indent=4, sort_keys=True) + "\n")
+        atomic_write_text(dev / "format.version", FORMAT_VERSION + "\n")
         stamp_file = dev / "radar_timestamp.csv"
         if ts is not None:
-            stamp_file.write_text("".join(f"{t!r}\n" for t in ts.tolist()))
+            atomic_write_text(stamp_file, "".join(f"{t!r}\n" for t in ts.tolist()))
         elif stamp_file.exists():
             stamp_file.unlink()  # an overwritten recording must not keep stale timestamps
+        with atomic_open(dev / "radar.npy", "wb") as fh:
+            np.save(fh, np.ascontiguousarray(data, dtype=np.uint16))
     except OSError as e:
         raise CaptureError(f"{folder}: cannot write Infineon recording ({e})") from None
     return folder
