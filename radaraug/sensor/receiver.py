@@ -151,7 +151,7 @@ class FMCWReceiver(nn.Module):
             if pending is not None and eff.kind == "nonlinear":
                 state.add_samples_after_synthesis(pending)
                 pending = None
-            eff.apply(state)
+            eff(state)
         if pending is not None:
             state.add_samples_after_synthesis(pending)
         return state.materialize()
@@ -186,7 +186,7 @@ class FMCWReceiver(nn.Module):
             if eff.kind == "nonlinear":
                 break
             if eff.kind == "linear":
-                eff.apply(state)
+                eff(state)
         return state
 
     def to_counts(

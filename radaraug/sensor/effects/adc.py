@@ -37,7 +37,7 @@ class DCOffset(Effect):
         super().__init__()
         self._set(level_counts=level_counts)
 
-    def apply(self, state: ChainState) -> None:
+    def forward(self, state: ChainState) -> None:
         full = float(state.config.adc_full_scale_counts)
         level = per_rx(state, self.level_counts, "level_counts", self.name)
         state.add_constant(level * (2.0 / full) - 1.0)
@@ -61,7 +61,7 @@ class ADCQuantization(Effect):
         super().__init__()
         self._set(bits=bits)
 
-    def apply(self, state: ChainState) -> None:
+    def forward(self, state: ChainState) -> None:
         bits = state.config.adc_bits if self.bits is None else int(self.bits)
         full = float(2**bits - 1)
         x = state.materialize()
@@ -80,5 +80,5 @@ class ADCClipping(Effect):
     kind = "nonlinear"
     param_names = ()
 
-    def apply(self, state: ChainState) -> None:
+    def forward(self, state: ChainState) -> None:
         state.samples = torch.clamp(state.materialize(), -1.0, 1.0)

@@ -18,6 +18,7 @@ stages; :func:`insert_in_order` puts a new effect at its place in an existing ch
 from __future__ import annotations
 
 import math
+import warnings
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any, ClassVar
@@ -124,10 +125,27 @@ def as_param(value: Any, name: str, effect: str) -> torch.Tensor:
 class Effect(nn.Module):
     """Base class of receiver effects.
 
-    Subclasses set ``name``, ``param_names`` and ``kind`` and implement :meth:`apply`. Parameters whose
-    value is ``None`` are taken from the :class:`~radaraug.RadarConfig` at call time (e.g. the
+    Subclasses set ``name``, ``param_names`` and ``kind`` and implement :meth:`forward`, which acts
+    on the receiver's chain state in place (``effect(state)``, as for any ``nn.Module``). Parameters
+    whose value is ``None`` are taken from the :class:`~radaraug.RadarConfig` at call time (e.g. the
     IF gain) and are not stored.
+
+    ``nn.Module.apply(fn)`` works as on any module. (Effects once implemented ``apply(state)``,
+    which hid it; a subclass that still does is adapted with a ``DeprecationWarning``.)
     """
+
+    def __init_subclass__(cls, **kwargs: Any) -> None:
+        super().__init_subclass__(**kwargs)
+        legacy = cls.__dict__.get("apply")
+        if legacy is not None and "forward" not in cls.__dict__:
+            warnings.warn(
+                f"{cls.__name__}.apply(state) is deprecated: implement forward(state) (apply hid "
+                "torch.nn.Module.apply); adapted for now",
+                DeprecationWarning,
+                stacklevel=2,
+            )
+            cls.forward = legacy  # type: ignore[method-assign]
+            cls.apply = nn.Module.apply  # type: ignore[method-assign]
 
     name: ClassVar[str] = ""
     param_names: ClassVar[tuple[str, ...]] = ()
@@ -162,7 +180,7 @@ class Effect(nn.Module):
             else:
                 self.register_buffer(key, as_param(value, key, self.name))
 
-    def apply(self, state: ChainState) -> None:  # pragma: no cover - abstract
+    def forward(self, state: ChainState) -> None:  # pragma: no cover - abstract
         """Act on the chain state in place."""
         raise NotImplementedError
 

@@ -80,7 +80,7 @@ class StaticClutter(Effect):
         """Range up to the unambiguous range; level and phase fixed ranges."""
         return _clutter_priors(config)
 
-    def apply(self, state: ChainState) -> None:
+    def forward(self, state: ChainState) -> None:
         k = self.num_scatterers
         amp = tone_amplitude(state, _per_scatterer(state, self.level_dB, k))
         coef = torch.polar(amp, _per_scatterer(state, self.phase_rad, k))[None, :]  # (1, K): all RX
@@ -186,7 +186,7 @@ class VibratingClutter(Effect):
         beta = (4 * math.pi / state.config.wavelength_m) * _per_scatterer(state, self.displacement_m, k)
         return beta[:, None, None, None] * torch.sin(phase)
 
-    def apply(self, state: ChainState) -> None:
+    def forward(self, state: ChainState) -> None:
         k = self.num_scatterers
         amp = tone_amplitude(state, _per_scatterer(state, self.level_dB, k))
         coef = amp.to(state.complex_dtype)[None, :].expand(state.num_rx, k)  # (RX, K)
@@ -255,7 +255,7 @@ class Multipath(Effect):
                                           phase_rad=self.phase_rad)
         check_nonnegative(self, extra_range_m=self.extra_range_m)
 
-    def apply(self, state: ChainState) -> None:
+    def forward(self, state: ChainState) -> None:
         if state.samples is not None:
             raise ConfigError("effect multipath acts on paths: place it before any non-linear stage (first)")
         k = self.num_ghosts

@@ -50,7 +50,7 @@ class FrameDrift(Effect):
         self._set(gain_rms_dB=gain_rms_dB, dc_rms_counts=dc_rms_counts)
         check_nonnegative(self, gain_rms_dB=self.gain_rms_dB, dc_rms_counts=self.dc_rms_counts)
 
-    def apply(self, state: ChainState) -> None:
+    def forward(self, state: ChainState) -> None:
         x = state.materialize()
         batch = state.batch_shape
         g_db = state.param(self.gain_rms_dB) * state.randn((*batch, 1, 1, 1))

@@ -74,7 +74,7 @@ class IFHighPass(_FirstOrderFilter):
         """Complex response at ``freq_Hz``."""
         return highpass_response(freq_Hz, self._cutoff(state), int(self.order))
 
-    def apply(self, state: ChainState) -> None:
+    def forward(self, state: ChainState) -> None:
         state.apply_linear(response=lambda f: self.response(f, state))
 
 
@@ -105,5 +105,5 @@ class AntiAliasLowPass(_FirstOrderFilter):
         """Complex response at ``freq_Hz``."""
         return lowpass_response(freq_Hz, self._cutoff(state), int(self.order))
 
-    def apply(self, state: ChainState) -> None:
+    def forward(self, state: ChainState) -> None:
         state.apply_linear(response=lambda f: self.response(f, state))

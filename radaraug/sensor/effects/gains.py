@@ -38,7 +38,7 @@ class SystemGain(Effect):
         super().__init__()
         self._set(gain_dB=gain_dB)
 
-    def apply(self, state: ChainState) -> None:
+    def forward(self, state: ChainState) -> None:
         g = db_to_amplitude(state.param(self.gain_dB)).expand(state.num_rx)
         state.apply_linear(rx_gain=g)
 
@@ -62,7 +62,7 @@ class IFGain(Effect):
         super().__init__()
         self._set(gain_dB=gain_dB)
 
-    def apply(self, state: ChainState) -> None:
+    def forward(self, state: ChainState) -> None:
         db = (
             torch.tensor(float(state.config.if_gain_dB), device=state.device, dtype=state.dtype)
             if self.gain_dB is None
@@ -94,7 +94,7 @@ class RxGainPhaseMismatch(Effect):
         super().__init__()
         self._set(gain_dB=gain_dB, phase_rad=phase_rad)
 
-    def apply(self, state: ChainState) -> None:
+    def forward(self, state: ChainState) -> None:
         amp = db_to_amplitude(per_rx(state, self.gain_dB, "gain_dB", self.name))
         ph = per_rx(state, self.phase_rad, "phase_rad", self.name)
         state.apply_linear(rx_gain=torch.polar(amp, ph))

@@ -71,7 +71,7 @@ class Interference(Effect):
         check_nonnegative(self, amplitude_counts=self.amplitude_counts)
         check_positive(self, duration_s=self.duration_s)
 
-    def apply(self, state: ChainState) -> None:
+    def forward(self, state: ChainState) -> None:
         tm = state.timing
         M, N, fs = tm.num_chirps, tm.num_samples, tm.fs
         per_chirp = (*state.batch_shape, 1, M, 1)

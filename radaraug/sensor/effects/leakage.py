@@ -44,7 +44,7 @@ class TxRxLeakage(Effect):
         super().__init__()
         self._set(coupling_dB=coupling_dB, range_m=range_m, phase_rad=phase_rad)
 
-    def apply(self, state: ChainState) -> None:
+    def forward(self, state: ChainState) -> None:
         c = per_rx(state, self.coupling_dB, "coupling_dB", self.name)
         ph = per_rx(state, self.phase_rad, "phase_rad", self.name)
         amp = tone_amplitude(state, c)

@@ -48,7 +48,7 @@ class ThermalNoise(Effect):
         super().__init__()
         self._set(noise_figure_dB=noise_figure_dB, temperature_K=temperature_K)
 
-    def apply(self, state: ChainState) -> None:
+    def forward(self, state: ChainState) -> None:
         nf = state.param(self.noise_figure_dB)
         temp = state.param(self.temperature_K)
         power = BOLTZMANN * temp * torch.pow(10.0, nf / 10) * (state.timing.fs / 2)
@@ -83,6 +83,6 @@ class ADCNoise(Effect):
         self._set(rms_counts=rms_counts)
         check_nonnegative(self, rms_counts=self.rms_counts)
 
-    def apply(self, state: ChainState) -> None:
+    def forward(self, state: ChainState) -> None:
         sigma = per_rx(state, self.rms_counts, "rms_counts", self.name) * (2.0 / state.config.adc_full_scale_counts)
         state.add_samples(sigma[:, None, None] * state.randn(state.sample_shape))

@@ -91,7 +91,7 @@ class ChirpNonlinearity(Effect):
         phase = 2 * math.pi * (cycles - torch.round(cycles)).to(state.dtype) + state.param(self.phase_rad)
         return state.param(self.deviation_Hz) * torch.sin(phase)
 
-    def apply(self, state: ChainState) -> None:
+    def forward(self, state: ChainState) -> None:
         k = min(int(self.num_paths), state.coef.shape[-1])
         if k == 0:
             return

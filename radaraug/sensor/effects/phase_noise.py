@@ -49,7 +49,7 @@ class PhaseNoise(Effect):
         super().__init__()
         self._set(freq_noise_rms_Hz=freq_noise_rms_Hz, corner_Hz=corner_Hz, num_paths=int(num_paths))
 
-    def apply(self, state: ChainState) -> None:
+    def forward(self, state: ChainState) -> None:
         P = state.coef.shape[-1]
         k = min(int(self.num_paths), P)
         if k == 0:

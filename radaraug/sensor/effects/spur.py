@@ -50,7 +50,7 @@ class SpurTone(Effect):
         super().__init__()
         self._set(freq_Hz=freq_Hz, amplitude_counts=amplitude_counts, phase_rad=phase_rad)
 
-    def apply(self, state: ChainState) -> None:
+    def forward(self, state: ChainState) -> None:
         tm = state.timing
         m = torch.arange(tm.num_chirps, device=state.device, dtype=torch.float64)
         n = torch.arange(tm.num_samples, device=state.device, dtype=torch.float64)
