@@ -245,7 +245,10 @@ def _cmd_diagnose(args: argparse.Namespace) -> int:
 
 def build_parser() -> argparse.ArgumentParser:
     """The argument parser (exposed for docs and tests)."""
+    from radaraug import __version__
+
     p = argparse.ArgumentParser(prog="radaraug", description=__doc__.split("\n")[0])
+    p.add_argument("--version", action="version", version=f"radaraug {__version__}")
     sub = p.add_subparsers(dest="command", required=True)
 
     info = sub.add_parser("info", help="summarize a capture (radaraug .h5 or Infineon recording folder)")

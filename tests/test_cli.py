@@ -218,3 +218,14 @@ def test_fit_cdr_on_a_full_disk_keeps_the_old_calibration(tmp_path) -> None:
     assert last.startswith("error: ") and "cdr.json" in last and "Traceback" not in run.stderr
     assert out.read_text() == "old calibration\n"  # not a 0-byte file
     assert sorted(p.name for p in tmp_path.iterdir()) == ["cdr.json", "room.h5"]  # no temporary left
+
+
+def test_version_and_python_m_entry_point():
+    """``python -m radaraug --version`` runs the same command as the ``radaraug`` script."""
+    import subprocess
+    import sys
+
+    import radaraug
+
+    r = subprocess.run([sys.executable, "-m", "radaraug", "--version"], capture_output=True, text=True, timeout=120)
+    assert r.returncode == 0 and r.stdout.strip() == f"radaraug {radaraug.__version__}"
