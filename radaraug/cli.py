@@ -34,6 +34,7 @@ Exit status (never a traceback for any of these):
 from __future__ import annotations
 
 import argparse
+import functools
 import json
 import math
 import os
@@ -243,35 +244,46 @@ def _cmd_diagnose(args: argparse.Namespace) -> int:
     return 0
 
 
+class _DefaultsShown(argparse.ArgumentDefaultsHelpFormatter):
+    """Help with "(default: X)" for options that have a default (not for None or flags)."""
+
+    def _get_help_string(self, action: argparse.Action) -> str | None:
+        if action.default is None or action.default is False or action.default is argparse.SUPPRESS:
+            return action.help
+        return super()._get_help_string(action)
+
+
 def build_parser() -> argparse.ArgumentParser:
     """The argument parser (exposed for docs and tests)."""
     from radaraug import __version__
 
     p = argparse.ArgumentParser(prog="radaraug", description=__doc__.split("\n")[0])
     p.add_argument("--version", action="version", version=f"radaraug {__version__}")
-    sub = p.add_subparsers(dest="command", required=True)
+    # Every subcommand's --help shows the defaults.
+    sub = p.add_subparsers(dest="command", required=True, parser_class=functools.partial(
+        argparse.ArgumentParser, formatter_class=_DefaultsShown))
 
     info = sub.add_parser("info", help="summarize a capture (radaraug .h5 or Infineon recording folder)")
-    info.add_argument("path")
+    info.add_argument("path", help="radaraug .h5 capture or Infineon recording folder")
     info.add_argument("--json", action="store_true", help="print one JSON object")
     info.add_argument("--max-frames", type=int, default=256, help="frames used for the statistics")
     info.set_defaults(func=_cmd_info)
 
     fit = sub.add_parser("fit-cdr", help="fit CalibratedDR on an empty-room capture")
-    fit.add_argument("path")
+    fit.add_argument("path", help="empty-room capture (radaraug .h5 or Infineon recording folder)")
     fit.add_argument("-o", "--output", required=True, help="calibration JSON to write")
-    fit.add_argument("--max-frames", type=int, default=None)
+    fit.add_argument("--max-frames", type=int, default=None, help="frames read (default: all)")
     fit.set_defaults(func=_cmd_fit_cdr)
 
     bench = sub.add_parser("bench", help="benchmarks (figures as ratios against a same-process baseline)")
     bench.add_argument("what", choices=["transforms", "twin", "training", "diagnose", "static-room",
-                                        "micro-doppler"])
+                                        "micro-doppler"], help="which benchmark (docs/benchmarks.md)")
     bench.add_argument("--batch", type=int, default=32, help="transforms, training: frames per batch")
     bench.add_argument("--repeats", type=int, default=5, help="transforms: timed repetitions; training: steps")
     bench.add_argument("--blocks", type=int, default=8, help="twin: 16-frame blocks per process")
     bench.add_argument("--workers", type=int, default=2, help="twin: DataLoader worker processes")
     bench.add_argument("--no-compile", action="store_true", help="twin: skip the torch.compile kernel")
-    bench.add_argument("--device", default="cpu")
+    bench.add_argument("--device", default="cpu", help="torch device (cpu, cuda)")
     bench.add_argument("--json", action="store_true", help="print the figures as one JSON object")
     bench.add_argument("--out", default=None, help="also write the JSON figures to this file (micro-doppler: the PNG)")
     bench.add_argument("--figure", default=None, help="static-room: write the range-profile figure (PNG) here")
@@ -290,16 +302,16 @@ def build_parser() -> argparse.ArgumentParser:
 
     sim = sub.add_parser("simulate", help="simulate a scene into a radaraug HDF5 capture")
     sim.add_argument("scene", help="scene file (.yaml/.json) or built-in scene name")
-    sim.add_argument("--frames", type=int, required=True)
-    sim.add_argument("--seed", type=int, default=0)
-    sim.add_argument("-o", "--output", required=True)
+    sim.add_argument("--frames", type=int, required=True, help="frames to simulate")
+    sim.add_argument("--seed", type=int, default=0, help="seed of the receiver noise")
+    sim.add_argument("-o", "--output", required=True, help="radaraug HDF5 capture to write (an interrupted one resumes)")
     sim.add_argument("--shard", default=None, help="i/n: simulate the i-th of n pieces (0-based)")
-    sim.add_argument("--device", default="cpu")
+    sim.add_argument("--device", default="cpu", help="torch device (cpu, cuda)")
     sim.add_argument("--profile", default=None, help="twin profile JSON (from radaraug diagnose) for the receiver")
     sim.set_defaults(func=_cmd_simulate)
 
     demo = sub.add_parser("demo", help="the main job on the built-in default")
-    demo.add_argument("-o", "--output", default="demo_out")
+    demo.add_argument("-o", "--output", default="demo_out", help="output folder")
     demo.set_defaults(func=_cmd_demo)
 
     # `train` is parsed by LightningCLI (radaraug.training.cli); listed here for --help only.
@@ -308,19 +320,19 @@ def build_parser() -> argparse.ArgumentParser:
 
     rep = sub.add_parser("reproduce", help="the paper's experiment: 2 tasks x 4 methods (the paper's 3 + cdr_profile) x N seeds, report + figures")
     rep.add_argument("--quick", action="store_true", help="minutes on a 2-core CPU (what `make demo` runs)")
-    rep.add_argument("--seeds", type=int, default=3)
+    rep.add_argument("--seeds", type=int, default=3, help="training seeds per method")
     rep.add_argument("--calibration", default=None, help="empty-room capture for CDR (default: the held-out proxy's)")
     rep.add_argument("--test", action="append", default=None, metavar="PATH[:COUNT]",
                      help="test capture; COUNT labels the whole file, else per-frame 'count' labels (repeatable)")
     rep.add_argument("--no-ablation", action="store_true", help="skip CDR without twin randomization")
     rep.add_argument("--accelerator", default="auto", help="Lightning accelerator (auto, cpu, gpu)")
-    rep.add_argument("-o", "--output", required=True)
+    rep.add_argument("-o", "--output", required=True, help="output folder (report, runs, figures, cache)")
     rep.set_defaults(func=_cmd_reproduce)
 
     proxy = sub.add_parser("make-proxy", help="generate the held-out proxy test set (docs/proxy.md)")
-    proxy.add_argument("-o", "--output", required=True)
-    proxy.add_argument("--frames-per-count", type=int, default=120)
-    proxy.add_argument("--seed", type=int, default=1234)
+    proxy.add_argument("-o", "--output", required=True, help="output folder")
+    proxy.add_argument("--frames-per-count", type=int, default=120, help="frames per people count (0, 1, 2)")
+    proxy.add_argument("--seed", type=int, default=1234, help="seed of the walks and the noise")
     proxy.set_defaults(func=_cmd_make_proxy)
 
     dia = sub.add_parser("diagnose", help="compare a capture with the twin, fit the missing effects (docs/calibration.md)")
@@ -331,7 +343,7 @@ def build_parser() -> argparse.ArgumentParser:
     dia.add_argument("--max-frames", type=int, default=100, help="frames read (half fit, half held out)")
     dia.add_argument("--profile", default=None, help="start from this twin profile instead of the default chain")
     dia.add_argument("--seed", type=int, default=0, help="seed of the twin's noise")
-    dia.add_argument("--no-figures", action="store_true")
+    dia.add_argument("--no-figures", action="store_true", help="skip the figures (faster)")
     dia.set_defaults(func=_cmd_diagnose)
     return p
 

@@ -229,3 +229,16 @@ def test_version_and_python_m_entry_point():
 
     r = subprocess.run([sys.executable, "-m", "radaraug", "--version"], capture_output=True, text=True, timeout=120)
     assert r.returncode == 0 and r.stdout.strip() == f"radaraug {radaraug.__version__}"
+
+
+def test_every_argument_has_help_and_defaults_are_shown():
+    import argparse
+
+    from radaraug.cli import build_parser
+
+    parser = build_parser()
+    sub = next(a for a in parser._actions if isinstance(a, argparse._SubParsersAction))
+    missing = [(name, a.dest) for name, sp in sub.choices.items() for a in sp._actions
+               if a.help is None and not isinstance(a, argparse._HelpAction)]
+    assert missing == []
+    assert "(default: 1234)" in sub.choices["make-proxy"].format_help()
