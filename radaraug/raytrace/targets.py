@@ -155,6 +155,7 @@ def _is_closed_convex(tri: torch.Tensor, area: torch.Tensor) -> bool:
     import warnings
 
     import trimesh
+    from scipy.spatial import QhullError  # trimesh's convex hull is scipy's Qhull (a runtime dependency)
 
     pts = tri.reshape(-1, 3).cpu().numpy()
     with warnings.catch_warnings():
@@ -162,7 +163,7 @@ def _is_closed_convex(tri: torch.Tensor, area: torch.Tensor) -> bool:
         try:
             hull = trimesh.convex.convex_hull(pts)
             volume, hull_area = float(hull.volume), float(hull.area)
-        except Exception:  # noqa: BLE001 - coplanar or degenerate input: not a closed room
+        except (QhullError, ValueError, IndexError):  # too few or degenerate points: not a closed room
             return False
     total = float(area.sum())
     return bool(volume > 1e-9 and abs(hull_area - total) <= 1e-6 * max(total, 1.0))

@@ -36,3 +36,16 @@ def test_open_room_is_not_treated_as_convex() -> None:
     keep = centroid_x < centroid_x.max() - 1e-6
     open_room = SceneGeometry(room.vertices, room.faces[keep], room.face_material[keep], room.materials)
     assert not RayTracer(open_room, scene.radar, scene.config, rays=16).convex_room
+
+
+def test_degenerate_point_sets_are_not_closed_rooms() -> None:
+    """Too few or coplanar triangles are "not a closed convex room" (Qhull's own error is caught,
+    nothing else: a missing dependency must not silently turn the fast path off)."""
+    import torch
+
+    from radaraug.raytrace.targets import _is_closed_convex
+
+    one = torch.tensor([[[0.0, 0, 0], [1, 0, 0], [0, 1, 0]]])
+    assert _is_closed_convex(one, torch.tensor([0.5])) is False
+    line = torch.tensor([[[0.0, 0, 0], [1, 0, 0], [2, 0, 0]]])
+    assert _is_closed_convex(line, torch.tensor([0.0])) is False
