@@ -109,6 +109,8 @@ class Superblock:
             after a writer was killed); 0 for v0/v1.
         eof: stored end-of-file address plus base address (v2/v3), else None.
         checksum_ok: the stored lookup3 checksum matches (v2/v3), else None.
+        checksum_offset: where the checksum is stored, i.e. the length of the checksummed bytes
+            (v2/v3 with a valid size of offsets), else None.
     """
 
     version: int
@@ -116,6 +118,7 @@ class Superblock:
     flags: int
     eof: int | None
     checksum_ok: bool | None
+    checksum_offset: int | None = None
 
     @property
     def open_for_write(self) -> bool:
@@ -132,21 +135,31 @@ def read_superblock(path: str | os.PathLike) -> Superblock | None:
     """
     fd = open_regular(path, error=CaptureError, what="HDF5 file")
     with os.fdopen(fd, "rb") as fh:
-        head = fh.read(64)
+        head = fh.read(SUPERBLOCK_HEAD_BYTES)
         size = os.fstat(fh.fileno()).st_size
+    return parse_superblock(head, size)
+
+
+SUPERBLOCK_HEAD_BYTES = 64
+"""Bytes at the start of a file that hold any v2/v3 superblock (48 at most, with 8-byte offsets)."""
+
+
+def parse_superblock(head: bytes, file_size: int) -> Superblock | None:
+    """:func:`read_superblock` of bytes already read from the start of a file (e.g. through a
+    locked descriptor); None when they do not start with the HDF5 signature."""
     if len(head) < 9 or not head.startswith(HDF5_SIGNATURE):
         return None
     version = head[8]
     if version not in (2, 3):
-        return Superblock(version, size, 0, None, None)
+        return Superblock(version, file_size, 0, None, None)
     so = head[9] if len(head) > 9 else 0
     end = 12 + 4 * so
     if so not in (2, 4, 8) or len(head) < end + 4:
-        return Superblock(version, size, head[11] if len(head) > 11 else 0, None, False)
+        return Superblock(version, file_size, head[11] if len(head) > 11 else 0, None, False)
     base = int.from_bytes(head[12 : 12 + so], "little")
     eof = int.from_bytes(head[12 + 2 * so : 12 + 3 * so], "little")
     stored = int.from_bytes(head[end : end + 4], "little")
-    return Superblock(version, size, head[11], base + eof, lookup3(head[:end]) == stored)
+    return Superblock(version, file_size, head[11], base + eof, lookup3(head[:end]) == stored, end)
 
 
 def stored_eof_shortfall(path: str | os.PathLike) -> int:

@@ -38,22 +38,22 @@ BUSY = (  # the refusal when another process holds the file
 _FLAGS_OFFSET = 11
 
 
-def _superblock(head: bytes, path: Path) -> tuple[int, int]:
-    """``(flags, checksum offset)`` of a version 2/3 superblock at the start of ``head``."""
-    if len(head) < 12 or not head.startswith(fmt.HDF5_SIGNATURE):
+def _superblock(head: bytes, file_size: int, path: Path) -> fmt.Superblock:
+    """The version 2/3 superblock at the start of ``head`` (:func:`~radaraug.io.hdf5_format.parse_superblock`),
+    refused unless its flags can be reset: signature, version, size of offsets and checksum."""
+    sb = fmt.parse_superblock(head, file_size)
+    if sb is None or len(head) < 12:
         raise CaptureError(f"{path}: not an HDF5 file (no HDF5 signature at its start)")
-    if head[8] not in (2, 3):
+    if sb.version not in (2, 3):
         raise CaptureError(
-            f"{path}: HDF5 superblock version {head[8]} (radaraug captures have version 2 or 3); "
+            f"{path}: HDF5 superblock version {sb.version} (radaraug captures have version 2 or 3); "
             "cannot reset its consistency flags"
         )
-    so = head[9]
-    end = 12 + 4 * so
-    if so not in (2, 4, 8) or len(head) < end + 4:
-        raise CaptureError(f"{path}: damaged HDF5 superblock (size of offsets {so})")
-    if int.from_bytes(head[end : end + 4], "little") != fmt.lookup3(head[:end]):
+    if sb.checksum_offset is None:
+        raise CaptureError(f"{path}: damaged HDF5 superblock (size of offsets {head[9]})")
+    if not sb.checksum_ok:
         raise CaptureError(f"{path}: damaged HDF5 superblock (checksum mismatch)")
-    return head[_FLAGS_OFFSET], end
+    return sb
 
 
 def status_flags(path: str | os.PathLike) -> int:
@@ -64,8 +64,9 @@ def status_flags(path: str | os.PathLike) -> int:
     """
     path = Path(path)
     with open(path, "rb") as fh:
-        head = fh.read(12 + 4 * 8 + 4)
-    return _superblock(head, path)[0]
+        head = fh.read(fmt.SUPERBLOCK_HEAD_BYTES)
+        size = os.fstat(fh.fileno()).st_size
+    return _superblock(head, size, path).flags
 
 
 def _flock(fd: int, how: int) -> None:
@@ -98,14 +99,13 @@ def writer_is_alive(path: str | os.PathLike) -> bool:
 
 def _reset_flags(fd: int, path: Path) -> bool:
     """Reset the flags through ``fd`` (the caller holds the exclusive lock); True when they were set."""
-    head = os.pread(fd, 12 + 4 * 8 + 4, 0)
-    flags, end = _superblock(head, path)
-    if flags == 0:
+    sb = _superblock(os.pread(fd, fmt.SUPERBLOCK_HEAD_BYTES, 0), os.fstat(fd).st_size, path)
+    if sb.flags == 0:
         return False
-    so = head[9]
-    base = int.from_bytes(head[12 : 12 + so], "little")
-    eof = base + int.from_bytes(head[12 + 2 * so : 12 + 3 * so], "little")
-    fixed = bytearray(head[:end])
+    assert sb.checksum_offset is not None and sb.eof is not None
+    head = os.pread(fd, sb.checksum_offset, 0)
+    eof = sb.eof
+    fixed = bytearray(head)
     fixed[_FLAGS_OFFSET] = 0
     try:
         # A writer stopped by a full disk may have recorded an end of file that its last (failed)
