@@ -18,6 +18,7 @@ from scipy.special import fresnel as scipy_fresnel
 
 from radaraug.errors import InputTensorError, SceneError
 from radaraug.raytrace.shadow import (
+    _knife_edge_fast,
     ellipse_obstacle_transmission,
     fresnel_integrals,
     knife_edge,
@@ -121,6 +122,16 @@ def test_knife_edge_matches_scipy_and_p526() -> None:
     j_p526 = 6.9 + 20 * torch.log10(torch.sqrt((nu - 0.1) ** 2 + 1) + nu - 0.1)
     assert (j - j_p526).abs().max() < 0.15
     assert knife_edge(nu.float()).dtype == torch.complex64
+
+
+def test_tabulated_knife_edge_matches_scipy() -> None:
+    # The shadow test's interpolated F (table on [-8, 3.5], exact beyond) against scipy's Fresnel
+    # integrals, across the table, its edges and both exact branches.
+    nu = torch.cat([torch.linspace(-12, 8, 40001, dtype=torch.float64),
+                    torch.tensor([-8.0, 3.5, 3.5 - 1e-12, -8.0 + 1e-12], dtype=torch.float64)])
+    f = _knife_edge_fast(nu)
+    assert f.dtype == torch.complex128
+    assert np.abs(f.numpy() - ref_knife_edge(nu.numpy())).max() < 1e-8
 
 
 # ---------------------------------------------------------------- (b) half plane
