@@ -56,7 +56,7 @@ EXIT_BROKEN_PIPE = 141
 
 
 def _cmd_info(args: argparse.Namespace) -> int:
-    from radaraug.inspect import summarize_capture
+    from radaraug.io.summary import summarize_capture
     from radaraug.io import open_capture
 
     with open_capture(args.path) as reader:
@@ -148,9 +148,9 @@ def _cmd_bench(args: argparse.Namespace) -> int:
 
 
 def _scene_arg(text: str):
-    from radaraug.sim.dataset import load_scene
+    from radaraug.scene.scene import Scene
 
-    return load_scene(text)
+    return Scene.load(text)
 
 
 def _cmd_trace(args: argparse.Namespace) -> int:

@@ -66,7 +66,7 @@ def run_twin_benchmark(
     out: str | os.PathLike | None = None,
 ) -> dict[str, Any]:
     """Measure and return the figures (also written as JSON to ``out``)."""
-    from radaraug.raytrace.bench import benchmark_intersection
+    from radaraug.bench.intersection import benchmark_intersection
     from radaraug.scene.scene import Scene
     from radaraug.sensor.receiver import FMCWReceiver
     from radaraug.sensor.synthesis import ChirpTiming, synthesize

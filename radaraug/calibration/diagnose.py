@@ -126,10 +126,10 @@ def _source(config: RadarConfig, scene: Any, fit: torch.Tensor, sim_frames: int,
         chain = [e for e in chain if e["name"] not in STATIC_STAGES]
         return TwinSource(config, mean_chirp=fit.mean(dim=(0, 2)), tx_power_dBm=rx.tx_power_dBm,
                           front_end_gain_dB=rx.front_end_gain_dB), chain, None
-    from radaraug.sim.dataset import load_scene
+    from radaraug.scene.scene import Scene
     from radaraug.sim.twin import DigitalTwin
 
-    sc = load_scene(scene)
+    sc = Scene.load(scene)
     twin = DigitalTwin(sc, config=config, tracer_options=tracer_options, dtype=torch.float64)
     tracer = twin.tracer
     # Specular and diffuse parts apart: the search scales the diffuse one (the room's diffuse gain).

@@ -7,7 +7,7 @@ Two noise sources set a BGT60TR13C's RD noise floor: thermal noise referred to t
 front-end gain carries the thermal level) and the ADC-side RMS. Recordings at different IF gains
 separate them: where the floor follows the gain, thermal noise dominates; where it does not, the
 ADC side does. :func:`fit_noise_defaults` grid-searches both so that the default twin's floor
-(:func:`radaraug.inspect.noise_floor_db`, the statistic ``radaraug info`` prints) matches every
+(:func:`radaraug.io.summary.noise_floor_db`, the statistic ``radaraug info`` prints) matches every
 recording's at its own config, minimizing the worst difference. The TX->RX leakage coupling is
 moved with the front-end gain so that the leakage's level at the ADC stays pinned.
 
@@ -23,7 +23,7 @@ from typing import Any
 import torch
 
 from radaraug.config import RadarConfig
-from radaraug.inspect import noise_floor_db
+from radaraug.io.summary import noise_floor_db
 from radaraug.sensor.defaults import ADC_NOISE_RMS_COUNTS, FRONT_END_GAIN_DB, default_effects
 from radaraug.sensor.paths import Paths
 from radaraug.sensor.receiver import FMCWReceiver

@@ -36,7 +36,7 @@ class RadarCaptureDataset(Dataset):
     """Frames (or windows of consecutive frames) of one or more captures, as tensors.
 
     Item ``i`` is a global index over all files: file ``k`` contributes
-    ``(F_k - frames_per_sample) // stride + 1`` items, in file order; a file shorter than one
+    ``(F_k - frames_per_item) // stride + 1`` items, in file order; a file shorter than one
     window contributes none (with a :class:`CaptureWarning`).
 
     Files are opened lazily, in the process that reads them (each DataLoader worker opens its
@@ -45,7 +45,7 @@ class RadarCaptureDataset(Dataset):
 
     Args:
         paths: one capture or a sequence of captures (anything :func:`open_capture` reads).
-        frames_per_sample: ``T``. ``1`` gives ``(rx, chirps, samples)`` items; ``T > 1`` gives
+        frames_per_item: ``T``. ``1`` gives ``(rx, chirps, samples)`` items; ``T > 1`` gives
             ``(T, rx, chirps, samples)`` windows.
         stride: frames between the starts of consecutive windows (default ``T``: no overlap).
         label: what the target of each item is:
@@ -59,7 +59,7 @@ class RadarCaptureDataset(Dataset):
               as a label name: pass ``{path: "text"}`` or a callable instead.)
         transform: applied to the frame tensor.
         target_transform: applied to the label.
-        as_float: float32 SDK floats (default) or int32 raw counts.
+        as_counts: int32 raw ADC counts instead of float32 SDK floats (default False).
         max_open_files: open readers kept per process (least recently used are closed).
         augmentation: ``"stream"`` (default: random transforms draw from their own generator or
             the global RNG, per DataLoader worker) or ``"per_item"`` (they draw from a generator
@@ -67,6 +67,13 @@ class RadarCaptureDataset(Dataset):
             ``num_workers``; call :meth:`set_epoch` each epoch). See
             :mod:`radaraug.transforms.per_item`.
         augmentation_seed: seed of the ``"per_item"`` draws.
+        frames_per_sample: deprecated name of ``frames_per_item`` (radaraug 0.1).
+        as_float: deprecated inverse of ``as_counts`` (radaraug 0.1).
+
+    The knobs are named as in :class:`radaraug.sim.SimulatedRadarDataset` (``frames_per_item``,
+    ``as_counts``, ``transform``, ``augmentation``); ``label`` differs from the simulated set's
+    ``target`` on purpose: a capture's labels are whatever its files store (any name, a dict, a
+    callable), while the simulator computes a fixed choice of targets.
 
     Attributes:
         config: the shared :class:`RadarConfig` of every file.
@@ -83,17 +90,31 @@ class RadarCaptureDataset(Dataset):
         self,
         paths: PathLike | Sequence[PathLike],
         *,
-        frames_per_sample: int = 1,
+        frames_per_item: int | None = None,
         stride: int | None = None,
         label: Any = None,
         transform: Callable[[torch.Tensor], Any] | None = None,
         target_transform: Callable[[Any], Any] | None = None,
-        as_float: bool = True,
+        as_counts: bool = False,
         max_open_files: int = 16,
         augmentation: str = "stream",
         augmentation_seed: int = 0,
+        frames_per_sample: int | None = None,
+        as_float: bool | None = None,
     ) -> None:
         from radaraug.transforms.per_item import check_augmentation
+
+        if frames_per_sample is not None:
+            if frames_per_item is not None:
+                raise CaptureError("RadarCaptureDataset: give frames_per_item, not also frames_per_sample")
+            warnings.warn("RadarCaptureDataset(frames_per_sample=...) is deprecated; use frames_per_item",
+                          DeprecationWarning, stacklevel=2)
+            frames_per_item = frames_per_sample
+        if as_float is not None:
+            warnings.warn("RadarCaptureDataset(as_float=...) is deprecated; use as_counts (= not as_float)",
+                          DeprecationWarning, stacklevel=2)
+            as_counts = not as_float
+        frames_per_item = 1 if frames_per_item is None else frames_per_item
 
         try:
             self.augmentation = check_augmentation(augmentation, "RadarCaptureDataset")
@@ -106,20 +127,20 @@ class RadarCaptureDataset(Dataset):
         self.paths = [Path(paths)] if isinstance(paths, (str, os.PathLike)) else [Path(p) for p in paths]
         if not self.paths:
             raise CaptureError("RadarCaptureDataset: no capture paths given")
-        stride = frames_per_sample if stride is None else stride
+        stride = frames_per_item if stride is None else stride
         for name, v in (
-            ("frames_per_sample", frames_per_sample),
+            ("frames_per_item", frames_per_item),
             ("stride", stride),
             ("max_open_files", max_open_files),
         ):
             if isinstance(v, bool) or not isinstance(v, (int, np.integer)) or v < 1:
                 raise CaptureError(f"RadarCaptureDataset: {name} must be a positive integer, got {v!r}")
-        self.frames_per_sample = int(frames_per_sample)
+        self.frames_per_item = int(frames_per_item)
         self.stride = int(stride)
         self.label = label
         self.transform = transform
         self.target_transform = target_transform
-        self.as_float = as_float
+        self.as_counts = bool(as_counts)
         self.max_open_files = int(max_open_files)
 
         self.num_frames: list[int] = []
@@ -129,10 +150,10 @@ class RadarCaptureDataset(Dataset):
 
         windows = []
         for path, n in zip(self.paths, self.num_frames):
-            w = 0 if n < self.frames_per_sample else (n - self.frames_per_sample) // self.stride + 1
+            w = 0 if n < self.frames_per_item else (n - self.frames_per_item) // self.stride + 1
             if w == 0:
                 warnings.warn(
-                    f"{path}: {n} frames, fewer than frames_per_sample={self.frames_per_sample}; file skipped",
+                    f"{path}: {n} frames, fewer than frames_per_item={self.frames_per_item}; file skipped",
                     CaptureWarning,
                     stacklevel=2,
                 )
@@ -140,7 +161,7 @@ class RadarCaptureDataset(Dataset):
         self._offsets = np.concatenate([[0], np.cumsum(windows)]).astype(np.int64)
         if self._offsets[-1] == 0:
             raise CaptureError(
-                f"RadarCaptureDataset: no file holds a window of {self.frames_per_sample} frames"
+                f"RadarCaptureDataset: no file holds a window of {self.frames_per_item} frames"
             )
         self._readers: OrderedDict[int, CaptureReader] = OrderedDict()
         self._pid = os.getpid()
@@ -232,8 +253,8 @@ class RadarCaptureDataset(Dataset):
 
     def __getitem__(self, index: int) -> Any:
         k, start = self._file_index(index)
-        t = self.frames_per_sample
-        x = self._reader(k).read(start, start + t, as_float=self.as_float)
+        t = self.frames_per_item
+        x = self._reader(k).read(start, start + t, as_float=not self.as_counts)
         if t == 1:
             x = x[0]
         if self.transform is not None:
@@ -266,5 +287,5 @@ class RadarCaptureDataset(Dataset):
     def __repr__(self) -> str:
         return (
             f"RadarCaptureDataset({len(self.paths)} files, {len(self)} items of "
-            f"{self.frames_per_sample} frame(s), stride {self.stride})"
+            f"{self.frames_per_item} frame(s), stride {self.stride})"
         )

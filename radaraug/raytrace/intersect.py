@@ -167,6 +167,11 @@ def _kernel(use_compile: bool):
     return _nearest_kernel
 
 
+def compile_failed() -> bool:
+    """Whether ``torch.compile`` of the kernel failed in this process (it then runs eagerly)."""
+    return _compile_failed
+
+
 def _check_rays(origins: torch.Tensor, directions: torch.Tensor) -> None:
     if origins.ndim != 2 or origins.shape[-1] != 3 or directions.shape != origins.shape:
         raise InputTensorError(

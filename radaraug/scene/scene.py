@@ -585,6 +585,21 @@ class Scene:
         """A scene shipped with radaraug, see :func:`builtin_scene`."""
         return cls.from_file(builtin_scene(name))
 
+    @classmethod
+    def load(cls, scene: Scene | str | os.PathLike) -> Scene:
+        """The one entry point for getting a scene: a :class:`Scene` (returned as is), a scene file
+        (``.yaml``/``.yml``/``.json``, or any existing file) or a built-in scene name.
+
+        Raises:
+            SceneError: missing or invalid file, or unknown built-in name (the message lists them).
+        """
+        if isinstance(scene, Scene):
+            return scene
+        p = Path(scene)
+        if p.suffix.lower() in (".yaml", ".yml", ".json") or p.is_file():
+            return cls.from_file(p)
+        return cls.builtin(str(scene))
+
     # ------------------------------------------------------------------ writing
     def to_dict(self, *, relative_to: str | os.PathLike | None = None) -> dict[str, Any]:
         """The scene description; file paths relative to ``relative_to`` when given."""

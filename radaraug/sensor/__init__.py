@@ -4,7 +4,6 @@
 floats (``x = 2*counts/4095 - 1``), like a real capture. See ``docs/receiver.md``.
 """
 
-from radaraug.sensor.benchmark import benchmark_receiver
 from radaraug.sensor.defaults import default_effects, tx_power_dBm
 from radaraug.sensor.effects import EFFECTS, HARDWARE_ORDER, Effect, Prior, effect_from_dict, insert_in_order
 from radaraug.sensor.paths import Paths
@@ -24,7 +23,6 @@ __all__ = [
     "default_effects",
     "tx_power_dBm",
     "point_target_paths",
-    "benchmark_receiver",
     "synthesize_exact",
     "synthesize_fast",
 ]

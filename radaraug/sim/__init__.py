@@ -1,2 +1,32 @@
-"""On-the-fly simulation: scenario sampling, twin randomization, the simulated Dataset, offline sharded
-generation."""
+"""On-the-fly simulation: the digital twin, scenario sampling, twin randomization, the simulated
+Dataset, offline sharded generation and the held-out proxy set.
+
+* :class:`DigitalTwin`: a scene's people at frame times -> raw ADC frames;
+* :class:`SimulatedRadarDataset`: a torch Dataset whose item ``i`` is a pure function of (seed, i);
+* :class:`ScenarioSampler` / :class:`Scenario`: who walks where, per item;
+* :class:`TwinRandomization`: room, people and sensor randomization of the twin;
+* :func:`simulate_capture`: a scene simulated into a radaraug HDF5 capture (sharded, resumable);
+* :func:`make_proxy` / :func:`load_proxy`: the held-out proxy set (another room, another sensor chain);
+* :func:`item_generator` / :func:`item_seed`: the per-item seeding.
+"""
+
+from radaraug.sim.dataset import SimulatedRadarDataset
+from radaraug.sim.offline import simulate_capture
+from radaraug.sim.proxy import load_proxy, make_proxy
+from radaraug.sim.randomization import TwinRandomization
+from radaraug.sim.scenarios import Scenario, ScenarioSampler
+from radaraug.sim.seeding import item_generator, item_seed
+from radaraug.sim.twin import DigitalTwin
+
+__all__ = [
+    "DigitalTwin",
+    "Scenario",
+    "ScenarioSampler",
+    "SimulatedRadarDataset",
+    "TwinRandomization",
+    "item_generator",
+    "item_seed",
+    "load_proxy",
+    "make_proxy",
+    "simulate_capture",
+]

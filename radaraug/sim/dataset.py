@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import math
 import os
+import warnings
 from collections.abc import Callable
 from pathlib import Path
 from typing import Any
@@ -34,18 +35,9 @@ TARGETS = ("count", "occupancy", "both", "none")
 
 
 def load_scene(scene: Scene | str | os.PathLike) -> Scene:
-    """A :class:`Scene`, a scene file (``.yaml``/``.yml``/``.json``) or a built-in scene name.
-
-    Raises:
-        SceneError: missing or invalid file, or unknown built-in name.
-    """
-    if isinstance(scene, Scene):
-        return scene
-    p = Path(scene)
-    if p.suffix.lower() in (".yaml", ".yml", ".json") or p.is_file():
-        return Scene.from_file(p)
-    return Scene.builtin(str(scene))
-
+    """Deprecated alias of :meth:`Scene.load` (kept for code written against radaraug 0.1)."""
+    warnings.warn("radaraug.sim.dataset.load_scene is deprecated; use Scene.load", DeprecationWarning, stacklevel=2)
+    return Scene.load(scene)
 
 
 class SimulatedRadarDataset(Dataset):
@@ -108,7 +100,7 @@ class SimulatedRadarDataset(Dataset):
             raise ConfigError(f"target must be one of {TARGETS}, got {target!r}")
         if length < 0 or frames_per_item < 1:
             raise ConfigError(f"length must be >= 0 and frames_per_item >= 1, got {length} and {frames_per_item}")
-        self.scene = load_scene(scene)
+        self.scene = Scene.load(scene)
         self.config = config or self.scene.config
         self.length = int(length)
         self.seed = int(seed)
@@ -153,14 +145,14 @@ class SimulatedRadarDataset(Dataset):
     def __getstate__(self) -> dict[str, Any]:
         state = self.__dict__.copy()
         state["_twin"] = None
-        if self._twin is not None and self._twin._static_signal is not None:
-            state["_static_signal"] = self._twin._static_signal.cpu()
+        if self._twin is not None and self._twin.cached_static_signal is not None:
+            state["_static_signal"] = self._twin.cached_static_signal.cpu()
         # Same for every room variant already traced (~200 kB each).
         state["_variant_twins"] = {}
         static = {k: v.cpu() for k, v in self._variant_static.items()}
         for k, twin in self._variant_twins.items():
-            if twin._static_signal is not None:
-                static[k] = twin._static_signal.cpu()
+            if twin.cached_static_signal is not None:
+                static[k] = twin.cached_static_signal.cpu()
         state["_variant_static"] = static
         return state
 

@@ -7,7 +7,7 @@ the noise on the ADC side of the IF gain (``adc_noise``, which dominates at low 
 ``+d`` dB, ADC-side RMS ``x 10**(d/20)``), so the floor follows ``d`` dB for dB at any IF gain
 while their ratio stays the fitted default's. It is a fixed-point iteration on that one number:
 simulate empty frames, measure the RD noise floor with the same statistic as ``radaraug info``
-(:func:`radaraug.inspect.noise_floor_db`), move the offset by the difference, repeat.
+(:func:`radaraug.io.summary.noise_floor_db`), move the offset by the difference, repeat.
 
 Why it matters for training: CalibratedDR raises the simulated floor with *independent* draws
 per RD cell, but a real floor is noise seen through the range and Doppler windows, correlated
@@ -27,7 +27,7 @@ import torch
 
 from radaraug.config import RadarConfig
 from radaraug.errors import CalibrationError
-from radaraug.inspect import noise_floor_db
+from radaraug.io.summary import noise_floor_db
 from radaraug.scene.scene import Scene
 from radaraug.sensor.defaults import ADC_NOISE_RMS_COUNTS, DEFAULT_NOISE_FIGURE_DB
 from radaraug.sensor.receiver import FMCWReceiver

@@ -35,7 +35,6 @@ from radaraug.io.hdf5_recovery import status_flags, writer_is_alive
 from radaraug.io.hdf5_writer import check_free_space
 from radaraug.scene.scene import Scene
 from radaraug.sensor.profile import as_profile
-from radaraug.sim.dataset import load_scene
 from radaraug.sim.seeding import item_generator
 from radaraug.sim.twin import DigitalTwin
 
@@ -122,7 +121,7 @@ def simulate_capture(
             enough space for the frames to write, or the disk fills up while writing (the file
             then keeps every frame completed before and a re-run resumes it).
     """
-    scene = load_scene(scene)
+    scene = Scene.load(scene)
     if isinstance(frames, bool) or not isinstance(frames, int) or frames < 1:
         raise ConfigError(f"--frames must be an integer >= 1, got {frames!r}")
     if parse_shard(f"{shard[0]}/{shard[1]}") != tuple(shard):  # validates (i, n) given from Python

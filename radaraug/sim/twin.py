@@ -132,6 +132,12 @@ class DigitalTwin:
         self.last_intervals: torch.Tensor | None = None
         """Knot intervals each frame of the last :meth:`paths` call used (``(T,)``; 0: one snapshot)."""
 
+    @property
+    def cached_static_signal(self) -> torch.Tensor | None:
+        """The room's signal if :meth:`static_signal` has computed (or was given) it, else None
+        (for handing it to another twin of the same scene, e.g. in a DataLoader worker)."""
+        return self._static_signal
+
     def static_signal(self) -> torch.Tensor:
         """The room's contribution ``(rx, chirps, samples)``: traced and synthesized once.
 

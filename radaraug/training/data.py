@@ -349,7 +349,7 @@ class RadarDataModule(L.LightningDataModule):
 
     def _fit_noise(self, calibration: str) -> dict[str, Any]:
         """The twin's noise figure fitted to the calibration capture's floor (cached in cache_dir)."""
-        from radaraug.sim.dataset import load_scene
+        from radaraug.scene.scene import Scene
         from radaraug.sim.noise_fit import capture_noise_floor_db, fit_noise_figure
 
         target = capture_noise_floor_db(calibration)
@@ -362,7 +362,7 @@ class RadarDataModule(L.LightningDataModule):
             return json.loads(path.read_text())
         opts = ({"method": "sbr", "rays": int(self.hparams.tracer_rays)} if self.hparams.tracer_rays is not None
                 else None)
-        fit = fit_noise_figure(load_scene(self.hparams.scene), self.config, target, tracer_options=opts)
+        fit = fit_noise_figure(Scene.load(self.hparams.scene), self.config, target, tracer_options=opts)
         fit["calibration"] = str(calibration)
         path.parent.mkdir(parents=True, exist_ok=True)
         atomic_write_json(path, fit, newline=False, indent=2)

@@ -13,7 +13,7 @@ import pytest
 from radaraug_tests_io_data import pattern_counts
 
 from radaraug.errors import CaptureError
-from radaraug.inspect import summarize_capture
+from radaraug.io.summary import summarize_capture
 from radaraug.io import CaptureWarning, RadarCaptureDataset, open_capture
 
 

@@ -22,7 +22,7 @@ def two_files(h5_capture, infineon_recording):
 
 
 def test_single_frames_across_files(two_files, tiny_config):
-    ds = RadarCaptureDataset(two_files, as_float=False)
+    ds = RadarCaptureDataset(two_files, as_counts=True)
     assert len(ds) == 11 and ds.config == tiny_config and ds.num_frames == [6, 5]
     assert ds[0].shape == (3, 4, 32) and ds[0].dtype == torch.int32
     expected = np.concatenate([pattern_counts(tiny_config, 6), pattern_counts(tiny_config, 5)])
@@ -43,7 +43,7 @@ def test_single_frames_across_files(two_files, tiny_config):
 )
 def test_windows_and_stride(two_files, tiny_config, stride, starts):
     # File 0 has 6 frames, file 1 has 5: (F - 2) // stride + 1 windows each (stride defaults to 2).
-    ds = RadarCaptureDataset(two_files, frames_per_sample=2, stride=stride, as_float=False)
+    ds = RadarCaptureDataset(two_files, frames_per_item=2, stride=stride, as_counts=True)
     assert len(ds) == len(starts)
     for i, (k, start) in enumerate(starts):
         window = ds[i]
@@ -61,7 +61,7 @@ def test_float_items_are_sdk_floats(h5_capture, tiny_config):
 
 
 def test_named_label_takes_the_last_frame_of_a_window(h5_capture):
-    ds = RadarCaptureDataset(h5_capture, frames_per_sample=3, label="count")
+    ds = RadarCaptureDataset(h5_capture, frames_per_item=3, label="count")
     # labels/count = [0, 0, 1, 1, 2, 2]; windows [0..2] and [3..5].
     assert [ds[i][1] for i in range(len(ds))] == [1, 2]
     ds_room = RadarCaptureDataset(h5_capture, label="room")  # file-level label
@@ -87,7 +87,7 @@ def test_constant_dict_and_callable_labels(two_files):
         calls.append((Path(path), frame))
         return frame * 10
 
-    ds = RadarCaptureDataset(two_files, frames_per_sample=2, label=label, transform=lambda x: x.sum())
+    ds = RadarCaptureDataset(two_files, frames_per_item=2, label=label, transform=lambda x: x.sum())
     x, y = ds[4]
     assert y == 30 and calls[-1] == (Path(two_files[1]), 3)
     assert x.ndim == 0
@@ -103,13 +103,13 @@ def test_files_with_different_configs_are_refused(tmp_path, h5_capture):
 
 def test_short_files_and_bad_arguments(tmp_path, h5_capture, tiny_config):
     short = write_capture(tmp_path / "short.h5", pattern_counts(tiny_config, 2), tiny_config)
-    with pytest.warns(CaptureWarning, match="fewer than frames_per_sample"):
-        ds = RadarCaptureDataset([short, h5_capture], frames_per_sample=3)
+    with pytest.warns(CaptureWarning, match="fewer than frames_per_item"):
+        ds = RadarCaptureDataset([short, h5_capture], frames_per_item=3)
     assert len(ds) == 2
     with pytest.warns(CaptureWarning), pytest.raises(CaptureError, match="no file holds a window"):
-        RadarCaptureDataset(short, frames_per_sample=3)
-    with pytest.raises(CaptureError, match="frames_per_sample"):
-        RadarCaptureDataset(h5_capture, frames_per_sample=0)
+        RadarCaptureDataset(short, frames_per_item=3)
+    with pytest.raises(CaptureError, match="frames_per_item"):
+        RadarCaptureDataset(h5_capture, frames_per_item=0)
     with pytest.raises(CaptureError, match="no capture paths"):
         RadarCaptureDataset([])
     with pytest.raises(CaptureError, match="does not exist"):
@@ -117,7 +117,7 @@ def test_short_files_and_bad_arguments(tmp_path, h5_capture, tiny_config):
 
 
 def test_lazy_handles_are_not_pickled_and_lru_bounded(two_files, tiny_config):
-    ds = RadarCaptureDataset(two_files, as_float=False, max_open_files=1)
+    ds = RadarCaptureDataset(two_files, as_counts=True, max_open_files=1)
     assert len(ds._readers) == 0  # nothing open after construction
     ds[0]
     ds[10]
@@ -131,7 +131,7 @@ def test_lazy_handles_are_not_pickled_and_lru_bounded(two_files, tiny_config):
 
 def test_dataloader_with_spawned_workers(two_files, tiny_config):
     ds = RadarCaptureDataset(
-        two_files, frames_per_sample=2, stride=1, label={str(p): i for i, p in enumerate(two_files)}
+        two_files, frames_per_item=2, stride=1, label={str(p): i for i, p in enumerate(two_files)}
     )
     ds[0]  # hold an open HDF5 handle in the parent: it must not travel to the workers
     loader = DataLoader(ds, batch_size=3, num_workers=2, multiprocessing_context="spawn")
@@ -141,3 +141,16 @@ def test_dataloader_with_spawned_workers(two_files, tiny_config):
     assert y.tolist() == [0] * 5 + [1] * 4
     expected = torch.stack([ds[i][0] for i in range(len(ds))])
     torch.testing.assert_close(x, expected)
+
+
+def test_deprecated_knob_names_still_work(two_files) -> None:
+    # radaraug 0.1 named the knobs frames_per_sample / as_float; they map to the new names.
+    with pytest.warns(DeprecationWarning, match="frames_per_item"):
+        old = RadarCaptureDataset(two_files, frames_per_sample=2)
+    with pytest.warns(DeprecationWarning, match="as_counts"):
+        counts = RadarCaptureDataset(two_files, as_float=False)
+    new = RadarCaptureDataset(two_files, frames_per_item=2)
+    assert len(old) == len(new) and torch.equal(old[0], new[0])
+    assert counts[0].dtype == torch.int32
+    with pytest.raises(CaptureError, match="not also"):
+        RadarCaptureDataset(two_files, frames_per_item=2, frames_per_sample=2)

@@ -6,7 +6,8 @@ import pytest
 import torch
 
 from radaraug.errors import InputTensorError
-from radaraug.sensor import FMCWReceiver, Paths, benchmark_receiver, point_target_paths
+from radaraug.bench.receiver import benchmark_receiver
+from radaraug.sensor import FMCWReceiver, Paths, point_target_paths
 from radaraug.units import FLOAT_CONVENTION
 
 

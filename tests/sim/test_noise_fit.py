@@ -4,7 +4,7 @@ import pytest
 import torch
 
 from radaraug.errors import CalibrationError
-from radaraug.inspect import noise_floor_db
+from radaraug.io.summary import noise_floor_db
 from radaraug.scene.scene import Scene
 from radaraug.sensor.defaults import ADC_NOISE_RMS_COUNTS
 from radaraug.sensor.receiver import FMCWReceiver

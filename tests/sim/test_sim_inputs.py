@@ -47,7 +47,9 @@ def test_dataset_rejects_bad_arguments_with_config_errors() -> None:
 def test_scene_names_win_over_a_folder_of_the_same_name(tmp_path, monkeypatch) -> None:
     (tmp_path / "corridor").mkdir()
     monkeypatch.chdir(tmp_path)
-    assert load_scene("corridor").name == Scene.builtin("corridor").name
+    assert Scene.load("corridor").name == Scene.builtin("corridor").name
+    with pytest.warns(DeprecationWarning, match="Scene.load"):  # the deprecated alias still works
+        assert load_scene("corridor").name == Scene.builtin("corridor").name
 
 
 def test_resume_refuses_files_of_another_job_or_not_ours(tmp_path) -> None:

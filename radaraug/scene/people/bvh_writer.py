@@ -82,10 +82,10 @@ def write_bvh(
     duration = person.cycle_duration_s if duration_s is None else float(duration_s)
     n = int(round(duration * fps)) + 1
     t = torch.arange(n, dtype=torch.float64) / fps
-    pose = person._pose(t)
+    pose = person.pose(t)
     rots = pose["rotations"]
     h = person.height_m
-    lens = person._lengths
+    lens = person.segment_lengths_m
     m_per_unit = UNIT_SCALES[unit]
     p_mat = _BVH_TO_WORLD
 

@@ -105,7 +105,7 @@ class Walker(SkeletonPerson):
         self.cycle_duration_s = self.relative_cycle_length / rv
         self.support_duration_s = 0.752 * self.cycle_duration_s - 0.143
         self.stance_fraction = self.support_duration_s / self.cycle_duration_s
-        self._lengths = {k: f[k] * h for k in f}
+        self.segment_lengths_m = {k: f[k] * h for k in f}
         self._ankle_height = ANKLE_HEIGHT_FRACTION * h
         curves = gait_curves(rv, self.stance_fraction)
         self._pchip = PeriodicPchip([curves[k] for k in _CURVES])
@@ -152,7 +152,7 @@ class Walker(SkeletonPerson):
         u0 = 0.15 * in2.to(u.dtype) + 0.35 * in3.to(u.dtype) + 0.15 * in4.to(u.dtype)
         return off, coef, w, w * (u - u0)
 
-    def _pose(self, t: torch.Tensor) -> dict[str, Any]:
+    def pose(self, t: torch.Tensor) -> dict[str, Any]:
         """Joint positions/velocities and segment rotations (world), for ``t`` ``(T,)``.
 
         Limb tensors carry a leading side axis (0 = left, 1 = right) so that every
@@ -264,7 +264,7 @@ class Walker(SkeletonPerson):
         key = (device, dtype, self._z0)
         cache = self.__dict__.setdefault("_const_cache", {})
         if key not in cache:
-            L = self._lengths  # noqa: N806
+            L = self.segment_lengths_m  # noqa: N806
 
             def vec(*x: float) -> torch.Tensor:
                 return torch.tensor(x, dtype=dtype, device=device)
@@ -290,7 +290,7 @@ class Walker(SkeletonPerson):
 
     def joints(self, t: torch.Tensor) -> tuple[torch.Tensor, torch.Tensor]:
         """Joint positions ``(T, 17, 3)`` m and analytic velocities ``(T, 17, 3)`` m/s."""
-        p = self._pose(t)
+        p = self.pose(t)
         return p["positions"], p["velocities"]
 
     def _ground_offset(self) -> float:
