@@ -56,8 +56,8 @@ EXIT_BROKEN_PIPE = 141
 
 
 def _cmd_info(args: argparse.Namespace) -> int:
-    from radaraug.io.summary import summarize_capture
     from radaraug.io import open_capture
+    from radaraug.io.summary import summarize_capture
 
     with open_capture(args.path) as reader:
         info = summarize_capture(reader, max_frames=args.max_frames)

@@ -30,8 +30,8 @@ def run_demo(out_dir: Path, *, capture: str | Path | None = None) -> dict:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from radaraug.io.summary import summarize_capture
     from radaraug.io import open_capture, sample_recording_path
+    from radaraug.io.summary import summarize_capture
     from radaraug.transforms import (
         CalibratedDR,
         ClipNormalize,

@@ -503,8 +503,8 @@ def run_one(case: Case, case_dir: Path) -> str:
     import torch
 
     from radaraug.errors import RadarAugError
-    from radaraug.io.summary import summarize_capture
     from radaraug.io import RadarCaptureDataset, open_capture
+    from radaraug.io.summary import summarize_capture
     from radaraug.transforms import CalibratedDR, RadarCompose, RangeDoppler, ToDecibels
 
     case_dir.mkdir(parents=True)

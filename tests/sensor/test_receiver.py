@@ -5,8 +5,8 @@ from __future__ import annotations
 import pytest
 import torch
 
-from radaraug.errors import InputTensorError
 from radaraug.bench.receiver import benchmark_receiver
+from radaraug.errors import InputTensorError
 from radaraug.sensor import FMCWReceiver, Paths, point_target_paths
 from radaraug.units import FLOAT_CONVENTION
 

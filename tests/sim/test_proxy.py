@@ -14,8 +14,8 @@ import torch
 
 from radaraug import RadarConfig
 from radaraug.errors import ConfigError, SceneError
-from radaraug.io.summary import summarize_capture
 from radaraug.io import RadarCaptureDataset, open_capture
+from radaraug.io.summary import summarize_capture
 from radaraug.scene.people import BVHPerson, Walker, read_bvh
 from radaraug.scene.people.sine_gait import SineGait, write_sine_gait_bvh
 from radaraug.scene.people.skeleton import JOINT_INDEX
