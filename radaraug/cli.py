@@ -26,6 +26,9 @@ Exit status (never a traceback for any of these):
 3     bad input or unwritable output: a :class:`~radaraug.errors.RadarAugError` (a file that is
       missing, truncated or not what it claims, a config that does not fit, no space left...) or
       an ``OSError`` of the file system; one line ``error: <message>`` on stderr
+4     a package a feature needs is not installed
+      (:class:`~radaraug.errors.DependencyNotFoundError`); one line ``error: <message>`` on
+      stderr naming the package and the ``pip`` command that installs it
 130   interrupted (Ctrl-C)
 141   stdout was closed early (``radaraug trace --json | head -1``): the output stops quietly
 ====  ======================================================================================
@@ -42,13 +45,15 @@ import sys
 from collections.abc import Sequence
 from pathlib import Path
 
-from radaraug.errors import ConfigError, RadarAugError
+from radaraug.errors import ConfigError, DependencyNotFoundError, RadarAugError
 
 EXIT_OK = 0
 EXIT_USAGE = 2
 """argparse's own status for a usage error."""
 EXIT_DATA = 3
 """Bad input or an output that cannot be written (RadarAugError, OSError)."""
+EXIT_DEPENDENCY = 4
+"""A package that the command needs is not installed (DependencyNotFoundError)."""
 EXIT_INTERRUPTED = 130
 """128 + SIGINT, what shells report for Ctrl-C."""
 EXIT_BROKEN_PIPE = 141
@@ -169,7 +174,8 @@ def _cmd_trace(args: argparse.Namespace) -> int:
         ell = type(ell)(*(x.float()[0] for x in (ell.centers, ell.semi_axes, ell.rotations, ell.velocities)),
                         ell.material)
     paths = tracer.trace(ellipsoids=ell)
-    data = {"scene": scene.name, "time_s": args.time, **paths_to_json(paths, scene.config)}
+    data = {"scene": scene.name, "time_s": args.time, "convex_room": bool(tracer.convex_room),
+            **paths_to_json(paths, scene.config)}
     if args.json:
         print(json.dumps(data))
         return 0
@@ -367,6 +373,9 @@ def _run(func, *args) -> int:
     except KeyboardInterrupt:
         print("interrupted", file=sys.stderr)
         return EXIT_INTERRUPTED
+    except DependencyNotFoundError as e:
+        print(f"error: {e}", file=sys.stderr)
+        return EXIT_DEPENDENCY
     except RadarAugError as e:
         print(f"error: {e}", file=sys.stderr)
         return EXIT_DATA

@@ -9,6 +9,7 @@ from typing import Any
 import numpy as np
 import torch
 
+from radaraug._optional import lazy_import, missing_dependency
 from radaraug.errors import SceneError
 from radaraug.scene.geometry import Ellipsoids, SceneGeometry
 from radaraug.scene.people._interp import FrameTrack
@@ -20,7 +21,7 @@ NUM_CLUSTERS = 16
 
 
 def _load(item: Any, k: int) -> tuple[np.ndarray, np.ndarray, str]:
-    import trimesh
+    trimesh = lazy_import("trimesh", feature="meshes")
 
     label = str(item) if isinstance(item, (str, Path)) else f"mesh #{k}"
     if isinstance(item, (str, Path)):
@@ -28,6 +29,8 @@ def _load(item: Any, k: int) -> tuple[np.ndarray, np.ndarray, str]:
             raise SceneError(f"{item}: mesh file not found")
         try:
             item = trimesh.load(str(item), force="mesh", process=False)
+        except ModuleNotFoundError as exc:  # some formats need packages trimesh imports on demand
+            raise missing_dependency(exc, f"reading mesh file {label}") from None
         except Exception as exc:  # trimesh raises many types for bad files
             raise SceneError(f"{label}: cannot read mesh: {exc}") from exc
     if isinstance(item, trimesh.Scene):

@@ -10,6 +10,7 @@ from typing import Any
 import numpy as np
 import torch
 
+from radaraug._optional import lazy_import
 from radaraug.errors import InputTensorError, SceneError
 from radaraug.scene.geometry import Ellipsoids, SceneGeometry
 
@@ -37,7 +38,7 @@ def as_times(t: torch.Tensor | float | Any, name: str = "t") -> torch.Tensor:
 
 @lru_cache(maxsize=8)
 def _unit_icosphere(subdivisions: int) -> tuple[np.ndarray, np.ndarray]:
-    import trimesh
+    trimesh = lazy_import("trimesh", feature="meshes")
 
     s = trimesh.creation.icosphere(subdivisions=subdivisions, radius=1.0)
     return np.asarray(s.vertices, dtype=np.float64), np.asarray(s.faces, dtype=np.int64)
