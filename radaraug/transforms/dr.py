@@ -22,7 +22,6 @@ from __future__ import annotations
 
 import json
 import math
-import numbers
 import os
 import warnings
 from collections.abc import Mapping
@@ -35,11 +34,10 @@ from radaraug.config import RadarConfig
 from radaraug.errors import CalibrationError, ConfigError, RadarAugError
 from radaraug.io.atomic import atomic_write_text
 from radaraug.safe_read import load_json, safe_repr
-from radaraug.transforms._fit_sources import iter_source
-from radaraug.transforms._motion import DEFAULT_THRESHOLD_DB, WARN_FRACTION, motion_fraction
+from radaraug.transforms._motion import DEFAULT_THRESHOLD_DB
 from radaraug.transforms.base import Params, RandomRadarTransform
-from radaraug.transforms.chain import chain_of, doppler_window_of
-from radaraug.transforms.windows import MAIN_LOBE_HALF_WIDTH_BINS
+from radaraug.transforms.chain import canonical_chain, describe_chain
+from radaraug.transforms.dr_fit import floor_statistics
 from radaraug.units import DB_CONVENTION
 
 DEFAULT_RANDOM_DR_MEAN_DB = (-120.0, -90.0)
@@ -58,6 +56,16 @@ def _range_arg(name: str, value: Any, cls: str) -> tuple[float, float]:
     return lo, hi
 
 
+def _ends_in_db(prefix: list[dict[str, Any]]) -> bool:
+    for spec in reversed(prefix):
+        if spec["name"] == "ToDecibels":
+            return True
+        if spec["name"] == "CombineRx" and spec.get("db", False):
+            continue
+        return False
+    return False
+
+
 class _DRClamp(RandomRadarTransform):
     """Shared clamp: ``max(S, noise_db)``."""
 
@@ -65,6 +73,19 @@ class _DRClamp(RandomRadarTransform):
 
     def transform(self, x: torch.Tensor, params: Params) -> torch.Tensor:
         return torch.maximum(x, params["noise_db"].to(dtype=x.dtype))
+
+    def check_preceding_chain(self, before: list[dict[str, Any]], where: str) -> None:
+        """Raise :class:`CalibrationError` if the steps ``before`` this one (their chain specs)
+        do not make dB maps. Called by :class:`~radaraug.transforms.compose.RadarCompose`.
+
+        Args:
+            before: chain specs of the preceding steps (empty: maps made elsewhere, not checked).
+            where: the step's place, e.g. ``"RadarCompose: RandomDR at position 2"``.
+        """
+        if canonical_chain(before) and not _ends_in_db(canonical_chain(before)):
+            raise CalibrationError(
+                f"{where} clamps dB maps, but the steps before it ({describe_chain(before)}) do not end in ToDecibels"
+            )
 
 
 class RandomDR(_DRClamp):
@@ -234,6 +255,17 @@ class CalibratedDR(_DRClamp):
                 f"CalibratedDR was fitted with another radar config; (fitted, given): {diff}"
             )
 
+    def check_preceding_chain(self, before: list[dict[str, Any]], where: str) -> None:
+        """Also refuse a chain other than the one the floor was fitted with (when recorded)."""
+        super().check_preceding_chain(before, where)
+        prefix = canonical_chain(before)
+        if prefix and self.chain is not None and prefix != canonical_chain(self.chain):
+            loaded = f" (loaded from {self.file})" if self.file else ""
+            raise CalibrationError(
+                f"{where}{loaded} was fitted on maps made by {describe_chain(self.chain)}, "
+                f"but here it follows {describe_chain(before)}"
+            )
+
     def extra_spec(self) -> dict[str, Any]:
         return {"mean_db": self.mean_db, "std_db": self.std_db, **super().extra_spec()}
 
@@ -280,82 +312,11 @@ class CalibratedDR(_DRClamp):
         The standard deviation is the population one (``correction=0``); statistics are
         accumulated in float64.
         """
-        from radaraug.transforms.compose import RadarCompose
-        from radaraug.transforms.spectral import RangeDoppler, ToDecibels
-
-        if input not in ("raw", "db"):
-            raise CalibrationError(f"CalibratedDR.fit: input must be 'raw' or 'db', got {input!r}")
-        for name, value in (("max_frames", max_frames), ("batch_size", batch_size)):
-            if value is None and name == "max_frames":
-                continue
-            if isinstance(value, bool) or not isinstance(value, numbers.Integral) or value < 1:
-                raise CalibrationError(f"CalibratedDR.fit: {name} must be a positive integer, got {value!r}")
-        if pipeline is None:
-            pipeline = RadarCompose([RangeDoppler(), ToDecibels()])
-        chain = chain_of(pipeline)
-        if chain is None:
-            warnings.warn(
-                "CalibratedDR.fit: the pipeline has no chain_spec(); the chain cannot be recorded or checked",
-                UserWarning,
-                stacklevel=2,
-            )
-        batches, source_name, capture_config = iter_source(
-            source, max_frames=max_frames, batch_size=batch_size
+        stats = floor_statistics(
+            source, pipeline=pipeline, config=config, max_frames=max_frames, input=input,
+            batch_size=batch_size, motion_threshold_db=motion_threshold_db, progress=progress,
         )
-        if capture_config is not None:
-            if config is not None and config != capture_config:
-                raise CalibrationError(
-                    f"CalibratedDR.fit: the config given differs from the config of {source_name}"
-                )
-            config = capture_config
-        where = f"capture {source_name}" if source_name else "the calibration data"
-        if progress:
-            from tqdm.auto import tqdm
-
-            batches = tqdm(batches, desc="fit CalibratedDR", unit="batch", leave=False)
-        maps = []
-        with torch.no_grad():
-            for batch in batches:
-                out = batch if input == "db" else pipeline(batch)
-                if not isinstance(out, torch.Tensor) or out.ndim != 4 or out.is_complex():
-                    raise CalibrationError(
-                        f"CalibratedDR.fit: the pipeline must map frames to real dB maps (frames, rx, range, "
-                        f"doppler); got {getattr(out, 'shape', type(out).__name__)} from {where}"
-                    )
-                if not bool(torch.isfinite(out).all()):
-                    raise CalibrationError(f"CalibratedDR.fit: NaN/Inf in the RD maps of {where}")
-                maps.append(out)
-        if not maps or sum(m.shape[0] for m in maps) == 0:
-            raise CalibrationError(f"CalibratedDR.fit: {where} has no frames")
-        shapes = {tuple(m.shape[1:]) for m in maps}
-        if len(shapes) > 1:
-            raise CalibrationError(
-                f"CalibratedDR.fit: frames of {where} have different shapes {sorted(shapes)}"
-            )
-        all_maps = torch.cat(maps)
-        values = all_maps.double()
-        mean, std = float(values.mean()), float(values.std(correction=0))
-        window = doppler_window_of(chain) or "hann"
-        motion = motion_fraction(all_maps, MAIN_LOBE_HALF_WIDTH_BINS.get(window, 1) + 1, motion_threshold_db)
-        if motion is not None and motion > WARN_FRACTION:
-            warnings.warn(
-                f"CalibratedDR.fit: {where} should be an empty scene but shows motion: {100 * motion:.2f} % of the cells "
-                f"off zero Doppler are > {motion_threshold_db:g} dB above their own median over frames (noise "
-                f"and static clutter alone give ~0 %). The fitted floor includes it; record the empty scene.",
-                UserWarning,
-                stacklevel=2,
-            )
-        return cls(
-            mean,
-            std,
-            chain=chain,
-            config=config,
-            map_shape=tuple(all_maps.shape[1:]),
-            source=source_name,
-            num_frames=int(all_maps.shape[0]),
-            motion=motion,
-            **kwargs,
-        )
+        return cls(**stats, **kwargs)
 
     # ------------------------------------------------------------------ persistence
     def to_dict(self) -> dict[str, Any]:
