@@ -13,7 +13,7 @@ from radaraug._optional import lazy_import, missing_dependency
 from radaraug.errors import SceneError
 from radaraug.scene.geometry import Ellipsoids, SceneGeometry
 from radaraug.scene.people._interp import FrameTrack
-from radaraug.scene.people.person import Person, as_times
+from radaraug.scene.people.person import Person, as_times, register_person
 from radaraug.scene.people.simplify import simplify_mesh
 
 _Y_UP_TO_Z_UP = np.array([[0.0, 0.0, 1.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]])
@@ -91,6 +91,7 @@ def _attach(points: torch.Tensor, vertices: torch.Tensor, faces: torch.Tensor,
     return torch.cat(tri_out), torch.cat(bary_out)
 
 
+@register_person
 class MeshSequencePerson(Person):
     """An animated triangle mesh, one mesh per frame, every frame with the same vertices.
 
@@ -115,6 +116,8 @@ class MeshSequencePerson(Person):
         up_axis: ``"y"`` (default, OBJ/GLB/Mixamo) or ``"z"``.
         speed_m_s: root motion along the heading (m/s), added to the animation.
     """
+
+    type_name = "mesh_sequence"
 
     def __init__(
         self,
