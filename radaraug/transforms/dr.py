@@ -25,6 +25,7 @@ import math
 import os
 import warnings
 from collections.abc import Mapping
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -44,6 +45,10 @@ DEFAULT_RANDOM_DR_MEAN_DB = (-120.0, -90.0)
 DEFAULT_RANDOM_DR_STD_DB = (1.0, 4.0)
 FORMAT = "radaraug.CalibratedDR"
 FORMAT_VERSION = 1
+ENV_VAR = "RADARAUG_CDR"
+"""Environment variable naming the calibration ``CalibratedDR()`` (no arguments) uses: a JSON
+written by ``radaraug fit-cdr`` / :meth:`CalibratedDR.save`, or an empty-room capture (fitted
+with the default chain when the transform is made)."""
 
 
 def _range_arg(name: str, value: Any, cls: str) -> tuple[float, float]:
@@ -162,12 +167,27 @@ class CalibratedDR(_DRClamp):
         source: name of the calibration capture (recorded only).
         num_frames: frames the statistics came from (recorded only).
         motion: the motion statistic of the fit (recorded only; see :mod:`._motion`).
+
+    With no ``mean_db``/``std_db``, ``CalibratedDR()`` reads the calibration named by the
+    ``RADARAUG_CDR`` environment variable (:data:`ENV_VAR`): a calibration JSON, or an empty-room
+    capture that is fitted there and then with the default chain. radaraug ships no default
+    floor: the floor depends on the sensor, its IF gain, the chain and the room, and no empty-room
+    recording at the paper's configuration is available to fit one from (docs/transforms.md).
+    :attr:`provenance` says where the numbers came from.
+
+    Raises:
+        CalibrationError: only one of ``mean_db``/``std_db`` given; neither given and
+            ``RADARAUG_CDR`` unset, or naming a file that is not a calibration or a capture.
     """
+
+    provenance: dict[str, Any]
+    """Where ``(mean_db, std_db)`` came from: ``{"from": "arguments" | "file" | "RADARAUG_CDR",
+    "path": ..., "source": capture name, "num_frames": ...}``."""
 
     def __init__(
         self,
-        mean_db: float,
-        std_db: float,
+        mean_db: float | None = None,
+        std_db: float | None = None,
         *,
         chain: list[dict[str, Any]] | None = None,
         config: RadarConfig | dict[str, Any] | None = None,
@@ -181,6 +201,18 @@ class CalibratedDR(_DRClamp):
         **rng: Any,
     ) -> None:
         super().__init__(p=p, same_on_batch=same_on_batch, generator=generator, **rng)
+        self.provenance = {"from": "arguments"}
+        if mean_db is None or std_db is None:
+            if mean_db is not None or std_db is not None:
+                raise CalibrationError("CalibratedDR: give both mean_db and std_db, or neither (RADARAUG_CDR)")
+            if any(v is not None for v in (chain, config, map_shape, source, num_frames, motion)):
+                raise CalibrationError(
+                    "CalibratedDR: chain, config, map_shape, source, num_frames and motion come with mean_db/std_db"
+                )
+            record, self.provenance = _from_environment()
+            mean_db, std_db = record["mean_db"], record["std_db"]
+            chain, config, map_shape = record["chain"], record["config"], record["map_shape"]
+            source, num_frames, motion = record["source"], record["num_frames"], record["motion"]
         self.mean_db, self.std_db = float(mean_db), float(std_db)
         if not (math.isfinite(self.mean_db) and math.isfinite(self.std_db)) or self.std_db < 0:
             raise CalibrationError(
@@ -215,7 +247,11 @@ class CalibratedDR(_DRClamp):
             if value is not None and not ok(value):
                 raise CalibrationError(f"CalibratedDR: {name} has an invalid value {safe_repr(value)}")
         self.source = source
-        self.file: str | None = None  # the calibration file it was loaded from, if any
+        # the calibration file it was loaded from, if any (named by the errors raised when it is used)
+        self.file: str | None = None
+        if self.provenance["from"] == ENV_VAR and not self.provenance.get("fitted"):
+            self.file = self.provenance["path"]
+        self.provenance.update(source=source, num_frames=num_frames)
         self.num_frames = num_frames
         self.motion = motion
 
@@ -359,46 +395,72 @@ class CalibratedDR(_DRClamp):
             CalibrationError: missing, unreadable or malformed file, another ``format_version``,
                 or another ``db_convention`` (the message names the file).
         """
-        data = load_json(path, error=CalibrationError, what="calibration file")
-        if not isinstance(data, dict) or data.get("format") != FORMAT:
-            raise CalibrationError(f"calibration file {path} is not a {FORMAT} record")
-        version = data.get("format_version", FORMAT_VERSION)
-        if version != FORMAT_VERSION or isinstance(version, bool):
-            raise CalibrationError(
-                f"calibration file {path} has format_version {version!r}; this radaraug reads {FORMAT_VERSION}"
-            )
-        convention = data.get("db_convention", DB_CONVENTION)
-        if convention != DB_CONVENTION:
-            # (m_t, s_t) in another dB scale would clamp at a silently wrong level.
-            raise CalibrationError(
-                f"calibration file {path} was fitted in another dB convention ({convention!r}); "
-                f"radaraug's maps use {DB_CONVENTION!r}"
-            )
         try:
-            mean, std = data["mean_db"], data["std_db"]
-            if isinstance(mean, bool) or isinstance(std, bool):
-                raise TypeError("mean_db/std_db must be numbers")
-            chain = data.get("chain")
-            if chain is not None and not (
-                isinstance(chain, list) and all(isinstance(s, dict) for s in chain)
-            ):
-                raise TypeError("chain must be a list of step objects")
-            loaded = cls(
-                float(mean),
-                float(std),
-                chain=chain,
-                config=data.get("config"),
-                map_shape=data.get("map_shape"),
-                source=data.get("source"),
-                num_frames=data.get("num_frames"),
-                motion=data.get("motion_fraction"),
-                **kwargs,
-            )
-            loaded.file = str(path)  # named by the errors raised when it is used
-            return loaded
-        except KeyError as e:
-            raise CalibrationError(f"calibration file {path} lacks the key {e}") from None
+            loaded = cls(**_read_record(path), **kwargs)
         except CalibrationError as e:
-            raise CalibrationError(f"calibration file {path}: {e}") from None
-        except (TypeError, ValueError, OverflowError) as e:
-            raise CalibrationError(f"calibration file {path} is malformed: {str(e)[:200]}") from None
+            msg = str(e)
+            raise CalibrationError(msg if str(path) in msg else f"calibration file {path}: {msg}") from None
+        loaded.file = str(path)  # named by the errors raised when it is used
+        loaded.provenance.update({"from": "file", "path": str(path)})
+        return loaded
+
+
+def _read_record(path: str | os.PathLike) -> dict[str, Any]:
+    """The constructor arguments stored in a calibration JSON (checked)."""
+    data = load_json(path, error=CalibrationError, what="calibration file")
+    if not isinstance(data, dict) or data.get("format") != FORMAT:
+        raise CalibrationError(f"calibration file {path} is not a {FORMAT} record")
+    version = data.get("format_version", FORMAT_VERSION)
+    if version != FORMAT_VERSION or isinstance(version, bool):
+        raise CalibrationError(
+            f"calibration file {path} has format_version {version!r}; this radaraug reads {FORMAT_VERSION}"
+        )
+    convention = data.get("db_convention", DB_CONVENTION)
+    if convention != DB_CONVENTION:
+        # (m_t, s_t) in another dB scale would clamp at a silently wrong level.
+        raise CalibrationError(
+            f"calibration file {path} was fitted in another dB convention ({convention!r}); "
+            f"radaraug's maps use {DB_CONVENTION!r}"
+        )
+    try:
+        mean, std = data["mean_db"], data["std_db"]
+        if isinstance(mean, bool) or isinstance(std, bool):
+            raise TypeError("mean_db/std_db must be numbers")
+        chain = data.get("chain")
+        if chain is not None and not (isinstance(chain, list) and all(isinstance(s, dict) for s in chain)):
+            raise TypeError("chain must be a list of step objects")
+        return {
+            "mean_db": float(mean),
+            "std_db": float(std),
+            "chain": chain,
+            "config": data.get("config"),
+            "map_shape": data.get("map_shape"),
+            "source": data.get("source"),
+            "num_frames": data.get("num_frames"),
+            "motion": data.get("motion_fraction"),
+        }
+    except KeyError as e:
+        raise CalibrationError(f"calibration file {path} lacks the key {e}") from None
+    except (TypeError, ValueError, OverflowError) as e:
+        raise CalibrationError(f"calibration file {path} is malformed: {str(e)[:200]}") from None
+
+
+def _from_environment() -> tuple[dict[str, Any], dict[str, Any]]:
+    """``CalibratedDR()``'s calibration: the record named by ``RADARAUG_CDR`` and its provenance."""
+    path = os.environ.get(ENV_VAR, "").strip()
+    if not path:
+        raise CalibrationError(
+            f"CalibratedDR() with no arguments uses the calibration named by the {ENV_VAR} environment "
+            "variable, which is not set. radaraug ships no default noise floor (it depends on your sensor, "
+            "IF gain, DSP chain and room). Record ~10 s of your empty room, then either "
+            f"`radaraug fit-cdr EMPTY_ROOM -o cdr.json` and `export {ENV_VAR}=cdr.json`, or "
+            "CalibratedDR.fit(EMPTY_ROOM)"
+        )
+    provenance: dict[str, Any] = {"from": ENV_VAR, "path": path}
+    if Path(path).suffix.lower() == ".json":
+        return _read_record(path), provenance
+    if not Path(path).exists():
+        raise CalibrationError(f"{ENV_VAR}={path}: no such calibration JSON or capture")
+    stats = floor_statistics(path)  # an empty-room capture: fit it with the default chain
+    provenance["fitted"] = True
+    return stats, provenance
