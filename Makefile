@@ -6,7 +6,9 @@ VENV := .venv
 PY := $(VENV)/bin/python
 STAMP := $(VENV)/.installed
 
-.PHONY: demo test test-all lint bench clean
+RUNTIME_VENV := .venv-runtime
+
+.PHONY: demo test test-all test-runtime lint bench clean
 
 $(STAMP): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -25,6 +27,17 @@ test: $(STAMP)
 test-all: $(STAMP)
 	$(PY) -m pytest -q -m ''
 
+# A second virtualenv with only the declared runtime dependencies (`pip install .`, no [test]
+# extra): the CLI starts, the twin simulates 16 frames, and the convex-room fast path is on (it
+# needs scipy; without it the twin would run ~1.7x slower with the same output). Not part of
+# `make test` (it downloads and installs every dependency); CI runs it as its own job.
+test-runtime:
+	rm -rf $(RUNTIME_VENV)
+	$(PYTHON) -m venv $(RUNTIME_VENV)
+	$(RUNTIME_VENV)/bin/python -m pip install --quiet --upgrade pip
+	$(RUNTIME_VENV)/bin/python -m pip install --quiet .
+	.ci/runtime-check $(RUNTIME_VENV)/bin/radaraug
+
 lint: $(STAMP)
 	$(VENV)/bin/ruff check radaraug tests
 
@@ -36,4 +49,4 @@ bench: $(STAMP)
 	$(VENV)/bin/radaraug bench static-room --out benchmarks/static_room_cpu.json --figure docs/img/twin/static_profile_vs_density.png
 
 clean:
-	rm -rf $(VENV) demo_out build *.egg-info
+	rm -rf $(VENV) $(RUNTIME_VENV) demo_out build *.egg-info

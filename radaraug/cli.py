@@ -3,7 +3,7 @@
 Sub-commands::
 
     radaraug info PATH [--json]                 config, shape, duration, labels, plausibility
-    radaraug fit-cdr PATH -o cdr.json           fit CalibratedDR on an empty-room capture
+    radaraug fit-cdr PATH -o cdr.json [--json]  fit CalibratedDR on an empty-room capture
     radaraug bench transforms [--json]          RD+CDR+clip+colormap chain vs NumPy
     radaraug bench twin [--json]                digital-twin throughput vs real time and baselines
     radaraug bench training [--json]            recipe training step vs a bare ResNet18 step
@@ -11,12 +11,16 @@ Sub-commands::
     radaraug bench static-room [--json]         room trace: image method vs SBR ray counts, convergence
     radaraug bench micro-doppler --out PNG      a walker's micro-Doppler: one snapshot vs motion in the frame
     radaraug trace SCENE [--time T] [--json]    the propagation paths of one instant
-    radaraug simulate SCENE --frames N --seed S -o out.h5 [--shard i/n] [--profile P]
-    radaraug demo [-o DIR]                      the main job on the built-in default
+    radaraug simulate SCENE --frames N --seed S -o out.h5 [--shard i/n] [--profile P] [--json]
+    radaraug demo [-o DIR] [--json]             the main job on the built-in default
     radaraug train fit --config recipes/occupancy_cdr.yaml [--key value ...]   LightningCLI recipes
-    radaraug reproduce [--quick] [--seeds N] [--calibration C] [--test PATH[:COUNT] ...] -o OUT
-    radaraug make-proxy -o DIR [--frames-per-count N]   the held-out proxy test set
-    radaraug diagnose CAPTURE [--scene SCENE] -o REPORT_DIR   twin vs capture, fitted twin profile
+    radaraug reproduce [--quick] [--seeds N] [--calibration C] [--test PATH[:COUNT] ...] -o OUT [--json]
+    radaraug make-proxy -o DIR [--frames-per-count N] [--json]   the held-out proxy test set
+    radaraug diagnose CAPTURE [--scene SCENE] -o REPORT_DIR [--json]   twin vs capture, fitted twin profile
+
+``--json`` (every command but ``train``): one JSON object on stdout, snake_case keys, paths as
+strings, units in the key names (``_s``, ``_db``, ``_m``); anything else the command prints
+(progress, Lightning's logs) goes to stderr.
 
 Exit status (never a traceback for any of these):
 
@@ -26,6 +30,9 @@ Exit status (never a traceback for any of these):
 3     bad input or unwritable output: a :class:`~radaraug.errors.RadarAugError` (a file that is
       missing, truncated or not what it claims, a config that does not fit, no space left...) or
       an ``OSError`` of the file system; one line ``error: <message>`` on stderr
+4     a package a feature needs is not installed
+      (:class:`~radaraug.errors.DependencyNotFoundError`); one line ``error: <message>`` on
+      stderr naming the package and the ``pip`` command that installs it
 130   interrupted (Ctrl-C)
 141   stdout was closed early (``radaraug trace --json | head -1``): the output stops quietly
 ====  ======================================================================================
@@ -34,25 +41,43 @@ Exit status (never a traceback for any of these):
 from __future__ import annotations
 
 import argparse
+import contextlib
 import functools
 import json
 import math
 import os
 import sys
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
 from pathlib import Path
 
-from radaraug.errors import ConfigError, RadarAugError
+from radaraug.errors import ConfigError, DependencyNotFoundError, RadarAugError
 
 EXIT_OK = 0
 EXIT_USAGE = 2
 """argparse's own status for a usage error."""
 EXIT_DATA = 3
 """Bad input or an output that cannot be written (RadarAugError, OSError)."""
+EXIT_DEPENDENCY = 4
+"""A package that the command needs is not installed (DependencyNotFoundError)."""
 EXIT_INTERRUPTED = 130
 """128 + SIGINT, what shells report for Ctrl-C."""
 EXIT_BROKEN_PIPE = 141
 """128 + SIGPIPE, what shells report for a writer whose reader went away."""
+
+
+def _print_json(data: object) -> None:
+    """The ``--json`` result: one object on stdout (paths and other objects as strings)."""
+    print(json.dumps(data, default=str))
+
+
+@contextlib.contextmanager
+def _stdout_for(args: argparse.Namespace) -> Iterator[None]:
+    """With ``--json``, everything the work prints goes to stderr, so stdout holds only the JSON."""
+    if getattr(args, "json", False):
+        with contextlib.redirect_stdout(sys.stderr):
+            yield
+    else:
+        yield
 
 
 def _cmd_info(args: argparse.Namespace) -> int:
@@ -87,8 +112,12 @@ def _cmd_info(args: argparse.Namespace) -> int:
 def _cmd_fit_cdr(args: argparse.Namespace) -> int:
     from radaraug.transforms import CalibratedDR
 
-    cdr = CalibratedDR.fit(args.path, max_frames=args.max_frames, progress=True)
-    cdr.save(args.output)
+    with _stdout_for(args):
+        cdr = CalibratedDR.fit(args.path, max_frames=args.max_frames, progress=True)
+        cdr.save(args.output)
+    if args.json:
+        _print_json({"output": str(args.output), **cdr.to_dict()})
+        return 0
     print(f"CalibratedDR: m_t = {cdr.mean_db:.2f} dB, s_t = {cdr.std_db:.2f} dB -> {args.output}")
     return 0
 
@@ -169,7 +198,8 @@ def _cmd_trace(args: argparse.Namespace) -> int:
         ell = type(ell)(*(x.float()[0] for x in (ell.centers, ell.semi_axes, ell.rotations, ell.velocities)),
                         ell.material)
     paths = tracer.trace(ellipsoids=ell)
-    data = {"scene": scene.name, "time_s": args.time, **paths_to_json(paths, scene.config)}
+    data = {"scene": scene.name, "time_s": args.time, "convex_room": bool(tracer.convex_room),
+            **paths_to_json(paths, scene.config)}
     if args.json:
         print(json.dumps(data))
         return 0
@@ -186,8 +216,12 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
     shard = parse_shard(args.shard)
     if args.frames < 1:
         raise ConfigError(f"--frames must be >= 1, got {args.frames}")
-    result = simulate_capture(_scene_arg(args.scene), args.output, frames=args.frames, seed=args.seed,
-                              shard=shard, device=_device_arg(args.device), profile=args.profile)
+    with _stdout_for(args):
+        result = simulate_capture(_scene_arg(args.scene), args.output, frames=args.frames, seed=args.seed,
+                                  shard=shard, device=_device_arg(args.device), profile=args.profile)
+    if args.json:
+        _print_json(result)
+        return 0
     print(f"{result['path']}: frames [{result['frames'][0]}, {result['frames'][1]}), "
           f"{result['simulated']} simulated, resumed from frame {result['resumed_from']}")
     return 0
@@ -196,7 +230,10 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
 def _cmd_demo(args: argparse.Namespace) -> int:
     from radaraug.demo import run_demo
 
-    run_demo(Path(args.output))
+    with _stdout_for(args):
+        summary = run_demo(Path(args.output))
+    if args.json:
+        _print_json({"output": str(args.output), **summary})
     return 0
 
 
@@ -204,8 +241,12 @@ def _cmd_reproduce(args: argparse.Namespace) -> int:
     from radaraug.training.reproduce import parse_test_arg, reproduce
 
     test = [parse_test_arg(t) for t in args.test] if args.test else None
-    report = reproduce(args.output, quick=args.quick, seeds=args.seeds, calibration=args.calibration, test=test,
-                       ablation=not args.no_ablation, accelerator=args.accelerator, progress=True)
+    with _stdout_for(args):
+        report = reproduce(args.output, quick=args.quick, seeds=args.seeds, calibration=args.calibration,
+                           test=test, ablation=not args.no_ablation, accelerator=args.accelerator, progress=True)
+    if args.json:
+        _print_json({"output": str(args.output), "report": str(Path(args.output) / "report.md"), **report})
+        return 0
     print(f"{Path(args.output) / 'report.md'} ({report['kind']}, {report['wall_seconds'] / 60:.1f} min)")
     for task, by in report["results"].items():
         text = ", ".join(f"{m} {v['balanced_accuracy']['mean']:.3f}+-{v['balanced_accuracy']['std']:.3f}" for m, v in by.items())
@@ -216,7 +257,12 @@ def _cmd_reproduce(args: argparse.Namespace) -> int:
 def _cmd_make_proxy(args: argparse.Namespace) -> int:
     from radaraug.sim.proxy import make_proxy
 
-    proxy = make_proxy(args.output, frames_per_count=args.frames_per_count, seed=args.seed, progress=True)
+    with _stdout_for(args):
+        proxy = make_proxy(args.output, frames_per_count=args.frames_per_count, seed=args.seed, progress=True)
+    if args.json:
+        _print_json({"output": str(args.output), "calibration": str(proxy.calibration),
+                     "tests": [{"path": str(p), "people": int(c)} for p, c in proxy.tests]})
+        return 0
     print(f"calibration  {proxy.calibration}")
     for path, count in proxy.tests:
         print(f"test         {path} ({count} people)")
@@ -229,10 +275,23 @@ def _cmd_diagnose(args: argparse.Namespace) -> int:
     if args.max_frames < 4:
         raise ConfigError(f"--max-frames must be >= 4, got {args.max_frames}")
     settings = SearchSettings(seed=args.seed)
-    diag = diagnose(args.capture, scene=_scene_arg(args.scene) if args.scene else None, max_frames=args.max_frames,
-                    settings=settings, start_profile=args.profile, progress=True)
-    out = write_report(diag, args.output, figures=not args.no_figures)
+    with _stdout_for(args):
+        diag = diagnose(args.capture, scene=_scene_arg(args.scene) if args.scene else None,
+                        max_frames=args.max_frames, settings=settings, start_profile=args.profile, progress=True)
+        out = write_report(diag, args.output, figures=not args.no_figures)
     r = diag.result
+    if args.json:
+        _print_json({
+            "output": str(out), "report": str(out / "report.json"), "profile": str(out / "profile.json"),
+            "mode": diag.mode, "runtime_s": diag.runtime_s,
+            "held_out_error_db": {"default": r.before.overall, "base_refit": r.base.overall,
+                                  "final": r.after.overall},
+            "room": {k: {"before": r.room_before[k], "after": v} for k, v in sorted(r.room_after.items())},
+            "effects_added": [{"effect": st["effect"], "error_before_db": st["error_before"],
+                               "error_after_db": st["error_after"]} for st in r.steps],
+            "unexplained": len(diag.unexplained),
+        })
+        return 0
     print(f"{out / 'report.json'} ({diag.mode} mode, {diag.runtime_s:.1f} s)")
     print(f"  held-out error: default {r.before.overall:.2f} dB -> base refit {r.base.overall:.2f} dB -> "
           f"final {r.after.overall:.2f} dB")
@@ -273,6 +332,7 @@ def build_parser() -> argparse.ArgumentParser:
     fit.add_argument("path", help="empty-room capture (radaraug .h5 or Infineon recording folder)")
     fit.add_argument("-o", "--output", required=True, help="calibration JSON to write")
     fit.add_argument("--max-frames", type=int, default=None, help="frames read (default: all)")
+    fit.add_argument("--json", action="store_true", help="print the calibration record (with the output path) as one JSON object")
     fit.set_defaults(func=_cmd_fit_cdr)
 
     bench = sub.add_parser("bench", help="benchmarks (figures as ratios against a same-process baseline)")
@@ -308,10 +368,12 @@ def build_parser() -> argparse.ArgumentParser:
     sim.add_argument("--shard", default=None, help="i/n: simulate the i-th of n pieces (0-based)")
     sim.add_argument("--device", default="cpu", help="torch device (cpu, cuda)")
     sim.add_argument("--profile", default=None, help="twin profile JSON (from radaraug diagnose) for the receiver")
+    sim.add_argument("--json", action="store_true", help="print the result (path, frame range, frames simulated, resume point) as one JSON object")
     sim.set_defaults(func=_cmd_simulate)
 
     demo = sub.add_parser("demo", help="the main job on the built-in default")
     demo.add_argument("-o", "--output", default="demo_out", help="output folder")
+    demo.add_argument("--json", action="store_true", help="print the demo's summary as one JSON object")
     demo.set_defaults(func=_cmd_demo)
 
     # `train` is parsed by LightningCLI (radaraug.training.cli); listed here for --help only.
@@ -327,12 +389,14 @@ def build_parser() -> argparse.ArgumentParser:
     rep.add_argument("--no-ablation", action="store_true", help="skip CDR without twin randomization")
     rep.add_argument("--accelerator", default="auto", help="Lightning accelerator (auto, cpu, gpu)")
     rep.add_argument("-o", "--output", required=True, help="output folder (report, runs, figures, cache)")
+    rep.add_argument("--json", action="store_true", help="print the report (results per task and method, figures, settings) as one JSON object")
     rep.set_defaults(func=_cmd_reproduce)
 
     proxy = sub.add_parser("make-proxy", help="generate the held-out proxy test set (docs/proxy.md)")
     proxy.add_argument("-o", "--output", required=True, help="output folder")
     proxy.add_argument("--frames-per-count", type=int, default=120, help="frames per people count (0, 1, 2)")
     proxy.add_argument("--seed", type=int, default=1234, help="seed of the walks and the noise")
+    proxy.add_argument("--json", action="store_true", help="print the calibration and test capture paths as one JSON object")
     proxy.set_defaults(func=_cmd_make_proxy)
 
     dia = sub.add_parser("diagnose", help="compare a capture with the twin, fit the missing effects (docs/calibration.md)")
@@ -344,6 +408,7 @@ def build_parser() -> argparse.ArgumentParser:
     dia.add_argument("--profile", default=None, help="start from this twin profile instead of the default chain")
     dia.add_argument("--seed", type=int, default=0, help="seed of the twin's noise")
     dia.add_argument("--no-figures", action="store_true", help="skip the figures (faster)")
+    dia.add_argument("--json", action="store_true", help="print the held-out errors, effects added and output paths as one JSON object")
     dia.set_defaults(func=_cmd_diagnose)
     return p
 
@@ -367,6 +432,9 @@ def _run(func, *args) -> int:
     except KeyboardInterrupt:
         print("interrupted", file=sys.stderr)
         return EXIT_INTERRUPTED
+    except DependencyNotFoundError as e:
+        print(f"error: {e}", file=sys.stderr)
+        return EXIT_DEPENDENCY
     except RadarAugError as e:
         print(f"error: {e}", file=sys.stderr)
         return EXIT_DATA

@@ -25,10 +25,9 @@ def run_demo(out_dir: Path, *, capture: str | Path | None = None) -> dict:
         out_dir: folder for the outputs (created).
         capture: capture to use instead of the bundled recording.
     """
-    import matplotlib
+    from radaraug._optional import pyplot
 
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = pyplot()
 
     from radaraug.io import open_capture, sample_recording_path
     from radaraug.io.summary import summarize_capture

@@ -16,6 +16,11 @@ exception                          raised when
                                    unreadable or does not fit the data it is applied to
 :class:`SceneError`                a scene description or mesh is invalid
 =================================  ==========================================================
+
+One error is about the environment, not the input: :class:`DependencyNotFoundError` (a
+``ModuleNotFoundError``, so ``except ImportError`` catches it; not a ``RadarAugError``) is raised
+when a feature needs a package that is not installed, and names the package and the ``pip``
+command that installs it.
 """
 
 from __future__ import annotations
@@ -43,3 +48,12 @@ class CalibrationError(RadarAugError):
 
 class SceneError(RadarAugError):
     """A scene description, mesh or motion file is invalid."""
+
+
+class DependencyNotFoundError(ModuleNotFoundError):
+    """A feature needs a package that is not installed (the message names it and how to install it).
+
+    Raised by :func:`radaraug._optional.lazy_import`. A ``ModuleNotFoundError`` (so generic
+    ``except ImportError`` handlers keep working), not a :class:`RadarAugError`: the input is
+    fine, the environment lacks something.
+    """

@@ -62,10 +62,9 @@ def micro_doppler_before_after(
     v_bin = cfg.wavelength_m / (2 * timing.num_chirps * timing.prt)
     m = timing.num_chirps
     if out is not None:
-        import matplotlib
+        from radaraug._optional import pyplot
 
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
+        plt = pyplot()
 
         fig, axes = plt.subplots(1, 2, figsize=(11, 4), sharey=True, constrained_layout=True)
         extent = [0.0, float(times[-1] + window), -m // 2 * v_bin, (m // 2 - 1) * v_bin]

@@ -116,10 +116,9 @@ def _cmp(c: Any) -> dict[str, float]:
 
 
 def _plot(r: torch.Tensor, profiles: dict[str, torch.Tensor], path: str | Path) -> None:
-    import matplotlib
+    from radaraug._optional import pyplot
 
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = pyplot()
 
     fig, ax = plt.subplots(figsize=(8, 4.2))
     for name, prof in profiles.items():

@@ -16,10 +16,9 @@ if TYPE_CHECKING:
 
 def view_figures(diag: Diagnosis, out: Path) -> list[str]:
     """Write one PNG per view plus ``rd_residual.png``; returns the file names."""
-    import matplotlib
+    from radaraug._optional import pyplot
 
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = pyplot()
 
     cfg = diag.config
     rng = torch.tensor(cfg.range_axis_m())

@@ -673,10 +673,9 @@ def plot_walker_shadowing(path: str | FilePath, *, wall_m: float = 8.0, radar_he
         Summary numbers (dB): along the line, the means over the middle half; crossing, the values
         at the closest pass and the means while the torso covers the line.
     """
-    import matplotlib
+    from radaraug._optional import pyplot
 
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = pyplot()
 
     from radaraug.scene.people import Walker
 

@@ -40,6 +40,7 @@ import math
 
 import torch
 
+from radaraug._optional import lazy_import
 from radaraug.config import SPEED_OF_LIGHT
 from radaraug.errors import SceneError
 from radaraug.raytrace.accel import TriangleBVH
@@ -154,8 +155,9 @@ def _is_closed_convex(tri: torch.Tensor, area: torch.Tensor) -> bool:
     """True when the triangles tile the surface of their convex hull (a closed convex room)."""
     import warnings
 
-    import trimesh
-    from scipy.spatial import QhullError  # trimesh's convex hull is scipy's Qhull (a runtime dependency)
+    trimesh = lazy_import("trimesh", feature="meshes")
+    # trimesh's convex hull is scipy's Qhull: without scipy the fast path would silently turn off
+    QhullError = lazy_import("scipy.spatial", feature="the convex-room fast path").QhullError
 
     pts = tri.reshape(-1, 3).cpu().numpy()
     with warnings.catch_warnings():

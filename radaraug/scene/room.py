@@ -16,6 +16,7 @@ from pathlib import Path
 import numpy as np
 import torch
 
+from radaraug._optional import lazy_import, missing_dependency
 from radaraug.errors import SceneError
 from radaraug.scene.geometry import SceneGeometry
 from radaraug.scene.materials import Material, get_material
@@ -175,7 +176,7 @@ FaceMaterialFn = Callable[[torch.Tensor, torch.Tensor, Sequence[str]], "str | Se
 
 def _read_mesh_parts(path: Path) -> list[tuple[str, str | None, np.ndarray, np.ndarray]]:
     """``(group name, file material name or None, vertices, faces)`` per part, transforms applied."""
-    import trimesh  # heavy import, only when a mesh file is read
+    trimesh = lazy_import("trimesh", feature="meshes")
 
     kwargs = {}
     if path.suffix.lower() == ".obj":
@@ -183,6 +184,8 @@ def _read_mesh_parts(path: Path) -> list[tuple[str, str | None, np.ndarray, np.n
         kwargs = {"split_groups": True, "split_objects": True, "group_material": False}
     try:
         loaded = trimesh.load(str(path), force="scene", process=False, **kwargs)
+    except ModuleNotFoundError as err:  # some formats need packages trimesh imports on demand
+        raise missing_dependency(err, f"reading mesh file {path}") from None
     except Exception as err:  # trimesh raises many types for bad files
         raise SceneError(f"mesh file {path}: cannot be read ({type(err).__name__}: {err})") from None
     parts = []
@@ -334,7 +337,7 @@ def box(
         SceneError: a corner that is not 3 finite numbers, ``hi <= lo`` on an axis, or an unknown
             material.
     """
-    import trimesh
+    trimesh = lazy_import("trimesh", feature="meshes")
 
     lo_a, hi_a = np.asarray(lo, dtype=np.float64), np.asarray(hi, dtype=np.float64)
     if lo_a.shape != (3,) or hi_a.shape != (3,) or not (np.isfinite(lo_a).all() and np.isfinite(hi_a).all()):
@@ -374,7 +377,7 @@ def _check_vec(value: Sequence[float], n: int, label: str, where: str, positive:
 
 def _from_trimesh(v: np.ndarray, f: np.ndarray, material: str | Material, where: str, max_edge_m: float,
                   transform: np.ndarray) -> SceneGeometry:
-    import trimesh
+    trimesh = lazy_import("trimesh", feature="meshes")
 
     key = _material_key(material, None, where)
     v, f = trimesh.remesh.subdivide_to_size(v, f, max_edge=max_edge_m)
@@ -401,7 +404,7 @@ def placed_box(
     Raises:
         SceneError: bad size/position or unknown material.
     """
-    import trimesh
+    trimesh = lazy_import("trimesh", feature="meshes")
 
     where = "box object"
     ext = _check_vec(size, 3, "size", where, positive=True)
@@ -422,7 +425,7 @@ def placed_cylinder(
     Raises:
         SceneError: bad radius/height/position/sections or unknown material.
     """
-    import trimesh
+    trimesh = lazy_import("trimesh", feature="meshes")
 
     where = "cylinder object"
     r, h = _check_vec([radius, height], 2, "radius and height", where, positive=True)

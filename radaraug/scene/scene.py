@@ -24,6 +24,7 @@ from radaraug.errors import ConfigError, SceneError
 from radaraug.io.atomic import atomic_write_text
 from radaraug.scene.geometry import Ellipsoids, RadarPose, SceneGeometry
 from radaraug.scene.materials import MATERIALS, Material, get_material, register_material
+from radaraug.scene.people.person import PERSON_TYPES
 from radaraug.scene.room import (
     CORRIDOR_SURFACES,
     corridor,
@@ -49,7 +50,6 @@ _ROOM_KEYS = {
     "mesh": {"type", "file", "material", "materials", "scale", "transform"},
     "inline": {"type", "vertices", "faces", "materials", "face_material", "object_id"},
 }
-_PERSON_TYPES = {"walker": "Walker", "bvh": "BVHPerson", "mesh_sequence": "MeshSequencePerson"}
 # Short file keys -> constructor keywords of the people classes.
 _PERSON_ALIASES = {"height": "height_m", "speed": "speed_m_s", "file": "path", "files": "files_or_meshes"}
 
@@ -386,21 +386,13 @@ def _with_objects(room: SceneGeometry, objects: Sequence[SceneGeometry]) -> Scen
 
 
 # -------------------------------------------------------------------------------------- people
-def _people_module() -> Any:
-    try:
-        import radaraug.scene.people as people
-    except ImportError as err:
-        raise SceneError(f"people need radaraug.scene.people, which cannot be imported: {err}") from None
-    return people
-
-
 def _read_person(spec: Any, i: int, rd: _Reader) -> tuple[Any, dict[str, Any]]:
     key = f"people[{i}]"
     spec = dict(rd.mapping(spec, key))
     kind = spec.pop("type", None)
-    if kind not in _PERSON_TYPES:
-        raise rd.fail(f"{key}.type", f"must be one of {sorted(_PERSON_TYPES)}, got {kind!r}")
-    cls = getattr(_people_module(), _PERSON_TYPES[kind])
+    if kind not in PERSON_TYPES:
+        raise rd.fail(f"{key}.type", f"must be one of {sorted(PERSON_TYPES)}, got {kind!r}")
+    cls = PERSON_TYPES[kind]
     params = set(inspect.signature(cls).parameters)
     kwargs: dict[str, Any] = {}
     norm: dict[str, Any] = {"type": kind}
@@ -631,8 +623,7 @@ class Scene:
         if spec is None:
             spec = dict(person.to_dict())
             if "type" not in spec:
-                kinds = {v: k for k, v in _PERSON_TYPES.items()}
-                spec["type"] = kinds.get(type(person).__name__, type(person).__name__)
+                spec["type"] = getattr(person, "type_name", "") or type(person).__name__
             return spec
         spec = dict(spec)
         for k in ("file", "path"):

@@ -103,10 +103,9 @@ def plot_diffuse_range_profile(
         captures: ``(label, profile_db)`` of recordings with the same range axis.
         path: output image file.
     """
-    import matplotlib
+    from radaraug._optional import pyplot
 
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = pyplot()
 
     r = profiles["range_m"].numpy()
     fig, ax = plt.subplots(figsize=(7.5, 4.2), dpi=120)

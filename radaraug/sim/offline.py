@@ -28,6 +28,7 @@ from typing import Any
 import numpy as np
 import torch
 
+from radaraug._optional import lazy_import
 from radaraug.errors import CaptureError, ConfigError
 from radaraug.io import CaptureWriter, open_capture
 from radaraug.io import hdf5_format as fmt
@@ -169,7 +170,7 @@ def simulate_capture(
         first = start + done
         blocks = range(first // BLOCK_FRAMES, -(-stop // BLOCK_FRAMES))
         if progress:
-            from tqdm.auto import tqdm
+            tqdm = lazy_import("tqdm.auto", feature="progress bars").tqdm
 
             blocks = tqdm(blocks, desc=f"simulate {path.name}", unit="block")
         for block_id in blocks:

@@ -59,6 +59,7 @@ from typing import Any
 import numpy as np
 import torch
 
+from radaraug._optional import lazy_import
 from radaraug.config import RadarConfig
 from radaraug.errors import ConfigError
 from radaraug.io.atomic import atomic_write_json
@@ -650,7 +651,7 @@ def _generate(out: Path, settings: dict[str, Any], frames_per_count: int, calibr
     sim = _Simulator(device, tracer_options)
     config = sim.twin.config
     sim.scene.save(out / ROOM_SCENE_NAME)
-    from tqdm.auto import tqdm
+    tqdm = lazy_import("tqdm.auto", feature="progress bars").tqdm
 
     total = calibration_frames + frames_per_count * len(counts)
     common = {"source": "radaraug held-out proxy generator (radaraug.sim.proxy)",

@@ -27,6 +27,7 @@ import numpy as np
 import torch
 from torch.utils.data import DataLoader, Dataset, Subset
 
+from radaraug._optional import lazy_import
 from radaraug.errors import CaptureError
 from radaraug.sim.dataset import SimulatedRadarDataset
 from radaraug.training.chain import rd_db_chain
@@ -208,7 +209,7 @@ class _RawItems(Dataset):
 
 
 def _progress(total: int, desc: str, enabled: bool) -> Any:
-    from tqdm.auto import tqdm
+    tqdm = lazy_import("tqdm.auto", feature="progress bars").tqdm
 
     return tqdm(total=total, desc=desc, disable=not enabled, leave=False)
 

@@ -20,12 +20,9 @@ from radaraug.transforms import CombineRx
 
 
 def _plt() -> Any:
-    import matplotlib
+    from radaraug._optional import pyplot
 
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    return plt
+    return pyplot()
 
 
 def _save(fig: Any, path: str | os.PathLike) -> Path:

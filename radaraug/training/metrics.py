@@ -80,10 +80,9 @@ def plot_confusion_matrix(
     cm: torch.Tensor, class_names: Sequence[str], path: str | os.PathLike, *, title: str = ""
 ) -> Path:
     """Write a confusion-matrix figure (counts and row-normalised recall) as PNG."""
-    import matplotlib
+    from radaraug._optional import pyplot
 
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = pyplot()
 
     cm = torch.as_tensor(cm, dtype=torch.float64)
     rows = cm.sum(dim=1, keepdim=True)

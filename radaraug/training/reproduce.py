@@ -27,6 +27,7 @@ from typing import Any
 
 import torch
 
+from radaraug._optional import lazy_import
 from radaraug.errors import ConfigError
 from radaraug.io.atomic import atomic_write_json, atomic_write_text
 from radaraug.training.chain import METHODS, PROFILE_METHODS, TASKS, is_calibration_json
@@ -178,7 +179,7 @@ def reproduce(
     runs: list[dict[str, Any]] = []
     cms: dict[str, dict[str, torch.Tensor]] = {}
     keep: dict[tuple[str, str], tuple[Any, Any]] = {}
-    from tqdm.auto import tqdm
+    tqdm = lazy_import("tqdm.auto", feature="progress bars").tqdm
 
     # Lightning logs its hardware summary at every Trainer: 24 times is noise next to the run bar.
     for name in ("lightning.pytorch", "lightning.fabric"):

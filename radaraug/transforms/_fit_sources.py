@@ -44,12 +44,8 @@ def iter_source(
     """
     limit = None if max_frames is None else int(max_frames)
     if isinstance(source, (str, os.PathLike)):
-        try:
-            from radaraug.io import open_capture
-        except ImportError as e:
-            raise CalibrationError(
-                f"CalibratedDR.fit: cannot open {source}: radaraug.io is unavailable ({e})"
-            ) from None
+        from radaraug.io import open_capture
+
         try:
             reader = open_capture(source)
         except CaptureError:

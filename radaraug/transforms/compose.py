@@ -7,8 +7,7 @@ from typing import Any
 
 from torch import nn
 
-from radaraug.errors import CalibrationError
-from radaraug.transforms.chain import canonical_chain, chain_of, describe_chain
+from radaraug.transforms.chain import chain_of
 
 
 class RadarCompose(nn.Module):
@@ -52,31 +51,16 @@ class RadarCompose(nn.Module):
         return specs if specs is not None else [{"name": "opaque"}]
 
     def _check_dr_placement(self) -> None:
-        from radaraug.transforms.dr import CalibratedDR, RandomDR
-
+        # Steps that care what precedes them (the DR clamps) say so through
+        # ``check_preceding_chain``; RadarCompose needs not know their classes.
         for i, step in enumerate(self.transforms):
-            if not isinstance(step, (CalibratedDR, RandomDR)):
+            check = getattr(step, "check_preceding_chain", None)
+            if not callable(check):
                 continue
             before = chain_of(list(self.transforms)[:i])
             if before is None:
                 continue  # a step we cannot describe precedes: nothing reliable to check
-            prefix = canonical_chain(before)
-            if not prefix:
-                continue
-            name = type(step).__name__
-            if not _ends_in_db(prefix):
-                raise CalibrationError(
-                    f"RadarCompose: {name} at position {i} clamps dB maps, but the steps before it "
-                    f"({describe_chain(before)}) do not end in ToDecibels"
-                )
-            if isinstance(step, CalibratedDR) and step.chain is not None:
-                fitted = canonical_chain(step.chain)
-                if prefix != fitted:
-                    where = f" (loaded from {step.file})" if getattr(step, "file", None) else ""
-                    raise CalibrationError(
-                        f"RadarCompose: CalibratedDR at position {i}{where} was fitted on maps made by "
-                        f"{describe_chain(step.chain)}, but here it follows {describe_chain(before)}"
-                    )
+            check(before, f"RadarCompose: {type(step).__name__} at position {i}")
 
     def __len__(self) -> int:
         return len(self.transforms)
@@ -84,12 +68,3 @@ class RadarCompose(nn.Module):
     def __getitem__(self, i: int) -> nn.Module:
         return self.transforms[i]
 
-
-def _ends_in_db(prefix: list[dict[str, Any]]) -> bool:
-    for spec in reversed(prefix):
-        if spec["name"] == "ToDecibels":
-            return True
-        if spec["name"] == "CombineRx" and spec.get("db", False):
-            continue
-        return False
-    return False

@@ -22,10 +22,10 @@ from __future__ import annotations
 
 import json
 import math
-import numbers
 import os
 import warnings
 from collections.abc import Mapping
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -35,17 +35,20 @@ from radaraug.config import RadarConfig
 from radaraug.errors import CalibrationError, ConfigError, RadarAugError
 from radaraug.io.atomic import atomic_write_text
 from radaraug.safe_read import load_json, safe_repr
-from radaraug.transforms._fit_sources import iter_source
-from radaraug.transforms._motion import DEFAULT_THRESHOLD_DB, WARN_FRACTION, motion_fraction
+from radaraug.transforms._motion import DEFAULT_THRESHOLD_DB
 from radaraug.transforms.base import Params, RandomRadarTransform
-from radaraug.transforms.chain import chain_of, doppler_window_of
-from radaraug.transforms.windows import MAIN_LOBE_HALF_WIDTH_BINS
+from radaraug.transforms.chain import canonical_chain, describe_chain
+from radaraug.transforms.dr_fit import floor_statistics
 from radaraug.units import DB_CONVENTION
 
 DEFAULT_RANDOM_DR_MEAN_DB = (-120.0, -90.0)
 DEFAULT_RANDOM_DR_STD_DB = (1.0, 4.0)
 FORMAT = "radaraug.CalibratedDR"
 FORMAT_VERSION = 1
+ENV_VAR = "RADARAUG_CDR"
+"""Environment variable naming the calibration ``CalibratedDR()`` (no arguments) uses: a JSON
+written by ``radaraug fit-cdr`` / :meth:`CalibratedDR.save`, or an empty-room capture (fitted
+with the default chain when the transform is made)."""
 
 
 def _range_arg(name: str, value: Any, cls: str) -> tuple[float, float]:
@@ -58,6 +61,16 @@ def _range_arg(name: str, value: Any, cls: str) -> tuple[float, float]:
     return lo, hi
 
 
+def _ends_in_db(prefix: list[dict[str, Any]]) -> bool:
+    for spec in reversed(prefix):
+        if spec["name"] == "ToDecibels":
+            return True
+        if spec["name"] == "CombineRx" and spec.get("db", False):
+            continue
+        return False
+    return False
+
+
 class _DRClamp(RandomRadarTransform):
     """Shared clamp: ``max(S, noise_db)``."""
 
@@ -65,6 +78,19 @@ class _DRClamp(RandomRadarTransform):
 
     def transform(self, x: torch.Tensor, params: Params) -> torch.Tensor:
         return torch.maximum(x, params["noise_db"].to(dtype=x.dtype))
+
+    def check_preceding_chain(self, before: list[dict[str, Any]], where: str) -> None:
+        """Raise :class:`CalibrationError` if the steps ``before`` this one (their chain specs)
+        do not make dB maps. Called by :class:`~radaraug.transforms.compose.RadarCompose`.
+
+        Args:
+            before: chain specs of the preceding steps (empty: maps made elsewhere, not checked).
+            where: the step's place, e.g. ``"RadarCompose: RandomDR at position 2"``.
+        """
+        if canonical_chain(before) and not _ends_in_db(canonical_chain(before)):
+            raise CalibrationError(
+                f"{where} clamps dB maps, but the steps before it ({describe_chain(before)}) do not end in ToDecibels"
+            )
 
 
 class RandomDR(_DRClamp):
@@ -141,12 +167,27 @@ class CalibratedDR(_DRClamp):
         source: name of the calibration capture (recorded only).
         num_frames: frames the statistics came from (recorded only).
         motion: the motion statistic of the fit (recorded only; see :mod:`._motion`).
+
+    With no ``mean_db``/``std_db``, ``CalibratedDR()`` reads the calibration named by the
+    ``RADARAUG_CDR`` environment variable (:data:`ENV_VAR`): a calibration JSON, or an empty-room
+    capture that is fitted there and then with the default chain. radaraug ships no default
+    floor: the floor depends on the sensor, its IF gain, the chain and the room, and no empty-room
+    recording at the paper's configuration is available to fit one from (docs/transforms.md).
+    :attr:`provenance` says where the numbers came from.
+
+    Raises:
+        CalibrationError: only one of ``mean_db``/``std_db`` given; neither given and
+            ``RADARAUG_CDR`` unset, or naming a file that is not a calibration or a capture.
     """
+
+    provenance: dict[str, Any]
+    """Where ``(mean_db, std_db)`` came from: ``{"from": "arguments" | "file" | "RADARAUG_CDR",
+    "path": ..., "source": capture name, "num_frames": ...}``."""
 
     def __init__(
         self,
-        mean_db: float,
-        std_db: float,
+        mean_db: float | None = None,
+        std_db: float | None = None,
         *,
         chain: list[dict[str, Any]] | None = None,
         config: RadarConfig | dict[str, Any] | None = None,
@@ -160,6 +201,18 @@ class CalibratedDR(_DRClamp):
         **rng: Any,
     ) -> None:
         super().__init__(p=p, same_on_batch=same_on_batch, generator=generator, **rng)
+        self.provenance = {"from": "arguments"}
+        if mean_db is None or std_db is None:
+            if mean_db is not None or std_db is not None:
+                raise CalibrationError("CalibratedDR: give both mean_db and std_db, or neither (RADARAUG_CDR)")
+            if any(v is not None for v in (chain, config, map_shape, source, num_frames, motion)):
+                raise CalibrationError(
+                    "CalibratedDR: chain, config, map_shape, source, num_frames and motion come with mean_db/std_db"
+                )
+            record, self.provenance = _from_environment()
+            mean_db, std_db = record["mean_db"], record["std_db"]
+            chain, config, map_shape = record["chain"], record["config"], record["map_shape"]
+            source, num_frames, motion = record["source"], record["num_frames"], record["motion"]
         self.mean_db, self.std_db = float(mean_db), float(std_db)
         if not (math.isfinite(self.mean_db) and math.isfinite(self.std_db)) or self.std_db < 0:
             raise CalibrationError(
@@ -194,7 +247,11 @@ class CalibratedDR(_DRClamp):
             if value is not None and not ok(value):
                 raise CalibrationError(f"CalibratedDR: {name} has an invalid value {safe_repr(value)}")
         self.source = source
-        self.file: str | None = None  # the calibration file it was loaded from, if any
+        # the calibration file it was loaded from, if any (named by the errors raised when it is used)
+        self.file: str | None = None
+        if self.provenance["from"] == ENV_VAR and not self.provenance.get("fitted"):
+            self.file = self.provenance["path"]
+        self.provenance.update(source=source, num_frames=num_frames)
         self.num_frames = num_frames
         self.motion = motion
 
@@ -232,6 +289,17 @@ class CalibratedDR(_DRClamp):
             diff = {k: (a[k], b.get(k)) for k in a if a[k] != b.get(k)}
             raise CalibrationError(
                 f"CalibratedDR was fitted with another radar config; (fitted, given): {diff}"
+            )
+
+    def check_preceding_chain(self, before: list[dict[str, Any]], where: str) -> None:
+        """Also refuse a chain other than the one the floor was fitted with (when recorded)."""
+        super().check_preceding_chain(before, where)
+        prefix = canonical_chain(before)
+        if prefix and self.chain is not None and prefix != canonical_chain(self.chain):
+            loaded = f" (loaded from {self.file})" if self.file else ""
+            raise CalibrationError(
+                f"{where}{loaded} was fitted on maps made by {describe_chain(self.chain)}, "
+                f"but here it follows {describe_chain(before)}"
             )
 
     def extra_spec(self) -> dict[str, Any]:
@@ -280,82 +348,11 @@ class CalibratedDR(_DRClamp):
         The standard deviation is the population one (``correction=0``); statistics are
         accumulated in float64.
         """
-        from radaraug.transforms.compose import RadarCompose
-        from radaraug.transforms.spectral import RangeDoppler, ToDecibels
-
-        if input not in ("raw", "db"):
-            raise CalibrationError(f"CalibratedDR.fit: input must be 'raw' or 'db', got {input!r}")
-        for name, value in (("max_frames", max_frames), ("batch_size", batch_size)):
-            if value is None and name == "max_frames":
-                continue
-            if isinstance(value, bool) or not isinstance(value, numbers.Integral) or value < 1:
-                raise CalibrationError(f"CalibratedDR.fit: {name} must be a positive integer, got {value!r}")
-        if pipeline is None:
-            pipeline = RadarCompose([RangeDoppler(), ToDecibels()])
-        chain = chain_of(pipeline)
-        if chain is None:
-            warnings.warn(
-                "CalibratedDR.fit: the pipeline has no chain_spec(); the chain cannot be recorded or checked",
-                UserWarning,
-                stacklevel=2,
-            )
-        batches, source_name, capture_config = iter_source(
-            source, max_frames=max_frames, batch_size=batch_size
+        stats = floor_statistics(
+            source, pipeline=pipeline, config=config, max_frames=max_frames, input=input,
+            batch_size=batch_size, motion_threshold_db=motion_threshold_db, progress=progress,
         )
-        if capture_config is not None:
-            if config is not None and config != capture_config:
-                raise CalibrationError(
-                    f"CalibratedDR.fit: the config given differs from the config of {source_name}"
-                )
-            config = capture_config
-        where = f"capture {source_name}" if source_name else "the calibration data"
-        if progress:
-            from tqdm.auto import tqdm
-
-            batches = tqdm(batches, desc="fit CalibratedDR", unit="batch", leave=False)
-        maps = []
-        with torch.no_grad():
-            for batch in batches:
-                out = batch if input == "db" else pipeline(batch)
-                if not isinstance(out, torch.Tensor) or out.ndim != 4 or out.is_complex():
-                    raise CalibrationError(
-                        f"CalibratedDR.fit: the pipeline must map frames to real dB maps (frames, rx, range, "
-                        f"doppler); got {getattr(out, 'shape', type(out).__name__)} from {where}"
-                    )
-                if not bool(torch.isfinite(out).all()):
-                    raise CalibrationError(f"CalibratedDR.fit: NaN/Inf in the RD maps of {where}")
-                maps.append(out)
-        if not maps or sum(m.shape[0] for m in maps) == 0:
-            raise CalibrationError(f"CalibratedDR.fit: {where} has no frames")
-        shapes = {tuple(m.shape[1:]) for m in maps}
-        if len(shapes) > 1:
-            raise CalibrationError(
-                f"CalibratedDR.fit: frames of {where} have different shapes {sorted(shapes)}"
-            )
-        all_maps = torch.cat(maps)
-        values = all_maps.double()
-        mean, std = float(values.mean()), float(values.std(correction=0))
-        window = doppler_window_of(chain) or "hann"
-        motion = motion_fraction(all_maps, MAIN_LOBE_HALF_WIDTH_BINS.get(window, 1) + 1, motion_threshold_db)
-        if motion is not None and motion > WARN_FRACTION:
-            warnings.warn(
-                f"CalibratedDR.fit: {where} should be an empty scene but shows motion: {100 * motion:.2f} % of the cells "
-                f"off zero Doppler are > {motion_threshold_db:g} dB above their own median over frames (noise "
-                f"and static clutter alone give ~0 %). The fitted floor includes it; record the empty scene.",
-                UserWarning,
-                stacklevel=2,
-            )
-        return cls(
-            mean,
-            std,
-            chain=chain,
-            config=config,
-            map_shape=tuple(all_maps.shape[1:]),
-            source=source_name,
-            num_frames=int(all_maps.shape[0]),
-            motion=motion,
-            **kwargs,
-        )
+        return cls(**stats, **kwargs)
 
     # ------------------------------------------------------------------ persistence
     def to_dict(self) -> dict[str, Any]:
@@ -398,46 +395,72 @@ class CalibratedDR(_DRClamp):
             CalibrationError: missing, unreadable or malformed file, another ``format_version``,
                 or another ``db_convention`` (the message names the file).
         """
-        data = load_json(path, error=CalibrationError, what="calibration file")
-        if not isinstance(data, dict) or data.get("format") != FORMAT:
-            raise CalibrationError(f"calibration file {path} is not a {FORMAT} record")
-        version = data.get("format_version", FORMAT_VERSION)
-        if version != FORMAT_VERSION or isinstance(version, bool):
-            raise CalibrationError(
-                f"calibration file {path} has format_version {version!r}; this radaraug reads {FORMAT_VERSION}"
-            )
-        convention = data.get("db_convention", DB_CONVENTION)
-        if convention != DB_CONVENTION:
-            # (m_t, s_t) in another dB scale would clamp at a silently wrong level.
-            raise CalibrationError(
-                f"calibration file {path} was fitted in another dB convention ({convention!r}); "
-                f"radaraug's maps use {DB_CONVENTION!r}"
-            )
         try:
-            mean, std = data["mean_db"], data["std_db"]
-            if isinstance(mean, bool) or isinstance(std, bool):
-                raise TypeError("mean_db/std_db must be numbers")
-            chain = data.get("chain")
-            if chain is not None and not (
-                isinstance(chain, list) and all(isinstance(s, dict) for s in chain)
-            ):
-                raise TypeError("chain must be a list of step objects")
-            loaded = cls(
-                float(mean),
-                float(std),
-                chain=chain,
-                config=data.get("config"),
-                map_shape=data.get("map_shape"),
-                source=data.get("source"),
-                num_frames=data.get("num_frames"),
-                motion=data.get("motion_fraction"),
-                **kwargs,
-            )
-            loaded.file = str(path)  # named by the errors raised when it is used
-            return loaded
-        except KeyError as e:
-            raise CalibrationError(f"calibration file {path} lacks the key {e}") from None
+            loaded = cls(**_read_record(path), **kwargs)
         except CalibrationError as e:
-            raise CalibrationError(f"calibration file {path}: {e}") from None
-        except (TypeError, ValueError, OverflowError) as e:
-            raise CalibrationError(f"calibration file {path} is malformed: {str(e)[:200]}") from None
+            msg = str(e)
+            raise CalibrationError(msg if str(path) in msg else f"calibration file {path}: {msg}") from None
+        loaded.file = str(path)  # named by the errors raised when it is used
+        loaded.provenance.update({"from": "file", "path": str(path)})
+        return loaded
+
+
+def _read_record(path: str | os.PathLike) -> dict[str, Any]:
+    """The constructor arguments stored in a calibration JSON (checked)."""
+    data = load_json(path, error=CalibrationError, what="calibration file")
+    if not isinstance(data, dict) or data.get("format") != FORMAT:
+        raise CalibrationError(f"calibration file {path} is not a {FORMAT} record")
+    version = data.get("format_version", FORMAT_VERSION)
+    if version != FORMAT_VERSION or isinstance(version, bool):
+        raise CalibrationError(
+            f"calibration file {path} has format_version {version!r}; this radaraug reads {FORMAT_VERSION}"
+        )
+    convention = data.get("db_convention", DB_CONVENTION)
+    if convention != DB_CONVENTION:
+        # (m_t, s_t) in another dB scale would clamp at a silently wrong level.
+        raise CalibrationError(
+            f"calibration file {path} was fitted in another dB convention ({convention!r}); "
+            f"radaraug's maps use {DB_CONVENTION!r}"
+        )
+    try:
+        mean, std = data["mean_db"], data["std_db"]
+        if isinstance(mean, bool) or isinstance(std, bool):
+            raise TypeError("mean_db/std_db must be numbers")
+        chain = data.get("chain")
+        if chain is not None and not (isinstance(chain, list) and all(isinstance(s, dict) for s in chain)):
+            raise TypeError("chain must be a list of step objects")
+        return {
+            "mean_db": float(mean),
+            "std_db": float(std),
+            "chain": chain,
+            "config": data.get("config"),
+            "map_shape": data.get("map_shape"),
+            "source": data.get("source"),
+            "num_frames": data.get("num_frames"),
+            "motion": data.get("motion_fraction"),
+        }
+    except KeyError as e:
+        raise CalibrationError(f"calibration file {path} lacks the key {e}") from None
+    except (TypeError, ValueError, OverflowError) as e:
+        raise CalibrationError(f"calibration file {path} is malformed: {str(e)[:200]}") from None
+
+
+def _from_environment() -> tuple[dict[str, Any], dict[str, Any]]:
+    """``CalibratedDR()``'s calibration: the record named by ``RADARAUG_CDR`` and its provenance."""
+    path = os.environ.get(ENV_VAR, "").strip()
+    if not path:
+        raise CalibrationError(
+            f"CalibratedDR() with no arguments uses the calibration named by the {ENV_VAR} environment "
+            "variable, which is not set. radaraug ships no default noise floor (it depends on your sensor, "
+            "IF gain, DSP chain and room). Record ~10 s of your empty room, then either "
+            f"`radaraug fit-cdr EMPTY_ROOM -o cdr.json` and `export {ENV_VAR}=cdr.json`, or "
+            "CalibratedDR.fit(EMPTY_ROOM)"
+        )
+    provenance: dict[str, Any] = {"from": ENV_VAR, "path": path}
+    if Path(path).suffix.lower() == ".json":
+        return _read_record(path), provenance
+    if not Path(path).exists():
+        raise CalibrationError(f"{ENV_VAR}={path}: no such calibration JSON or capture")
+    stats = floor_statistics(path)  # an empty-room capture: fit it with the default chain
+    provenance["fitted"] = True
+    return stats, provenance

@@ -52,6 +52,7 @@ class _StubPerson:
 
 
 class Walker(_StubPerson):
+    type_name = "walker"
     def __init__(self, height_m: float = 1.8, speed_m_s: float = 1.4, start: tuple = (0.0, 0.0),
                  heading_rad: float = 0.0, phase: float = 0.0) -> None:
         super().__init__(height_m=height_m, speed_m_s=speed_m_s, start=start, heading_rad=heading_rad,
@@ -59,6 +60,7 @@ class Walker(_StubPerson):
 
 
 class BVHPerson(_StubPerson):
+    type_name = "bvh"
     n_seg = 3
 
     def __init__(self, path: Any, *, start: tuple = (0.0, 0.0), heading_rad: float = 0.0,
@@ -67,6 +69,8 @@ class BVHPerson(_StubPerson):
 
 
 class MeshSequencePerson(_StubPerson):
+    type_name = "mesh_sequence"
+
     def __init__(self, files_or_meshes: Any, *, fps: float, start: tuple = (0.0, 0.0),
                  heading_rad: float = 0.0, scale: float = 1.0, max_faces: int | None = None) -> None:
         super().__init__(files_or_meshes=files_or_meshes, fps=fps, start=start, heading_rad=heading_rad,
@@ -76,7 +80,8 @@ class MeshSequencePerson(_StubPerson):
 @pytest.fixture
 def stub_people(monkeypatch: pytest.MonkeyPatch) -> types.SimpleNamespace:
     ns = types.SimpleNamespace(Walker=Walker, BVHPerson=BVHPerson, MeshSequencePerson=MeshSequencePerson)
-    monkeypatch.setattr(scene_mod, "_people_module", lambda: ns)
+    stubs = {cls.type_name: cls for cls in (Walker, BVHPerson, MeshSequencePerson)}
+    monkeypatch.setattr(scene_mod, "PERSON_TYPES", stubs)  # the registry the scene reader uses
     return ns
 
 

@@ -12,7 +12,7 @@ import torch
 from radaraug.errors import SceneError
 from radaraug.scene.people._interp import FrameTrack
 from radaraug.scene.people.bvh import BVHSkeleton, read_bvh
-from radaraug.scene.people.person import SkeletonPerson, as_times
+from radaraug.scene.people.person import SkeletonPerson, as_times, register_person
 from radaraug.scene.people.skeleton import JOINT_INDEX, JOINT_NAMES, LEG_LENGTH_FRACTION
 
 # Metres per file unit of common BVH sources. CMU's BVH conversions keep the ASF unit
@@ -84,6 +84,7 @@ def detect_scale(sk: BVHSkeleton) -> float:
 _BVH_TO_WORLD = torch.tensor([[0.0, 0.0, 1.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]], dtype=torch.float64)
 
 
+@register_person
 class BVHPerson(SkeletonPerson):
     """A BVH clip (e.g. CMU motion capture) on the 16-segment skeleton.
 
@@ -102,6 +103,8 @@ class BVHPerson(SkeletonPerson):
         loop: repeat the clip, carrying its root displacement over (period = ``(F-1)`` frames);
             else hold the first/last pose outside the clip.
     """
+
+    type_name = "bvh"
 
     def __init__(
         self,

@@ -9,10 +9,11 @@ from typing import Any
 import numpy as np
 import torch
 
+from radaraug._optional import lazy_import, missing_dependency
 from radaraug.errors import SceneError
 from radaraug.scene.geometry import Ellipsoids, SceneGeometry
 from radaraug.scene.people._interp import FrameTrack
-from radaraug.scene.people.person import Person, as_times
+from radaraug.scene.people.person import Person, as_times, register_person
 from radaraug.scene.people.simplify import simplify_mesh
 
 _Y_UP_TO_Z_UP = np.array([[0.0, 0.0, 1.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]])
@@ -20,7 +21,7 @@ NUM_CLUSTERS = 16
 
 
 def _load(item: Any, k: int) -> tuple[np.ndarray, np.ndarray, str]:
-    import trimesh
+    trimesh = lazy_import("trimesh", feature="meshes")
 
     label = str(item) if isinstance(item, (str, Path)) else f"mesh #{k}"
     if isinstance(item, (str, Path)):
@@ -28,6 +29,8 @@ def _load(item: Any, k: int) -> tuple[np.ndarray, np.ndarray, str]:
             raise SceneError(f"{item}: mesh file not found")
         try:
             item = trimesh.load(str(item), force="mesh", process=False)
+        except ModuleNotFoundError as exc:  # some formats need packages trimesh imports on demand
+            raise missing_dependency(exc, f"reading mesh file {label}") from None
         except Exception as exc:  # trimesh raises many types for bad files
             raise SceneError(f"{label}: cannot read mesh: {exc}") from exc
     if isinstance(item, trimesh.Scene):
@@ -88,6 +91,7 @@ def _attach(points: torch.Tensor, vertices: torch.Tensor, faces: torch.Tensor,
     return torch.cat(tri_out), torch.cat(bary_out)
 
 
+@register_person
 class MeshSequencePerson(Person):
     """An animated triangle mesh, one mesh per frame, every frame with the same vertices.
 
@@ -112,6 +116,8 @@ class MeshSequencePerson(Person):
         up_axis: ``"y"`` (default, OBJ/GLB/Mixamo) or ``"z"``.
         speed_m_s: root motion along the heading (m/s), added to the animation.
     """
+
+    type_name = "mesh_sequence"
 
     def __init__(
         self,

@@ -10,6 +10,7 @@ from typing import Any
 import numpy as np
 import torch
 
+from radaraug._optional import lazy_import
 from radaraug.errors import InputTensorError, SceneError
 from radaraug.scene.geometry import Ellipsoids, SceneGeometry
 
@@ -37,7 +38,7 @@ def as_times(t: torch.Tensor | float | Any, name: str = "t") -> torch.Tensor:
 
 @lru_cache(maxsize=8)
 def _unit_icosphere(subdivisions: int) -> tuple[np.ndarray, np.ndarray]:
-    import trimesh
+    trimesh = lazy_import("trimesh", feature="meshes")
 
     s = trimesh.creation.icosphere(subdivisions=subdivisions, radius=1.0)
     return np.asarray(s.vertices, dtype=np.float64), np.asarray(s.faces, dtype=np.int64)
@@ -77,10 +78,13 @@ def tessellate(ell: Ellipsoids, faces_per_segment: int = 320) -> tuple[torch.Ten
 class Person(ABC):
     """A moving person: ellipsoid segments for fast scattering, a triangle mesh for ray tracing.
 
-    World frame: metres, ``z`` up, ground at ``z = 0``.
+    World frame: metres, ``z`` up, ground at ``z = 0``. A concrete person type registers itself
+    with :func:`register_person` under its :attr:`type_name`, the ``type`` of scene files.
     """
 
     material: str = "skin"
+    type_name: str = ""
+    """The ``type`` that names this kind of person in scene files and :meth:`to_dict`."""
 
     @abstractmethod
     def ellipsoids(self, t: torch.Tensor) -> Ellipsoids:
@@ -135,16 +139,40 @@ class Person(ABC):
         )
 
 
+PERSON_TYPES: dict[str, type[Person]] = {}
+"""Person types by their scene-file ``type`` (filled by :func:`register_person`; the built-in
+ones are registered when ``radaraug.scene.people`` is imported, which importing any of its
+modules does first)."""
+
+
+def register_person(cls: type[Person]) -> type[Person]:
+    """Class decorator: add ``cls`` to :data:`PERSON_TYPES` under ``cls.type_name``.
+
+    Raises:
+        ValueError: no ``type_name``, or the name is taken by another class.
+    """
+    if not cls.type_name or PERSON_TYPES.get(cls.type_name, cls) is not cls:
+        raise ValueError(f"person type {cls.__name__}: type_name {cls.type_name!r} is empty or taken")
+    PERSON_TYPES[cls.type_name] = cls
+    return cls
+
+
+def person_type(name: Any) -> type[Person]:
+    """The registered person class for a scene-file ``type``.
+
+    Raises:
+        SceneError: an unknown type (the message lists the known ones).
+    """
+    if not isinstance(name, str) or name not in PERSON_TYPES:
+        raise SceneError(f"person: unknown or missing 'type' {name!r}; expected one of {sorted(PERSON_TYPES)}")
+    return PERSON_TYPES[name]
+
+
 def person_from_dict(d: dict[str, Any]) -> Person:
     """Rebuild a person from :meth:`Person.to_dict` output."""
-    from radaraug.scene.people.bvh_person import BVHPerson
-    from radaraug.scene.people.mesh_sequence import MeshSequencePerson
-    from radaraug.scene.people.walker import Walker
-
-    kinds = {"walker": Walker, "bvh": BVHPerson, "mesh_sequence": MeshSequencePerson}
-    if not isinstance(d, dict) or d.get("type") not in kinds:
-        raise SceneError(f"person: unknown or missing 'type' in {d!r}; expected one of {sorted(kinds)}")
-    return kinds[d["type"]].from_dict(d)
+    if not isinstance(d, dict) or d.get("type") not in PERSON_TYPES:
+        raise SceneError(f"person: unknown or missing 'type' in {d!r}; expected one of {sorted(PERSON_TYPES)}")
+    return PERSON_TYPES[d["type"]].from_dict(d)
 
 
 class SkeletonPerson(Person):

@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 import torch
 
+from radaraug._optional import lazy_import
 from radaraug.errors import SceneError
 
 
@@ -38,7 +39,7 @@ def simplify_mesh(
         raise SceneError(f"simplify_mesh: face indices out of range [0, {len(v)})")
     if int(target_faces) < 4:
         raise SceneError(f"simplify_mesh: target_faces={target_faces} must be >= 4")
-    import pymeshlab
+    pymeshlab = lazy_import("pymeshlab", feature="mesh simplification")
 
     ms = pymeshlab.MeshSet()
     ms.add_mesh(pymeshlab.Mesh(vertex_matrix=v, face_matrix=f.astype(np.int32)))

@@ -22,7 +22,7 @@ import torch
 from radaraug.errors import SceneError
 from radaraug.scene.people import _rotations as rot
 from radaraug.scene.people._pchip import PeriodicPchip
-from radaraug.scene.people.person import SkeletonPerson, as_times
+from radaraug.scene.people.person import SkeletonPerson, as_times, register_person
 from radaraug.scene.people.skeleton import ANKLE_HEIGHT_FRACTION, JOINT_NAMES, SEGMENT_LENGTH_FRACTIONS
 
 _DEG = math.pi / 180.0
@@ -63,6 +63,7 @@ def gait_curves(rv: float, rds: float) -> dict[str, tuple[list[float], list[floa
 _CURVES = ("hip", "knee", "ankle", "elbow", "thorax")
 
 
+@register_person
 class Walker(SkeletonPerson):
     """A person walking in a straight line with Boulic's gait.
 
@@ -74,6 +75,8 @@ class Walker(SkeletonPerson):
         heading_rad: walking direction in the x-y plane (0 = +x, pi/2 = +y).
         phase: gait-cycle phase at ``t = 0`` in [0, 1) (0 = right heel strike).
     """
+
+    type_name = "walker"
 
     def __init__(
         self,

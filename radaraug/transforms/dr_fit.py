@@ -1,0 +1,116 @@
+"""Fitting the calibrated noise floor: ``(m_t, s_t)`` of an empty-room capture's RD dB maps.
+
+Kept apart from :mod:`radaraug.transforms.dr` (the clamp itself) because fitting needs the
+processing chain (:class:`~radaraug.transforms.compose.RadarCompose`, ``RangeDoppler``,
+``ToDecibels``) and capture readers, none of which the clamp needs.
+"""
+
+from __future__ import annotations
+
+import numbers
+import warnings
+from typing import Any
+
+import torch
+
+from radaraug._optional import lazy_import
+from radaraug.config import RadarConfig
+from radaraug.errors import CalibrationError
+from radaraug.transforms._fit_sources import iter_source
+from radaraug.transforms._motion import DEFAULT_THRESHOLD_DB, WARN_FRACTION, motion_fraction
+from radaraug.transforms.chain import chain_of, doppler_window_of
+from radaraug.transforms.compose import RadarCompose
+from radaraug.transforms.spectral import RangeDoppler, ToDecibels
+from radaraug.transforms.windows import MAIN_LOBE_HALF_WIDTH_BINS
+
+
+def floor_statistics(
+    source: Any,
+    *,
+    pipeline: Any = None,
+    config: RadarConfig | None = None,
+    max_frames: int | None = None,
+    input: str = "raw",
+    batch_size: int = 32,
+    motion_threshold_db: float = DEFAULT_THRESHOLD_DB,
+    progress: bool = False,
+) -> dict[str, Any]:
+    """The statistics :meth:`CalibratedDR.fit <radaraug.transforms.dr.CalibratedDR.fit>` builds a
+    CalibratedDR from (arguments, errors and warnings: see there).
+
+    Returns:
+        The constructor's keyword arguments: ``mean_db``, ``std_db``, ``chain``, ``config``,
+        ``map_shape``, ``source``, ``num_frames``, ``motion``.
+    """
+    if input not in ("raw", "db"):
+        raise CalibrationError(f"CalibratedDR.fit: input must be 'raw' or 'db', got {input!r}")
+    for name, value in (("max_frames", max_frames), ("batch_size", batch_size)):
+        if value is None and name == "max_frames":
+            continue
+        if isinstance(value, bool) or not isinstance(value, numbers.Integral) or value < 1:
+            raise CalibrationError(f"CalibratedDR.fit: {name} must be a positive integer, got {value!r}")
+    if pipeline is None:
+        pipeline = RadarCompose([RangeDoppler(), ToDecibels()])
+    chain = chain_of(pipeline)
+    if chain is None:
+        warnings.warn(
+            "CalibratedDR.fit: the pipeline has no chain_spec(); the chain cannot be recorded or checked",
+            UserWarning,
+            stacklevel=3,
+        )
+    batches, source_name, capture_config = iter_source(
+        source, max_frames=max_frames, batch_size=batch_size
+    )
+    if capture_config is not None:
+        if config is not None and config != capture_config:
+            raise CalibrationError(
+                f"CalibratedDR.fit: the config given differs from the config of {source_name}"
+            )
+        config = capture_config
+    where = f"capture {source_name}" if source_name else "the calibration data"
+    if progress:
+        tqdm = lazy_import("tqdm.auto", feature="progress bars").tqdm
+
+        batches = tqdm(batches, desc="fit CalibratedDR", unit="batch", leave=False)
+    maps = []
+    with torch.no_grad():
+        for batch in batches:
+            out = batch if input == "db" else pipeline(batch)
+            if not isinstance(out, torch.Tensor) or out.ndim != 4 or out.is_complex():
+                raise CalibrationError(
+                    f"CalibratedDR.fit: the pipeline must map frames to real dB maps (frames, rx, range, "
+                    f"doppler); got {getattr(out, 'shape', type(out).__name__)} from {where}"
+                )
+            if not bool(torch.isfinite(out).all()):
+                raise CalibrationError(f"CalibratedDR.fit: NaN/Inf in the RD maps of {where}")
+            maps.append(out)
+    if not maps or sum(m.shape[0] for m in maps) == 0:
+        raise CalibrationError(f"CalibratedDR.fit: {where} has no frames")
+    shapes = {tuple(m.shape[1:]) for m in maps}
+    if len(shapes) > 1:
+        raise CalibrationError(
+            f"CalibratedDR.fit: frames of {where} have different shapes {sorted(shapes)}"
+        )
+    all_maps = torch.cat(maps)
+    values = all_maps.double()
+    mean, std = float(values.mean()), float(values.std(correction=0))
+    window = doppler_window_of(chain) or "hann"
+    motion = motion_fraction(all_maps, MAIN_LOBE_HALF_WIDTH_BINS.get(window, 1) + 1, motion_threshold_db)
+    if motion is not None and motion > WARN_FRACTION:
+        warnings.warn(
+            f"CalibratedDR.fit: {where} should be an empty scene but shows motion: {100 * motion:.2f} % of the cells "
+            f"off zero Doppler are > {motion_threshold_db:g} dB above their own median over frames (noise "
+            f"and static clutter alone give ~0 %). The fitted floor includes it; record the empty scene.",
+            UserWarning,
+            stacklevel=3,
+        )
+    return {
+        "mean_db": mean,
+        "std_db": std,
+        "chain": chain,
+        "config": config,
+        "map_shape": tuple(all_maps.shape[1:]),
+        "source": source_name,
+        "num_frames": int(all_maps.shape[0]),
+        "motion": motion,
+    }
