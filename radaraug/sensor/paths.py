@@ -16,6 +16,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
+from typing import Any
 
 import torch
 
@@ -68,6 +69,14 @@ class Paths:
 
         return Paths(fn(self.delay_s), fn(self.delay_rate), fn(self.amplitude), opt(self.kind), opt(self.mask),
                      opt(self.chirp_delay_s), opt(self.chirp_gain))
+
+    def select(self, index: Any) -> Paths:
+        """Index the leading (batch) dims of every tensor: ``paths.select(k)`` is snapshot ``k``.
+
+        Args:
+            index: any tensor index (an int, a slice, a tuple of them, ``None`` for a new dim).
+        """
+        return self.map(lambda t: t[index])
 
     def to(self, device: torch.device | str) -> Paths:
         """Move every tensor to ``device``."""
