@@ -44,7 +44,11 @@ def capture_floor_db(path: str | os.PathLike, max_frames: int = 64) -> tuple[Rad
 @torch.no_grad()
 def twin_floor_db(config: RadarConfig, front_end_gain_dB: float = FRONT_END_GAIN_DB,
                   adc_noise_rms_counts: float = ADC_NOISE_RMS_COUNTS, frames: int = 8, seed: int = 0) -> float:
-    """RD noise floor (dBFS) of the default chain's empty frames with the given two constants."""
+    """RD noise floor (dBFS) of the default chain's empty frames with the given two constants.
+
+    Raises:
+        CalibrationError: ``config`` has too few chirps (<= 4) to measure a floor off zero Doppler.
+    """
     effects = default_effects(config, adc_noise_rms_counts=adc_noise_rms_counts)
     leak = next(e for e in effects if isinstance(e, TxRxLeakage))
     leak.coupling_dB.add_(FRONT_END_GAIN_DB - front_end_gain_dB)  # keep the leakage's ADC level

@@ -188,6 +188,11 @@ def ellipsoid_paths(
     segment -> same wall -> radar, each block segment-major.
     With ``convex_room`` (see :meth:`MirrorPlanes.convex_enclosure`) the room cannot block any
     leg and bounce points are checked against the planes instead of cast against the room.
+
+    Raises:
+        SceneError: semi-axes not finite and positive; multipath (``mirrors`` and ``room_bvh``)
+            without ``room_reflectivity``; ``convex_room`` with mirror planes that have no
+            material each.
     """
     dev, dt = radar.tx.device, radar.tx.dtype
     lead = ell.centers.shape[:-2]
