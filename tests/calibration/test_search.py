@@ -239,8 +239,8 @@ def test_scene_mode_on_a_ray_traced_corridor_finds_an_undeclared_spur(tmp_path):
 
 def test_a_missing_effect_is_named():
     from radaraug.calibration.catalog import ParamSpec, get_param, require
-    from radaraug.sensor.effects import Prior
     from radaraug.errors import CalibrationError
+    from radaraug.sensor.effects import Prior
 
     chain = [{"name": "thermal_noise", "params": {"noise_figure_dB": 12.0}}]
     assert require(chain, "thermal_noise") is chain[0]
