@@ -70,7 +70,7 @@ def run_demo(out_dir: Path, *, capture: str | Path | None = None) -> dict:
     gen = torch.Generator().manual_seed(0)
     model = torch.randn(values.numel(), generator=gen, dtype=values.dtype) * cdr.std_db + cdr.mean_db
     fig, ax = plt.subplots(figsize=(6, 3.5), dpi=120)
-    bins = torch.linspace(float(values.min()), float(values.max()), 120).numpy()
+    bins = torch.linspace(float(values.min()), float(values.max()), 120).tolist()
     ax.hist(values.numpy(), bins=bins, density=True, alpha=0.6, label="capture RD cells")
     ax.hist(model.numpy(), bins=bins, density=True, histtype="step", lw=1.5,
             label=f"CDR model N({cdr.mean_db:.1f}, {cdr.std_db:.1f}^2)")

@@ -7,7 +7,7 @@ from typing import Any
 
 import torch
 
-from radaraug.raytrace import intersect as _ix
+from radaraug.raytrace.intersect import Hit, compile_failed, intersect
 
 
 def _random_scene(num_rays: int, num_triangles: int, device: torch.device, dtype: torch.dtype, seed: int):
@@ -67,8 +67,8 @@ def benchmark_intersection(
     o, d, tri = _random_scene(num_rays, num_triangles, dev, dtype, seed)
     tests = num_rays * num_triangles
 
-    def run(flag: bool) -> _ix.Hit:
-        return _ix.intersect(o, d, tri, compiled=flag)
+    def run(flag: bool) -> Hit:
+        return intersect(o, d, tri, compiled=flag)
 
     ref = run(False)
     eager_s = _time(lambda: run(False), repeats, dev)
@@ -81,7 +81,7 @@ def benchmark_intersection(
         t0 = time.perf_counter()
         hit = run(True)
         out["compile_warmup_s"] = time.perf_counter() - t0
-        if not _ix.compile_failed():
+        if not compile_failed():
             comp_s = _time(lambda: run(True), repeats, dev)
             out["compiled_tests_per_s"] = tests / comp_s
             out["speedup"] = eager_s / comp_s

@@ -50,14 +50,18 @@ def micro_doppler_before_after(
     timing = ChirpTiming.from_config(cfg)
     window = float(chirp_times(timing)[-1]) + timing.prt
     times = torch.arange(0.0, seconds, window, dtype=torch.float64)
-    spectra, knots = {}, None
-    for label, mode in (("one snapshot per frame", 0), ("motion inside the frame", "auto")):
+    spectra = {}
+    knots: list[int] = []  # intervals per frame of the intra-frame twin
+    modes: tuple[tuple[str, int | str], ...] = (("one snapshot per frame", 0), ("motion inside the frame", "auto"))
+    for label, mode in modes:
         twin = DigitalTwin(scene, receiver=FMCWReceiver(cfg, effects=[]), multipath=False,
                            tracer_options={"rays": 16}, intra_frame=mode)
-        frames = torch.cat([twin.receiver(twin.paths([walker], times[i:i + 16])) for i in range(0, len(times), 16)])
-        if mode == "auto":
-            knots = [int(k) for i in range(0, len(times), 16)
-                     for k in (twin.paths([walker], times[i:i + 16]), twin.last_intervals)[1]]
+        blocks = []
+        for i in range(0, len(times), 16):
+            blocks.append(twin.receiver(twin.paths([walker], times[i:i + 16])))
+            if mode == "auto" and twin.last_intervals is not None:
+                knots.extend(int(k) for k in twin.last_intervals)
+        frames = torch.cat(blocks)
         spectra[label] = doppler_spectrogram(frames)
     v_bin = cfg.wavelength_m / (2 * timing.num_chirps * timing.prt)
     m = timing.num_chirps

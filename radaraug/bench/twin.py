@@ -21,12 +21,15 @@ import os
 import platform
 import time
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import torch
 from torch.utils.data import DataLoader, Dataset
 
 from radaraug.io.atomic import atomic_write_json
+
+if TYPE_CHECKING:
+    from radaraug.sim.twin import DigitalTwin
 
 BLOCK = 16
 
@@ -41,7 +44,7 @@ class _Blocks(Dataset):
 
     def __init__(self, scene_name: str, n: int, device: str, static: torch.Tensor | None, wrap: int) -> None:
         self.scene_name, self.n, self.device, self.static, self.wrap = scene_name, n, device, static, wrap
-        self.twin = None
+        self.twin: DigitalTwin | None = None
 
     def __len__(self) -> int:
         return self.n
@@ -51,11 +54,12 @@ class _Blocks(Dataset):
         from radaraug.sim.seeding import item_generator
         from radaraug.sim.twin import DigitalTwin
 
-        if self.twin is None:
-            self.twin = DigitalTwin(Scene.builtin(self.scene_name), device=self.device, static_signal=self.static)
+        twin = self.twin
+        if twin is None:
+            twin = self.twin = DigitalTwin(Scene.builtin(self.scene_name), device=self.device, static_signal=self.static)
         j = i % self.wrap
-        times = self.twin.frame_times(range(j * BLOCK, (j + 1) * BLOCK))
-        return self.twin.simulate(self.twin.scene.people, times, generators=item_generator(0, j))
+        times = twin.frame_times(range(j * BLOCK, (j + 1) * BLOCK))
+        return twin.simulate(twin.scene.people, times, generators=item_generator(0, j))
 
     def __getstate__(self) -> dict[str, Any]:
         return {**self.__dict__, "twin": None}
@@ -94,6 +98,7 @@ def run_twin_benchmark(
             run_block(i)
         sync()
         fps_1 = blocks * BLOCK / (time.perf_counter() - t0)
+        assert twin.last_intervals is not None  # set by every paths() call, so by the blocks above
         knots = float(twin.last_intervals.double().mean())
 
         # The same blocks with one snapshot per frame (the cost of motion inside the frame).

@@ -25,6 +25,7 @@ import torch
 
 from radaraug.calibration.views import Views, _db
 from radaraug.config import SPEED_OF_LIGHT, RadarConfig
+from radaraug.errors import CalibrationError
 from radaraug.sensor.effects import EFFECTS
 from radaraug.sensor.effects.base import Prior, hardware_position
 
@@ -88,6 +89,14 @@ def find(chain: Chain, name: str) -> dict[str, Any] | None:
     return next((e for e in chain if e["name"] == name), None)
 
 
+def require(chain: Chain, name: str) -> dict[str, Any]:
+    """The effect dict called ``name`` in ``chain``; :class:`CalibrationError` when absent."""
+    e = find(chain, name)
+    if e is None:
+        raise CalibrationError(f"the effect chain has no {name!r} (it has {[x['name'] for x in chain]})")
+    return e
+
+
 def with_effect(chain: Chain, name: str, params: Mapping[str, Any]) -> Chain:
     """A copy of ``chain`` with effect ``name`` set to ``params`` (merged into an existing one, or
     inserted at its place in the hardware order)."""
@@ -104,7 +113,7 @@ def with_effect(chain: Chain, name: str, params: Mapping[str, Any]) -> Chain:
 
 def get_param(chain: Chain, name: str, spec: ParamSpec) -> float:
     """Current value of ``spec`` in effect ``name``."""
-    v = find(chain, name)["params"][spec.name]
+    v = require(chain, name)["params"][spec.name]
     if isinstance(v, list):
         return float(v[spec.index if spec.index is not None else 0])
     return float(v)
@@ -113,7 +122,7 @@ def get_param(chain: Chain, name: str, spec: ParamSpec) -> float:
 def set_params(chain: Chain, name: str, specs: Sequence[ParamSpec], values: Sequence[float], num_rx: int) -> Chain:
     """A copy of ``chain`` with the searched parameters of effect ``name`` set to ``values``."""
     out = copy.deepcopy(chain)
-    eff = find(out, name)
+    eff = require(out, name)
     for spec, val in zip(specs, values):
         cur = eff["params"].get(spec.name)
         if spec.index is None:
@@ -241,7 +250,7 @@ def _spur() -> Candidate:
         cap = ctx.capture.stats.power.mean(dim=0)
         bin_hz = cfg.sample_rate_Hz / cfg.num_samples_per_chirp
         T = cfg.chirp_repetition_time_s
-        for r, d, _v in _peaks(ex, _off_zero_mask(tuple(ex.shape)), 2, 6.0):
+        for r, d, _v in _peaks(ex, _off_zero_mask((ex.shape[0], ex.shape[1])), 2, 6.0):
             # Sub-bin frequency from the Hann peak's neighbours (parabola on log power), then the
             # Doppler bin picks among the aliases 1/T apart; the neighbouring aliases are starts too.
             f_est = _sub_bin(cap, r, d) * bin_hz
@@ -293,7 +302,7 @@ def _vibrating() -> Candidate:
         ex = ctx.excess_db()
         M = ex.shape[1]
         out = []
-        for r, d, v in _peaks(ex, _off_zero_mask(tuple(ex.shape)), 1, 6.0):
+        for r, d, v in _peaks(ex, _off_zero_mask((ex.shape[0], ex.shape[1])), 1, 6.0):
             vib = abs(d - M // 2) / (M * cfg.chirp_repetition_time_s)
             for beta in (0.5, 1.5):
                 # An estimated static scene already holds the object's mean return: add only

@@ -85,7 +85,7 @@ def view_figures(diag: Diagnosis, out: Path) -> list[str]:
     ex = _db(cap.stats.power.mean(dim=0)) - _db(after.stats.power.mean(dim=0))
     fig, ax = plt.subplots(figsize=(6, 4))
     im = ax.imshow(ex.numpy(), aspect="auto", origin="lower", cmap="RdBu_r", vmin=-15, vmax=15,
-                   extent=[float(vel[0]), float(vel[-1]), float(rng[0]), float(rng[-1])])
+                   extent=(float(vel[0]), float(vel[-1]), float(rng[0]), float(rng[-1])))
     for u in diag.unexplained:
         if u["view"] == "rd_map":
             ax.plot(u["velocity_m_s"], u["range_m"], "ko", mfc="none")

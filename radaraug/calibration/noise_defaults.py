@@ -23,8 +23,10 @@ from typing import Any
 import torch
 
 from radaraug.config import RadarConfig
+from radaraug.errors import CalibrationError
 from radaraug.io.summary import noise_floor_db
 from radaraug.sensor.defaults import ADC_NOISE_RMS_COUNTS, FRONT_END_GAIN_DB, default_effects
+from radaraug.sensor.effects import TxRxLeakage
 from radaraug.sensor.paths import Paths
 from radaraug.sensor.receiver import FMCWReceiver
 from radaraug.transforms import RangeDoppler, ToDecibels
@@ -42,14 +44,21 @@ def capture_floor_db(path: str | os.PathLike, max_frames: int = 64) -> tuple[Rad
 @torch.no_grad()
 def twin_floor_db(config: RadarConfig, front_end_gain_dB: float = FRONT_END_GAIN_DB,
                   adc_noise_rms_counts: float = ADC_NOISE_RMS_COUNTS, frames: int = 8, seed: int = 0) -> float:
-    """RD noise floor (dBFS) of the default chain's empty frames with the given two constants."""
+    """RD noise floor (dBFS) of the default chain's empty frames with the given two constants.
+
+    Raises:
+        CalibrationError: ``config`` has too few chirps (<= 4) to measure a floor off zero Doppler.
+    """
     effects = default_effects(config, adc_noise_rms_counts=adc_noise_rms_counts)
-    leak = next(e for e in effects if e.name == "tx_rx_leakage")
+    leak = next(e for e in effects if isinstance(e, TxRxLeakage))
     leak.coupling_dB.add_(FRONT_END_GAIN_DB - front_end_gain_dB)  # keep the leakage's ADC level
     rx = FMCWReceiver(config, effects=effects, front_end_gain_dB=front_end_gain_dB)
     z = torch.zeros(frames, 0, config.num_rx, dtype=torch.float64)
     x = rx(Paths(z, z.clone(), z.to(torch.complex128)), generator=torch.Generator().manual_seed(seed))
-    return float(noise_floor_db(ToDecibels()(RangeDoppler()(x))))
+    floor = noise_floor_db(ToDecibels()(RangeDoppler()(x)))
+    if floor is None:
+        raise CalibrationError(f"too few chirps per frame ({config.num_chirps_per_frame}) to measure a noise floor")
+    return floor
 
 
 def check_defaults(paths: Sequence[str | os.PathLike], **twin_kw: Any) -> list[dict[str, Any]]:
@@ -64,9 +73,14 @@ def check_defaults(paths: Sequence[str | os.PathLike], **twin_kw: Any) -> list[d
     return rows
 
 
+#: The default grids of :func:`fit_noise_defaults`: 20-40 dB in 0.5 dB steps, 0.5-4 counts in 0.25.
+FRONT_END_GAIN_GRID_DB = tuple(x / 2 for x in range(40, 81))
+ADC_RMS_GRID_COUNTS = tuple(0.25 * k for k in range(2, 17))
+
+
 def fit_noise_defaults(paths: Sequence[str | os.PathLike],
-                       front_end_gains_dB: Sequence[float] = tuple(x / 2 for x in range(40, 81)),
-                       adc_rms_counts: Sequence[float] = tuple(0.25 * k for k in range(2, 17))) -> dict[str, Any]:
+                       front_end_gains_dB: Sequence[float] = FRONT_END_GAIN_GRID_DB,
+                       adc_rms_counts: Sequence[float] = ADC_RMS_GRID_COUNTS) -> dict[str, Any]:
     """Grid-search (front-end gain, ADC-side RMS) minimizing the worst floor difference.
 
     Returns:

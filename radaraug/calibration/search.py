@@ -40,6 +40,7 @@ from radaraug.calibration.catalog import (
     catalog,
     find,
     get_param,
+    require,
     set_params,
     with_effect,
 )
@@ -210,7 +211,7 @@ class Search:
         for _ in range(iterations):
             tv = self.fit_score(chain, room).twin
             d = (self.cap_fit["adc_histogram"][:, mid] - tv["adc_histogram"][:, mid]).tolist()
-            cur = find(chain, "dc_offset")["params"]["level_counts"]
+            cur = require(chain, "dc_offset")["params"]["level_counts"]
             cur = list(cur) if isinstance(cur, list) else [float(cur)] * R
             new = [min(max(c + di, 0.0), float(self.config.adc_full_scale_counts)) for c, di in zip(cur, d)]
             chain = set_params(chain, "dc_offset", [ParamSpec("level_counts", EFFECTS["dc_offset"].priors(
@@ -299,7 +300,7 @@ class Search:
             screened.sort(key=lambda t: t[0])
             results = []
             for _, cand, ch in screened[: st.screen_top]:
-                start = find(ch, cand.name)["params"]
+                start = require(ch, cand.name)["params"]
                 specs = [(cand.name, sp) for sp in cand.specs(ctx, start)]
                 joint = set(cand.joint)
                 specs += [(e, sp) for e, sp in self.base_specs(ch) if (e, sp.name) in joint]
@@ -321,7 +322,7 @@ class Search:
             steps.append({
                 "effect": cand.name,
                 "refit": refit,
-                "params": find(fitted, cand.name)["params"],
+                "params": require(fitted, cand.name)["params"],
                 "error_before": round(cur_held.overall, 4),
                 "error_after": round(held.overall, 4),
                 "views_before": {k: round(v, 4) for k, v in cur_held.views.items()},
@@ -340,7 +341,7 @@ class Search:
             if rebased_held.overall <= cur_held.overall:
                 current, cur_room, cur_held = rebased, rebased_room, rebased_held
                 steps[-1]["error_after_base_refit"] = round(rebased_held.overall, 4)
-                steps[-1]["params"] = find(current, cand.name)["params"]
+                steps[-1]["params"] = require(current, cand.name)["params"]
                 if cur_room:
                     steps[-1]["room_after_base_refit"] = dict(cur_room)
         return SearchResult(chain, base_chain, current, before, base, cur_held, steps, tried, self.evaluations,

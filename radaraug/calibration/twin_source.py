@@ -96,7 +96,8 @@ class TwinSource:
         self.moving = moving
         self.tx_power_dBm = tx_power_dBm
         self.front_end_gain_dB = front_end_gain_dB
-        self._static_cache: dict[str, torch.Tensor | Paths] = {}
+        self._static_cache: dict[str, torch.Tensor] = {}  # static signal per linear chain (scene mode)
+        self._tone_paths: dict[str, Paths] = {}  # tone paths per linear chain (estimated mode)
 
     @property
     def mode(self) -> str:
@@ -142,7 +143,7 @@ class TwinSource:
         """
         linear = [e for e, m in zip(chain, rx.effects) if m.kind == "linear"]
         key = "estimated:" + json.dumps(linear, sort_keys=True)
-        if key not in self._static_cache:
+        if key not in self._tone_paths:
             cfg = self.config
             N, R = cfg.num_samples_per_chirp, cfg.num_rx
             timing = ChirpTiming.from_config(cfg)
@@ -158,8 +159,8 @@ class TwinSource:
             unit = Paths(delay, torch.zeros_like(delay), torch.ones_like(delay, dtype=torch.complex128))
             h = rx.linear_state(unit).coef  # (R, K): the chain's coefficient for a unit input amplitude
             amp = torch.conj(need / h).transpose(0, 1).contiguous()  # (K, R)
-            self._static_cache[key] = Paths(delay, torch.zeros_like(delay), amp)
-        return self._static_cache[key]
+            self._tone_paths[key] = Paths(delay, torch.zeros_like(delay), amp)
+        return self._tone_paths[key]
 
     def _synth(self, rx: FMCWReceiver, key: str, paths: Paths) -> torch.Tensor:
         if key not in self._static_cache:
@@ -171,7 +172,7 @@ class TwinSource:
         return self._static_cache[key]
 
     def _static(self, rx: FMCWReceiver, chain: Sequence[Mapping[str, Any]], room: Room) -> torch.Tensor | None:
-        if self.mean_chirp is not None:
+        if self.static_paths is None:  # estimated mode (the constructor takes exactly one of the two)
             return None
         linear = [e for e, m in zip(chain, rx.effects) if m.kind == "linear"]
         key = json.dumps(linear, sort_keys=True)

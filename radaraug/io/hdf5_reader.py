@@ -276,26 +276,31 @@ class HDF5Capture(CaptureReader):
         # readable), never returned as garbage (NaN durations, a 2-D array flattened).
         if not isinstance(ds, h5py.Dataset) or ds.ndim != 1 or ds.dtype.kind not in "iuf":
             what = "not a dataset" if not isinstance(ds, h5py.Dataset) else f"{ds.dtype} {ds.shape}"
-            return self._drop_timestamps(f"'{fmt.TIMESTAMPS}' is {what}, expected float64 (frames,)")
+            self._drop_timestamps(f"'{fmt.TIMESTAMPS}' is {what}, expected float64 (frames,)")
+            return None
         # The writer stores timestamps before the frame data of each append, so a writer killed
         # mid-append can leave timestamps ahead of the frames, never behind.
         if ds.shape[0] < self.num_frames:
-            return self._drop_timestamps(f"{ds.shape[0]} timestamps for {self.num_frames} frames")
+            self._drop_timestamps(f"{ds.shape[0]} timestamps for {self.num_frames} frames")
+            return None
         written, _ = self._written_rows(ds)
         if written < self.num_frames:
-            return self._drop_timestamps(f"the timestamps of frames {written}.. were never written")
+            self._drop_timestamps(f"the timestamps of frames {written}.. were never written")
+            return None
         try:
             ts = np.asarray(ds[: self.num_frames], dtype=np.float64)  # only what the frames need
         except H5_ERRORS as e:
-            return self._drop_timestamps(f"cannot read '{fmt.TIMESTAMPS}' ({e})")
+            self._drop_timestamps(f"cannot read '{fmt.TIMESTAMPS}' ({e})")
+            return None
         problem = timestamp_problem(ts)
         if problem is not None:
-            return self._drop_timestamps(problem)
+            self._drop_timestamps(problem)
+            return None
         return ts
 
     def _drop_timestamps(self, problem: str) -> None:
+        """Warn that the timestamps are unusable (the caller then returns None)."""
         warnings.warn(f"{self.path}: {problem}; timestamps ignored", CaptureWarning, stacklevel=5)
-        return None
 
     def _load_labels(self) -> dict[str, np.ndarray]:
         f = self._file

@@ -106,6 +106,12 @@ class CaptureWriter:
             (see :func:`radaraug.io.counts.as_counts`).
     """
 
+    # State set by _init_state (declared here: __init__ assigns some before the types are known).
+    _file: h5py.File | None
+    _lock_fd: int | None
+    _tmp: Path | None  # the file's name until it is published under self.path
+    _failed: str | None
+
     def __init__(
         self,
         path: str | os.PathLike,
@@ -167,13 +173,13 @@ class CaptureWriter:
             raise
 
     def _init_state(self) -> None:
-        self._file: h5py.File | None = None
+        self._file = None
         self._n = 0
         self._started = False
         self._has_timestamps = False
-        self._lock_fd: int | None = None
-        self._tmp: Path | None = None  # the file's name until it is published under self.path
-        self._failed: str | None = None
+        self._lock_fd = None
+        self._tmp = None
+        self._failed = None
 
     def _check_space(self, frames: int | None, existing: int = 0) -> None:
         if frames is not None:

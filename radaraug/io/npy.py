@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import os
 from pathlib import Path
+from typing import Literal
 
 import numpy as np
 
@@ -85,7 +86,7 @@ def open_npy(path: Path, *, kinds: str = "iuf", mmap: bool = True) -> np.ndarray
     shape, fortran, dtype, offset, _ = read_npy_header(path)
     if dtype.kind not in kinds:
         raise CaptureError(f"{path}: .npy dtype {dtype} is not one of the accepted kinds ({kinds})")
-    order = "F" if fortran else "C"
+    order: Literal["C", "F"] = "F" if fortran else "C"
     if 0 in shape:
         return np.empty(shape, dtype, order=order)
     try:

@@ -200,6 +200,7 @@ def diffuse_paths(
     cos_t = cos_s.abs()
     ok = cos_t > 1e-6
     if occlusion and bool(ok.any()):
+        shadow: TriangleBVH | None
         occ = occluder_faces(tri, radar.centre)
         if occ is not None and bool(occ.any()):
             # Only faces that can block a leg between the radar and the room's surface need

@@ -125,7 +125,7 @@ def image_paths(
             img_t.append(mirror(img_t[-1], nrm[seq[:, i]], off[seq[:, i]]))
         # Trace back from the radar: q_n on the segment radar -> I_n, q_{i} on q_{i+1} -> I_i.
         ok = torch.ones(seq.shape[0], dtype=torch.bool, device=dev)
-        q = [None] * order
+        q_back: list[torch.Tensor] = []  # q_{order-1}, ..., q_0
         start = centre.expand(seq.shape[0], 3)
         for i in range(order - 1, -1, -1):
             n_i, o_i = nrm[seq[:, i]], off[seq[:, i]]
@@ -134,8 +134,9 @@ def image_paths(
             den = (seg * n_i).sum(-1)
             t = (o_i - (start * n_i).sum(-1)) / torch.where(den.abs() < 1e-12, torch.ones_like(den), den)
             ok &= (den.abs() >= 1e-12) & (t > -1e-9) & (t < 1 + 1e-9)
-            q[i] = start + t[:, None] * seg
-            start = q[i]
+            start = start + t[:, None] * seg
+            q_back.append(start)
+        q = q_back[::-1]
         face = torch.full((seq.shape[0], order), -1, dtype=torch.long, device=dev)
         for i in range(order):
             face[:, i] = _face_at(q[i], seq[:, i], plane_faces, tri)

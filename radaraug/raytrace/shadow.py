@@ -345,23 +345,27 @@ def shadow_transmission(
         raise InputTensorError(f"shadow: combine must be 'dominant' or 'product', got {combine!r}")
     if not (0 <= nu_full < nu_cut):
         raise InputTensorError(f"shadow: need 0 <= nu_full < nu_cut, got {nu_full}, {nu_cut}")
-    options = {"segments_per_person": segments_per_person, "nu_full": nu_full, "nu_cut": nu_cut, "combine": combine}
+
+    def leg(v: torch.Tensor) -> torch.Tensor:
+        return _leg_transmission(v, ellipsoids, wavelength, segments_per_person=segments_per_person,
+                                 nu_full=nu_full, nu_cut=nu_cut, combine=combine)
+
     # Most static paths go radar -> point -> radar (diffuse cells, small-face PO, first-order
     # images): out and back along one line, whose factor is the same both ways. Their transmission
     # is the square of the one-way leg's, traced once (and their padded zero-length legs not at all).
     if vertices.shape[1] < 3:
-        return _leg_transmission(vertices, ellipsoids, wavelength, **options)
+        return leg(vertices)
     single = (vertices[:, 2:] - vertices[:, :1]).abs().amax(dim=(-1, -2)) == 0
     if not bool(single.any()):
-        return _leg_transmission(vertices, ellipsoids, wavelength, **options)
+        return leg(vertices)
     cplx = torch.complex64 if ellipsoids.centers.dtype == torch.float32 else torch.complex128
     t = torch.ones(*ellipsoids.centers.shape[:-2], vertices.shape[0], dtype=cplx, device=ellipsoids.centers.device)
     idx = single.nonzero()[:, 0]
-    one_way = _leg_transmission(vertices[idx, :2], ellipsoids, wavelength, **options)
+    one_way = leg(vertices[idx, :2])
     t[..., idx.to(t.device)] = one_way * one_way
     rest = (~single).nonzero()[:, 0]
     if rest.numel():
-        t[..., rest.to(t.device)] = _leg_transmission(vertices[rest], ellipsoids, wavelength, **options)
+        t[..., rest.to(t.device)] = leg(vertices[rest])
     return t
 
 

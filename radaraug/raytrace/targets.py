@@ -190,6 +190,11 @@ def ellipsoid_paths(
     segment -> same wall -> radar, each block segment-major.
     With ``convex_room`` (see :meth:`MirrorPlanes.convex_enclosure`) the room cannot block any
     leg and bounce points are checked against the planes instead of cast against the room.
+
+    Raises:
+        SceneError: semi-axes not finite and positive; multipath (``mirrors`` and ``room_bvh``)
+            without ``room_reflectivity``; ``convex_room`` with mirror planes that have no
+            material each.
     """
     dev, dt = radar.tx.device, radar.tx.dtype
     lead = ell.centers.shape[:-2]
@@ -234,6 +239,8 @@ def ellipsoid_paths(
 
     # --- first-order multipath via mirror planes
     if mirrors is not None and mirrors.num_planes and room_bvh is not None:
+        if room_reflectivity is None:
+            raise SceneError("ellipsoid_paths: multipath (mirrors and room_bvh) needs room_reflectivity")
         nrm, off = mirrors.normals.to(dev, dt), mirrors.offsets.to(dev, dt)
         k = nrm.shape[0]
         img = radar.centre - 2 * ((nrm @ radar.centre) - off)[:, None] * nrm  # (K, 3)
@@ -359,6 +366,8 @@ def _wall_bounce(p, u_img, q, u_wall_in, same_side, nrm, off, mirrors: MirrorPla
     k = nrm.shape[0]
     dev = q.device
     if convex_room:
+        if mirrors.plane_material is None:
+            raise SceneError("convex_room needs mirror planes of one material each (see MirrorPlanes.convex_enclosure)")
         radar_side = torch.sign((nrm @ radar.centre) - off)  # (K,)
         side = ((q[..., None, :] * nrm).sum(-1) - off) * radar_side  # (N, S, K, K)
         tol = 1e-5 * (1 + off.abs().max())

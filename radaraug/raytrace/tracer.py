@@ -234,11 +234,11 @@ class RayTracer:
             # An entry written before the diffuse mask was stored cannot say which paths are
             # diffuse: traced again (and replaced) when the room has any.
             if hit is not None and ("diffuse" in hit or not self.diffuse):
-                mv = {"device": self.device}
-                self._static = Paths(hit["delay_s"].to(**mv), hit["delay_rate"].to(**mv), hit["amplitude"].to(**mv),
-                                     hit["kind"].to(**mv))
+                dev = self.device
+                self._static = Paths(hit["delay_s"].to(dev), hit["delay_rate"].to(dev), hit["amplitude"].to(dev),
+                                     hit["kind"].to(dev))
                 v = hit.get("vertices")
-                self._static_vertices = None if v is None else v.to(**mv)
+                self._static_vertices = None if v is None else v.to(dev)
                 d = hit.get("diffuse")
                 self._static_diffuse = (d.to(device=self.device, dtype=torch.bool) if d is not None else
                                         torch.zeros(self._static.num_paths, dtype=torch.bool, device=self.device))
@@ -246,6 +246,7 @@ class RayTracer:
         paths, vertices, diffuse = self._trace_static_uncached()
         self._static, self._static_vertices, self._static_diffuse = paths, vertices, diffuse
         if self.cache_dir is not None:
+            assert paths.kind is not None  # every static tracer (images, facets, diffuse, SBR) sets it
             data = {"delay_s": paths.delay_s.cpu(), "delay_rate": paths.delay_rate.cpu(),
                     "amplitude": paths.amplitude.cpu(), "kind": paths.kind.cpu(), "diffuse": diffuse.cpu()}
             if vertices is not None:
@@ -396,7 +397,7 @@ def paths_to_json(paths: Paths, config: RadarConfig) -> dict[str, Any]:
 
         flat_paths = paths.map(lambda x: x.reshape(n, *x.shape[len(flat):]))
         return {"batch_shape": list(flat), "snapshots": [
-            paths_to_json(flat_paths.map(lambda x, i=i: x[i]), config)["paths"] for i in range(n)
+            paths_to_json(flat_paths.select(i), config)["paths"] for i in range(n)
         ]}
     d = paths.delay_s.detach().double().cpu()
     rate = paths.delay_rate.detach().double().cpu()

@@ -48,7 +48,7 @@ class SceneGeometry:
             return None if t is None else t.to(device)
 
         return SceneGeometry(
-            mv(self.vertices), mv(self.faces), mv(self.face_material), self.materials,
+            self.vertices.to(device), self.faces.to(device), self.face_material.to(device), self.materials,
             mv(self.vertex_velocity), mv(self.object_id),
         )
 

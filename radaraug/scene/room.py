@@ -12,6 +12,7 @@ import math
 import os
 from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import torch
@@ -65,14 +66,14 @@ def _rectangle(
     The normal ``u x v`` is the side the faces are counter-clockwise from. Cells are sized so
     that every triangle edge, including the cell diagonal, is at most ``max_edge_m``.
     """
-    o, u, v = (np.asarray(x, dtype=np.float64) for x in (origin, u, v))
+    o, du, dv = (np.asarray(x, dtype=np.float64) for x in (origin, u, v))
     cell = max_edge_m / math.sqrt(2.0)
-    nu = max(1, math.ceil(np.linalg.norm(u) / cell - 1e-9))
-    nv = max(1, math.ceil(np.linalg.norm(v) / cell - 1e-9))
+    nu = max(1, math.ceil(np.linalg.norm(du) / cell - 1e-9))
+    nv = max(1, math.ceil(np.linalg.norm(dv) / cell - 1e-9))
     s = np.linspace(0.0, 1.0, nu + 1)
     t = np.linspace(0.0, 1.0, nv + 1)
     ss, tt = np.meshgrid(s, t, indexing="ij")  # (nu+1, nv+1)
-    verts = o + ss[..., None] * u + tt[..., None] * v
+    verts = o + ss[..., None] * du + tt[..., None] * dv
     idx = np.arange((nu + 1) * (nv + 1)).reshape(nu + 1, nv + 1)
     p00, p10 = idx[:-1, :-1].ravel(), idx[1:, :-1].ravel()
     p11, p01 = idx[1:, 1:].ravel(), idx[:-1, 1:].ravel()
@@ -178,12 +179,13 @@ def _read_mesh_parts(path: Path) -> list[tuple[str, str | None, np.ndarray, np.n
     """``(group name, file material name or None, vertices, faces)`` per part, transforms applied."""
     trimesh = lazy_import("trimesh", feature="meshes")
 
-    kwargs = {}
+    kwargs: dict[str, Any] = {}
     if path.suffix.lower() == ".obj":
         # Keep OBJ groups/objects apart so their names can select materials.
         kwargs = {"split_groups": True, "split_objects": True, "group_material": False}
     try:
-        loaded = trimesh.load(str(path), force="scene", process=False, **kwargs)
+        # force="scene": always a trimesh.Scene (trimesh types it as any Geometry).
+        loaded: Any = trimesh.load(str(path), force="scene", process=False, **kwargs)
     except ModuleNotFoundError as err:  # some formats need packages trimesh imports on demand
         raise missing_dependency(err, f"reading mesh file {path}") from None
     except Exception as err:  # trimesh raises many types for bad files
@@ -357,7 +359,7 @@ def box(
     )
 
 
-def _placement(position: Sequence[float], yaw_deg: float) -> np.ndarray:
+def _placement(position: Sequence[float] | np.ndarray, yaw_deg: float) -> np.ndarray:
     """4x4 world-from-object matrix: a turn of ``yaw_deg`` about +z (counter-clockwise from above),
     then a translation to ``position``."""
     y = math.radians(float(yaw_deg))

@@ -216,7 +216,8 @@ class ChainState:
         cd = self.complex_dtype
         g = None if rx_gain is None else rx_gain.to(cd)
         if self.samples is None:
-            for target in [self, *self.modulated]:
+            targets: list[ChainState | ModulatedPaths] = [self, *self.modulated]
+            for target in targets:
                 h = g[:, None] if g is not None else 1.0
                 if response is not None:
                     h = h * response(beat_frequency_Hz(target.delay_s, target.delay_rate, self.timing)).to(cd)
@@ -250,12 +251,13 @@ class ChainState:
         """Synthesize the samples ``(…, RX, M, N)`` (idempotent)."""
         if self.samples is not None:
             return self.samples
-        kw = dict(timing=self.timing, dtype=self.dtype, method=self.method, taylor_tol=self.taylor_tol)
-        x = synthesize(self.coef, self.delay_s, self.delay_rate, chirp_delay=self.chirp_delay,
-                       chirp_gain=self.chirp_gain, **kw)
+        def synth(p: ChainState | ModulatedPaths) -> torch.Tensor:
+            return synthesize(p.coef, p.delay_s, p.delay_rate, self.timing, dtype=self.dtype, method=self.method,
+                              taylor_tol=self.taylor_tol, chirp_delay=p.chirp_delay, chirp_gain=p.chirp_gain)
+
+        x = synth(self)
         for mod in self.modulated:
-            x = x + mod.multiplier * synthesize(mod.coef, mod.delay_s, mod.delay_rate, chirp_delay=mod.chirp_delay,
-                                                chirp_gain=mod.chirp_gain, **kw)
+            x = x + mod.multiplier * synth(mod)
         if self.spectrum is not None:
             x = x + torch.fft.irfft(self.spectrum, n=self.timing.num_samples, dim=-1)
         self.samples = x

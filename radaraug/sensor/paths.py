@@ -16,6 +16,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
+from typing import Any
 
 import torch
 
@@ -63,11 +64,19 @@ class Paths:
 
     def map(self, fn: Callable[[torch.Tensor], torch.Tensor]) -> Paths:
         """Apply ``fn`` to every tensor (``None`` fields stay ``None``), e.g. to index or expand the batch."""
-        return Paths(
-            *(fn(t) if t is not None else None for t in
-              (self.delay_s, self.delay_rate, self.amplitude, self.kind, self.mask, self.chirp_delay_s,
-               self.chirp_gain))
-        )
+        def opt(t: torch.Tensor | None) -> torch.Tensor | None:
+            return None if t is None else fn(t)
+
+        return Paths(fn(self.delay_s), fn(self.delay_rate), fn(self.amplitude), opt(self.kind), opt(self.mask),
+                     opt(self.chirp_delay_s), opt(self.chirp_gain))
+
+    def select(self, index: Any) -> Paths:
+        """Index the leading (batch) dims of every tensor: ``paths.select(k)`` is snapshot ``k``.
+
+        Args:
+            index: any tensor index (an int, a slice, a tuple of them, ``None`` for a new dim).
+        """
+        return self.map(lambda t: t[index])
 
     def to(self, device: torch.device | str) -> Paths:
         """Move every tensor to ``device``."""
@@ -76,7 +85,7 @@ class Paths:
     @staticmethod
     def cat(items: list[Paths]) -> Paths:
         """Concatenate path sets along the path axis (same batch shape)."""
-        def opt_cat(ts: list[torch.Tensor | None], fill: object, ref: list[torch.Tensor]) -> torch.Tensor | None:
+        def opt_cat(ts: list[torch.Tensor | None], fill: float, ref: list[torch.Tensor]) -> torch.Tensor | None:
             if all(t is None for t in ts):
                 return None
             full = [

@@ -28,6 +28,7 @@ from radaraug.errors import ConfigError, InputTensorError
 from radaraug.sensor.chain import ChainState
 from radaraug.sensor.defaults import FRONT_END_GAIN_DB, default_effects, tx_power_dBm
 from radaraug.sensor.effects import Effect, effect_from_dict
+from radaraug.sensor.effects.base import EffectList
 from radaraug.sensor.paths import Paths
 from radaraug.sensor.synthesis import DEFAULT_TAYLOR_TOL, SYNTHESIS_METHODS
 from radaraug.units import FLOAT_CONVENTION, float_to_counts
@@ -99,7 +100,7 @@ class FMCWReceiver(nn.Module):
             bad = [e for e in effects if not isinstance(e, Effect)]
             if bad:
                 raise ConfigError(f"effects must be Effect instances, got {[type(b).__name__ for b in bad]}")
-        self.effects = nn.ModuleList(list(effects))
+        self.effects = EffectList(list(effects))
 
     # ------------------------------------------------------------------ public API
     @property
@@ -380,15 +381,15 @@ def _validated(paths: Paths, num_rx: int, num_chirps: int):
         mask = mask.to(device=delay.device, dtype=torch.bool)
     per_chirp = []
     for name in ("chirp_delay_s", "chirp_gain"):
-        t = getattr(paths, name, None)
-        if t is not None:
+        pc = getattr(paths, name, None)
+        if pc is not None:
             want = (*delay.shape[:-1], num_chirps)
-            if not isinstance(t, torch.Tensor) or tuple(t.shape) != want:
-                got = tuple(t.shape) if isinstance(t, torch.Tensor) else type(t).__name__
+            if not isinstance(pc, torch.Tensor) or tuple(pc.shape) != want:
+                got = tuple(pc.shape) if isinstance(pc, torch.Tensor) else type(pc).__name__
                 raise InputTensorError(f"Paths.{name} must be (..., P, chirps) = {want}, got {got}")
-            if not t.is_floating_point() or t.device != delay.device:
-                raise InputTensorError(f"Paths.{name} must be a real tensor on {delay.device}, got {t.dtype} on {t.device}")
-            if not bool(torch.isfinite(t).all()):
+            if not pc.is_floating_point() or pc.device != delay.device:
+                raise InputTensorError(f"Paths.{name} must be a real tensor on {delay.device}, got {pc.dtype} on {pc.device}")
+            if not bool(torch.isfinite(pc).all()):
                 raise InputTensorError(f"Paths.{name} holds NaN or Inf")
-        per_chirp.append(t)
+        per_chirp.append(pc)
     return delay, rate.to(delay.dtype), amp, mask, *per_chirp

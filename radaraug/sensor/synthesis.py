@@ -238,17 +238,15 @@ def synthesize_fast(
     for r0 in range(0, rows, step):
         idx = _unravel(torch.arange(r0, min(r0 + step, rows), device=dev), batch)
 
-        def pick(t: torch.Tensor | None, tail: int, idx: tuple[torch.Tensor, ...] = idx) -> torch.Tensor | None:
+        def pick(t: torch.Tensor, tail: int, idx: tuple[torch.Tensor, ...] = idx) -> torch.Tensor:
             """Rows ``idx`` of ``t`` broadcast to (*batch, ...) -> (c, ...) (no full-size copy)."""
-            if t is None:
-                return None
             return t.expand(*batch, *t.shape[len(t.shape) - tail:])[idx]
 
         slow, per_sample, theta, quad, w = _phase_terms(pick(delay_s, 1), pick(delay_rate, 1), timing,
-                                                        pick(chirp_delay, 2))
+                                                        None if chirp_delay is None else pick(chirp_delay, 2))
         c = pick(coef, 1)
         cr, ci = c.real.to(dtype)[..., None], c.imag.to(dtype)[..., None]
-        g = pick(chirp_gain, 2)
+        g = None if chirp_gain is None else pick(chirp_gain, 2)
         if g is not None:
             g = g.to(dtype)
             cr, ci = cr * g, ci * g
@@ -305,6 +303,8 @@ def _fast_rows(
     cos_sin = _fast_time_cos_sin(per_sample, quad, num_samples, dtype)  # (c, 2, P, N)
     cos, sin = cos_sin[:, 0], cos_sin[:, 1]
     out = torch.bmm(ar.transpose(-1, -2), cos).baddbmm_(ai.transpose(-1, -2), sin, alpha=-1)
+    if tw is None:  # no path needs a Taylor term (``counts`` is empty)
+        return out
     tr, ti = ar, ai
     for k, pk in enumerate(counts, start=1):
         if pk == 0:

@@ -131,13 +131,14 @@ class SimulatedRadarDataset(Dataset):
         self._rooms: list[RoomDraw] = []
         self._variant_twins: dict[int, DigitalTwin] = {}
         self._variant_static: dict[int, torch.Tensor] = {}
-        if self.randomized:
+        rz = self._drawn_randomization
+        if rz is not None:
             # Fail now, not in a DataLoader worker: a non-corridor scene, a radar outside a drawn
             # room, or a receiver without the stages the offsets act on.
-            self._rooms = [self.randomization.room(self.seed, k) for k in range(self.randomization.room_variants)]
+            self._rooms = [rz.room(self.seed, k) for k in range(rz.room_variants)]
             for room in self._rooms:
                 room.scene(self.scene, self.config)
-            check_receiver(self._reference_receiver(), self.randomization)
+            check_receiver(self._reference_receiver(), rz)
 
     # The twin is built lazily in each worker and never pickled; the room's signal (traced once,
     # ~200 kB) is, so workers started after `prepare()` skip the room's ray tracing.
@@ -158,7 +159,13 @@ class SimulatedRadarDataset(Dataset):
     @property
     def randomized(self) -> bool:
         """True when items draw the twin's randomization (given and enabled)."""
-        return self.randomization is not None and self.randomization.enabled
+        return self._drawn_randomization is not None
+
+    @property
+    def _drawn_randomization(self) -> TwinRandomization | None:
+        """The randomization items draw: :attr:`randomization` when given and enabled, else None."""
+        r = self.randomization
+        return r if r is not None and r.enabled else None
 
     @property
     def twin(self) -> DigitalTwin:
@@ -197,11 +204,12 @@ class SimulatedRadarDataset(Dataset):
 
     def scenario(self, index: int) -> Scenario:
         """The scenario of item ``index`` (people and labels), without simulating it."""
-        if self.randomized:
+        rz = self._drawn_randomization
+        if rz is not None:
             # People walk along the drawn corridor (+x), whatever the radar's drawn yaw.
-            room = self._rooms[self.randomization.variant_of(self.seed, index)]
+            room = self._rooms[rz.variant_of(self.seed, index)]
             x = float(self.scene.radar.position[0])
-            sampler = self.randomization.sampler(self.sampler, room, x)
+            sampler = rz.sampler(self.sampler, room, x)
             return sampler.sample(item_generator(self.seed, index, stream=0), radar_xy=(x, 0.0), axis_deg=0.0)
         radar = self.scene.radar
         pos = radar.position.tolist()
@@ -224,9 +232,10 @@ class SimulatedRadarDataset(Dataset):
         people = [dict(p) for p in scenario.params]
         out: dict[str, Any] = {"index": index, "seed": self.seed, "randomized": self.randomized,
                                "count": scenario.count, "occupancy": scenario.occupancy, "people": people}
-        if not self.randomized:
+        rz = self._drawn_randomization
+        if rz is None:
             return out
-        draw = self.randomization.item(self.seed, index, scenario.count)
+        draw = rz.item(self.seed, index, scenario.count)
         for person, db in zip(people, draw.rcs_scale_dB):
             person["rcs_scale_dB"] = db
         base = self._reference_receiver()
@@ -262,11 +271,12 @@ class SimulatedRadarDataset(Dataset):
         index = self._check_index(index)
         scenario = self.scenario(index)
         noise = item_generator(self.seed, index, stream=1, device=self.device)
-        if self.randomized:
-            draw = self.randomization.item(self.seed, index, scenario.count)
+        rz = self._drawn_randomization
+        if rz is not None:
+            draw = rz.item(self.seed, index, scenario.count)
             twin = self.variant_twin(draw.variant)
             times = twin.frame_times(range(self.frames_per_item))
-            x = simulate_item(twin, scenario.people, times, draw, noise, self.randomization.phase_noise_paths)
+            x = simulate_item(twin, scenario.people, times, draw, noise, rz.phase_noise_paths)
         else:
             twin = self.twin
             times = twin.frame_times(range(self.frames_per_item))

@@ -99,7 +99,7 @@ def fit_noise_figure(
                           adc_noise_rms_counts=_adc_rms(config, nf)).to(twin.device)
         gens = [item_generator(seed, k, stream=7, device=twin.device) for k in range(frames)]
         paths = twin.paths([], times)
-        x = torch.stack([rx(paths.map(lambda t, k=k: t[k]), generator=g, frame_start_s=float(times[k]),
+        x = torch.stack([rx(paths.select(k), generator=g, frame_start_s=float(times[k]),
                             static_signal=static) for k, g in enumerate(gens)])
         floor = noise_floor_db(ToDecibels()(RangeDoppler()(x)))
         if floor is None:

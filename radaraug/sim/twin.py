@@ -160,9 +160,9 @@ class DigitalTwin:
         t = times.to(torch.float64)
         parts = [p.ellipsoids(t) for p in people]
         e = Ellipsoids.cat(parts) if len(parts) > 1 else parts[0]
-        cast = {"device": self.device, "dtype": self.dtype}
-        return Ellipsoids(e.centers.to(**cast), e.semi_axes.to(**cast), e.rotations.to(**cast),
-                          e.velocities.to(**cast), e.material)
+        dev, dt = self.device, self.dtype
+        return Ellipsoids(e.centers.to(device=dev, dtype=dt), e.semi_axes.to(device=dev, dtype=dt),
+                          e.rotations.to(device=dev, dtype=dt), e.velocities.to(device=dev, dtype=dt), e.material)
 
     def paths(self, people: Sequence[Any], times: torch.Tensor) -> Paths:
         """Paths of the people over the frames starting at ``times`` ``(T, P, RX)`` (the room's are
@@ -193,7 +193,10 @@ class DigitalTwin:
         vertices = self.tracer.static_vertices()
         if vertices is None or vertices.shape[0] == 0:
             return None
-        return shadow_transmission(vertices, self.ellipsoids(people, times), self.config.wavelength_m)
+        ellipsoids = self.ellipsoids(people, times)
+        if ellipsoids is None:
+            return None
+        return shadow_transmission(vertices, ellipsoids, self.config.wavelength_m)
 
     def shadow_paths(self, people: Sequence[Any], times: torch.Tensor) -> Paths | None:
         """Correction paths ``(T, P', RX)`` for the room's paths that the people shadow, or None.
@@ -220,7 +223,7 @@ class DigitalTwin:
             static = self.tracer.static_paths()
             parts = []
             for s in range(0, static.num_paths, 256):
-                one = static.map(lambda x, s=s: x[s: s + 256, None])  # (k, 1, RX): a batch of single paths
+                one = static.select((slice(s, s + 256), None))  # (k, 1, RX): a batch of single paths
                 quad = dataclasses.replace(one, amplitude=one.amplitude * 1j)
                 parts.append(torch.stack([self.receiver.static_signal(one)[:, :, 0],
                                           self.receiver.static_signal(quad)[:, :, 0]], dim=1))
@@ -284,7 +287,7 @@ class DigitalTwin:
             if len(generators) != times.shape[0]:
                 raise InputTensorError(f"need one generator per frame: {len(generators)} for {times.shape[0]} frames")
             frames = [
-                self.receiver(paths.map(lambda x, k=k: x[k]), generator=g, frame_start_s=float(times[k]),
+                self.receiver(paths.select(k), generator=g, frame_start_s=float(times[k]),
                               static_signal=static[k] if static.dim() == 4 else static)
                 for k, g in enumerate(generators)
             ]

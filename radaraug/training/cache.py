@@ -57,13 +57,13 @@ def cache_spec(dataset: SimulatedRadarDataset, indices: Sequence[int]) -> dict[s
     """Everything the cached maps of ``dataset[indices]`` depend on (JSON types)."""
     idx = list(indices)
     randomization = getattr(dataset, "randomization", None)
+    receiver = dataset.twin_options.get("receiver")
     return {
         "format": CACHE_FORMAT,
         "version": CACHE_VERSION,
         "scene": _jsonable(dataset.scene.to_dict()),
         "config": dataset.config.to_dict(),
-        "receiver": _jsonable(dataset.twin_options.get("receiver").to_dict())
-        if dataset.twin_options.get("receiver") is not None else "default",
+        "receiver": _jsonable(receiver.to_dict()) if receiver is not None else "default",
         "twin_options": _jsonable({k: v for k, v in dataset.twin_options.items() if k != "receiver"}),
         "sampler": _jsonable(dataset.sampler),
         "randomization": _jsonable(randomization) if randomization is not None else None,
@@ -158,7 +158,7 @@ def build_map_cache(
             bar = _progress(n, f"simulating {n} items", progress)
             for x, count in loader:
                 db = chain(x)
-                if maps is None:
+                if maps is None or counts is None:  # the first batch: both are created together
                     shape = tuple(db.shape[1:])
                     maps = f.create_dataset("maps", (n, *shape), dtype="float16", chunks=(1, *shape))
                     counts = f.create_dataset("count", (n,), dtype="int64")
@@ -245,7 +245,8 @@ class CachedMaps(Dataset):
         """Several maps at once as float32."""
         if self._maps is not None:
             return self._maps[items].float()
-        return torch.stack([self[i][0] for i in range(len(self))[items]])
+        rows = range(len(self))[items] if isinstance(items, slice) else items
+        return torch.stack([self[i][0] for i in rows])
 
     def __getitem__(self, i: int) -> tuple[torch.Tensor, int]:
         if self._maps is not None:

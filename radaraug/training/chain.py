@@ -117,7 +117,9 @@ def image_chain(vmin: float, vmax: float, size: Sequence[int] | None = None) -> 
     """Per-RX dB maps -> ``(3, H, W)`` viridis images in [0, 1] (the network input)."""
     steps: list[nn.Module] = [CombineRx("mean_power", db=True), ClipNormalize(vmin, vmax), Colormap("viridis")]
     if size is not None:
-        steps.append(Resize(tuple(int(s) for s in size)))
+        if len(size) != 2:
+            raise ConfigError(f"image size must be [H, W], got {list(size)}")
+        steps.append(Resize((int(size[0]), int(size[1]))))
     return nn.Sequential(*steps)
 
 

@@ -25,6 +25,7 @@ from __future__ import annotations
 
 import json
 import warnings
+from collections.abc import Sized
 from pathlib import Path
 from typing import Any
 
@@ -50,6 +51,7 @@ from radaraug.training.chain import (
     make_dr,
     rd_db_chain,
 )
+from radaraug.transforms import CalibratedDR
 
 PROFILE_FIT_FORMAT = "radaraug-profile-fit"
 #: Version of the cached ``cdr_profile`` fits (``cache_dir/profile-<key>.json``): part of their key,
@@ -65,7 +67,7 @@ class _Labelled(Dataset):
         self.base, self.task = base, task
 
     def __len__(self) -> int:
-        return len(self.base)  # type: ignore[arg-type]
+        return len(self.base)  # type: ignore[arg-type]  # torch's Dataset declares no __len__; ours are sized
 
     def __getitem__(self, i: int) -> tuple[torch.Tensor, int]:
         x, count = self.base[i]
@@ -158,7 +160,9 @@ class RadarDataModule(L.LightningDataModule):
             raise ConfigError(f"train_items must be >= 1 and val_items >= 0, got {train_items}, {val_items}")
         self.save_hyperparameters()
         self.task, self.method = task, method
-        self.clip: tuple[float, float] | None = tuple(clip_range) if clip_range is not None else None  # type: ignore[assignment]
+        if clip_range is not None and len(clip_range) != 2:
+            raise ConfigError(f"clip_range must be [vmin, vmax], got {clip_range!r}")
+        self.clip: tuple[float, float] | None = None if clip_range is None else (clip_range[0], clip_range[1])
         self.dr: torch.nn.Module | None = None
         self.image: torch.nn.Module | None = None
         self.config: RadarConfig | None = None
@@ -170,16 +174,22 @@ class RadarDataModule(L.LightningDataModule):
         self.twin_profile: TwinProfile | None = None
         self.profile_info: dict[str, Any] | None = None
 
+    def _setup_config(self) -> RadarConfig:
+        """The radar config that :meth:`setup` read from the captures."""
+        if self.config is None:
+            raise ConfigError("RadarDataModule.setup() has not run")
+        return self.config
+
     # ------------------------------------------------------------------ resolving inputs
     def _proxy(self) -> Any:
         from radaraug.sim.proxy import make_proxy
 
-        return make_proxy(self.hparams.proxy_dir, frames_per_count=self.hparams.proxy_frames_per_count,
-                          progress=self.hparams.progress)
+        return make_proxy(self.hparams["proxy_dir"], frames_per_count=self.hparams["proxy_frames_per_count"],
+                          progress=self.hparams["progress"])
 
     def resolved_captures(self) -> tuple[str | None, list[dict[str, Any]]]:
         """``(calibration, test entries)``, the held-out proxy's where the config names none."""
-        calibration, test = self.hparams.calibration, self.hparams.test
+        calibration, test = self.hparams["calibration"], self.hparams["test"]
         if test is None:
             proxy = self._proxy()
             test = [{"path": str(p), "count": int(c)} for p, c in proxy.tests]
@@ -196,20 +206,20 @@ class RadarDataModule(L.LightningDataModule):
 
     def prepare_data(self) -> None:
         # Rank 0 of each node generates the proxy once; the other ranks reuse its files in setup().
-        if self.hparams.test is None:
+        if self.hparams["test"] is None:
             self._proxy()
 
     def simulated_dataset(self) -> SimulatedRadarDataset:
         """The training twin's dataset (train + val items), in the test captures' radar config."""
-        r = self.hparams.randomization
+        r = self.hparams["randomization"]
         randomization = None
         if r:
             from radaraug.sim.randomization import TwinRandomization
 
             randomization = TwinRandomization() if r is True else TwinRandomization.from_dict(dict(r))
         twin_options: dict[str, Any] = {}
-        if self.hparams.tracer_rays is not None:
-            twin_options["tracer_options"] = {"method": "sbr", "rays": int(self.hparams.tracer_rays)}
+        if self.hparams["tracer_rays"] is not None:
+            twin_options["tracer_options"] = {"method": "sbr", "rays": int(self.hparams["tracer_rays"])}
         extra: dict[str, Any] = {} if randomization is None else {"randomization": randomization}
         if self.twin_profile is not None:
             extra["profile"] = self.twin_profile
@@ -217,10 +227,10 @@ class RadarDataModule(L.LightningDataModule):
             from radaraug.sim.noise_fit import noise_fit_receiver
 
             # Both noise sources moved by the fitted offset (noise figure and ADC-side noise).
-            twin_options["receiver"] = noise_fit_receiver(self.config, self.noise_fit)
+            twin_options["receiver"] = noise_fit_receiver(self._setup_config(), self.noise_fit)
         return SimulatedRadarDataset(
-            self.hparams.scene, length=self.hparams.train_items + self.hparams.val_items,
-            seed=self.hparams.sim_seed, config=self.config, target="count", twin_options=twin_options, **extra,
+            self.hparams["scene"], length=self.hparams["train_items"] + self.hparams["val_items"],
+            seed=self.hparams["sim_seed"], config=self.config, target="count", twin_options=twin_options, **extra,
         )
 
     # ------------------------------------------------------------------ Lightning hooks
@@ -230,25 +240,25 @@ class RadarDataModule(L.LightningDataModule):
         rank, world = _rank_world(self.trainer)
         calibration, test = self.resolved_captures()
         has_capture = calibration is not None and not is_calibration_json(calibration)
-        source = calibration if has_capture else test[0]["path"]
+        source = calibration if calibration is not None and has_capture else test[0]["path"]
         with open_capture(source) as cap:
-            self.config = cap.config
-        self.dr = make_dr(self.method, calibration=calibration, seed=self.hparams.dr_seed + 1000 * rank,
-                          randomdr_mean_db=self.hparams.randomdr_mean_db,
-                          randomdr_std_db=self.hparams.randomdr_std_db)
-        if self.method in CDR_METHODS:
-            self.dr.check_config(self.config)
+            self.config = config = cap.config
+        self.dr = dr = make_dr(self.method, calibration=calibration, seed=self.hparams["dr_seed"] + 1000 * rank,
+                               randomdr_mean_db=self.hparams["randomdr_mean_db"],
+                               randomdr_std_db=self.hparams["randomdr_std_db"])
+        if isinstance(dr, CalibratedDR):  # the CDR methods
+            dr.check_config(config)
 
-        n_train, n_val = self.hparams.train_items, self.hparams.val_items
+        n_train, n_val = self.hparams["train_items"], self.hparams["val_items"]
         needs_sim = stage in (None, "fit", "validate") or self.clip is None
         if needs_sim:
             self._resolve_receiver(calibration, has_capture, rank, world)
-            if self.twin_profile is None and self.hparams.calibrate_noise and has_capture:
+            if self.twin_profile is None and self.hparams["calibrate_noise"] and has_capture and calibration is not None:
                 self.noise_fit = self._fit_noise(calibration)
         if needs_sim:
             sim = self.simulated_dataset()
-            common = {"cache_dir": self.hparams.cache_dir, "num_workers": self.hparams.sim_workers,
-                      "progress": self.hparams.progress and rank == 0}
+            common = {"cache_dir": self.hparams["cache_dir"], "num_workers": self.hparams["sim_workers"],
+                      "progress": self.hparams["progress"] and rank == 0}
             # Equal shards: DDP all-reduces gradients every step, so a rank with one batch more than
             # the others would wait forever. The last n_train % world items are left out.
             train = CachedMaps(build_map_cache(sim, range(rank, n_train - n_train % world, world), name="train",
@@ -261,9 +271,10 @@ class RadarDataModule(L.LightningDataModule):
                 self._val = _Labelled(val, self.task)
             if self.clip is None:
                 self.clip = self._estimate_clip(train)
-        self.image = image_chain(*self.clip, self.hparams.image_size)
+        assert self.clip is not None  # needs_sim whenever it was None
+        self.image = image_chain(*self.clip, self.hparams["image_size"])
 
-        tests = []
+        tests: list[RadarCaptureDataset] = []
         for entry in test:
             count = entry.get("count")
             tests.append(RadarCaptureDataset(entry["path"], label="count" if count is None else int(count),
@@ -271,8 +282,8 @@ class RadarDataModule(L.LightningDataModule):
         for t in tests:
             if t.config != self.config:
                 raise ConfigError(f"test capture {t.paths[0]} has another radar config ({t.config.describe()}) "
-                                  f"than the training twin ({self.config.describe()}, from {source})")
-        full = ConcatDataset(tests)
+                                  f"than the training twin ({config.describe()}, from {source})")
+        full: ConcatDataset[Any] = ConcatDataset(tests)  # items as RadarCaptureDataset gives them
         self._test = _Labelled(Subset(full, range(rank, len(full), world)), self.task)
         self._write_run_files()
 
@@ -280,25 +291,30 @@ class RadarDataModule(L.LightningDataModule):
         """Set :attr:`twin_profile` (and :attr:`profile_info`): ``data.profile``, or for
         ``cdr_profile`` the profile fitted on the calibration capture; None otherwise."""
         self.twin_profile, self.profile_info = None, None
-        if self.hparams.profile is not None:
-            path = str(self.hparams.profile)
+        if self.hparams["profile"] is not None:
+            path = str(self.hparams["profile"])
             prof = TwinProfile.load(path)
             info: dict[str, Any] = {"source": "data.profile", "path": path}
         elif self.method in PROFILE_METHODS:
-            if not has_capture:
+            if not has_capture or calibration is None:
                 raise ConfigError(
                     f"method {self.method!r} fits a twin profile on the empty-room capture in data.calibration, but "
                     f"{calibration!r} is a CalibratedDR JSON: give the capture itself, or a fitted profile as "
                     "data.profile (radaraug diagnose CAPTURE -o DIR writes DIR/profile.json)")
-            data = path = None
+            data: dict[str, Any] | None = None
+            path_fitted: str | None = None
             if rank == 0:  # one diagnose per run; the other DDP ranks get its result
                 fitted, cached = self._fit_profile(calibration)
-                data, path = fitted.to_dict(), str(cached)
-            if world > 1:
-                data, path = self.trainer.strategy.broadcast((data, path), src=0)
+                data, path_fitted = fitted.to_dict(), str(cached)
+            trainer = self.trainer
+            if world > 1 and trainer is not None:
+                data, path_fitted = trainer.strategy.broadcast((data, path_fitted), src=0)
+            if data is None or path_fitted is None:
+                raise CalibrationError(f"rank {rank} did not receive the twin profile fitted on rank 0")
+            path = path_fitted
             prof = TwinProfile.from_dict(data, source=path)
             info = {"source": "fitted on data.calibration", "path": path, "calibration": str(calibration),
-                    "max_frames": int(self.hparams.profile_max_frames)}
+                    "max_frames": int(self.hparams["profile_max_frames"])}
         else:
             return
         fitted_on = prof.fitted_on
@@ -309,7 +325,7 @@ class RadarDataModule(L.LightningDataModule):
                 same = False
             if not same:
                 warnings.warn(f"twin profile {info['path']} was fitted on a capture with another radar config than "
-                              f"the training twin's ({self.config.describe()}); its sensor effects are applied as "
+                              f"the training twin's ({self._setup_config().describe()}); its sensor effects are applied as "
                               "fitted", stacklevel=2)
         info |= {
             "capture": fitted_on.get("capture"),
@@ -319,7 +335,7 @@ class RadarDataModule(L.LightningDataModule):
             "error_before_dB": fitted_on.get("error_before_dB"),
             "error_after_dB": fitted_on.get("error_after_dB"),
         }
-        if self.hparams.calibrate_noise:
+        if self.hparams["calibrate_noise"]:
             info["calibrate_noise"] = NOISE_FIT_SKIPPED
         self.twin_profile, self.profile_info = prof, info
 
@@ -328,8 +344,8 @@ class RadarDataModule(L.LightningDataModule):
         (not its name), the frames read and the fit's version."""
         key = cache_key({"format": PROFILE_FIT_FORMAT, "version": PROFILE_FIT_VERSION,
                          "profile_version": PROFILE_VERSION, "capture_sha256": content_digest(calibration),
-                         "scene": None, "max_frames": int(self.hparams.profile_max_frames)})
-        return Path(self.hparams.cache_dir) / f"profile-{key}.json"
+                         "scene": None, "max_frames": int(self.hparams["profile_max_frames"])})
+        return Path(self.hparams["cache_dir"]) / f"profile-{key}.json"
 
     def _fit_profile(self, calibration: str) -> tuple[TwinProfile, Path]:
         """The twin profile fitted on the calibration capture (empty room, no scene), cached."""
@@ -341,8 +357,8 @@ class RadarDataModule(L.LightningDataModule):
                 pass  # unreadable (e.g. written by another radaraug): fit again and replace it
         from radaraug import calibration as cal_mod
 
-        diag = cal_mod.diagnose(str(calibration), scene=None, max_frames=int(self.hparams.profile_max_frames),
-                                progress=bool(self.hparams.progress))
+        diag = cal_mod.diagnose(str(calibration), scene=None, max_frames=int(self.hparams["profile_max_frames"]),
+                                progress=bool(self.hparams["progress"]))
         path.parent.mkdir(parents=True, exist_ok=True)
         diag.profile.save(path)
         return diag.profile, path
@@ -355,14 +371,15 @@ class RadarDataModule(L.LightningDataModule):
         target = capture_noise_floor_db(calibration)
         # "noise-offset-v2": the fit moves thermal and ADC-side noise together (older fits moved
         # the noise figure alone and must not be reused).
-        key = cache_key([str(self.hparams.scene), self.config.to_dict(), round(target, 4), self.hparams.tracer_rays,
+        config = self._setup_config()
+        key = cache_key([str(self.hparams["scene"]), config.to_dict(), round(target, 4), self.hparams["tracer_rays"],
                          "noise-offset-v2"])
-        path = Path(self.hparams.cache_dir) / f"noise_fit-{key}.json"
+        path = Path(self.hparams["cache_dir"]) / f"noise_fit-{key}.json"
         if path.is_file():
             return json.loads(path.read_text())
-        opts = ({"method": "sbr", "rays": int(self.hparams.tracer_rays)} if self.hparams.tracer_rays is not None
+        opts = ({"method": "sbr", "rays": int(self.hparams["tracer_rays"])} if self.hparams["tracer_rays"] is not None
                 else None)
-        fit = fit_noise_figure(Scene.load(self.hparams.scene), self.config, target, tracer_options=opts)
+        fit = fit_noise_figure(Scene.load(self.hparams["scene"]), config, target, tracer_options=opts)
         fit["calibration"] = str(calibration)
         path.parent.mkdir(parents=True, exist_ok=True)
         atomic_write_json(path, fit, newline=False, indent=2)
@@ -370,24 +387,24 @@ class RadarDataModule(L.LightningDataModule):
 
     def _estimate_clip(self, train: CachedMaps) -> tuple[float, float]:
         maps = train.maps(slice(0, 256))
-        vmin, vmax = estimate_clip_range(maps, self.dr, percentiles=tuple(self.hparams.clip_percentiles))
+        vmin, vmax = estimate_clip_range(maps, self.dr, percentiles=tuple(self.hparams["clip_percentiles"]))
         if self.trainer is not None and self.trainer.world_size > 1:
             vmin, vmax = self.trainer.strategy.broadcast((vmin, vmax), src=0)
         return float(vmin), float(vmax)
 
     def _write_run_files(self) -> None:
-        out = self.hparams.out_dir
+        out = self.hparams["out_dir"]
         if out is None and self.trainer is not None:
             out = self.trainer.log_dir
         if out is None or (self.trainer is not None and self.trainer.global_rank != 0):
             return
         Path(out).mkdir(parents=True, exist_ok=True)
-        info = {"clip_range_db": list(self.clip), "task": self.task, "method": self.method,
+        info = {"clip_range_db": None if self.clip is None else list(self.clip), "task": self.task, "method": self.method,
                 "twin_receiver": self.receiver_kind(),
-                "twin_noise_fit": NOISE_FIT_SKIPPED if self.twin_profile is not None and self.hparams.calibrate_noise
+                "twin_noise_fit": NOISE_FIT_SKIPPED if self.twin_profile is not None and self.hparams["calibrate_noise"]
                 else self.noise_fit,
                 "twin_profile": self.profile_info,
-                "classes": list(self.class_names), "config": self.config.to_dict(),
+                "classes": list(self.class_names), "config": self._setup_config().to_dict(),
                 "train_class_counts": None if self.train_class_counts is None else self.train_class_counts.tolist()}
         atomic_write_json(Path(out) / "clip_range.json", info, newline=False, indent=2)
 
@@ -403,20 +420,21 @@ class RadarDataModule(L.LightningDataModule):
 
     def load_state_dict(self, state_dict: dict[str, Any]) -> None:
         if state_dict.get("clip_range") is not None:
-            self.clip = tuple(state_dict["clip_range"])  # type: ignore[assignment]
-            self.image = image_chain(*self.clip, self.hparams.image_size)
+            vmin, vmax = state_dict["clip_range"]
+            self.clip = (vmin, vmax)
+            self.image = image_chain(*self.clip, self.hparams["image_size"])
 
     def _loader(self, ds: Dataset | None, *, shuffle: bool) -> DataLoader:
         if ds is None:
             raise ConfigError("this split is empty or setup() has not run")
         g = torch.Generator()
-        g.manual_seed(self.hparams.dr_seed)
-        bs = self.hparams.batch_size
+        g.manual_seed(self.hparams["dr_seed"])
+        bs = self.hparams["batch_size"]
         # Training drops a last partial batch: one of a single item breaks BatchNorm (and a short
         # one skews its statistics), unless the whole split is smaller than a batch.
         return DataLoader(ds, batch_size=bs, shuffle=shuffle, generator=g if shuffle else None,
-                          drop_last=shuffle and len(ds) > bs,  # type: ignore[arg-type]
-                          num_workers=self.hparams.num_workers, persistent_workers=self.hparams.num_workers > 0)
+                          drop_last=shuffle and isinstance(ds, Sized) and len(ds) > bs,
+                          num_workers=self.hparams["num_workers"], persistent_workers=self.hparams["num_workers"] > 0)
 
     def train_dataloader(self) -> DataLoader:
         return self._loader(self._train, shuffle=True)
@@ -440,4 +458,6 @@ class RadarDataModule(L.LightningDataModule):
 
     def images(self, db_maps: torch.Tensor) -> torch.Tensor:
         """Network inputs from per-RX dB maps, without DR (this run's clip range): for figures."""
+        if self.image is None:
+            raise ConfigError("RadarDataModule.setup() has not run")
         return self.image(db_maps)

@@ -10,13 +10,16 @@ from __future__ import annotations
 import os
 from collections.abc import Mapping, Sequence
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import torch
 
 from radaraug.io.atomic import atomic_savefig
 from radaraug.training.metrics import balanced_accuracy
 from radaraug.transforms import CombineRx
+
+if TYPE_CHECKING:
+    from torchvision.models import ResNet
 
 
 def _plt() -> Any:
@@ -111,7 +114,7 @@ def static_energy_plot(groups: Mapping[str, torch.Tensor], path: str | os.PathLi
 
 
 @torch.no_grad()
-def first_block_features(net: torch.nn.Module, image: torch.Tensor) -> torch.Tensor:
+def first_block_features(net: ResNet, image: torch.Tensor) -> torch.Tensor:
     """Channel-averaged output of ResNet18's first residual stage (``layer1``) for one image."""
     was_training = net.training
     net.eval()

@@ -36,6 +36,10 @@ class RDClassifier(L.LightningModule):
         out_dir: where test metrics are written.
     """
 
+    # The constructor's arguments are read from ``self.hparams`` (Lightning's record of them,
+    # which checkpoints and the LR finder update), typed there as a plain mapping.
+    class_weights: torch.Tensor  # buffer
+
     def __init__(
         self,
         task: str = "occupancy",
@@ -63,7 +67,7 @@ class RDClassifier(L.LightningModule):
     def setup(self, stage: str) -> None:
         dm = getattr(self.trainer, "datamodule", None)
         counts = getattr(dm, "train_class_counts", None)
-        if self.hparams.balance_classes and counts is not None and stage == "fit":
+        if self.hparams["balance_classes"] and counts is not None and stage == "fit":
             c = counts.double().clamp_min(1)
             self.class_weights = (c.sum() / (len(c) * c)).float().to(self.class_weights.device)
             # every rank must use the same weights: its own shard's counts differ slightly
@@ -71,7 +75,7 @@ class RDClassifier(L.LightningModule):
 
     def training_step(self, batch: Any, batch_idx: int) -> torch.Tensor:
         x, y = batch
-        if self.hparams.precise_bn_batches > 0:
+        if self.hparams["precise_bn_batches"] > 0:
             self._recent.append(x.detach())
             self._bn_stale = True
         logits = self(x)
@@ -97,6 +101,8 @@ class RDClassifier(L.LightningModule):
             m.momentum = mom
         if self.trainer is not None and self.trainer.world_size > 1:
             for m in bns:  # one set of statistics for every rank
+                if m.running_mean is None or m.running_var is None:
+                    continue  # track_running_stats=False: no statistics to share
                 m.running_mean.copy_(self.trainer.strategy.reduce(m.running_mean, reduce_op="mean"))
                 m.running_var.copy_(self.trainer.strategy.reduce(m.running_var, reduce_op="mean"))
         self.net.train(was_training)
@@ -136,14 +142,14 @@ class RDClassifier(L.LightningModule):
         bacc = balanced_accuracy(cm)
         self.log("test/balanced_accuracy", bacc, sync_dist=True)
         dm = getattr(self.trainer, "datamodule", None)
-        out = self.hparams.out_dir or getattr(dm, "hparams", {}).get("out_dir") or self.trainer.log_dir
+        out = self.hparams["out_dir"] or getattr(dm, "hparams", {}).get("out_dir") or self.trainer.log_dir
         if out is not None and self.trainer.global_rank == 0:
             self.last_test_report = save_metrics(cm, self.class_names, out, "test")
         else:
             self.last_test_report = classification_report(cm, self.class_names)
 
     def configure_optimizers(self) -> Any:
-        opt = torch.optim.AdamW(self.parameters(), lr=self.hparams.lr, weight_decay=self.hparams.weight_decay)
+        opt = torch.optim.AdamW(self.parameters(), lr=self.hparams["lr"], weight_decay=self.hparams["weight_decay"])
         max_epochs = self.trainer.max_epochs if self.trainer is not None and self.trainer.max_epochs else None
         if not max_epochs or max_epochs < 0:
             return opt

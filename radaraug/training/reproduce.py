@@ -109,7 +109,7 @@ def _run_one(task: str, method: str, seed: int, *, settings: ReproduceSettings, 
         trainer.test(model, datamodule=dm, verbose=False)
     report = dict(model.last_test_report or {})
     report.update({"task": task, "method": method, "seed": seed, "fit_seconds": fit_s,
-                   "clip_range_db": list(dm.clip), "val_balanced_accuracy": None if val_bacc is None else float(val_bacc)})
+                   "clip_range_db": None if dm.clip is None else list(dm.clip), "val_balanced_accuracy": None if val_bacc is None else float(val_bacc)})
     atomic_write_json(run_dir / "run.json", report, newline=False, indent=2)
     return report, model, dm
 
@@ -189,7 +189,8 @@ def reproduce(
         results[task] = {}
         cms[task] = {}
         for name, method, extra in variants:
-            per_seed, cm_sum = [], None
+            per_seed: list[float] = []
+            cm_sum: torch.Tensor | None = None
             for seed in range(seeds):
                 run_dir = out / "runs" / f"{task}_{name}_seed{seed}"
                 bar.set_postfix_str(f"{task} {name} seed {seed}")
@@ -206,6 +207,7 @@ def reproduce(
                 cm_sum = cm if cm_sum is None else cm_sum + cm
                 if seed == 0:
                     keep[(task, name)] = (model, dm)
+            assert cm_sum is not None  # seeds >= 1 (checked above)
             results[task][name] = {
                 "balanced_accuracy": _summary(per_seed),
                 "accuracy": _summary([r["accuracy"] for r in runs if r["task"] == task and r["variant"] == name]),

@@ -43,3 +43,13 @@ def test_fit_recovers_the_shipped_constants_on_the_public_recordings(real_data):
                              adc_rms_counts=(1.25, 1.75, 2.25))
     assert fit["front_end_gain_dB"] == 28.5 and fit["adc_noise_rms_counts"] == 1.75
     assert fit["worst_difference_db"] < 1.0
+
+
+def test_too_few_chirps_for_a_floor_is_a_calibration_error():
+    """With <= 4 chirps the RD floor (which leaves zero Doppler out) is undefined: a clear error,
+    not ``float(None)``."""
+    from radaraug.errors import CalibrationError
+
+    cfg = RadarConfig.bgt60tr13c(num_samples_per_chirp=64, num_chirps_per_frame=4)
+    with pytest.raises(CalibrationError, match="too few chirps per frame"):
+        twin_floor_db(cfg, frames=1)

@@ -235,3 +235,14 @@ def test_scene_mode_on_a_ray_traced_corridor_finds_an_undeclared_spur(tmp_path):
     assert abs(step["params"]["freq_Hz"] - 151.7e3) < 1 / (cfg.num_chirps_per_frame * cfg.chirp_repetition_time_s)
     assert step["params"]["amplitude_counts"] == pytest.approx(2.0, rel=0.2)
     assert rep["error_after"]["overall"] <= 0.5 * rep["error_base_refit"]["overall"]
+
+
+def test_a_missing_effect_is_named():
+    from radaraug.calibration.catalog import ParamSpec, get_param, require
+    from radaraug.errors import CalibrationError
+    from radaraug.sensor.effects import Prior
+
+    chain = [{"name": "thermal_noise", "params": {"noise_figure_dB": 12.0}}]
+    assert require(chain, "thermal_noise") is chain[0]
+    with pytest.raises(CalibrationError, match="no 'dc_offset'.*thermal_noise"):
+        get_param(chain, "dc_offset", ParamSpec("level_counts", Prior(0.0, 1.0)))

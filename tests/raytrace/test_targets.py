@@ -189,3 +189,29 @@ def test_mesh_po_sphere_and_doppler():
     assert abs(10 * math.log10(sigma / (math.pi * a * a))) < 1.0
     torch.testing.assert_close(paths.delay_rate, torch.full_like(paths.delay_rate, 2 * v / SPEED_OF_LIGHT),
                                rtol=1e-3, atol=0)
+
+
+def test_multipath_inputs_that_cannot_work_are_scene_errors():
+    """Multipath needs the room's reflectivity, and the convex fast path one material per mirror
+    plane: without them ``ellipsoid_paths`` raised a bare TypeError / AttributeError."""
+    from radaraug.errors import SceneError
+    from radaraug.raytrace.targets import ellipsoid_paths
+    from radaraug.scene.scene import Scene
+
+    scene = Scene.builtin("corridor")
+    tracer = RayTracer(scene.room, scene.radar, scene.config, rays=16)
+    assert tracer.convex_room and tracer.mirrors is not None
+    ell = scene.people_ellipsoids(torch.zeros(1, dtype=torch.float64))
+    if ell.centers.shape[-2] == 0:  # an empty corridor: one sphere in front of the radar
+        ell = _spheres(torch.tensor([[3.0, 0.0, 1.0]], dtype=torch.float64), 0.1)
+    common = {"room_bvh": tracer.bvh, "room_face_material": tracer.face_material, "mirrors": tracer.mirrors,
+              "frequency_Hz": tracer.frequency_Hz}
+    ok = ellipsoid_paths(ell, tracer.radar, tracer.antenna, room_reflectivity=tracer.reflectivity,
+                         convex_room=True, **common)
+    assert ok.mask.any()
+    with pytest.raises(SceneError, match="needs room_reflectivity"):
+        ellipsoid_paths(ell, tracer.radar, tracer.antenna, room_reflectivity=None, **common)
+    tracer.mirrors.plane_material = None
+    with pytest.raises(SceneError, match="one material each"):
+        ellipsoid_paths(ell, tracer.radar, tracer.antenna, room_reflectivity=tracer.reflectivity,
+                        convex_room=True, **common)

@@ -126,3 +126,11 @@ def test_sigkill_during_build_leaves_no_trusted_file(tmp_path):
     ds = _ds()
     path = build_map_cache(ds, range(2), tmp_path, progress=False)
     assert len(CachedMaps(path)) == 2
+
+
+def test_maps_by_index_list_read_from_the_file(tmp_path):
+    """``maps([i, j])`` of a cache not held in memory indexed a ``range`` with a list (TypeError)."""
+    path = build_map_cache(_ds(), range(3), tmp_path, progress=False)
+    disk, memory = CachedMaps(path, in_memory=False), CachedMaps(path)
+    assert torch.equal(disk.maps([2, 0]), memory.maps([2, 0]))
+    assert torch.equal(disk.maps(slice(1, 3)), memory.maps(slice(1, 3)))

@@ -2,11 +2,25 @@
 
 from __future__ import annotations
 
+from typing import overload
+
 import numpy as np
 import torch
 
 from radaraug._optional import lazy_import
 from radaraug.errors import SceneError
+
+
+@overload
+def simplify_mesh(
+    vertices: torch.Tensor, faces: torch.Tensor | np.ndarray, target_faces: int
+) -> tuple[torch.Tensor, torch.Tensor]: ...
+
+
+@overload
+def simplify_mesh(
+    vertices: np.ndarray, faces: torch.Tensor | np.ndarray, target_faces: int
+) -> tuple[np.ndarray, np.ndarray]: ...
 
 
 def simplify_mesh(
@@ -28,8 +42,8 @@ def simplify_mesh(
     Returns:
         ``(vertices, faces)`` of the same kind (torch on the input's device/dtype, or numpy).
     """
-    is_torch = isinstance(vertices, torch.Tensor)
-    v = vertices.detach().cpu().double().numpy() if is_torch else np.asarray(vertices, dtype=np.float64)
+    v = (vertices.detach().cpu().double().numpy() if isinstance(vertices, torch.Tensor)
+         else np.asarray(vertices, dtype=np.float64))
     f = faces.detach().cpu().numpy() if isinstance(faces, torch.Tensor) else np.asarray(faces)
     if v.ndim != 2 or v.shape[1] != 3 or f.ndim != 2 or f.shape[1] != 3:
         raise SceneError(f"simplify_mesh: expected vertices (V, 3) and faces (F, 3), got {v.shape} and {f.shape}")
@@ -54,7 +68,7 @@ def simplify_mesh(
         )
     m = ms.current_mesh()
     v_out, f_out = m.vertex_matrix(), m.face_matrix().astype(np.int64)
-    if is_torch:
+    if isinstance(vertices, torch.Tensor):
         dev, dt = vertices.device, vertices.dtype
         fdev = faces.device if isinstance(faces, torch.Tensor) else dev
         return torch.as_tensor(v_out, dtype=dt, device=dev), torch.as_tensor(f_out, dtype=torch.long, device=fdev)

@@ -235,17 +235,17 @@ class Walker(SkeletonPerson):
         farm = rot.compose(uarm, rot_sided(4, -ang["elbow"][1]))
         wrist = add(elbow, farm, cst["lower_arm"])
 
-        sided = {"shoulder": shoulder_j, "elbow": elbow, "wrist": wrist,
-                 "hip": hip, "knee": knee, "ankle": ankle, "toe": toe}
-        single = {"pelvis": o, "neck": neck, "head_top": head}
+        sided_joints = {"shoulder": shoulder_j, "elbow": elbow, "wrist": wrist,
+                        "hip": hip, "knee": knee, "ankle": ankle, "toe": toe}
+        single_joints = {"pelvis": o, "neck": neck, "head_top": head}
         pos, vel = [], []
         for name in JOINT_NAMES:
-            if name in single:
-                p, pd = single[name]
+            if name in single_joints:
+                p, pd = single_joints[name]
             else:
                 k = 0 if name.startswith("left_") else 1
                 key = name.split("_", 1)[1]
-                p, pd = sided[key][0][k], sided[key][1][k]
+                p, pd = sided_joints[key][0][k], sided_joints[key][1][k]
             pos.append(p)
             vel.append(pd)
         head_r = cst["heading"]

@@ -27,6 +27,7 @@ class DCOffset(Effect):
 
     name = "dc_offset"
     param_names = ("level_counts",)
+    level_counts: torch.Tensor
 
     @classmethod
     def priors(cls, config: RadarConfig) -> dict[str, Prior]:
@@ -56,6 +57,7 @@ class ADCQuantization(Effect):
     name = "adc_quantization"
     kind = "nonlinear"
     param_names = ("bits",)
+    bits: torch.Tensor | None
 
     def __init__(self, bits: int | None = None) -> None:
         super().__init__()

@@ -19,9 +19,9 @@ from __future__ import annotations
 
 import math
 import warnings
-from collections.abc import Mapping, Sequence
+from collections.abc import Iterator, Mapping, Sequence
 from dataclasses import dataclass
-from typing import Any, ClassVar
+from typing import Any, ClassVar, cast
 
 import torch
 from torch import nn
@@ -148,6 +148,9 @@ class Effect(nn.Module):
             cls.apply = nn.Module.apply  # type: ignore[method-assign]
 
     name: ClassVar[str] = ""
+    # Subclasses annotate each parameter (``gain_dB: torch.Tensor``, ``| None`` when it may come
+    # from the config): buffers are read through ``nn.Module.__getattr__``, which a type checker
+    # only knows as ``Tensor | Module``.
     param_names: ClassVar[tuple[str, ...]] = ()
     # How the stage acts, for superposition (`FMCWReceiver.static_signal`): "linear" (LTI on the
     # whole signal: gains, filters), "additive" (adds a signal that does not depend on the input:
@@ -208,6 +211,17 @@ class Effect(nn.Module):
         for k, v in self.params().items():
             parts.append(f"{k}={'config' if v is None else v.detach().cpu().tolist()}")
         return ", ".join(parts)
+
+
+class EffectList(nn.ModuleList):
+    """The ``nn.ModuleList`` of a receiver's effects, iterated as :class:`Effect` s.
+
+    A plain ``nn.ModuleList`` iterates as ``nn.Module``; the receiver checks that every item is
+    an :class:`Effect` when it builds the list, so the iteration is typed as such.
+    """
+
+    def __iter__(self) -> Iterator[Effect]:
+        return cast(Iterator[Effect], super().__iter__())
 
 
 def effect_from_dict(data: Mapping[str, Any]) -> Effect:

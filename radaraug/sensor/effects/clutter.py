@@ -62,6 +62,9 @@ class StaticClutter(Effect):
 
     name = "static_clutter"
     param_names = ("range_m", "level_dB", "phase_rad")
+    range_m: torch.Tensor
+    level_dB: torch.Tensor
+    phase_rad: torch.Tensor
 
     def __init__(
         self,
@@ -134,6 +137,12 @@ class VibratingClutter(Effect):
 
     name = "vibrating_clutter"
     param_names = ("range_m", "level_dB", "displacement_m", "vibration_Hz", "phase_rad", "carrier")
+    range_m: torch.Tensor
+    level_dB: torch.Tensor
+    displacement_m: torch.Tensor
+    vibration_Hz: torch.Tensor
+    phase_rad: torch.Tensor
+    carrier: torch.Tensor
 
     def __init__(
         self,
@@ -237,6 +246,9 @@ class Multipath(Effect):
     name = "multipath"
     kind = "linear"
     param_names = ("extra_range_m", "level_dB", "phase_rad")
+    extra_range_m: torch.Tensor
+    level_dB: torch.Tensor
+    phase_rad: torch.Tensor
     PRIORS = {
         "extra_range_m": Prior(0.05, 5.0),
         "level_dB": Prior(-40.0, 0.0),

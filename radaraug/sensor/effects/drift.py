@@ -39,6 +39,8 @@ class FrameDrift(Effect):
     name = "frame_drift"
     kind = "nonlinear"
     param_names = ("gain_rms_dB", "dc_rms_counts")
+    gain_rms_dB: torch.Tensor
+    dc_rms_counts: torch.Tensor
     PRIORS = {"gain_rms_dB": Prior(0.0, 3.0), "dc_rms_counts": Prior(0.0, 20.0)}
 
     def __init__(

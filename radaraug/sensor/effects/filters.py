@@ -32,6 +32,8 @@ def lowpass_response(freq_Hz: torch.Tensor, cutoff_Hz: torch.Tensor, order: int 
 
 class _FirstOrderFilter(Effect):
     param_names = ("cutoff_Hz", "order")
+    cutoff_Hz: torch.Tensor | None
+    order: torch.Tensor
 
     def __init__(self, cutoff_Hz: float | torch.Tensor | None = None, order: int = 1) -> None:
         super().__init__()

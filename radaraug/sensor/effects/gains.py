@@ -32,6 +32,7 @@ class SystemGain(Effect):
     name = "system_gain"
     kind = "linear"
     param_names = ("gain_dB",)
+    gain_dB: torch.Tensor
     PRIORS = {"gain_dB": Prior(-30.0, 30.0)}
 
     def __init__(self, gain_dB: float | torch.Tensor = 0.0) -> None:
@@ -57,6 +58,7 @@ class IFGain(Effect):
     name = "if_gain"
     kind = "linear"
     param_names = ("gain_dB",)
+    gain_dB: torch.Tensor | None
 
     def __init__(self, gain_dB: float | torch.Tensor | None = None) -> None:
         super().__init__()
@@ -88,6 +90,8 @@ class RxGainPhaseMismatch(Effect):
     name = "rx_gain_phase_mismatch"
     kind = "linear"
     param_names = ("gain_dB", "phase_rad")
+    gain_dB: torch.Tensor
+    phase_rad: torch.Tensor
     PRIORS = {"gain_dB": Prior(-6.0, 6.0), "phase_rad": Prior(-math.pi, math.pi)}
 
     def __init__(self, gain_dB: float | list | torch.Tensor = 0.0, phase_rad: float | list | torch.Tensor = 0.0) -> None:

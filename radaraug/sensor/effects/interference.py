@@ -49,6 +49,9 @@ class Interference(Effect):
 
     name = "interference"
     param_names = ("probability", "amplitude_counts", "duration_s")
+    probability: torch.Tensor
+    amplitude_counts: torch.Tensor
+    duration_s: torch.Tensor
     PRIORS = {
         "probability": Prior(0.0, 1.0),
         "amplitude_counts": Prior(1.0, 2000.0, "log"),

@@ -29,6 +29,9 @@ class TxRxLeakage(Effect):
 
     name = "tx_rx_leakage"
     param_names = ("coupling_dB", "range_m", "phase_rad")
+    coupling_dB: torch.Tensor
+    range_m: torch.Tensor
+    phase_rad: torch.Tensor
     PRIORS = {
         "coupling_dB": Prior(-100.0, -20.0),
         "range_m": Prior(0.005, 0.3),

@@ -42,6 +42,8 @@ class ThermalNoise(Effect):
 
     name = "thermal_noise"
     param_names = ("noise_figure_dB", "temperature_K")
+    noise_figure_dB: torch.Tensor
+    temperature_K: torch.Tensor
     PRIORS = {"noise_figure_dB": Prior(0.0, 45.0)}
 
     def __init__(self, noise_figure_dB: float | torch.Tensor = 12.0, temperature_K: float | torch.Tensor = T0_KELVIN) -> None:
@@ -76,6 +78,7 @@ class ADCNoise(Effect):
 
     name = "adc_noise"
     param_names = ("rms_counts",)
+    rms_counts: torch.Tensor
     PRIORS = {"rms_counts": Prior(0.01, 50.0, "log")}
 
     def __init__(self, rms_counts: float | list | torch.Tensor = 0.5) -> None:

@@ -55,6 +55,10 @@ class ChirpNonlinearity(Effect):
     name = "chirp_nonlinearity"
     kind = "modulating"
     param_names = ("deviation_Hz", "ripple_Hz", "phase_rad", "num_paths")
+    deviation_Hz: torch.Tensor
+    ripple_Hz: torch.Tensor
+    phase_rad: torch.Tensor
+    num_paths: torch.Tensor
 
     def __init__(
         self,

@@ -38,6 +38,9 @@ class PhaseNoise(Effect):
     name = "phase_noise"
     kind = "modulating"
     param_names = ("freq_noise_rms_Hz", "corner_Hz", "num_paths")
+    freq_noise_rms_Hz: torch.Tensor
+    corner_Hz: torch.Tensor
+    num_paths: torch.Tensor
     PRIORS = {"freq_noise_rms_Hz": Prior(1e3, 3e6, "log"), "corner_Hz": Prior(1e3, 1e6, "log")}
 
     def __init__(

@@ -31,6 +31,9 @@ class SpurTone(Effect):
 
     name = "spur_tone"
     param_names = ("freq_Hz", "amplitude_counts", "phase_rad")
+    freq_Hz: torch.Tensor
+    amplitude_counts: torch.Tensor
+    phase_rad: torch.Tensor
 
     @classmethod
     def priors(cls, config: RadarConfig) -> dict[str, Prior]:
