@@ -32,9 +32,10 @@ from contextlib import contextmanager
 from contextvars import ContextVar
 from typing import Any
 
-import numpy as np
 import torch
 from torch.utils.data import get_worker_info
+
+from radaraug._seeding import mix
 
 _SCOPED: ContextVar[torch.Generator | None] = ContextVar("radaraug_scoped_generator", default=None)
 
@@ -87,10 +88,12 @@ def draw(
     return out.to(like.device)
 
 
+_WORKER_TAG = 0x574B5253  # separates worker re-seeds from every other use of the mixer
+
+
 def mix_seed(seed: int, worker_seed: int) -> int:
-    """A well-mixed 63-bit seed from a user seed and a DataLoader worker seed."""
-    state = np.random.SeedSequence([int(seed) % 2**64, int(worker_seed) % 2**64]).generate_state(1, np.uint64)
-    return int(state[0]) & (2**63 - 1)
+    """A well-mixed 63-bit seed from a user seed and a DataLoader worker seed (:func:`radaraug._seeding.mix`)."""
+    return mix(seed, worker_seed, _WORKER_TAG)
 
 
 def _process_key() -> tuple[int, int | None]:
