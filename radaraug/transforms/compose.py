@@ -5,6 +5,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from typing import Any
 
+import torch
 from torch import nn
 
 from radaraug.errors import CalibrationError
@@ -50,7 +51,10 @@ class RadarCompose(nn.Module):
         """Run every step on a tensor or a sample (see the class docstring)."""
         sample = _sample.as_sample(inputs)
         for t in self.transforms:
-            sample = t(sample) if _sample.is_sample_aware(t) else _sample.apply_to_radar_leaves(t, sample)
+            if isinstance(sample, torch.Tensor) or _sample.is_sample_aware(t):
+                sample = t(sample)
+            else:
+                sample = _sample.apply_to_radar_leaves(t, sample)
         return sample
 
     def chain_spec(self) -> list[dict[str, Any]]:
