@@ -21,6 +21,7 @@ from radaraug._optional import lazy_import, missing_dependency
 from radaraug.errors import SceneError
 from radaraug.scene.geometry import SceneGeometry
 from radaraug.scene.materials import Material, get_material
+from radaraug.scene.people._rotations import axis_rotation
 
 CORRIDOR_SURFACES = ("floor", "ceiling", "left_wall", "right_wall", "near_wall", "far_wall")
 """Surface names of :func:`corridor`. Left/right as seen looking down the corridor (+x)."""
@@ -364,7 +365,7 @@ def _placement(position: Sequence[float] | np.ndarray, yaw_deg: float) -> np.nda
     then a translation to ``position``."""
     y = math.radians(float(yaw_deg))
     m = np.eye(4)
-    m[:3, :3] = [[math.cos(y), -math.sin(y), 0.0], [math.sin(y), math.cos(y), 0.0], [0.0, 0.0, 1.0]]
+    m[:3, :3] = axis_rotation("z", y).numpy()
     m[:3, 3] = np.asarray(position, dtype=np.float64)
     return m
 

@@ -24,6 +24,7 @@ from radaraug.errors import ConfigError, SceneError
 from radaraug.io.atomic import atomic_write_text
 from radaraug.scene.geometry import Ellipsoids, RadarPose, SceneGeometry
 from radaraug.scene.materials import MATERIALS, Material, get_material, register_material
+from radaraug.scene.people._rotations import axis_rotation
 from radaraug.scene.people.person import PERSON_TYPES
 from radaraug.scene.room import (
     CORRIDOR_SURFACES,
@@ -130,14 +131,8 @@ def _yaw_pitch_roll(yaw_deg: float, pitch_deg: float, roll_deg: float) -> torch.
     as seen from behind it (about the boresight).
     """
     y, p, r = (math.radians(a) for a in (yaw_deg, pitch_deg, roll_deg))
-    rz = torch.tensor([[math.cos(y), -math.sin(y), 0], [math.sin(y), math.cos(y), 0], [0, 0, 1]],
-                      dtype=torch.float64)
     # Body frame x forward, y left, z up: a rotation of -pitch about +y raises the nose.
-    ry = torch.tensor([[math.cos(-p), 0, math.sin(-p)], [0, 1, 0], [-math.sin(-p), 0, math.cos(-p)]],
-                      dtype=torch.float64)
-    rx = torch.tensor([[1, 0, 0], [0, math.cos(r), -math.sin(r)], [0, math.sin(r), math.cos(r)]],
-                      dtype=torch.float64)
-    body = rz @ ry @ rx
+    body = axis_rotation("z", y) @ axis_rotation("y", -p) @ axis_rotation("x", r)
     # Radar axes in body coordinates: x (right) = -y_body, y (up) = z_body, z (boresight) = x_body.
     body_from_radar = torch.tensor([[0, 0, 1], [-1, 0, 0], [0, 1, 0]], dtype=torch.float64)
     return body @ body_from_radar

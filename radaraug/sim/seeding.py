@@ -2,27 +2,26 @@
 
 The seed of item ``i`` does not depend on which worker, process or DDP rank computes it, so a
 dataset gives the same items however it is split. SplitMix64 mixes the pair so that nearby
-(seed, index) pairs give unrelated streams.
+(seed, index) pairs give unrelated streams (:mod:`radaraug._seeding`, the mixer the transforms
+use too).
 """
 
 from __future__ import annotations
 
 import torch
 
-_MASK = (1 << 64) - 1
+from radaraug._seeding import mix, splitmix64
 
-
-def splitmix64(x: int) -> int:
-    """One SplitMix64 step (Steele, Lea & Flood 2014) on a 64-bit integer."""
-    x = (x + 0x9E3779B97F4A7C15) & _MASK
-    x = ((x ^ (x >> 30)) * 0xBF58476D1CE4E5B9) & _MASK
-    x = ((x ^ (x >> 27)) * 0x94D049BB133111EB) & _MASK
-    return x ^ (x >> 31)
+__all__ = ["splitmix64", "item_seed", "item_generator"]
 
 
 def item_seed(seed: int, index: int, stream: int = 0) -> int:
-    """A 63-bit seed for item ``index`` of a dataset seeded ``seed`` (``stream`` separates uses)."""
-    return splitmix64(splitmix64(splitmix64(seed & _MASK) ^ (index & _MASK)) ^ stream) >> 1
+    """A 63-bit seed for item ``index`` of a dataset seeded ``seed`` (``stream`` separates uses).
+
+    ``splitmix64(splitmix64(splitmix64(seed) ^ index) ^ stream) >> 1``: :func:`radaraug._seeding.mix`
+    of the three (the values every recorded simulation was made with).
+    """
+    return mix(seed, index, stream)
 
 
 def item_generator(seed: int, index: int, stream: int = 0, device: torch.device | str = "cpu") -> torch.Generator:

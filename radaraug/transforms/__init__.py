@@ -8,9 +8,13 @@ Typical training pipeline (raw cube -> network image)::
     pipeline = RadarCompose([RangeDoppler(), ToDecibels(), cdr, CombineRx("mean_power", db=True),
                              ClipNormalize(-110, -40), Colormap("viridis")])
 
+A transform takes a tensor or a sample (tuple, list, dict) like torchvision v2 does; the kernels
+behind the classes are plain functions in :mod:`radaraug.transforms.functional`.
+
 Units: ``radaraug.units.DB_CONVENTION`` (dBFS: both FFTs divided by their window sums).
 """
 
+from radaraug.transforms import functional
 from radaraug.transforms._rng import use_generator
 from radaraug.transforms.base import RadarTransform, RandomRadarTransform
 from radaraug.transforms.compose import RadarCompose
@@ -29,6 +33,7 @@ from radaraug.transforms.spectral import (
 from radaraug.transforms.windows import WINDOWS, get_window, noise_power_gain
 
 __all__ = [
+    "functional",
     "use_generator",
     "augmentation_generator",
     "RadarTransform",

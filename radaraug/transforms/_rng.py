@@ -32,9 +32,10 @@ from contextlib import contextmanager
 from contextvars import ContextVar
 from typing import Any
 
-import numpy as np
 import torch
 from torch.utils.data import get_worker_info
+
+from radaraug._seeding import mix
 
 _SCOPED: ContextVar[torch.Generator | None] = ContextVar("radaraug_scoped_generator", default=None)
 
@@ -60,10 +61,39 @@ def use_generator(generator: torch.Generator) -> Iterator[torch.Generator]:
         _SCOPED.reset(token)
 
 
+def draw(
+    kind: str,
+    shape: tuple[int, ...],
+    like: torch.Tensor,
+    generator: torch.Generator | None,
+    mean: float = 0.0,
+    std: float = 1.0,
+) -> torch.Tensor:
+    """Uniform [0, 1) (``kind="rand"``) or ``Normal(mean, std**2)`` (``"normal"``) draws.
+
+    The result has ``shape`` and ``like``'s dtype and device. A generator on another device than
+    ``like`` draws on its own device and the result is moved (correct but slower: give a
+    generator on the data's device).
+    """
+    device = (
+        like.device
+        if generator is None or generator.device.type == like.device.type
+        else generator.device
+    )
+    out = torch.empty(shape, dtype=like.dtype, device=device)
+    if kind == "rand":
+        out.uniform_(0.0, 1.0, generator=generator)
+    else:
+        out.normal_(mean, std, generator=generator)
+    return out.to(like.device)
+
+
+_WORKER_TAG = 0x574B5253  # separates worker re-seeds from every other use of the mixer
+
+
 def mix_seed(seed: int, worker_seed: int) -> int:
-    """A well-mixed 63-bit seed from a user seed and a DataLoader worker seed."""
-    state = np.random.SeedSequence([int(seed) % 2**64, int(worker_seed) % 2**64]).generate_state(1, np.uint64)
-    return int(state[0]) & (2**63 - 1)
+    """A well-mixed 63-bit seed from a user seed and a DataLoader worker seed (:func:`radaraug._seeding.mix`)."""
+    return mix(seed, worker_seed, _WORKER_TAG)
 
 
 def _process_key() -> tuple[int, int | None]:

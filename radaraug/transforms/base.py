@@ -8,10 +8,14 @@
   ``forward(x, params=...)``. A "sample" is one item of the leading batch dims; the last
   :attr:`event_ndim` dims are the event (3: ``(rx, range, doppler)`` or ``(rx, chirps, samples)``).
 
-Calling conventions (both classes): ``t(x)`` returns the transformed tensor; ``t(x, *rest)``
-returns ``(t(x), *rest)`` with ``rest`` passed through untouched, like torchvision v2 does for a
-sample made only of plain tensors (only the first one is transformed). That makes a radaraug
-transform usable on ``(cube, label)`` samples inside ``torchvision.transforms.v2.Compose``.
+Calling conventions (both classes), as torchvision v2's ``Transform.forward``: ``t(x)`` returns
+the transformed tensor; ``t(sample)`` with a tuple, list or dict (any nesting: a pytree) returns
+the same structure with its radar leaves transformed and everything else passed through, and
+``t(x, *rest)`` is ``t((x, *rest))``. Which leaves are radar leaves is decided by
+:mod:`radaraug.transforms._sample` (the first real floating tensor with at least
+:attr:`~RadarTransform.event_ndim` dims, and any other of exactly its shape, with the same random
+parameters). That makes a radaraug transform usable on ``(cube, label)`` and
+``{"image": cube, "label": label}`` samples inside ``torchvision.transforms.v2.Compose``.
 
 ``.eval()`` mode: random transforms become the identity (like dropout) and return their input
 object itself; replaying explicit ``params`` still applies them. Deterministic DSP is unaffected.
@@ -25,9 +29,10 @@ from typing import Any
 import torch
 from torch import nn
 
-from radaraug.errors import RadarAugError
+from radaraug.errors import InputTensorError, RadarAugError
+from radaraug.transforms import _sample
 from radaraug.transforms._checks import check_tensor
-from radaraug.transforms._rng import GeneratorSource
+from radaraug.transforms._rng import GeneratorSource, draw
 
 Params = dict[str, torch.Tensor]
 
@@ -59,10 +64,42 @@ class RadarTransform(nn.Module):
         """Compute the output for a validated input."""
         raise NotImplementedError
 
-    def forward(self, x: torch.Tensor, *rest: Any) -> Any:
-        """Transform ``x``; extra positional items are passed through (see the module docstring)."""
-        out = self.transform(self.check_input(x), {})
-        return (out, *rest) if rest else out
+    def is_radar_tensor(self, leaf: Any) -> bool:
+        """Whether a leaf of a sample is one this transform works on (see :mod:`._sample`)."""
+        return _sample.eligible(leaf, self.event_ndim, self.accepts_complex)
+
+    def select(self, sample: Any) -> tuple[list[Any], Any, list[int]]:
+        """Flatten ``sample`` and validate its radar leaves.
+
+        Returns:
+            ``(leaves, spec, chosen)``: the flat leaves, the tree spec (None for a plain tensor)
+            and the indices of the radar leaves, each checked with :meth:`check_input`.
+
+        Raises:
+            InputTensorError: no leaf is a radar tensor, or one fails :meth:`check_input`.
+        """
+        if isinstance(sample, torch.Tensor):
+            return [self.check_input(sample)], None, [0]
+        flat, spec = _sample.flatten(sample)
+        chosen = _sample.radar_leaves(flat, self.is_radar_tensor)
+        if not chosen:
+            likely = _sample.most_likely_radar_leaf(flat, self.event_ndim)
+            if likely is not None:
+                self.check_input(likely)  # raises the precise problem (dtype, rank, ...)
+            raise InputTensorError(
+                f"{type(self).__name__} expects {self.input_layout}: expected a torch.Tensor, or a "
+                f"tuple/list/dict holding one; got a {type(sample).__name__} with no tensor in it"
+            )
+        for i in chosen:
+            flat[i] = self.check_input(flat[i])
+        return flat, spec, chosen
+
+    def forward(self, *inputs: Any) -> Any:
+        """Transform a tensor or the radar leaves of a sample (see the module docstring)."""
+        flat, spec, chosen = self.select(_sample.as_sample(inputs))
+        for i in chosen:
+            flat[i] = self.transform(flat[i], {})
+        return flat[0] if spec is None else _sample.unflatten(flat, spec)
 
     def extra_spec(self) -> dict[str, Any]:
         """The transform's parameters as JSON types (for :meth:`chain_spec`)."""
@@ -132,17 +169,7 @@ class RandomRadarTransform(RadarTransform):
         than ``like`` draws on its own device and the result is moved (correct but slower: give a
         generator on the data's device).
         """
-        device = (
-            like.device
-            if generator is None or generator.device.type == like.device.type
-            else generator.device
-        )
-        out = torch.empty(shape, dtype=like.dtype, device=device)
-        if kind == "rand":
-            out.uniform_(0.0, 1.0, generator=generator)
-        else:
-            out.normal_(mean, std, generator=generator)
-        return out.to(like.device)
+        return draw(kind, shape, like, generator, mean, std)
 
     def make_params(self, x: torch.Tensor, generator: torch.Generator | None = None) -> Params:
         """Draw the parameters for ``x``: ``apply`` (bool, per sample) and the subclass's own."""
@@ -162,29 +189,32 @@ class RandomRadarTransform(RadarTransform):
         raise NotImplementedError
 
     # ------------------------------------------------------------------ application
-    def forward(self, x: torch.Tensor, *rest: Any, params: Mapping[str, torch.Tensor] | None = None) -> Any:
-        """Transform ``x`` with fresh random parameters, or replay ``params``.
+    def forward(self, *inputs: Any, params: Mapping[str, torch.Tensor] | None = None) -> Any:
+        """Transform a tensor (or a sample's radar leaves) with fresh random parameters, or replay ``params``.
 
         ``params`` may also be given as the second positional argument (a mapping with an
-        ``"apply"`` key, e.g. ``t.last_params``); other extra positional items pass through.
+        ``"apply"`` key, e.g. ``t.last_params``). The parameters are drawn once, from the first
+        radar leaf, and applied to every radar leaf of the sample.
         """
-        if params is None and rest and isinstance(rest[0], Mapping) and "apply" in rest[0]:
-            params, rest = rest[0], rest[1:]
-        x = self.check_input(x)
+        if params is None and len(inputs) > 1 and isinstance(inputs[1], Mapping) and "apply" in inputs[1]:
+            params, inputs = inputs[1], (inputs[0], *inputs[2:])
+        sample = _sample.as_sample(inputs)
+        flat, spec, chosen = self.select(sample)
         if params is None and not self.training:
             self.last_params = None
-            out = x
+            return sample
+        x = flat[chosen[0]]
+        if params is None:
+            params = self.make_params(x, self.rng.get(x.device))
+            # p = 1 (the default): every sample applies; skip _apply_where's two host syncs.
+            every = self.p >= 1.0
         else:
-            if params is None:
-                params = self.make_params(x, self.rng.get(x.device))
-                # p = 1 (the default): every sample applies; skip _apply_where's two host syncs.
-                every = self.p >= 1.0
-            else:
-                params = {k: torch.as_tensor(v, device=x.device) for k, v in params.items()}
-                every = False
-            self.last_params = dict(params)
-            out = self.transform(x, params) if every else self._apply_where(x, params)
-        return (out, *rest) if rest else out
+            params = {k: torch.as_tensor(v, device=x.device) for k, v in params.items()}
+            every = False
+        self.last_params = dict(params)
+        for i in chosen:
+            flat[i] = self.transform(flat[i], params) if every else self._apply_where(flat[i], params)
+        return flat[0] if spec is None else _sample.unflatten(flat, spec)
 
     def _apply_where(self, x: torch.Tensor, params: Params) -> torch.Tensor:
         apply = params["apply"]

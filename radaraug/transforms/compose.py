@@ -5,16 +5,22 @@ from __future__ import annotations
 from collections.abc import Sequence
 from typing import Any
 
+import torch
 from torch import nn
 
+from radaraug.transforms import _sample
 from radaraug.transforms.chain import chain_of
 
 
 class RadarCompose(nn.Module):
     """Apply transforms in order; ``chain_spec()`` lists every step (JSON-able).
 
-    Like :class:`~radaraug.transforms.base.RadarTransform`, ``compose(x, *rest)`` transforms ``x``
-    and passes ``rest`` (e.g. a label) through. ``.eval()``/``.train()`` reach every step.
+    Like :class:`~radaraug.transforms.base.RadarTransform`, a compose takes a tensor or a sample
+    (tuple, list, dict; ``compose(x, *rest)`` is ``compose((x, *rest))``) and returns the same
+    structure: every step gets the whole sample, so each radaraug step transforms the radar leaves
+    it recognizes and passes the rest (e.g. a label) through. A step that is not sample-aware (a
+    plain ``nn.Module``) is applied to each radar leaf (the first real or complex floating tensor
+    with at least 2 dims and any other of its shape). ``.eval()``/``.train()`` reach every step.
 
     At construction every :class:`~radaraug.transforms.dr.CalibratedDR` (and
     :class:`~radaraug.transforms.dr.RandomDR`) is checked against the steps before it:
@@ -40,10 +46,15 @@ class RadarCompose(nn.Module):
         self.transforms = nn.ModuleList(transforms)
         self._check_dr_placement()
 
-    def forward(self, x: Any, *rest: Any) -> Any:
+    def forward(self, *inputs: Any) -> Any:
+        """Run every step on a tensor or a sample (see the class docstring)."""
+        sample = _sample.as_sample(inputs)
         for t in self.transforms:
-            x = t(x)
-        return (x, *rest) if rest else x
+            if isinstance(sample, torch.Tensor) or _sample.is_sample_aware(t):
+                sample = t(sample)
+            else:
+                sample = _sample.apply_to_radar_leaves(t, sample)
+        return sample
 
     def chain_spec(self) -> list[dict[str, Any]]:
         """Every step's spec in order (nested composes flattened)."""

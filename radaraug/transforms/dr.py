@@ -35,6 +35,7 @@ from radaraug.config import RadarConfig
 from radaraug.errors import CalibrationError, ConfigError, RadarAugError
 from radaraug.io.atomic import atomic_write_text
 from radaraug.safe_read import load_json, safe_repr
+from radaraug.transforms import functional as F
 from radaraug.transforms._motion import DEFAULT_THRESHOLD_DB
 from radaraug.transforms.base import Params, RandomRadarTransform
 from radaraug.transforms.chain import canonical_chain, describe_chain
@@ -77,7 +78,7 @@ class _DRClamp(RandomRadarTransform):
     input_layout = "a dB RD map (..., rx, range, doppler)"
 
     def transform(self, x: torch.Tensor, params: Params) -> torch.Tensor:
-        return torch.maximum(x, params["noise_db"].to(dtype=x.dtype))
+        return F.dr_clamp(x, params["noise_db"])
 
     def check_preceding_chain(self, before: list[dict[str, Any]], where: str) -> None:
         """Raise :class:`CalibrationError` if the steps ``before`` this one (their chain specs)
@@ -124,10 +125,8 @@ class RandomDR(_DRClamp):
         (m_lo, m_hi), (s_lo, s_hi) = self.mean_db, self.std_db
         mean = m_lo + (m_hi - m_lo) * self.draw("rand", shape, x, generator)
         std = s_lo + (s_hi - s_lo) * self.draw("rand", shape, x, generator)
-        event = (1,) * self.event_ndim
         noise = self.draw("normal", shape + tuple(x.shape[-self.event_ndim :]), x, generator)
-        noise = torch.addcmul(mean.reshape(shape + event), noise, std.reshape(shape + event))
-        return {"mean_db": mean, "std_db": std, "noise_db": noise}
+        return {"mean_db": mean, "std_db": std, "noise_db": F.random_floor(shape, mean, std, noise)}
 
     def extra_spec(self) -> dict[str, Any]:
         return {"mean_db": list(self.mean_db), "std_db": list(self.std_db), **super().extra_spec()}
@@ -270,7 +269,7 @@ class CalibratedDR(_DRClamp):
         self, x: torch.Tensor, shape: tuple[int, ...], generator: torch.Generator | None
     ) -> Params:
         event = tuple(x.shape[-self.event_ndim :])
-        return {"noise_db": self.draw("normal", shape + event, x, generator, self.mean_db, self.std_db)}
+        return {"noise_db": F.calibrated_floor(shape + event, self.mean_db, self.std_db, like=x, generator=generator)}
 
     def check_config(self, config: RadarConfig | dict[str, Any]) -> None:
         """Raise :class:`CalibrationError` if ``config`` differs from the calibration's config.

@@ -3,26 +3,28 @@
 ``ClipNormalize`` maps ``[vmin, vmax]`` dB to ``[0, 1]`` (values outside are clipped first);
 ``Colormap`` turns a one-channel ``(..., 1, H, W)`` map in [0, 1] into ``(..., 3, H, W)`` RGB with
 matplotlib's lookup semantics (256 entries, nearest entry: index ``floor(256 x)`` clipped to 255);
-``Resize`` resamples the last two dims (bilinear, antialiased).
+``Resize`` resamples the last two dims to ``(height, width)`` (bilinear, antialiased). The kernels
+are in :mod:`radaraug.transforms.functional`.
 """
 
 from __future__ import annotations
 
-import math
-from collections.abc import Iterable
+from collections.abc import Iterable, Sequence
 from typing import Any
 
 import numpy as np
 import torch
-import torch.nn.functional as F
 
 from radaraug.errors import InputTensorError, RadarAugError
-from radaraug.transforms._viridis import VIRIDIS_RGB
+from radaraug.transforms import functional as F
 from radaraug.transforms.base import Params, RadarTransform
+from radaraug.transforms.functional._image import check_clip_range, check_size
 
 
 class ClipNormalize(RadarTransform):
     """``(clip(x, vmin, vmax) - vmin) / (vmax - vmin)``: dB map -> [0, 1].
+
+    Kernel: :func:`radaraug.transforms.functional.clip_normalize`.
 
     Args:
         vmin: dB value mapped to 0 (everything below too).
@@ -34,13 +36,10 @@ class ClipNormalize(RadarTransform):
 
     def __init__(self, vmin: float, vmax: float) -> None:
         super().__init__()
-        vmin, vmax = float(vmin), float(vmax)
-        if not (math.isfinite(vmin) and math.isfinite(vmax)) or vmax <= vmin:
-            raise RadarAugError(f"ClipNormalize: need finite vmin < vmax, got {vmin}, {vmax}")
-        self.vmin, self.vmax = vmin, vmax
+        self.vmin, self.vmax = check_clip_range(vmin, vmax)
 
     def transform(self, x: torch.Tensor, params: Params) -> torch.Tensor:
-        return (x.clamp(self.vmin, self.vmax) - self.vmin) * (1.0 / (self.vmax - self.vmin))
+        return F.clip_normalize(x, self.vmin, self.vmax)
 
     def extra_spec(self) -> dict[str, Any]:
         return {"vmin": self.vmin, "vmax": self.vmax}
@@ -110,6 +109,7 @@ class Colormap(RadarTransform):
     with x = 1 mapped to the last entry; inputs outside [0, 1] are clipped first. ``viridis``
     ships with radaraug; any other matplotlib colormap name is read from matplotlib.
     An rx dim > 1 is an error: combine the channels first (:class:`~radaraug.transforms.spectral.CombineRx`).
+    Kernel: :func:`radaraug.transforms.functional.colormap`.
 
     Args:
         name: colormap name.
@@ -120,17 +120,7 @@ class Colormap(RadarTransform):
     def __init__(self, name: str = "viridis") -> None:
         super().__init__()
         self.name = name
-        if name == "viridis":
-            table = torch.tensor(VIRIDIS_RGB, dtype=torch.float64)
-        else:
-            import matplotlib
-
-            try:
-                cmap = matplotlib.colormaps[name]
-            except KeyError:
-                raise RadarAugError(f"Colormap: unknown colormap {name!r}") from None
-            table = torch.from_numpy(cmap.resampled(256)(np.arange(256))[:, :3].astype(np.float64))
-        self.register_buffer("lut", table, persistent=False)
+        self.register_buffer("lut", F.colormap_lut(name), persistent=False)
 
     def check_input(self, x: Any) -> torch.Tensor:
         x = super().check_input(x)
@@ -142,42 +132,35 @@ class Colormap(RadarTransform):
         return x
 
     def transform(self, x: torch.Tensor, params: Params) -> torch.Tensor:
-        n = self.lut.shape[0]
-        idx = (x.squeeze(-3).clamp(0.0, 1.0) * n).to(torch.long).clamp_(max=n - 1)
-        lut = self.lut.to(dtype=x.dtype, device=x.device)
-        return F.embedding(idx, lut).movedim(-1, -3)
+        return F.colormap(x, self.lut)
 
     def extra_spec(self) -> dict[str, Any]:
         return {"cmap": self.name}
 
 
 class Resize(RadarTransform):
-    """Resample the last two dims to ``size`` (bilinear, antialiased when shrinking).
+    """Resample the last two dims to ``size = (height, width)`` (bilinear, antialiased when shrinking).
+
+    The same values as ``torchvision.transforms.v2.Resize((height, width))`` on float tensors.
+    Kernel: :func:`radaraug.transforms.functional.resize`.
 
     Args:
-        size: ``(height, width)``, or one int for a square output (unlike torchvision, an int
-            does not keep the aspect ratio).
+        size: ``(height, width)``. A single int is refused with :class:`~radaraug.errors.ConfigError`:
+            torchvision reads ``Resize(64)`` as "short side 64, keep the aspect ratio", radaraug
+            once read it as 64 x 64; write ``(64, 64)``.
         antialias: low-pass before shrinking (as torchvision v2 does by default).
     """
 
     event_ndim = 2
     input_layout = "an image or map (..., H, W)"
 
-    def __init__(self, size: int | tuple[int, int], antialias: bool = True) -> None:
+    def __init__(self, size: Sequence[int], antialias: bool = True) -> None:
         super().__init__()
-        h, w = (size, size) if isinstance(size, int) else tuple(size)
-        if int(h) < 1 or int(w) < 1:
-            raise RadarAugError(f"Resize: size must be positive, got {size}")
-        self.size = (int(h), int(w))
+        self.size = check_size(size)
         self.antialias = bool(antialias)
 
     def transform(self, x: torch.Tensor, params: Params) -> torch.Tensor:
-        lead = x.shape[:-2]
-        flat = x.reshape(-1, 1, *x.shape[-2:])
-        out = F.interpolate(
-            flat, size=self.size, mode="bilinear", align_corners=False, antialias=self.antialias
-        )
-        return out.reshape(*lead, *self.size)
+        return F.resize(x, self.size, self.antialias)
 
     def extra_spec(self) -> dict[str, Any]:
         return {"size": list(self.size), "antialias": self.antialias}

@@ -23,6 +23,7 @@ from typing import Any
 import numpy as np
 import torch
 
+from radaraug._seeding import mix
 from radaraug.errors import ConfigError
 from radaraug.transforms._rng import use_generator
 
@@ -45,9 +46,12 @@ def check_epoch(epoch: Any, where: str) -> int:
 
 
 def augmentation_seed(seed: int, index: int, epoch: int = 0) -> int:
-    """The 63-bit seed of item ``index``'s augmentation in ``epoch`` (a pure function of the three)."""
-    words = [int(seed) % 2**64, int(index) % 2**64, int(epoch) % 2**64, _TAG]
-    return int(np.random.SeedSequence(words).generate_state(1, np.uint64)[0]) & (2**63 - 1)
+    """The 63-bit seed of item ``index``'s augmentation in ``epoch`` (a pure function of the three).
+
+    :func:`radaraug._seeding.mix` of ``(seed, index, epoch, tag)``: the same SplitMix64 mixer as the
+    simulated items' seeds, with a fourth word so that the two never coincide.
+    """
+    return mix(seed, index, epoch, _TAG)
 
 
 def augmentation_generator(

@@ -17,21 +17,21 @@ when the target moves away (``v > 0``): a positive slow-time frequency ``+2 v / 
 
 from __future__ import annotations
 
-import math
 from typing import Any
 
 import torch
 
 from radaraug.errors import InputTensorError
+from radaraug.transforms import functional as F
 from radaraug.transforms.base import Params, RadarTransform
-from radaraug.transforms.windows import check_window_name, normalized_window, shifted_doppler_window
-
-RAW_LAYOUT = "a raw cube (..., rx, chirps, samples)"
-PROFILE_LAYOUT = "range profiles (..., rx, chirps, range)"
-RD_LAYOUT = "an RD map (..., rx, range, doppler)"
-
-
-FFT_DTYPES = (torch.float32, torch.float64, torch.complex64, torch.complex128)
+from radaraug.transforms.functional._spectral import (
+    COMBINE_MODES,
+    FFT_DTYPES,
+    PROFILE_LAYOUT,
+    RAW_LAYOUT,
+    check_combine_args,
+)
+from radaraug.transforms.windows import check_window_name
 
 
 class _FFTTransform(RadarTransform):
@@ -45,28 +45,21 @@ class _FFTTransform(RadarTransform):
                 f"{type(self).__name__} expects {self.input_layout} of float32 or float64, got {x.dtype} "
                 "(convert with .float())"
             )
+        if x.shape[-1] < 2 and self.input_layout == RAW_LAYOUT:
+            raise InputTensorError(f"{type(self).__name__} needs at least 2 samples per chirp, got {x.shape[-1]}")
         return x
-
-    def forward(self, x: torch.Tensor, *rest: Any) -> Any:
-        x = self.check_input(x)
-        event = x.shape[x.ndim - self.event_ndim:]
-        if x.numel() == 0 and all(d > 0 for d in event):
-            # Some torch builds (MKL FFT in torch 2.14 on CPU) raise on a zero-size batch instead
-            # of returning an empty result: transform one zero event and keep none of it.
-            probe = self.transform(x.new_zeros(event), {})
-            out = probe.expand(*x.shape[: x.ndim - self.event_ndim], *probe.shape).clone()
-        else:
-            out = self.transform(x, {})
-        return (out, *rest) if rest else out
 
 
 class RemoveMean(RadarTransform):
-    """Subtract each chirp's mean over fast time (removes the per-RX ADC DC offset)."""
+    """Subtract each chirp's mean over fast time (removes the per-RX ADC DC offset).
+
+    Kernel: :func:`radaraug.transforms.functional.remove_mean`.
+    """
 
     input_layout = RAW_LAYOUT
 
     def transform(self, x: torch.Tensor, params: Params) -> torch.Tensor:
-        return x - x.mean(dim=-1, keepdim=True)
+        return F.remove_mean(x)
 
 
 class StaticClutterRemoval(RadarTransform):
@@ -75,14 +68,14 @@ class StaticClutterRemoval(RadarTransform):
     Works on a raw cube or on complex range profiles (``(..., rx, chirps, *)``): the operation is
     linear and acts on the chirp axis only, so both give the same RD map. Everything that does not
     change within a frame -- walls, leakage, DC -- ends up exactly in the zero-Doppler bin
-    and is removed.
+    and is removed. Kernel: :func:`radaraug.transforms.functional.static_clutter_removal`.
     """
 
     input_layout = "(..., rx, chirps, samples or range)"
     accepts_complex = True
 
     def transform(self, x: torch.Tensor, params: Params) -> torch.Tensor:
-        return x - x.mean(dim=-2, keepdim=True)
+        return F.static_clutter_removal(x)
 
 
 class RangeFFT(_FFTTransform):
@@ -90,6 +83,7 @@ class RangeFFT(_FFTTransform):
 
     Input ``(..., rx, chirps, samples)`` real; output complex ``(..., rx, chirps, N // 2)``
     (complex64 for float32 input, complex128 for float64).
+    Kernel: :func:`radaraug.transforms.functional.range_fft`.
 
     Args:
         window: ``rect``, ``hann``, ``hamming``, ``blackman`` or ``blackmanharris`` (symmetric).
@@ -102,11 +96,7 @@ class RangeFFT(_FFTTransform):
         self.window = check_window_name(window)
 
     def transform(self, x: torch.Tensor, params: Params) -> torch.Tensor:
-        n = x.shape[-1]
-        if n < 2:
-            raise InputTensorError(f"RangeFFT needs at least 2 samples per chirp, got {n}")
-        w = normalized_window(self.window, n, x.dtype, x.device)
-        return torch.fft.rfft(x * w, dim=-1)[..., : n // 2]
+        return F.range_fft(x, self.window)
 
     def extra_spec(self) -> dict[str, Any]:
         return {"window": self.window}
@@ -117,6 +107,7 @@ class DopplerFFT(_FFTTransform):
 
     Input complex range profiles ``(..., rx, chirps, range)``; output ``(..., rx, range,
     doppler)``, zero velocity at index ``M // 2``, positive index = moving away.
+    Kernel: :func:`radaraug.transforms.functional.doppler_fft`.
 
     Args:
         window: as for :class:`RangeFFT`.
@@ -130,10 +121,7 @@ class DopplerFFT(_FFTTransform):
         self.window = check_window_name(window)
 
     def transform(self, x: torch.Tensor, params: Params) -> torch.Tensor:
-        m = x.shape[-2]
-        w = shifted_doppler_window(self.window, m, x.real.dtype, x.device)
-        # The window carries the fftshift (see shifted_doppler_window): one multiply, one FFT.
-        return torch.fft.fft(x * w[:, None], dim=-2).transpose(-1, -2)
+        return F.doppler_fft(x, self.window)
 
     def extra_spec(self) -> dict[str, Any]:
         return {"window": self.window}
@@ -144,6 +132,7 @@ class RangeDoppler(_FFTTransform):
 
     Equivalent to ``RemoveMean -> StaticClutterRemoval -> RangeFFT -> DopplerFFT`` (the optional
     steps only when enabled) and recorded as that chain in :meth:`chain_spec` comparisons.
+    Kernel: :func:`radaraug.transforms.functional.range_doppler`.
 
     Args:
         range_window: window over samples.
@@ -168,24 +157,7 @@ class RangeDoppler(_FFTTransform):
         self.static_clutter = bool(static_clutter)
 
     def transform(self, x: torch.Tensor, params: Params) -> torch.Tensor:
-        m, n = x.shape[-2], x.shape[-1]
-        if n < 2:
-            raise InputTensorError(f"RangeDoppler needs at least 2 samples per chirp, got {n}")
-        # In-place ops below only touch temporaries made here, never the input.
-        own = False
-        if self.remove_mean:
-            x, own = x - x.mean(dim=-1, keepdim=True), True
-        if self.static_clutter:
-            x, own = x - x.mean(dim=-2, keepdim=True), True
-        wr = normalized_window(self.range_window, n, x.dtype, x.device)
-        wd = shifted_doppler_window(self.doppler_window, m, x.dtype, x.device)
-        if not wd.is_complex():
-            # Both windows real: apply them as one outer product before the 2-D transform.
-            w2 = wd[:, None] * wr
-            spec = torch.fft.rfft2(x.mul_(w2) if own else x * w2, dim=(-2, -1))
-        else:
-            spec = torch.fft.fft(torch.fft.rfft(x * wr, dim=-1) * wd[:, None], dim=-2)
-        return spec[..., : n // 2].transpose(-1, -2)
+        return F.range_doppler(x, self.range_window, self.doppler_window, self.remove_mean, self.static_clutter)
 
     def extra_spec(self) -> dict[str, Any]:
         return {
@@ -200,6 +172,7 @@ class ToDecibels(RadarTransform):
     """``20 * log10(max(|X|, floor))``: complex or magnitude map -> dB (dBFS with this chain).
 
     A real input is taken as a magnitude (its absolute value is used).
+    Kernel: :func:`radaraug.transforms.functional.to_decibels`.
 
     Args:
         floor: smallest magnitude before the log (keeps exact zeros finite: -240 dB by default).
@@ -215,9 +188,7 @@ class ToDecibels(RadarTransform):
         self.floor = float(floor)
 
     def transform(self, x: torch.Tensor, params: Params) -> torch.Tensor:
-        # 10*log10(|X|^2) avoids the square root of abs(); the floor is applied to the power.
-        power = x.real.square().add_(x.imag.square()) if x.is_complex() else x.square()
-        return power.clamp_min_(self.floor * self.floor).log10_().mul_(10.0)
+        return F.to_decibels(x, self.floor)
 
     def extra_spec(self) -> dict[str, Any]:
         return {"floor": self.floor}
@@ -235,6 +206,7 @@ class CombineRx(RadarTransform):
 
     With ``db=True`` the input is a dB map: ``mean_power`` averages ``10**(dB/10)`` and returns
     dB, ``max`` and ``select`` work as is, ``coherent`` is refused (dB has no phase).
+    Kernel: :func:`radaraug.transforms.functional.combine_rx`.
 
     Args:
         mode: one of the modes above.
@@ -243,38 +215,15 @@ class CombineRx(RadarTransform):
     """
 
     accepts_complex = True
-    MODES = ("mean_power", "coherent", "max", "select")
+    MODES = COMBINE_MODES
 
     def __init__(self, mode: str = "mean_power", index: int | None = None, db: bool = False) -> None:
         super().__init__()
-        if mode not in self.MODES:
-            raise InputTensorError(f"CombineRx mode must be one of {self.MODES}, got {mode!r}")
-        if (mode == "select") != (index is not None):
-            raise InputTensorError("CombineRx: give index exactly when mode='select'")
-        if db and mode == "coherent":
-            raise InputTensorError("CombineRx: 'coherent' needs complex maps, not dB (db=True)")
+        check_combine_args(mode, index, db)
         self.mode, self.index, self.db = mode, index, bool(db)
 
     def transform(self, x: torch.Tensor, params: Params) -> torch.Tensor:
-        if self.mode == "select":
-            n_rx = x.shape[-3]
-            if not -n_rx <= self.index < n_rx:
-                raise InputTensorError(f"CombineRx: rx index {self.index} out of range for {n_rx} channels")
-            i = self.index % n_rx
-            return x[..., i : i + 1, :, :]
-        if self.mode == "coherent":
-            return x.mean(dim=-3, keepdim=True)
-        if self.db:
-            if x.is_complex():
-                raise InputTensorError("CombineRx(db=True) got a complex tensor; dB maps are real")
-            if self.mode == "max":
-                return x.amax(dim=-3, keepdim=True)
-            # exp(x * ln(10)/10) is 10**(x/10), several times faster than torch.pow on the CPU.
-            return x.mul(math.log(10.0) / 10.0).exp_().mean(dim=-3, keepdim=True).log10_().mul_(10.0)
-        mag2 = x.real.square() + x.imag.square() if x.is_complex() else x.square()
-        if self.mode == "max":
-            return mag2.amax(dim=-3, keepdim=True).sqrt()
-        return mag2.mean(dim=-3, keepdim=True).sqrt()
+        return F.combine_rx(x, self.mode, self.index, self.db)
 
     def extra_spec(self) -> dict[str, Any]:
         spec: dict[str, Any] = {"mode": self.mode, "db": self.db}

@@ -18,6 +18,9 @@ from radaraug.errors import InputTensorError
 WINDOWS = ("rect", "hann", "hamming", "blackman", "blackmanharris")
 """Names accepted wherever a window is asked for."""
 
+BLACKMAN_HARRIS = [0.35875, 0.48829, 0.14128, 0.01168]
+"""The 4-term Blackman-Harris coefficients ``a_k`` of ``sum_k (-1)**k a_k cos(2 pi k n / (N - 1))``."""
+
 # Half-width of the main lobe in bins for a tone exactly on a bin: the neighbours that can hold
 # energy of a perfectly static target. Used to keep static clutter out of motion checks.
 MAIN_LOBE_HALF_WIDTH_BINS = {"rect": 0, "hann": 1, "hamming": 1, "blackman": 2, "blackmanharris": 3}
@@ -48,9 +51,7 @@ def _window_f64(name: str, n: int) -> torch.Tensor:
     if name == "blackman":
         return torch.blackman_window(n, periodic=False, dtype=torch.float64)
     # 4-term Blackman-Harris (-92 dB sidelobes), coefficients as in scipy.signal.windows.
-    a = (0.35875, 0.48829, 0.14128, 0.01168)
-    phase = 2 * math.pi * torch.arange(n, dtype=torch.float64) / (n - 1)
-    return a[0] - a[1] * torch.cos(phase) + a[2] * torch.cos(2 * phase) - a[3] * torch.cos(3 * phase)
+    return torch.signal.windows.general_cosine(n, a=BLACKMAN_HARRIS, sym=True, dtype=torch.float64)
 
 
 @functools.lru_cache(maxsize=64)

@@ -2,9 +2,11 @@ import matplotlib
 import numpy as np
 import pytest
 import torch
+from torchvision.transforms import v2
 
-from radaraug.errors import InputTensorError, RadarAugError
+from radaraug.errors import ConfigError, InputTensorError, RadarAugError
 from radaraug.transforms import ClipNormalize, Colormap, Resize
+from radaraug.transforms import functional as F
 
 
 def test_clip_normalize_maps_range_to_unit_interval(dtype):
@@ -53,7 +55,25 @@ def test_resize_shape_and_constant():
     y = Resize((224, 224))(x)
     assert y.shape == (2, 3, 224, 224)
     torch.testing.assert_close(y, torch.full_like(y, 0.25))
-    assert Resize(16)(x).shape == (2, 3, 16, 16)
+    assert Resize((16, 16))(x).shape == (2, 3, 16, 16)
+
+
+@pytest.mark.parametrize("size", [16, [16], (16, 0), (16.0, 8), "16", (True, 4)])
+def test_resize_refuses_an_int_and_bad_sizes(size):
+    # An int means 16 x 16 in radaraug's past and "short side 16" in torchvision: refused.
+    with pytest.raises(ConfigError, match=r"\(height, width\)"):
+        Resize(size)
+    with pytest.raises(ConfigError, match=r"\(height, width\)"):
+        F.resize(torch.zeros(1, 4, 4), size)
+
+
+@pytest.mark.parametrize("size", [(224, 224), (5, 9), (64, 20)])
+@pytest.mark.parametrize("antialias", [True, False])
+def test_resize_equals_torchvision_v2_resize(size, antialias):
+    x = torch.rand(2, 3, 32, 24, dtype=torch.float64)
+    ref = v2.functional.resize(x, list(size), antialias=antialias)
+    assert torch.equal(Resize(size, antialias=antialias)(x), ref)
+    assert torch.equal(v2.Resize(size, antialias=antialias)(x), ref)
 
 
 def test_estimate_on_empty_data_is_a_clear_error():

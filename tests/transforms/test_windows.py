@@ -22,6 +22,15 @@ def test_windows_are_numpy_scipy_symmetric_windows(name, n):
     np.testing.assert_allclose(w.numpy(), REFERENCE[name](n), rtol=0, atol=1e-14)
 
 
+@pytest.mark.parametrize("n", [2, 3, 16, 64, 255])
+def test_blackman_harris_is_the_closed_form_in_float64(n):
+    # sum_k (-1)^k a_k cos(2 pi k i / (n - 1)), written out here independently of torch.signal
+    a = (0.35875, 0.48829, 0.14128, 0.01168)
+    i = np.arange(n)
+    ref = sum((-1) ** k * a[k] * np.cos(2 * np.pi * k * i / (n - 1)) for k in range(4))
+    np.testing.assert_allclose(get_window("blackmanharris", n, torch.float64).numpy(), ref, rtol=0, atol=1e-12)
+
+
 def test_noise_power_gain_closed_forms():
     assert noise_power_gain("rect", 50) == pytest.approx(1 / 50)
     # symmetric Hann: sum w = (n-1)/2, sum w^2 = 3(n-1)/8  ->  gain = 3 / (2 (n-1))

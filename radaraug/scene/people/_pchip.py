@@ -50,11 +50,6 @@ class PeriodicPchip:
         self._d = np.stack([pad(ds, np.zeros(k)) for _, _, ds in tables])
         self._cache: dict[tuple[torch.device, torch.dtype], tuple[torch.Tensor, ...]] = {}
 
-    @property
-    def num_curves(self) -> int:
-        """Number of curves ``C``."""
-        return int(self._x.shape[0])
-
     def _tables(self, device: torch.device, dtype: torch.dtype) -> tuple[torch.Tensor, ...]:
         key = (device, dtype)
         if key not in self._cache:

@@ -7,40 +7,29 @@ differences). All functions are vectorized over any leading dims.
 
 from __future__ import annotations
 
+import math
+
 import torch
 
 _AXES = {"x": 0, "y": 1, "z": 2}
 
 
-def axis_rotation(axis: str, angle: torch.Tensor) -> torch.Tensor:
+def axis_rotation(axis: str, angle: torch.Tensor | float) -> torch.Tensor:
     """Right-handed rotation matrices about a coordinate axis.
 
     Args:
         axis: ``"x"``, ``"y"`` or ``"z"``.
-        angle: ``(...)`` radians.
+        angle: ``(...)`` radians, or one Python float (a pose from a config: evaluated on the
+            host with ``math.cos``/``math.sin`` in float64, the values NumPy gives too).
 
     Returns:
-        ``(..., 3, 3)`` rotation matrices.
+        ``(..., 3, 3)`` rotation matrices (``(3, 3)`` float64 on the CPU for a float angle).
     """
-    return _rot_and_derivative(axis, angle, None)[0]
-
-
-def axis_rotation_rate(
-    axis: str, angle: torch.Tensor, rate: torch.Tensor
-) -> tuple[torch.Tensor, torch.Tensor]:
-    """Rotation about a coordinate axis and its time derivative.
-
-    Args:
-        axis: ``"x"``, ``"y"`` or ``"z"``.
-        angle: ``(...)`` radians.
-        rate: ``(...)`` d(angle)/dt in rad/s.
-
-    Returns:
-        ``(R, dR/dt)``, both ``(..., 3, 3)``.
-    """
-    r, d = _rot_and_derivative(axis, angle, rate)
-    assert d is not None
-    return r, d
+    if isinstance(angle, (int, float)):
+        kk, cc, ss = _basis(axis, torch.device("cpu"), torch.float64)
+        return kk + math.cos(angle) * cc + math.sin(angle) * ss
+    kk, cc, ss = _basis(axis, angle.device, angle.dtype)
+    return kk + torch.cos(angle)[..., None, None] * cc + torch.sin(angle)[..., None, None] * ss
 
 
 _BASIS_CACHE: dict[tuple[str, torch.device, torch.dtype], tuple[torch.Tensor, torch.Tensor, torch.Tensor]] = {}
@@ -63,24 +52,12 @@ def _basis(axis: str, device: torch.device, dtype: torch.dtype) -> tuple[torch.T
 def rotation_from_cos_sin(
     axis: str, c: torch.Tensor, s: torch.Tensor, rate: torch.Tensor
 ) -> tuple[torch.Tensor, torch.Tensor]:
-    """Like :func:`axis_rotation_rate` from precomputed ``cos``/``sin`` of the angle (lets a caller
-    evaluate all its trigonometric functions in one batched call)."""
+    """A rotation about a coordinate axis and its time derivative, ``(R, dR/dt)``, from precomputed
+    ``cos``/``sin`` of the angle and its ``rate`` in rad/s (lets a caller evaluate all its
+    trigonometric functions in one batched call)."""
     kk, cc, ss = _basis(axis, c.device, c.dtype)
     c, s, rt = c[..., None, None], s[..., None, None], rate[..., None, None]
     return kk + c * cc + s * ss, (c * rt) * ss - (s * rt) * cc
-
-
-def _rot_and_derivative(
-    axis: str, angle: torch.Tensor, rate: torch.Tensor | None
-) -> tuple[torch.Tensor, torch.Tensor | None]:
-    kk, cc, ss = _basis(axis, angle.device, angle.dtype)
-    c = torch.cos(angle)[..., None, None]
-    s = torch.sin(angle)[..., None, None]
-    r = kk + c * cc + s * ss
-    if rate is None:
-        return r, None
-    rt = rate[..., None, None]
-    return r, (c * rt) * ss - (s * rt) * cc
 
 
 def compose(

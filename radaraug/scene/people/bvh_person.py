@@ -10,6 +10,7 @@ from typing import Any
 import torch
 
 from radaraug.errors import SceneError
+from radaraug.scene.people import _rotations as rot
 from radaraug.scene.people._interp import FrameTrack
 from radaraug.scene.people.bvh import BVHSkeleton, read_bvh
 from radaraug.scene.people.person import SkeletonPerson, as_times, register_person
@@ -154,9 +155,7 @@ class BVHPerson(SkeletonPerson):
             direction = math.atan2(-float(lat[0]), float(lat[1]))  # forward = lateral x up
         self.clip_direction_rad = direction
         a = self.heading_rad - direction
-        rz = torch.tensor(
-            [[math.cos(a), -math.sin(a), 0.0], [math.sin(a), math.cos(a), 0.0], [0.0, 0.0, 1.0]], dtype=torch.float64
-        )
+        rz = rot.axis_rotation("z", a)
         origin = torch.cat([pelvis0, torch.zeros(1, dtype=torch.float64)])
         placed = (joints - origin) @ rz.T + torch.tensor([self.start[0], self.start[1], 0.0], dtype=torch.float64)
         shift = placed[-1, JOINT_INDEX["pelvis"]] - placed[0, JOINT_INDEX["pelvis"]]

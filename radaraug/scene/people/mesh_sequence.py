@@ -12,6 +12,7 @@ import torch
 from radaraug._optional import lazy_import, missing_dependency
 from radaraug.errors import SceneError
 from radaraug.scene.geometry import Ellipsoids, SceneGeometry
+from radaraug.scene.people import _rotations as rot
 from radaraug.scene.people._interp import FrameTrack
 from radaraug.scene.people.person import Person, as_times, register_person
 from radaraug.scene.people.simplify import simplify_mesh
@@ -161,8 +162,8 @@ class MeshSequencePerson(Person):
         x = np.stack(frames) * self.scale
         if up_axis == "y":
             x = x @ _Y_UP_TO_Z_UP.T
-        c, s = np.cos(self.heading_rad), np.sin(self.heading_rad)
-        rz = np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+        rz = rot.axis_rotation("z", float(self.heading_rad)).numpy()
+        c, s = rz[0, 0], rz[1, 0]
         centroid = np.array([*x[0].mean(0)[:2], 0.0])
         x = (x - centroid) @ rz.T + np.array([*self.start, 0.0])
 

@@ -1,0 +1,104 @@
+"""Samples like torchvision v2: a tensor, or any nesting of tuples, lists and dicts (a pytree).
+
+A transform flattens the sample (``torch.utils._pytree.tree_flatten``, as torchvision's
+``Transform.forward`` does), transforms only its *radar leaves* and puts the sample back
+together. The rule, given the transform's accepted kinds and event rank ``k`` (3 for
+``(rx, range, doppler)`` and raw cubes, 2 for image steps):
+
+* a leaf is *eligible* when it is a ``torch.Tensor`` of a real floating dtype (complex too when
+  the transform takes complex input) with at least ``k`` dims;
+* the first eligible leaf in flattening order (dict values in insertion order) is the radar tensor;
+  every further eligible leaf with exactly its shape is a radar leaf too, and gets the *same*
+  random parameters (like torchvision's one crop for an image and its mask);
+* everything else passes through as the same object: integer and bool tensors (labels, counts),
+  tensors with fewer dims (scalar and vector targets), tensors of another shape, numbers,
+  strings, None, NumPy arrays.
+
+A sample with no eligible leaf is an error (:class:`~radaraug.errors.InputTensorError`), not a
+silent pass-through: the message is the transform's own check of the most likely leaf.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import Any
+
+import torch
+from torch import nn
+from torch.utils import _pytree as pytree
+
+from radaraug.errors import InputTensorError
+
+
+def as_sample(inputs: tuple[Any, ...]) -> Any:
+    """The sample of a call ``t(*inputs)``: the one argument, or the tuple of several."""
+    if not inputs:
+        raise InputTensorError("a transform needs a sample: a tensor, or a tuple/list/dict holding one")
+    return inputs if len(inputs) > 1 else inputs[0]
+
+
+def eligible(leaf: Any, min_ndim: int, allow_complex: bool) -> bool:
+    """Whether ``leaf`` can be a radar tensor (see the module docstring)."""
+    return (
+        isinstance(leaf, torch.Tensor)
+        and (leaf.is_floating_point() or (allow_complex and leaf.is_complex()))
+        and leaf.ndim >= min_ndim
+    )
+
+
+def radar_leaves(flat: list[Any], accepts: Callable[[Any], bool]) -> list[int]:
+    """Indices of the radar leaves of a flattened sample (empty when none is eligible)."""
+    first = next((i for i, leaf in enumerate(flat) if accepts(leaf)), None)
+    if first is None:
+        return []
+    shape = flat[first].shape
+    return [first] + [i for i in range(first + 1, len(flat)) if accepts(flat[i]) and flat[i].shape == shape]
+
+
+def most_likely_radar_leaf(flat: list[Any], min_ndim: int) -> Any:
+    """For an error message: the first tensor with at least ``min_ndim`` dims, else the first tensor."""
+    tensors = [leaf for leaf in flat if isinstance(leaf, torch.Tensor)]
+    big = [t for t in tensors if t.ndim >= min_ndim]
+    return (big or tensors or [None])[0]
+
+
+def flatten(sample: Any) -> tuple[list[Any], pytree.TreeSpec]:
+    """``tree_flatten`` of a sample."""
+    return pytree.tree_flatten(sample)
+
+
+def unflatten(flat: list[Any], spec: pytree.TreeSpec) -> Any:
+    """``tree_unflatten``: the sample with its leaves replaced."""
+    return pytree.tree_unflatten(flat, spec)
+
+
+def is_sample_aware(module: Any) -> bool:
+    """Whether ``module`` takes a whole sample (radaraug or torchvision v2 transforms, and
+    ``nn.Sequential``s of them); other modules are given the sample's radar tensors one by one."""
+    from radaraug.transforms.base import RadarTransform
+    from radaraug.transforms.compose import RadarCompose
+
+    if isinstance(module, (RadarTransform, RadarCompose)):
+        return True
+    if isinstance(module, nn.Sequential):
+        return all(is_sample_aware(m) for m in module)
+    # torchvision v2 transforms flatten samples themselves; checked by name so that radaraug
+    # does not import torchvision here.
+    return any(c.__module__.startswith("torchvision.transforms.v2") for c in type(module).__mro__)
+
+
+def apply_to_radar_leaves(fn: Callable[[torch.Tensor], Any], sample: Any, min_ndim: int = 2) -> Any:
+    """``fn`` applied to each radar leaf of ``sample`` (real or complex floating, ``min_ndim``
+    dims); a plain tensor is passed to ``fn`` as is."""
+    if isinstance(sample, torch.Tensor):
+        return fn(sample)
+    flat, spec = flatten(sample)
+    chosen = radar_leaves(flat, lambda leaf: eligible(leaf, min_ndim, True))
+    if not chosen:
+        raise InputTensorError(
+            f"{type(fn).__name__}: the sample ({type(sample).__name__}) holds no floating tensor with at least "
+            f"{min_ndim} dims to transform"
+        )
+    for i in chosen:
+        flat[i] = fn(flat[i])
+    return unflatten(flat, spec)

@@ -1,0 +1,48 @@
+"""The kernels behind radaraug's transforms, as plain functions with explicit parameters.
+
+Like ``torchvision.transforms.v2.functional``: each transform class validates its input, draws its
+random parameters and calls one of these; call them directly when the parameters are yours (a
+fixed noise floor, a known clip range). They take tensors with any leading batch dims, keep dtype
+and device, and never modify their input. They check type, dtype and rank (raising
+:class:`~radaraug.errors.InputTensorError`) but, unlike the classes, do not scan the values for
+NaN/Inf.
+
+Examples:
+    >>> import torch
+    >>> from radaraug.transforms import functional as F
+    >>> cube = 0.01 * torch.randn(4, 3, 64, 256)
+    >>> db = F.to_decibels(F.range_doppler(cube))
+    >>> floor = F.calibrated_floor(db.shape, -100.0, 3.0, like=db)
+    >>> img = F.colormap(F.clip_normalize(F.combine_rx(F.dr_clamp(db, floor), db=True), -120, -40))
+    >>> F.resize(img, (224, 224)).shape
+    torch.Size([4, 3, 224, 224])
+"""
+
+from radaraug.transforms.functional._dr import calibrated_floor, dr_clamp, random_floor
+from radaraug.transforms.functional._image import clip_normalize, colormap, colormap_lut, resize
+from radaraug.transforms.functional._spectral import (
+    combine_rx,
+    doppler_fft,
+    range_doppler,
+    range_fft,
+    remove_mean,
+    static_clutter_removal,
+    to_decibels,
+)
+
+__all__ = [
+    "remove_mean",
+    "static_clutter_removal",
+    "range_fft",
+    "doppler_fft",
+    "range_doppler",
+    "to_decibels",
+    "combine_rx",
+    "dr_clamp",
+    "calibrated_floor",
+    "random_floor",
+    "clip_normalize",
+    "colormap",
+    "colormap_lut",
+    "resize",
+]

@@ -1,0 +1,149 @@
+"""From dB maps to network images: clip + normalize, colormap lookup, resize."""
+
+from __future__ import annotations
+
+import functools
+import math
+from collections.abc import Sequence
+
+import numpy as np
+import torch
+import torch.nn.functional as nnf
+
+from radaraug.errors import ConfigError, InputTensorError, RadarAugError
+from radaraug.transforms._checks import check_tensor
+from radaraug.transforms._viridis import VIRIDIS_RGB
+
+
+def clip_normalize(x: torch.Tensor, vmin: float, vmax: float) -> torch.Tensor:
+    """``(clip(x, vmin, vmax) - vmin) / (vmax - vmin)``: dB map -> [0, 1].
+
+    Args:
+        x: a dB map ``(..., H, W)``, real floating.
+        vmin: dB value mapped to 0 (everything below too).
+        vmax: dB value mapped to 1 (everything above too), > ``vmin``.
+
+    Examples:
+        >>> import torch
+        >>> from radaraug.transforms import functional as F
+        >>> F.clip_normalize(torch.tensor([[-130.0, -75.0, 0.0]]), -110.0, -40.0).tolist()
+        [[0.0, 0.5, 1.0]]
+    """
+    vmin, vmax = check_clip_range(vmin, vmax)
+    x = check_tensor(x, "clip_normalize expects a dB map (..., H, W)", min_ndim=2, finite=False)
+    return (x.clamp(vmin, vmax) - vmin) * (1.0 / (vmax - vmin))
+
+
+def check_clip_range(vmin: float, vmax: float) -> tuple[float, float]:
+    """``(vmin, vmax)`` as floats if finite with ``vmin < vmax``, else :class:`RadarAugError`."""
+    vmin, vmax = float(vmin), float(vmax)
+    if not (math.isfinite(vmin) and math.isfinite(vmax)) or vmax <= vmin:
+        raise RadarAugError(f"ClipNormalize: need finite vmin < vmax, got {vmin}, {vmax}")
+    return vmin, vmax
+
+
+@functools.lru_cache(maxsize=16)
+def _lut_f64(name: str) -> torch.Tensor:
+    if name == "viridis":
+        return torch.tensor(VIRIDIS_RGB, dtype=torch.float64)
+    import matplotlib
+
+    try:
+        cmap = matplotlib.colormaps[name]
+    except KeyError:
+        raise RadarAugError(f"Colormap: unknown colormap {name!r}") from None
+    return torch.from_numpy(cmap.resampled(256)(np.arange(256))[:, :3].astype(np.float64))
+
+
+def colormap_lut(name: str = "viridis") -> torch.Tensor:
+    """The 256-entry RGB table ``(256, 3)`` (float64) of a colormap.
+
+    ``viridis`` ships with radaraug; any other name is read from matplotlib.
+
+    Raises:
+        RadarAugError: an unknown name.
+
+    Examples:
+        >>> from radaraug.transforms import functional as F
+        >>> F.colormap_lut("viridis").shape
+        torch.Size([256, 3])
+    """
+    return _lut_f64(str(name)).clone()
+
+
+def colormap(x: torch.Tensor, cmap: str | torch.Tensor = "viridis") -> torch.Tensor:
+    """One-channel map in [0, 1] ``(..., 1, H, W)`` -> RGB ``(..., 3, H, W)`` through a lookup table.
+
+    Matches ``matplotlib.colormaps[name](x)[..., :3]``: entry ``floor(K x)`` of a ``K``-entry
+    table, x = 1 mapped to the last entry; values outside [0, 1] are clipped first.
+
+    Args:
+        x: ``(..., 1, H, W)``, real floating (combine RX channels first).
+        cmap: a colormap name (see :func:`colormap_lut`) or a ``(K, 3)`` table.
+
+    Examples:
+        >>> import torch
+        >>> from radaraug.transforms import functional as F
+        >>> rgb = F.colormap(torch.tensor([[[0.0, 1.0]]]))
+        >>> rgb.shape, torch.allclose(rgb[:, 0, 1], F.colormap_lut()[-1].float())
+        (torch.Size([3, 1, 2]), True)
+    """
+    x = check_tensor(x, "colormap expects a one-channel map (..., 1, H, W) in [0, 1]", finite=False)
+    if x.shape[-3] != 1:
+        raise InputTensorError(
+            f"Colormap expects one channel (..., 1, H, W), got {x.shape[-3]} in shape {tuple(x.shape)}; "
+            "combine the RX channels first (CombineRx)"
+        )
+    lut = colormap_lut(cmap) if isinstance(cmap, str) else cmap
+    if not (isinstance(lut, torch.Tensor) and lut.ndim == 2 and lut.shape[1] == 3 and lut.shape[0] >= 1):
+        raise InputTensorError(f"colormap: cmap must be a name or a (K, 3) tensor, got {cmap!r}")
+    n = lut.shape[0]
+    idx = (x.squeeze(-3).clamp(0.0, 1.0) * n).to(torch.long).clamp_(max=n - 1)
+    return nnf.embedding(idx, lut.to(dtype=x.dtype, device=x.device)).movedim(-1, -3)
+
+
+def check_size(size: object, what: str = "Resize") -> tuple[int, int]:
+    """``(height, width)`` as ints, else :class:`ConfigError`.
+
+    A single int is refused: torchvision reads ``Resize(64)`` as "short side 64, keep the aspect
+    ratio" while radaraug once read it as 64 x 64; asking for the pair avoids both traps.
+    """
+    if isinstance(size, (int, np.integer)) and not isinstance(size, bool):
+        raise ConfigError(
+            f"{what}: size must be (height, width), got the int {size}; write ({size}, {size}) for a square "
+            "output (torchvision would read an int as the short side, keeping the aspect ratio)"
+        )
+    if not isinstance(size, Sequence) or isinstance(size, str) or len(size) != 2:
+        raise ConfigError(f"{what}: size must be (height, width), got {size!r}")
+    h, w = size
+    if any(isinstance(v, bool) or not isinstance(v, (int, np.integer)) or v < 1 for v in (h, w)):
+        raise ConfigError(f"{what}: size must be two positive ints (height, width), got {size!r}")
+    return int(h), int(w)
+
+
+def resize(x: torch.Tensor, size: Sequence[int], antialias: bool = True) -> torch.Tensor:
+    """Resample the last two dims to ``size = (height, width)`` (bilinear, antialiased when shrinking).
+
+    The same values as ``torchvision.transforms.v2.functional.resize(x, [height, width])`` on a
+    float tensor (bilinear, ``antialias=True``).
+
+    Args:
+        x: an image or map ``(..., H, W)``, real floating.
+        size: ``(height, width)``; an int is refused (see :func:`check_size`).
+        antialias: low-pass before shrinking (as torchvision v2 does by default).
+
+    Raises:
+        ConfigError: ``size`` is not two positive ints.
+
+    Examples:
+        >>> import torch
+        >>> from radaraug.transforms import functional as F
+        >>> F.resize(torch.full((3, 64, 32), 0.25), (224, 224)).shape
+        torch.Size([3, 224, 224])
+    """
+    size = check_size(size, "resize")
+    x = check_tensor(x, "resize expects an image or map (..., H, W)", min_ndim=2, finite=False)
+    lead = x.shape[:-2]
+    flat = x.reshape(-1, 1, *x.shape[-2:])
+    out = nnf.interpolate(flat, size=size, mode="bilinear", align_corners=False, antialias=bool(antialias))
+    return out.reshape(*lead, *size)

@@ -1,0 +1,299 @@
+"""Range-Doppler kernels: mean removal, MTI, range/Doppler FFTs, dB conversion, RX combination.
+
+Conventions as in :mod:`radaraug.transforms.spectral` (``radaraug.units.DB_CONVENTION``): each FFT
+is divided by its window sum (dBFS), only the ``N // 2`` positive range bins are kept, and the
+Doppler axis is centred (zero velocity at index ``M // 2``, positive index = moving away).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+
+import torch
+
+from radaraug.errors import InputTensorError
+from radaraug.transforms._checks import check_tensor
+from radaraug.transforms.windows import check_window_name, normalized_window, shifted_doppler_window
+
+RAW_LAYOUT = "a raw cube (..., rx, chirps, samples)"
+PROFILE_LAYOUT = "range profiles (..., rx, chirps, range)"
+FFT_DTYPES = (torch.float32, torch.float64, torch.complex64, torch.complex128)
+COMBINE_MODES = ("mean_power", "coherent", "max", "select")
+
+
+def check_fft_input(x: object, what: str, layout: str, *, allow_complex: bool) -> torch.Tensor:
+    """:func:`~radaraug.transforms._checks.check_tensor` (no value test) plus the FFT dtypes.
+
+    Args:
+        x: the input.
+        what: the caller's name, for the message.
+        layout: the layout it expects, for the message.
+        allow_complex: accept complex input.
+    """
+    x = check_tensor(x, f"{what} expects {layout}", allow_complex=allow_complex, finite=False)
+    if x.dtype not in FFT_DTYPES:
+        # torch's FFTs refuse half precision on the CPU (and on CUDA for most sizes).
+        raise InputTensorError(f"{what} expects {layout} of float32 or float64, got {x.dtype} (convert with .float())")
+    return x
+
+
+def _event_wise(kernel: Callable[[torch.Tensor], torch.Tensor], x: torch.Tensor) -> torch.Tensor:
+    """``kernel(x)``, also for an empty batch of non-empty 3-dim events.
+
+    Some torch builds (MKL FFT in torch 2.14 on CPU) raise on a zero-size batch instead of
+    returning an empty result: transform one zero event and keep none of it.
+    """
+    event = x.shape[x.ndim - 3 :]
+    if x.numel() == 0 and all(d > 0 for d in event):
+        probe = kernel(x.new_zeros(event))
+        return probe.expand(*x.shape[: x.ndim - 3], *probe.shape).clone()
+    return kernel(x)
+
+
+def remove_mean(x: torch.Tensor) -> torch.Tensor:
+    """Subtract each chirp's mean over fast time (removes the per-RX ADC DC offset).
+
+    Args:
+        x: raw cube ``(..., rx, chirps, samples)``, real floating.
+
+    Returns:
+        A new tensor of the same shape.
+
+    Examples:
+        >>> import torch
+        >>> from radaraug.transforms import functional as F
+        >>> F.remove_mean(torch.full((1, 2, 4), 0.25)).abs().max().item()
+        0.0
+    """
+    x = check_tensor(x, f"remove_mean expects {RAW_LAYOUT}", finite=False)
+    return x - x.mean(dim=-1, keepdim=True)
+
+
+def static_clutter_removal(x: torch.Tensor) -> torch.Tensor:
+    """Moving-target indication: subtract the mean over chirps of each sample (or range bin).
+
+    Linear and acting on the chirp axis only, so it gives the same RD map on a raw cube as on
+    complex range profiles; everything constant within a frame ends up in zero Doppler, removed.
+
+    Args:
+        x: ``(..., rx, chirps, samples or range)``, real or complex floating.
+
+    Returns:
+        A new tensor of the same shape and dtype.
+
+    Examples:
+        >>> import torch
+        >>> from radaraug.transforms import functional as F
+        >>> wall = torch.linspace(-1, 1, 8).expand(1, 4, 8)   # the same chirp 4 times
+        >>> F.static_clutter_removal(wall).abs().max().item()
+        0.0
+    """
+    x = check_tensor(x, "static_clutter_removal expects (..., rx, chirps, samples or range)",
+                     allow_complex=True, finite=False)
+    return x - x.mean(dim=-2, keepdim=True)
+
+
+def range_fft(x: torch.Tensor, window: str = "hann") -> torch.Tensor:
+    """Window over samples, real FFT, keep the ``N // 2`` positive bins, divide by the window sum.
+
+    Args:
+        x: raw cube ``(..., rx, chirps, samples)``, float32 or float64, at least 2 samples.
+        window: one of :data:`~radaraug.transforms.windows.WINDOWS` (symmetric).
+
+    Returns:
+        Complex range profiles ``(..., rx, chirps, N // 2)`` (complex64 for float32 input).
+
+    Examples:
+        A full-scale tone on bin 8 reads ``|X| = 1/2`` (-6.02 dBFS):
+
+        >>> import math, torch
+        >>> from radaraug.transforms import functional as F
+        >>> n = torch.arange(64, dtype=torch.float64)
+        >>> tone = torch.cos(2 * math.pi * 8 * n / 64).expand(1, 1, 64)
+        >>> round(F.range_fft(tone, "rect")[0, 0, 8].abs().item(), 6)
+        0.5
+    """
+    window = check_window_name(window)
+    x = check_fft_input(x, "range_fft", RAW_LAYOUT, allow_complex=False)
+    n = x.shape[-1]
+    if n < 2:
+        raise InputTensorError(f"range_fft needs at least 2 samples per chirp, got {n}")
+
+    def kernel(v: torch.Tensor) -> torch.Tensor:
+        w = normalized_window(window, n, v.dtype, v.device)
+        return torch.fft.rfft(v * w, dim=-1)[..., : n // 2]
+
+    return _event_wise(kernel, x)
+
+
+def doppler_fft(x: torch.Tensor, window: str = "hann") -> torch.Tensor:
+    """Window over chirps, FFT, divide by the window sum, centre zero Doppler (fftshift).
+
+    Args:
+        x: complex range profiles ``(..., rx, chirps, range)`` (complex64/128, or float32/64).
+        window: as for :func:`range_fft`.
+
+    Returns:
+        The RD map ``(..., rx, range, doppler)``: zero velocity at index ``M // 2``.
+
+    Examples:
+        Profiles that do not change over chirps (a static target) land in bin ``M // 2``:
+
+        >>> import torch
+        >>> from radaraug.transforms import functional as F
+        >>> rd = F.doppler_fft(torch.ones(1, 16, 4, dtype=torch.complex128))
+        >>> rd.shape, rd[0, 0].abs().argmax().item()
+        (torch.Size([1, 4, 16]), 8)
+    """
+    window = check_window_name(window)
+    x = check_fft_input(x, "doppler_fft", PROFILE_LAYOUT, allow_complex=True)
+
+    def kernel(v: torch.Tensor) -> torch.Tensor:
+        m = v.shape[-2]
+        w = shifted_doppler_window(window, m, v.real.dtype, v.device)
+        # The window carries the fftshift (see shifted_doppler_window): one multiply, one FFT.
+        return torch.fft.fft(v * w[:, None], dim=-2).transpose(-1, -2)
+
+    return _event_wise(kernel, x)
+
+
+def range_doppler(
+    x: torch.Tensor,
+    range_window: str = "hann",
+    doppler_window: str = "hann",
+    remove_mean: bool = True,
+    static_clutter: bool = False,
+) -> torch.Tensor:
+    """Raw cube -> complex RD map: [mean removal] -> [MTI] -> range FFT -> Doppler FFT, in one pass.
+
+    Equals ``doppler_fft(range_fft(static_clutter_removal(remove_mean(x))))`` with the optional
+    steps only when enabled; both windows, the dBFS scaling and the fftshift are folded into one
+    multiply before ``rfft2``.
+
+    Args:
+        x: raw cube ``(..., rx, chirps, samples)``, float32 or float64, at least 2 samples.
+        range_window: window over samples.
+        doppler_window: window over chirps.
+        remove_mean: subtract each chirp's mean (DC offset) first.
+        static_clutter: subtract the mean over chirps (MTI).
+
+    Returns:
+        Complex RD map ``(..., rx, N // 2, M)``.
+
+    Examples:
+        >>> import torch
+        >>> from radaraug.transforms import functional as F
+        >>> cube = 0.01 * torch.randn(2, 3, 64, 256)        # (frames, rx, chirps, samples)
+        >>> rd = F.range_doppler(cube)
+        >>> rd.shape, rd.dtype
+        (torch.Size([2, 3, 128, 64]), torch.complex64)
+    """
+    range_window, doppler_window = check_window_name(range_window), check_window_name(doppler_window)
+    x = check_fft_input(x, "range_doppler", RAW_LAYOUT, allow_complex=False)
+    n = x.shape[-1]
+    if n < 2:
+        raise InputTensorError(f"range_doppler needs at least 2 samples per chirp, got {n}")
+
+    def kernel(v: torch.Tensor) -> torch.Tensor:
+        m = v.shape[-2]
+        # In-place ops below only touch temporaries made here, never the input.
+        own = False
+        if remove_mean:
+            v, own = v - v.mean(dim=-1, keepdim=True), True
+        if static_clutter:
+            v, own = v - v.mean(dim=-2, keepdim=True), True
+        wr = normalized_window(range_window, n, v.dtype, v.device)
+        wd = shifted_doppler_window(doppler_window, m, v.dtype, v.device)
+        if not wd.is_complex():
+            # Both windows real: apply them as one outer product before the 2-D transform.
+            w2 = wd[:, None] * wr
+            spec = torch.fft.rfft2(v.mul_(w2) if own else v * w2, dim=(-2, -1))
+        else:
+            spec = torch.fft.fft(torch.fft.rfft(v * wr, dim=-1) * wd[:, None], dim=-2)
+        return spec[..., : n // 2].transpose(-1, -2)
+
+    return _event_wise(kernel, x)
+
+
+def to_decibels(x: torch.Tensor, floor: float = 1e-12) -> torch.Tensor:
+    """``20 * log10(max(|X|, floor))``: complex or magnitude map -> dB (dBFS with radaraug's chain).
+
+    Args:
+        x: complex map, or a real map taken as a magnitude (its absolute value is used).
+        floor: smallest magnitude before the log, > 0 (keeps exact zeros finite: -240 dB).
+
+    Returns:
+        A real tensor of ``x``'s shape (float64 for complex128 / float64 input).
+
+    Examples:
+        >>> import torch
+        >>> from radaraug.transforms import functional as F
+        >>> F.to_decibels(torch.tensor([1.0, 0.1, 0.0], dtype=torch.float64)).tolist()
+        [0.0, -20.0, -240.0]
+    """
+    if not floor > 0:
+        raise InputTensorError(f"to_decibels: floor must be > 0, got {floor}")
+    x = check_tensor(x, "to_decibels expects a complex or magnitude map", min_ndim=0,
+                     allow_complex=True, finite=False)
+    floor = float(floor)
+    # 10*log10(|X|^2) avoids the square root of abs(); the floor is applied to the power.
+    power = x.real.square().add_(x.imag.square()) if x.is_complex() else x.square()
+    return power.clamp_min_(floor * floor).log10_().mul_(10.0)
+
+
+def check_combine_args(mode: str, index: int | None, db: bool) -> None:
+    """Raise :class:`InputTensorError` for an invalid :func:`combine_rx` setting."""
+    if mode not in COMBINE_MODES:
+        raise InputTensorError(f"CombineRx mode must be one of {COMBINE_MODES}, got {mode!r}")
+    if (mode == "select") != (index is not None):
+        raise InputTensorError("CombineRx: give index exactly when mode='select'")
+    if db and mode == "coherent":
+        raise InputTensorError("CombineRx: 'coherent' needs complex maps, not dB (db=True)")
+
+
+def combine_rx(x: torch.Tensor, mode: str = "mean_power", index: int | None = None, db: bool = False) -> torch.Tensor:
+    """Combine the RX channels of an RD map into one, keeping an rx dim of size 1.
+
+    Modes, on linear maps (complex or magnitude): ``"mean_power"`` ``sqrt(mean_rx |X|**2)``,
+    ``"coherent"`` ``mean_rx X``, ``"max"`` ``max_rx |X|``, ``"select"`` channel ``index``. With
+    ``db=True`` the input is a dB map: ``mean_power`` averages ``10**(dB/10)`` and returns dB,
+    ``max`` and ``select`` work as is, ``coherent`` is refused (dB has no phase).
+
+    Args:
+        x: RD map ``(..., rx, range, doppler)``.
+        mode: one of the modes above.
+        index: the channel for ``"select"`` (negative counts from the end).
+        db: the input is in dB.
+
+    Returns:
+        ``(..., 1, range, doppler)``.
+
+    Examples:
+        >>> import torch
+        >>> from radaraug.transforms import functional as F
+        >>> db = torch.tensor([-100.0, -100.0, -100.0], dtype=torch.float64).reshape(3, 1, 1)
+        >>> round(F.combine_rx(db, db=True).item(), 9)
+        -100.0
+    """
+    check_combine_args(mode, index, db)
+    x = check_tensor(x, "combine_rx expects an RD map (..., rx, range, doppler)", allow_complex=True, finite=False)
+    if mode == "select":
+        n_rx = x.shape[-3]
+        if not -n_rx <= index < n_rx:  # type: ignore[operator]  # index is set in "select" mode
+            raise InputTensorError(f"CombineRx: rx index {index} out of range for {n_rx} channels")
+        i = index % n_rx  # type: ignore[operator]
+        return x[..., i : i + 1, :, :]
+    if mode == "coherent":
+        return x.mean(dim=-3, keepdim=True)
+    if db:
+        if x.is_complex():
+            raise InputTensorError("CombineRx(db=True) got a complex tensor; dB maps are real")
+        if mode == "max":
+            return x.amax(dim=-3, keepdim=True)
+        # exp(x * ln(10)/10) is 10**(x/10), several times faster than torch.pow on the CPU.
+        return x.mul(math.log(10.0) / 10.0).exp_().mean(dim=-3, keepdim=True).log10_().mul_(10.0)
+    mag2 = x.real.square() + x.imag.square() if x.is_complex() else x.square()
+    if mode == "max":
+        return mag2.amax(dim=-3, keepdim=True).sqrt()
+    return mag2.mean(dim=-3, keepdim=True).sqrt()
