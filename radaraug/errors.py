@@ -15,6 +15,8 @@ exception                          raised when
 :class:`CalibrationError`          a calibration (CalibratedDR JSON, twin profile) is
                                    unreadable or does not fit the data it is applied to
 :class:`SceneError`                a scene description or mesh is invalid
+:class:`DeviceError`               a radar board cannot be found, opened or read (USB backend
+                                   missing, no permission, SDK not installed, board unplugged)
 =================================  ==========================================================
 """
 
@@ -43,3 +45,7 @@ class CalibrationError(RadarAugError):
 
 class SceneError(RadarAugError):
     """A scene description, mesh or motion file is invalid."""
+
+
+class DeviceError(RadarAugError):
+    """A radar board cannot be found, opened, configured or read (live capture)."""
