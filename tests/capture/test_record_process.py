@@ -18,6 +18,7 @@ import h5py
 import numpy as np
 
 from radaraug.capture import VirtualSensor
+from radaraug.cli import main
 from radaraug.config import RadarConfig
 from radaraug.errors import CaptureError
 from radaraug.io import RadarCaptureDataset, open_capture
@@ -101,7 +102,7 @@ def test_sigint_ends_with_a_complete_closed_file_and_status_130(tmp_path, cfg_fi
         assert np.array_equal(cap.read(as_float=False).numpy(), _stream(cfg_file, n))
 
 
-def test_full_disk_and_unwritable_path_fail_before_recording(tmp_path, cfg_file) -> None:
+def test_full_disk_and_unwritable_path_fail_before_recording(tmp_path, cfg_file, capsys) -> None:
     def run(*argv, limit=None):
         pre = FULL_DISK.format(limit=limit) if limit else ""
         return subprocess.run([sys.executable, "-c", pre + CLI, *argv], capture_output=True, text=True, cwd=REPO,
@@ -112,6 +113,7 @@ def test_full_disk_and_unwritable_path_fail_before_recording(tmp_path, cfg_file)
     assert r.returncode == 3, r.stderr
     assert "not enough space" in r.stderr and "ulimit -f" in r.stderr and "nothing was written" in r.stderr
     (tmp_path / "file").write_text("x")
-    r = run(*base, "--seconds", "1", "-o", str(tmp_path / "file" / "out.h5"))
-    assert r.returncode == 3 and r.stderr.startswith("error: ") and r.stderr.count("\n") == 1
+    assert main([*base, "--seconds", "1", "-o", str(tmp_path / "file" / "out.h5")]) == 3  # in this process
+    err = capsys.readouterr().err
+    assert err.startswith("error: ") and "cannot create its folder" in err and err.count("\n") == 1
     assert sorted(p.name for p in tmp_path.iterdir()) == ["cfg.json", "file"]
