@@ -19,6 +19,7 @@ from typing import Any, NamedTuple
 import torch
 
 from radaraug.config import RadarConfig
+from radaraug.errors import DeviceError
 
 
 class Frame(NamedTuple):
@@ -77,8 +78,6 @@ class RadarDevice(abc.ABC):
         Raises:
             DeviceError: the device is not started, or reading failed (e.g. a board unplugged).
         """
-        from radaraug.errors import DeviceError
-
         if not self._running:
             raise DeviceError(f"{self.info.get('name', type(self).__name__)}: not started; call start() first")
         return self._read()

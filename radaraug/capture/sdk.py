@@ -22,6 +22,7 @@ streaming (e.g. the board was unplugged) ends the stream with a DeviceError.
 
 from __future__ import annotations
 
+import importlib
 import time
 from typing import Any
 
@@ -48,8 +49,14 @@ def _import_sdk() -> tuple[Any, Any]:
         from ifxradarsdk.fmcw import DeviceFmcw
         from ifxradarsdk.fmcw import types as fmcw_types
     except ImportError as e:
-        if getattr(e, "name", None) in (None, SDK_MODULE) or SDK_MODULE in str(e):
+        try:
+            importlib.import_module(SDK_MODULE)
+        except ImportError:
             raise DeviceError(SDK_MISSING) from None
+        missing = getattr(e, "name", None) or ""
+        if missing.startswith(SDK_MODULE + "."):
+            raise DeviceError(f"the installed {SDK_MODULE} has no '{missing}' (radaraug needs the SDK's FMCW API, "
+                              f"Radar SDK 3.x): {e}") from None
         raise DeviceError(f"the installed {SDK_MODULE} cannot be imported ({e})") from None
     return DeviceFmcw, fmcw_types
 

@@ -93,10 +93,12 @@ class VirtualSensor(RadarDevice):
 
     @property
     def info(self) -> dict[str, Any]:
+        if self.profile is None or isinstance(self.profile, (str, os.PathLike)):
+            profile = None if self.profile is None else str(self.profile)
+        else:
+            profile = "given as an object"
         return {"kind": "virtual", "name": f"virtual sensor ({self.scene.name})", "scene": self.scene.name,
-                "seed": self.seed, "realtime": self.realtime, "block_frames": BLOCK_FRAMES,
-                "profile": None if self.profile is None else str(self.profile) if isinstance(
-                    self.profile, (str, os.PathLike)) else "given"}
+                "seed": self.seed, "realtime": self.realtime, "block_frames": BLOCK_FRAMES, "profile": profile}
 
     def frames(self, start: int, stop: int) -> torch.Tensor:
         """Frames ``[start, stop)`` of this sensor's stream, ``(n, rx, chirps, samples)`` SDK floats,

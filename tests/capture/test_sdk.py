@@ -136,3 +136,10 @@ def test_a_frame_of_the_wrong_shape_is_refused(sdk, cfg, tmp_path) -> None:
     sdk(shape=(1, 2, 3))
     with pytest.raises(DeviceError, match=r"shape \(1, 2, 3\)"):
         record(SdkDevice(cfg), tmp_path / "s.h5", frames=2)
+
+
+def test_an_sdk_without_the_fmcw_api_is_named(monkeypatch, cfg) -> None:
+    monkeypatch.setitem(sys.modules, "ifxradarsdk", types.ModuleType("ifxradarsdk"))  # e.g. a 2.x SDK
+    monkeypatch.setitem(sys.modules, "ifxradarsdk.fmcw", None)
+    with pytest.raises(DeviceError, match="has no 'ifxradarsdk.fmcw'.*FMCW API"):
+        SdkDevice(cfg).start()
