@@ -17,6 +17,9 @@ Sub-commands::
     radaraug reproduce [--quick] [--seeds N] [--calibration C] [--test PATH[:COUNT] ...] -o OUT [--json]
     radaraug make-proxy -o DIR [--frames-per-count N] [--json]   the held-out proxy test set
     radaraug diagnose CAPTURE [--scene SCENE] -o REPORT_DIR [--json]   twin vs capture, fitted twin profile
+    radaraug devices [--json] [--udev-rule]     Infineon radar boards on USB
+    radaraug capture --device auto|virtual|SERIAL [--config C] --seconds S -o out.h5 [--label N] [--json]
+    radaraug calibrate --device auto|virtual|SERIAL -o cdr.json [--keep-recording PATH] [--json]
 
 ``--json`` (every command but ``train``): one JSON object on stdout, snake_case keys, paths as
 strings, units in the key names (``_s``, ``_db``, ``_m``); anything else the command prints
@@ -33,7 +36,7 @@ Exit status (never a traceback for any of these):
 4     a package a feature needs is not installed
       (:class:`~radaraug.errors.DependencyNotFoundError`); one line ``error: <message>`` on
       stderr naming the package and the ``pip`` command that installs it
-130   interrupted (Ctrl-C)
+130   interrupted (Ctrl-C); ``capture`` first closes its file cleanly with every frame so far
 141   stdout was closed early (``radaraug trace --json | head -1``): the output stops quietly
 ====  ======================================================================================
 """
@@ -303,6 +306,81 @@ def _cmd_diagnose(args: argparse.Namespace) -> int:
     return 0
 
 
+def _live_device(args: argparse.Namespace):
+    """The device of ``capture`` / ``calibrate`` from their arguments (nothing opened yet)."""
+    from radaraug.capture import open_device
+    from radaraug.config import RadarConfig
+
+    config = RadarConfig.from_json(args.config) if args.config else None
+    if args.device != "virtual" and (args.scene != "corridor" or args.profile):
+        raise ConfigError("--scene and --profile are for --device virtual")
+    return open_device(args.device, config, scene=args.scene, profile=args.profile, seed=args.seed,
+                       realtime=args.realtime)
+
+
+def _cmd_devices(args: argparse.Namespace) -> int:
+    from radaraug.capture.devices import PERMISSION_DENIED, find_boards, permission_help, udev_rule_path
+
+    if args.udev_rule:
+        print(udev_rule_path().read_text(encoding="utf-8"), end="")
+        return 0
+    boards = find_boards()
+    denied = any(b.access == PERMISSION_DENIED for b in boards)
+    if args.json:
+        print(json.dumps({"boards": [b.to_dict() for b in boards], "permission_denied": denied}))
+        return 0
+    if not boards:
+        print("no Infineon radar board found on USB (vendor 0x058b: MCU7, V9, PSoC6 kit); "
+              "check the cable, or record without one: radaraug capture --device virtual")
+        return 0
+    for b in boards:
+        serial = b.serial or "serial unreadable"
+        print(f"{b.name:24s} {b.vendor_id:04x}:{b.product_id:04x}  bus {b.bus} address {b.address}  {serial}"
+              f"{'' if b.access == 'ok' else f'  ({b.access})'}")
+    if denied:
+        print(permission_help(), file=sys.stderr)
+    return 0
+
+
+def _print_record(result, as_json: bool) -> None:
+    if as_json:
+        print(json.dumps(result.to_dict()))
+        return
+    rate = result.frames / result.seconds if result.seconds > 0 else float("nan")
+    where = result.path if result.path is not None else "no file (no frame recorded)"
+    print(f"{where}: {result.frames} frames in {result.seconds:.1f} s ({rate:.1f} frames/s), "
+          f"{result.dropped} dropped{', interrupted' if result.interrupted else ''}")
+
+
+def _cmd_capture(args: argparse.Namespace) -> int:
+    from radaraug.capture import record
+
+    result = record(_live_device(args), args.output, seconds=args.seconds, label=args.label,
+                    overwrite=args.overwrite, progress=not args.no_progress)
+    _print_record(result, args.json)
+    if result.interrupted:
+        print(f"interrupted: {result.path} is complete and closed" if result.path else "interrupted",
+              file=sys.stderr)
+        return EXIT_INTERRUPTED
+    return 0
+
+
+def _cmd_calibrate(args: argparse.Namespace) -> int:
+    from radaraug.capture import calibrate
+
+    run = calibrate(_live_device(args), args.output, seconds=args.seconds, keep_recording=args.keep_recording,
+                    overwrite=args.overwrite, progress=not args.no_progress)
+    cdr = run.cdr
+    if args.json:
+        print(json.dumps({"output": str(run.output), "mean_db": cdr.mean_db, "std_db": cdr.std_db,
+                          "motion_fraction": cdr.motion, "recording": run.recording.to_dict()}))
+    else:
+        kept = f"; recording kept in {run.recording.path}" if args.keep_recording else ""
+        print(f"CalibratedDR: m_t = {cdr.mean_db:.2f} dB, s_t = {cdr.std_db:.2f} dB from {run.recording.frames} "
+              f"empty-room frames (motion {100 * cdr.motion:.3f} %) -> {run.output}{kept}")
+    return 0
+
+
 class _DefaultsShown(argparse.ArgumentDefaultsHelpFormatter):
     """Help with "(default: X)" for options that have a default (not for None or flags)."""
 
@@ -410,6 +488,44 @@ def build_parser() -> argparse.ArgumentParser:
     dia.add_argument("--no-figures", action="store_true", help="skip the figures (faster)")
     dia.add_argument("--json", action="store_true", help="print the held-out errors, effects added and output paths as one JSON object")
     dia.set_defaults(func=_cmd_diagnose)
+
+    dev = sub.add_parser("devices", help="list Infineon radar boards on USB (docs/capture.md)")
+    dev.add_argument("--json", action="store_true", help="print one JSON object")
+    dev.add_argument("--udev-rule", action="store_true",
+                     help="print the udev rule that lets users open the boards (Linux) and exit")
+    dev.set_defaults(func=_cmd_devices)
+
+    def live(parser: argparse.ArgumentParser, seconds: float) -> None:
+        parser.add_argument("--device", default="auto",
+                            help="'auto' (first board, through Infineon's ifxradarsdk), 'virtual' (the digital "
+                            "twin) or a board's serial")
+        parser.add_argument("--config", default=None,
+                            help="radar config JSON (radaraug or Infineon config.json; default: the scene's "
+                            "for virtual, the BGT60TR13C preset for a board)")
+        parser.add_argument("--seconds", type=float, default=seconds, help="how long to record")
+        parser.add_argument("--scene", default="corridor", help="virtual: scene file or built-in scene name")
+        parser.add_argument("--profile", default=None, help="virtual: twin profile JSON (from radaraug diagnose)")
+        parser.add_argument("--seed", type=int, default=0, help="virtual: noise seed (frames are a pure "
+                            "function of seed and frame index)")
+        parser.add_argument("--realtime", action=argparse.BooleanOptionalAction, default=True,
+                            help="virtual: hand frames out at the config's frame rate (--no-realtime: as fast "
+                            "as the twin simulates)")
+        parser.add_argument("--overwrite", action="store_true", help="replace an existing recording")
+        parser.add_argument("--no-progress", action="store_true", help="no progress bar")
+        parser.add_argument("--json", action="store_true", help="print the result as one JSON object")
+
+    cap = sub.add_parser("capture", help="record a board or the virtual sensor into a radaraug HDF5 capture")
+    live(cap, 10.0)
+    cap.add_argument("-o", "--output", required=True, help="radaraug HDF5 capture to write")
+    cap.add_argument("--label", type=int, default=None,
+                     help="people count of the whole recording (per-frame 'count' and 'occupancy' labels)")
+    cap.set_defaults(func=_cmd_capture)
+
+    cal = sub.add_parser("calibrate", help="record the empty room and fit CalibratedDR in one step")
+    live(cal, 10.0)
+    cal.add_argument("-o", "--output", required=True, help="calibration JSON to write")
+    cal.add_argument("--keep-recording", default=None, metavar="PATH", help="also keep the recording here (.h5)")
+    cal.set_defaults(func=_cmd_calibrate)
     return p
 
 

@@ -15,6 +15,8 @@ exception                          raised when
 :class:`CalibrationError`          a calibration (CalibratedDR JSON, twin profile) is
                                    unreadable or does not fit the data it is applied to
 :class:`SceneError`                a scene description or mesh is invalid
+:class:`DeviceError`               a radar board cannot be found, opened or read (USB backend
+                                   missing, no permission, SDK not installed, board unplugged)
 =================================  ==========================================================
 
 One error is about the environment, not the input: :class:`DependencyNotFoundError` (a
@@ -57,3 +59,7 @@ class DependencyNotFoundError(ModuleNotFoundError):
     ``except ImportError`` handlers keep working), not a :class:`RadarAugError`: the input is
     fine, the environment lacks something.
     """
+
+
+class DeviceError(RadarAugError):
+    """A radar board cannot be found, opened, configured or read (live capture)."""

@@ -481,6 +481,15 @@ class CaptureWriter:
             release_writer_lock(self._lock_fd)
             self._lock_fd = None
 
+    def discard(self) -> None:
+        """Close a writer that never appended a frame without giving the file its name: nothing
+        is left behind (a file already at the path stays as it was). A writer that has appended
+        is closed as by :meth:`close` (its frames are kept)."""
+        if self._started or self._file is None:
+            self.close()
+            return
+        self._abort()
+
     def __enter__(self) -> CaptureWriter:
         return self
 

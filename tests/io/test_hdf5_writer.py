@@ -204,3 +204,15 @@ def test_append_accepts_counts_on_any_device(tmp_path, tiny_config, device):
     path = write_capture(tmp_path / "dev.h5", counts, tiny_config)
     with open_capture(path) as cap:
         np.testing.assert_array_equal(cap.read(as_float=False).numpy(), pattern_counts(tiny_config, 3))
+
+
+def test_discard_leaves_nothing_before_the_first_frame_and_keeps_frames_after(tmp_path, tiny_config) -> None:
+    path = tmp_path / "d.h5"
+    path.write_text("earlier file")
+    CaptureWriter(path, tiny_config).discard()  # nothing appended: the earlier file stays, no temporary left
+    assert path.read_text() == "earlier file" and sorted(p.name for p in tmp_path.iterdir()) == ["d.h5"]
+    w = CaptureWriter(path, tiny_config)
+    w.append(frame_pattern(tiny_config, 0))
+    w.discard()  # appended: closed as by close(), the frame is kept
+    with open_capture(path) as cap:
+        assert cap.num_frames == 1

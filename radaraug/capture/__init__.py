@@ -1,0 +1,69 @@
+"""Live capture: find boards on USB, record crash-safely, calibrate in one step, a virtual sensor.
+
+* :class:`RadarDevice`: what every live source offers (``config``, ``info``, ``start()``,
+  ``next_frame()``, ``stop()``, a context manager); :class:`Frame` is one frame.
+* :class:`VirtualSensor`: the digital twin as a device (tests, and users without a board).
+* :class:`SdkDevice`: a real Infineon board through Infineon's ``ifxradarsdk`` (optional,
+  installed from Infineon; untested on hardware in this project's CI).
+* :func:`find_boards`: Infineon radar boards on USB (pyusb).
+* :func:`open_device`: ``"virtual"``, ``"auto"`` or a serial -> a device.
+* :func:`record`: a device -> a radaraug HDF5 capture (:class:`~radaraug.io.CaptureWriter`).
+* :func:`calibrate`: record the empty room and fit ``CalibratedDR`` in one step.
+
+See ``docs/capture.md``.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from radaraug.capture.base import Frame, RadarDevice
+from radaraug.capture.calibrate import CalibrationRun, calibrate
+from radaraug.capture.devices import BOARDS, INFINEON_VENDOR_ID, UsbBoard, find_boards, udev_rule_path
+from radaraug.capture.record import RecordResult, record
+from radaraug.capture.sdk import SdkDevice
+from radaraug.capture.virtual import VirtualSensor
+from radaraug.config import RadarConfig
+
+
+def open_device(
+    spec: str,
+    config: RadarConfig | None = None,
+    *,
+    scene: Any = "corridor",
+    profile: Any = None,
+    seed: int = 0,
+    realtime: bool = True,
+) -> RadarDevice:
+    """A device from a ``--device`` value (nothing is opened until ``start()``).
+
+    Args:
+        spec: ``"virtual"`` (the twin), ``"auto"`` (the first board the SDK finds) or a board's
+            serial/UUID.
+        config: radar config (virtual default: the scene's; boards: ``RadarConfig.bgt60tr13c()``).
+        scene, profile, seed, realtime: the virtual sensor's settings (ignored for boards).
+
+    Raises:
+        DeviceError: a MIMO config for a board. SceneError: an unknown scene (virtual).
+    """
+    if spec == "virtual":
+        return VirtualSensor(scene, config=config, profile=profile, seed=seed, realtime=realtime)
+    return SdkDevice(config or RadarConfig.bgt60tr13c(), serial=None if spec == "auto" else spec)
+
+
+__all__ = [
+    "BOARDS",
+    "CalibrationRun",
+    "INFINEON_VENDOR_ID",
+    "Frame",
+    "RadarDevice",
+    "RecordResult",
+    "SdkDevice",
+    "UsbBoard",
+    "VirtualSensor",
+    "calibrate",
+    "find_boards",
+    "open_device",
+    "record",
+    "udev_rule_path",
+]

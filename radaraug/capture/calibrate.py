@@ -1,0 +1,122 @@
+"""One-step calibration: record the empty room from a device and fit `CalibratedDR` on it.
+
+The fit is :meth:`CalibratedDR.fit <radaraug.transforms.CalibratedDR.fit>` on the recording,
+exactly what ``radaraug fit-cdr`` does with a file, and the emptiness test is the motion check
+that fit already runs (:mod:`radaraug.transforms._motion`). Where ``fit-cdr`` only warns, this
+refuses: a calibration of a room that was not empty is not written, and the message gives the
+measured motion fraction against the threshold.
+"""
+
+from __future__ import annotations
+
+import os
+import tempfile
+import warnings
+from dataclasses import dataclass
+from pathlib import Path
+
+from radaraug.capture.base import RadarDevice
+from radaraug.capture.record import RecordResult, record
+from radaraug.errors import CalibrationError
+from radaraug.transforms import CalibratedDR
+from radaraug.transforms._motion import DEFAULT_THRESHOLD_DB, MIN_FRAMES, WARN_FRACTION
+
+CALIBRATION_SECONDS = 10.0
+"""The empty-room sequence's length (the paper's 10 s, ~100 frames at 10 Hz)."""
+
+
+@dataclass
+class CalibrationRun:
+    """What :func:`calibrate` did.
+
+    Attributes:
+        cdr: the fitted calibration (also saved to ``output``).
+        output: the calibration JSON written.
+        recording: the recording's :class:`~radaraug.capture.record.RecordResult` (its ``path``
+            is None unless the recording was kept).
+    """
+
+    cdr: CalibratedDR
+    output: Path
+    recording: RecordResult
+
+
+def calibrate(
+    device: RadarDevice,
+    output: str | os.PathLike,
+    *,
+    seconds: float = CALIBRATION_SECONDS,
+    keep_recording: str | os.PathLike | None = None,
+    overwrite: bool = False,
+    motion_threshold_db: float = DEFAULT_THRESHOLD_DB,
+    progress: bool = False,
+) -> CalibrationRun:
+    """Record ``seconds`` of the empty room from ``device``, fit CalibratedDR, save it to ``output``.
+
+    Args:
+        device: a :class:`RadarDevice`, not started.
+        output: the calibration JSON (``CalibratedDR.load(output)`` reads it).
+        seconds: length of the empty-room recording.
+        keep_recording: also keep the recording as this ``.h5`` capture (else it is deleted).
+        overwrite: replace an existing ``keep_recording`` file.
+        motion_threshold_db: threshold of the motion check (see :mod:`radaraug.transforms._motion`).
+        progress: show the recording's progress bar.
+
+    Returns:
+        A :class:`CalibrationRun`.
+
+    Raises:
+        CalibrationError: the room was not empty (motion above the threshold), the recording
+            has too few frames to check it (fewer than 16), or ``output`` cannot be written
+            (checked before recording).
+        CaptureError, DeviceError, ConfigError: as :func:`~radaraug.capture.record.record`.
+        KeyboardInterrupt: Ctrl-C during the recording (nothing is fitted or written; a kept
+            recording holds the frames so far).
+    """
+    output = Path(output)
+    _check_writable(output)
+    if keep_recording is not None:
+        rec_path, temporary = Path(keep_recording), False
+    else:
+        rec_path, temporary = output.with_name(f".{output.name}.{os.getpid()}.recording.h5"), True
+    try:
+        rec = record(device, rec_path, seconds=seconds, progress=progress, overwrite=overwrite or temporary)
+        if rec.interrupted:
+            raise KeyboardInterrupt
+        if rec.path is None:
+            raise CalibrationError(f"{output}: the device gave no frame; nothing to calibrate")
+        with warnings.catch_warnings():
+            # The motion warning of fit() becomes the refusal below.
+            warnings.filterwarnings("ignore", message=".*should be an empty scene.*", category=UserWarning)
+            cdr = CalibratedDR.fit(rec_path, motion_threshold_db=motion_threshold_db)
+    finally:
+        if temporary:
+            rec_path.unlink(missing_ok=True)
+    if cdr.motion is None:
+        raise CalibrationError(
+            f"{output}: {rec.frames} frames are too few to check that the room is empty (the motion check needs "
+            f"at least {MIN_FRAMES}); record longer (--seconds); nothing was written"
+        )
+    if cdr.motion > WARN_FRACTION:
+        raise CalibrationError(
+            f"{output}: the room is not empty: {100 * cdr.motion:.2f} % of the range-Doppler cells off zero Doppler "
+            f"are > {motion_threshold_db:g} dB above their own median over the {rec.frames} frames (threshold "
+            f"{100 * WARN_FRACTION:g} %; noise and static clutter alone give ~0 %): something moved. Leave the "
+            "room, stop fans and anything that moves, and run again; nothing was written"
+        )
+    cdr.source = str(rec_path) if not temporary else f"radaraug calibrate ({device.info.get('name', 'device')})"
+    cdr.save(output)
+    return CalibrationRun(cdr, output, rec)
+
+
+def _check_writable(output: Path) -> None:
+    """Refuse an output the calibration could not be saved to, before 10 s of recording."""
+    folder = output.parent
+    if output.is_dir():
+        raise CalibrationError(f"cannot write calibration file {output}: is a folder")
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+        with tempfile.NamedTemporaryFile(dir=folder, prefix=f".{output.name}.", suffix=".check"):
+            pass
+    except OSError as e:
+        raise CalibrationError(f"cannot write calibration file {output}: {e.strerror or e}") from None

@@ -1,0 +1,219 @@
+"""Record a live device into a radaraug HDF5 capture, crash-safely.
+
+The recording goes through :class:`~radaraug.io.CaptureWriter` (config written first, SWMR, a
+flush and a committed frame count per frame), so a crash, a ``kill -9`` or an unplugged board
+loses at most the frame in flight and leaves a file that opens with every earlier frame.
+
+Order of a run, so that whatever can be refused is refused before the device is touched:
+
+1. the output is checked: an existing file is refused (unless ``overwrite``), its folder is
+   created, the writer creates its hidden temporary file (an unwritable path fails here) and
+   checks that the run's frames fit the free space and ``ulimit -f``;
+2. only then is the device started, and frames stream into the file until the requested number
+   of frame periods has passed, the user presses Ctrl-C, or the device fails.
+
+Ctrl-C (SIGINT) is caught between frames (when recording in the main thread): the frame being
+written is finished, the file is closed cleanly and the result says ``interrupted``.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import signal
+import threading
+import time
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from radaraug.capture.base import RadarDevice
+from radaraug.errors import CaptureError, ConfigError, DeviceError
+from radaraug.io import CaptureWriter
+from radaraug.units import float_to_counts
+
+
+@dataclass
+class RecordResult:
+    """What a recording did.
+
+    Attributes:
+        path: the capture file (None when no frame was recorded and no file was written).
+        frames: frames written.
+        dropped: frames the device dropped (gaps in its frame indices).
+        requested: frame periods asked for.
+        seconds: wall time of the streaming, seconds.
+        interrupted: stopped early by Ctrl-C (the file is complete and closed all the same).
+        device: the device's ``info``.
+    """
+
+    path: Path | None
+    frames: int
+    dropped: int
+    requested: int
+    seconds: float
+    interrupted: bool
+    device: dict[str, Any]
+
+    def to_dict(self) -> dict[str, Any]:
+        """Plain JSON types."""
+        return {"path": None if self.path is None else str(self.path), "frames": self.frames,
+                "dropped": self.dropped, "requested": self.requested, "seconds": round(self.seconds, 3),
+                "frame_rate_Hz": round(self.frames / self.seconds, 3) if self.seconds > 0 else None,
+                "interrupted": self.interrupted, "device": self.device}
+
+
+def frames_for(seconds: float, frame_period_s: float) -> int:
+    """Frame periods in ``seconds`` (at least 1).
+
+    Raises:
+        ConfigError: ``seconds`` not a positive finite number.
+    """
+    if isinstance(seconds, bool) or not isinstance(seconds, (int, float)) or not math.isfinite(seconds) or seconds <= 0:
+        raise ConfigError(f"seconds must be a positive number, got {seconds!r}")
+    return max(1, math.ceil(seconds / frame_period_s - 1e-9))
+
+
+def record(
+    device: RadarDevice,
+    path: str | os.PathLike,
+    *,
+    seconds: float | None = None,
+    frames: int | None = None,
+    label: int | None = None,
+    overwrite: bool = False,
+    progress: bool = False,
+    compression: str | None = "gzip",
+    attrs: dict[str, Any] | None = None,
+    catch_sigint: bool = True,
+) -> RecordResult:
+    """Stream ``device`` into a new capture at ``path``.
+
+    Args:
+        device: a :class:`RadarDevice`, not started (it is started and stopped here).
+        path: the ``.h5`` capture to write.
+        seconds: how long to record (converted to frame periods of the device's config).
+        frames: or how many frame periods to record (give one of the two).
+        label: people count of the whole recording: stored per frame as ``count`` and
+            ``occupancy`` (``count > 0``), the labels ``radaraug reproduce --test`` and the
+            recipes read.
+        overwrite: replace an existing file at ``path`` (else it is refused).
+        progress: show a progress bar (frames, rate, dropped frames) on stderr.
+        compression: ``"gzip"``, ``"lzf"`` or None (see :class:`~radaraug.io.CaptureWriter`).
+        attrs: extra file attributes.
+        catch_sigint: end cleanly on Ctrl-C (only in the main thread; elsewhere a
+            KeyboardInterrupt propagates and the writer still closes the file).
+
+    Returns:
+        A :class:`RecordResult`.
+
+    Raises:
+        ConfigError: bad ``seconds``/``frames``/``label``.
+        CaptureError: the output exists (without ``overwrite``), cannot be created, or its
+            frames do not fit the free space: all before the device is started; or a write fails
+            later (the file keeps the frames completed before).
+        DeviceError: the device cannot be started, or fails while streaming (the file keeps the
+            frames recorded before; the message says how many).
+    """
+    config = device.config
+    if (seconds is None) == (frames is None):
+        raise ConfigError("record: give seconds or frames (one of them)")
+    n = frames_for(seconds, config.frame_repetition_time_s) if seconds is not None else frames
+    if isinstance(n, bool) or not isinstance(n, int) or n < 1:
+        raise ConfigError(f"record: frames must be a positive integer, got {frames!r}")
+    if label is not None and (isinstance(label, bool) or not isinstance(label, int) or label < 0):
+        raise ConfigError(f"record: label must be a people count (integer >= 0), got {label!r}")
+    path = Path(path)
+    if (path.exists() or path.is_symlink()) and not overwrite:
+        raise CaptureError(f"{path}: exists; choose another output or pass --overwrite to replace it")
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+    except OSError as e:
+        raise CaptureError(f"{path}: cannot create its folder {path.parent} ({e.strerror or e})") from None
+    info = device.info
+    file_attrs = {"source": "radaraug capture", "description": f"recorded from {info.get('name', 'a device')}",
+                  "device": info, **(attrs or {})}
+    if label is not None:
+        file_attrs["label_count"] = label  # also file-level, for tools that read one label per file
+    schema = {"count": "int64", "occupancy": "int64"} if label is not None else None
+    # Step 1: everything about the output, before the device is touched.
+    writer = CaptureWriter(path, config, labels_schema=schema, compression=compression, attrs=file_attrs,
+                           expected_frames=n)
+    stop = _StopFlag(catch_sigint)
+    written = dropped = 0
+    last = -1
+    bar = None
+    t_start = time.monotonic()
+    try:
+        with stop:
+            try:
+                device.start()
+            except BaseException:
+                writer.discard()
+                raise
+            try:
+                if progress:
+                    from tqdm.auto import tqdm
+
+                    bar = tqdm(total=n, desc=f"capture {path.name}", unit="frame", mininterval=0.5)
+                t_start, unix0 = time.monotonic(), time.time()
+                labels = None if label is None else {"count": label, "occupancy": int(label > 0)}
+                while not stop.requested:
+                    frame = device.next_frame()
+                    if frame.index >= n:
+                        dropped += max(0, n - last - 1)
+                        break
+                    dropped += max(0, frame.index - last - 1)
+                    last = frame.index
+                    writer.append(float_to_counts(frame.data, config.adc_bits), timestamp=unix0 + frame.timestamp,
+                                  labels=labels)
+                    written += 1
+                    if bar is not None:
+                        bar.update(frame.index + 1 - bar.n)
+                        bar.set_postfix(dropped=dropped, refresh=False)
+                    if frame.index == n - 1:
+                        break
+            finally:
+                device.stop()
+                if bar is not None:
+                    bar.close()
+    except DeviceError as e:
+        _finish(writer, written)
+        kept = f"; {path} keeps the {written} frames recorded before" if written else "; no frame was recorded"
+        raise DeviceError(f"{e}{kept}") from None
+    except BaseException:
+        _finish(writer, written)
+        raise
+    elapsed = time.monotonic() - t_start
+    kept = _finish(writer, written)
+    return RecordResult(path if kept else None, written, dropped, n, elapsed, stop.requested, info)
+
+
+def _finish(writer: CaptureWriter, written: int) -> bool:
+    """Close the writer; a run without a frame leaves no file. Whether a file was kept."""
+    if written == 0:
+        writer.discard()
+        return False
+    writer.close()
+    return True
+
+
+class _StopFlag:
+    """While active, SIGINT sets ``requested`` instead of raising (main thread only)."""
+
+    def __init__(self, enabled: bool) -> None:
+        self.enabled = enabled and threading.current_thread() is threading.main_thread()
+        self.requested = False
+        self._old: Any = None
+
+    def _handler(self, signum: int, frame: Any) -> None:
+        self.requested = True
+
+    def __enter__(self) -> _StopFlag:
+        if self.enabled:
+            self._old = signal.signal(signal.SIGINT, self._handler)
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        if self.enabled:
+            signal.signal(signal.SIGINT, self._old)

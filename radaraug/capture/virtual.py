@@ -1,0 +1,168 @@
+"""`VirtualSensor`: the digital twin as a live radar device, for tests and for users without a board.
+
+The sensor plays a scene continuously, as ``radaraug simulate`` does: frame ``k`` starts at
+``k * frame_repetition_time``, the people walk on from their start positions, and frames are
+simulated in blocks of :data:`BLOCK_FRAMES` whose receiver noise comes from a generator seeded by
+``(seed, block)`` (:func:`radaraug.sim.seeding.item_generator`, the same stream ``simulate``
+uses). Frame ``k`` is therefore a pure function of (scene, config, profile, seed, ``k``): two
+sensors with the same settings give identical frames, and they equal the frames of
+``radaraug simulate`` with the same scene and seed.
+
+Pacing: with ``realtime=True`` frame ``k`` is handed out when a real sensor would have it, at
+``k * frame_period + chirps * chirp_repetition_time`` after :meth:`start` (its last chirp's end);
+with ``realtime=False`` as fast as the twin simulates. When the twin is slower than real time the
+frames come late, never dropped (:attr:`VirtualSensor.late_s` says by how much).
+"""
+
+from __future__ import annotations
+
+import os
+import time
+from typing import Any
+
+import torch
+
+from radaraug.capture.base import Frame, RadarDevice
+from radaraug.config import RadarConfig
+from radaraug.scene.scene import Scene
+from radaraug.sim.seeding import item_generator
+
+BLOCK_FRAMES = 16
+"""Frames simulated per twin call; the same block size as ``radaraug simulate`` (so the streams agree)."""
+
+_NOISE_STREAM = 2  # the receiver-noise stream of radaraug.sim.offline
+
+
+class VirtualSensor(RadarDevice):
+    """The digital twin as a :class:`RadarDevice`.
+
+    Example:
+        >>> with VirtualSensor("corridor", realtime=False) as sensor:  # doctest: +SKIP
+        ...     frame = sensor.next_frame()        # Frame(data (3, 64, 256), timestamp 0.0, index 0)
+
+    Args:
+        scene: a :class:`~radaraug.scene.scene.Scene`, a scene file or a built-in scene name
+            (default ``"corridor"``: the paper's empty corridor).
+        config: the radar config to simulate (default: the scene's).
+        profile: a fitted twin profile (object, JSON path or dict from ``radaraug diagnose``).
+        seed: noise seed; frame ``k`` depends only on the settings and ``(seed, k)``.
+        realtime: hand frames out at the sensor's frame rate (True) or as fast as possible.
+        device: torch device the twin simulates on (frames are returned on the CPU).
+        twin_options: more keyword arguments of :class:`~radaraug.sim.twin.DigitalTwin`.
+
+    Raises:
+        SceneError: unknown or invalid scene. ConfigError: an invalid config.
+    """
+
+    def __init__(
+        self,
+        scene: Scene | str | os.PathLike = "corridor",
+        *,
+        config: RadarConfig | None = None,
+        profile: Any = None,
+        seed: int = 0,
+        realtime: bool = True,
+        device: str = "cpu",
+        twin_options: dict[str, Any] | None = None,
+    ) -> None:
+        from radaraug.errors import ConfigError
+        from radaraug.sim.dataset import load_scene
+
+        super().__init__()
+        self.scene = load_scene(scene)
+        if config is not None and not isinstance(config, RadarConfig):
+            raise ConfigError(f"VirtualSensor: config must be a RadarConfig, got {type(config).__name__}")
+        if isinstance(seed, bool) or not isinstance(seed, int):
+            raise ConfigError(f"VirtualSensor: seed must be an integer, got {seed!r}")
+        self._config = config or self.scene.config
+        self.profile = profile
+        self.seed = seed
+        self.realtime = bool(realtime)
+        self.device = device
+        self.twin_options = dict(twin_options or {})
+        self._twin = None
+        self._block: tuple[int, torch.Tensor] | None = None
+        self._next = 0
+        self._t0 = 0.0
+        self.late_s = 0.0
+        """How late the last frame came against real time (realtime mode; 0 when on time)."""
+
+    @property
+    def config(self) -> RadarConfig:
+        return self._config
+
+    @property
+    def info(self) -> dict[str, Any]:
+        if self.profile is None or isinstance(self.profile, (str, os.PathLike)):
+            profile = None if self.profile is None else str(self.profile)
+        else:
+            profile = "given as an object"
+        return {"kind": "virtual", "name": f"virtual sensor ({self.scene.name})", "scene": self.scene.name,
+                "seed": self.seed, "realtime": self.realtime, "block_frames": BLOCK_FRAMES, "profile": profile}
+
+    def frames(self, start: int, stop: int) -> torch.Tensor:
+        """Frames ``[start, stop)`` of this sensor's stream, ``(n, rx, chirps, samples)`` SDK floats,
+        without pacing (for checking a recording against the stream it came from)."""
+        self._ensure_twin()
+        out = [self._frame(k) for k in range(start, stop)]
+        return torch.stack(out) if out else torch.empty(0, *self._shape())
+
+    # ------------------------------------------------------------------ RadarDevice
+    def _open(self) -> None:
+        self._ensure_twin()
+        # The room's trace and the first block before the clock starts, as a board is
+        # configured before its first frame.
+        self._frame(0)
+        self._next = 0
+        self.late_s = 0.0
+        self._t0 = time.monotonic()
+
+    def _read(self) -> Frame:
+        k = self._next
+        data = self._frame(k)
+        period = self.config.frame_repetition_time_s
+        if self.realtime:
+            ready = self._t0 + k * period + self.config.num_chirps_per_frame * self.config.chirp_repetition_time_s
+            wait = ready - time.monotonic()
+            if wait > 0:
+                time.sleep(wait)
+            self.late_s = max(0.0, -wait)
+        self._next = k + 1
+        return Frame(data, k * period, k)
+
+    def _close(self) -> None:
+        self._block = None  # the twin (and its traced room) stays: a restart is quick
+
+    # ------------------------------------------------------------------ simulation
+    def _shape(self) -> tuple[int, int, int]:
+        c = self.config
+        return (c.num_rx, c.num_chirps_per_frame, c.num_samples_per_chirp)
+
+    def _ensure_twin(self) -> None:
+        if self._twin is None:
+            from radaraug.sim.twin import DigitalTwin
+
+            options = dict(self.twin_options)
+            if self.profile is not None:
+                options["profile"] = self.profile
+            self._twin = DigitalTwin(self.scene, config=self.config, device=self.device, **options)
+
+    def _frame(self, k: int) -> torch.Tensor:
+        block = k // BLOCK_FRAMES
+        if self._block is None or self._block[0] != block:
+            self._block = (block, self._simulate_block(block))
+        return self._block[1][k - block * BLOCK_FRAMES]
+
+    def _simulate_block(self, block: int) -> torch.Tensor:
+        twin = self._twin
+        assert twin is not None
+        first = block * BLOCK_FRAMES
+        times = torch.arange(first, first + BLOCK_FRAMES, dtype=torch.float64) * self.config.frame_repetition_time_s
+        gen = item_generator(self.seed, block, stream=_NOISE_STREAM, device=self.device)
+        with torch.no_grad():
+            x = twin.simulate(self.scene.people, times, generators=gen)
+        return x.detach().to("cpu", torch.float32).contiguous()
+
+    def __repr__(self) -> str:
+        mode = "realtime" if self.realtime else "fast"
+        return f"VirtualSensor({self.scene.name!r}, seed={self.seed}, {mode})"
