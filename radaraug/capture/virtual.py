@@ -66,10 +66,10 @@ class VirtualSensor(RadarDevice):
         twin_options: dict[str, Any] | None = None,
     ) -> None:
         from radaraug.errors import ConfigError
-        from radaraug.sim.dataset import load_scene
+        from radaraug.scene.scene import Scene
 
         super().__init__()
-        self.scene = load_scene(scene)
+        self.scene = Scene.load(scene)
         if config is not None and not isinstance(config, RadarConfig):
             raise ConfigError(f"VirtualSensor: config must be a RadarConfig, got {type(config).__name__}")
         if isinstance(seed, bool) or not isinstance(seed, int):

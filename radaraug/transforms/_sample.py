@@ -74,11 +74,13 @@ def unflatten(flat: list[Any], spec: pytree.TreeSpec) -> Any:
 
 def is_sample_aware(module: Any) -> bool:
     """Whether ``module`` takes a whole sample (radaraug or torchvision v2 transforms, and
-    ``nn.Sequential``s of them); other modules are given the sample's radar tensors one by one."""
-    from radaraug.transforms.base import RadarTransform
-    from radaraug.transforms.compose import RadarCompose
+    ``nn.Sequential``s of them); other modules are given the sample's radar tensors one by one.
 
-    if isinstance(module, (RadarTransform, RadarCompose)):
+    radaraug's own sample-aware modules (``RadarTransform``, ``RadarCompose``) say so with a class
+    attribute ``takes_samples = True`` (read here instead of importing their classes, which import
+    this module).
+    """
+    if getattr(module, "takes_samples", False) is True:
         return True
     if isinstance(module, nn.Sequential):
         return all(is_sample_aware(m) for m in module)

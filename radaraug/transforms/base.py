@@ -50,6 +50,8 @@ class RadarTransform(nn.Module):
     input_layout: str = "(..., rx, range, doppler)"
     #: accept complex input.
     accepts_complex: bool = False
+    #: Takes whole samples (tuples, dicts) itself (read by ``_sample.is_sample_aware``).
+    takes_samples: bool = True
 
     def check_input(self, x: Any) -> torch.Tensor:
         """Validate the input (rank, dtype, NaN/Inf) and return it."""

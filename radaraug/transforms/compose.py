@@ -39,6 +39,9 @@ class RadarCompose(nn.Module):
         CalibrationError: a DR step in the wrong place or after a different chain.
     """
 
+    #: Takes whole samples (tuples, dicts) itself (read by ``_sample.is_sample_aware``).
+    takes_samples: bool = True
+
     def __init__(self, transforms: Sequence[nn.Module]) -> None:
         super().__init__()
         if isinstance(transforms, nn.Module) or not isinstance(transforms, Sequence):
