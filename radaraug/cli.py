@@ -45,13 +45,13 @@ from __future__ import annotations
 
 import argparse
 import contextlib
-import functools
 import json
 import math
 import os
 import sys
 from collections.abc import Iterator, Sequence
 from pathlib import Path
+from typing import Any
 
 from radaraug.errors import ConfigError, DependencyNotFoundError, RadarAugError
 
@@ -377,7 +377,7 @@ def _cmd_calibrate(args: argparse.Namespace) -> int:
     else:
         kept = f"; recording kept in {run.recording.path}" if args.keep_recording else ""
         print(f"CalibratedDR: m_t = {cdr.mean_db:.2f} dB, s_t = {cdr.std_db:.2f} dB from {run.recording.frames} "
-              f"empty-room frames (motion {100 * cdr.motion:.3f} %) -> {run.output}{kept}")
+              f"empty-room frames (motion {100 * (cdr.motion or 0.0):.3f} %) -> {run.output}{kept}")
     return 0
 
 
@@ -390,6 +390,14 @@ class _DefaultsShown(argparse.ArgumentDefaultsHelpFormatter):
         return super()._get_help_string(action)
 
 
+class _SubcommandParser(argparse.ArgumentParser):
+    """A subcommand's parser: its --help shows the defaults."""
+
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        kwargs.setdefault("formatter_class", _DefaultsShown)
+        super().__init__(*args, **kwargs)
+
+
 def build_parser() -> argparse.ArgumentParser:
     """The argument parser (exposed for docs and tests)."""
     from radaraug import __version__
@@ -397,8 +405,7 @@ def build_parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(prog="radaraug", description=__doc__.split("\n")[0])
     p.add_argument("--version", action="version", version=f"radaraug {__version__}")
     # Every subcommand's --help shows the defaults.
-    sub = p.add_subparsers(dest="command", required=True, parser_class=functools.partial(
-        argparse.ArgumentParser, formatter_class=_DefaultsShown))
+    sub = p.add_subparsers(dest="command", required=True, parser_class=_SubcommandParser)
 
     info = sub.add_parser("info", help="summarize a capture (radaraug .h5 or Infineon recording folder)")
     info.add_argument("path", help="radaraug .h5 capture or Infineon recording folder")

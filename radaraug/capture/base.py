@@ -14,7 +14,8 @@ in the indices is a frame the device dropped (a host that did not read in time).
 from __future__ import annotations
 
 import abc
-from typing import Any, NamedTuple
+import dataclasses
+from typing import Any
 
 import torch
 
@@ -22,7 +23,8 @@ from radaraug.config import RadarConfig
 from radaraug.errors import DeviceError
 
 
-class Frame(NamedTuple):
+@dataclasses.dataclass(frozen=True)
+class Frame:
     """One frame from a :class:`RadarDevice`.
 
     Attributes:

@@ -179,8 +179,8 @@ def record(
                     bar.close()
     except DeviceError as e:
         _finish(writer, written)
-        kept = f"; {path} keeps the {written} frames recorded before" if written else "; no frame was recorded"
-        raise DeviceError(f"{e}{kept}") from None
+        note = f"; {path} keeps the {written} frames recorded before" if written else "; no frame was recorded"
+        raise DeviceError(f"{e}{note}") from None
     except BaseException:
         _finish(writer, written)
         raise

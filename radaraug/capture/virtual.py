@@ -18,7 +18,7 @@ from __future__ import annotations
 
 import os
 import time
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import torch
 
@@ -26,6 +26,9 @@ from radaraug.capture.base import Frame, RadarDevice
 from radaraug.config import RadarConfig
 from radaraug.scene.scene import Scene
 from radaraug.sim.seeding import item_generator
+
+if TYPE_CHECKING:
+    from radaraug.sim.twin import DigitalTwin
 
 BLOCK_FRAMES = 16
 """Frames simulated per twin call; the same block size as ``radaraug simulate`` (so the streams agree)."""
@@ -66,7 +69,6 @@ class VirtualSensor(RadarDevice):
         twin_options: dict[str, Any] | None = None,
     ) -> None:
         from radaraug.errors import ConfigError
-        from radaraug.scene.scene import Scene
 
         super().__init__()
         self.scene = Scene.load(scene)
@@ -80,7 +82,7 @@ class VirtualSensor(RadarDevice):
         self.realtime = bool(realtime)
         self.device = device
         self.twin_options = dict(twin_options or {})
-        self._twin = None
+        self._twin: DigitalTwin | None = None
         self._block: tuple[int, torch.Tensor] | None = None
         self._next = 0
         self._t0 = 0.0

@@ -175,19 +175,20 @@ def _read_radar(spec: Any, rd: _Reader) -> tuple[RadarPose, RadarConfig]:
     if "look_at" in spec:
         up = rd.vector(spec.get("up", [0.0, 0.0, 1.0]), "radar.up", 3)
         try:
-            pose = RadarPose.look_at(tuple(position), tuple(rd.vector(spec["look_at"], "radar.look_at", 3)),
-                                     tuple(up))
-        except ValueError as err:
-            raise rd.fail("radar.look_at", str(err)) from None
+            target = rd.vector(spec["look_at"], "radar.look_at", 3)
+            pose = RadarPose.look_at((position[0], position[1], position[2]), (target[0], target[1], target[2]),
+                                     (up[0], up[1], up[2]))
+        except ValueError as e:
+            raise rd.fail("radar.look_at", str(e)) from None
         if not torch.isfinite(pose.rotation).all():
             raise rd.fail("radar.look_at", "must differ from radar.position")
         rotation = pose.rotation
     elif "rotation" in spec:
         rotation = torch.tensor(rd.matrix(spec["rotation"], "radar.rotation", (3,), 3), dtype=torch.float64)
-        err = (rotation.T @ rotation - torch.eye(3, dtype=torch.float64)).abs().max()
+        ortho_err = (rotation.T @ rotation - torch.eye(3, dtype=torch.float64)).abs().max()
         # The antenna frame (x right, y up, z boresight) is left-handed, so a valid pose matrix
         # is orthonormal with determinant -1 (RadarPose.look_at gives the same).
-        if err > 1e-6 or torch.linalg.det(rotation) > 0:
+        if ortho_err > 1e-6 or torch.linalg.det(rotation) > 0:
             raise rd.fail("radar.rotation", "must be orthonormal with determinant -1 (columns: the radar's "
                           "x right, y up, z boresight in world coordinates, a left-handed frame)")
     else:

@@ -140,8 +140,10 @@ class GeneratorSource:
         name = str(torch.device(device))
         gen = self._owned.get(name)
         if gen is None:
+            seed = self._active_seed
+            assert seed is not None  # not the global RNG (returned above), no user generator: seeded
             gen = torch.Generator(device=device)
-            gen.manual_seed(self._active_seed)
+            gen.manual_seed(seed)
             self._owned[name] = gen
         return gen
 
@@ -154,7 +156,7 @@ class GeneratorSource:
             gen = torch.Generator(device=self.user_generator.device)
             gen.manual_seed(mix_seed(self.user_generator.initial_seed(), worker_seed))
             self.user_generator = gen
-        else:
+        elif self.seed is not None:  # (no generator and no seed: the global RNG, not re-seeded here)
             self._active_seed = mix_seed(self.seed, worker_seed)
             self._owned = {}
 
@@ -184,7 +186,8 @@ class GeneratorSource:
         return state
 
     def __setstate__(self, state: dict[str, Any]) -> None:
+        # The pickled state holds (device, seed, state) tuples where generators were (__getstate__).
+        packed_user, packed_owned = state.pop("user_generator"), state.pop("_owned")
         self.__dict__.update(state)
-        if self.user_generator is not None:
-            self.user_generator = self._unpack(self.user_generator)
-        self._owned = {k: self._unpack(v) for k, v in self._owned.items()}
+        self.user_generator = None if packed_user is None else self._unpack(packed_user)
+        self._owned = {k: self._unpack(v) for k, v in packed_owned.items()}

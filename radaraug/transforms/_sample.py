@@ -59,7 +59,9 @@ def most_likely_radar_leaf(flat: list[Any], min_ndim: int) -> Any:
     """For an error message: the first tensor with at least ``min_ndim`` dims, else the first tensor."""
     tensors = [leaf for leaf in flat if isinstance(leaf, torch.Tensor)]
     big = [t for t in tensors if t.ndim >= min_ndim]
-    return (big or tensors or [None])[0]
+    if big or tensors:
+        return (big or tensors)[0]
+    return None
 
 
 def flatten(sample: Any) -> tuple[list[Any], pytree.TreeSpec]:

@@ -61,10 +61,12 @@ def chain_of(pipeline: Any) -> list[dict[str, Any]] | None:
     if callable(spec_fn):
         spec = spec_fn()
         return list(spec) if isinstance(spec, list) else [spec]
+    steps: list[Any] | None
     if isinstance(pipeline, (list, tuple, nn.ModuleList, nn.Sequential)):
         steps = list(pipeline)
     else:
-        steps = getattr(pipeline, "transforms", None)  # torchvision Compose
+        found = getattr(pipeline, "transforms", None)  # torchvision Compose
+        steps = None if found is None else list(found)
     if steps is None:
         return None
     out: list[dict[str, Any]] = []

@@ -236,7 +236,8 @@ class CalibratedDR(_DRClamp):
             raise CalibrationError(
                 f"CalibratedDR: map_shape must be (rx, range, doppler) positive integers, got {safe_repr(map_shape)}"
             )
-        self.map_shape = None if map_shape is None else tuple(int(v) for v in map_shape)
+        self.map_shape: tuple[int, int, int] | None = (
+            None if map_shape is None else (int(map_shape[0]), int(map_shape[1]), int(map_shape[2])))
         for name, value in (("source", source), ("num_frames", num_frames), ("motion", motion)):
             ok = {
                 "source": lambda v: isinstance(v, str),

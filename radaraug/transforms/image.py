@@ -116,6 +116,7 @@ class Colormap(RadarTransform):
     """
 
     input_layout = "a one-channel map (..., 1, H, W) in [0, 1]"
+    lut: torch.Tensor  # (256, 3) colour table, a buffer
 
     def __init__(self, name: str = "viridis") -> None:
         super().__init__()

@@ -94,6 +94,15 @@ class Person(ABC):
     def to_dict(self) -> dict[str, Any]:
         """The constructor parameters, JSON-serializable (for scene files)."""
 
+    @classmethod
+    def from_dict(cls, d: dict[str, Any]) -> Person:
+        """Rebuild a person from :meth:`to_dict` output (each registered person type implements it).
+
+        Raises:
+            SceneError: this type cannot be rebuilt from a dict.
+        """
+        raise SceneError(f"person type {cls.__name__} cannot be rebuilt from a scene file")
+
     def _ellipsoids_for_mesh(self, t: torch.Tensor) -> Ellipsoids:
         """Ellipsoids at ``t`` ``(3,)`` with frames chosen consistently across the three instants."""
         return self.ellipsoids(t)
