@@ -77,7 +77,8 @@ def _kind(mode: int) -> str:
 
 def open_regular(path: str | os.PathLike, *, error: type[RadarAugError], what: str = "file") -> int:
     """A read-only descriptor of the regular file ``path`` (opened with ``O_NONBLOCK``, checked again
-    on the descriptor). The caller closes it."""
+    on the descriptor). The caller closes it.
+    """
     regular_file_size(path, error=error, what=what)
     try:
         fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK | getattr(os, "O_CLOEXEC", 0))
@@ -197,7 +198,8 @@ def load_json(
 
 def safe_repr(value: Any, width: int = 60) -> str:
     """``repr(value)`` cut to ``width`` characters, safe for values whose repr fails (a
-    5,000-digit integer exceeds Python's int-to-text limit)."""
+    5,000-digit integer exceeds Python's int-to-text limit).
+    """
     try:
         text = repr(value)
     except (ValueError, RecursionError):

@@ -23,7 +23,8 @@ from radaraug.io.atomic import atomic_savefig
 
 def doppler_spectrogram(frames: torch.Tensor) -> torch.Tensor:
     """Doppler power in dB (peak 0 dB) ``(T, M)`` of frames ``(T, RX, M, N)``, zero Doppler centred
-    (bin ``M // 2``), range FFT power summed over range and RX."""
+    (bin ``M // 2``), range FFT power summed over range and RX.
+    """
     m = frames.shape[-2]
     rng = torch.fft.rfft(frames.double(), dim=-1)
     win = torch.hann_window(m, periodic=False, dtype=torch.float64)[:, None]
@@ -36,7 +37,8 @@ def micro_doppler_before_after(
     out: str | os.PathLike | None = None, *, seconds: float = 1.0, speed_m_s: float = 1.4,
 ) -> dict[str, Any]:
     """Simulate the walk both ways, write the two spectrograms side by side to ``out`` (PNG) and
-    return the numbers behind it (window length, knot intervals used per window)."""
+    return the numbers behind it (window length, knot intervals used per window).
+    """
     from radaraug.scene.people import Walker
     from radaraug.scene.scene import Scene
     from radaraug.sensor.receiver import FMCWReceiver

@@ -89,7 +89,8 @@ class Score:
 @dataclass
 class SearchResult:
     """What the search found (``room_*``: the room parameters with each chain; empty when the
-    source has none to fit)."""
+    source has none to fit).
+    """
 
     chain_before: Chain
     chain_base: Chain
@@ -160,7 +161,8 @@ class Search:
         """Nelder-Mead over ``specs`` (``(stage, spec)``: an effect of ``chain``, or
         :data:`~radaraug.calibration.room.ROOM_STAGE` for a room parameter of ``room``) from their
         current values, in each prior's scale; returns the best chain and room evaluated and the
-        fit score."""
+        fit score.
+        """
         R = self.config.num_rx
         room = self.source.check_room(room)
 
@@ -221,7 +223,8 @@ class Search:
     def base_specs(self, chain: Chain) -> list[tuple[str, ParamSpec]]:
         """The base parameters present in ``chain`` that the search refits, then the source's room
         parameters (stage :data:`~radaraug.calibration.room.ROOM_STAGE`: the diffuse gain in scene
-        mode when the room scatters diffusely)."""
+        mode when the room scatters diffusely).
+        """
         names = [("thermal_noise", "noise_figure_dB"), ("adc_noise", "rms_counts"), ("anti_alias_lowpass", "cutoff_Hz")]
         if self.source.mode == "scene":
             # With an estimated static scene the high-pass only shapes the thermal noise (weak at
@@ -248,7 +251,8 @@ class Search:
         """Refit the base stages present in ``chain`` (noise figure, anti-alias cutoff, ADC-side
         noise; high-pass cutoff and system gain in scene mode), the room parameters and the DC
         offsets, together with ``extra`` parameters (the effect just added: the base was bent to
-        imitate it before)."""
+        imitate it before).
+        """
         chain = self.dc_closed_form(chain, room=room)
         chain, room, _ = self.optimize(chain, self.base_specs(chain) + list(extra), room)
         chain = self.dc_closed_form(chain, iterations=1, room=room)
@@ -351,7 +355,8 @@ class Search:
 def nelder_mead(f: Callable[[list[float]], float], x0: Sequence[float], step: Sequence[float],
                 lo: Sequence[float], hi: Sequence[float], max_evals: int) -> tuple[list[float], float]:
     """Minimize ``f`` from ``x0`` with a Nelder-Mead simplex clipped to ``[lo, hi]`` (standard
-    coefficients: reflection 1, expansion 2, contraction 0.5, shrink 0.5)."""
+    coefficients: reflection 1, expansion 2, contraction 0.5, shrink 0.5).
+    """
     n = len(x0)
 
     def clip(x: Sequence[float]) -> list[float]:

@@ -102,7 +102,8 @@ class VirtualSensor(RadarDevice):
 
     def frames(self, start: int, stop: int) -> torch.Tensor:
         """Frames ``[start, stop)`` of this sensor's stream, ``(n, rx, chirps, samples)`` SDK floats,
-        without pacing (for checking a recording against the stream it came from)."""
+        without pacing (for checking a recording against the stream it came from).
+        """
         self._ensure_twin()
         out = [self._frame(k) for k in range(start, stop)]
         return torch.stack(out) if out else torch.empty(0, *self._shape())

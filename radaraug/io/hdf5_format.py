@@ -65,7 +65,8 @@ def _rot(x: int, k: int) -> int:
 
 def lookup3(data: bytes, initval: int = 0) -> int:
     """Bob Jenkins' lookup3 ``hashlittle``: the checksum HDF5 stores after its v2/v3 superblocks
-    and other metadata (``H5_checksum_lookup3``)."""
+    and other metadata (``H5_checksum_lookup3``).
+    """
     length = len(data)
     a = b = c = (0xDEADBEEF + length + initval) & MASK32
     if length == 0:
@@ -146,7 +147,8 @@ SUPERBLOCK_HEAD_BYTES = 64
 
 def parse_superblock(head: bytes, file_size: int) -> Superblock | None:
     """:func:`read_superblock` of bytes already read from the start of a file (e.g. through a
-    locked descriptor); None when they do not start with the HDF5 signature."""
+    locked descriptor); None when they do not start with the HDF5 signature.
+    """
     if len(head) < 9 or not head.startswith(HDF5_SIGNATURE):
         return None
     version = head[8]

@@ -217,7 +217,8 @@ class HDF5Capture(CaptureReader):
 
     def _written_frames(self, frames: h5py.Dataset, committed: int) -> int:
         """Frames to serve: the first ``committed`` rows of ``frames``, all of which must have
-        stored data (a gap is a CaptureError; unwritten rows at the end are cut with a warning)."""
+        stored data (a gap is a CaptureError; unwritten rows at the end are cut with a warning).
+        """
         n = committed
         w, gap_end = self._written_rows(frames)
         w = min(w, n)

@@ -484,7 +484,8 @@ class CaptureWriter:
     def discard(self) -> None:
         """Close a writer that never appended a frame without giving the file its name: nothing
         is left behind (a file already at the path stays as it was). A writer that has appended
-        is closed as by :meth:`close` (its frames are kept)."""
+        is closed as by :meth:`close` (its frames are kept).
+        """
         if self._started or self._file is None:
             self.close()
             return
@@ -560,7 +561,8 @@ def _discard_pending_writes(f: h5py.File) -> None:
     disk) succeeds: what HDF5 still holds in its caches is dropped, the file stays as it was at the
     failure (every frame counted in ``frames_written`` is complete; its consistency flags stay set
     and :meth:`CaptureWriter.resume` resets them). A file HDF5 cannot close makes the process
-    crash at exit, when HDF5 shuts down and tries once more."""
+    crash at exit, when HDF5 shuts down and tries once more.
+    """
     try:
         handle = f.id.get_vfd_handle()
         null = os.open(os.devnull, os.O_RDWR)

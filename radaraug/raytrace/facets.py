@@ -77,7 +77,8 @@ def monostatic_facet_rcs(
 ) -> tuple[torch.Tensor, torch.Tensor, torch.Tensor, torch.Tensor]:
     """``(centroid, range, unit vector to the radar, root RCS)`` of facets ``(F, 3, 3)`` seen by the
     radar (monostatic PO toward the radar centre, the face's Fresnel coefficient times the
-    optional per-material ``specular_factor``)."""
+    optional per-material ``specular_factor``).
+    """
     cen = triangles.mean(-2)
     to_r = radar.centre - cen
     r = to_r.norm(dim=-1)

@@ -122,7 +122,8 @@ def plane_distance(
     t_max: torch.Tensor | float,
 ) -> torch.Tensor:
     """Hit distance (``inf`` on a miss) of rays ``o, d`` ``(..., 3)`` on triangles given by
-    :func:`triangle_planes` rows ``(..., 12)``, all broadcast against each other."""
+    :func:`triangle_planes` rows ``(..., 12)``, all broadcast against each other.
+    """
     ox, oy, oz = o.unbind(-1)
     dx, dy, dz = d.unbind(-1)
     nx, ny, nz, nd, ux, uy, uz, u0, vx, vy, vz, v0 = planes.unbind(-1)

@@ -194,7 +194,8 @@ class RayTracer:
     def static_vertices(self) -> torch.Tensor | None:
         """``(P, V, 3)`` vertices of :meth:`static_paths`: ``[radar centre, interaction points...,
         radar centre]``, padded by repeating the radar centre; None for ``method="sbr"`` (whose
-        merged tube paths have no single geometry)."""
+        merged tube paths have no single geometry).
+        """
         if self._static is None:
             self._trace_static()
         return self._static_vertices

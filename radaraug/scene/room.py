@@ -362,7 +362,8 @@ def box(
 
 def _placement(position: Sequence[float] | np.ndarray, yaw_deg: float) -> np.ndarray:
     """4x4 world-from-object matrix: a turn of ``yaw_deg`` about +z (counter-clockwise from above),
-    then a translation to ``position``."""
+    then a translation to ``position``.
+    """
     y = math.radians(float(yaw_deg))
     m = np.eye(4)
     m[:3, :3] = axis_rotation("z", y).numpy()

@@ -153,7 +153,8 @@ class ChainState:
         chirp_delay: torch.Tensor | None = None, chirp_gain: torch.Tensor | None = None,
     ) -> None:
         """Append paths ``(…, RX, P')`` (broadcast to the batch shape), optionally with per-chirp
-        extra delays / gains ``(…, 1, P', M)`` (default zero / one)."""
+        extra delays / gains ``(…, 1, P', M)`` (default zero / one).
+        """
         if self.samples is not None:
             raise RuntimeError("paths cannot be added after the samples were synthesized")
         shape = (*self.batch_shape, self.num_rx, coef.shape[-1])
@@ -238,7 +239,8 @@ class ChainState:
 
     def chirp_terms(self, idx: torch.Tensor) -> tuple[torch.Tensor | None, torch.Tensor | None]:
         """The per-chirp delay and gain ``(…, 1, k, M)`` of the paths ``idx`` ``(…, RX, k)`` (the
-        RX channels pick the same paths), e.g. for a :class:`ModulatedPaths` copy of them."""
+        RX channels pick the same paths), e.g. for a :class:`ModulatedPaths` copy of them.
+        """
         def pick(t: torch.Tensor | None) -> torch.Tensor | None:
             if t is None:
                 return None

@@ -181,7 +181,8 @@ class FMCWReceiver(nn.Module):
     @torch.no_grad()
     def linear_state(self, paths: Paths) -> ChainState:
         """The chain state of ``paths`` after the linear stages before the first non-linear one
-        (what :meth:`static_signal` synthesizes; ``state.coef`` holds each path's coefficient)."""
+        (what :meth:`static_signal` synthesizes; ``state.coef`` holds each path's coefficient).
+        """
         state = self._initial_state(paths, None, 0.0)
         for eff in self.effects:
             if eff.kind == "nonlinear":
@@ -330,7 +331,8 @@ def _validated_start(start: float | torch.Tensor, batch_shape: tuple[int, ...]) 
 
 def _live_slots(coef: torch.Tensor, chirp_gain: torch.Tensor | None) -> torch.Tensor | None:
     """Indices of the path slots ``(…, P, RX)`` that are non-zero in some frame of the batch, or
-    None when all are (nothing to drop)."""
+    None when all are (nothing to drop).
+    """
     if coef.numel() == 0:
         return None
     live = coef != 0

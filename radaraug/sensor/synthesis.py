@@ -261,7 +261,8 @@ def synthesize_fast(
 
 def _unravel(flat: torch.Tensor, shape: tuple[int, ...]) -> tuple[torch.Tensor, ...]:
     """Row-major coordinates of the flat indices ``flat`` in ``shape`` (``torch.unravel_index``
-    without its per-call Python overhead, which showed in the chunk loop)."""
+    without its per-call Python overhead, which showed in the chunk loop).
+    """
     coords = []
     for size in reversed(shape):
         coords.append(flat % size)

@@ -259,7 +259,8 @@ class SimulatedRadarDataset(Dataset):
 
     def set_epoch(self, epoch: int) -> None:
         """The epoch of ``augmentation="per_item"`` draws (call before each epoch; DataLoader
-        workers started afterwards see it, persistent workers keep the one they started with)."""
+        workers started afterwards see it, persistent workers keep the one they started with).
+        """
         self.epoch = check_epoch(epoch, "SimulatedRadarDataset")
 
     def _check_index(self, index: int) -> int:

@@ -302,7 +302,8 @@ class TwinRandomization:
 
     def sampler(self, base: ScenarioSampler, room: RoomDraw, radar_x_m: float) -> ScenarioSampler:
         """``base`` (counts and their weights, toward/away, speed spacing kept) with this
-        randomization's people ranges, fitted inside ``room`` for a radar at ``x = radar_x_m``."""
+        randomization's people ranges, fitted inside ``room`` for a radar at ``x = radar_x_m``.
+        """
         lateral = max(0.0, room.width_m / 2 - self.wall_margin_m)
         far = max(0.0, room.length_m - radar_x_m - self.wall_margin_m)
         hi = min(self.range_m[1], far)
@@ -393,7 +394,8 @@ class RoomDraw:
 @dataclass(frozen=True)
 class ItemDraw:
     """The per-item draws: room variant, receiver offsets, each person's RCS scale and the static
-    scatterers ``(range_m, azimuth_deg, elevation_deg, rcs_dBsm)``."""
+    scatterers ``(range_m, azimuth_deg, elevation_deg, rcs_dBsm)``.
+    """
 
     variant: int
     system_gain_offset_dB: float
@@ -472,7 +474,8 @@ def item_receiver(receiver: FMCWReceiver, system_gain_offset_dB: float, noise_fi
     """A receiver like ``receiver`` with its (first) ``system_gain`` and ``thermal_noise`` stages
     offset, and its ``phase_noise`` stage set to ``(rms_Hz, num_paths)`` when given.
     ``receiver`` is not changed (its other stages are shared, not copied), so nothing leaks from
-    one item to the next, even across threads."""
+    one item to the next, even across threads.
+    """
     effects = list(receiver.effects)
     if phase_noise is not None:
         for i, e in enumerate(effects):
@@ -497,7 +500,8 @@ def item_receiver(receiver: FMCWReceiver, system_gain_offset_dB: float, noise_fi
 def static_scatterer_paths(config: RadarConfig, scatterers: Sequence[tuple[float, float, float, float]],
                            like: Paths) -> Paths:
     """Paths of static point scatterers ``(range_m, azimuth_deg, elevation_deg, rcs_dBsm)`` in the
-    radar's frame (x right, y up, z boresight), batched like ``like`` ``(..., P, RX)``."""
+    radar's frame (x right, y up, z boresight), batched like ``like`` ``(..., P, RX)``.
+    """
     from radaraug.sensor.point_target import point_target_paths
 
     dt, dev = like.delay_s.dtype, like.delay_s.device

@@ -135,7 +135,8 @@ class DigitalTwin:
     @property
     def cached_static_signal(self) -> torch.Tensor | None:
         """The room's signal if :meth:`static_signal` has computed (or was given) it, else None
-        (for handing it to another twin of the same scene, e.g. in a DataLoader worker)."""
+        (for handing it to another twin of the same scene, e.g. in a DataLoader worker).
+        """
         return self._static_signal
 
     def static_signal(self) -> torch.Tensor:
@@ -167,7 +168,8 @@ class DigitalTwin:
     def paths(self, people: Sequence[Any], times: torch.Tensor) -> Paths:
         """Paths of the people over the frames starting at ``times`` ``(T, P, RX)`` (the room's are
         in :meth:`static_signal`), with per-chirp delays and gains ``(T, P, chirps)`` unless
-        ``intra_frame=0``."""
+        ``intra_frame=0``.
+        """
         if not people:
             rx = self.config.num_rx
             z = torch.zeros(int(times.shape[0]), 0, rx, dtype=self.dtype, device=self.device)
@@ -187,7 +189,8 @@ class DigitalTwin:
     def shadow_transmission(self, people: Sequence[Any], times: torch.Tensor) -> torch.Tensor | None:
         """``(T, P)`` field transmission of the room's paths through the people at each frame's
         start (:func:`~radaraug.raytrace.shadow.shadow_transmission`, held for the frame), or None:
-        no people, ``shadowing=False``, or an SBR room (its merged paths have no vertices)."""
+        no people, ``shadowing=False``, or an SBR room (its merged paths have no vertices).
+        """
         if not people or not self.shadowing:
             return None
         vertices = self.tracer.static_vertices()
@@ -234,7 +237,8 @@ class DigitalTwin:
 
     def shadow_signal(self, people: Sequence[Any], times: torch.Tensor) -> torch.Tensor | None:
         """``(T, RX, 1, N)`` what the people's shadow changes in the room's signal (broadcast over
-        chirps; :meth:`static_basis`), or None (no people, ``shadowing=False``, SBR room)."""
+        chirps; :meth:`static_basis`), or None (no people, ``shadowing=False``, SBR room).
+        """
         t = self.shadow_transmission(people, times)  # (T, P)
         if t is None:
             return None
@@ -254,7 +258,8 @@ class DigitalTwin:
         """The people's paths (negligible ones masked, :func:`negligible_paths_off`) and their shadow
         corrections as explicit paths (:meth:`shadow_paths`): with the room's cached signal, the
         same frames as :meth:`simulate` (which applies the shadow through :meth:`shadow_signal`,
-        far cheaper), for code that needs the paths themselves (the calibration, the proxy)."""
+        far cheaper), for code that needs the paths themselves (the calibration, the proxy).
+        """
         people = list(people or [])
         paths = negligible_paths_off(self.paths(people, times))
         shadow = self.shadow_paths(people, times)

@@ -91,7 +91,8 @@ def is_sample_aware(module: Any) -> bool:
 
 def apply_to_radar_leaves(fn: Callable[[torch.Tensor], Any], sample: Any, min_ndim: int = 2) -> Any:
     """``fn`` applied to each radar leaf of ``sample`` (real or complex floating, ``min_ndim``
-    dims); a plain tensor is passed to ``fn`` as is."""
+    dims); a plain tensor is passed to ``fn`` as is.
+    """
     if isinstance(sample, torch.Tensor):
         return fn(sample)
     flat, spec = flatten(sample)

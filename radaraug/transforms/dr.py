@@ -135,7 +135,8 @@ class RandomDR(_DRClamp):
 def _valid_chain(chain: Any) -> list[dict[str, Any]]:
     """A recorded DSP chain: a list of step objects, each with a string ``name`` (as
     ``chain_spec()`` makes them). Checked when a calibration is made or loaded, so a malformed
-    one fails there with :class:`CalibrationError`, not later where the chain is compared."""
+    one fails there with :class:`CalibrationError`, not later where the chain is compared.
+    """
     if not isinstance(chain, (list, tuple)):
         raise CalibrationError(f"CalibratedDR: chain must be a list of step objects, got {safe_repr(chain)}")
     steps = []

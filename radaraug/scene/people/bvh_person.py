@@ -73,7 +73,8 @@ def map_joints(sk: BVHSkeleton) -> list[int]:
 
 def detect_scale(sk: BVHSkeleton) -> float:
     """Metres per file unit: the :data:`UNIT_SCALES` entry giving the rest-pose figure the most
-    human height (~1.7 m, closest in ratio)."""
+    human height (~1.7 m, closest in ratio).
+    """
     rest = sk.rest_positions()
     extent = float(rest[:, 1].max() - rest[:, 1].min())
     if not extent > 0:

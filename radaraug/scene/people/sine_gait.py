@@ -163,7 +163,8 @@ class SineGait:
 
     def channels(self, t: torch.Tensor) -> tuple[torch.Tensor, dict[str, torch.Tensor]]:
         """Root position ``(T, 3)`` (BVH axes, m, floor not yet applied) and per-joint Euler
-        angles ``(T, 3)`` in degrees, order ``(Z, X, Y)`` (``R = Rz Rx Ry``), at times ``t``."""
+        angles ``(T, 3)`` in degrees, order ``(Z, X, Y)`` (``R = Rz Rx Ry``), at times ``t``.
+        """
         t = t.to(torch.float64)
         v = self.speed_m_s
         u = t / self.cycle_duration_s + self.phase
@@ -199,7 +200,8 @@ class SineGait:
 
     def forward_kinematics(self, t: torch.Tensor, root: torch.Tensor | None = None) -> dict[str, torch.Tensor]:
         """World positions ``(T, 3)`` (BVH axes, m) of every joint, end site (``<joint>_end``)
-        and heel (``<side>Heel``) at times ``t``; ``root`` overrides the root position."""
+        and heel (``<side>Heel``) at times ``t``; ``root`` overrides the root position.
+        """
         r0, eul = self.channels(t)
         root = r0 if root is None else root
         pos: dict[str, torch.Tensor] = {}

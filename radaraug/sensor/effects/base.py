@@ -330,13 +330,15 @@ def scatterer_count(effect: Effect, **values: torch.Tensor) -> int:
 def strongest_paths(state: ChainState, k: int) -> tuple[torch.Tensor, torch.Tensor, torch.Tensor]:
     """Coefficients, delays and delay rates ``(…, RX, k)`` of the ``k`` paths with the largest
     ``|C| tau`` (strongest over RX, chosen per frame): the paths whose LO-borne modulation
-    (phase noise, ramp ripple, both proportional to the delay) is largest."""
+    (phase noise, ramp ripple, both proportional to the delay) is largest.
+    """
     idx = strongest_index(state, k)
     return state.coef.gather(-1, idx), state.delay_s.gather(-1, idx), state.delay_rate.gather(-1, idx)
 
 
 def strongest_index(state: ChainState, k: int) -> torch.Tensor:
     """Indices ``(…, RX, k)`` of the paths :func:`strongest_paths` picks (for
-    :meth:`ChainState.chirp_terms`)."""
+    :meth:`ChainState.chirp_terms`).
+    """
     strength = (state.coef.abs() * state.delay_s.abs()).amax(dim=-2)  # (…, P)
     return torch.topk(strength, k, dim=-1).indices[..., None, :].expand(*state.batch_shape, state.num_rx, k)
