@@ -77,7 +77,8 @@ def benchmark_receiver(
         device: where to run.
         dtype: float32 or float64.
         exact_frames: frames timed for ``exact`` (default ``max(1, num_frames // 20)``).
-        moving_fraction: share of moving scatterers; max_speed_m_s: their speed bound.
+        moving_fraction: share of moving scatterers.
+        max_speed_m_s: speed bound of the moving scatterers.
 
     Returns:
         dict with ``fast_frames_per_s``, ``exact_frames_per_s``, ``speedup``, ``rel_rms_error``,

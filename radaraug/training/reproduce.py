@@ -138,8 +138,8 @@ def reproduce(
         calibration: empty-room capture for CDR and for ``cdr_profile``'s twin profile (None: the
             held-out proxy's). A CalibratedDR JSON serves CDR but not ``cdr_profile``.
         test: test entries ``{"path", "count"?}`` (None: the held-out proxy).
-        tasks, methods: subsets of ``occupancy``/``counting`` and
-            ``rt``/``randomdr``/``cdr``/``cdr_profile``.
+        tasks: subset of ``occupancy``/``counting``.
+        methods: subset of ``rt``/``randomdr``/``cdr``/``cdr_profile``.
         ablation: also train CDR without twin randomization.
         accelerator: Lightning accelerator (``auto`` uses a GPU when there is one).
         progress: progress bars.
