@@ -83,6 +83,7 @@ class Score:
     twin: Views
 
     def as_dict(self) -> dict[str, Any]:
+        """The overall and per-view errors rounded to 4 decimals, JSON-able (the twin's views left out)."""
         return {"overall": round(self.overall, 4), "views": {k: round(v, 4) for k, v in self.views.items()}}
 
 

@@ -89,10 +89,12 @@ class VirtualSensor(RadarDevice):
 
     @property
     def config(self) -> RadarConfig:
+        """The simulated radar configuration (the scene's unless one was given)."""
         return self._config
 
     @property
     def info(self) -> dict[str, Any]:
+        """``kind`` ``"virtual"``, ``name`` and the settings a frame depends on (scene, seed, profile...)."""
         if self.profile is None or isinstance(self.profile, (str, os.PathLike)):
             profile = None if self.profile is None else str(self.profile)
         else:

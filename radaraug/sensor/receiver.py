@@ -236,6 +236,7 @@ class FMCWReceiver(nn.Module):
             raise ConfigError(f"invalid receiver description: {e}") from None
 
     def extra_repr(self) -> str:
+        """The synthesis, the TX power and the front-end gain for ``repr``."""
         return f"synthesis={self.synthesis!r}, tx_power_dBm={self.tx_power_dBm:.2f}, front_end_gain_dB={self.front_end_gain_dB}"
 
     # ------------------------------------------------------------------ internals

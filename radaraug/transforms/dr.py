@@ -122,6 +122,7 @@ class RandomDR(_DRClamp):
     def sample_params(
         self, x: torch.Tensor, shape: tuple[int, ...], generator: torch.Generator | None
     ) -> Params:
+        """Per-frame ``mean_db``/``std_db`` drawn from the ranges and the floor ``noise_db`` they give."""
         (m_lo, m_hi), (s_lo, s_hi) = self.mean_db, self.std_db
         mean = m_lo + (m_hi - m_lo) * self.draw("rand", shape, x, generator)
         std = s_lo + (s_hi - s_lo) * self.draw("rand", shape, x, generator)
@@ -129,6 +130,7 @@ class RandomDR(_DRClamp):
         return {"mean_db": mean, "std_db": std, "noise_db": F.random_floor(shape, mean, std, noise)}
 
     def extra_spec(self) -> dict[str, Any]:
+        """The mean and std ranges, ``p`` and ``same_on_batch``."""
         return {"mean_db": list(self.mean_db), "std_db": list(self.std_db), **super().extra_spec()}
 
 
@@ -257,6 +259,7 @@ class CalibratedDR(_DRClamp):
 
     # ------------------------------------------------------------------ the transform
     def check_input(self, x: Any) -> torch.Tensor:
+        """As :meth:`RadarTransform.check_input`; maps of another shape raise CalibrationError."""
         x = super().check_input(x)
         if self.map_shape is not None and tuple(x.shape[-3:]) != self.map_shape:
             raise CalibrationError(
@@ -269,6 +272,7 @@ class CalibratedDR(_DRClamp):
     def sample_params(
         self, x: torch.Tensor, shape: tuple[int, ...], generator: torch.Generator | None
     ) -> Params:
+        """The floor ``noise_db`` drawn per cell from the fitted statistics."""
         event = tuple(x.shape[-self.event_ndim :])
         return {"noise_db": F.calibrated_floor(shape + event, self.mean_db, self.std_db, like=x, generator=generator)}
 
@@ -303,6 +307,7 @@ class CalibratedDR(_DRClamp):
             )
 
     def extra_spec(self) -> dict[str, Any]:
+        """The fitted statistics, ``p`` and ``same_on_batch``."""
         return {"mean_db": self.mean_db, "std_db": self.std_db, **super().extra_spec()}
 
     # ------------------------------------------------------------------ fitting

@@ -207,6 +207,7 @@ class Effect(nn.Module):
         return {"name": self.name, "params": out}
 
     def extra_repr(self) -> str:
+        """The parameters for ``repr`` (``config`` where a value comes from the radar config)."""
         parts = []
         for k, v in self.params().items():
             parts.append(f"{k}={'config' if v is None else v.detach().cpu().tolist()}")
