@@ -22,8 +22,9 @@ def random_scene_paths(
     dtype: torch.dtype = torch.float32,
     generator: torch.Generator | None = None,
 ) -> Paths:
-    """A scene-like path set: point scatterers at 0.5-20 m in the field of view, RCS -30..0 dBsm,
-    ``moving_fraction`` of them moving (walker-like speeds up to ``max_speed_m_s``), the rest static.
+    """A scene-like path set: point scatterers at 0.5-20 m in the field of view, RCS -30..0 dBsm.
+
+    ``moving_fraction`` of them move (walker-like speeds up to ``max_speed_m_s``), the rest are static.
     """
     g = generator if generator is not None else torch.Generator().manual_seed(0)
     r = 0.5 + 19.5 * torch.rand(num_paths, generator=g, dtype=torch.float64)

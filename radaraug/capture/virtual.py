@@ -103,8 +103,9 @@ class VirtualSensor(RadarDevice):
                 "seed": self.seed, "realtime": self.realtime, "block_frames": BLOCK_FRAMES, "profile": profile}
 
     def frames(self, start: int, stop: int) -> torch.Tensor:
-        """Frames ``[start, stop)`` of this sensor's stream, ``(n, rx, chirps, samples)`` SDK floats,
-        without pacing (for checking a recording against the stream it came from).
+        """Frames ``[start, stop)`` of this sensor's stream, ``(n, rx, chirps, samples)`` SDK floats.
+
+        Without pacing: for checking a recording against the stream it came from.
         """
         self._ensure_twin()
         out = [self._frame(k) for k in range(start, stop)]

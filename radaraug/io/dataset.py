@@ -242,8 +242,9 @@ class RadarCaptureDataset(Dataset):
         return int(self._offsets[-1])
 
     def set_epoch(self, epoch: int) -> None:
-        """The epoch of ``augmentation="per_item"`` draws (call before each epoch; DataLoader
-        workers started afterwards see it, persistent workers keep the one they started with).
+        """Set the epoch of ``augmentation="per_item"`` draws (call before each epoch).
+
+        DataLoader workers started afterwards see it; persistent workers keep the one they started with.
         """
         from radaraug.transforms.per_item import check_epoch
 

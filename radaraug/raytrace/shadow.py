@@ -563,8 +563,9 @@ def shadow_correction_paths(
 
 
 def correction_paths(static: Paths, t: torch.Tensor, *, tol: float = SHADOW_TOL) -> Paths:
-    """The correction paths of :func:`shadow_correction_paths` for given transmissions ``t``
-    ``(..., P)`` of the static paths ``(P, RX)``.
+    """The correction paths of :func:`shadow_correction_paths` for given transmissions.
+
+    The transmissions ``t`` ``(..., P)`` are those of the static paths ``(P, RX)``.
     """
     batch = t.shape[:-1]
     dev = (t - 1).abs().reshape(-1, t.shape[-1])

@@ -363,8 +363,9 @@ def box(
 
 
 def _placement(position: Sequence[float] | np.ndarray, yaw_deg: float) -> np.ndarray:
-    """4x4 world-from-object matrix: a turn of ``yaw_deg`` about +z (counter-clockwise from above),
-    then a translation to ``position``.
+    """4x4 world-from-object matrix: a turn about +z, then a translation to ``position``.
+
+    The turn is ``yaw_deg``, counter-clockwise seen from above.
     """
     y = math.radians(float(yaw_deg))
     m = np.eye(4)

@@ -180,8 +180,9 @@ class FMCWReceiver(nn.Module):
 
     @torch.no_grad()
     def linear_state(self, paths: Paths) -> ChainState:
-        """The chain state of ``paths`` after the linear stages before the first non-linear one
-        (what :meth:`static_signal` synthesizes; ``state.coef`` holds each path's coefficient).
+        """The chain state of ``paths`` after the linear stages before the first non-linear one.
+
+        What :meth:`static_signal` synthesizes; ``state.coef`` holds each path's coefficient.
         """
         state = self._initial_state(paths, None, 0.0)
         for eff in self.effects:
@@ -331,7 +332,8 @@ def _validated_start(start: float | torch.Tensor, batch_shape: tuple[int, ...]) 
 
 
 def _live_slots(coef: torch.Tensor, chirp_gain: torch.Tensor | None) -> torch.Tensor | None:
-    """Indices of the path slots ``(…, P, RX)`` that are non-zero in some frame of the batch, or
+    """Indices of the path slots ``(…, P, RX)`` that are non-zero in some frame of the batch.
+
     None when all are (nothing to drop).
     """
     if coef.numel() == 0:

@@ -290,8 +290,10 @@ class RadarDataModule(L.LightningDataModule):
         self._write_run_files()
 
     def _resolve_receiver(self, calibration: str | None, has_capture: bool, rank: int, world: int) -> None:
-        """Set :attr:`twin_profile` (and :attr:`profile_info`): ``data.profile``, or for
-        ``cdr_profile`` the profile fitted on the calibration capture; None otherwise.
+        """Set :attr:`twin_profile` (and :attr:`profile_info`).
+
+        ``data.profile``, or for ``cdr_profile`` the profile fitted on the calibration capture; None
+        otherwise.
         """
         self.twin_profile, self.profile_info = None, None
         if self.hparams["profile"] is not None:
@@ -343,8 +345,9 @@ class RadarDataModule(L.LightningDataModule):
         self.twin_profile, self.profile_info = prof, info
 
     def profile_cache_path(self, calibration: str) -> Path:
-        """``cache_dir/profile-<key>.json`` of ``calibration``: the key covers the capture's bytes
-        (not its name), the frames read and the fit's version.
+        """``cache_dir/profile-<key>.json`` of ``calibration``.
+
+        The key covers the capture's bytes (not its name), the frames read and the fit's version.
         """
         key = cache_key({"format": PROFILE_FIT_FORMAT, "version": PROFILE_FIT_VERSION,
                          "profile_version": PROFILE_VERSION, "capture_sha256": content_digest(calibration),

@@ -81,8 +81,10 @@ class _DRClamp(RandomRadarTransform):
         return F.dr_clamp(x, params["noise_db"])
 
     def check_preceding_chain(self, before: list[dict[str, Any]], where: str) -> None:
-        """Raise :class:`CalibrationError` if the steps ``before`` this one (their chain specs)
-        do not make dB maps. Called by :class:`~radaraug.transforms.compose.RadarCompose`.
+        """Raise :class:`CalibrationError` if the steps ``before`` this one do not make dB maps.
+
+        The steps are given by their chain specs. Called by
+        :class:`~radaraug.transforms.compose.RadarCompose`.
 
         Args:
             before: chain specs of the preceding steps (empty: maps made elsewhere, not checked).
@@ -135,9 +137,10 @@ class RandomDR(_DRClamp):
 
 
 def _valid_chain(chain: Any) -> list[dict[str, Any]]:
-    """A recorded DSP chain: a list of step objects, each with a string ``name`` (as
-    ``chain_spec()`` makes them). Checked when a calibration is made or loaded, so a malformed
-    one fails there with :class:`CalibrationError`, not later where the chain is compared.
+    """A recorded DSP chain, checked: a list of step objects, each with a string ``name``.
+
+    As ``chain_spec()`` makes them. Checked when a calibration is made or loaded, so a malformed one fails
+    there with :class:`CalibrationError`, not later where the chain is compared.
     """
     if not isinstance(chain, (list, tuple)):
         raise CalibrationError(f"CalibratedDR: chain must be a list of step objects, got {safe_repr(chain)}")
@@ -380,8 +383,10 @@ class CalibratedDR(_DRClamp):
         }
 
     def save(self, path: str | os.PathLike) -> None:
-        """Write the calibration as a small JSON file, atomically (:mod:`radaraug.io.atomic`: a
-        full disk or a crash leaves the previous file, or none, never a partial one).
+        """Write the calibration as a small JSON file, atomically.
+
+        Through :mod:`radaraug.io.atomic`: a full disk or a crash leaves the previous file, or none, never
+        a partial one.
 
         Raises:
             CalibrationError: the file cannot be written (the message names it).
