@@ -77,8 +77,9 @@ def lazy_import(name: str, *, feature: str) -> ModuleType:
 
 
 def missing_dependency(err: ModuleNotFoundError, feature: str) -> DependencyNotFoundError:
-    """The clear error for a package that a third-party library (trimesh reading a format...)
-    imported on its own and found missing.
+    """The clear error for a package that a third-party library found missing.
+
+    The library (trimesh reading a format...) imported the package on its own.
 
     Example:
         >>> missing_dependency(ModuleNotFoundError("no", name="lxml"), "reading x.dae").name

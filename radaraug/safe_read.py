@@ -76,8 +76,10 @@ def _kind(mode: int) -> str:
 
 
 def open_regular(path: str | os.PathLike, *, error: type[RadarAugError], what: str = "file") -> int:
-    """A read-only descriptor of the regular file ``path`` (opened with ``O_NONBLOCK``, checked again
-    on the descriptor). The caller closes it."""
+    """A read-only descriptor of the regular file ``path``; the caller closes it.
+
+    Opened with ``O_NONBLOCK`` and checked again on the descriptor.
+    """
     regular_file_size(path, error=error, what=what)
     try:
         fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK | getattr(os, "O_CLOEXEC", 0))
@@ -196,8 +198,10 @@ def load_json(
 
 
 def safe_repr(value: Any, width: int = 60) -> str:
-    """``repr(value)`` cut to ``width`` characters, safe for values whose repr fails (a
-    5,000-digit integer exceeds Python's int-to-text limit)."""
+    """``repr(value)`` cut to ``width`` characters, safe for values whose repr fails.
+
+    E.g. a 5,000-digit integer exceeds Python's int-to-text limit.
+    """
     try:
         text = repr(value)
     except (ValueError, RecursionError):

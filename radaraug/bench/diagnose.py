@@ -40,8 +40,10 @@ def _capture_frames(cfg: RadarConfig, frames: int) -> torch.Tensor:
 
 
 def run_diagnose_benchmark(*, frames: int = 100, out: str | Path | None = None) -> dict[str, Any]:
-    """Seconds to diagnose a ``frames``-frame capture at the paper's config, and the ratio to
-    simulating the capture itself (same process)."""
+    """Seconds to diagnose a ``frames``-frame capture at the paper's config.
+
+    Also the ratio to simulating the capture itself (same process).
+    """
     from radaraug.calibration import diagnose
     from radaraug.io import write_capture
 

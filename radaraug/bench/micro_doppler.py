@@ -1,5 +1,6 @@
-"""`radaraug bench micro-doppler`: a walker's micro-Doppler with one snapshot per frame vs with
-motion inside the frame (:mod:`radaraug.sim.intra_frame`), as a PNG.
+"""`radaraug bench micro-doppler`: a walker's micro-Doppler as a PNG.
+
+One snapshot per frame vs motion inside the frame (:mod:`radaraug.sim.intra_frame`).
 
 A walker comes towards the radar down the built-in corridor (ideal receiver, no multipath, so
 only the body's own echo is drawn). Each column is the Doppler spectrum of one frame-long window
@@ -22,8 +23,10 @@ from radaraug.io.atomic import atomic_savefig
 
 
 def doppler_spectrogram(frames: torch.Tensor) -> torch.Tensor:
-    """Doppler power in dB (peak 0 dB) ``(T, M)`` of frames ``(T, RX, M, N)``, zero Doppler centred
-    (bin ``M // 2``), range FFT power summed over range and RX."""
+    """Doppler power in dB (peak 0 dB) ``(T, M)`` of frames ``(T, RX, M, N)``.
+
+    Zero Doppler is centred (bin ``M // 2``); the range FFT power is summed over range and RX.
+    """
     m = frames.shape[-2]
     rng = torch.fft.rfft(frames.double(), dim=-1)
     win = torch.hann_window(m, periodic=False, dtype=torch.float64)[:, None]
@@ -35,8 +38,10 @@ def doppler_spectrogram(frames: torch.Tensor) -> torch.Tensor:
 def micro_doppler_before_after(
     out: str | os.PathLike | None = None, *, seconds: float = 1.0, speed_m_s: float = 1.4,
 ) -> dict[str, Any]:
-    """Simulate the walk both ways, write the two spectrograms side by side to ``out`` (PNG) and
-    return the numbers behind it (window length, knot intervals used per window)."""
+    """Simulate the walk both ways and write the two spectrograms side by side to ``out`` (PNG).
+
+    Returns the numbers behind the figure (window length, knot intervals used per window).
+    """
     from radaraug.scene.people import Walker
     from radaraug.scene.scene import Scene
     from radaraug.sensor.receiver import FMCWReceiver

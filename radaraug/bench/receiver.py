@@ -22,8 +22,10 @@ def random_scene_paths(
     dtype: torch.dtype = torch.float32,
     generator: torch.Generator | None = None,
 ) -> Paths:
-    """A scene-like path set: point scatterers at 0.5-20 m in the field of view, RCS -30..0 dBsm,
-    ``moving_fraction`` of them moving (walker-like speeds up to ``max_speed_m_s``), the rest static."""
+    """A scene-like path set: point scatterers at 0.5-20 m in the field of view, RCS -30..0 dBsm.
+
+    ``moving_fraction`` of them move (walker-like speeds up to ``max_speed_m_s``), the rest are static.
+    """
     g = generator if generator is not None else torch.Generator().manual_seed(0)
     r = 0.5 + 19.5 * torch.rand(num_paths, generator=g, dtype=torch.float64)
     az = (torch.rand(num_paths, generator=g, dtype=torch.float64) - 0.5) * 2.0
@@ -76,7 +78,8 @@ def benchmark_receiver(
         device: where to run.
         dtype: float32 or float64.
         exact_frames: frames timed for ``exact`` (default ``max(1, num_frames // 20)``).
-        moving_fraction: share of moving scatterers; max_speed_m_s: their speed bound.
+        moving_fraction: share of moving scatterers.
+        max_speed_m_s: speed bound of the moving scatterers.
 
     Returns:
         dict with ``fast_frames_per_s``, ``exact_frames_per_s``, ``speedup``, ``rel_rms_error``,

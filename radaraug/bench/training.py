@@ -24,8 +24,10 @@ from radaraug.transforms import CalibratedDR
 
 
 def _best_rates(steps: dict[str, Any], n: int, rounds: int = 3) -> dict[str, float]:
-    """Steps/s of each step function: one warm-up each, then ``rounds`` interleaved rounds of ``n``
-    steps, the best round kept (interleaving spreads drifts of a shared machine over both)."""
+    """Steps/s of each step function, the best of ``rounds`` interleaved rounds of ``n`` steps.
+
+    One warm-up each first; interleaving spreads drifts of a shared machine over both.
+    """
     for step in steps.values():
         step()
     best = dict.fromkeys(steps, 0.0)

@@ -98,8 +98,11 @@ def require(chain: Chain, name: str) -> dict[str, Any]:
 
 
 def with_effect(chain: Chain, name: str, params: Mapping[str, Any]) -> Chain:
-    """A copy of ``chain`` with effect ``name`` set to ``params`` (merged into an existing one, or
-    inserted at its place in the hardware order)."""
+    """A copy of ``chain`` with effect ``name`` set to ``params``.
+
+    The parameters are merged into an existing effect of that name, or the effect is inserted at its place
+    in the hardware order.
+    """
     out = copy.deepcopy(chain)
     cur = find(out, name)
     if cur is not None:
@@ -176,8 +179,11 @@ def _peaks(excess: torch.Tensor, mask: torch.Tensor, k: int, min_db: float) -> l
 
 
 def _off_zero_mask(shape: tuple[int, int]) -> torch.Tensor:
-    """Cells off zero Doppler and off range bin 0 (lines a few Doppler bins from zero count: the
-    static scene is matched in the excess map, so what is left there is not static)."""
+    """Cells off zero Doppler and off range bin 0.
+
+    Lines a few Doppler bins from zero count: the static scene is matched in the excess map, so what is
+    left there is not static.
+    """
     nr, M = shape
     m = torch.ones(nr, M, dtype=torch.bool)
     m[:, M // 2] = False
@@ -186,8 +192,10 @@ def _off_zero_mask(shape: tuple[int, int]) -> torch.Tensor:
 
 
 def _sub_bin(power: torch.Tensor, r: int, d: int) -> float:
-    """Fractional range bin of a peak at row ``r`` (column ``d``): a parabola through the log
-    power of the row's neighbours (Hann peaks are close to Gaussian), clipped to +-0.5."""
+    """Fractional range bin of a peak at row ``r`` (column ``d``), clipped to +-0.5.
+
+    A parabola through the log power of the row's neighbours (Hann peaks are close to Gaussian).
+    """
     if not 0 < r < power.shape[0] - 1:
         return float(r)
     a, b, c = (math.log(max(float(power[k, d]), 1e-30)) for k in (r - 1, r, r + 1))
@@ -197,8 +205,11 @@ def _sub_bin(power: torch.Tensor, r: int, d: int) -> float:
 
 def _level_probe(ctx: Context, name: str, params: dict[str, Any], r: int, col: int, target_db: float,
                  level_key: str) -> float | None:
-    """Level (dB, the effect's ``level_key``) that puts the effect's RD power at cell (r, col) at
-    ``target_db`` above the twin: one simulation at the current level, then linear scaling."""
+    """Level that puts the effect's RD power at cell (r, col) ``target_db`` above the twin.
+
+    The level is in dB, the effect's ``level_key``: one simulation at the current level, then linear
+    scaling.
+    """
     probe_chain = with_effect(ctx.chain, name, params)
     v = ctx.probe(probe_chain)
     p_with = float(v.stats.power.mean(dim=0)[r, col])
@@ -214,8 +225,10 @@ def _level_probe(ctx: Context, name: str, params: dict[str, Any], r: int, col: i
 
 # --------------------------------------------------------------------------- candidates
 def _range_level_specs(name: str, range_key: str) -> Callable[[Context, dict[str, Any]], list[ParamSpec]]:
-    """Specs of a scatterer-like effect: a range (within one range bin of its start) and a level
-    (within 6 dB of it)."""
+    """Specs of a scatterer-like effect: a range and a level.
+
+    The range stays within one range bin of its start, the level within 6 dB of it.
+    """
 
     def specs(ctx: Context, start: dict[str, Any]) -> list[ParamSpec]:
         pr = _priors(ctx, name)

@@ -144,9 +144,11 @@ def _source(config: RadarConfig, scene: Any, fit: torch.Tensor, sim_frames: int,
 
 
 def locate_unexplained(capture: Views, twin: Views, config: RadarConfig, limit: int = 10) -> list[dict[str, Any]]:
-    """Residual no effect explains: clusters of frame-averaged RD cells where capture and twin
-    differ by more than :data:`UNEXPLAINED_DB` (and 4 robust sigmas), located by range (m) and
-    Doppler (m/s), plus runs of range bins where the noise floor is off by more than 3 dB."""
+    """Residual no effect explains, located by range (m) and Doppler (m/s).
+
+    Clusters of frame-averaged RD cells where capture and twin differ by more than :data:`UNEXPLAINED_DB`
+    (and 4 robust sigmas), plus runs of range bins where the noise floor is off by more than 3 dB.
+    """
     ex = _db(capture.stats.power.mean(dim=0)) - _db(twin.stats.power.mean(dim=0))  # (range, doppler)
     med = ex.median()
     sigma = 1.4826 * (ex - med).abs().median()
@@ -208,8 +210,10 @@ def _clusters(mask: torch.Tensor) -> list[list[tuple[int, int]]]:
 
 
 def profile_chain(result_chain: Chain, default_chain: Chain, mode: str) -> Chain:
-    """The fitted chain for training: in estimated mode the static stages the loop did not
-    diagnose come back from the default chain."""
+    """The fitted chain for training.
+
+    In estimated mode the static stages the loop did not diagnose come back from the default chain.
+    """
     if mode == "scene":
         return result_chain
     from radaraug.calibration.catalog import with_effect

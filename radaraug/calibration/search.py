@@ -83,13 +83,16 @@ class Score:
     twin: Views
 
     def as_dict(self) -> dict[str, Any]:
+        """The overall and per-view errors rounded to 4 decimals, JSON-able (the twin's views left out)."""
         return {"overall": round(self.overall, 4), "views": {k: round(v, 4) for k, v in self.views.items()}}
 
 
 @dataclass
 class SearchResult:
-    """What the search found (``room_*``: the room parameters with each chain; empty when the
-    source has none to fit)."""
+    """What the search found.
+
+    ``room_*``: the room parameters with each chain; empty when the source has none to fit.
+    """
 
     chain_before: Chain
     chain_base: Chain
@@ -157,10 +160,12 @@ class Search:
     # ------------------------------------------------------------------ optimizer
     def optimize(self, chain: Chain, specs: Sequence[tuple[str, ParamSpec]],
                  room: Room | None = None) -> tuple[Chain, Room, Score]:
-        """Nelder-Mead over ``specs`` (``(stage, spec)``: an effect of ``chain``, or
-        :data:`~radaraug.calibration.room.ROOM_STAGE` for a room parameter of ``room``) from their
-        current values, in each prior's scale; returns the best chain and room evaluated and the
-        fit score."""
+        """Nelder-Mead over ``specs`` from their current values, in each prior's scale.
+
+        ``specs`` are ``(stage, spec)``: an effect of ``chain``, or
+        :data:`~radaraug.calibration.room.ROOM_STAGE` for a room parameter of ``room``. Returns the best
+        chain and room evaluated and the fit score.
+        """
         R = self.config.num_rx
         room = self.source.check_room(room)
 
@@ -219,9 +224,11 @@ class Search:
         return chain
 
     def base_specs(self, chain: Chain) -> list[tuple[str, ParamSpec]]:
-        """The base parameters present in ``chain`` that the search refits, then the source's room
-        parameters (stage :data:`~radaraug.calibration.room.ROOM_STAGE`: the diffuse gain in scene
-        mode when the room scatters diffusely)."""
+        """The base parameters present in ``chain`` that the search refits, then the room's.
+
+        The source's room parameters have stage :data:`~radaraug.calibration.room.ROOM_STAGE` (the diffuse
+        gain in scene mode when the room scatters diffusely).
+        """
         names = [("thermal_noise", "noise_figure_dB"), ("adc_noise", "rms_counts"), ("anti_alias_lowpass", "cutoff_Hz")]
         if self.source.mode == "scene":
             # With an estimated static scene the high-pass only shapes the thermal noise (weak at
@@ -245,10 +252,12 @@ class Search:
 
     def refit_base(self, chain: Chain, extra: Sequence[tuple[str, ParamSpec]] = (),
                    room: Room | None = None) -> tuple[Chain, Room, Score]:
-        """Refit the base stages present in ``chain`` (noise figure, anti-alias cutoff, ADC-side
-        noise; high-pass cutoff and system gain in scene mode), the room parameters and the DC
-        offsets, together with ``extra`` parameters (the effect just added: the base was bent to
-        imitate it before)."""
+        """Refit the base stages present in ``chain``, the room and the DC offsets, with ``extra``.
+
+        The base stages are the noise figure, anti-alias cutoff and ADC-side noise (high-pass cutoff and
+        system gain in scene mode). ``extra`` are the parameters of the effect just added: the base was
+        bent to imitate it before.
+        """
         chain = self.dc_closed_form(chain, room=room)
         chain, room, _ = self.optimize(chain, self.base_specs(chain) + list(extra), room)
         chain = self.dc_closed_form(chain, iterations=1, room=room)
@@ -350,8 +359,10 @@ class Search:
 
 def nelder_mead(f: Callable[[list[float]], float], x0: Sequence[float], step: Sequence[float],
                 lo: Sequence[float], hi: Sequence[float], max_evals: int) -> tuple[list[float], float]:
-    """Minimize ``f`` from ``x0`` with a Nelder-Mead simplex clipped to ``[lo, hi]`` (standard
-    coefficients: reflection 1, expansion 2, contraction 0.5, shrink 0.5)."""
+    """Minimize ``f`` from ``x0`` with a Nelder-Mead simplex clipped to ``[lo, hi]``.
+
+    Standard coefficients: reflection 1, expansion 2, contraction 0.5, shrink 0.5.
+    """
     n = len(x0)
 
     def clip(x: Sequence[float]) -> list[float]:

@@ -106,8 +106,10 @@ class TwinSource:
 
     @property
     def room_params(self) -> tuple[str, ...]:
-        """Room parameters this source can vary (``("diffuse_gain_dB",)`` when the room has
-        diffuse paths, else empty)."""
+        """Room parameters this source can vary.
+
+        ``("diffuse_gain_dB",)`` when the room has diffuse paths, else empty.
+        """
         return ("diffuse_gain_dB",) if self.diffuse_paths is not None else ()
 
     def room_start(self) -> Room:
@@ -115,8 +117,11 @@ class TwinSource:
         return {"diffuse_gain_dB": self.diffuse_gain_dB} if self.diffuse_paths is not None else {}
 
     def check_room(self, room: Mapping[str, float] | None) -> Room:
-        """``room`` completed with the traced values; :class:`CalibrationError` for a parameter
-        this source cannot vary or a value outside its prior."""
+        """``room`` completed with the traced values.
+
+        Raises :class:`CalibrationError` for a parameter this source cannot vary or a value outside its
+        prior.
+        """
         out = self.room_start()
         for k, v in (room or {}).items():
             if k not in out:

@@ -41,7 +41,12 @@ def open_device(
         spec: ``"virtual"`` (the twin), ``"auto"`` (the first board the SDK finds) or a board's
             serial/UUID.
         config: radar config (virtual default: the scene's; boards: ``RadarConfig.bgt60tr13c()``).
-        scene, profile, seed, realtime: the virtual sensor's settings (ignored for boards).
+        scene: the virtual sensor's scene: a Scene, a scene file or a built-in name (ignored for
+            boards).
+        profile: the virtual sensor's fitted twin profile (ignored for boards).
+        seed: the virtual sensor's noise seed (ignored for boards).
+        realtime: the virtual sensor hands frames out at the frame rate (True) or as fast as
+            possible (ignored for boards).
 
     Raises:
         DeviceError: a MIMO config for a board. SceneError: an unknown scene (virtual).

@@ -97,10 +97,12 @@ class SdkDevice(RadarDevice):
 
     @property
     def config(self) -> RadarConfig:
+        """The radar configuration the board was set to (a frame's shape and timing)."""
         return self._config
 
     @property
     def info(self) -> dict[str, Any]:
+        """``kind`` ``"sdk"``, ``name``, the board's ``serial`` and the SDK's ``sensor`` description."""
         name = "Infineon board" + (f" {self.serial}" if self.serial else "")
         return {"kind": "sdk", "name": name, "serial": self.serial, "sensor": dict(self._sensor)}
 

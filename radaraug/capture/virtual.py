@@ -91,10 +91,12 @@ class VirtualSensor(RadarDevice):
 
     @property
     def config(self) -> RadarConfig:
+        """The simulated radar configuration (the scene's unless one was given)."""
         return self._config
 
     @property
     def info(self) -> dict[str, Any]:
+        """``kind`` ``"virtual"``, ``name`` and the settings a frame depends on (scene, seed, profile...)."""
         if self.profile is None or isinstance(self.profile, (str, os.PathLike)):
             profile = None if self.profile is None else str(self.profile)
         else:
@@ -103,8 +105,10 @@ class VirtualSensor(RadarDevice):
                 "seed": self.seed, "realtime": self.realtime, "block_frames": BLOCK_FRAMES, "profile": profile}
 
     def frames(self, start: int, stop: int) -> torch.Tensor:
-        """Frames ``[start, stop)`` of this sensor's stream, ``(n, rx, chirps, samples)`` SDK floats,
-        without pacing (for checking a recording against the stream it came from)."""
+        """Frames ``[start, stop)`` of this sensor's stream, ``(n, rx, chirps, samples)`` SDK floats.
+
+        Without pacing: for checking a recording against the stream it came from.
+        """
         self._ensure_twin()
         out = [self._frame(k) for k in range(start, stop)]
         return torch.stack(out) if out else torch.empty(0, *self._shape())

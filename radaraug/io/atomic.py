@@ -88,8 +88,11 @@ def atomic_write_bytes(path: str | os.PathLike, data: bytes) -> Path:
 
 
 def atomic_write_json(path: str | os.PathLike, obj: Any, *, newline: bool = True, **dumps: Any) -> Path:
-    """``json.dumps(obj, **dumps)`` written to ``path`` atomically (serialised before the file is
-    created, so an object that is not JSON leaves nothing behind); returns the path."""
+    """Write ``json.dumps(obj, **dumps)`` to ``path`` atomically and return the path.
+
+    The object is serialised before the file is created, so an object that is not JSON leaves nothing
+    behind.
+    """
     text = json.dumps(obj, **dumps) + ("\n" if newline else "")
     return atomic_write_text(path, text)
 

@@ -23,7 +23,7 @@ PathLike = str | os.PathLike
 
 
 def _plain(value: Any) -> Any:
-    """numpy scalars -> Python scalars, so the default collate makes tensors of them."""
+    """Numpy scalars -> Python scalars, so the default collate makes tensors of them."""
     return value.item() if isinstance(value, np.generic) else value
 
 
@@ -242,8 +242,10 @@ class RadarCaptureDataset(Dataset):
         return int(self._offsets[-1])
 
     def set_epoch(self, epoch: int) -> None:
-        """The epoch of ``augmentation="per_item"`` draws (call before each epoch; DataLoader
-        workers started afterwards see it, persistent workers keep the one they started with)."""
+        """Set the epoch of ``augmentation="per_item"`` draws (call before each epoch).
+
+        DataLoader workers started afterwards see it; persistent workers keep the one they started with.
+        """
         from radaraug.transforms.per_item import check_epoch
 
         try:

@@ -64,8 +64,10 @@ def _rot(x: int, k: int) -> int:
 
 
 def lookup3(data: bytes, initval: int = 0) -> int:
-    """Bob Jenkins' lookup3 ``hashlittle``: the checksum HDF5 stores after its v2/v3 superblocks
-    and other metadata (``H5_checksum_lookup3``)."""
+    """Bob Jenkins' lookup3 ``hashlittle`` (HDF5's ``H5_checksum_lookup3``).
+
+    The checksum HDF5 stores after its v2/v3 superblocks and other metadata.
+    """
     length = len(data)
     a = b = c = (0xDEADBEEF + length + initval) & MASK32
     if length == 0:
@@ -127,8 +129,10 @@ class Superblock:
 
 
 def read_superblock(path: str | os.PathLike) -> Superblock | None:
-    """The superblock fields of an HDF5 file without a user block, or None when the file does
-    not start with the HDF5 signature. Reads 64 bytes of a regular file (never blocks on a FIFO).
+    """The superblock fields of an HDF5 file without a user block.
+
+    None when the file does not start with the HDF5 signature. Reads 64 bytes of a regular file (never
+    blocks on a FIFO).
 
     Raises:
         CaptureError: the path is not a readable regular file.
@@ -145,8 +149,10 @@ SUPERBLOCK_HEAD_BYTES = 64
 
 
 def parse_superblock(head: bytes, file_size: int) -> Superblock | None:
-    """:func:`read_superblock` of bytes already read from the start of a file (e.g. through a
-    locked descriptor); None when they do not start with the HDF5 signature."""
+    """:func:`read_superblock` of bytes already read from the start of a file.
+
+    The bytes come e.g. through a locked descriptor. None when they do not start with the HDF5 signature.
+    """
     if len(head) < 9 or not head.startswith(HDF5_SIGNATURE):
         return None
     version = head[8]

@@ -37,8 +37,10 @@ def _plain(value: Any) -> Any:
 
 
 def committed_frame_count(file: h5py.File, stored: int) -> int:
-    """Frames of an open capture that were completely written: ``stored`` (the length of
-    ``frames``) capped by the writer's ``frames_written`` count when the file has one (format 1.1).
+    """Frames of an open capture that were completely written.
+
+    ``stored`` (the length of ``frames``) capped by the writer's ``frames_written`` count when the file
+    has one (format 1.1).
 
     Raises:
         CaptureError: ``frames_written`` exists but is not one readable integer.
@@ -172,9 +174,10 @@ class HDF5Capture(CaptureReader):
         return obj
 
     def _written_rows(self, ds: h5py.Dataset) -> tuple[int, int | None]:
-        """``(w, gap_end)``: rows ``0..w-1`` of ``ds`` (axis 0) have stored data. ``gap_end`` is
-        None when no row from ``w`` on has stored data, else the first row after ``w`` that has
-        some (the unwritten rows ``w..gap_end-1`` then lie between written ones).
+        """``(w, gap_end)``: rows ``0..w-1`` of ``ds`` (axis 0) have stored data.
+
+        ``gap_end`` is None when no row from ``w`` on has stored data, else the first row after ``w`` that
+        has some (the unwritten rows ``w..gap_end-1`` then lie between written ones).
 
         A row without stored data would read as the dataset's fill value (2048 counts, a 0
         timestamp), which must never pass as data. This costs one step per stored chunk, never
@@ -216,8 +219,11 @@ class HDF5Capture(CaptureReader):
         return w, min(n, max(w + 1, gap_end * chunks[0]))
 
     def _written_frames(self, frames: h5py.Dataset, committed: int) -> int:
-        """Frames to serve: the first ``committed`` rows of ``frames``, all of which must have
-        stored data (a gap is a CaptureError; unwritten rows at the end are cut with a warning)."""
+        """Frames to serve: the first ``committed`` rows of ``frames``.
+
+        All of them must have stored data: a gap is a CaptureError; unwritten rows at the end are cut with
+        a warning.
+        """
         n = committed
         w, gap_end = self._written_rows(frames)
         w = min(w, n)

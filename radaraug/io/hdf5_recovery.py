@@ -39,8 +39,11 @@ _FLAGS_OFFSET = 11
 
 
 def _superblock(head: bytes, file_size: int, path: Path) -> fmt.Superblock:
-    """The version 2/3 superblock at the start of ``head`` (:func:`~radaraug.io.hdf5_format.parse_superblock`),
-    refused unless its flags can be reset: signature, version, size of offsets and checksum."""
+    """The version 2/3 superblock at the start of ``head``, if its flags can be reset.
+
+    Parsed by :func:`~radaraug.io.hdf5_format.parse_superblock`; refused unless signature, version, size
+    of offsets and checksum allow a reset.
+    """
     sb = fmt.parse_superblock(head, file_size)
     if sb is None or len(head) < 12:
         raise CaptureError(f"{path}: not an HDF5 file (no HDF5 signature at its start)")
@@ -70,8 +73,11 @@ def status_flags(path: str | os.PathLike) -> int:
 
 
 def _flock(fd: int, how: int) -> None:
-    """``flock(fd, how | LOCK_NB)``; a filesystem without flock support (some network filesystems)
-    is treated as unlocked: there radaraug cannot tell a live writer from a killed one."""
+    """``flock(fd, how | LOCK_NB)``; no flock support counts as unlocked.
+
+    On a filesystem without flock support (some network filesystems) radaraug cannot tell a live writer
+    from a killed one.
+    """
     try:
         fcntl.flock(fd, how | fcntl.LOCK_NB)
     except BlockingIOError:
@@ -82,8 +88,10 @@ def _flock(fd: int, how: int) -> None:
 
 
 def writer_is_alive(path: str | os.PathLike) -> bool:
-    """True when another process holds a lock on ``path``: radaraug's writer lock, or the lock HDF5
-    takes while a file is open (readers included); False when nobody does."""
+    """True when another process holds a lock on ``path``; False when nobody does.
+
+    The lock is radaraug's writer lock, or the lock HDF5 takes while a file is open (readers included).
+    """
     try:
         fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK)
     except OSError as e:

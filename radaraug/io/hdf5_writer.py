@@ -482,9 +482,11 @@ class CaptureWriter:
             self._lock_fd = None
 
     def discard(self) -> None:
-        """Close a writer that never appended a frame without giving the file its name: nothing
-        is left behind (a file already at the path stays as it was). A writer that has appended
-        is closed as by :meth:`close` (its frames are kept)."""
+        """Close a writer that never appended a frame without giving the file its name.
+
+        Nothing is left behind (a file already at the path stays as it was). A writer that has appended is
+        closed as by :meth:`close` (its frames are kept).
+        """
         if self._started or self._file is None:
             self.close()
             return
@@ -556,11 +558,13 @@ def _short_reason(err: BaseException) -> str:
 
 
 def _discard_pending_writes(f: h5py.File) -> None:
-    """Point HDF5's file descriptor at /dev/null so that closing a file whose writes fail (a full
-    disk) succeeds: what HDF5 still holds in its caches is dropped, the file stays as it was at the
-    failure (every frame counted in ``frames_written`` is complete; its consistency flags stay set
-    and :meth:`CaptureWriter.resume` resets them). A file HDF5 cannot close makes the process
-    crash at exit, when HDF5 shuts down and tries once more."""
+    """Point HDF5's file descriptor at /dev/null so that closing a file whose writes fail succeeds.
+
+    The writes fail e.g. on a full disk. What HDF5 still holds in its caches is dropped, the file stays as
+    it was at the failure (every frame counted in ``frames_written`` is complete; its consistency flags
+    stay set and :meth:`CaptureWriter.resume` resets them). A file HDF5 cannot close makes the process
+    crash at exit, when HDF5 shuts down and tries once more.
+    """
     try:
         handle = f.id.get_vfd_handle()
         null = os.open(os.devnull, os.O_RDWR)

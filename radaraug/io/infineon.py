@@ -41,8 +41,11 @@ FORMAT_VERSION = "1.0.0"
 
 
 def find_device_folder(path: str | os.PathLike) -> Path:
-    """The ``RadarIfxAvian_00`` folder of a recording given as the recording folder, the device
-    folder itself, or one of its files (``radar.npy``, ``config.json``)."""
+    """The ``RadarIfxAvian_00`` folder of a recording.
+
+    The recording is given as the recording folder, the device folder itself, or one of its files
+    (``radar.npy``, ``config.json``).
+    """
     p = Path(path)
     if not p.exists():
         raise CaptureError(f"{p}: recording does not exist")
@@ -71,8 +74,11 @@ def _exists(path: Path) -> bool:
 
 
 def _read_json(path: Path, *, required: bool) -> dict[str, Any]:
-    """A JSON object file: required ones raise :class:`CaptureError`, optional ones (``meta.json``)
-    that are unreadable give a :class:`CaptureWarning` and ``{}``."""
+    """A JSON object file; an unreadable one raises when ``required``, else warns.
+
+    Required ones raise :class:`CaptureError`; optional ones (``meta.json``) that are unreadable give a
+    :class:`CaptureWarning` and ``{}``.
+    """
     if not _exists(path):
         if required:
             raise CaptureError(f"{path.parent}: Infineon recording has no {path.name}")

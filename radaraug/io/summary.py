@@ -22,9 +22,11 @@ MAX_SUMMARY_SAMPLES = 2**24
 
 
 def noise_floor_db(db: torch.Tensor) -> float | None:
-    """The RD noise floor of dB maps ``(..., rx, range, doppler)``: the median cell of the far half
-    of range, leaving out zero Doppler +-1 bin (static returns) -- None (JSON null, not the
-    invalid NaN) when there are too few chirps (<= 4) to leave zero Doppler out."""
+    """The RD noise floor of dB maps ``(..., rx, range, doppler)``.
+
+    The median cell of the far half of range, leaving out zero Doppler +-1 bin (static returns) -- None
+    (JSON null, not the invalid NaN) when there are too few chirps (<= 4) to leave zero Doppler out.
+    """
     m = db.shape[-1]
     if m <= 4:
         return None

@@ -75,9 +75,11 @@ def monostatic_facet_rcs(
     triangles: torch.Tensor, material: torch.Tensor, radar: RadarGeometry, reflectivity: FaceReflectivity,
     specular_factor: torch.Tensor | None = None,
 ) -> tuple[torch.Tensor, torch.Tensor, torch.Tensor, torch.Tensor]:
-    """``(centroid, range, unit vector to the radar, root RCS)`` of facets ``(F, 3, 3)`` seen by the
-    radar (monostatic PO toward the radar centre, the face's Fresnel coefficient times the
-    optional per-material ``specular_factor``)."""
+    """``(centroid, range, unit vector to the radar, root RCS)`` of facets ``(F, 3, 3)``.
+
+    For the facets seen by the radar: monostatic PO toward the radar centre, the face's Fresnel
+    coefficient times the optional per-material ``specular_factor``.
+    """
     cen = triangles.mean(-2)
     to_r = radar.centre - cen
     r = to_r.norm(dim=-1)

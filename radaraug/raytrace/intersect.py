@@ -121,8 +121,11 @@ def plane_distance(
     o: torch.Tensor, d: torch.Tensor, planes: torch.Tensor, t_min: torch.Tensor | float,
     t_max: torch.Tensor | float,
 ) -> torch.Tensor:
-    """Hit distance (``inf`` on a miss) of rays ``o, d`` ``(..., 3)`` on triangles given by
-    :func:`triangle_planes` rows ``(..., 12)``, all broadcast against each other."""
+    """Hit distance (``inf`` on a miss) of rays ``o, d`` ``(..., 3)`` on triangles.
+
+    The triangles are given by :func:`triangle_planes` rows ``(..., 12)``; all are broadcast against each
+    other.
+    """
     ox, oy, oz = o.unbind(-1)
     dx, dy, dz = d.unbind(-1)
     nx, ny, nz, nd, ux, uy, uz, u0, vx, vy, vz, v0 = planes.unbind(-1)

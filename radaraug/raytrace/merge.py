@@ -21,8 +21,9 @@ from radaraug.sensor.paths import Paths
 
 def coherent_sum(paths: Paths, inv: torch.Tensor, frequency_Hz: float,
                   ) -> tuple[torch.Tensor, torch.Tensor, torch.Tensor, torch.Tensor]:
-    """Sum the paths ``(P, RX)`` of each group ``inv`` ``(P,)`` (values ``0..G-1``) coherently at the
-    carrier (module docstring).
+    """Sum the paths ``(P, RX)`` of each group coherently at the carrier (module docstring).
+
+    The groups are ``inv`` ``(P,)`` (values ``0..G-1``).
 
     Returns:
         ``(tau_bar, amplitude, kind, weight)``: per group the power-weighted mean delay and the

@@ -563,8 +563,10 @@ def shadow_correction_paths(
 
 
 def correction_paths(static: Paths, t: torch.Tensor, *, tol: float = SHADOW_TOL) -> Paths:
-    """The correction paths of :func:`shadow_correction_paths` for given transmissions ``t``
-    ``(..., P)`` of the static paths ``(P, RX)``."""
+    """The correction paths of :func:`shadow_correction_paths` for given transmissions.
+
+    The transmissions ``t`` ``(..., P)`` are those of the static paths ``(P, RX)``.
+    """
     batch = t.shape[:-1]
     dev = (t - 1).abs().reshape(-1, t.shape[-1])
     sel = torch.nonzero((dev > tol).any(0))[:, 0] if dev.shape[0] else torch.zeros(0, dtype=torch.long)

@@ -66,8 +66,11 @@ def ray_hits_ellipsoids(
     origins: torch.Tensor, dirs: torch.Tensor, t_max: torch.Tensor, centers: torch.Tensor,
     semi_axes: torch.Tensor, rotations: torch.Tensor, exclude_self: bool = True,
 ) -> torch.Tensor:
-    """``(N, S)`` bool: the ray ``(N, S, 3)`` from segment slot ``i`` meets an ellipsoid ``j != i``
-    of the same snapshot (``(N, S, ...)``) at ``0 < t < t_max``."""
+    """``(N, S)`` bool: the ray from segment slot ``i`` meets another ellipsoid of its snapshot.
+
+    The rays are ``(N, S, 3)``; a hit is on an ellipsoid ``j != i`` of the same snapshot (``(N, S, ...)``)
+    at ``0 < t < t_max``.
+    """
     # Into each ellipsoid's unit-sphere frame: x' = R^T (x - c) / axes.  Shapes (N, S_i, S_j, 3).
     rot_t = rotations.transpose(-1, -2)[:, None]  # (N, 1, Sj, 3, 3)
     rel = origins[:, :, None] - centers[:, None]

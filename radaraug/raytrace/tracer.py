@@ -192,9 +192,11 @@ class RayTracer:
         return self._static_diffuse
 
     def static_vertices(self) -> torch.Tensor | None:
-        """``(P, V, 3)`` vertices of :meth:`static_paths`: ``[radar centre, interaction points...,
-        radar centre]``, padded by repeating the radar centre; None for ``method="sbr"`` (whose
-        merged tube paths have no single geometry)."""
+        """``(P, V, 3)`` vertices of :meth:`static_paths`, or None for ``method="sbr"``.
+
+        ``[radar centre, interaction points..., radar centre]``, padded by repeating the radar centre.
+        SBR's merged tube paths have no single geometry.
+        """
         if self._static is None:
             self._trace_static()
         return self._static_vertices

@@ -101,7 +101,9 @@ def corridor(
     facets stay small compared with the Fresnel zone.
 
     Args:
-        length_m, width_m, height_m: inner dimensions in metres.
+        length_m: inner length (along x) in metres.
+        width_m: inner width (along y) in metres.
+        height_m: inner height (along z) in metres.
         materials: material per surface (keys of :data:`CORRIDOR_SURFACES`); missing surfaces
             take :data:`PAPER_CORRIDOR_MATERIALS` (floorboard floor, ceiling-board ceiling,
             plasterboard side walls, concrete end walls: a guess, the paper names none).
@@ -189,7 +191,7 @@ def _read_mesh_parts(path: Path) -> list[tuple[str, str | None, np.ndarray, np.n
         loaded: Any = trimesh.load(str(path), force="scene", process=False, **kwargs)
     except ModuleNotFoundError as err:  # some formats need packages trimesh imports on demand
         raise missing_dependency(err, f"reading mesh file {path}") from None
-    except Exception as err:  # trimesh raises many types for bad files
+    except Exception as err:  # noqa: BLE001 - trimesh raises many types (ValueError, KeyError, struct.error...) for bad files
         raise SceneError(f"mesh file {path}: cannot be read ({type(err).__name__}: {err})") from None
     parts = []
     for node in loaded.graph.nodes_geometry:
@@ -233,7 +235,7 @@ def _call_face_materials(
         chosen = fn(torch.as_tensor(tri.mean(axis=1)), torch.as_tensor(normals), groups)
     except SceneError:
         raise
-    except Exception as err:
+    except Exception as err:  # noqa: BLE001 - a user's callable may raise anything; name the scene file
         raise SceneError(f"{where}: face_materials callable failed ({type(err).__name__}: {err})") from None
     if isinstance(chosen, (str, Material)):
         chosen = [chosen]
@@ -361,8 +363,10 @@ def box(
 
 
 def _placement(position: Sequence[float] | np.ndarray, yaw_deg: float) -> np.ndarray:
-    """4x4 world-from-object matrix: a turn of ``yaw_deg`` about +z (counter-clockwise from above),
-    then a translation to ``position``."""
+    """4x4 world-from-object matrix: a turn about +z, then a translation to ``position``.
+
+    The turn is ``yaw_deg``, counter-clockwise seen from above.
+    """
     y = math.radians(float(yaw_deg))
     m = np.eye(4)
     m[:3, :3] = axis_rotation("z", y).numpy()

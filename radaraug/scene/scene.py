@@ -575,8 +575,10 @@ class Scene:
 
     @classmethod
     def load(cls, scene: Scene | str | os.PathLike) -> Scene:
-        """The one entry point for getting a scene: a :class:`Scene` (returned as is), a scene file
-        (``.yaml``/``.yml``/``.json``, or any existing file) or a built-in scene name.
+        """The one entry point for getting a scene: a Scene, a scene file or a built-in scene name.
+
+        A :class:`Scene` is returned as is; a scene file is ``.yaml``/``.yml``/``.json``, or any existing
+        file.
 
         Raises:
             SceneError: missing or invalid file, or unknown built-in name (the message lists them).

@@ -72,8 +72,9 @@ def default_effects(
     system_gain_dB: float = 0.0,
     adc_noise_rms_counts: float | None = None,
 ) -> list[Effect]:
-    """The default BGT60TR13C chain for ``config``, in hardware order (``adc_noise_rms_counts``
-    None: :data:`ADC_NOISE_RMS_COUNTS`, scaled to the config's ADC full scale).
+    """The default BGT60TR13C chain for ``config``, in hardware order.
+
+    ``adc_noise_rms_counts`` None: :data:`ADC_NOISE_RMS_COUNTS`, scaled to the config's ADC full scale.
 
     leakage -> phase noise -> thermal noise -> system gain -> IF high-pass -> IF gain ->
     ADC-side noise -> anti-alias low-pass -> DC offset -> ADC quantization -> ADC clipping.

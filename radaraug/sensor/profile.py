@@ -98,9 +98,11 @@ class TwinProfile:
         }
 
     def save(self, path: str | os.PathLike) -> Path:
-        """Write the profile atomically (:mod:`radaraug.io.atomic`: a temporary file of this process,
-        fsync, rename; concurrent writers of the same profile never mix their bytes, a full disk
-        leaves the old file)."""
+        """Write the profile atomically (:mod:`radaraug.io.atomic`).
+
+        A temporary file of this process, fsync, rename: concurrent writers of the same profile never mix
+        their bytes, a full disk leaves the old file.
+        """
         from radaraug.io.atomic import atomic_write_json
 
         return atomic_write_json(path, self.to_dict(), newline=False, indent=1)

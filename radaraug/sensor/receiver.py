@@ -180,8 +180,10 @@ class FMCWReceiver(nn.Module):
 
     @torch.no_grad()
     def linear_state(self, paths: Paths) -> ChainState:
-        """The chain state of ``paths`` after the linear stages before the first non-linear one
-        (what :meth:`static_signal` synthesizes; ``state.coef`` holds each path's coefficient)."""
+        """The chain state of ``paths`` after the linear stages before the first non-linear one.
+
+        What :meth:`static_signal` synthesizes; ``state.coef`` holds each path's coefficient.
+        """
         state = self._initial_state(paths, None, 0.0)
         for eff in self.effects:
             if eff.kind == "nonlinear":
@@ -235,6 +237,7 @@ class FMCWReceiver(nn.Module):
             raise ConfigError(f"invalid receiver description: {e}") from None
 
     def extra_repr(self) -> str:
+        """The synthesis, the TX power and the front-end gain for ``repr``."""
         return f"synthesis={self.synthesis!r}, tx_power_dBm={self.tx_power_dBm:.2f}, front_end_gain_dB={self.front_end_gain_dB}"
 
     # ------------------------------------------------------------------ internals
@@ -329,8 +332,10 @@ def _validated_start(start: float | torch.Tensor, batch_shape: tuple[int, ...]) 
 
 
 def _live_slots(coef: torch.Tensor, chirp_gain: torch.Tensor | None) -> torch.Tensor | None:
-    """Indices of the path slots ``(…, P, RX)`` that are non-zero in some frame of the batch, or
-    None when all are (nothing to drop)."""
+    """Indices of the path slots ``(…, P, RX)`` that are non-zero in some frame of the batch.
+
+    None when all are (nothing to drop).
+    """
     if coef.numel() == 0:
         return None
     live = coef != 0

@@ -260,8 +260,10 @@ def synthesize_fast(
 
 
 def _unravel(flat: torch.Tensor, shape: tuple[int, ...]) -> tuple[torch.Tensor, ...]:
-    """Row-major coordinates of the flat indices ``flat`` in ``shape`` (``torch.unravel_index``
-    without its per-call Python overhead, which showed in the chunk loop)."""
+    """Row-major coordinates of the flat indices ``flat`` in ``shape``.
+
+    ``torch.unravel_index`` without its per-call Python overhead, which showed in the chunk loop.
+    """
     coords = []
     for size in reversed(shape):
         coords.append(flat % size)
@@ -292,9 +294,10 @@ def _fast_rows(
     ar: torch.Tensor, ai: torch.Tensor, per_sample: torch.Tensor, quad: torch.Tensor, tw: torch.Tensor | None,
     counts: list[int], v_pow: list[torch.Tensor], num_samples: int, dtype: torch.dtype,
 ) -> torch.Tensor:
-    """:func:`synthesize_fast` of a chunk of rows: slow factors ``ar, ai`` ``(c, P, M)`` (Re and Im of
-    ``C e^{j slow}``), paths sorted by Taylor order (``counts[k - 1]`` of them need order ``k``),
-    ``tw`` the coupling ``theta w_m``.
+    """:func:`synthesize_fast` of a chunk of rows.
+
+    Slow factors ``ar, ai`` ``(c, P, M)`` (Re and Im of ``C e^{j slow}``), paths sorted by Taylor order
+    (``counts[k - 1]`` of them need order ``k``), ``tw`` the coupling ``theta w_m``.
 
     ``Re{A B}`` with ``B = cos + j sin`` is ``Re(A) cos - Im(A) sin``: two GEMMs whose slow side is
     a transposed view (no copies), accumulated in place; the paths that need order ``k`` are a
@@ -342,8 +345,9 @@ def synthesize_exact(
     chirp_delay: torch.Tensor | None = None,
     chirp_gain: torch.Tensor | None = None,
 ) -> torch.Tensor:
-    """Direct sum of ``Re{C_p g_pm exp(j Phi_p[m, n])}`` with ``Phi`` evaluated exactly in float64
-    (``tau(m, n) = tau0 + r (m T + t_d + t_n) + d_m``).
+    """Direct sum of ``Re{C_p g_pm exp(j Phi_p[m, n])}`` with ``Phi`` evaluated exactly in float64.
+
+    ``tau(m, n) = tau0 + r (m T + t_d + t_n) + d_m``.
 
     Memory-chunked over paths. Same arguments and result as :func:`synthesize_fast`.
     """

@@ -1,5 +1,6 @@
-"""On-the-fly simulation: the digital twin, scenario sampling, twin randomization, the simulated
-Dataset, offline sharded generation and the held-out proxy set.
+"""On-the-fly simulation: the digital twin, scenario sampling and twin randomization.
+
+Also the simulated Dataset, offline sharded generation and the held-out proxy set.
 
 * :class:`DigitalTwin`: a scene's people at frame times -> raw ADC frames;
 * :class:`SimulatedRadarDataset`: a torch Dataset whose item ``i`` is a pure function of (seed, i);

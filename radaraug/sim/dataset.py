@@ -258,8 +258,10 @@ class SimulatedRadarDataset(Dataset):
         return given if given is not None else FMCWReceiver(self.config)
 
     def set_epoch(self, epoch: int) -> None:
-        """The epoch of ``augmentation="per_item"`` draws (call before each epoch; DataLoader
-        workers started afterwards see it, persistent workers keep the one they started with)."""
+        """Set the epoch of ``augmentation="per_item"`` draws (call before each epoch).
+
+        DataLoader workers started afterwards see it; persistent workers keep the one they started with.
+        """
         self.epoch = check_epoch(epoch, "SimulatedRadarDataset")
 
     def _check_index(self, index: int) -> int:

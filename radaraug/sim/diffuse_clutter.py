@@ -46,7 +46,8 @@ def twin_profiles(
     Args:
         scene: the room (its people are ignored).
         config: radar config to simulate (e.g. a recording's).
-        gain_dB, scattering: passed to :func:`~radaraug.raytrace.diffuse.diffuse_paths`
+        gain_dB: passed to :func:`~radaraug.raytrace.diffuse.diffuse_paths`.
+        scattering: passed to :func:`~radaraug.raytrace.diffuse.diffuse_paths`
             (``scene.scattering`` is the base, ``scattering`` overrides it).
         seed: seed of the diffuse cells and of the receiver noise.
         frames: frames simulated per profile.
@@ -102,6 +103,7 @@ def plot_diffuse_range_profile(
         profiles: output of :func:`twin_profiles`.
         captures: ``(label, profile_db)`` of recordings with the same range axis.
         path: output image file.
+        title: figure title.
     """
     from radaraug._optional import pyplot
 

@@ -68,9 +68,11 @@ def chirp_times(timing: ChirpTiming) -> torch.Tensor:
 
 
 def _hermite(y: torch.Tensor, x: torch.Tensor) -> torch.Tensor:
-    """Interpolate knot values ``y`` ``(..., K+1)`` (uniform knots at 0..K) at ``x`` ``(Q,)`` in
-    [0, K]: piecewise-cubic Hermite with centred finite-difference slopes (one-sided second order
-    at the ends; linear for two knots). Returns ``(..., Q)``."""
+    """Interpolate knot values ``y`` ``(..., K+1)`` (uniform knots at 0..K) at ``x`` ``(Q,)`` in [0, K].
+
+    Piecewise-cubic Hermite with centred finite-difference slopes (one-sided second order at the ends;
+    linear for two knots). Returns ``(..., Q)``.
+    """
     k = y.shape[-1] - 1
     if k == 1:
         return y[..., :1] + (y[..., 1:] - y[..., :1]) * x
@@ -83,8 +85,10 @@ def _hermite(y: torch.Tensor, x: torch.Tensor) -> torch.Tensor:
 
 
 def _hermite_integral(y: torch.Tensor, x: torch.Tensor) -> torch.Tensor:
-    """``int_0^x`` of :func:`_hermite`'s interpolant of ``y`` ``(..., K+1)`` (knot units), at
-    ``x`` ``(Q,)`` in [0, K]: closed form (the cubic's antiderivative), ``(..., Q)``."""
+    """``int_0^x`` of :func:`_hermite`'s interpolant of ``y`` ``(..., K+1)`` (knot units).
+
+    At ``x`` ``(Q,)`` in [0, K]: closed form (the cubic's antiderivative), ``(..., Q)``.
+    """
     k = y.shape[-1] - 1
     if k == 1:
         return y[..., :1] * x + (y[..., 1:] - y[..., :1]) * x * x / 2
@@ -139,12 +143,14 @@ def _knot_tensors(p: Paths, t: int, knots: int) -> tuple[torch.Tensor, torch.Ten
 
 def _refinement_error(r_coarse: torch.Tensor, r_mid: torch.Tensor, amp: torch.Tensor, f0: float,
                       interval_s: float) -> torch.Tensor:
-    """Bound on the delay error (carrier cycles) per frame and slot ``(T, P)`` of integrating the rate
-    interpolated from the coarse knots: ``f0 (2/3) H sum_k |e_k|`` with ``e_k`` the rate error at
-    the midpoint of interval ``k`` (of length ``H``).
+    """Bound on the delay error (carrier cycles) per frame and slot ``(T, P)`` of the interpolated rate.
+
+    The error of integrating the rate interpolated from the coarse knots: ``f0 (2/3) H sum_k |e_k|`` with
+    ``e_k`` the rate error at the midpoint of interval ``k`` (of length ``H``).
 
     ``r_coarse`` ``(T, P, RX, K+1)``, ``r_mid`` ``(T, P, RX, K)``, ``amp`` ``(T, P, RX, 2K+1)`` on
-    the fine knots."""
+    the fine knots.
+    """
     k = r_coarse.shape[-1] - 1
     x = torch.arange(k, dtype=torch.float64, device=r_coarse.device) + 0.5
     err = (r_coarse @ _weights(_hermite, k + 1, x, r_coarse) - r_mid).abs().mean(dim=-2)  # (T, P, K), mean over RX

@@ -245,8 +245,10 @@ _BROKEN_HDF5 = object()
 
 
 def _raw_simulation_attr(path: Path) -> Any:
-    """The ``simulation`` attribute read with h5py alone; :data:`_BROKEN_HDF5` for an HDF5 file
-    h5py cannot open; None when there is none. The superblock was checked by the caller."""
+    """The ``simulation`` attribute read with h5py alone; None when there is none.
+
+    :data:`_BROKEN_HDF5` for an HDF5 file h5py cannot open. The superblock was checked by the caller.
+    """
     import h5py
 
     if not fmt.looks_like_hdf5(path):

@@ -162,8 +162,10 @@ def _register_body_material() -> None:
 
 
 def proxy_room(max_edge_m: float = 0.5) -> SceneGeometry:
-    """The proxy room: the corridor of :data:`ROOM_SIZE_M` / :data:`ROOM_MATERIALS` plus the
-    :data:`CLUTTER` boxes, merged (object id 0 = walls, 1.. = the objects)."""
+    """The proxy room: the corridor plus the :data:`CLUTTER` boxes, merged.
+
+    The corridor is :data:`ROOM_SIZE_M` / :data:`ROOM_MATERIALS`; object id 0 = walls, 1.. = the objects.
+    """
     length, width, height = ROOM_SIZE_M
     walls = corridor(length, width, height, materials=ROOM_MATERIALS, thickness_m=ROOM_THICKNESS_M,
                      max_edge_m=max_edge_m)
@@ -221,8 +223,10 @@ def proxy_receiver(config: RadarConfig | None = None) -> FMCWReceiver:
 # ------------------------------------------------------------------------------------ labelling
 def people_in_view(twin: DigitalTwin, people: list[Any], times: torch.Tensor,
                    min_range_m: float = MIN_RANGE_M) -> np.ndarray:
-    """Per frame, the people whose body centre is inside the room (:func:`people_inside`) and at
-    least ``min_range_m`` in front of the radar along its horizontal boresight."""
+    """Per frame, the people inside the room and at least ``min_range_m`` in front of the radar.
+
+    Inside: the body centre, :func:`people_inside`; in front: along the radar's horizontal boresight.
+    """
     counts = np.zeros(len(times), dtype=np.int64)
     pose = twin.scene.radar
     axis = pose.rotation[:, 2].to(torch.float64).clone()
@@ -472,8 +476,11 @@ def _reusable(out: Path, settings: dict[str, Any]) -> ProxySet | None:
 
 
 class _Simulator:
-    """One twin for every file: the room is traced once; the strongest static returns are kept
-    apart so that phase noise modulates them (re-synthesized with every frame)."""
+    """One twin for every file: the room is traced once.
+
+    The strongest static returns are kept apart so that phase noise modulates them (re-synthesized with
+    every frame).
+    """
 
     def __init__(self, device: str, tracer_options: dict[str, Any]) -> None:
         config = RadarConfig.bgt60tr13c()

@@ -301,8 +301,11 @@ class TwinRandomization:
         return ItemDraw(variant, gain, nf, rcs, scatterers, phase_noise)
 
     def sampler(self, base: ScenarioSampler, room: RoomDraw, radar_x_m: float) -> ScenarioSampler:
-        """``base`` (counts and their weights, toward/away, speed spacing kept) with this
-        randomization's people ranges, fitted inside ``room`` for a radar at ``x = radar_x_m``."""
+        """``base`` with this randomization's people ranges, fitted inside ``room``.
+
+        Counts and their weights, toward/away and speed spacing are kept; the radar is at
+        ``x = radar_x_m``.
+        """
         lateral = max(0.0, room.width_m / 2 - self.wall_margin_m)
         far = max(0.0, room.length_m - radar_x_m - self.wall_margin_m)
         hi = min(self.range_m[1], far)
@@ -342,8 +345,10 @@ class RoomDraw:
         return {**dataclasses.asdict(self), "materials": dict(self.materials), "clutter": [dict(c) for c in self.clutter]}
 
     def scene(self, base: Scene, config: RadarConfig | None = None) -> Scene:
-        """This room as a :class:`Scene`: ``base``'s radar (x, y position, pose and mounting,
-        ``max_edge`` and end walls of its corridor) in the drawn corridor.
+        """This room as a :class:`Scene`, with ``base``'s radar in the drawn corridor.
+
+        The radar's x, y position, pose and mounting, and ``max_edge`` and end walls of its corridor come
+        from ``base``.
 
         Raises:
             ConfigError: ``base`` is not a corridor scene, or its radar is outside the drawn room.
@@ -392,8 +397,10 @@ class RoomDraw:
 
 @dataclass(frozen=True)
 class ItemDraw:
-    """The per-item draws: room variant, receiver offsets, each person's RCS scale and the static
-    scatterers ``(range_m, azimuth_deg, elevation_deg, rcs_dBsm)``."""
+    """The per-item draws: room variant, receiver offsets, each person's RCS scale, static scatterers.
+
+    The scatterers are ``(range_m, azimuth_deg, elevation_deg, rcs_dBsm)``.
+    """
 
     variant: int
     system_gain_offset_dB: float
@@ -469,10 +476,12 @@ def check_receiver(receiver: FMCWReceiver, randomization: TwinRandomization) -> 
 
 def item_receiver(receiver: FMCWReceiver, system_gain_offset_dB: float, noise_figure_offset_dB: float,
                   phase_noise: tuple[float, int] | None = None) -> FMCWReceiver:
-    """A receiver like ``receiver`` with its (first) ``system_gain`` and ``thermal_noise`` stages
-    offset, and its ``phase_noise`` stage set to ``(rms_Hz, num_paths)`` when given.
-    ``receiver`` is not changed (its other stages are shared, not copied), so nothing leaks from
-    one item to the next, even across threads."""
+    """A receiver like ``receiver`` with its ``system_gain`` and ``thermal_noise`` stages offset.
+
+    The first stage of each is offset; its ``phase_noise`` stage is set to ``(rms_Hz, num_paths)`` when
+    given. ``receiver`` is not changed (its other stages are shared, not copied), so nothing leaks from
+    one item to the next, even across threads.
+    """
     effects = list(receiver.effects)
     if phase_noise is not None:
         for i, e in enumerate(effects):
@@ -496,8 +505,10 @@ def item_receiver(receiver: FMCWReceiver, system_gain_offset_dB: float, noise_fi
 
 def static_scatterer_paths(config: RadarConfig, scatterers: Sequence[tuple[float, float, float, float]],
                            like: Paths) -> Paths:
-    """Paths of static point scatterers ``(range_m, azimuth_deg, elevation_deg, rcs_dBsm)`` in the
-    radar's frame (x right, y up, z boresight), batched like ``like`` ``(..., P, RX)``."""
+    """Paths of static point scatterers ``(range_m, azimuth_deg, elevation_deg, rcs_dBsm)``.
+
+    In the radar's frame (x right, y up, z boresight), batched like ``like`` ``(..., P, RX)``.
+    """
     from radaraug.sensor.point_target import point_target_paths
 
     dt, dev = like.delay_s.dtype, like.delay_s.device
@@ -515,8 +526,9 @@ def static_scatterer_paths(config: RadarConfig, scatterers: Sequence[tuple[float
 @torch.no_grad()
 def simulate_item(twin: DigitalTwin, people: Sequence[Any], times: torch.Tensor, draw: ItemDraw,
                   generator: torch.Generator | None, phase_noise_paths: int = 16) -> torch.Tensor:
-    """Raw frames ``(T, rx, chirps, samples)`` of one randomized item (one noise generator for the
-    block, as :meth:`DigitalTwin.simulate`).
+    """Raw frames ``(T, rx, chirps, samples)`` of one randomized item.
+
+    One noise generator for the block, as :meth:`DigitalTwin.simulate`.
 
     The room's cached signal went through the receiver's linear stages, ``system_gain``
     included: it is scaled by the item's gain offset, which by linearity equals tracing the room

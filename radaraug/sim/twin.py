@@ -37,8 +37,9 @@ synthesis (:func:`negligible_paths_off`)."""
 
 
 def negligible_paths_off(paths: Paths, below_dB: float = WEAK_PATH_DB) -> Paths:
-    """``paths`` ``(T, P, RX)`` with the slots more than ``below_dB`` under their frame's strongest
-    masked off (per frame, so a frame's result does not depend on its batch).
+    """``paths`` ``(T, P, RX)`` with the slots more than ``below_dB`` under their frame's strongest off.
+
+    Masked per frame, so a frame's result does not depend on its batch.
 
     The receiver drops slots that are zero in every frame of a call before synthesis: multipath
     slots that exist for no one (a wall a person is not seen in) and such negligible ones then
@@ -134,8 +135,10 @@ class DigitalTwin:
 
     @property
     def cached_static_signal(self) -> torch.Tensor | None:
-        """The room's signal if :meth:`static_signal` has computed (or was given) it, else None
-        (for handing it to another twin of the same scene, e.g. in a DataLoader worker)."""
+        """The room's signal if :meth:`static_signal` has computed (or was given) it, else None.
+
+        For handing it to another twin of the same scene, e.g. in a DataLoader worker.
+        """
         return self._static_signal
 
     def static_signal(self) -> torch.Tensor:
@@ -165,9 +168,11 @@ class DigitalTwin:
                           e.rotations.to(device=dev, dtype=dt), e.velocities.to(device=dev, dtype=dt), e.material)
 
     def paths(self, people: Sequence[Any], times: torch.Tensor) -> Paths:
-        """Paths of the people over the frames starting at ``times`` ``(T, P, RX)`` (the room's are
-        in :meth:`static_signal`), with per-chirp delays and gains ``(T, P, chirps)`` unless
-        ``intra_frame=0``."""
+        """Paths of the people over the frames starting at ``times`` ``(T, P, RX)``.
+
+        The room's are in :meth:`static_signal`. With per-chirp delays and gains ``(T, P, chirps)`` unless
+        ``intra_frame=0``.
+        """
         if not people:
             rx = self.config.num_rx
             z = torch.zeros(int(times.shape[0]), 0, rx, dtype=self.dtype, device=self.device)
@@ -185,9 +190,11 @@ class DigitalTwin:
         return paths
 
     def shadow_transmission(self, people: Sequence[Any], times: torch.Tensor) -> torch.Tensor | None:
-        """``(T, P)`` field transmission of the room's paths through the people at each frame's
-        start (:func:`~radaraug.raytrace.shadow.shadow_transmission`, held for the frame), or None:
-        no people, ``shadowing=False``, or an SBR room (its merged paths have no vertices)."""
+        """``(T, P)`` field transmission of the room's paths through the people, or None.
+
+        At each frame's start (:func:`~radaraug.raytrace.shadow.shadow_transmission`, held for the frame).
+        None: no people, ``shadowing=False``, or an SBR room (its merged paths have no vertices).
+        """
         if not people or not self.shadowing:
             return None
         vertices = self.tracer.static_vertices()
@@ -210,8 +217,10 @@ class DigitalTwin:
         return correction_paths(self.tracer.static_paths(), t).map(lambda x: x.to(self.device))
 
     def static_basis(self) -> torch.Tensor:
-        """``(P, 2, RX, N)`` one chirp of each static path's signal through the linear stages, and of
-        the same path with its amplitude times ``j`` (the in-phase and quadrature basis).
+        """``(P, 2, RX, N)`` one chirp of each static path's signal and of its quadrature twin.
+
+        Both through the linear stages: the path as is and with its amplitude times ``j`` (the in-phase
+        and quadrature basis).
 
         A static path gives the same samples on every chirp, so a frame in which the people
         multiply path ``p``'s amplitude by ``T_p`` differs from the cached room signal by
@@ -233,8 +242,10 @@ class DigitalTwin:
         return self._static_basis
 
     def shadow_signal(self, people: Sequence[Any], times: torch.Tensor) -> torch.Tensor | None:
-        """``(T, RX, 1, N)`` what the people's shadow changes in the room's signal (broadcast over
-        chirps; :meth:`static_basis`), or None (no people, ``shadowing=False``, SBR room)."""
+        """``(T, RX, 1, N)`` what the people's shadow changes in the room's signal, or None.
+
+        Broadcast over chirps (:meth:`static_basis`). None: no people, ``shadowing=False``, SBR room.
+        """
         t = self.shadow_transmission(people, times)  # (T, P)
         if t is None:
             return None
@@ -251,10 +262,13 @@ class DigitalTwin:
         return out.reshape(d.shape[0], *basis.shape[2:])[:, :, None, :]
 
     def frame_paths(self, people: Sequence[Any], times: torch.Tensor) -> Paths:
-        """The people's paths (negligible ones masked, :func:`negligible_paths_off`) and their shadow
-        corrections as explicit paths (:meth:`shadow_paths`): with the room's cached signal, the
-        same frames as :meth:`simulate` (which applies the shadow through :meth:`shadow_signal`,
-        far cheaper), for code that needs the paths themselves (the calibration, the proxy)."""
+        """The people's paths and their shadow corrections as explicit paths.
+
+        Negligible paths are masked (:func:`negligible_paths_off`); the corrections come from
+        :meth:`shadow_paths`. With the room's cached signal they give the same frames as :meth:`simulate`
+        (which applies the shadow through :meth:`shadow_signal`, far cheaper), for code that needs the
+        paths themselves (the calibration, the proxy).
+        """
         people = list(people or [])
         paths = negligible_paths_off(self.paths(people, times))
         shadow = self.shadow_paths(people, times)

@@ -83,9 +83,11 @@ def cache_key(spec: dict[str, Any] | list[Any]) -> str:
 
 
 def content_digest(path: str | os.PathLike) -> str:
-    """SHA-256 of a file's bytes, or of a folder's files (relative names and bytes, in sorted order:
-    an Infineon recording folder). The name and modification time of ``path`` do not count, so a
-    copied or renamed capture keeps its digest and an edited one does not.
+    """SHA-256 of a file's bytes, or of a folder's files.
+
+    A folder (an Infineon recording folder) is hashed as its files' relative names and bytes, in sorted
+    order. The name and modification time of ``path`` do not count, so a copied or renamed capture keeps
+    its digest and an edited one does not.
 
     Raises:
         CaptureError: ``path`` does not exist.

@@ -86,8 +86,10 @@ def make_dr(
         calibration: for ``cdr`` / ``cdr_profile``: a fitted :class:`CalibratedDR`, its JSON, or
             an empty-room capture to fit it on.
         seed: seed of the transform's own generator (per-sample draws).
-        randomdr_mean_db, randomdr_std_db: ranges of RandomDR (default: radaraug's documented
-            defaults, see ``docs/transforms.md``).
+        randomdr_mean_db: RandomDR's range of the floor mean in dB (default: radaraug's
+            documented default, see ``docs/transforms.md``).
+        randomdr_std_db: RandomDR's range of the floor standard deviation in dB (default: the
+            documented default).
     """
     if method not in METHODS:
         raise ConfigError(f"method must be one of {METHODS}, got {method!r}")

@@ -22,9 +22,11 @@ class RadarCLI(LightningCLI):
     """LightningCLI with the task linked between data and model, and a test after fit."""
 
     def add_arguments_to_parser(self, parser) -> None:  # noqa: ANN001 - jsonargparse parser
+        """Link ``data.task`` to ``model.task``: the task is given once, on the data."""
         parser.link_arguments("data.task", "model.task")
 
     def after_fit(self) -> None:
+        """Test the fitted model on the datamodule's test split."""
         self.trainer.test(self.model, datamodule=self.datamodule)
 
 

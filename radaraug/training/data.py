@@ -205,6 +205,7 @@ class RadarDataModule(L.LightningDataModule):
         return calibration, list(test)
 
     def prepare_data(self) -> None:
+        """Generate the held-out proxy captures once per node when no test captures are given."""
         # Rank 0 of each node generates the proxy once; the other ranks reuse its files in setup().
         if self.hparams["test"] is None:
             self._proxy()
@@ -235,6 +236,7 @@ class RadarDataModule(L.LightningDataModule):
 
     # ------------------------------------------------------------------ Lightning hooks
     def setup(self, stage: str | None = None) -> None:
+        """Resolve captures, DR and receiver; build the simulated splits (cached) and the image chain."""
         if self.image is not None and (stage != "test" or self._test is not None):
             return
         rank, world = _rank_world(self.trainer)
@@ -288,8 +290,11 @@ class RadarDataModule(L.LightningDataModule):
         self._write_run_files()
 
     def _resolve_receiver(self, calibration: str | None, has_capture: bool, rank: int, world: int) -> None:
-        """Set :attr:`twin_profile` (and :attr:`profile_info`): ``data.profile``, or for
-        ``cdr_profile`` the profile fitted on the calibration capture; None otherwise."""
+        """Set :attr:`twin_profile` (and :attr:`profile_info`).
+
+        ``data.profile``, or for ``cdr_profile`` the profile fitted on the calibration capture; None
+        otherwise.
+        """
         self.twin_profile, self.profile_info = None, None
         if self.hparams["profile"] is not None:
             path = str(self.hparams["profile"])
@@ -340,8 +345,10 @@ class RadarDataModule(L.LightningDataModule):
         self.twin_profile, self.profile_info = prof, info
 
     def profile_cache_path(self, calibration: str) -> Path:
-        """``cache_dir/profile-<key>.json`` of ``calibration``: the key covers the capture's bytes
-        (not its name), the frames read and the fit's version."""
+        """``cache_dir/profile-<key>.json`` of ``calibration``.
+
+        The key covers the capture's bytes (not its name), the frames read and the fit's version.
+        """
         key = cache_key({"format": PROFILE_FIT_FORMAT, "version": PROFILE_FIT_VERSION,
                          "profile_version": PROFILE_VERSION, "capture_sha256": content_digest(calibration),
                          "scene": None, "max_frames": int(self.hparams["profile_max_frames"])})
@@ -415,10 +422,12 @@ class RadarDataModule(L.LightningDataModule):
         return "noise_fit" if self.noise_fit is not None else "default"
 
     def state_dict(self) -> dict[str, Any]:
+        """The clip range, saved in checkpoints (it is part of the model)."""
         # The clip range is part of the model: a checkpoint tested later must clip the same way.
         return {"clip_range": None if self.clip is None else list(self.clip)}
 
     def load_state_dict(self, state_dict: dict[str, Any]) -> None:
+        """Restore the clip range (and the image chain) from a checkpoint."""
         if state_dict.get("clip_range") is not None:
             vmin, vmax = state_dict["clip_range"]
             self.clip = (vmin, vmax)
@@ -437,15 +446,19 @@ class RadarDataModule(L.LightningDataModule):
                           num_workers=self.hparams["num_workers"], persistent_workers=self.hparams["num_workers"] > 0)
 
     def train_dataloader(self) -> DataLoader:
+        """The training split's loader (shuffled)."""
         return self._loader(self._train, shuffle=True)
 
     def val_dataloader(self) -> DataLoader | list:
+        """The validation split's loader (an empty list when there is none)."""
         return self._loader(self._val, shuffle=False) if self._val is not None else []
 
     def test_dataloader(self) -> DataLoader:
+        """The test captures' loader."""
         return self._loader(self._test, shuffle=False)
 
     def on_after_batch_transfer(self, batch: Any, dataloader_idx: int) -> Any:
+        """Apply the DR (simulated splits only) and the image chain on the batch's device."""
         x, y = batch
         if self.image is None:
             raise ConfigError("RadarDataModule.setup() has not run")

@@ -60,8 +60,11 @@ def noise_floor_histograms(groups: Mapping[str, torch.Tensor], path: str | os.Pa
 
 def rd_triplets(rows: Mapping[str, Sequence[tuple[str, torch.Tensor]]], path: str | os.PathLike,
                 *, vmin: float, vmax: float, range_max_m: float, v_max_m_s: float) -> Path:
-    """Fig. 5: a grid of RD maps, a row per situation (e.g. empty / one person), a column per source
-    (e.g. simulation, simulation + CDR, the profile twin + CDR, capture)."""
+    """Fig. 5: a grid of RD maps, a row per situation, a column per source.
+
+    Situations e.g. empty / one person; sources e.g. simulation, simulation + CDR, the profile twin + CDR,
+    capture.
+    """
     plt = _plt()
     n_rows = len(rows)
     n_cols = max(len(r) for r in rows.values())

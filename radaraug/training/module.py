@@ -62,9 +62,11 @@ class RDClassifier(L.LightningModule):
         self.last_test_report: dict[str, Any] | None = None
 
     def forward(self, x: torch.Tensor) -> torch.Tensor:
+        """Class logits ``(B, classes)`` of images ``x`` ``(B, 3, H, W)``."""
         return self.net(x)
 
     def setup(self, stage: str) -> None:
+        """Class weights from the training split's counts when ``balance_classes`` (fit only)."""
         dm = getattr(self.trainer, "datamodule", None)
         counts = getattr(dm, "train_class_counts", None)
         if self.hparams["balance_classes"] and counts is not None and stage == "fit":
@@ -74,6 +76,7 @@ class RDClassifier(L.LightningModule):
             self.class_weights = self.trainer.strategy.broadcast(self.class_weights, src=0)
 
     def training_step(self, batch: Any, batch_idx: int) -> torch.Tensor:
+        """Weighted cross-entropy of the batch (logged); keeps the batch for precise BatchNorm."""
         x, y = batch
         if self.hparams["precise_bn_batches"] > 0:
             self._recent.append(x.detach())
@@ -109,9 +112,11 @@ class RDClassifier(L.LightningModule):
         self._bn_stale = False
 
     def on_validation_epoch_start(self) -> None:
+        """Recompute the BatchNorm statistics before validating."""
         self.recompute_bn_stats()
 
     def on_train_end(self) -> None:
+        """Recompute the BatchNorm statistics the checkpoint will hold."""
         self.recompute_bn_stats()
 
     def _eval_step(self, batch: Any, split: str) -> None:
@@ -122,9 +127,11 @@ class RDClassifier(L.LightningModule):
         self._cm[split] = self._cm.get(split, torch.zeros_like(cm)) + cm
 
     def validation_step(self, batch: Any, batch_idx: int) -> None:
+        """Log the batch's loss and add it to the epoch's confusion matrix."""
         self._eval_step(batch, "val")
 
     def test_step(self, batch: Any, batch_idx: int) -> None:
+        """Log the batch's loss and add it to the epoch's confusion matrix."""
         self._eval_step(batch, "test")
 
     def _epoch_cm(self, split: str) -> torch.Tensor:
@@ -133,11 +140,13 @@ class RDClassifier(L.LightningModule):
         return self.trainer.strategy.reduce(cm, reduce_op="sum") if self.trainer.world_size > 1 else cm
 
     def on_validation_epoch_end(self) -> None:
+        """Log the epoch's balanced accuracy over all ranks."""
         cm = self._epoch_cm("val")
         # already summed over ranks: sync_dist only averages equal values (and silences a warning)
         self.log("val/balanced_accuracy", balanced_accuracy(cm.cpu()), prog_bar=True, sync_dist=True)
 
     def on_test_epoch_end(self) -> None:
+        """Log the test balanced accuracy; keep (and on rank 0 save) the classification report."""
         cm = self._epoch_cm("test").cpu()
         bacc = balanced_accuracy(cm)
         self.log("test/balanced_accuracy", bacc, sync_dist=True)
@@ -149,6 +158,7 @@ class RDClassifier(L.LightningModule):
             self.last_test_report = classification_report(cm, self.class_names)
 
     def configure_optimizers(self) -> Any:
+        """AdamW, with a cosine learning-rate schedule over ``max_epochs`` when the trainer has one."""
         opt = torch.optim.AdamW(self.parameters(), lr=self.hparams["lr"], weight_decay=self.hparams["weight_decay"])
         max_epochs = self.trainer.max_epochs if self.trainer is not None and self.trainer.max_epochs else None
         if not max_epochs or max_epochs < 0:

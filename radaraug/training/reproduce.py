@@ -60,9 +60,11 @@ class ReproduceSettings:
 
     @classmethod
     def quick(cls) -> ReproduceSettings:
-        """Minutes on a 2-core CPU: fewer items and epochs, half-size images, a 40-frame diagnose for
-        ``cdr_profile`` (the room: the twin's default image-method trace, faster than a coarse SBR
-        trace and converged)."""
+        """Minutes on a 2-core CPU: fewer items and epochs, half-size images.
+
+        And a 40-frame diagnose for ``cdr_profile`` (the room: the twin's default image-method trace,
+        faster than a coarse SBR trace and converged).
+        """
         return cls(train_items=360, val_items=90, epochs=4, image_size=(64, 32), batch_size=32,
                    proxy_frames_per_count=60, num_workers=0, sim_workers=0, profile_max_frames=40)
 
@@ -137,8 +139,8 @@ def reproduce(
         calibration: empty-room capture for CDR and for ``cdr_profile``'s twin profile (None: the
             held-out proxy's). A CalibratedDR JSON serves CDR but not ``cdr_profile``.
         test: test entries ``{"path", "count"?}`` (None: the held-out proxy).
-        tasks, methods: subsets of ``occupancy``/``counting`` and
-            ``rt``/``randomdr``/``cdr``/``cdr_profile``.
+        tasks: subset of ``occupancy``/``counting``.
+        methods: subset of ``rt``/``randomdr``/``cdr``/``cdr_profile``.
         ablation: also train CDR without twin randomization.
         accelerator: Lightning accelerator (``auto`` uses a GPU when there is one).
         progress: progress bars.
@@ -250,8 +252,11 @@ def _noise_fit_of(keep: dict) -> dict[str, Any] | None:
 
 
 def _profile_of(keep: dict, out: Path) -> dict[str, Any] | None:
-    """The twin profile of the ``cdr_profile`` runs (they share it): where it came from, the
-    effects the fit added and the diagnose error before / after (``profile.fitted_on``)."""
+    """The twin profile of the ``cdr_profile`` runs (they share it).
+
+    Where it came from, the effects the fit added and the diagnose error before / after
+    (``profile.fitted_on``).
+    """
     for _model, dm in keep.values():
         info = getattr(dm, "profile_info", None)
         if info is not None:
@@ -281,9 +286,11 @@ def _capture_maps(path: str, n: int) -> torch.Tensor:
 
 def _figures(fig_dir: Path, keep: dict, cms: dict, results: dict, calibration: str | None,
              test: Sequence[dict[str, Any]], settings: ReproduceSettings, floors: dict[str, float]) -> dict[str, Path]:
-    """Write the figures; fill ``floors`` with the median empty-room RD level (dB) of simulation,
-    simulation + CDR, the calibration capture and, with ``cdr_profile`` runs, the profile twin
-    with and without CDR (Fig. 4's data)."""
+    """Write the figures; fill ``floors`` with the median empty-room RD level (dB) of each source.
+
+    The sources: simulation, simulation + CDR, the calibration capture and, with ``cdr_profile`` runs, the
+    profile twin with and without CDR (Fig. 4's data).
+    """
     from radaraug.training import figures as F
 
     figs: dict[str, Path] = {}

@@ -75,8 +75,10 @@ def unflatten(flat: list[Any], spec: pytree.TreeSpec) -> Any:
 
 
 def is_sample_aware(module: Any) -> bool:
-    """Whether ``module`` takes a whole sample (radaraug or torchvision v2 transforms, and
-    ``nn.Sequential``s of them); other modules are given the sample's radar tensors one by one.
+    """Whether ``module`` takes a whole sample.
+
+    radaraug or torchvision v2 transforms do, and ``nn.Sequential``s of them; other modules are given the
+    sample's radar tensors one by one.
 
     radaraug's own sample-aware modules (``RadarTransform``, ``RadarCompose``) say so with a class
     attribute ``takes_samples = True`` (read here instead of importing their classes, which import
@@ -92,8 +94,10 @@ def is_sample_aware(module: Any) -> bool:
 
 
 def apply_to_radar_leaves(fn: Callable[[torch.Tensor], Any], sample: Any, min_ndim: int = 2) -> Any:
-    """``fn`` applied to each radar leaf of ``sample`` (real or complex floating, ``min_ndim``
-    dims); a plain tensor is passed to ``fn`` as is."""
+    """``fn`` applied to each radar leaf of ``sample``; a plain tensor is passed to ``fn`` as is.
+
+    A radar leaf is a real or complex floating tensor of at least ``min_ndim`` dims.
+    """
     if isinstance(sample, torch.Tensor):
         return fn(sample)
     flat, spec = flatten(sample)

@@ -112,6 +112,7 @@ class RadarTransform(nn.Module):
         return {"name": type(self).__name__, **self.extra_spec()}
 
     def extra_repr(self) -> str:
+        """The parameters of :meth:`extra_spec` for ``repr``."""
         return ", ".join(f"{k}={v!r}" for k, v in self.extra_spec().items())
 
 
@@ -229,6 +230,7 @@ class RandomRadarTransform(RadarTransform):
         return torch.where(mask, y, x)
 
     def extra_spec(self) -> dict[str, Any]:
+        """``p`` and ``same_on_batch`` (subclasses add their own parameters)."""
         return {"p": self.p, "same_on_batch": self.same_on_batch}
 
     def chain_spec(self) -> dict[str, Any]:

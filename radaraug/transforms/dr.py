@@ -81,8 +81,10 @@ class _DRClamp(RandomRadarTransform):
         return F.dr_clamp(x, params["noise_db"])
 
     def check_preceding_chain(self, before: list[dict[str, Any]], where: str) -> None:
-        """Raise :class:`CalibrationError` if the steps ``before`` this one (their chain specs)
-        do not make dB maps. Called by :class:`~radaraug.transforms.compose.RadarCompose`.
+        """Raise :class:`CalibrationError` if the steps ``before`` this one do not make dB maps.
+
+        The steps are given by their chain specs. Called by
+        :class:`~radaraug.transforms.compose.RadarCompose`.
 
         Args:
             before: chain specs of the preceding steps (empty: maps made elsewhere, not checked).
@@ -122,6 +124,7 @@ class RandomDR(_DRClamp):
     def sample_params(
         self, x: torch.Tensor, shape: tuple[int, ...], generator: torch.Generator | None
     ) -> Params:
+        """Per-frame ``mean_db``/``std_db`` drawn from the ranges and the floor ``noise_db`` they give."""
         (m_lo, m_hi), (s_lo, s_hi) = self.mean_db, self.std_db
         mean = m_lo + (m_hi - m_lo) * self.draw("rand", shape, x, generator)
         std = s_lo + (s_hi - s_lo) * self.draw("rand", shape, x, generator)
@@ -129,13 +132,16 @@ class RandomDR(_DRClamp):
         return {"mean_db": mean, "std_db": std, "noise_db": F.random_floor(shape, mean, std, noise)}
 
     def extra_spec(self) -> dict[str, Any]:
+        """The mean and std ranges, ``p`` and ``same_on_batch``."""
         return {"mean_db": list(self.mean_db), "std_db": list(self.std_db), **super().extra_spec()}
 
 
 def _valid_chain(chain: Any) -> list[dict[str, Any]]:
-    """A recorded DSP chain: a list of step objects, each with a string ``name`` (as
-    ``chain_spec()`` makes them). Checked when a calibration is made or loaded, so a malformed
-    one fails there with :class:`CalibrationError`, not later where the chain is compared."""
+    """A recorded DSP chain, checked: a list of step objects, each with a string ``name``.
+
+    As ``chain_spec()`` makes them. Checked when a calibration is made or loaded, so a malformed one fails
+    there with :class:`CalibrationError`, not later where the chain is compared.
+    """
     if not isinstance(chain, (list, tuple)):
         raise CalibrationError(f"CalibratedDR: chain must be a list of step objects, got {safe_repr(chain)}")
     steps = []
@@ -257,6 +263,7 @@ class CalibratedDR(_DRClamp):
 
     # ------------------------------------------------------------------ the transform
     def check_input(self, x: Any) -> torch.Tensor:
+        """As :meth:`RadarTransform.check_input`; maps of another shape raise CalibrationError."""
         x = super().check_input(x)
         if self.map_shape is not None and tuple(x.shape[-3:]) != self.map_shape:
             raise CalibrationError(
@@ -269,6 +276,7 @@ class CalibratedDR(_DRClamp):
     def sample_params(
         self, x: torch.Tensor, shape: tuple[int, ...], generator: torch.Generator | None
     ) -> Params:
+        """The floor ``noise_db`` drawn per cell from the fitted statistics."""
         event = tuple(x.shape[-self.event_ndim :])
         return {"noise_db": F.calibrated_floor(shape + event, self.mean_db, self.std_db, like=x, generator=generator)}
 
@@ -303,6 +311,7 @@ class CalibratedDR(_DRClamp):
             )
 
     def extra_spec(self) -> dict[str, Any]:
+        """The fitted statistics, ``p`` and ``same_on_batch``."""
         return {"mean_db": self.mean_db, "std_db": self.std_db, **super().extra_spec()}
 
     # ------------------------------------------------------------------ fitting
@@ -375,8 +384,10 @@ class CalibratedDR(_DRClamp):
         }
 
     def save(self, path: str | os.PathLike) -> None:
-        """Write the calibration as a small JSON file, atomically (:mod:`radaraug.io.atomic`: a
-        full disk or a crash leaves the previous file, or none, never a partial one).
+        """Write the calibration as a small JSON file, atomically.
+
+        Through :mod:`radaraug.io.atomic`: a full disk or a crash leaves the previous file, or none, never
+        a partial one.
 
         Raises:
             CalibrationError: the file cannot be written (the message names it).

@@ -35,8 +35,10 @@ def floor_statistics(
     motion_threshold_db: float = DEFAULT_THRESHOLD_DB,
     progress: bool = False,
 ) -> dict[str, Any]:
-    """The statistics :meth:`CalibratedDR.fit <radaraug.transforms.dr.CalibratedDR.fit>` builds a
-    CalibratedDR from (arguments, errors and warnings: see there).
+    """The statistics a CalibratedDR is built from.
+
+    What :meth:`CalibratedDR.fit <radaraug.transforms.dr.CalibratedDR.fit>` computes (arguments, errors
+    and warnings: see there).
 
     Returns:
         The constructor's keyword arguments: ``mean_db``, ``std_db``, ``chain``, ``config``,

@@ -39,9 +39,11 @@ class ClipNormalize(RadarTransform):
         self.vmin, self.vmax = check_clip_range(vmin, vmax)
 
     def transform(self, x: torch.Tensor, params: Params) -> torch.Tensor:
+        """Clip to ``[vmin, vmax]`` and scale to [0, 1]."""
         return F.clip_normalize(x, self.vmin, self.vmax)
 
     def extra_spec(self) -> dict[str, Any]:
+        """``vmin`` and ``vmax``."""
         return {"vmin": self.vmin, "vmax": self.vmax}
 
     @classmethod
@@ -124,6 +126,7 @@ class Colormap(RadarTransform):
         self.register_buffer("lut", F.colormap_lut(name), persistent=False)
 
     def check_input(self, x: Any) -> torch.Tensor:
+        """As :meth:`RadarTransform.check_input`; more than one channel raises InputTensorError."""
         x = super().check_input(x)
         if x.shape[-3] != 1:
             raise InputTensorError(
@@ -133,9 +136,11 @@ class Colormap(RadarTransform):
         return x
 
     def transform(self, x: torch.Tensor, params: Params) -> torch.Tensor:
+        """Look every value up in the colour table: ``(..., 1, H, W)`` -> ``(..., 3, H, W)``."""
         return F.colormap(x, self.lut)
 
     def extra_spec(self) -> dict[str, Any]:
+        """The colormap's name."""
         return {"cmap": self.name}
 
 
@@ -161,7 +166,9 @@ class Resize(RadarTransform):
         self.antialias = bool(antialias)
 
     def transform(self, x: torch.Tensor, params: Params) -> torch.Tensor:
+        """Resample the last two dims to ``size``."""
         return F.resize(x, self.size, self.antialias)
 
     def extra_spec(self) -> dict[str, Any]:
+        """``size`` and ``antialias``."""
         return {"size": list(self.size), "antialias": self.antialias}

@@ -59,6 +59,7 @@ class RemoveMean(RadarTransform):
     input_layout = RAW_LAYOUT
 
     def transform(self, x: torch.Tensor, params: Params) -> torch.Tensor:
+        """Subtract each chirp's mean over fast time."""
         return F.remove_mean(x)
 
 
@@ -75,6 +76,7 @@ class StaticClutterRemoval(RadarTransform):
     accepts_complex = True
 
     def transform(self, x: torch.Tensor, params: Params) -> torch.Tensor:
+        """Subtract the mean over chirps of each sample."""
         return F.static_clutter_removal(x)
 
 
@@ -96,9 +98,11 @@ class RangeFFT(_FFTTransform):
         self.window = check_window_name(window)
 
     def transform(self, x: torch.Tensor, params: Params) -> torch.Tensor:
+        """The range FFT of the last dim (samples)."""
         return F.range_fft(x, self.window)
 
     def extra_spec(self) -> dict[str, Any]:
+        """The window's name."""
         return {"window": self.window}
 
 
@@ -121,9 +125,11 @@ class DopplerFFT(_FFTTransform):
         self.window = check_window_name(window)
 
     def transform(self, x: torch.Tensor, params: Params) -> torch.Tensor:
+        """The centred Doppler FFT of the chirp dim."""
         return F.doppler_fft(x, self.window)
 
     def extra_spec(self) -> dict[str, Any]:
+        """The window's name."""
         return {"window": self.window}
 
 
@@ -157,9 +163,11 @@ class RangeDoppler(_FFTTransform):
         self.static_clutter = bool(static_clutter)
 
     def transform(self, x: torch.Tensor, params: Params) -> torch.Tensor:
+        """The complex RD map of a raw cube."""
         return F.range_doppler(x, self.range_window, self.doppler_window, self.remove_mean, self.static_clutter)
 
     def extra_spec(self) -> dict[str, Any]:
+        """The two windows and the two pre-FFT steps' switches."""
         return {
             "range_window": self.range_window,
             "doppler_window": self.doppler_window,
@@ -188,9 +196,11 @@ class ToDecibels(RadarTransform):
         self.floor = float(floor)
 
     def transform(self, x: torch.Tensor, params: Params) -> torch.Tensor:
+        """The map in dB."""
         return F.to_decibels(x, self.floor)
 
     def extra_spec(self) -> dict[str, Any]:
+        """The magnitude floor."""
         return {"floor": self.floor}
 
 
@@ -223,9 +233,11 @@ class CombineRx(RadarTransform):
         self.mode, self.index, self.db = mode, index, bool(db)
 
     def transform(self, x: torch.Tensor, params: Params) -> torch.Tensor:
+        """The RX channels combined into one."""
         return F.combine_rx(x, self.mode, self.index, self.db)
 
     def extra_spec(self) -> dict[str, Any]:
+        """``mode`` and ``db`` (and ``index`` when set)."""
         spec: dict[str, Any] = {"mode": self.mode, "db": self.db}
         if self.index is not None:
             spec["index"] = self.index

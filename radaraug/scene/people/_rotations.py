@@ -52,9 +52,11 @@ def _basis(axis: str, device: torch.device, dtype: torch.dtype) -> tuple[torch.T
 def rotation_from_cos_sin(
     axis: str, c: torch.Tensor, s: torch.Tensor, rate: torch.Tensor
 ) -> tuple[torch.Tensor, torch.Tensor]:
-    """A rotation about a coordinate axis and its time derivative, ``(R, dR/dt)``, from precomputed
-    ``cos``/``sin`` of the angle and its ``rate`` in rad/s (lets a caller evaluate all its
-    trigonometric functions in one batched call)."""
+    """A rotation about a coordinate axis and its time derivative, ``(R, dR/dt)``.
+
+    From precomputed ``cos``/``sin`` of the angle and its ``rate`` in rad/s (lets a caller evaluate all
+    its trigonometric functions in one batched call).
+    """
     kk, cc, ss = _basis(axis, c.device, c.dtype)
     c, s, rt = c[..., None, None], s[..., None, None], rate[..., None, None]
     return kk + c * cc + s * ss, (c * rt) * ss - (s * rt) * cc

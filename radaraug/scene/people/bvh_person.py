@@ -72,8 +72,10 @@ def map_joints(sk: BVHSkeleton) -> list[int]:
 
 
 def detect_scale(sk: BVHSkeleton) -> float:
-    """Metres per file unit: the :data:`UNIT_SCALES` entry giving the rest-pose figure the most
-    human height (~1.7 m, closest in ratio)."""
+    """Metres per file unit: the :data:`UNIT_SCALES` entry giving the most human height.
+
+    The rest-pose figure's height closest in ratio to ~1.7 m.
+    """
     rest = sk.rest_positions()
     extent = float(rest[:, 1].max() - rest[:, 1].min())
     if not extent > 0:

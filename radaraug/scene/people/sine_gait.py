@@ -162,8 +162,11 @@ class SineGait:
         return spec
 
     def channels(self, t: torch.Tensor) -> tuple[torch.Tensor, dict[str, torch.Tensor]]:
-        """Root position ``(T, 3)`` (BVH axes, m, floor not yet applied) and per-joint Euler
-        angles ``(T, 3)`` in degrees, order ``(Z, X, Y)`` (``R = Rz Rx Ry``), at times ``t``."""
+        """Root position ``(T, 3)`` and per-joint Euler angles ``(T, 3)`` at times ``t``.
+
+        Positions in BVH axes, m, floor not yet applied; angles in degrees, order ``(Z, X, Y)``
+        (``R = Rz Rx Ry``).
+        """
         t = t.to(torch.float64)
         v = self.speed_m_s
         u = t / self.cycle_duration_s + self.phase
@@ -198,8 +201,10 @@ class SineGait:
         return root, eul
 
     def forward_kinematics(self, t: torch.Tensor, root: torch.Tensor | None = None) -> dict[str, torch.Tensor]:
-        """World positions ``(T, 3)`` (BVH axes, m) of every joint, end site (``<joint>_end``)
-        and heel (``<side>Heel``) at times ``t``; ``root`` overrides the root position."""
+        """World positions ``(T, 3)`` (BVH axes, m) of every joint, end site and heel at times ``t``.
+
+        End sites are named ``<joint>_end``, heels ``<side>Heel``; ``root`` overrides the root position.
+        """
         r0, eul = self.channels(t)
         root = r0 if root is None else root
         pos: dict[str, torch.Tensor] = {}

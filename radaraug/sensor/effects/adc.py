@@ -39,6 +39,7 @@ class DCOffset(Effect):
         self._set(level_counts=level_counts)
 
     def forward(self, state: ChainState) -> None:
+        """Add each RX's DC level, converted from ADC code to SDK floats in [-1, 1]."""
         full = float(state.config.adc_full_scale_counts)
         level = per_rx(state, self.level_counts, "level_counts", self.name)
         state.add_constant(level * (2.0 / full) - 1.0)
@@ -64,6 +65,7 @@ class ADCQuantization(Effect):
         self._set(bits=bits)
 
     def forward(self, state: ChainState) -> None:
+        """Round the samples to the nearest ADC code (gradient passed straight through)."""
         bits = state.config.adc_bits if self.bits is None else int(self.bits)
         full = float(2**bits - 1)
         x = state.materialize()
@@ -83,4 +85,5 @@ class ADCClipping(Effect):
     param_names = ()
 
     def forward(self, state: ChainState) -> None:
+        """Clip the samples to the ADC range ``[-1, 1]``."""
         state.samples = torch.clamp(state.materialize(), -1.0, 1.0)

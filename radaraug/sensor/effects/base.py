@@ -207,6 +207,7 @@ class Effect(nn.Module):
         return {"name": self.name, "params": out}
 
     def extra_repr(self) -> str:
+        """The parameters for ``repr`` (``config`` where a value comes from the radar config)."""
         parts = []
         for k, v in self.params().items():
             parts.append(f"{k}={'config' if v is None else v.detach().cpu().tolist()}")
@@ -266,9 +267,10 @@ def insert_in_order(effects: Sequence[Effect], new: Effect) -> list[Effect]:
 
 
 def hardware_position(names: Sequence[str], name: str) -> int:
-    """Where effect ``name`` goes in a chain whose effects are called ``names``: before the first
-    one the hardware applies after it (:data:`HARDWARE_ORDER`; names not in it never count as
-    later), or at the end. The one ordering rule behind :func:`insert_in_order` and the
+    """Where effect ``name`` goes in a chain whose effects are called ``names``.
+
+    Before the first one the hardware applies after it (:data:`HARDWARE_ORDER`; names not in it never
+    count as later), or at the end. The one ordering rule behind :func:`insert_in_order` and the
     calibration loop's chains of effect dicts.
 
     Raises:
@@ -328,15 +330,19 @@ def scatterer_count(effect: Effect, **values: torch.Tensor) -> int:
 
 
 def strongest_paths(state: ChainState, k: int) -> tuple[torch.Tensor, torch.Tensor, torch.Tensor]:
-    """Coefficients, delays and delay rates ``(…, RX, k)`` of the ``k`` paths with the largest
-    ``|C| tau`` (strongest over RX, chosen per frame): the paths whose LO-borne modulation
-    (phase noise, ramp ripple, both proportional to the delay) is largest."""
+    """Coefficients, delays and delay rates ``(…, RX, k)`` of the ``k`` paths with the largest ``|C| tau``.
+
+    Strongest over RX, chosen per frame: the paths whose LO-borne modulation (phase noise, ramp ripple,
+    both proportional to the delay) is largest.
+    """
     idx = strongest_index(state, k)
     return state.coef.gather(-1, idx), state.delay_s.gather(-1, idx), state.delay_rate.gather(-1, idx)
 
 
 def strongest_index(state: ChainState, k: int) -> torch.Tensor:
-    """Indices ``(…, RX, k)`` of the paths :func:`strongest_paths` picks (for
-    :meth:`ChainState.chirp_terms`)."""
+    """Indices ``(…, RX, k)`` of the paths :func:`strongest_paths` picks.
+
+    For :meth:`ChainState.chirp_terms`.
+    """
     strength = (state.coef.abs() * state.delay_s.abs()).amax(dim=-2)  # (…, P)
     return torch.topk(strength, k, dim=-1).indices[..., None, :].expand(*state.batch_shape, state.num_rx, k)

@@ -84,6 +84,7 @@ class StaticClutter(Effect):
         return _clutter_priors(config)
 
     def forward(self, state: ChainState) -> None:
+        """Add the ``K`` scatterers as static paths, the same on every RX."""
         k = self.num_scatterers
         amp = tone_amplitude(state, _per_scatterer(state, self.level_dB, k))
         coef = torch.polar(amp, _per_scatterer(state, self.phase_rad, k))[None, :]  # (1, K): all RX
@@ -196,6 +197,7 @@ class VibratingClutter(Effect):
         return beta[:, None, None, None] * torch.sin(phase)
 
     def forward(self, state: ChainState) -> None:
+        """Add the ``K`` scatterers: a static path each plus their vibration's phase modulation."""
         k = self.num_scatterers
         amp = tone_amplitude(state, _per_scatterer(state, self.level_dB, k))
         coef = amp.to(state.complex_dtype)[None, :].expand(state.num_rx, k)  # (RX, K)
@@ -268,6 +270,7 @@ class Multipath(Effect):
         check_nonnegative(self, extra_range_m=self.extra_range_m)
 
     def forward(self, state: ChainState) -> None:
+        """Add a ghost of every path present, ``extra_range_m`` farther and scaled by ``level_dB``."""
         if state.samples is not None:
             raise ConfigError("effect multipath acts on paths: place it before any non-linear stage (first)")
         k = self.num_ghosts

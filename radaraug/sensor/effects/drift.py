@@ -53,6 +53,7 @@ class FrameDrift(Effect):
         check_nonnegative(self, gain_rms_dB=self.gain_rms_dB, dc_rms_counts=self.dc_rms_counts)
 
     def forward(self, state: ChainState) -> None:
+        """Scale by a random gain per frame and add a random DC shift per frame and RX."""
         x = state.materialize()
         batch = state.batch_shape
         g_db = state.param(self.gain_rms_dB) * state.randn((*batch, 1, 1, 1))

@@ -77,6 +77,7 @@ class IFHighPass(_FirstOrderFilter):
         return highpass_response(freq_Hz, self._cutoff(state), int(self.order))
 
     def forward(self, state: ChainState) -> None:
+        """Apply the high-pass's frequency response to what is present."""
         state.apply_linear(response=lambda f: self.response(f, state))
 
 
@@ -108,4 +109,5 @@ class AntiAliasLowPass(_FirstOrderFilter):
         return lowpass_response(freq_Hz, self._cutoff(state), int(self.order))
 
     def forward(self, state: ChainState) -> None:
+        """Apply the low-pass's frequency response to what is present."""
         state.apply_linear(response=lambda f: self.response(f, state))

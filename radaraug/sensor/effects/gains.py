@@ -40,6 +40,7 @@ class SystemGain(Effect):
         self._set(gain_dB=gain_dB)
 
     def forward(self, state: ChainState) -> None:
+        """Scale everything present by ``gain_dB``."""
         g = db_to_amplitude(state.param(self.gain_dB)).expand(state.num_rx)
         state.apply_linear(rx_gain=g)
 
@@ -65,6 +66,7 @@ class IFGain(Effect):
         self._set(gain_dB=gain_dB)
 
     def forward(self, state: ChainState) -> None:
+        """Scale everything present by ``gain_dB`` (the radar config's IF gain when None)."""
         db = (
             torch.tensor(float(state.config.if_gain_dB), device=state.device, dtype=state.dtype)
             if self.gain_dB is None
@@ -99,6 +101,7 @@ class RxGainPhaseMismatch(Effect):
         self._set(gain_dB=gain_dB, phase_rad=phase_rad)
 
     def forward(self, state: ChainState) -> None:
+        """Multiply each RX by its complex gain."""
         amp = db_to_amplitude(per_rx(state, self.gain_dB, "gain_dB", self.name))
         ph = per_rx(state, self.phase_rad, "phase_rad", self.name)
         state.apply_linear(rx_gain=torch.polar(amp, ph))

@@ -75,6 +75,7 @@ class Interference(Effect):
         check_positive(self, duration_s=self.duration_s)
 
     def forward(self, state: ChainState) -> None:
+        """Add a burst to each chirp with probability ``probability``, at a random time and phase."""
         tm = state.timing
         M, N, fs = tm.num_chirps, tm.num_samples, tm.fs
         per_chirp = (*state.batch_shape, 1, M, 1)

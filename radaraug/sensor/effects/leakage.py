@@ -48,6 +48,7 @@ class TxRxLeakage(Effect):
         self._set(coupling_dB=coupling_dB, range_m=range_m, phase_rad=phase_rad)
 
     def forward(self, state: ChainState) -> None:
+        """Add the leakage as a static path at ``range_m`` on every RX."""
         c = per_rx(state, self.coupling_dB, "coupling_dB", self.name)
         ph = per_rx(state, self.phase_rad, "phase_rad", self.name)
         amp = tone_amplitude(state, c)

@@ -51,6 +51,7 @@ class ThermalNoise(Effect):
         self._set(noise_figure_dB=noise_figure_dB, temperature_K=temperature_K)
 
     def forward(self, state: ChainState) -> None:
+        """Add noise of power ``k T F fs/2`` per RX, scaled by the front-end gain."""
         nf = state.param(self.noise_figure_dB)
         temp = state.param(self.temperature_K)
         power = BOLTZMANN * temp * torch.pow(10.0, nf / 10) * (state.timing.fs / 2)
@@ -87,5 +88,6 @@ class ADCNoise(Effect):
         check_nonnegative(self, rms_counts=self.rms_counts)
 
     def forward(self, state: ChainState) -> None:
+        """Add white noise of ``rms_counts`` ADC codes (RMS) per RX."""
         sigma = per_rx(state, self.rms_counts, "rms_counts", self.name) * (2.0 / state.config.adc_full_scale_counts)
         state.add_samples(sigma[:, None, None] * state.randn(state.sample_shape))

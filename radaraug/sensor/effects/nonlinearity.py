@@ -96,6 +96,7 @@ class ChirpNonlinearity(Effect):
         return state.param(self.deviation_Hz) * torch.sin(phase)
 
     def forward(self, state: ChainState) -> None:
+        """Add the ripple's frequency-modulated copies of the ``num_paths`` strongest paths."""
         k = min(int(self.num_paths), state.coef.shape[-1])
         if k == 0:
             return

@@ -53,6 +53,7 @@ class PhaseNoise(Effect):
         self._set(freq_noise_rms_Hz=freq_noise_rms_Hz, corner_Hz=corner_Hz, num_paths=int(num_paths))
 
     def forward(self, state: ChainState) -> None:
+        """Add the phase noise's frequency-modulated copies of the ``num_paths`` strongest paths."""
         P = state.coef.shape[-1]
         k = min(int(self.num_paths), P)
         if k == 0:

@@ -54,6 +54,7 @@ class SpurTone(Effect):
         self._set(freq_Hz=freq_Hz, amplitude_counts=amplitude_counts, phase_rad=phase_rad)
 
     def forward(self, state: ChainState) -> None:
+        """Add the tone at the absolute time of every sample of the frame(s)."""
         tm = state.timing
         m = torch.arange(tm.num_chirps, device=state.device, dtype=torch.float64)
         n = torch.arange(tm.num_samples, device=state.device, dtype=torch.float64)
