@@ -9,7 +9,8 @@ On top of that:
 
 - The file is built under a temporary name in the target folder and renamed to its name once
   it is in SWMR mode (first append) or closed, so a file at the target name is always one that
-  opens; a kill before that leaves only the hidden temporary ``.<name>.*.partial``.
+  opens; a kill before that leaves only the hidden temporary ``.<name>.*.partial``, which the
+  next writer of the same name removes (when no process holds it and it is older than a minute).
 - After each append's data is flushed, the count of complete frames is written to
   ``frames_written`` and flushed again; readers serve no frame past it.
 - The writer holds a ``flock`` on the file while it writes (:mod:`radaraug.io.hdf5_recovery`),
@@ -22,12 +23,14 @@ On top of that:
 
 from __future__ import annotations
 
+import glob
 import json
 import os
 import re
 import resource
 import secrets
 import shutil
+import time
 from collections.abc import Mapping
 from datetime import datetime, timezone
 from pathlib import Path
@@ -70,6 +73,33 @@ def _attr_value(key: str, value: Any, where: str) -> Any:
             f"{where}: attribute {key!r} must be str, number, bool, list or dict, got {value!r}"
         )
     return value
+
+
+
+STALE_PARTIAL_S = 60.0
+"""Age (s since the last write) after which an unlocked ``.<name>.*.partial`` counts as a killed writer's."""
+
+
+def _remove_stale_partials(path: Path) -> list[Path]:
+    """Remove the temporaries ``.<name>.*.partial`` that killed writers of ``path`` left; the removed paths.
+
+    A writer killed before its first frame leaves its hidden temporary behind (nothing in it is a
+    frame). One is stale when no process holds a lock on it (a live writer holds its lock from
+    right after creating it to the rename) and it was last written more than
+    :data:`STALE_PARTIAL_S` ago (so a writer between creating and locking its file is never hit).
+    Files that cannot be checked or removed are left alone.
+    """
+    removed = []
+    now = time.time()
+    for tmp in path.parent.glob(f".{glob.escape(path.name)}.*.partial"):
+        try:
+            if now - tmp.stat().st_mtime < STALE_PARTIAL_S or writer_is_alive(tmp):
+                continue
+            tmp.unlink()
+        except (OSError, CaptureError):
+            continue
+        removed.append(tmp)
+    return removed
 
 
 class CaptureWriter:
@@ -136,6 +166,7 @@ class CaptureWriter:
             raise CaptureError(f"{self.path}: is a folder; cannot create a capture file there")
         if self.path.exists() and writer_is_alive(self.path):
             raise CaptureError(f"{self.path}: {BUSY}")
+        _remove_stale_partials(self.path)
         tmp = self.path.with_name(f".{self.path.name}.{os.getpid()}.{secrets.token_hex(4)}.partial")
         try:
             # O_EXCL: a fresh name; mode 0o666 minus the umask, as for any file the user creates.

@@ -7,6 +7,7 @@ import os
 import signal
 import subprocess
 import sys
+import time
 from pathlib import Path
 
 import h5py
@@ -215,4 +216,32 @@ def test_discard_leaves_nothing_before_the_first_frame_and_keeps_frames_after(tm
     w.append(frame_pattern(tiny_config, 0))
     w.discard()  # appended: closed as by close(), the frame is kept
     with open_capture(path) as cap:
+        assert cap.num_frames == 1
+
+
+def test_a_killed_writers_partial_file_is_removed_by_the_next_writer(tmp_path, tiny_config):
+    # A writer killed before its first frame leaves its hidden temporary; the next writer of the same
+    # name removes it when it is unlocked and older than STALE_PARTIAL_S, and leaves any other alone.
+    from radaraug.io.hdf5_recovery import hold_writer_lock, release_writer_lock
+    from radaraug.io.hdf5_writer import STALE_PARTIAL_S
+
+    out = tmp_path / "rec.h5"
+    old = time.time() - 2 * STALE_PARTIAL_S
+    stale = tmp_path / ".rec.h5.111.aaaaaaaa.partial"
+    recent = tmp_path / ".rec.h5.222.bbbbbbbb.partial"
+    locked = tmp_path / ".rec.h5.333.cccccccc.partial"
+    other = tmp_path / ".other.h5.444.dddddddd.partial"
+    for p in (stale, recent, locked, other):
+        p.write_bytes(b"")
+    for p in (stale, locked, other):
+        os.utime(p, (old, old))
+    fd = hold_writer_lock(locked)  # a live writer's lock (another open file description)
+    try:
+        with CaptureWriter(out, tiny_config) as w:
+            w.append(torch.as_tensor(pattern_counts(tiny_config, 1)))
+    finally:
+        release_writer_lock(fd)
+    assert not stale.exists()
+    assert recent.exists() and locked.exists() and other.exists()
+    with open_capture(out) as cap:
         assert cap.num_frames == 1
