@@ -146,11 +146,7 @@ def record(
     t_start = time.monotonic()
     try:
         with stop:
-            try:
-                device.start()
-            except BaseException:
-                writer.discard()
-                raise
+            device.start()  # a failure is handled below: no frame, so the writer leaves no file
             try:
                 if progress:
                     from tqdm.auto import tqdm
@@ -190,12 +186,12 @@ def record(
 
 
 def _finish(writer: CaptureWriter, written: int) -> bool:
-    """Close the writer; a run without a frame leaves no file. Whether a file was kept."""
-    if written == 0:
-        writer.discard()
-        return False
-    writer.close()
-    return True
+    """Close the writer and say whether a file was kept (a run without a frame leaves none).
+
+    :meth:`CaptureWriter.discard` closes a writer that appended like :meth:`~CaptureWriter.close`.
+    """
+    writer.discard()
+    return written > 0
 
 
 class _StopFlag:
