@@ -244,13 +244,15 @@ class CalibratedDR(_DRClamp):
             )
         self.map_shape: tuple[int, int, int] | None = (
             None if map_shape is None else (int(map_shape[0]), int(map_shape[1]), int(map_shape[2])))
-        for name, value in (("source", source), ("num_frames", num_frames), ("motion", motion)):
-            ok = {
-                "source": lambda v: isinstance(v, str),
-                "num_frames": lambda v: isinstance(v, (int, np.integer)) and not isinstance(v, bool) and v >= 0,
-                "motion": lambda v: isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v),
-            }[name]
-            if value is not None and not ok(value):
+        checks = (
+            ("source", source, isinstance(source, str)),
+            ("num_frames", num_frames,
+             isinstance(num_frames, (int, np.integer)) and not isinstance(num_frames, bool) and num_frames >= 0),
+            ("motion", motion,
+             isinstance(motion, (int, float)) and not isinstance(motion, bool) and math.isfinite(motion)),
+        )
+        for name, value, ok in checks:
+            if value is not None and not ok:
                 raise CalibrationError(f"CalibratedDR: {name} has an invalid value {safe_repr(value)}")
         self.source = source
         # the calibration file it was loaded from, if any (named by the errors raised when it is used)
