@@ -10,6 +10,7 @@ import numpy as np
 import torch
 import torch.nn.functional as nnf
 
+from radaraug._optional import lazy_import
 from radaraug.errors import ConfigError, InputTensorError, RadarAugError
 from radaraug.transforms._checks import check_tensor
 from radaraug.transforms._viridis import VIRIDIS_RGB
@@ -46,8 +47,7 @@ def check_clip_range(vmin: float, vmax: float) -> tuple[float, float]:
 def _lut_f64(name: str) -> torch.Tensor:
     if name == "viridis":
         return torch.tensor(VIRIDIS_RGB, dtype=torch.float64)
-    import matplotlib
-
+    matplotlib = lazy_import("matplotlib", feature=f"the {name!r} colormap (viridis needs no matplotlib)")
     try:
         cmap = matplotlib.colormaps[name]
     except KeyError:
