@@ -312,8 +312,7 @@ def _live_device(args: argparse.Namespace):
     from radaraug.config import RadarConfig
 
     config = RadarConfig.from_json(args.config) if args.config else None
-    if args.device != "virtual" and (args.scene != "corridor" or args.profile):
-        raise ConfigError("--scene and --profile are for --device virtual")
+    # The virtual-only options default to None so that one given with a board is refused, not ignored.
     return open_device(args.device, config, scene=args.scene, profile=args.profile, seed=args.seed,
                        realtime=args.realtime)
 
@@ -510,13 +509,14 @@ def build_parser() -> argparse.ArgumentParser:
                             help="radar config JSON (radaraug or Infineon config.json; default: the scene's "
                             "for virtual, the BGT60TR13C preset for a board)")
         parser.add_argument("--seconds", type=float, default=seconds, help="how long to record")
-        parser.add_argument("--scene", default="corridor", help="virtual: scene file or built-in scene name")
+        parser.add_argument("--scene", default=None, help="virtual: scene file or built-in scene name "
+                            "(default: corridor)")
         parser.add_argument("--profile", default=None, help="virtual: twin profile JSON (from radaraug diagnose)")
-        parser.add_argument("--seed", type=int, default=0, help="virtual: noise seed (frames are a pure "
-                            "function of seed and frame index)")
-        parser.add_argument("--realtime", action=argparse.BooleanOptionalAction, default=True,
+        parser.add_argument("--seed", type=int, default=None, help="virtual: noise seed (frames are a pure "
+                            "function of seed and frame index; default: 0)")
+        parser.add_argument("--realtime", action=argparse.BooleanOptionalAction, default=None,
                             help="virtual: hand frames out at the config's frame rate (--no-realtime: as fast "
-                            "as the twin simulates)")
+                            "as the twin simulates; default: --realtime)")
         parser.add_argument("--overwrite", action="store_true", help="replace an existing recording")
         parser.add_argument("--no-progress", action="store_true", help="no progress bar")
         parser.add_argument("--json", action="store_true", help="print the result as one JSON object")

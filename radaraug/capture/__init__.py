@@ -24,16 +24,17 @@ from radaraug.capture.record import RecordResult, record
 from radaraug.capture.sdk import SdkDevice
 from radaraug.capture.virtual import VirtualSensor
 from radaraug.config import RadarConfig
+from radaraug.errors import ConfigError
 
 
 def open_device(
     spec: str,
     config: RadarConfig | None = None,
     *,
-    scene: Any = "corridor",
+    scene: Any = None,
     profile: Any = None,
-    seed: int = 0,
-    realtime: bool = True,
+    seed: int | None = None,
+    realtime: bool | None = None,
 ) -> RadarDevice:
     """A device from a ``--device`` value (nothing is opened until ``start()``).
 
@@ -41,18 +42,26 @@ def open_device(
         spec: ``"virtual"`` (the twin), ``"auto"`` (the first board the SDK finds) or a board's
             serial/UUID.
         config: radar config (virtual default: the scene's; boards: ``RadarConfig.bgt60tr13c()``).
-        scene: the virtual sensor's scene: a Scene, a scene file or a built-in name (ignored for
-            boards).
-        profile: the virtual sensor's fitted twin profile (ignored for boards).
-        seed: the virtual sensor's noise seed (ignored for boards).
-        realtime: the virtual sensor hands frames out at the frame rate (True) or as fast as
-            possible (ignored for boards).
+        scene: the virtual sensor's scene: a Scene, a scene file or a built-in name (default
+            ``"corridor"``).
+        profile: the virtual sensor's fitted twin profile (default: none).
+        seed: the virtual sensor's noise seed (default 0).
+        realtime: the virtual sensor hands frames out at the frame rate (True, the default) or as
+            fast as possible.
 
     Raises:
+        ConfigError: a virtual-sensor argument (``scene``, ``profile``, ``seed``, ``realtime``)
+            given for a board: a board would silently ignore it.
         DeviceError: a MIMO config for a board. SceneError: an unknown scene (virtual).
     """
     if spec == "virtual":
-        return VirtualSensor(scene, config=config, profile=profile, seed=seed, realtime=realtime)
+        return VirtualSensor("corridor" if scene is None else scene, config=config, profile=profile,
+                             seed=0 if seed is None else seed, realtime=True if realtime is None else realtime)
+    given = [name for name, value in (("scene", scene), ("profile", profile), ("seed", seed), ("realtime", realtime))
+             if value is not None]
+    if given:
+        raise ConfigError(f"{', '.join(given)}: only for the virtual sensor (device 'virtual'), not for a board "
+                          f"({spec!r})")
     return SdkDevice(config or RadarConfig.bgt60tr13c(), serial=None if spec == "auto" else spec)
 
 

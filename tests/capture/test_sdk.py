@@ -14,7 +14,7 @@ import pytest
 
 from radaraug.capture import SdkDevice, open_device, record
 from radaraug.cli import main
-from radaraug.errors import DeviceError
+from radaraug.errors import ConfigError, DeviceError
 from radaraug.io import open_capture
 from radaraug.units import counts_to_float
 
@@ -97,6 +97,18 @@ def test_without_the_sdk_the_error_says_what_to_install(monkeypatch, cfg, tmp_pa
     assert main(["capture", "--device", "auto", "-o", str(tmp_path / "x.h5"), "--seconds", "1"]) == 3
     assert "pip install its ifxradarsdk wheel" in capsys.readouterr().err
     assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize("option", [["--scene", "corridor"], ["--seed", "0"], ["--no-realtime"],
+                                    ["--realtime"], ["--profile", "p.json"]])
+def test_a_virtual_only_option_given_for_a_board_is_refused_not_ignored(sdk, tmp_path, capsys, option) -> None:
+    log = sdk()
+    # even the options' default values, given explicitly: a board would silently ignore them
+    assert main(["capture", "--device", "auto", "-o", str(tmp_path / "x.h5"), "--seconds", "1", *option]) == 3
+    assert "only for the virtual sensor" in capsys.readouterr().err
+    assert list(tmp_path.iterdir()) == [] and log["opened"] == []
+    with pytest.raises(ConfigError, match="scene, seed: only for the virtual sensor"):
+        open_device("auto", scene="corridor", seed=0)
 
 
 def test_the_config_goes_to_the_sdk_and_frames_to_the_file(sdk, cfg, tmp_path) -> None:
