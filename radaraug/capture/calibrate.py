@@ -18,7 +18,7 @@ from pathlib import Path
 from radaraug.capture.base import RadarDevice
 from radaraug.capture.record import RecordResult, record
 from radaraug.errors import CalibrationError
-from radaraug.transforms import CalibratedDR
+from radaraug.transforms import CalibratedDR, MotionWarning
 from radaraug.transforms._motion import DEFAULT_THRESHOLD_DB, MIN_FRAMES, WARN_FRACTION
 
 CALIBRATION_SECONDS = 10.0
@@ -87,7 +87,7 @@ def calibrate(
             raise CalibrationError(f"{output}: the device gave no frame; nothing to calibrate")
         with warnings.catch_warnings():
             # The motion warning of fit() becomes the refusal below.
-            warnings.filterwarnings("ignore", message=".*should be an empty scene.*", category=UserWarning)
+            warnings.simplefilter("ignore", MotionWarning)
             cdr = CalibratedDR.fit(rec_path, motion_threshold_db=motion_threshold_db)
     finally:
         if temporary:

@@ -19,6 +19,7 @@ from radaraug.transforms._rng import use_generator
 from radaraug.transforms.base import RadarTransform, RandomRadarTransform
 from radaraug.transforms.compose import RadarCompose
 from radaraug.transforms.dr import CalibratedDR, RandomDR
+from radaraug.transforms.dr_fit import MotionWarning
 from radaraug.transforms.image import ClipNormalize, Colormap, Resize
 from radaraug.transforms.per_item import augmentation_generator
 from radaraug.transforms.spectral import (
@@ -48,6 +49,7 @@ __all__ = [
     "CombineRx",
     "RandomDR",
     "CalibratedDR",
+    "MotionWarning",
     "ClipNormalize",
     "Colormap",
     "Resize",

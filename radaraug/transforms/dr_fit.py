@@ -24,6 +24,14 @@ from radaraug.transforms.spectral import RangeDoppler, ToDecibels
 from radaraug.transforms.windows import MAIN_LOBE_HALF_WIDTH_BINS
 
 
+class MotionWarning(UserWarning):
+    """The capture a floor is fitted on should be an empty scene but shows motion.
+
+    Its own category so that callers can act on it (``radaraug calibrate`` refuses instead of
+    warning) without matching the message text.
+    """
+
+
 def floor_statistics(
     source: Any,
     *,
@@ -103,7 +111,7 @@ def floor_statistics(
             f"CalibratedDR.fit: {where} should be an empty scene but shows motion: {100 * motion:.2f} % of the cells "
             f"off zero Doppler are > {motion_threshold_db:g} dB above their own median over frames (noise "
             f"and static clutter alone give ~0 %). The fitted floor includes it; record the empty scene.",
-            UserWarning,
+            MotionWarning,
             stacklevel=3,
         )
     return {

@@ -10,6 +10,7 @@ from radaraug.transforms import (
     CalibratedDR,
     CombineRx,
     DopplerFFT,
+    MotionWarning,
     RadarCompose,
     RandomDR,
     RangeDoppler,
@@ -182,7 +183,7 @@ def test_fit_warns_on_motion_not_on_noise_and_static_clutter(cfg):
     assert quiet.motion == 0.0
     # A person walking away from 1 m to 4 m, one position per frame.
     walker = torch.stack([beat_cube(cfg, 1.0 + 0.125 * f, 1.2, amplitude=2e-3, n_rx=2) for f in range(24)])
-    with pytest.warns(UserWarning, match="shows motion"):
+    with pytest.warns(MotionWarning, match="shows motion"):
         busy = CalibratedDR.fit(empty + walker)
     assert busy.motion > 1e-3
 
