@@ -12,6 +12,7 @@ import signal
 import subprocess
 import sys
 import time
+import warnings
 from pathlib import Path
 from types import SimpleNamespace
 
@@ -21,7 +22,7 @@ import pytest
 from radaraug_tests_io_data import frame_pattern, pattern_counts
 
 from radaraug.errors import CaptureError
-from radaraug.io import CaptureWriter, hdf5_writer, open_capture, write_capture
+from radaraug.io import CaptureWarning, CaptureWriter, hdf5_writer, open_capture, write_capture
 from radaraug.io.hdf5_format import lookup3
 from radaraug.io.hdf5_recovery import clear_status_flags, status_flags, writer_is_alive
 
@@ -237,7 +238,12 @@ def test_a_full_disk_stops_with_a_capture_error_and_serves_only_real_frames(tmp_
     assert written > 10 and "file-size limit" in message and str(path) in message
     assert "Traceback" not in run.stderr
     assert path.stat().st_size <= limit
-    with open_capture(path) as cap:
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        cap = open_capture(path)
+    # where the limit struck mid-append (the frame declared, not counted), the reader says so
+    assert all(w.category is CaptureWarning and "never written" in str(w.message) for w in caught), caught
+    with cap:
         assert cap.num_frames == written  # every served frame is complete
         np.testing.assert_array_equal(cap.read(as_float=False).numpy(), pattern_counts(tiny_config, written))
         np.testing.assert_array_equal(cap.labels["index"], np.arange(written))

@@ -40,6 +40,8 @@ def test_one_recipe_per_task_and_method():
         assert cfg["data"]["randomization"] is True  # twin randomization on by default
 
 
+# the recipes name their logger: Lightning's default one warns that TensorBoard is missing
+@pytest.mark.filterwarnings("error:Starting from v1.9.0")
 @pytest.mark.parametrize("recipe", RECIPES, ids=lambda p: p.stem)
 def test_recipe_fast_dev_run(recipe, tmp_path, captures, monkeypatch):
     monkeypatch.chdir(tmp_path)
