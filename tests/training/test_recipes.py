@@ -51,6 +51,20 @@ def test_recipe_fast_dev_run(recipe, tmp_path, captures, monkeypatch):
     assert len(list((tmp_path / "cache").glob("train-*.h5"))) == 1
 
 
+# testing logs into a new version folder, so the checkpoint callback's state from fit is not restored
+@pytest.mark.filterwarnings("ignore:The dirpath has changed")
+def test_fit_then_test_from_the_checkpoint_the_docs_name(tmp_path, captures, monkeypatch):
+    # docs/training.md: `radaraug train test --config ... --ckpt_path lightning_logs/version_0/checkpoints/last.ckpt`
+    monkeypatch.chdir(tmp_path)
+    recipe = str(REPO / "recipes" / "occupancy_rt.yaml")
+    args = [*_small_args(tmp_path, captures), "--trainer.accelerator", "cpu", "--trainer.log_every_n_steps", "1"]
+    assert main(["train", "fit", "--config", recipe, "--trainer.max_epochs", "1", *args]) == 0
+    run = tmp_path / "lightning_logs" / "version_0"
+    assert (run / "checkpoints" / "last.ckpt").is_file() and (run / "metrics.csv").is_file()
+    assert main(["train", "test", "--config", recipe, "--ckpt_path", str(run / "checkpoints" / "last.ckpt"), *args]) == 0
+    assert (tmp_path / "lightning_logs" / "version_1" / "test_metrics.json").is_file()
+
+
 @pytest.mark.parametrize("recipe", ["occupancy_cdr", "occupancy_cdr_profile"])
 def test_ddp_two_gloo_processes_each_simulate_their_own_shard(recipe, tmp_path, captures):
     out = tmp_path / "run"
