@@ -1,14 +1,17 @@
-"""Every Python block of README.md and docs/*.md runs as written.
+"""Every Python block of README.md and docs/*.md runs as written; every shell command parses.
 
 A page's blocks run in order in one fresh interpreter (a block may continue the ones above it, as
 a reader would type them), in an empty temporary folder, on data the project ships or makes.
-Blocks fenced as ``text``/``bash`` are not run.
+Blocks fenced as ``text``/``bash`` are not run, but every ``radaraug ...`` command in a ``bash``
+block must be accepted by the CLI's parser (``train`` commands by LightningCLI, with
+``--print_config``): a renamed or misspelt option in the docs fails here.
 """
 
 from __future__ import annotations
 
 import os
 import re
+import shlex
 import subprocess
 import sys
 from pathlib import Path
@@ -18,6 +21,9 @@ import pytest
 ROOT = Path(__file__).resolve().parents[1]
 PAGES = [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md"))]
 BLOCK = re.compile(r"```python\n(.*?)```", re.S)
+SHELL = re.compile(r"```(?:bash|sh|console)\n(.*?)```", re.S)
+#: a synopsis' optional group, e.g. ``[--shard i/n]``
+OPTIONAL = re.compile(r"\s\[--[^\]]*\]")
 
 
 def _pages_with_code() -> list[Path]:
@@ -32,3 +38,44 @@ def test_python_blocks_run(page: Path, tmp_path: Path) -> None:
     r = subprocess.run([sys.executable, "-c", code], cwd=tmp_path, env=env, capture_output=True, text=True,
                        timeout=600)
     assert r.returncode == 0, f"{page.name}: its Python blocks fail as written:\n{r.stderr[-3000:]}"
+
+
+def _shell_commands() -> list[tuple[str, list[str]]]:
+    """(page name, arguments after ``radaraug``) of every ``radaraug`` command in a shell block."""
+    found = []
+    for page in PAGES:
+        if not page.is_file():
+            continue
+        for block in SHELL.findall(page.read_text(encoding="utf-8")):
+            for line in block.replace("\\\n", " ").splitlines():
+                line = line.strip().removeprefix("$ ")
+                if not line.startswith(("radaraug ", "python -m radaraug ")):
+                    continue
+                words = shlex.split(OPTIONAL.sub("", line), comments=True)
+                words = words[words.index("radaraug") + 1 if words[0] == "python" else 1:]
+                for stop in ("|", ">", "&&", ";"):  # the command ends at a pipe, redirection or next command
+                    words = words[:words.index(stop)] if stop in words else words
+                found.append((page.name, words))
+    return found
+
+
+def test_docs_name_shell_commands() -> None:
+    assert len(_shell_commands()) >= 30  # the extraction finds the pages' commands
+
+
+@pytest.mark.parametrize(("page", "words"), _shell_commands(), ids=lambda v: v if isinstance(v, str) else " ".join(v[:3]))
+def test_shell_commands_parse(page: str, words: list[str], capsys, monkeypatch, tmp_path) -> None:
+    from radaraug.cli import build_parser
+
+    if words[0] != "train":
+        try:
+            build_parser().parse_args(words)
+        except SystemExit as e:  # argparse's usage error, or --help / --version
+            assert e.code == 0, f"{page}: `radaraug {' '.join(words)}` is refused:\n{capsys.readouterr().err}"
+        return
+    from radaraug.training.cli import main as train_main
+
+    monkeypatch.chdir(ROOT)  # the recipes' paths are relative to the checkout
+    with pytest.raises(SystemExit) as e:
+        train_main([*words[1:], "--print_config"])
+    assert e.value.code == 0, f"{page}: `radaraug {' '.join(words)}` is refused:\n{capsys.readouterr().err}"

@@ -40,8 +40,10 @@ def test_one_recipe_per_task_and_method():
         assert cfg["data"]["randomization"] is True  # twin randomization on by default
 
 
-# the recipes name their logger: Lightning's default one warns that TensorBoard is missing
+# the recipes name their logger (Lightning's default one warns that TensorBoard is missing), and
+# `radaraug train` does not make LightningCLI warn about args given beside sys.argv
 @pytest.mark.filterwarnings("error:Starting from v1.9.0")
+@pytest.mark.filterwarnings("error:LightningCLI's args parameter")
 @pytest.mark.parametrize("recipe", RECIPES, ids=lambda p: p.stem)
 def test_recipe_fast_dev_run(recipe, tmp_path, captures, monkeypatch):
     monkeypatch.chdir(tmp_path)
