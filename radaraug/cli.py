@@ -3,7 +3,7 @@
 Sub-commands::
 
     radaraug info PATH [--json]                 config, shape, duration, labels, plausibility
-    radaraug fit-cdr PATH -o cdr.json [--json]  fit CalibratedDR on an empty-room capture
+    radaraug fit-cdr PATH -o cdr.json [--floor F] [--json]  fit CalibratedDR on an empty-room capture
     radaraug bench transforms [--json]          RD+CDR+clip+colormap chain vs NumPy
     radaraug bench twin [--json]                digital-twin throughput vs real time and baselines
     radaraug bench training [--json]            recipe training step vs a bare ResNet18 step
@@ -14,7 +14,7 @@ Sub-commands::
     radaraug simulate SCENE --frames N --seed S -o out.h5 [--shard i/n] [--profile P] [--json]
     radaraug demo [-o DIR] [--json]             the main job on the built-in default
     radaraug train fit --config recipes/occupancy_cdr.yaml [--key value ...]   LightningCLI recipes
-    radaraug reproduce [--quick] [--seeds N] [--calibration C] [--test PATH[:COUNT] ...] -o OUT [--json]
+    radaraug reproduce [--quick] [--seeds N] [--calibration C] [--test PATH[:COUNT] ...] [--cdr-floor F] -o OUT [--json]
     radaraug make-proxy -o DIR [--frames-per-count N] [--json]   the held-out proxy test set
     radaraug diagnose CAPTURE [--scene SCENE] -o REPORT_DIR [--json]   twin vs capture, fitted twin profile
     radaraug devices [--json] [--udev-rule]     Infineon radar boards on USB
@@ -116,12 +116,12 @@ def _cmd_fit_cdr(args: argparse.Namespace) -> int:
     from radaraug.transforms import CalibratedDR
 
     with _stdout_for(args):
-        cdr = CalibratedDR.fit(args.path, max_frames=args.max_frames, progress=True)
+        cdr = CalibratedDR.fit(args.path, max_frames=args.max_frames, progress=True, floor=args.floor)
         cdr.save(args.output)
     if args.json:
         _print_json({"output": str(args.output), **cdr.to_dict()})
         return 0
-    print(f"CalibratedDR: m_t = {cdr.mean_db:.2f} dB, s_t = {cdr.std_db:.2f} dB -> {args.output}")
+    print(f"CalibratedDR: m_t = {cdr.mean_db:.2f} dB, s_t = {cdr.std_db:.2f} dB, {cdr.floor} floor -> {args.output}")
     return 0
 
 
@@ -246,7 +246,8 @@ def _cmd_reproduce(args: argparse.Namespace) -> int:
     test = [parse_test_arg(t) for t in args.test] if args.test else None
     with _stdout_for(args):
         report = reproduce(args.output, quick=args.quick, seeds=args.seeds, calibration=args.calibration,
-                           test=test, ablation=not args.no_ablation, accelerator=args.accelerator, progress=True)
+                           test=test, ablation=not args.no_ablation, accelerator=args.accelerator, progress=True,
+                           cdr_floor=args.cdr_floor)
     if args.json:
         _print_json({"output": str(args.output), "report": str(Path(args.output) / "report.md"), **report})
         return 0
@@ -416,6 +417,9 @@ def build_parser() -> argparse.ArgumentParser:
     fit.add_argument("path", help="empty-room capture (radaraug .h5 or Infineon recording folder)")
     fit.add_argument("-o", "--output", required=True, help="calibration JSON to write")
     fit.add_argument("--max-frames", type=int, default=None, help="frames read (default: all)")
+    fit.add_argument("--floor", choices=("normal", "empirical"), default="normal",
+                     help="the floor distribution the calibration draws from: normal (the paper's CDR) or empirical "
+                     "(the capture's measured one; its quantiles are recorded either way)")
     fit.add_argument("--json", action="store_true", help="print the calibration record (with the output path) as one JSON object")
     fit.set_defaults(func=_cmd_fit_cdr)
 
@@ -470,6 +474,9 @@ def build_parser() -> argparse.ArgumentParser:
     rep.add_argument("--calibration", default=None, help="empty-room capture for CDR (default: the held-out proxy's)")
     rep.add_argument("--test", action="append", default=None, metavar="PATH[:COUNT]",
                      help="test capture; COUNT labels the whole file, else per-frame 'count' labels (repeatable)")
+    rep.add_argument("--cdr-floor", choices=("normal", "empirical"), default=None,
+                     help="CalibratedDR's floor distribution: normal (the paper's CDR; the default for a capture) "
+                     "or empirical (the calibration capture's measured distribution; docs/transforms.md)")
     rep.add_argument("--no-ablation", action="store_true", help="skip CDR without twin randomization")
     rep.add_argument("--accelerator", default="auto", help="Lightning accelerator (auto, cpu, gpu)")
     rep.add_argument("-o", "--output", required=True, help="output folder (report, runs, figures, cache)")

@@ -77,6 +77,7 @@ def make_dr(
     seed: int | None = None,
     randomdr_mean_db: Sequence[float] | None = None,
     randomdr_std_db: Sequence[float] | None = None,
+    cdr_floor: str | None = None,
 ) -> nn.Module | None:
     """The training-time noise-floor randomization of ``method`` (None for ``rt``).
 
@@ -90,6 +91,9 @@ def make_dr(
             documented default, see ``docs/transforms.md``).
         randomdr_std_db: RandomDR's range of the floor standard deviation in dB (default: the
             documented default).
+        cdr_floor: CalibratedDR's floor distribution, ``"normal"`` (the paper's) or ``"empirical"``
+            (the capture's measured one); None: the calibration's own (``"normal"`` when fitted
+            here from a capture).
     """
     if method not in METHODS:
         raise ConfigError(f"method must be one of {METHODS}, got {method!r}")
@@ -112,7 +116,8 @@ def make_dr(
         fitted = CalibratedDR.fit(calibration, progress=False)
     return CalibratedDR(fitted.mean_db, fitted.std_db, chain=fitted.chain, config=fitted.config,
                         map_shape=fitted.map_shape, source=fitted.source, num_frames=fitted.num_frames,
-                        motion=fitted.motion, seed=seed)
+                        motion=fitted.motion, floor=cdr_floor or fitted.floor, quantiles_db=fitted.quantiles_db,
+                        seed=seed)
 
 
 def image_chain(vmin: float, vmax: float, size: Sequence[int] | None = None) -> nn.Sequential:

@@ -52,6 +52,7 @@ from radaraug.training.chain import (
     rd_db_chain,
 )
 from radaraug.transforms import CalibratedDR
+from radaraug.transforms.dr import FLOORS
 
 PROFILE_FIT_FORMAT = "radaraug-profile-fit"
 #: Version of the cached ``cdr_profile`` fits (``cache_dir/profile-<key>.json``): part of their key,
@@ -116,6 +117,9 @@ class RadarDataModule(L.LightningDataModule):
         clip_percentiles: percentiles of simulated (post-DR) maps that give ``[vmin, vmax]``.
         clip_range: a fixed ``[vmin, vmax]`` instead of the estimate.
         randomdr_mean_db, randomdr_std_db: RandomDR ranges (None: radaraug's defaults).
+        cdr_floor: CalibratedDR's floor distribution for ``cdr`` / ``cdr_profile``: ``"normal"``
+            (the paper's), ``"empirical"`` (the calibration capture's measured distribution, see
+            docs/transforms.md), or None (the calibration's own: ``"normal"`` for a capture).
         dr_seed: seed of the DR draws (rank ``r`` uses ``dr_seed + 1000 r``).
         batch_size: training batch size.
         num_workers: DataLoader workers for training and test reads.
@@ -147,6 +151,7 @@ class RadarDataModule(L.LightningDataModule):
         clip_range: list[float] | None = None,
         randomdr_mean_db: list[float] | None = None,
         randomdr_std_db: list[float] | None = None,
+        cdr_floor: str | None = None,
         dr_seed: int = 0,
         batch_size: int = 32,
         num_workers: int = 0,
@@ -158,6 +163,8 @@ class RadarDataModule(L.LightningDataModule):
         self.class_names = check_task(task)
         if train_items < 1 or val_items < 0:
             raise ConfigError(f"train_items must be >= 1 and val_items >= 0, got {train_items}, {val_items}")
+        if cdr_floor is not None and cdr_floor not in FLOORS:
+            raise ConfigError(f"cdr_floor must be one of {FLOORS} or null, got {cdr_floor!r}")
         self.save_hyperparameters()
         self.task, self.method = task, method
         if clip_range is not None and len(clip_range) != 2:
@@ -247,7 +254,7 @@ class RadarDataModule(L.LightningDataModule):
             self.config = config = cap.config
         self.dr = dr = make_dr(self.method, calibration=calibration, seed=self.hparams["dr_seed"] + 1000 * rank,
                                randomdr_mean_db=self.hparams["randomdr_mean_db"],
-                               randomdr_std_db=self.hparams["randomdr_std_db"])
+                               randomdr_std_db=self.hparams["randomdr_std_db"], cdr_floor=self.hparams["cdr_floor"])
         if isinstance(dr, CalibratedDR):  # the CDR methods
             dr.check_config(config)
 

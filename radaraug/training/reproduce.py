@@ -83,6 +83,14 @@ def _summary(values: Sequence[float]) -> dict[str, Any]:
             "per_seed": vals}
 
 
+def _cdr_floor_of(keep: dict[tuple[str, str], tuple[Any, Any]]) -> str | None:
+    """The floor distribution the CDR runs drew from (None when no CDR method ran)."""
+    from radaraug.transforms import CalibratedDR
+
+    floors = {dm.dr.floor for _, dm in keep.values() if isinstance(dm.dr, CalibratedDR)}
+    return floors.pop() if len(floors) == 1 else None
+
+
 def _run_one(task: str, method: str, seed: int, *, settings: ReproduceSettings, data_kw: dict[str, Any],
              run_dir: Path, accelerator: str, progress: bool) -> tuple[dict[str, Any], Any, Any]:
     import lightning as L
@@ -129,6 +137,7 @@ def reproduce(
     accelerator: str = "auto",
     progress: bool = True,
     settings: ReproduceSettings | None = None,
+    cdr_floor: str | None = None,
 ) -> dict[str, Any]:
     """Run the experiment and write the report; return the ``report.json`` content.
 
@@ -145,6 +154,8 @@ def reproduce(
         accelerator: Lightning accelerator (``auto`` uses a GPU when there is one).
         progress: progress bars.
         settings: explicit sizes (overrides ``quick``).
+        cdr_floor: CalibratedDR's floor for the CDR methods: ``"normal"`` (the paper's; what None
+            means for a capture) or ``"empirical"`` (the capture's measured distribution).
     """
     if seeds < 1:
         raise ConfigError(f"seeds must be >= 1, got {seeds}")
@@ -172,7 +183,7 @@ def reproduce(
         if calibration is None:
             calibration = str(proxy.calibration)
     data_kw = {"calibration": calibration, "test": [dict(e) for e in test], "cache_dir": str(out / "cache"),
-               "proxy_dir": str(out / "proxy")}
+               "proxy_dir": str(out / "proxy"), "cdr_floor": cdr_floor}
 
     variants: list[tuple[str, str, dict[str, Any]]] = [(m, m, {}) for m in methods]
     if ablation and "cdr" in methods:
@@ -224,7 +235,8 @@ def reproduce(
         "kind": "sim-to-proxy" if proxy_info is not None else "sim-to-capture",
         "results": results,
         "runs": runs,
-        "settings": asdict(settings) | {"seeds": seeds, "quick": quick, "tasks": list(tasks), "methods": list(methods)},
+        "settings": asdict(settings) | {"seeds": seeds, "quick": quick, "tasks": list(tasks), "methods": list(methods),
+                                        "cdr_floor": _cdr_floor_of(keep)},
         "test": [dict(e) for e in test],
         "calibration": calibration,
         "proxy": proxy_info,
@@ -376,7 +388,10 @@ def _markdown(rep: dict[str, Any]) -> str:
     lines += [f"Seeds: {st['seeds']} (network init, DR draws, batch order; one shared simulated set of "
               f"{st['train_items']} training + {st['val_items']} validation items{sets}). Epochs {st['epochs']}, image "
               f"{st['image_size'][0]}x{st['image_size'][1]}, {'quick' if st['quick'] else 'full'} mode. "
-              f"Wall time {rep['wall_seconds'] / 60:.1f} min on {rep['machine']['device']}.", "",
+              f"Wall time {rep['wall_seconds'] / 60:.1f} min on {rep['machine']['device']}."
+              + (f" CalibratedDR floor: {st['cdr_floor']}"
+                 f"{' (the paper’s normal in dB)' if st['cdr_floor'] == 'normal' else ' (the capture’s measured distribution)'}."
+                 if st.get("cdr_floor") else ""), "",
               "## Balanced accuracy (mean ± std over seeds)", "",
               "| task | " + " | ".join(next(iter(rep["results"].values())).keys()) + " |",
               "|---|" + "---|" * len(next(iter(rep["results"].values()))), ]

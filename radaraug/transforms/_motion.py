@@ -24,6 +24,13 @@ DEFAULT_THRESHOLD_DB = 15.0
 WARN_FRACTION = 1e-3
 
 
+def off_zero_doppler(maps_db: torch.Tensor, guard_bins: int) -> torch.Tensor:
+    """The cells of ``(..., doppler)`` dB maps (Doppler centred) more than ``guard_bins`` from zero Doppler."""
+    doppler = maps_db.shape[-1]
+    keep = (torch.arange(doppler, device=maps_db.device) - doppler // 2).abs() > guard_bins
+    return maps_db[..., keep]
+
+
 def motion_fraction(
     maps_db: torch.Tensor, guard_bins: int, threshold_db: float = DEFAULT_THRESHOLD_DB
 ) -> float | None:
@@ -37,11 +44,8 @@ def motion_fraction(
     Returns:
         The fraction, or None when there are too few frames or no Doppler bins left.
     """
-    frames, doppler = maps_db.shape[0], maps_db.shape[-1]
-    zero = doppler // 2
-    keep = (torch.arange(doppler, device=maps_db.device) - zero).abs() > guard_bins
-    if frames < MIN_FRAMES or not bool(keep.any()):
+    cells = off_zero_doppler(maps_db, guard_bins)
+    if maps_db.shape[0] < MIN_FRAMES or cells.shape[-1] == 0:
         return None
-    cells = maps_db[..., keep]
     median = cells.median(dim=0).values
     return float((cells > median + threshold_db).double().mean())

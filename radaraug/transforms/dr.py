@@ -46,6 +46,11 @@ DEFAULT_RANDOM_DR_MEAN_DB = (-120.0, -90.0)
 DEFAULT_RANDOM_DR_STD_DB = (1.0, 4.0)
 FORMAT = "radaraug.CalibratedDR"
 FORMAT_VERSION = 1
+#: Written for ``floor="empirical"``: an older radaraug refuses the file instead of silently drawing
+#: a normal floor from it (a ``floor="normal"`` file stays version 1; its quantiles are extra).
+FORMAT_VERSION_EMPIRICAL = 2
+#: CalibratedDR's floor distributions: the paper's normal in dB, or the measured one.
+FLOORS = ("normal", "empirical")
 ENV_VAR = "RADARAUG_CDR"
 """Environment variable naming the calibration ``CalibratedDR()`` (no arguments) uses: a JSON
 written by ``radaraug fit-cdr`` / :meth:`CalibratedDR.save`, or an empty-room capture (fitted
@@ -155,7 +160,14 @@ def _valid_chain(chain: Any) -> list[dict[str, Any]]:
 
 
 class CalibratedDR(_DRClamp):
-    """Calibrated noise-floor clamp ``max(S, N)``, ``N ~ Normal(mean_db, std_db**2)`` per cell.
+    """Calibrated noise-floor clamp ``max(S, N)``, ``N`` drawn per cell from the measured floor.
+
+    ``floor="normal"`` (the paper's CDR, the default): ``N ~ Normal(mean_db, std_db**2)``, the mean
+    and std of all RD dB values of the empty-room capture. ``floor="empirical"``: ``N`` follows the
+    capture's own distribution of dB values off zero Doppler (``quantiles_db``, inverse-transform
+    sampling), so its upper tail is the real floor's: a receiver's noise in dB is the log of an
+    exponential, whose upper tail is far lighter than a normal's with the same std (on the proxy's
+    empty room, 99.9th percentile -89.4 dB measured vs -81.2 dB for the normal; docs/transforms.md).
 
     Usually made by :meth:`fit` (or :meth:`load`), which records the DSP chain, radar config and
     map shape the floor was measured with; a :class:`~radaraug.transforms.compose.RadarCompose`
@@ -172,6 +184,9 @@ class CalibratedDR(_DRClamp):
         source: name of the calibration capture (recorded only).
         num_frames: frames the statistics came from (recorded only).
         motion: the motion statistic of the fit (recorded only; see :mod:`._motion`).
+        floor: ``"normal"`` (default) or ``"empirical"`` (needs ``quantiles_db``).
+        quantiles_db: quantiles of the floor's dB values at equally spaced probabilities from 0 to
+            1 (non-decreasing, >= 2 values; :meth:`fit` records 1025, off zero Doppler).
 
     With no ``mean_db``/``std_db``, ``CalibratedDR()`` reads the calibration named by the
     ``RADARAUG_CDR`` environment variable (:data:`ENV_VAR`): a calibration JSON, or an empty-room
@@ -182,7 +197,8 @@ class CalibratedDR(_DRClamp):
 
     Raises:
         CalibrationError: only one of ``mean_db``/``std_db`` given; neither given and
-            ``RADARAUG_CDR`` unset, or naming a file that is not a calibration or a capture.
+            ``RADARAUG_CDR`` unset, or naming a file that is not a calibration or a capture; an
+            unknown ``floor``; ``floor="empirical"`` without valid ``quantiles_db``.
     """
 
     provenance: dict[str, Any]
@@ -203,6 +219,8 @@ class CalibratedDR(_DRClamp):
         source: str | None = None,
         num_frames: int | None = None,
         motion: float | None = None,
+        floor: str | None = None,
+        quantiles_db: Any = None,
         **rng: Any,
     ) -> None:
         super().__init__(p=p, same_on_batch=same_on_batch, generator=generator, **rng)
@@ -210,14 +228,17 @@ class CalibratedDR(_DRClamp):
         if mean_db is None or std_db is None:
             if mean_db is not None or std_db is not None:
                 raise CalibrationError("CalibratedDR: give both mean_db and std_db, or neither (RADARAUG_CDR)")
-            if any(v is not None for v in (chain, config, map_shape, source, num_frames, motion)):
+            if any(v is not None for v in (chain, config, map_shape, source, num_frames, motion, quantiles_db)):
                 raise CalibrationError(
-                    "CalibratedDR: chain, config, map_shape, source, num_frames and motion come with mean_db/std_db"
+                    "CalibratedDR: chain, config, map_shape, source, num_frames, motion and quantiles_db come with "
+                    "mean_db/std_db"
                 )
             record, self.provenance = _from_environment()
             mean_db, std_db = record["mean_db"], record["std_db"]
             chain, config, map_shape = record["chain"], record["config"], record["map_shape"]
             source, num_frames, motion = record["source"], record["num_frames"], record["motion"]
+            quantiles_db = record.get("quantiles_db")
+            floor = record.get("floor") if floor is None else floor
         self.mean_db, self.std_db = float(mean_db), float(std_db)
         if not (math.isfinite(self.mean_db) and math.isfinite(self.std_db)) or self.std_db < 0:
             raise CalibrationError(
@@ -262,6 +283,15 @@ class CalibratedDR(_DRClamp):
         self.provenance.update(source=source, num_frames=num_frames)
         self.num_frames = num_frames
         self.motion = motion
+        self.floor = "normal" if floor is None else floor
+        if self.floor not in FLOORS:
+            raise CalibrationError(f"CalibratedDR: floor must be one of {FLOORS}, got {safe_repr(self.floor)}")
+        self.quantiles_db: torch.Tensor | None = None if quantiles_db is None else _valid_quantiles(quantiles_db)
+        if self.floor == "empirical" and self.quantiles_db is None:
+            raise CalibrationError(
+                "CalibratedDR: floor='empirical' needs the floor's quantiles (quantiles_db), which CalibratedDR.fit "
+                "records; a calibration saved by an older radaraug has none: refit it"
+            )
 
     # ------------------------------------------------------------------ the transform
     def check_input(self, x: Any) -> torch.Tensor:
@@ -278,8 +308,11 @@ class CalibratedDR(_DRClamp):
     def sample_params(
         self, x: torch.Tensor, shape: tuple[int, ...], generator: torch.Generator | None
     ) -> Params:
-        """The floor ``noise_db`` drawn per cell from the fitted statistics."""
+        """The floor ``noise_db`` drawn per cell from the fitted statistics (``floor``'s distribution)."""
         event = tuple(x.shape[-self.event_ndim :])
+        if self.floor == "empirical":
+            assert self.quantiles_db is not None  # checked in __init__
+            return {"noise_db": F.empirical_floor(shape + event, self.quantiles_db, like=x, generator=generator)}
         return {"noise_db": F.calibrated_floor(shape + event, self.mean_db, self.std_db, like=x, generator=generator)}
 
     def check_config(self, config: RadarConfig | dict[str, Any]) -> None:
@@ -313,8 +346,8 @@ class CalibratedDR(_DRClamp):
             )
 
     def extra_spec(self) -> dict[str, Any]:
-        """The fitted statistics, ``p`` and ``same_on_batch``."""
-        return {"mean_db": self.mean_db, "std_db": self.std_db, **super().extra_spec()}
+        """The fitted statistics, the floor distribution, ``p`` and ``same_on_batch``."""
+        return {"mean_db": self.mean_db, "std_db": self.std_db, "floor": self.floor, **super().extra_spec()}
 
     # ------------------------------------------------------------------ fitting
     @classmethod
@@ -372,9 +405,12 @@ class CalibratedDR(_DRClamp):
 
         return {
             "format": FORMAT,
-            "format_version": FORMAT_VERSION,
+            "format_version": FORMAT_VERSION_EMPIRICAL if self.floor == "empirical" else FORMAT_VERSION,
             "mean_db": self.mean_db,
             "std_db": self.std_db,
+            "floor": self.floor,
+            # rounded to 0.1 mdB: the file stays small (1025 values) and the floor unchanged in effect
+            "quantiles_db": None if self.quantiles_db is None else [round(float(v), 4) for v in self.quantiles_db],
             "db_convention": DB_CONVENTION,
             "chain": self.chain,
             "config": None if self.config is None else self.config.to_dict(),
@@ -409,7 +445,7 @@ class CalibratedDR(_DRClamp):
                 or another ``db_convention`` (the message names the file).
         """
         try:
-            loaded = cls(**_read_record(path), **kwargs)
+            loaded = cls(**(_read_record(path) | kwargs))  # e.g. floor= overrides the file's
         except CalibrationError as e:
             msg = str(e)
             raise CalibrationError(msg if str(path) in msg else f"calibration file {path}: {msg}") from None
@@ -424,9 +460,10 @@ def _read_record(path: str | os.PathLike) -> dict[str, Any]:
     if not isinstance(data, dict) or data.get("format") != FORMAT:
         raise CalibrationError(f"calibration file {path} is not a {FORMAT} record")
     version = data.get("format_version", FORMAT_VERSION)
-    if version != FORMAT_VERSION or isinstance(version, bool):
+    if version not in (FORMAT_VERSION, FORMAT_VERSION_EMPIRICAL) or isinstance(version, bool):
         raise CalibrationError(
-            f"calibration file {path} has format_version {version!r}; this radaraug reads {FORMAT_VERSION}"
+            f"calibration file {path} has format_version {version!r}; this radaraug reads {FORMAT_VERSION} and "
+            f"{FORMAT_VERSION_EMPIRICAL}"
         )
     convention = data.get("db_convention", DB_CONVENTION)
     if convention != DB_CONVENTION:
@@ -451,11 +488,26 @@ def _read_record(path: str | os.PathLike) -> dict[str, Any]:
             "source": data.get("source"),
             "num_frames": data.get("num_frames"),
             "motion": data.get("motion_fraction"),
+            "floor": data.get("floor"),
+            "quantiles_db": data.get("quantiles_db"),
         }
     except KeyError as e:
         raise CalibrationError(f"calibration file {path} lacks the key {e}") from None
     except (TypeError, ValueError, OverflowError) as e:
         raise CalibrationError(f"calibration file {path} is malformed: {str(e)[:200]}") from None
+
+
+def _valid_quantiles(values: Any) -> torch.Tensor:
+    """``quantiles_db`` as a float64 tensor, checked: 1-D, >= 2 finite non-decreasing values."""
+    try:
+        q = torch.as_tensor(values, dtype=torch.float64) if not isinstance(values, torch.Tensor) else values.double()
+    except (TypeError, ValueError, RuntimeError, OverflowError):
+        raise CalibrationError(f"CalibratedDR: quantiles_db must be a list of numbers, got {safe_repr(values)}") from None
+    if q.ndim != 1 or q.numel() < 2 or not bool(torch.isfinite(q).all()) or bool((q.diff() < 0).any()):
+        raise CalibrationError(
+            f"CalibratedDR: quantiles_db must be >= 2 finite, non-decreasing values, got {safe_repr(values)}"
+        )
+    return q.clone()
 
 
 def _from_environment() -> tuple[dict[str, Any], dict[str, Any]]:

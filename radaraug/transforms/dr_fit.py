@@ -11,17 +11,22 @@ import numbers
 import warnings
 from typing import Any
 
+import numpy as np
 import torch
 
 from radaraug._optional import lazy_import
 from radaraug.config import RadarConfig
 from radaraug.errors import CalibrationError
 from radaraug.transforms._fit_sources import iter_source
-from radaraug.transforms._motion import DEFAULT_THRESHOLD_DB, WARN_FRACTION, motion_fraction
+from radaraug.transforms._motion import DEFAULT_THRESHOLD_DB, WARN_FRACTION, motion_fraction, off_zero_doppler
 from radaraug.transforms.chain import chain_of, doppler_window_of
 from radaraug.transforms.compose import RadarCompose
 from radaraug.transforms.spectral import RangeDoppler, ToDecibels
 from radaraug.transforms.windows import MAIN_LOBE_HALF_WIDTH_BINS
+
+#: Quantiles recorded for the empirical floor (probabilities 0, 1/1024, ..., 1): the top step
+#: holds 0.1 % of the cells, a few per map, so the per-map maximum keeps the real floor's level.
+QUANTILES = 1025
 
 
 class MotionWarning(UserWarning):
@@ -50,7 +55,8 @@ def floor_statistics(
 
     Returns:
         The constructor's keyword arguments: ``mean_db``, ``std_db``, ``chain``, ``config``,
-        ``map_shape``, ``source``, ``num_frames``, ``motion``.
+        ``map_shape``, ``source``, ``num_frames``, ``motion``, ``quantiles_db`` (:data:`QUANTILES`
+        quantiles of the dB values off the zero-Doppler main lobe, for ``floor="empirical"``).
     """
     if input not in ("raw", "db"):
         raise CalibrationError(f"CalibratedDR.fit: input must be 'raw' or 'db', got {input!r}")
@@ -105,7 +111,14 @@ def floor_statistics(
     values = all_maps.double()
     mean, std = float(values.mean()), float(values.std(correction=0))
     window = doppler_window_of(chain) or "hann"
-    motion = motion_fraction(all_maps, MAIN_LOBE_HALF_WIDTH_BINS.get(window, 1) + 1, motion_threshold_db)
+    guard = MAIN_LOBE_HALF_WIDTH_BINS.get(window, 1) + 1
+    motion = motion_fraction(all_maps, guard, motion_threshold_db)
+    # The empirical floor's distribution: cells off zero Doppler only, because the static clutter in
+    # the zero-Doppler main lobe is the room's (the twin makes its own), not the receiver's floor;
+    # drawn i.i.d. into every cell, its high values would be spikes no real floor has.
+    off = off_zero_doppler(values, guard)
+    off = (off if off.numel() else values).flatten()
+    quantiles = torch.from_numpy(np.quantile(off.cpu().numpy(), np.linspace(0.0, 1.0, QUANTILES)))
     if motion is not None and motion > WARN_FRACTION:
         warnings.warn(
             f"CalibratedDR.fit: {where} should be an empty scene but shows motion: {100 * motion:.2f} % of the cells "
@@ -123,4 +136,5 @@ def floor_statistics(
         "source": source_name,
         "num_frames": int(all_maps.shape[0]),
         "motion": motion,
+        "quantiles_db": quantiles,
     }

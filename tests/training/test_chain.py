@@ -24,3 +24,20 @@ def test_clip_range_must_be_two_values_and_setup_must_run_first():
         dm.images(torch.zeros(1, 3, 8, 4))
     dm.load_state_dict({"clip_range": [-110.0, -50.0]})
     assert dm.clip == (-110.0, -50.0) and dm.state_dict() == {"clip_range": [-110.0, -50.0]}
+
+
+def test_cdr_floor_reaches_the_dr_and_is_checked(captures, tmp_path):
+    from radaraug.training.chain import make_dr
+    from radaraug.transforms import CalibratedDR
+
+    cal, _ = captures
+    fitted = CalibratedDR.fit(cal, progress=False)
+    assert make_dr("cdr", calibration=fitted).floor == "normal"  # the calibration's own (a capture: normal)
+    emp = make_dr("cdr", calibration=fitted, cdr_floor="empirical", seed=1)
+    assert emp.floor == "empirical" and torch.equal(emp.quantiles_db, fitted.quantiles_db)
+    path = tmp_path / "cdr.json"
+    CalibratedDR.fit(cal, progress=False, floor="empirical").save(path)
+    assert make_dr("cdr", calibration=str(path)).floor == "empirical"  # a JSON keeps its floor
+    assert make_dr("cdr_profile", calibration=str(path), cdr_floor="normal").floor == "normal"
+    with pytest.raises(ConfigError, match="cdr_floor must be one of"):
+        RadarDataModule(cdr_floor="gaussian")

@@ -32,6 +32,7 @@ def test_report_on_a_tiny_run(tmp_path, captures):
             assert set(bacc) == {"mean", "std", "per_seed"} and len(bacc["per_seed"]) == 2
             assert 0 <= bacc["mean"] <= 1
     assert data["kind"] == "sim-to-capture"
+    assert data["settings"]["cdr_floor"] == "normal"  # the paper's CDR unless asked otherwise
     # two seeds x (4 methods + ablation) x 2 tasks, each with its own metrics files
     assert len(data["runs"]) == 20 and len(list((out / "runs").glob("*/test_metrics.json"))) == 20
     for key in ("fig4_noise_floor", "fig5_rd_triplets", "fig6_static_energy", "fig7_feature_maps",

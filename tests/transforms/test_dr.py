@@ -115,7 +115,7 @@ def test_save_load_round_trip(tmp_path, cfg):
         # before: a bare AttributeError
         ('{"format": "radaraug.CalibratedDR", "mean_db": -90, "std_db": 1, "config": [1]}', "config"),
         # before: accepted silently
-        ('{"format": "radaraug.CalibratedDR", "format_version": 2, "mean_db": -90, "std_db": 1}', "format_version"),
+        ('{"format": "radaraug.CalibratedDR", "format_version": 3, "mean_db": -90, "std_db": 1}', "format_version"),
         (
             '{"format": "radaraug.CalibratedDR", "db_convention": "dB = 10*log10(|X|)", "mean_db": -90, "std_db": 1}',
             "another dB convention",

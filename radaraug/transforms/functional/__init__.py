@@ -18,7 +18,7 @@ Examples:
     torch.Size([4, 3, 224, 224])
 """
 
-from radaraug.transforms.functional._dr import calibrated_floor, dr_clamp, random_floor
+from radaraug.transforms.functional._dr import calibrated_floor, dr_clamp, empirical_floor, random_floor
 from radaraug.transforms.functional._image import clip_normalize, colormap, colormap_lut, resize
 from radaraug.transforms.functional._spectral import (
     combine_rx,
@@ -40,6 +40,7 @@ __all__ = [
     "combine_rx",
     "dr_clamp",
     "calibrated_floor",
+    "empirical_floor",
     "random_floor",
     "clip_normalize",
     "colormap",

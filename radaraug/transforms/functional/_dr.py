@@ -39,6 +39,45 @@ def calibrated_floor(
     return draw("normal", tuple(shape), like, generator, float(mean_db), float(std_db))
 
 
+def empirical_floor(
+    shape: tuple[int, ...],
+    quantiles_db: torch.Tensor,
+    *,
+    like: torch.Tensor,
+    generator: torch.Generator | None = None,
+) -> torch.Tensor:
+    """A floor map drawn i.i.d. per element from a measured distribution given by its quantiles.
+
+    Inverse-transform sampling: ``u ~ Uniform[0, 1)`` and ``N = Q(u)``, with ``Q`` the piecewise
+    linear interpolation of ``quantiles_db`` at equally spaced probabilities ``0, 1/(K-1), ..., 1``.
+    The draws follow the measured floor's distribution (its upper tail included) to within the
+    table's resolution, unlike a normal distribution with the same mean and std (CalibratedDR's
+    ``floor="empirical"``).
+
+    Args:
+        shape: the floor's shape (usually the maps' shape).
+        quantiles_db: ``(K,)`` non-decreasing quantiles in dB, ``K >= 2``.
+        like: a tensor whose dtype and device the floor takes.
+        generator: draw from it (else torch's global RNG).
+
+    Examples:
+        >>> import torch
+        >>> from radaraug.transforms import functional as F
+        >>> q = torch.tensor([-110.0, -100.0, -80.0])  # median -100 dB, upper half up to -80 dB
+        >>> floor = F.empirical_floor((100_000,), q, like=torch.zeros(1),
+        ...                           generator=torch.Generator().manual_seed(0))
+        >>> bool(floor.min() >= -110) and bool(floor.max() <= -80), round(float(floor.median()))
+        (True, -100)
+    """
+    if quantiles_db.ndim != 1 or quantiles_db.numel() < 2:
+        raise InputTensorError(f"empirical_floor: quantiles_db must be 1-D with >= 2 values, got {tuple(quantiles_db.shape)}")
+    u = draw("rand", tuple(shape), like, generator)
+    table = quantiles_db.to(device=u.device, dtype=u.dtype)
+    pos = u * (table.numel() - 1)
+    lo = pos.floor().long().clamp_(max=table.numel() - 2)
+    return torch.lerp(table[lo], table[lo + 1], pos - lo)
+
+
 def random_floor(
     shape: tuple[int, ...],
     mean_db: torch.Tensor,
