@@ -126,3 +126,20 @@ def test_fit_cdr_cli_writes_the_floor_it_is_asked_for(tmp_path, capsys, cfg) -> 
     assert cdr.floor == "empirical" and cdr.quantiles_db.shape == (QUANTILES,)
     low = RadarCompose([RangeDoppler(), ToDecibels(), cdr])(counts_to_float(counts))
     assert low.shape == (20, 3, 64, 32)
+
+
+@pytest.mark.real
+def test_on_real_static_recordings_the_normal_floor_overshoots_the_measured_tail(real_data) -> None:
+    # The two recordings without motion (below the warning threshold; 23 and 38 dB IF gain)
+    static = [
+        next((real_data / "ssalehi152431__Beamforming-with-Infineon-BGT60TR13C/Beamforming/beamforming_data")
+             .glob("2_reflectors*")),
+        real_data / "jjustin__ec-international-2022/recordings/recording_2022_05_25_18_53_49",
+    ]
+    for folder in static:
+        cdr = CalibratedDR.fit(folder, floor="empirical")
+        assert cdr.motion is not None and cdr.motion < 1e-3, folder  # no motion warning
+        measured = float(cdr.quantiles_db[1023])  # p = 0.999, off zero Doppler
+        normal = cdr.mean_db + 3.0902 * cdr.std_db
+        # measured: 10.4 dB (23 dB IF gain) and 11.7 dB (38 dB) below the paper's normal floor
+        assert normal - measured > 8.0, (folder.name, normal, measured)
