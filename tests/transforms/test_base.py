@@ -55,6 +55,8 @@ CASES = [
     ("Resize", lambda **k: Resize((5, 9)), unit_maps),
     ("RandomDR", lambda **k: RandomDR((-105, -95), (1, 4), **k), db_maps),
     ("CalibratedDR", lambda **k: CalibratedDR(-100, 3, **k), db_maps),
+    ("CalibratedDR-empirical",
+     lambda **k: CalibratedDR(-100, 3, floor="empirical", quantiles_db=torch.linspace(-110, -90, 33), **k), db_maps),
     # the compose's clamp sits at the level of these maps, so it is active
     (
         "RadarCompose",
@@ -62,7 +64,7 @@ CASES = [
         raw,
     ),
 ]
-RANDOM = {"RandomDR", "CalibratedDR"}
+RANDOM = {"RandomDR", "CalibratedDR", "CalibratedDR-empirical"}
 SEEDED = RANDOM | {"RadarCompose"}
 IDS = [c[0] for c in CASES]
 
@@ -224,7 +226,8 @@ def test_shapes_and_devices_follow_the_input_on_the_meta_device():
     # (before: "Tensor.item() cannot be called on meta tensors").
     x = torch.empty(2, 3, 8, 16, device="meta")
     pipeline = RadarCompose(
-        [RangeDoppler(), ToDecibels(), CalibratedDR(-100, 3), RandomDR(), CombineRx("mean_power", db=True),
+        [RangeDoppler(), ToDecibels(), CalibratedDR(-100, 3, floor="empirical", quantiles_db=[-110.0, -90.0]),
+         RandomDR(), CombineRx("mean_power", db=True),
          ClipNormalize(-120, -40), Colormap(), Resize((5, 7))]
     )
     y = pipeline(x)

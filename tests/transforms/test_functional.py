@@ -73,6 +73,11 @@ def test_classes_equal_their_kernels_bit_for_bit():
         assert torch.equal(y, F.dr_clamp(db, t.last_params["noise_db"]))
     floor = F.calibrated_floor(db.shape, -60, 4, like=db, generator=torch.Generator().manual_seed(2))
     assert torch.equal(floor, CalibratedDR(-60, 4, seed=2).make_params(db, torch.Generator().manual_seed(2))["noise_db"])
+    q = torch.linspace(-80.0, -50.0, 9)
+    emp = CalibratedDR(-60, 4, floor="empirical", quantiles_db=q, seed=2)
+    assert torch.equal(emp(db), F.dr_clamp(db, emp.last_params["noise_db"]))
+    floor = F.empirical_floor(db.shape, q, like=db, generator=torch.Generator().manual_seed(2))
+    assert torch.equal(floor, emp.make_params(db, torch.Generator().manual_seed(2))["noise_db"])
 
 
 def test_kernels_work_on_an_empty_batch_and_keep_float64():
