@@ -356,7 +356,7 @@ def _cmd_capture(args: argparse.Namespace) -> int:
     from radaraug.capture import record
 
     result = record(_live_device(args), args.output, seconds=args.seconds, label=args.label,
-                    overwrite=args.overwrite, progress=not args.no_progress)
+                    overwrite=args.overwrite, progress=not args.no_progress, floor=args.floor)
     _print_record(result, args.json)
     if result.interrupted:
         print(f"interrupted: {result.path} is complete and closed" if result.path else "interrupted",
@@ -369,10 +369,10 @@ def _cmd_calibrate(args: argparse.Namespace) -> int:
     from radaraug.capture import calibrate
 
     run = calibrate(_live_device(args), args.output, seconds=args.seconds, keep_recording=args.keep_recording,
-                    overwrite=args.overwrite, progress=not args.no_progress)
+                    overwrite=args.overwrite, progress=not args.no_progress, floor=args.floor)
     cdr = run.cdr
     if args.json:
-        print(json.dumps({"output": str(run.output), "mean_db": cdr.mean_db, "std_db": cdr.std_db,
+        print(json.dumps({"output": str(run.output), "mean_db": cdr.mean_db, "std_db": cdr.std_db, "floor": cdr.floor,
                           "motion_fraction": cdr.motion, "recording": run.recording.to_dict()}))
     else:
         kept = f"; recording kept in {run.recording.path}" if args.keep_recording else ""
@@ -539,6 +539,8 @@ def build_parser() -> argparse.ArgumentParser:
     live(cal, 10.0)
     cal.add_argument("-o", "--output", required=True, help="calibration JSON to write")
     cal.add_argument("--keep-recording", default=None, metavar="PATH", help="also keep the recording here (.h5)")
+    cal.add_argument("--floor", choices=("normal", "empirical"), default="normal",
+                     help="the floor distribution the calibration draws from (as fit-cdr --floor)")
     cal.set_defaults(func=_cmd_calibrate)
     return p
 

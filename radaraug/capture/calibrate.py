@@ -20,6 +20,7 @@ from radaraug.capture.record import RecordResult, record
 from radaraug.errors import CalibrationError
 from radaraug.transforms import CalibratedDR, MotionWarning
 from radaraug.transforms._motion import DEFAULT_THRESHOLD_DB, MIN_FRAMES, WARN_FRACTION
+from radaraug.transforms.dr import FLOORS
 
 CALIBRATION_SECONDS = 10.0
 """The empty-room sequence's length (the paper's 10 s, ~100 frames at 10 Hz)."""
@@ -50,6 +51,7 @@ def calibrate(
     overwrite: bool = False,
     motion_threshold_db: float = DEFAULT_THRESHOLD_DB,
     progress: bool = False,
+    floor: str = "normal",
 ) -> CalibrationRun:
     """Record ``seconds`` of the empty room from ``device``, fit CalibratedDR, save it to ``output``.
 
@@ -61,6 +63,8 @@ def calibrate(
         overwrite: replace an existing ``keep_recording`` file.
         motion_threshold_db: threshold of the motion check (see :mod:`radaraug.transforms._motion`).
         progress: show the recording's progress bar.
+        floor: the calibration's floor distribution, ``"normal"`` (the paper's) or ``"empirical"``
+            (see :class:`~radaraug.transforms.CalibratedDR`).
 
     Returns:
         A :class:`CalibrationRun`.
@@ -74,6 +78,8 @@ def calibrate(
             recording holds the frames so far).
     """
     output = Path(output)
+    if floor not in FLOORS:  # before recording, not after ten seconds of it
+        raise CalibrationError(f"calibrate: floor must be one of {FLOORS}, got {floor!r}")
     _check_writable(output)
     if keep_recording is not None:
         rec_path, temporary = Path(keep_recording), False
@@ -88,7 +94,7 @@ def calibrate(
         with warnings.catch_warnings():
             # The motion warning of fit() becomes the refusal below.
             warnings.simplefilter("ignore", MotionWarning)
-            cdr = CalibratedDR.fit(rec_path, motion_threshold_db=motion_threshold_db)
+            cdr = CalibratedDR.fit(rec_path, motion_threshold_db=motion_threshold_db, floor=floor)
     finally:
         if temporary:
             rec_path.unlink(missing_ok=True)

@@ -56,8 +56,9 @@ def test_cli_calibrate(tmp_path, capsys) -> None:
     cfg = tmp_path / "cfg.json"
     CFG.to_json(cfg)
     rc = main(["calibrate", "--device", "virtual", "--config", str(cfg), "--seconds", "2", "--no-realtime",
-               "--no-progress", "-o", str(tmp_path / "cdr.json"), "--json"])
+               "--no-progress", "-o", str(tmp_path / "cdr.json"), "--json", "--floor", "empirical"])
     assert rc == 0
     out = json.loads(capsys.readouterr().out)
-    assert out["recording"]["frames"] == 20 and out["motion_fraction"] == 0.0
-    assert CalibratedDR.load(tmp_path / "cdr.json").num_frames == 20
+    assert out["recording"]["frames"] == 20 and out["motion_fraction"] == 0.0 and out["floor"] == "empirical"
+    cdr = CalibratedDR.load(tmp_path / "cdr.json")
+    assert cdr.num_frames == 20 and cdr.floor == "empirical"
