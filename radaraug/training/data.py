@@ -27,7 +27,7 @@ import json
 import warnings
 from collections.abc import Sized
 from pathlib import Path
-from typing import Any
+from typing import Any, Literal
 
 import lightning as L
 import torch
@@ -151,7 +151,7 @@ class RadarDataModule(L.LightningDataModule):
         clip_range: list[float] | None = None,
         randomdr_mean_db: list[float] | None = None,
         randomdr_std_db: list[float] | None = None,
-        cdr_floor: str | None = None,
+        cdr_floor: Literal["normal", "empirical"] | None = None,
         dr_seed: int = 0,
         batch_size: int = 32,
         num_workers: int = 0,
