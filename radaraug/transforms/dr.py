@@ -366,6 +366,9 @@ class CalibratedDR(_DRClamp):
     ) -> CalibratedDR:
         """Fit ``(m_t, s_t)`` = mean and std of all RD dB values of an empty-room capture.
 
+        Also records the quantiles of the dB values off the zero-Doppler main lobe, which
+        ``floor="empirical"`` draws from (pass ``floor=`` here or when loading).
+
         Args:
             source: a capture path (radaraug ``.h5`` or Infineon recording folder, opened with
                 ``radaraug.io.open_capture``), an open capture reader, a tensor of frames
@@ -380,14 +383,14 @@ class CalibratedDR(_DRClamp):
             batch_size: frames processed at once.
             motion_threshold_db: threshold of the motion check (see :mod:`._motion`).
             progress: show a progress bar (tqdm, on stderr) over the batches.
-            **kwargs: passed to the constructor (``p``, ``generator``, ``seed``...).
+            **kwargs: passed to the constructor (``floor``, ``p``, ``generator``, ``seed``...).
 
         Raises:
             CalibrationError: ``max_frames``/``batch_size`` not a positive integer, a source with
                 no frames, NaN/Inf maps, or a config that differs from the capture's.
 
         Warns:
-            UserWarning: when the capture shows motion (it should be empty).
+            MotionWarning: (a ``UserWarning``) when the capture shows motion (it should be empty).
 
         The standard deviation is the population one (``correction=0``); statistics are
         accumulated in float64.
