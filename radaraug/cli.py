@@ -14,7 +14,7 @@ Sub-commands::
     radaraug simulate SCENE --frames N --seed S -o out.h5 [--shard i/n] [--profile P] [--json]
     radaraug demo [-o DIR] [--json]             the main job on the built-in default
     radaraug train fit --config recipes/occupancy_cdr.yaml [--key value ...]   LightningCLI recipes
-    radaraug reproduce [--quick] [--seeds N] [--calibration C] [--test PATH[:COUNT] ...] [--cdr-floor F] -o OUT [--json]
+    radaraug reproduce [--quick] [--seeds N] [--calibration C] [--test PATH[:COUNT] ...] [--cdr-floor F] [--test-dr] -o OUT [--json]
     radaraug make-proxy -o DIR [--frames-per-count N] [--json]   the held-out proxy test set
     radaraug diagnose CAPTURE [--scene SCENE] -o REPORT_DIR [--json]   twin vs capture, fitted twin profile
     radaraug devices [--json] [--udev-rule]     Infineon radar boards on USB
@@ -247,7 +247,7 @@ def _cmd_reproduce(args: argparse.Namespace) -> int:
     with _stdout_for(args):
         report = reproduce(args.output, quick=args.quick, seeds=args.seeds, calibration=args.calibration,
                            test=test, ablation=not args.no_ablation, accelerator=args.accelerator, progress=True,
-                           cdr_floor=args.cdr_floor)
+                           cdr_floor=args.cdr_floor, test_dr=args.test_dr)
     if args.json:
         _print_json({"output": str(args.output), "report": str(Path(args.output) / "report.md"), **report})
         return 0
@@ -477,6 +477,9 @@ def build_parser() -> argparse.ArgumentParser:
     rep.add_argument("--cdr-floor", choices=("normal", "empirical"), default=None,
                      help="CalibratedDR's floor distribution: normal (the paper's CDR; the default for a capture) "
                      "or empirical (the calibration capture's measured distribution; docs/transforms.md)")
+    rep.add_argument("--test-dr", action="store_true",
+                     help="pass the test captures through each run's DR too (not the paper's protocol; "
+                     "docs/training.md)")
     rep.add_argument("--no-ablation", action="store_true", help="skip CDR without twin randomization")
     rep.add_argument("--accelerator", default="auto", help="Lightning accelerator (auto, cpu, gpu)")
     rep.add_argument("-o", "--output", required=True, help="output folder (report, runs, figures, cache)")

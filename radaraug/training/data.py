@@ -120,6 +120,10 @@ class RadarDataModule(L.LightningDataModule):
         cdr_floor: CalibratedDR's floor distribution for ``cdr`` / ``cdr_profile``: ``"normal"``
             (the paper's), ``"empirical"`` (the calibration capture's measured distribution, see
             docs/transforms.md), or None (the calibration's own: ``"normal"`` for a capture).
+        test_dr: also pass the test captures through the run's DR (drawn from the DR's own seeded
+            generator). Not the paper's protocol, which leaves real maps untouched: with a twin whose
+            floor already sits at the capture's, CDR's clamp raises the training floor ~3 dB above
+            the capture's, and a network learns the raised floor as "empty" (docs/training.md).
         dr_seed: seed of the DR draws (rank ``r`` uses ``dr_seed + 1000 r``).
         batch_size: training batch size.
         num_workers: DataLoader workers for training and test reads.
@@ -152,6 +156,7 @@ class RadarDataModule(L.LightningDataModule):
         randomdr_mean_db: list[float] | None = None,
         randomdr_std_db: list[float] | None = None,
         cdr_floor: Literal["normal", "empirical"] | None = None,
+        test_dr: bool = False,
         dr_seed: int = 0,
         batch_size: int = 32,
         num_workers: int = 0,
@@ -470,9 +475,10 @@ class RadarDataModule(L.LightningDataModule):
         if self.image is None:
             raise ConfigError("RadarDataModule.setup() has not run")
         trainer = self.trainer
-        # Simulated splits (train and held-out val) go through the run's DR; captures never do.
+        # Simulated splits (train and held-out val) go through the run's DR; captures only with test_dr.
         if self.dr is not None and trainer is not None and (trainer.training or trainer.validating
-                                                            or trainer.sanity_checking):
+                                                            or trainer.sanity_checking
+                                                            or (trainer.testing and self.hparams["test_dr"])):
             x = self.dr.to(x.device).train()(x)
         return self.image.to(x.device)(x), y
 

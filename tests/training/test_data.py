@@ -69,3 +69,9 @@ def test_dr_only_on_simulated_splits(tmp_path, captures):
     dm.trainer = T(training=True)
     train_img, _ = dm.on_after_batch_transfer((x, torch.zeros(2)), 0)
     assert torch.equal(test_img, dm.image(x)) and not torch.equal(train_img, test_img)
+    # test_dr: the test captures go through the run's DR too (opt-in, not the paper's protocol)
+    dm.hparams["test_dr"] = True
+    dm.trainer, dm.image = T(testing=True), torch.nn.Identity()  # the maps before clipping
+    lifted, _ = dm.on_after_batch_transfer((x, torch.zeros(2)), 0)
+    assert bool((lifted > -150).all())
+    assert RadarDataModule().hparams["test_dr"] is False
