@@ -356,7 +356,7 @@ def _cmd_capture(args: argparse.Namespace) -> int:
     from radaraug.capture import record
 
     result = record(_live_device(args), args.output, seconds=args.seconds, label=args.label,
-                    overwrite=args.overwrite, progress=not args.no_progress, floor=args.floor)
+                    overwrite=args.overwrite, progress=not args.no_progress)
     _print_record(result, args.json)
     if result.interrupted:
         print(f"interrupted: {result.path} is complete and closed" if result.path else "interrupted",
