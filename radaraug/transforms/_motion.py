@@ -44,8 +44,15 @@ def motion_fraction(
     Returns:
         The fraction, or None when there are too few frames or no Doppler bins left.
     """
-    cells = off_zero_doppler(maps_db, guard_bins)
-    if maps_db.shape[0] < MIN_FRAMES or cells.shape[-1] == 0:
+    return cells_motion_fraction(off_zero_doppler(maps_db, guard_bins), threshold_db)
+
+
+def cells_motion_fraction(cells: torch.Tensor, threshold_db: float = DEFAULT_THRESHOLD_DB) -> float | None:
+    """:func:`motion_fraction` of cells already taken off zero Doppler (:func:`off_zero_doppler`).
+
+    For a caller that needs those cells anyway (the fit's empirical floor), so they are cut once.
+    """
+    if cells.shape[0] < MIN_FRAMES or cells.shape[-1] == 0:
         return None
     median = cells.median(dim=0).values
     return float((cells > median + threshold_db).double().mean())

@@ -503,7 +503,7 @@ def _read_record(path: str | os.PathLike) -> dict[str, Any]:
 def _valid_quantiles(values: Any) -> torch.Tensor:
     """``quantiles_db`` as a float64 tensor, checked: 1-D, >= 2 finite non-decreasing values."""
     try:
-        q = torch.as_tensor(values, dtype=torch.float64) if not isinstance(values, torch.Tensor) else values.double()
+        q = torch.as_tensor(values, dtype=torch.float64)  # lists and tensors alike
     except (TypeError, ValueError, RuntimeError, OverflowError):
         raise CalibrationError(f"CalibratedDR: quantiles_db must be a list of numbers, got {safe_repr(values)}") from None
     if q.ndim != 1 or q.numel() < 2 or not bool(torch.isfinite(q).all()) or bool((q.diff() < 0).any()):

@@ -18,7 +18,12 @@ from radaraug._optional import lazy_import
 from radaraug.config import RadarConfig
 from radaraug.errors import CalibrationError
 from radaraug.transforms._fit_sources import iter_source
-from radaraug.transforms._motion import DEFAULT_THRESHOLD_DB, WARN_FRACTION, motion_fraction, off_zero_doppler
+from radaraug.transforms._motion import (
+    DEFAULT_THRESHOLD_DB,
+    WARN_FRACTION,
+    cells_motion_fraction,
+    off_zero_doppler,
+)
 from radaraug.transforms.chain import chain_of, doppler_window_of
 from radaraug.transforms.compose import RadarCompose
 from radaraug.transforms.spectral import RangeDoppler, ToDecibels
@@ -111,14 +116,13 @@ def floor_statistics(
     values = all_maps.double()
     mean, std = float(values.mean()), float(values.std(correction=0))
     window = doppler_window_of(chain) or "hann"
-    guard = MAIN_LOBE_HALF_WIDTH_BINS.get(window, 1) + 1
-    motion = motion_fraction(all_maps, guard, motion_threshold_db)
-    # The empirical floor's distribution: cells off zero Doppler only, because the static clutter in
-    # the zero-Doppler main lobe is the room's (the twin makes its own), not the receiver's floor;
-    # drawn i.i.d. into every cell, its high values would be spikes no real floor has.
-    off = off_zero_doppler(values, guard)
-    off = (off if off.numel() else values).flatten()
-    quantiles = torch.from_numpy(np.quantile(off.cpu().numpy(), np.linspace(0.0, 1.0, QUANTILES)))
+    # The cells off zero Doppler serve the motion check and the empirical floor's distribution: the
+    # static clutter in the zero-Doppler main lobe is the room's (the twin makes its own), not the
+    # receiver's floor; drawn i.i.d. into every cell, its high values would be spikes no floor has.
+    off = off_zero_doppler(all_maps, MAIN_LOBE_HALF_WIDTH_BINS.get(window, 1) + 1)
+    motion = cells_motion_fraction(off, motion_threshold_db)
+    floor_values = (off.double() if off.numel() else values).flatten()
+    quantiles = torch.from_numpy(np.quantile(floor_values.cpu().numpy(), np.linspace(0.0, 1.0, QUANTILES)))
     if motion is not None and motion > WARN_FRACTION:
         warnings.warn(
             f"CalibratedDR.fit: {where} should be an empty scene but shows motion: {100 * motion:.2f} % of the cells "
