@@ -12,14 +12,19 @@ Sub-commands::
     radaraug bench micro-doppler --out PNG      a walker's micro-Doppler: one snapshot vs motion in the frame
     radaraug trace SCENE [--time T] [--json]    the propagation paths of one instant
     radaraug simulate SCENE --frames N --seed S -o out.h5 [--shard i/n] [--profile P] [--json]
-    radaraug demo [-o DIR] [--json]             the main job on the built-in default
-    radaraug train fit --config recipes/occupancy_cdr.yaml [--key value ...]   LightningCLI recipes
+    radaraug demo [-o DIR] [--json]             capture walkthrough: the bundled recording, a fitted CalibratedDR
+    radaraug recipes [NAME] [--json]            list the installed training recipes, or print one
+    radaraug train fit --config RECIPE [--key value ...]   LightningCLI recipes (RECIPE: a name or a YAML file)
     radaraug reproduce [--quick] [--seeds N] [--calibration C] [--test PATH[:COUNT] ...] [--cdr-floor F] [--test-dr] -o OUT [--json]
     radaraug make-proxy -o DIR [--frames-per-count N] [--json]   the held-out proxy test set
     radaraug diagnose CAPTURE [--scene SCENE] -o REPORT_DIR [--json]   twin vs capture, fitted twin profile
     radaraug devices [--json] [--udev-rule]     Infineon radar boards on USB
     radaraug capture --device auto|virtual|SERIAL [--config C] --seconds S -o out.h5 [--label N] [--json]
     radaraug calibrate --device auto|virtual|SERIAL -o cdr.json [--keep-recording PATH] [--json]
+
+``radaraug train --config NAME`` takes a recipe installed with the package by its name
+(``occupancy_randomdr``; ``radaraug recipes`` lists them) wherever no file of that name exists;
+``recipes/NAME.yaml``, the recipes' place before they moved into the package, is read the same way.
 
 ``--json`` (every command but ``train``): one JSON object on stdout, snake_case keys, paths as
 strings, units in the key names (``_s``, ``_db``, ``_m``); anything else the command prints
@@ -227,6 +232,97 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
         return 0
     print(f"{result['path']}: frames [{result['frames'][0]}, {result['frames'][1]}), "
           f"{result['simulated']} simulated, resumed from frame {result['resumed_from']}")
+    return 0
+
+
+RECIPES_DIR = Path(__file__).resolve().parent / "recipes"
+"""The training recipes installed with the package (package data ``radaraug/recipes/*.yaml``)."""
+
+
+def recipe_names() -> list[str]:
+    """The names of the installed recipes (``occupancy_rt`` ... ``counting_cdr_profile``)."""
+    return sorted(p.stem for p in RECIPES_DIR.glob("*.yaml"))
+
+
+def _recipe_stem(text: str) -> str | None:
+    """The recipe that ``text`` names (``NAME``, ``NAME.yaml``, ``recipes/NAME.yaml``), else None."""
+    from pathlib import PurePosixPath
+
+    p = PurePosixPath(text.replace("\\", "/"))
+    if p.suffix not in ("", ".yaml", ".yml") or p.parent.parts not in ((), ("recipes",)):
+        return None
+    return p.stem if p.stem in recipe_names() else None
+
+
+def recipe_path(name: str) -> Path:
+    """The installed recipe ``name`` (``occupancy_randomdr``, also with ``.yaml`` or ``recipes/``).
+
+    Raises:
+        ConfigError: no installed recipe has that name (the message lists them).
+    """
+    stem = _recipe_stem(name)
+    if stem is None:
+        raise ConfigError(f"no recipe named {name!r}; the installed recipes are {', '.join(recipe_names())}")
+    return RECIPES_DIR / f"{stem}.yaml"
+
+
+def _train_config(value: str) -> str:
+    """A ``--config`` value of ``radaraug train``: a file as given, else an installed recipe's path."""
+    if os.path.lexists(value):
+        return value
+    stem = _recipe_stem(value)
+    if stem is not None:
+        return str(RECIPES_DIR / f"{stem}.yaml")
+    if any(c in value for c in ":{\n"):  # inline YAML: LightningCLI reads (or refuses) it
+        return value
+    raise ConfigError(f"--config {value}: no such file, and not the name of an installed recipe "
+                      f"({', '.join(recipe_names())}; radaraug recipes lists them)")
+
+
+def resolve_train_args(argv: Sequence[str]) -> list[str]:
+    """``radaraug train`` arguments with every ``--config NAME`` / ``-c NAME`` of a recipe made a path."""
+    out: list[str] = []
+    it = iter(argv)
+    for arg in it:
+        if arg in ("--config", "-c"):
+            value = next(it, None)
+            out += [arg] if value is None else [arg, _train_config(value)]
+        elif arg.startswith("--config="):
+            out.append("--config=" + _train_config(arg.split("=", 1)[1]))
+        else:
+            out.append(arg)
+    return out
+
+
+def _cmd_train(argv: Sequence[str]) -> int:
+    from radaraug.training.cli import main as train_main
+
+    return train_main(resolve_train_args(argv))
+
+
+def _cmd_recipes(args: argparse.Namespace) -> int:
+    import yaml
+
+    if args.name is not None:
+        path = recipe_path(args.name)
+        text = path.read_text(encoding="utf-8")
+        if args.json:
+            _print_json({"name": path.stem, "path": str(path), "text": text})
+        else:
+            print(text, end="")
+        return 0
+    rows = []
+    for name in recipe_names():
+        path = RECIPES_DIR / f"{name}.yaml"
+        data = yaml.safe_load(path.read_text(encoding="utf-8"))["data"]
+        rows.append({"name": name, "path": str(path), "task": data["task"], "method": data["method"]})
+    if args.json:
+        _print_json({"folder": str(RECIPES_DIR), "recipes": rows})
+        return 0
+    for r in rows:
+        print(f"{r['name']:24s} task {r['task']:10s} method {r['method']}")
+    print(f"installed in {RECIPES_DIR}; run one with `radaraug train fit --config NAME`, "
+          "or edit a copy: `radaraug recipes NAME > my.yaml`", file=sys.stderr)
     return 0
 
 
@@ -459,14 +555,24 @@ def build_parser() -> argparse.ArgumentParser:
     sim.add_argument("--json", action="store_true", help="print the result (path, frame range, frames simulated, resume point) as one JSON object")
     sim.set_defaults(func=_cmd_simulate)
 
-    demo = sub.add_parser("demo", help="the main job on the built-in default")
+    demo_text = ("capture walkthrough: the bundled recording through the paper's chain, a fitted CalibratedDR, RD "
+                 "images and a noise-floor histogram (the main job, `make demo`, is `radaraug reproduce --quick`)")
+    demo = sub.add_parser("demo", help=demo_text, description=demo_text)
     demo.add_argument("-o", "--output", default="demo_out", help="output folder")
     demo.add_argument("--json", action="store_true", help="print the demo's summary as one JSON object")
     demo.set_defaults(func=_cmd_demo)
 
     # `train` is parsed by LightningCLI (radaraug.training.cli); listed here for --help only.
-    sub.add_parser("train", help="LightningCLI recipes: radaraug train fit --config recipes/occupancy_cdr.yaml",
-                   add_help=False)
+    sub.add_parser("train", help="LightningCLI recipes: radaraug train fit --config occupancy_randomdr "
+                   "(an installed recipe's name, or a YAML file)", add_help=False)
+
+    rec = sub.add_parser("recipes", help="list the training recipes installed with radaraug, or print one "
+                         "(radaraug recipes NAME > my.yaml: a copy to edit)")
+    rec.add_argument("name", nargs="?", default=None,
+                     help="the recipe to print (e.g. occupancy_randomdr); without it: list them")
+    rec.add_argument("--json", action="store_true",
+                     help="print the list (name, path, task, method) or the recipe (name, path, text) as one JSON object")
+    rec.set_defaults(func=_cmd_recipes)
 
     rep = sub.add_parser("reproduce", help="the paper's experiment: 2 tasks x 4 methods (the paper's 3 + cdr_profile) x N seeds, report + figures")
     rep.add_argument("--quick", action="store_true", help="minutes on a 2-core CPU (what `make demo` runs)")
@@ -585,9 +691,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the `radaraug` script; returns the exit status (module docstring)."""
     argv = list(sys.argv[1:] if argv is None else argv)
     if argv[:1] == ["train"]:
-        from radaraug.training.cli import main as train_main
-
-        return _run(train_main, argv[1:])
+        return _run(_cmd_train, argv[1:])
     args = build_parser().parse_args(argv)  # usage errors: SystemExit(2) from argparse
     return _run(args.func, args)
 

@@ -295,3 +295,43 @@ def test_every_reporting_command_has_json() -> None:
     lacking = [name for name, p in sub.choices.items()
                if name != "train" and not any("--json" in a.option_strings for a in p._actions)]
     assert lacking == []
+
+
+def test_recipes_are_installed_listed_printed_and_taken_by_name(tmp_path, capsys, monkeypatch) -> None:
+    from radaraug.cli import RECIPES_DIR, recipe_names, resolve_train_args
+
+    names = recipe_names()
+    assert len(names) == 8 and "occupancy_randomdr" in names
+    assert RECIPES_DIR.parent.name == "radaraug"  # package data, not a folder of the checkout
+    assert main(["recipes"]) == 0
+    listed = capsys.readouterr().out.splitlines()
+    assert [line.split()[0] for line in listed] == names
+    assert main(["recipes", "--json"]) == 0
+    rows = json.loads(capsys.readouterr().out)["recipes"]
+    assert {(r["name"], r["task"], r["method"]) for r in rows} >= {("counting_cdr_profile", "counting", "cdr_profile")}
+    assert main(["recipes", "occupancy_rt"]) == 0  # a copy to edit: radaraug recipes NAME > my.yaml
+    assert capsys.readouterr().out == (RECIPES_DIR / "occupancy_rt.yaml").read_text()
+    assert main(["recipes", "occupancy_nope"]) == 3
+    assert "no recipe named 'occupancy_nope'" in capsys.readouterr().err
+
+    monkeypatch.chdir(tmp_path)  # no recipes/ folder here: names resolve to the installed recipes
+    installed = str(RECIPES_DIR / "counting_rt.yaml")
+    for given in ("counting_rt", "counting_rt.yaml", "recipes/counting_rt.yaml"):
+        assert resolve_train_args(["fit", "--config", given, "--trainer.max_epochs", "1"]) == [
+            "fit", "--config", installed, "--trainer.max_epochs", "1"]
+    assert resolve_train_args(["fit", f"--config={'counting_rt'}"]) == ["fit", f"--config={installed}"]
+    (tmp_path / "counting_rt.yaml").write_text("seed_everything: 1\n")  # a file of that name wins
+    assert resolve_train_args(["fit", "-c", "counting_rt.yaml"]) == ["fit", "-c", "counting_rt.yaml"]
+    assert main(["train", "fit", "--config", "counting_typo"]) == 3
+    assert "not the name of an installed recipe" in capsys.readouterr().err
+    with pytest.raises(SystemExit) as e:
+        main(["train", "fit", "--config", "occupancy_randomdr", "--print_config"])
+    assert e.value.code == 0 and "method: randomdr" in capsys.readouterr().out
+
+
+def test_demo_help_does_not_call_it_the_main_job() -> None:
+    from radaraug.cli import build_parser
+
+    sub = next(a for a in build_parser()._actions if isinstance(a, argparse._SubParsersAction))
+    text = " ".join(sub.choices["demo"].format_help().split())
+    assert "capture walkthrough" in text and "the main job, `make demo`, is `radaraug reproduce --quick`" in text

@@ -1,4 +1,4 @@
-"""Every recipe runs (fast_dev_run on CPU) through `radaraug train`; DDP with two gloo processes."""
+"""Every recipe runs (fast_dev_run on CPU) through `radaraug train`, by its installed name; DDP with two gloo processes."""
 
 from __future__ import annotations
 
@@ -13,11 +13,10 @@ import numpy as np
 import pytest
 import yaml
 
-from radaraug.cli import main
+from radaraug.cli import RECIPES_DIR, main, recipe_names
 from radaraug.training.chain import METHODS, TASKS
 
-REPO = Path(__file__).resolve().parents[2]
-RECIPES = sorted((REPO / "recipes").glob("*.yaml"))
+RECIPES = sorted(RECIPES_DIR.glob("*.yaml"))
 
 
 def _small_args(tmp: Path, captures, randomization: str = "false") -> list[str]:
@@ -32,7 +31,7 @@ def _small_args(tmp: Path, captures, randomization: str = "false") -> list[str]:
 
 def test_one_recipe_per_task_and_method():
     names = {p.stem for p in RECIPES}
-    assert names == {f"{t}_{m}" for t in TASKS for m in METHODS}
+    assert names == {f"{t}_{m}" for t in TASKS for m in METHODS} == set(recipe_names())
     for p in RECIPES:
         cfg = yaml.safe_load(p.read_text())
         task, method = p.stem.split("_", 1)
@@ -47,7 +46,7 @@ def test_one_recipe_per_task_and_method():
 @pytest.mark.parametrize("recipe", RECIPES, ids=lambda p: p.stem)
 def test_recipe_fast_dev_run(recipe, tmp_path, captures, monkeypatch):
     monkeypatch.chdir(tmp_path)
-    rc = main(["train", "fit", "--config", str(recipe), "--trainer.fast_dev_run", "true",
+    rc = main(["train", "fit", "--config", recipe.stem, "--trainer.fast_dev_run", "true",
                "--trainer.accelerator", "cpu", *_small_args(tmp_path, captures)])
     assert rc == 0
     assert len(list((tmp_path / "cache").glob("train-*.h5"))) == 1
@@ -58,7 +57,7 @@ def test_recipe_fast_dev_run(recipe, tmp_path, captures, monkeypatch):
 def test_fit_then_test_from_the_checkpoint_the_docs_name(tmp_path, captures, monkeypatch):
     # docs/training.md: `radaraug train test --config ... --ckpt_path lightning_logs/version_0/checkpoints/last.ckpt`
     monkeypatch.chdir(tmp_path)
-    recipe = str(REPO / "recipes" / "occupancy_rt.yaml")
+    recipe = "occupancy_rt"  # the installed recipe, by its name
     args = [*_small_args(tmp_path, captures), "--trainer.accelerator", "cpu", "--trainer.log_every_n_steps", "1"]
     assert main(["train", "fit", "--config", recipe, "--trainer.max_epochs", "1", *args]) == 0
     run = tmp_path / "lightning_logs" / "version_0"
@@ -70,7 +69,8 @@ def test_fit_then_test_from_the_checkpoint_the_docs_name(tmp_path, captures, mon
 @pytest.mark.parametrize("recipe", ["occupancy_cdr", "occupancy_cdr_profile"])
 def test_ddp_two_gloo_processes_each_simulate_their_own_shard(recipe, tmp_path, captures):
     out = tmp_path / "run"
-    cmd = [sys.executable, "-m", "radaraug.cli", "train", "fit", "--config", str(REPO / "recipes" / f"{recipe}.yaml"),
+    # by name: every DDP rank relaunches this command line and resolves the name again
+    cmd = [sys.executable, "-m", "radaraug.cli", "train", "fit", "--config", recipe,
            "--trainer.max_epochs", "1", "--trainer.strategy", "ddp", "--trainer.devices", "2",
            "--trainer.accelerator", "cpu", "--trainer.logger", "false", "--trainer.enable_checkpointing", "false",
            "--data.out_dir", str(out), *_small_args(tmp_path, captures), "--data.train_items", "9",
