@@ -3,6 +3,7 @@
 * :class:`RadarDataModule` -- simulated train/val (cached once), captures for test, the paper's chain;
 * :class:`RDClassifier` -- ResNet18 (random init) occupancy / counting classifier;
 * :mod:`.metrics` -- balanced accuracy from the confusion matrix, JSON + PNG reports;
+* :mod:`.testset` -- the test set and calibration checked before training (:class:`TestSetWarning`);
 * ``radaraug train`` (LightningCLI, :mod:`.cli`) and ``radaraug reproduce`` (:mod:`.reproduce`).
 """
 
@@ -16,6 +17,7 @@ from radaraug.training.metrics import (
     save_metrics,
 )
 from radaraug.training.module import RDClassifier
+from radaraug.training.testset import CalibrationWarning, TestSetWarning, check_test_set
 
 __all__ = [
     "TASKS",
@@ -31,4 +33,7 @@ __all__ = [
     "accuracy",
     "classification_report",
     "save_metrics",
+    "check_test_set",
+    "TestSetWarning",
+    "CalibrationWarning",
 ]

@@ -51,6 +51,7 @@ from radaraug.training.chain import (
     make_dr,
     rd_db_chain,
 )
+from radaraug.training.testset import check_inputs
 from radaraug.transforms import CalibratedDR
 from radaraug.transforms.dr import FLOORS
 
@@ -253,6 +254,10 @@ class RadarDataModule(L.LightningDataModule):
             return
         rank, world = _rank_world(self.trainer)
         calibration, test = self.resolved_captures()
+        # Before any simulation: a test set that cannot score the task, or a calibration that cannot
+        # serve the method, is refused (or warned about) now, not after training.
+        check_inputs(test, self.task, calibration=calibration, method=self.method, profile=self.hparams["profile"],
+                     calibrate_noise=self.hparams["calibrate_noise"])
         has_capture = calibration is not None and not is_calibration_json(calibration)
         source = calibration if calibration is not None and has_capture else test[0]["path"]
         with open_capture(source) as cap:

@@ -1,0 +1,178 @@
+"""Checks of the test captures and the calibration, run before anything is simulated or trained.
+
+A test set that cannot measure the task, or a calibration that cannot do what the method asks of
+it, used to show up only after training (a count outside the task's classes broke the scoring) or
+never (a test set of one class scores 1.0 for a net that always answers that class). These checks
+read only the files' metadata and labels (no frames), so they cost a fraction of a second:
+
+* :func:`read_test_counts` -- the people counts of the test entries, frames per count, from the
+  entry's ``count`` (the whole file) or the file's per-frame ``count`` labels;
+* :func:`check_test_set` -- refuses a count outside the task's classes (:class:`ConfigError`
+  naming the file) and warns (:class:`TestSetWarning`) when the test set holds one class only;
+* :func:`check_calibration` -- refuses ``cdr_profile`` on a CalibratedDR JSON (it fits a twin
+  profile on the capture's frames) and warns (:class:`CalibrationWarning`) when the twin's noise
+  fit is asked for but the calibration is a JSON (the twin then runs on the default receiver);
+* :func:`check_inputs` -- both, as :class:`~radaraug.training.data.RadarDataModule` runs them at
+  the start of ``setup``.
+
+Why one class is not enough: balanced accuracy is the mean recall over the classes *present* in
+the test labels (:mod:`radaraug.training.metrics`), so with one class it is that class's recall, and
+a net that always answers it scores 1.0. An empty-room capture (count 0) must be part of the test set
+for the score to say anything about telling people from an empty room.
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from collections.abc import Mapping, Sequence
+from typing import Any
+
+import numpy as np
+
+from radaraug.errors import ConfigError
+from radaraug.io import open_capture
+from radaraug.training.chain import PROFILE_METHODS, check_task, is_calibration_json, label_of
+
+#: The people counts each task accepts: counting's classes, or any count >= 0 for occupancy.
+COUNTING_COUNTS = (0, 1, 2)
+
+
+class TestSetWarning(UserWarning):
+    """The test set cannot measure the task: it holds captures of only one of the task's classes."""
+
+    __test__ = False  # not a pytest test class, whatever its name
+
+
+class CalibrationWarning(UserWarning):
+    """The calibration cannot serve a step the run asked for (the run goes on without that step)."""
+
+
+def _whole_count(value: Any, where: str) -> int:
+    """``value`` as a whole number of people (ConfigError naming ``where`` otherwise)."""
+    if isinstance(value, bool) or value is None:
+        raise ConfigError(f"{where}: the people count must be a whole number, got {value!r}")
+    if isinstance(value, (int, np.integer)):
+        return int(value)
+    if isinstance(value, (float, np.floating)) and math.isfinite(value) and float(value).is_integer():
+        return int(value)
+    if isinstance(value, str) and value.strip().lstrip("-").isdigit():
+        return int(value.strip())
+    raise ConfigError(f"{where}: the people count must be a whole number, got {value!r}")
+
+
+def read_test_counts(test: Sequence[Mapping[str, Any]]) -> list[tuple[str, dict[int, int]]]:
+    """The people counts of test entries: ``[(path, {count: frames})]``, one per entry.
+
+    An entry ``{"path": P, "count": N}`` is N people in every frame of P; ``{"path": P}`` reads the
+    per-frame ``count`` labels stored in P (``radaraug capture --label N`` writes them). Opens each
+    file for its metadata and labels only.
+
+    Raises:
+        ConfigError: an entry without a ``path``, a count that is not a whole number, or a file
+            without per-frame ``count`` labels where the entry gives no ``count`` (each message
+            names the file).
+        CaptureError: a file that cannot be opened as a capture.
+    """
+    out: list[tuple[str, dict[int, int]]] = []
+    for i, entry in enumerate(test):
+        if not isinstance(entry, Mapping) or "path" not in entry:
+            raise ConfigError(f"test[{i}] must be a mapping with a 'path' (and optionally 'count'), got {entry!r}")
+        path = str(entry["path"])
+        count = entry.get("count")
+        with open_capture(path) as cap:
+            frames = int(cap.num_frames)
+            labels = None if count is not None else cap.labels.get("count")
+            if count is None and labels is None:
+                raise ConfigError(
+                    f"test capture {path}: no people count: the entry gives no 'count' and the file has no "
+                    f"per-frame 'count' labels (labels in the file: {sorted(cap.labels) or 'none'}); give the "
+                    f"whole file's count ({{path: {path}, count: N}}, radaraug reproduce --test {path}:N)")
+        if count is not None:
+            out.append((path, {_whole_count(count, f"test capture {path}"): frames}))
+            continue
+        arr = np.asarray(labels)
+        if arr.dtype.kind not in "iuf" or (arr.dtype.kind == "f" and not np.all(np.isfinite(arr) & (arr == np.round(arr)))):
+            raise ConfigError(f"test capture {path}: its per-frame 'count' labels must be whole numbers of people, "
+                              f"got values of type {arr.dtype} ({arr.ravel()[:3].tolist()} ...)")
+        values, frames_per = np.unique(arr.astype(np.int64), return_counts=True)
+        out.append((path, {int(v): int(n) for v, n in zip(values, frames_per)}))
+    return out
+
+
+def check_test_set(test: Sequence[Mapping[str, Any]], task: str) -> dict[str, int]:
+    """Check that the test entries can score ``task``; return the test frames per class name.
+
+    Refuses a people count outside the task's classes (counting: 0, 1, 2; occupancy: any count
+    >= 0); warns with :class:`TestSetWarning` when only one of the task's classes is present.
+
+    Raises:
+        ConfigError: an unknown task, a count the task cannot score (naming the file, the count
+            and its frames), or any error of :func:`read_test_counts`.
+    """
+    names = check_task(task)
+    per_class = dict.fromkeys(names, 0)
+    files: dict[str, list[str]] = {name: [] for name in names}
+    for path, counts in read_test_counts(test):
+        for count, frames in sorted(counts.items()):
+            if count < 0:
+                raise ConfigError(f"test capture {path}: people count {count} ({frames} frame(s)) is negative")
+            if task == "counting" and count not in COUNTING_COUNTS:
+                raise ConfigError(
+                    f"test capture {path}: people count {count} ({frames} frame(s)) is outside the counting task's "
+                    f"classes {', '.join(map(str, COUNTING_COUNTS))}; leave the file out, relabel it, or test it "
+                    "with task occupancy (any count >= 0 is 'occupied')")
+            name = names[int(label_of(count, task))]
+            per_class[name] += frames
+            if path not in files[name]:
+                files[name].append(path)
+    present = [name for name in names if per_class[name] > 0]
+    if len(present) == 1:
+        (only,) = present
+        shown = ", ".join(files[only][:3]) + (" ..." if len(files[only]) > 3 else "")
+        need = ("an empty-room capture (count 0) must be included" if only != names[0]
+                else "captures with people in the room must be included")
+        warnings.warn(
+            f"the test set holds only class {only!r} of task {task} ({per_class[only]} frames: {shown}). "
+            f"Balanced accuracy is the mean recall over the classes present, so a net that always answers "
+            f"{only!r} scores 1.0 on it: the score cannot tell a working classifier from a constant one. "
+            f"Test on every class of the task: {need} (docs/your_sensor.md).",
+            TestSetWarning, stacklevel=2)
+    return per_class
+
+
+def check_calibration(calibration: str | None, method: str, *, profile: str | None = None,
+                      calibrate_noise: bool = True) -> None:
+    """Check that ``calibration`` can serve what ``method`` and the noise fit ask of it.
+
+    * ``cdr_profile`` fits a twin profile on the empty-room capture's frames: a CalibratedDR JSON
+      holds none, so it is refused unless ``profile`` names a fitted profile.
+    * The twin's noise fit (``calibrate_noise``) measures the capture's noise floor: from a JSON it
+      cannot, and the twin simulates with the default receiver; a :class:`CalibrationWarning` says so
+      (not for ``cdr_profile`` or a given ``profile``, which replace the noise fit).
+
+    Raises:
+        ConfigError: ``cdr_profile`` with a CalibratedDR JSON and no ``profile``.
+    """
+    if calibration is None or not is_calibration_json(calibration) or profile is not None:
+        return
+    if method in PROFILE_METHODS:
+        raise ConfigError(
+            f"method {method!r} fits a twin profile on the empty-room capture in data.calibration, but "
+            f"{calibration} is a CalibratedDR JSON (no frames to fit on): give the capture itself "
+            "(radaraug calibrate --keep-recording PATH keeps it), or a fitted profile as data.profile "
+            "(radaraug diagnose CAPTURE -o DIR writes DIR/profile.json)")
+    if calibrate_noise:
+        warnings.warn(
+            f"data.calibration {calibration} is a CalibratedDR JSON: the twin's noise figure cannot be fitted "
+            "from it (the fit measures the empty-room capture's frames), so the twin simulates with the default "
+            "receiver, whose noise floor may sit dBs away from your sensor's. Give the empty-room capture itself "
+            "(radaraug calibrate --keep-recording PATH keeps it), or set data.calibrate_noise false to run on the "
+            "default receiver on purpose.", CalibrationWarning, stacklevel=2)
+
+
+def check_inputs(test: Sequence[Mapping[str, Any]], task: str, *, calibration: str | None, method: str,
+                 profile: str | None = None, calibrate_noise: bool = True) -> dict[str, int]:
+    """:func:`check_calibration` then :func:`check_test_set`; returns the test frames per class name."""
+    check_calibration(calibration, method, profile=profile, calibrate_noise=calibrate_noise)
+    return check_test_set(test, task)
