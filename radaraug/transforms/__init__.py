@@ -20,6 +20,7 @@ from radaraug.transforms.base import RadarTransform, RandomRadarTransform
 from radaraug.transforms.compose import RadarCompose
 from radaraug.transforms.dr import CalibratedDR, RandomDR
 from radaraug.transforms.dr_fit import MotionWarning
+from radaraug.transforms.floor import FloorRelative
 from radaraug.transforms.image import ClipNormalize, Colormap, Resize
 from radaraug.transforms.per_item import augmentation_generator
 from radaraug.transforms.spectral import (
@@ -50,6 +51,7 @@ __all__ = [
     "RandomDR",
     "CalibratedDR",
     "MotionWarning",
+    "FloorRelative",
     "ClipNormalize",
     "Colormap",
     "Resize",

@@ -1,0 +1,46 @@
+"""Floor-relative RD maps: a representation that does not key on absolute levels.
+
+The paper's network input is the RD map in dBFS, clipped to a fixed range. Its absolute levels --
+the receiver's noise floor, the system gain, the skirt that phase noise spreads around strong static
+returns -- differ between the twin and every sensor and room. :class:`FloorRelative` references
+each range row to its own median over Doppler (CFAR-like) and blanks the zero-Doppler bins, so the
+network sees motion above the local floor in dB. Kernel:
+:func:`radaraug.transforms.functional.floor_relative`.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import torch
+
+from radaraug.transforms import functional as F
+from radaraug.transforms.base import Params, RadarTransform
+from radaraug.transforms.functional._floor import check_blank_bins
+
+
+class FloorRelative(RadarTransform):
+    """Each range row of a dB RD map minus its median over Doppler; zero Doppler ± ``bins`` set to 0 dB.
+
+    Deterministic (no random parameters; ``.eval()`` changes nothing). Input and output are dB maps
+    ``(..., range, doppler)`` with a centred Doppler axis (any leading dims, e.g. ``rx``).
+
+    Args:
+        blank_zero_doppler: bins on each side of zero Doppler set to the row's floor (0 dB); 0 keeps
+            the static returns.
+    """
+
+    event_ndim = 2
+    input_layout = "dB RD maps (..., range, doppler)"
+
+    def __init__(self, blank_zero_doppler: int = 1) -> None:
+        super().__init__()
+        self.blank_zero_doppler = check_blank_bins(blank_zero_doppler)
+
+    def transform(self, x: torch.Tensor, params: Params) -> torch.Tensor:
+        """The row-referenced, zero-Doppler-blanked map."""
+        return F.floor_relative(x, self.blank_zero_doppler)
+
+    def extra_spec(self) -> dict[str, Any]:
+        """The blanked bins on each side of zero Doppler."""
+        return {"blank_zero_doppler": self.blank_zero_doppler}
