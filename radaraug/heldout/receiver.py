@@ -1,16 +1,22 @@
-"""An independent NumPy generator of raw FMCW ADC frames, for testing the calibration loop.
+"""An independent NumPy receiver: raw FMCW ADC frames written again from the physics.
 
-The calibration loop compares a capture with radaraug's digital twin. Testing it on captures
-made by the twin itself would only show that the twin agrees with itself, so this module writes
-the receiver again from the physics, in NumPy, sharing nothing with ``radaraug.sensor`` (it reads
+radaraug's digital twin (``radaraug.sensor``) synthesizes IF signals in torch. Testing anything
+against captures made by the twin itself only shows that the twin agrees with itself, so this
+module writes the receiver again, in NumPy, sharing no code with ``radaraug.sensor`` (it reads
 numbers from a :class:`~radaraug.config.RadarConfig` and, in :func:`save_capture` only, uses the
-public capture writer).
+public capture writer). Two users:
+
+* the calibration-loop tests (``tests/calibration``), which need "measured" captures with known,
+  undeclared effects;
+* :mod:`radaraug.heldout`, the independent held-out test generator, which feeds it people and a
+  room built without the twin's scene, ray tracer or body model.
 
 Signal model (one TX, real IF, as a BGT60TR13C samples it)
 -----------------------------------------------------------
 Fast time ``t_n = n / fs`` counts from the first ADC sample; chirp ``m`` of frame ``f`` starts its
-ramp at ``f * frame_period + m * T`` and samples from ``t_d`` (ADC delay) later, so a sample's
-absolute time is ``t_abs = f * frame_period + m * T + t_d + t_n``. A path of one-way range
+ramp at ``t0 + f * frame_period + m * T`` (``t0 = start_time_s``, 0 by default) and samples from
+``t_d`` (ADC delay) later, so a sample's absolute time is
+``t_abs = t0 + f * frame_period + m * T + t_d + t_n``. A path of one-way range
 ``R(t_abs)`` has delay ``tau = 2 R / c`` evaluated at every sample, and contributes the beat tone
 
     x = A cos(2 pi (f0 tau + S tau t_n - S tau^2 / 2) + phase),   A = sqrt(2 P) * g_fe
@@ -23,8 +29,8 @@ the positive-frequency component of its range bin at ``+2 v / lambda`` over slow
 Receiver chain, in hardware order (every stage written here)
 -------------------------------------------------------------
 1. paths: TX->RX leakage (static, ``leak_range_m``, power ``coupling_dB[rx]`` re TX, phase per
-   RX), the ``scene`` points and the path-type effects (clutter, multipath ghosts, moving target),
-   with LO phase noise and chirp non-linearity acting on their phases;
+   RX), the ``scene`` points, the ``tracks`` and the path-type effects (clutter, multipath ghosts,
+   moving target), with LO phase noise and chirp non-linearity acting on their phases;
 2. thermal noise at the RX port, power ``k * 290 K * NF * fs / 2``;
 3. system gain (dB); then ``rx_gain_phase_mismatch`` (a complex gain per RX on the paths and its
    magnitude on the noise);
@@ -110,6 +116,19 @@ effect may appear more than once.
   ``level_dB``, optional ``phase_rad`` (0): range ``R + speed * t_abs`` (it keeps moving from
   frame to frame).
 
+Scene points and tracks
+-----------------------
+* ``scene``: static points ``{"range_m", "level_dB", "phase_rad" (0), "rx_phase_rad" (0)}``;
+  ``level_dB`` is the received power relative to the TX power, ``rx_phase_rad`` an extra phase
+  per RX (scalar or one per RX), e.g. the angle of arrival's ``-2 pi (d_rx . u) / lambda``.
+* ``tracks``: points on any trajectory, sampled at every chirp: ``{"range_m", "rate_m_s",
+  "level_dB", "phase_rad" (0), "rx_phase_rad" (0)}``. ``range_m`` and ``rate_m_s`` are ``(F, M)``:
+  the one-way range at each chirp's first ADC sample and its rate; within a chirp the range moves
+  linearly, ``R + rate * t_n`` (the ramp-start transient uses ``t_n = -t_d``). ``level_dB`` is a
+  scalar, ``(F,)`` or ``(F, M)``; ``rx_phase_rad`` a scalar, ``(RX,)`` or ``(F, RX, M)``. A track
+  costs one phase evaluation per sample, whatever the number of RX (the per-RX phase is a
+  complex gain per chirp). ``multipath`` ghosts tracks like scene points.
+
 Randomness: every random stage draws from its own stream
 ``np.random.default_rng(np.random.SeedSequence(seed, spawn_key=(stage, occurrence)))``, so a
 capture is reproducible from ``seed`` and adding an effect does not change the thermal noise (or
@@ -169,10 +188,15 @@ class _Path:
     vibration_Hz: float = 0.0
     vibration_phase_rad: float = 0.0
     leakage: bool = False
+    # Tracks: range and rate at each chirp's first ADC sample, (F, 1, M, 1), and a complex gain
+    # per chirp and RX, (F, RX, M, 1) or broadcastable, on top of ``coef``.
+    track_range_m: np.ndarray | None = None
+    track_rate_m_s: np.ndarray | None = None
+    gain: np.ndarray | None = None
 
     @property
     def static(self) -> bool:
-        return self.speed_m_s == 0.0 and self.displacement_m == 0.0
+        return self.speed_m_s == 0.0 and self.displacement_m == 0.0 and self.track_range_m is None
 
 
 def _rng(seed: int, stream: str, occurrence: int = 0) -> np.random.Generator:
@@ -236,6 +260,43 @@ def _nonlinearity_cycles(
     return deviation_Hz / w * (np.cos(w * (t - tau) + phase_rad) - np.cos(w * t + phase_rad))
 
 
+def _track_path(p: Mapping[str, Any], F: int, n_rx: int, M: int, p_tx: float, g_fe: float) -> _Path:
+    """The :class:`_Path` of a track ``p`` (module docstring) over ``F`` frames of ``M`` chirps."""
+    unknown = set(p) - {"range_m", "rate_m_s", "level_dB", "phase_rad", "rx_phase_rad"}
+    missing = {"range_m", "rate_m_s", "level_dB"} - set(p)
+    if unknown or missing:
+        raise ValueError(f"track: unknown keys {sorted(unknown)}, missing {sorted(missing)}")
+    rng_m = np.asarray(p["range_m"], dtype=np.float64)
+    rate = np.asarray(p["rate_m_s"], dtype=np.float64)
+    if rng_m.shape != (F, M) or rate.shape != (F, M):
+        raise ValueError(f"track: range_m and rate_m_s must be (frames, chirps) = {(F, M)}, got "
+                         f"{rng_m.shape} and {rate.shape}")
+    level = np.asarray(p["level_dB"], dtype=np.float64)
+    if level.ndim == 1:
+        level = level[:, None]  # (F,) -> (F, 1): one level per frame
+    try:
+        level = np.broadcast_to(level, (F, M))
+    except ValueError:
+        raise ValueError(f"track: level_dB must be a scalar, (F,) or (F, M), got {level.shape}") from None
+    rx_phase = np.asarray(p.get("rx_phase_rad", 0.0), dtype=np.float64)
+    if rx_phase.ndim == 1:
+        rx_phase = _per_rx(rx_phase, n_rx, "rx_phase_rad")[None, :, None]
+    try:
+        rx_phase = np.broadcast_to(rx_phase, (F, n_rx, M))
+    except ValueError:
+        raise ValueError(f"track: rx_phase_rad must be a scalar, (RX,) or (F, RX, M), got {rx_phase.shape}") from None
+    # Amplitude relative to the 0 dB reference of ``_Path.coef``: sqrt(2 P_tx 10^(L/10)) g_fe.
+    amp = np.sqrt(2.0 * p_tx * 10.0 ** (level / 10.0)) * g_fe  # (F, M)
+    gain = amp[:, None, :] * np.exp(1j * (rx_phase + float(p.get("phase_rad", 0.0))))
+    return _Path(
+        np.ones(n_rx, dtype=np.complex128),
+        float(rng_m[0, 0]),
+        track_range_m=rng_m[:, None, :, None],
+        track_rate_m_s=rate[:, None, :, None],
+        gain=gain[..., None],
+    )
+
+
 def _even_extension(x: np.ndarray) -> np.ndarray:
     """``x`` followed by itself reversed along the last axis: a periodic signal with no jump."""
     return np.concatenate([x, x[..., ::-1]], axis=-1)
@@ -258,6 +319,12 @@ def _path_cycles(
     if p.static:
         tau: Any = 2.0 * p.range_m / C_LIGHT
         tau_rate: Any = 0.0
+    elif p.track_range_m is not None and p.track_rate_m_s is not None:
+        r = p.track_range_m + p.track_rate_m_s * t  # (F, 1, M, T): linear within the chirp
+        if np.min(r) <= 0.0:
+            raise ValueError(f"a track reaches range {np.min(r):.3g} m <= 0 during the capture")
+        tau = 2.0 * r / C_LIGHT
+        tau_rate = np.broadcast_to(2.0 * p.track_rate_m_s / C_LIGHT, r.shape)
     else:
         t_abs = t_chirp + t  # (F, 1, M, T)
         r = p.range_m + p.speed_m_s * t_abs
@@ -285,6 +352,8 @@ def generate(
     seed: int,
     effects: Sequence[Mapping[str, Any]] = (),
     scene: Sequence[Mapping[str, Any]] = (),
+    tracks: Sequence[Mapping[str, Any]] = (),
+    start_time_s: float = 0.0,
     noise_figure_dB: float = 12.0,
     system_gain_dB: float = 0.0,
     front_end_gain_dB: float = 49.0,
@@ -294,6 +363,7 @@ def generate(
     leak_phase_rad: Any = (0.0, 0.0, 0.0),
     dc_counts: Any = (1620.0, 1945.0, 2067.5),
     filter_method: str = "analog",
+    phase_noise_min_level_dB: float = -math.inf,
 ) -> np.ndarray:
     """Raw ADC counts ``(frames, RX, chirps, samples)`` (uint16) of a scene through the receiver.
 
@@ -302,8 +372,12 @@ def generate(
         frames: number of frames F; frame ``f`` starts at ``f * cfg.frame_repetition_time_s``.
         seed: seed of every random draw (see the module docstring).
         effects: undeclared effects ``{"name": ..., **params}`` (module docstring).
-        scene: static points ``{"range_m", "level_dB", "phase_rad" (optional, 0)}``, level =
-            received power relative to the TX power, dB.
+        scene: static points ``{"range_m", "level_dB", "phase_rad" (0), "rx_phase_rad" (0)}``,
+            level = received power relative to the TX power, dB (module docstring).
+        tracks: points on trajectories sampled per chirp ``{"range_m", "rate_m_s", "level_dB",
+            "phase_rad" (0), "rx_phase_rad" (0)}`` (module docstring).
+        start_time_s: absolute time of the first frame's start (moves every time-dependent
+            stage: moving target, vibrating clutter, spur phase).
         noise_figure_dB: receiver noise figure (``-inf`` turns the thermal noise off).
         system_gain_dB: flat gain on paths and thermal noise.
         front_end_gain_dB: ADC float units per sqrt(W) at the RX port at 0 dB IF gain, in dB.
@@ -314,6 +388,10 @@ def generate(
         dc_counts: DC level of each RX in ADC counts (scalar or per RX).
         filter_method: ``"analog"`` (alias ``"iir"``), ``"steady"`` or ``"circular"`` (module
             docstring).
+        phase_noise_min_level_dB: paths received below this level (dB re TX; a track's
+            strongest chirp) get no LO phase noise. A path's phase-noise skirt lies some 40 dB
+            or more under the path itself, so for weak paths it is far below the noise; skipping
+            it spares the per-sample phase of every weak static path. Default: every path.
     """
     if filter_method not in FILTER_METHODS:
         raise ValueError(f"filter_method must be one of {FILTER_METHODS}, got {filter_method!r}")
@@ -341,7 +419,8 @@ def generate(
     t = (np.arange(L, dtype=np.float64) - roll) / fs  # fast time, 0 at the first ADC sample
     # Time of each chirp's first ADC sample, (F, 1, M, 1).
     t_chirp = (
-        np.arange(F, dtype=np.float64)[:, None, None, None] * cfg.frame_repetition_time_s
+        float(start_time_s)
+        + np.arange(F, dtype=np.float64)[:, None, None, None] * cfg.frame_repetition_time_s
         + np.arange(M, dtype=np.float64)[None, None, :, None] * cfg.chirp_repetition_time_s
         + t_d
     )
@@ -358,12 +437,15 @@ def generate(
         paths.append(_Path(leak_amp * np.exp(1j * leak_phase), float(leak_range_m), leakage=True))
     ones = np.ones(n_rx, dtype=np.complex128)
     scene_paths: list[_Path] = []
-    for p in scene:
-        unknown = set(p) - {"range_m", "level_dB", "phase_rad"}
+    for pt in scene:
+        unknown = set(pt) - {"range_m", "level_dB", "phase_rad", "rx_phase_rad"}
         if unknown:
             raise ValueError(f"scene point: unknown keys {sorted(unknown)}")
-        a = _amplitude(float(p["level_dB"]), p_tx, g_fe) * np.exp(1j * float(p.get("phase_rad", 0.0)))
-        scene_paths.append(_Path(a * ones, float(p["range_m"])))
+        a = _amplitude(float(pt["level_dB"]), p_tx, g_fe) * np.exp(1j * float(pt.get("phase_rad", 0.0)))
+        rx_phase = _per_rx(pt.get("rx_phase_rad", 0.0), n_rx, "rx_phase_rad")
+        scene_paths.append(_Path(a * np.exp(1j * rx_phase), float(pt["range_m"])))
+    for tr in tracks:
+        scene_paths.append(_track_path(tr, F, n_rx, M, p_tx, g_fe))
     for e in by_name("moving_target"):
         a = _amplitude(e["level_dB"], p_tx, g_fe) * np.exp(1j * e["phase_rad"])
         scene_paths.append(_Path(a * ones, float(e["range_m"]), speed_m_s=float(e["speed_m_s"])))
@@ -382,7 +464,7 @@ def generate(
                 vibration_phase_rad=float(e["phase_rad"]),
             )
         )
-    ghosts = []
+    ghosts: list[_Path] = []
     for e in by_name("multipath"):
         ratio = 10.0 ** (e["level_dB"] / 20.0) * np.exp(1j * e["phase_rad"])
         for p in scene_paths:
@@ -394,6 +476,9 @@ def generate(
                     displacement_m=p.displacement_m,
                     vibration_Hz=p.vibration_Hz,
                     vibration_phase_rad=p.vibration_phase_rad,
+                    track_range_m=None if p.track_range_m is None else p.track_range_m + float(e["extra_range_m"]),
+                    track_rate_m_s=p.track_rate_m_s,
+                    gain=p.gain,
                 )
             )
     paths += scene_paths + ghosts + clutter_paths
@@ -406,7 +491,7 @@ def generate(
         )
 
     # Phase modulations of every path: LO frequency noise (F, 1, M, L) and ramp non-linearity.
-    nu = None
+    nu: np.ndarray | None = None
     for i, e in enumerate(by_name("phase_noise")):
         v = _lo_frequency_noise(
             _rng(seed, "phase_noise", i), (F, M), L, fs, e["freq_noise_rms_Hz"], e["corner_Hz"]
@@ -421,23 +506,35 @@ def generate(
     # High-pass capacitor voltage at the ramp start that the steady state would have, (F, RX, M, 1).
     cap_v = np.zeros((F, n_rx, M, 1))
     t_ramp = np.array([-t_d])
+    nu_ramp: np.ndarray | None = None
     if nu is not None:  # LO noise at the ramp start: the nearest grid sample (or the first one)
         nu_ramp = nu[..., max(roll - int(round(t_d * fs)), 0)][..., None]
+    amp_ref = math.sqrt(2.0 * p_tx) * g_fe  # amplitude of a path at 0 dB re TX
     for p in paths:
-        coef = p.coef * rx_gain
-        cyc, _, _ = _path_cycles(p, t, t_chirp, f0, S, nonlin, nu)
+        pn = nu
+        if nu is not None and phase_noise_min_level_dB > -math.inf:
+            path_amp = float(np.max(np.abs(p.coef))) * (1.0 if p.gain is None else float(np.max(np.abs(p.gain))))
+            if path_amp <= amp_ref * 10.0 ** (phase_noise_min_level_dB / 20.0):
+                pn = None
+        coef: np.ndarray = p.coef * rx_gain
+        if p.gain is not None:
+            coef = coef[None, :, None, None] * p.gain  # (F, RX, M, 1)
+        cyc, _, _ = _path_cycles(p, t, t_chirp, f0, S, nonlin, pn)
         phi = 2.0 * math.pi * np.mod(cyc, 1.0)
         if np.ndim(phi) == 1:
             static_wave += coef.real[:, None] * np.cos(phi) - coef.imag[:, None] * np.sin(phi)
+        elif coef.ndim == 4:
+            x += coef.real * np.cos(phi) - coef.imag * np.sin(phi)
         else:
             x += coef.real[None, :, None, None] * np.cos(phi) - coef.imag[None, :, None, None] * np.sin(phi)
         if method == "analog":
             cyc_r, tau_r, rate_r = _path_cycles(
-                p, t_ramp, t_chirp, f0, S, nonlin, None if nu is None else nu_ramp
+                p, t_ramp, t_chirp, f0, S, nonlin, None if pn is None else nu_ramp
             )
             f_beat = S * tau_r + (f0 - S * t_d - S * tau_r) * rate_r  # instantaneous, at the ramp start
             ph_r = np.exp(2j * math.pi * np.mod(cyc_r, 1.0)) / (1.0 + 1j * f_beat / fh)
-            cap_v += np.real(coef[None, :, None, None] * ph_r)  # ph_r: (1,) or (F, 1, M, 1)
+            c4 = coef if coef.ndim == 4 else coef[None, :, None, None]
+            cap_v += np.real(c4 * ph_r)  # ph_r: (1,) or (F, 1, M, 1)
     x += static_wave[None, :, None, :]
 
     # ---------------------------------------------------------------- 2-3. thermal noise, gains
@@ -465,6 +562,7 @@ def generate(
             # instantaneous beat frequency (fs/2)(2u/dur - 1): zero where the ramps cross
             sweep = 2.0 * math.pi * (fs / 2.0) * (u * u / dur - u) + phase[fi, mi][:, None]
             burst = np.where(inside, window * np.cos(sweep), 0.0) * (e["amplitude_counts"] * to_float)
+            assert after is not None  # allocated above whenever there is interference
             after[fi, :, mi, :] += burst[:, None, :]
 
     # ---------------------------------------------------------------- 4-6. high-pass, IF gain, AAF
@@ -625,3 +723,18 @@ def random_effect(name: str, cfg: RadarConfig, rng: np.random.Generator) -> dict
         start = u(1.0, near) + (abs(speed) * span if speed < 0 else 0.0)
         return {"name": name, "range_m": start, "speed_m_s": speed, "level_dB": u(-90.0, -75.0)}
     raise ValueError(f"unknown effect {name!r}; known: {', '.join(EFFECT_NAMES)}")
+
+
+__all__ = [
+    "C_LIGHT",
+    "EFFECT_NAMES",
+    "EFFECT_PARAMS",
+    "FILTER_METHODS",
+    "K_BOLTZMANN",
+    "RANDOM_RANGES",
+    "ROLL",
+    "T0_K",
+    "generate",
+    "random_effect",
+    "save_capture",
+]

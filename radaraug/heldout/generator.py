@@ -1,0 +1,541 @@
+"""The independent held-out test set: labelled captures made without any of the twin's code.
+
+:func:`make_independent_proxy` writes radaraug HDF5 captures of 0, 1 and 2 people (every frame of a
+file has the file's count; per-frame ``count`` and ``occupancy`` labels) and an empty-room
+calibration capture of the same room, like :func:`radaraug.sim.proxy.make_proxy`, but from a
+simulation that shares **no code** with the twin:
+
+* people: :mod:`radaraug.heldout.walkers` (point scatterers on a sinusoidal gait; not the twin's
+  Boulic-Thalmann walker, ellipsoids or skin model);
+* room: :mod:`radaraug.heldout.room` (point scatterers levelled by the radar equation; not the
+  twin's scene, materials or ray tracer);
+* receiver: :mod:`radaraug.heldout.receiver` (NumPy, per-sample float64 phases, analog IF filters
+  with the high-pass start-up transient; not ``radaraug.sensor``).
+
+Only the :class:`~radaraug.config.RadarConfig` (numbers), the capture writer and the atomic JSON
+writer are shared with the rest of radaraug.
+
+Receiver (fixed before any training result was seen; see :data:`RECEIVER` and
+:func:`default_effects`): thermal noise with a 13 dB noise figure, 1.6 counts RMS of ADC-side
+noise before the anti-alias filter (about 1.4 at the ADC, the 1.3-1.5 counts measured on real
+recordings), TX->RX leakage, DC offsets, and undeclared effects present in **every** capture,
+the calibration capture included: LO phase noise (a skirt around the strong static returns), a
+spur tone, frame-to-frame gain and DC drift, an RX gain/phase mismatch and the vibrating desk fan.
+
+Determinism: a file depends only on ``(seed, its count, frames, config, effects,
+standing_probability, GENERATOR_VERSION)``: the people of episode ``j`` of count ``c`` come from
+``SeedSequence(seed, spawn_key=(1, c, j))``, the receiver noise of block ``b`` of file ``k``
+(0 = calibration, ``c + 1`` = count ``c``) from ``SeedSequence(seed, spawn_key=(2, k, b))``.
+Re-running with the same arguments on a complete folder reuses it (``manifest.json`` is written
+last and checked).
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import time
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from radaraug.config import RadarConfig
+from radaraug.errors import ConfigError
+from radaraug.heldout import room as room_mod
+from radaraug.heldout import walkers
+from radaraug.heldout.receiver import _check_effects, generate
+from radaraug.io.atomic import atomic_write_json
+
+GENERATOR_VERSION = 1
+"""Bumped whenever the output changes; part of the reuse check."""
+MANIFEST_NAME = "manifest.json"
+MANIFEST_FORMAT = "radaraug-heldout-independent"
+CALIBRATION_NAME = "calibration_empty.h5"
+BLOCK_FRAMES = 10
+"""Frames per receiver call (bounded memory, progress-bar steps, one noise stream each)."""
+EPISODE_FRAMES = (20, 40)
+"""Each test file is a sequence of episodes of this many frames, each with newly drawn people."""
+MIN_EPISODE_FRAMES = 12
+EPISODE_GAP_S = 2.0
+FILE_TIME_ORIGIN_S = 1000.0
+MIN_SEPARATION_M = 0.5
+"""Two people's body centres stay at least this far apart during an episode."""
+_STREAM_PEOPLE, _STREAM_RECEIVER = 1, 2
+
+RECEIVER: dict[str, Any] = {
+    "noise_figure_dB": 13.0,
+    "front_end_gain_dB": 26.0,
+    "tx_power_dBm_at_level_31": 5.0,
+    "leakage_coupling_dB": (-33.5, -41.0, -42.0),
+    "leak_range_m": 0.05,
+    "leak_phase_rad": (0.3, -0.9, 1.7),
+    "dc_counts_12bit": (1640.0, 1930.0, 2075.0),
+    "filter_method": "analog",
+    "phase_noise_min_level_dB": -110.0,
+    "adc_noise_rms_counts_12bit": 1.6,
+}
+"""The receiver's base constants (per-RX values by antenna number 1, 2, 3), and why:
+
+* ``front_end_gain_dB`` (ADC float units per sqrt(W) at the RX port, 0 dB IF gain) with
+  ``noise_figure_dB``: real BGT60TR13C noise floors barely move between 23 and 38 dB IF gain and
+  rise ~3 dB at 48 dB, so thermal noise equals the ADC-side noise near 47 dB IF gain; with
+  NF 13 dB that puts the front-end gain near 26 dB.
+* ``adc_noise_rms_counts_12bit``: 1.6 counts before the anti-alias filter, ~1.4 at the ADC
+  (the 1.3-1.5 counts measured on real recordings at 23 dB).
+* ``tx_power_dBm_at_level_31``: ~5 dBm, the order of a 60 GHz radar-on-chip PA; lower power
+  levels scale the amplitude linearly with the level (assumed).
+* leakage: a few cm of on-board coupling, ~-41 dB re TX at the ADC's reference on RX2/RX3 and
+  ~8 dB more on RX1 (closest to the TX), a strong near-DC return as on the real sensor.
+* ``dc_counts_12bit``: per-RX DC levels of a 12-bit ADC (another device than the field notes').
+* ``phase_noise_min_level_dB``: paths below -110 dB re TX carry no LO noise: the skirt lies
+  > 50 dB under its path (see :data:`UNDECLARED_EFFECTS`), and such a path is at most ~25 dB
+  above the RD noise floor, so it would change nothing but the run time.
+"""
+
+UNDECLARED_EFFECTS: tuple[dict[str, Any], ...] = (
+    {"name": "phase_noise", "freq_noise_rms_Hz": 25e3, "corner_Hz": 300e3},
+    {"name": "spur_tone", "freq_Hz": 156.25e3, "amplitude_counts": (0.6, 0.5, 0.7), "phase_rad": 1.1},
+    {"name": "frame_drift", "gain_rms_dB": 0.1, "dc_rms_counts": 1.0},
+    {"name": "rx_gain_phase_mismatch", "gain_dB": (0.0, -0.6, 0.4), "phase_rad": (0.0, 0.2, -0.3)},
+)
+"""The default undeclared effects besides the fan (per-RX values by antenna number 1, 2, 3):
+
+* LO phase noise, 25 kHz RMS frequency noise (over the 500 kHz band) with a 300 kHz corner:
+  SSB phase noise about -70 dBc/Hz at 100 kHz and -101 dBc/Hz at 1 MHz offset, a 60 GHz
+  radar-on-chip PLL. Every path above
+  ``phase_noise_min_level_dB`` carries it, the room's strong static returns included. On these
+  short delays (< 60 ns) the skirt stays well under the noise floor, as on real short-range
+  sensors; it is there so that nothing static is perfectly static;
+* a spur at 156.25 kHz (20 MHz / 128: a clock harmonic), 0.5-0.7 counts peak at the ADC input;
+* frame drift: 0.1 dB RMS gain and 1 count RMS DC change from frame to frame;
+* RX mismatch: up to 0.6 dB and 0.3 rad between the RX channels;
+* the running desk fan of :func:`radaraug.heldout.room.fan_effects` (housing vibration and three
+  blades), added by :func:`default_effects`.
+"""
+
+
+@dataclass
+class IndependentProxySet:
+    """The generated set (the same public interface as :class:`radaraug.sim.proxy.ProxySet`).
+
+    Attributes:
+        calibration: the empty-room capture (fit :class:`~radaraug.transforms.CalibratedDR` on it).
+        tests: ``(capture path, people count of the whole file)`` per count.
+        config: the radar configuration of every file.
+        manifest: the ``manifest.json`` describing the set.
+        reused: True when existing files were reused instead of generated.
+    """
+
+    calibration: Path
+    tests: list[tuple[Path, int]]
+    config: RadarConfig
+    manifest: Path | None = None
+    reused: bool = False
+    generation_s: float | None = field(default=None, repr=False)
+
+    def test_specs(self) -> list[str]:
+        """The tests as ``PATH:COUNT`` strings."""
+        return [f"{p}:{c}" for p, c in self.tests]
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-friendly description."""
+        return {
+            "calibration": str(self.calibration),
+            "tests": [[str(p), int(c)] for p, c in self.tests],
+            "config": self.config.to_dict(),
+            "manifest": None if self.manifest is None else str(self.manifest),
+            "reused": self.reused,
+        }
+
+
+# ------------------------------------------------------------------------------------ receiver
+def _by_antenna(values: Sequence[float], config: RadarConfig) -> list[float]:
+    """Per-RX values for the config's antennas from a table for antennas 1, 2, 3 (cycled beyond)."""
+    return [float(values[(a - 1) % len(values)]) for a in config.rx_antennas]
+
+
+def tx_power_dBm(config: RadarConfig) -> float:
+    """TX power at the config's power level (amplitude linear in the level, assumed)."""
+    level = config.tx_power_level
+    if level <= 0:
+        return -math.inf
+    return float(RECEIVER["tx_power_dBm_at_level_31"]) + 20.0 * math.log10(level / 31.0)
+
+
+def receiver_kwargs(config: RadarConfig) -> dict[str, Any]:
+    """Keyword arguments of :func:`radaraug.heldout.receiver.generate` for the base chain."""
+    scale = config.adc_full_scale_counts / 4095.0
+    mid = config.adc_full_scale_counts / 2.0
+    dc = _by_antenna(RECEIVER["dc_counts_12bit"], config)
+    return {
+        "noise_figure_dB": RECEIVER["noise_figure_dB"],
+        "front_end_gain_dB": RECEIVER["front_end_gain_dB"],
+        "tx_power_dBm": tx_power_dBm(config),
+        "leakage_coupling_dB": _by_antenna(RECEIVER["leakage_coupling_dB"], config),
+        "leak_range_m": RECEIVER["leak_range_m"],
+        "leak_phase_rad": _by_antenna(RECEIVER["leak_phase_rad"], config),
+        # DC levels move with the ADC's mid-scale for other resolutions.
+        "dc_counts": dc if config.adc_bits == 12 else [mid + (v - 2047.5) * scale for v in dc],
+        "filter_method": RECEIVER["filter_method"],
+        "phase_noise_min_level_dB": RECEIVER["phase_noise_min_level_dB"],
+    }
+
+
+def default_effects(config: RadarConfig) -> list[dict[str, Any]]:
+    """The default undeclared effects for ``config``: :data:`UNDECLARED_EFFECTS` plus the desk fan."""
+    out = []
+    for e in UNDECLARED_EFFECTS:
+        e = dict(e)
+        for k, v in e.items():
+            if isinstance(v, tuple):
+                e[k] = _by_antenna(v, config)
+        out.append(e)
+    out += room_mod.fan_effects(config)
+    return out
+
+
+def resolve_effects(effects: str | Sequence[Mapping[str, Any]] | None, config: RadarConfig) -> list[dict[str, Any]]:
+    """Every effect the receiver applies: the base ADC-side noise plus ``effects``.
+
+    Args:
+        effects: ``"default"`` (:func:`default_effects`), ``"none"`` or None (the base chain
+            only), or a list of receiver effects ``{"name": ..., **params}``
+            (:data:`radaraug.heldout.receiver.EFFECT_PARAMS`) applied on top of the base chain.
+        config: the radar configuration.
+
+    Raises:
+        ConfigError: an unknown value or effect.
+    """
+    base = [{"name": "adc_noise",
+             "rms_counts": RECEIVER["adc_noise_rms_counts_12bit"] * config.adc_full_scale_counts / 4095.0}]
+    if effects is None or (isinstance(effects, str) and effects == "none"):
+        extra: list[dict[str, Any]] = []
+    elif isinstance(effects, str):
+        if effects != "default":
+            raise ConfigError(f"make_independent_proxy: effects must be 'default', 'none' or a list, got {effects!r}")
+        extra = default_effects(config)
+    else:
+        extra = [dict(e) for e in effects]
+    try:
+        _check_effects(base + extra)
+    except ValueError as err:
+        raise ConfigError(f"make_independent_proxy: {err}") from None
+    return json.loads(json.dumps(base + extra))
+
+
+# -------------------------------------------------------------------------------------- people
+def _chirp_times(config: RadarConfig, frames: np.ndarray) -> np.ndarray:
+    """Times ``(F, M)`` of each chirp's first ADC sample for frame times ``frames`` ``(F,)`` (frame starts)."""
+    m = np.arange(config.num_chirps_per_frame, dtype=np.float64)
+    return frames[:, None] + m[None, :] * config.chirp_repetition_time_s + config.adc_delay_s
+
+
+def person_tracks(person: walkers.Person, rcs_m2: np.ndarray, t: np.ndarray, config: RadarConfig) -> list[dict[str, Any]]:
+    """The receiver's ``tracks`` of ``person``'s scatterers at chirp times ``t`` ``(F, M)``.
+
+    Args:
+        person: the person.
+        rcs_m2: ``(NUM_POINTS, F)`` linear RCS per point and frame (:func:`walkers.rcs_per_frame`).
+        t: the person's time (s) of each chirp's first ADC sample.
+        config: the radar configuration.
+    """
+    dt = walkers.DERIVATIVE_STEP_S
+    r, u = room_mod.look(walkers.positions(person, t))  # (P, F, M), (P, F, M, 3)
+    r_plus, _ = room_mod.look(walkers.positions(person, t + dt))
+    r_minus, _ = room_mod.look(walkers.positions(person, t - dt))
+    rate = (r_plus - r_minus) / (2.0 * dt)
+    level = room_mod.level_dB(rcs_m2[:, :, None], r, u, config.wavelength_m)
+    rx_phase = np.moveaxis(room_mod.rx_phase_rad(u, config), -1, -2)  # (P, F, RX, M)
+    return [{"range_m": r[i], "rate_m_s": rate[i], "level_dB": level[i], "phase_rad": person.point_phase_rad[i],
+             "rx_phase_rad": rx_phase[i]} for i in range(walkers.NUM_POINTS)]
+
+
+def _split_frames(rng: np.random.Generator, total: int) -> list[int]:
+    out, left = [], total
+    while left > 0:
+        n = int(rng.integers(EPISODE_FRAMES[0], EPISODE_FRAMES[1] + 1))
+        if left - n < MIN_EPISODE_FRAMES:
+            n = left
+        out.append(n)
+        left -= n
+    return out
+
+
+def _too_close(people: list[walkers.Person], duration_s: float) -> bool:
+    t = np.linspace(0.0, duration_s, 64)
+    centres = [walkers.positions(p, t)[0, :, :2] for p in people]  # pelvis
+    for i in range(len(centres)):
+        for j in range(i):
+            if float(np.linalg.norm(centres[i] - centres[j], axis=-1).min()) < MIN_SEPARATION_M:
+                return True
+    return False
+
+
+def plan_episodes(count: int, frames: int, seed: int, config: RadarConfig,
+                  standing_probability: float = 0.0) -> list[dict[str, Any]]:
+    """The episodes of the file of ``count`` people: frames, start time, people.
+
+    Each episode draws new people (:func:`walkers.draw_person`); two people are redrawn until
+    their body centres stay :data:`MIN_SEPARATION_M` apart for the whole episode.
+    """
+    split_rng = np.random.default_rng(np.random.SeedSequence(seed, spawn_key=(_STREAM_PEOPLE, count, 10_000)))
+    episodes = []
+    t0 = FILE_TIME_ORIGIN_S * (count + 1)
+    for j, n in enumerate(_split_frames(split_rng, frames)):
+        rng = np.random.default_rng(np.random.SeedSequence(seed, spawn_key=(_STREAM_PEOPLE, count, j)))
+        duration = n * config.frame_repetition_time_s
+        for _attempt in range(200):
+            people = [walkers.draw_person(rng, x_range_m=room_mod.WALK_X_M, lane_range_m=_lane_range(),
+                                          standing=bool(rng.random() < standing_probability))
+                      for _ in range(count)]
+            if count < 2 or not _too_close(people, duration):
+                break
+        else:  # pragma: no cover - the lanes leave room for two people
+            raise RuntimeError(f"heldout: could not place {count} people apart")
+        rcs = [walkers.rcs_per_frame(p, rng, n) for p in people]
+        episodes.append({"frames": n, "t0": t0, "people": people, "rcs": rcs})
+        t0 += duration + EPISODE_GAP_S
+    return episodes
+
+
+def _lane_range() -> tuple[float, float]:
+    lo, hi = room_mod.WALK_Y_M
+    return lo + walkers.TURN_RADIUS_M, hi - walkers.TURN_RADIUS_M
+
+
+# ---------------------------------------------------------------------------------- generation
+def _block_seed(seed: int, file_key: int, block: int) -> int:
+    state = np.random.SeedSequence(seed, spawn_key=(_STREAM_RECEIVER, file_key, block)).generate_state(1)
+    return int(state[0])
+
+
+def _write_file(path: Path, config: RadarConfig, episodes: list[dict[str, Any]], count: int, file_key: int,
+                seed: int, effects: list[dict[str, Any]], scene: list[dict[str, Any]], attrs: dict[str, Any],
+                bar: Any) -> None:
+    from radaraug.io import CaptureWriter
+
+    kwargs = receiver_kwargs(config)
+    total = sum(e["frames"] for e in episodes)
+    block = 0
+    period = config.frame_repetition_time_s
+    with CaptureWriter(path, config, labels_schema={"count": "int64", "occupancy": "int64"}, attrs=attrs,
+                       expected_frames=total) as writer:
+        for ep in episodes:
+            for a in range(0, ep["frames"], BLOCK_FRAMES):
+                b = min(a + BLOCK_FRAMES, ep["frames"])
+                local = np.arange(a, b, dtype=np.float64) * period  # frame starts, episode time
+                t_chirp = _chirp_times(config, local)
+                tracks: list[dict[str, Any]] = []
+                for person, rcs in zip(ep["people"], ep["rcs"]):
+                    tracks += person_tracks(person, rcs[:, a:b], t_chirp, config)
+                counts = generate(config, b - a, seed=_block_seed(seed, file_key, block), effects=effects,
+                                  scene=scene, tracks=tracks, start_time_s=ep["t0"] + local[0], **kwargs)
+                labels = np.full(b - a, count, dtype=np.int64)
+                writer.append(counts, timestamp=ep["t0"] + local,
+                              labels={"count": labels, "occupancy": (labels > 0).astype(np.int64)})
+                block += 1
+                bar.update(b - a)
+
+
+def _check_int(name: str, value: Any, lo: int) -> int:
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < lo:
+        raise ConfigError(f"make_independent_proxy: {name} must be an integer >= {lo}, got {value!r}")
+    return int(value)
+
+
+def _test_name(count: int) -> str:
+    return f"test_count{count}.h5"
+
+
+def load_independent_proxy(out_dir: str | os.PathLike) -> IndependentProxySet:
+    """The set described by ``out_dir/manifest.json`` (files checked to exist).
+
+    Raises:
+        ConfigError: no readable manifest, or a file it lists is missing.
+    """
+    out = Path(out_dir)
+    path = out / MANIFEST_NAME
+    try:
+        data = json.loads(path.read_text(encoding="utf-8"))
+    except (OSError, ValueError) as err:
+        raise ConfigError(f"{path}: no readable manifest ({err})") from None
+    if not isinstance(data, dict) or data.get("format") != MANIFEST_FORMAT:
+        raise ConfigError(f"{path}: not a radaraug independent held-out manifest")
+    files = data["files"]
+    cal = out / files["calibration"]["path"]
+    tests = [(out / t["path"], int(t["count"])) for t in files["tests"]]
+    for p in [cal, *(p for p, _ in tests)]:
+        if not p.is_file():
+            raise ConfigError(f"{path}: lists {p.name}, which is missing")
+    return IndependentProxySet(cal, tests, RadarConfig.from_dict(data["config"]), manifest=path)
+
+
+def _reusable(out: Path, settings: dict[str, Any], config: RadarConfig) -> IndependentProxySet | None:
+    from radaraug.io import open_capture
+
+    try:
+        data = json.loads((out / MANIFEST_NAME).read_text(encoding="utf-8"))
+        if data.get("format") != MANIFEST_FORMAT or data.get("settings") != settings:
+            return None
+        found = load_independent_proxy(out)
+        expected = [(found.calibration, settings["calibration_frames"])]
+        expected += [(p, settings["frames_per_count"]) for p, _ in found.tests]
+        for p, n in expected:
+            with open_capture(p) as cap:
+                if cap.num_frames != n or cap.config != config:
+                    return None
+    except Exception:  # noqa: BLE001 - anything unreadable means: generate again
+        return None
+    found.reused = True
+    return found
+
+
+def make_independent_proxy(
+    out_dir: str | os.PathLike,
+    *,
+    config: RadarConfig | None = None,
+    frames_per_count: int = 60,
+    calibration_frames: int = 40,
+    seed: int = 2024,
+    effects: str | Sequence[Mapping[str, Any]] | None = "default",
+    counts: Sequence[int] = (0, 1, 2),
+    standing_probability: float = 0.0,
+    progress: bool = True,
+) -> IndependentProxySet:
+    """Generate (or reuse) the independent held-out set in ``out_dir``.
+
+    Args:
+        out_dir: output folder (created); the generator owns the names it writes there
+            (``calibration_empty.h5``, ``test_count<c>.h5``, ``manifest.json``).
+        config: radar configuration of every file (default :meth:`RadarConfig.bgt60tr13c`).
+        frames_per_count: frames of each test file (episodes of 20-40 frames with new people).
+        calibration_frames: frames of the empty-room capture.
+        seed: seed of the people and of the receiver noise (the room is fixed).
+        effects: undeclared receiver effects: ``"default"`` (phase noise, spur, frame drift, RX
+            mismatch, desk fan), ``"none"`` (the base chain only) or a list of receiver effects
+            (see :func:`resolve_effects`). They act on every capture, the calibration one included.
+        counts: people counts to generate, one test file each (0, 1 and/or 2).
+        standing_probability: chance that a drawn person stands (breathing, swaying) for their
+            episode instead of walking; they still count.
+        progress: show a tqdm progress bar (frames).
+
+    Returns:
+        The :class:`IndependentProxySet` (``calibration``, ``tests``, ``config``, ``manifest``,
+        ``reused``, ``to_dict()``, ``test_specs()``).
+
+    Raises:
+        ConfigError: bad sizes, counts, seed, config, effects or probability.
+    """
+    config = RadarConfig.bgt60tr13c() if config is None else config
+    if not isinstance(config, RadarConfig):
+        raise ConfigError(f"make_independent_proxy: config must be a RadarConfig, got {type(config).__name__}")
+    frames_per_count = _check_int("frames_per_count", frames_per_count, 1)
+    calibration_frames = _check_int("calibration_frames", calibration_frames, 1)
+    seed = _check_int("seed", seed, 0)
+    counts = tuple(counts)
+    if not counts or len(set(counts)) != len(counts) or any(
+            isinstance(c, bool) or not isinstance(c, (int, np.integer)) or c not in (0, 1, 2) for c in counts):
+        raise ConfigError(f"make_independent_proxy: counts must be distinct values among 0, 1, 2, got {counts!r}")
+    counts = tuple(int(c) for c in counts)
+    if isinstance(standing_probability, bool) or not isinstance(standing_probability, (int, float)) \
+            or not 0.0 <= float(standing_probability) <= 1.0:
+        raise ConfigError(f"make_independent_proxy: standing_probability must be in [0, 1], got {standing_probability!r}")
+    resolved = resolve_effects(effects, config)
+    settings = json.loads(json.dumps({
+        "generator_version": GENERATOR_VERSION, "frames_per_count": frames_per_count,
+        "calibration_frames": calibration_frames, "seed": seed, "counts": list(counts),
+        "config": config.to_dict(), "effects": resolved, "standing_probability": float(standing_probability),
+    }))
+    out = Path(out_dir)
+    found = _reusable(out, settings, config)
+    if found is not None:
+        return found
+    return _generate(out, settings, config, resolved, progress)
+
+
+def _generate(out: Path, settings: dict[str, Any], config: RadarConfig, effects: list[dict[str, Any]],
+              progress: bool) -> IndependentProxySet:
+    from radaraug._optional import lazy_import
+
+    started = time.perf_counter()
+    out.mkdir(parents=True, exist_ok=True)
+    manifest_path = out / MANIFEST_NAME
+    if manifest_path.exists():
+        manifest_path.unlink()  # the set is incomplete until a new manifest is written
+    seed = settings["seed"]
+    counts = settings["counts"]
+    scene = room_mod.room_scene(config)
+    tqdm = lazy_import("tqdm.auto", feature="progress bars").tqdm
+    common = {"source": "radaraug independent held-out generator (radaraug.heldout)",
+              "generator_version": GENERATOR_VERSION, "seed": seed,
+              "note": "simulated without the training twin's code: numbers on it are sim-to-sim, not sim-to-real"}
+    total = settings["calibration_frames"] + settings["frames_per_count"] * len(counts)
+    files: dict[str, Any] = {}
+    with tqdm(total=total, desc="heldout", unit="frame", disable=not progress) as bar:
+        cal_path = out / CALIBRATION_NAME
+        cal = [{"frames": settings["calibration_frames"], "t0": 0.0, "people": [], "rcs": []}]
+        _write_file(cal_path, config, cal, 0, 0, seed, effects, scene,
+                    {**common, "description": "independent held-out set: empty room, for CalibratedDR.fit",
+                     "role": "calibration", "labels": {"count": 0}}, bar)
+        files["calibration"] = {"path": CALIBRATION_NAME, "frames": settings["calibration_frames"], "count": 0}
+        tests: list[tuple[Path, int]] = []
+        files["tests"] = []
+        for c in counts:
+            episodes = plan_episodes(c, settings["frames_per_count"], seed, config, settings["standing_probability"])
+            desc = [{"frames": e["frames"], "t0_s": round(e["t0"], 6),
+                     "people": [p.to_dict() for p in e["people"]]} for e in episodes]
+            path = out / _test_name(c)
+            _write_file(path, config, episodes, c, c + 1, seed, effects, scene,
+                        {**common, "description": f"independent held-out set: {c} people in every frame",
+                         "role": "test", "labels": {"count": c}, "episodes": desc}, bar)
+            tests.append((path, c))
+            files["tests"].append({"path": path.name, "frames": settings["frames_per_count"], "count": c,
+                                   "episodes": desc})
+    elapsed = time.perf_counter() - started
+    manifest = {
+        "format": MANIFEST_FORMAT,
+        "generator_version": GENERATOR_VERSION,
+        "settings": settings,
+        "statement": "An independent held-out set: room, people and receiver simulated by radaraug.heldout, which "
+                     "shares no simulation code with the training twin. It is still simulation (sim-to-sim, not "
+                     "sim-to-real). Its settings were fixed before any training result was seen; do not tune them "
+                     "to make a method look good.",
+        "config": config.to_dict(),
+        "seed": seed,
+        "files": files,
+        "label_rule": "count = people in the room, walking or standing (every person is inside the walkable "
+                      f"floor x {list(room_mod.WALK_X_M)} m, y {list(room_mod.WALK_Y_M)} m, at least 1 m in front "
+                      "of the radar, in every frame); every frame of a test file has the file's count",
+        "room": room_mod.describe(),
+        "people_model": {
+            "points": list(walkers.POINT_NAMES), "rcs_fractions": walkers.RCS_FRACTIONS,
+            "height_m": list(walkers.HEIGHT_M), "speed_m_s": list(walkers.SPEED_M_S),
+            "rcs_dBsm": list(walkers.RCS_DBSM), "fluctuation_dB": list(walkers.FLUCTUATION_DB),
+            "fluctuation_frame_correlation": walkers.FLUCTUATION_CORRELATION,
+            "turn_radius_m": walkers.TURN_RADIUS_M, "swing_fraction": list(walkers.SWING_FRACTION),
+            "episode_frames": list(EPISODE_FRAMES), "min_separation_m": MIN_SEPARATION_M,
+            "standing_probability": settings["standing_probability"],
+        },
+        "receiver": {"model": "radaraug.heldout.receiver.generate (NumPy, per-sample float64 phases, analog "
+                              "first-order IF filters with the high-pass start-up transient)",
+                     "constants": {k: list(v) if isinstance(v, tuple) else v for k, v in RECEIVER.items()},
+                     "generate_kwargs": json.loads(json.dumps(receiver_kwargs(config))),
+                     "effects": effects},
+        "dsp_chain_expected": "RangeDoppler() -> ToDecibels() (the chain CalibratedDR is fitted with)",
+        "shares_with_training_twin": "RadarConfig numbers and the capture writer only",
+        "licence": "generated by radaraug, MIT",
+        "generation_s": round(elapsed, 2),
+    }
+    atomic_write_json(manifest_path, manifest, indent=2)
+    return IndependentProxySet(cal_path, tests, config, manifest=manifest_path, reused=False, generation_s=elapsed)
+
+
+__all__ = [
+    "GENERATOR_VERSION", "IndependentProxySet", "RECEIVER", "UNDECLARED_EFFECTS", "default_effects",
+    "load_independent_proxy", "make_independent_proxy", "person_tracks", "plan_episodes", "receiver_kwargs",
+    "resolve_effects",
+]

@@ -1,0 +1,272 @@
+"""The held-out generator's room: static point scatterers levelled by the radar equation.
+
+This room shares nothing with the twin's (:mod:`radaraug.scene`, :mod:`radaraug.raytrace`: meshes,
+materials, image-method ray tracing): it is a list of points, each with a radar cross-section,
+turned into received levels by the radar equation and an antenna pattern written here.
+
+Geometry
+--------
+A 9 m x 4 m x 2.8 m office (``x`` along the room, ``y`` across, ``z`` up; the twin trains in a
+20 m x 2 m corridor). The radar hangs on the near wall at :data:`RADAR_POSITION_M`, 1.65 m from
+the ``y = 0`` wall and 1.1 m above the floor, boresight along ``+x`` tilted
+:data:`RADAR_TILT_DOWN_DEG` down.
+
+Levels
+------
+A point of RCS ``sigma`` at range ``R`` and angle ``theta`` off boresight returns the power, relative
+to the TX power,
+
+    P_r / P_t = G(theta)^2 lambda^2 sigma / ((4 pi)^3 R^4)
+
+with one antenna's gain ``G(theta) = G0 max(cos(theta)^q, floor)``: ``G0`` =
+:data:`ANTENNA_GAIN_DBI` (the BGT60TR13C's patch antennas are ~5-6 dBi), ``q`` set so the
+half-power beam is :data:`HALF_POWER_BEAMWIDTH_DEG` wide, and a floor of :data:`PATTERN_FLOOR_DB`
+for the wide angles (small patches on a small board radiate some power everywhere).
+
+* **Walls** (specular): a flat wall at perpendicular distance ``d`` returns what the radar's
+  mirror image at ``2 d`` would, the RCS-equivalent ``sigma = pi d^2 |Gamma|^2``, placed at the
+  foot of the perpendicular. The far wall's lies almost on boresight (a strong return); the side
+  walls', floor's and ceiling's lie ~90 degrees off it (pattern floor, weak).
+* **Walls** (diffuse): seen at grazing angles, the side walls, floor and ceiling return a spread
+  of weak points, one per :data:`DIFFUSE_STEP_M` along each surface, each ``sigma = mu cos^2(i) A``
+  (``mu`` the surface's backscatter coefficient at normal incidence, ``i`` the incidence angle from
+  the surface normal, ``A`` the patch area), each with a fixed +-3 dB roughness factor.
+* **Corners**: the far wall's dihedral edges (with floor and ceiling) and a metal door frame.
+* **Objects**: a metal filing cabinet, a desk and an office chair, a concrete pillar, a radiator
+  under the window and two ceiling lamps, each a few points with RCS assumed from their size
+  and material.
+* **Fan**: a running desk fan on the desk (:data:`FAN`), passed to the receiver as
+  ``vibrating_clutter`` paths: its housing vibrates 0.25 mm at the motor's rotation rate (a
+  Doppler pair within a bin of zero), and its three blades, turning in a plane seen at an angle,
+  move a point each toward and away from the radar by ``r cos(2 pi f t + k 2 pi / 3)`` (exactly a
+  sinusoidal displacement): at 24 rev/s the blade points reach ~12 m/s radially, far beyond the
+  unambiguous velocity, so their Doppler aliases into a faint stripe across every Doppler bin at
+  the fan's range, as a real fan's does.
+
+Every point has a constant scattering phase drawn once from a fixed seed (:data:`ROOM_SEED`):
+the room is the same for every capture and every seed.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from radaraug.config import RadarConfig
+
+ROOM_SIZE_M = (9.0, 4.0, 2.8)
+"""Length (x), width (y), height (z)."""
+RADAR_POSITION_M = (0.12, 1.65, 1.10)
+RADAR_TILT_DOWN_DEG = 3.0
+ANTENNA_GAIN_DBI = 5.5
+HALF_POWER_BEAMWIDTH_DEG = 80.0
+PATTERN_FLOOR_DB = -15.0
+"""One antenna's gain, relative to boresight, at wide angles and behind the board."""
+ROOM_SEED = 20_240_919
+"""Seed of the room's fixed scattering phases and roughness (not the generator's ``seed``)."""
+
+WALL_REFLECTIVITY_DB: dict[str, float] = {
+    "far_wall": -10.0,  # plasterboard partition on studs: ~-12 dB per board, layered
+    "left_wall": -8.0,  # painted concrete (eps ~5.5)
+    "right_wall": -7.5,  # glazing over a concrete sill (glass eps ~6.3)
+    "floor": -12.0,  # carpet tiles on concrete
+    "ceiling": -15.0,  # mineral-fibre acoustic tiles
+}
+"""Power reflectivity ``|Gamma|^2`` at normal incidence, 60 GHz (assumed from typical permittivities)."""
+DIFFUSE_MU: dict[str, float] = {"left_wall": 0.03, "right_wall": 0.02, "floor": 0.05, "ceiling": 0.04}
+"""Backscatter coefficient at normal incidence of the surfaces seen at grazing angles."""
+DIFFUSE_STEP_M = 0.9
+DIFFUSE_STRIP_M = 1.0
+"""Extent across the strip of each diffuse patch (area ``DIFFUSE_STEP_M x DIFFUSE_STRIP_M``)."""
+
+OBJECTS: tuple[tuple[str, tuple[float, float, float], float], ...] = (
+    # name, position (m), RCS (dBsm)
+    ("far_wall_floor_edge", (9.0, 1.65, 0.0), 4.0),  # dihedral, 1 m long, seen ~7 deg below boresight
+    ("far_wall_ceiling_edge", (9.0, 1.65, 2.8), 2.0),
+    ("door_frame", (9.0, 3.2, 1.0), -2.0),  # steel frame of the door in the far wall
+    ("cabinet_front", (6.1, 0.55, 1.2), 8.0),  # steel filing cabinet 0.5 x 0.6 x 1.9 m by the left wall
+    ("cabinet_edge", (5.85, 0.6, 0.6), 3.0),
+    ("cabinet_top", (6.1, 0.3, 1.9), 0.0),
+    ("desk_edge", (3.1, 3.25, 0.75), -3.0),  # desk by the window
+    ("desk_legs", (3.4, 3.6, 0.35), -6.0),
+    ("chair_back", (3.0, 3.0, 0.9), -5.0),  # office chair, metal base
+    ("chair_base", (3.0, 3.0, 0.15), -4.0),
+    ("pillar_low", (7.3, 3.45, 0.8), 5.0),  # concrete pillar, 0.35 m diameter, by the right wall
+    ("pillar_high", (7.3, 3.45, 1.9), 4.0),
+    ("radiator", (5.0, 3.9, 0.5), 2.0),  # ribbed steel radiator under the window
+    ("window_frame", (5.0, 4.0, 1.6), -4.0),
+    ("lamp_1", (3.0, 2.0, 2.75), -6.0),  # ceiling lamps with metal louvres
+    ("lamp_2", (6.5, 2.0, 2.75), -6.0),
+)
+"""Point scatterers of the room's fixtures (RCS assumed from size and material). The furniture
+stands by the walls, leaving the band ``WALK_Y_M`` free for the people."""
+WALK_X_M = (1.12, 8.5)
+"""Walkable floor along ``x``: from 1 m in front of the radar to 0.5 m from the far wall."""
+WALK_Y_M = (0.8, 2.9)
+"""Walkable floor across the room, clear of the furniture."""
+
+FAN: dict[str, Any] = {
+    "position_m": (3.25, 3.6, 0.95),
+    "rcs_dBsm": -8.0,  # a 30 cm desk fan: grille and housing
+    "displacement_m": 0.25e-3,  # housing vibration amplitude
+    "vibration_Hz": 24.3,  # 1460 rpm: a 4-pole motor on 50 Hz mains, with slip
+    "blades": 3,
+    "blade_rcs_dBsm": -25.0,  # each blade's scattering point, behind the grille
+    "blade_radial_m": 0.08,  # 0.13 m blade radius x the sine of the view angle on the blade plane
+}
+"""The desk fan (a vibrating scatterer, fixed before any result was seen)."""
+
+
+@dataclass(frozen=True)
+class Scatterer:
+    """A static point scatterer of the room.
+
+    Attributes:
+        name: what it is.
+        position_m: room-frame position (m).
+        rcs_dBsm: radar cross-section (dBsm; for walls the image-equivalent RCS).
+        phase_rad: constant scattering phase.
+    """
+
+    name: str
+    position_m: tuple[float, float, float]
+    rcs_dBsm: float
+    phase_rad: float
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-friendly description."""
+        return {"name": self.name, "position_m": [round(v, 4) for v in self.position_m],
+                "rcs_dBsm": round(self.rcs_dBsm, 3), "phase_rad": round(self.phase_rad, 4)}
+
+
+# ------------------------------------------------------------------------------- radar geometry
+def radar_axes() -> np.ndarray:
+    """Rows: the antenna frame's x (sensor right), y (sensor up) and z (boresight) in the room frame."""
+    tilt = math.radians(RADAR_TILT_DOWN_DEG)
+    bore = np.array([math.cos(tilt), 0.0, -math.sin(tilt)])
+    up = np.array([math.sin(tilt), 0.0, math.cos(tilt)])
+    right = np.cross(bore, up)  # looking along +x with z up, the right hand is -y
+    return np.stack([right, up, bore])
+
+
+def pattern_exponent() -> float:
+    """``q`` of ``cos(theta)^q`` with half power at half the beamwidth."""
+    return math.log(0.5) / math.log(math.cos(math.radians(HALF_POWER_BEAMWIDTH_DEG / 2.0)))
+
+
+def antenna_gain(cos_theta: np.ndarray) -> np.ndarray:
+    """One antenna's linear power gain at ``cos(theta)`` off boresight."""
+    shape = np.clip(cos_theta, 0.0, 1.0) ** pattern_exponent()
+    return 10.0 ** (ANTENNA_GAIN_DBI / 10.0) * np.maximum(shape, 10.0 ** (PATTERN_FLOOR_DB / 10.0))
+
+
+def look(points_m: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Range ``(...)`` and unit direction in the antenna frame ``(..., 3)`` of room points ``(..., 3)``."""
+    d = np.asarray(points_m, dtype=np.float64) - np.asarray(RADAR_POSITION_M)
+    r = np.linalg.norm(d, axis=-1)
+    return r, (d / r[..., None]) @ radar_axes().T
+
+
+def level_dB(rcs_m2: np.ndarray, range_m: np.ndarray, u_ant: np.ndarray, wavelength_m: float) -> np.ndarray:
+    """Received power relative to TX power (dB) by the radar equation with the antenna pattern."""
+    g = antenna_gain(u_ant[..., 2])
+    p = g * g * wavelength_m**2 * np.asarray(rcs_m2) / ((4.0 * math.pi) ** 3 * np.asarray(range_m) ** 4)
+    return 10.0 * np.log10(np.maximum(p, 1e-300))
+
+
+def rx_phase_rad(u_ant: np.ndarray, config: RadarConfig) -> np.ndarray:
+    """Far-field phase of each RX ``(..., RX)``: ``-2 pi (d_rx . u) / lambda``.
+
+    An RX displaced by ``d_rx`` toward the target hears the echo ``d_rx . u`` earlier (its path is
+    shorter), which lowers the beat's phase ``f0 tau`` by that much over the wavelength.
+    """
+    d = np.asarray(config.rx_positions, dtype=np.float64)  # (RX, 3), antenna frame
+    return -2.0 * math.pi * (u_ant @ d.T) / config.wavelength_m
+
+
+# ------------------------------------------------------------------------------------ the room
+def room_scatterers() -> list[Scatterer]:
+    """Every static point of the room (walls, corners, objects), with fixed phases."""
+    rng = np.random.default_rng(np.random.SeedSequence(ROOM_SEED))
+    length, width, height = ROOM_SIZE_M
+    rx_, ry, rz = RADAR_POSITION_M
+    pts: list[tuple[str, tuple[float, float, float], float]] = []
+    # Specular points: the foot of the perpendicular from the radar on each plane, RCS pi d^2 |Gamma|^2.
+    planes = {"far_wall": ((length, ry, rz), length - rx_), "left_wall": ((rx_, 0.0, rz), ry),
+              "right_wall": ((rx_, width, rz), width - ry), "floor": ((rx_, ry, 0.0), rz),
+              "ceiling": ((rx_, ry, height), height - rz)}
+    for name, (foot, d) in planes.items():
+        sigma = math.pi * d * d * 10.0 ** (WALL_REFLECTIVITY_DB[name] / 10.0)
+        pts.append((f"{name}_specular", foot, 10.0 * math.log10(sigma)))
+    # Diffuse strips along the surfaces seen at grazing angles.
+    xs = np.arange(0.6, length - 0.2, DIFFUSE_STEP_M)
+    strips = {"left_wall": (lambda x: (x, 0.0, rz), ry), "right_wall": (lambda x: (x, width, rz), width - ry),
+              "floor": (lambda x: (x, ry, 0.0), rz), "ceiling": (lambda x: (x, ry, height), height - rz)}
+    for name, (where, d) in strips.items():
+        for x in xs:
+            cos_i = d / math.hypot(x - rx_, d)
+            sigma = DIFFUSE_MU[name] * cos_i**2 * DIFFUSE_STEP_M * DIFFUSE_STRIP_M
+            rough = float(rng.uniform(-3.0, 3.0))
+            pts.append((f"{name}_diffuse_{x:.1f}", where(float(x)), 10.0 * math.log10(sigma) + rough))
+    for name, pos, rcs in OBJECTS:
+        pts.append((name, pos, rcs))
+    phases = rng.uniform(0.0, 2.0 * math.pi, len(pts))
+    return [Scatterer(n, tuple(float(v) for v in p), float(s), float(ph))  # type: ignore[arg-type]
+            for (n, p, s), ph in zip(pts, phases)]
+
+
+def room_scene(config: RadarConfig, scatterers: list[Scatterer] | None = None) -> list[dict[str, Any]]:
+    """The room as the receiver's ``scene`` points ``{"range_m", "level_dB", "phase_rad", "rx_phase_rad"}``."""
+    scatterers = room_scatterers() if scatterers is None else scatterers
+    pos = np.array([s.position_m for s in scatterers])
+    r, u = look(pos)
+    lev = level_dB(10.0 ** (np.array([s.rcs_dBsm for s in scatterers]) / 10.0), r, u, config.wavelength_m)
+    ph = rx_phase_rad(u, config)
+    return [{"range_m": float(r[i]), "level_dB": float(lev[i]), "phase_rad": s.phase_rad,
+             "rx_phase_rad": [float(v) for v in ph[i]]} for i, s in enumerate(scatterers)]
+
+
+def fan_effects(config: RadarConfig) -> list[dict[str, Any]]:
+    """The desk fan as the receiver's ``vibrating_clutter`` effects: the housing, then each blade."""
+    r, u = look(np.array(FAN["position_m"]))
+
+    def lev(rcs_dBsm: float) -> float:
+        return float(level_dB(10.0 ** (rcs_dBsm / 10.0), r, u, config.wavelength_m))
+
+    out = [{"name": "vibrating_clutter", "range_m": float(r), "level_dB": lev(FAN["rcs_dBsm"]),
+            "displacement_m": float(FAN["displacement_m"]), "vibration_Hz": float(FAN["vibration_Hz"]),
+            "phase_rad": 0.4, "path_phase_rad": 2.1}]
+    n = int(FAN["blades"])
+    for k in range(n):
+        out.append({"name": "vibrating_clutter", "range_m": float(r), "level_dB": lev(FAN["blade_rcs_dBsm"]),
+                    "displacement_m": float(FAN["blade_radial_m"]), "vibration_Hz": float(FAN["vibration_Hz"]),
+                    "phase_rad": 2.0 * math.pi * k / n, "path_phase_rad": 0.9 + 1.7 * k})
+    return out
+
+
+def describe() -> dict[str, Any]:
+    """The room, radar mount and antenna model (for the manifest)."""
+    return {
+        "size_m": list(ROOM_SIZE_M),
+        "radar_position_m": list(RADAR_POSITION_M),
+        "radar_tilt_down_deg": RADAR_TILT_DOWN_DEG,
+        "antenna": {"gain_dBi": ANTENNA_GAIN_DBI, "half_power_beamwidth_deg": HALF_POWER_BEAMWIDTH_DEG,
+                    "pattern": "G0 max(cos(theta)^q, floor)", "q": round(pattern_exponent(), 4),
+                    "floor_dB": PATTERN_FLOOR_DB},
+        "level_law": "P_r/P_t = G(theta)^2 lambda^2 sigma / ((4 pi)^3 R^4)",
+        "wall_reflectivity_dB": WALL_REFLECTIVITY_DB,
+        "diffuse": {"mu": DIFFUSE_MU, "step_m": DIFFUSE_STEP_M, "strip_m": DIFFUSE_STRIP_M,
+                    "law": "sigma = mu cos^2(i) A, x U(-3, 3) dB roughness"},
+        "scatterers": [s.to_dict() for s in room_scatterers()],
+        "fan": {**FAN, "position_m": list(FAN["position_m"])},
+        "room_seed": ROOM_SEED,
+    }
+
+
+__all__ = [
+    "FAN", "OBJECTS", "RADAR_POSITION_M", "ROOM_SIZE_M", "Scatterer", "antenna_gain", "describe", "fan_effects",
+    "level_dB", "look", "room_scatterers", "room_scene", "rx_phase_rad",
+]
