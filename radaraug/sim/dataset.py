@@ -225,7 +225,9 @@ class SimulatedRadarDataset(Dataset):
         person's drawn parameters). With randomization also ``variant``, ``room`` (size,
         materials, radar height / pitch / yaw), each person's ``rcs_scale_dB``, and the receiver's
         ``system_gain_offset_dB`` / ``noise_figure_offset_dB`` with the resulting absolute
-        ``system_gain_dB`` / ``noise_figure_dB`` (None where the receiver lacks the stage).
+        ``system_gain_dB`` / ``noise_figure_dB`` (None where the receiver lacks the stage), and
+        ``effects``: the effect-catalog draws the item carries (``{name: {parameter: value}}``, e.g.
+        ``spur_tone``, ``interference``; empty when none).
         """
         index = self._check_index(index)
         scenario = self.scenario(index)
@@ -249,6 +251,7 @@ class SimulatedRadarDataset(Dataset):
             static_scatterers=[dict(zip(("range_m", "azimuth_deg", "elevation_deg", "rcs_dBsm"), s))
                                for s in draw.scatterers],
             phase_noise_rms_Hz=draw.phase_noise_rms_Hz,
+            effects=draw.effects_dict(self.config),
         )
         return out
 

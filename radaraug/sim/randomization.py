@@ -16,18 +16,32 @@ item around the calibrated values, all from generators seeded by ``(seed, index)
   so a *pool* of ``room_variants`` rooms is drawn (variant ``k`` from its own generator seeded by
   ``(seed, k)``: the pool is a pure function of the seed) and each item picks one;
 * the receiver's ``system_gain`` and ``thermal_noise`` noise figure, as offsets around the
-  receiver's own (calibrated) values, for that item only.
+  receiver's own (calibrated) values, for that item only;
+* the *effect catalog*: sensor effects a capture from another generator (or another unit) may
+  carry and the calibrated twin does not -- a spur tone, another radar's interference, a
+  vibrating object (fan), RX gain/phase mismatch, frame-to-frame drift, wider gain / noise
+  levels, and the phase-noise skirt of the room's strongest static returns -- each with a
+  probability per item, inserted into the item's receiver at its hardware position
+  (:data:`~radaraug.sensor.effects.HARDWARE_ORDER`).
 
 Generator streams (:func:`radaraug.sim.seeding.item_generator`): the dataset uses stream 0 for
-the scenario and 1 for the receiver noise; this module uses :data:`ITEM_STREAM` for the per-item
-draws and :data:`ROOM_STREAM` (index = variant number) for the room pool. The order of the draws
-inside a stream is part of the contract: changing it changes every item of every seed.
+the scenario and 1 for the receiver noise (the catalog's effects draw their own randomness,
+e.g. which chirps an interferer hits, from it too); this module uses :data:`ITEM_STREAM` for the
+per-item draws, :data:`ROOM_STREAM` (index = variant number) for the room pool,
+:data:`SCATTERER_STREAM` for the static scatterers and the phase noise, and
+:data:`EFFECTS_STREAM` for the effect catalog. The catalog has its own stream so that the older
+draws do not shift: an item that draws no catalog effect (every item with
+``effects_probability=0``) is bit for bit the item of a randomization without the catalog. The
+order of the draws inside a stream is part of the contract: changing it changes every item of
+every seed.
 """
 
 from __future__ import annotations
 
 import dataclasses
 import math
+import threading
+import weakref
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any
@@ -39,7 +53,19 @@ from radaraug.errors import ConfigError, SceneError
 from radaraug.scene.materials import get_material
 from radaraug.scene.room import CORRIDOR_SURFACES, box, merge
 from radaraug.scene.scene import Scene, _yaw_pitch_roll
-from radaraug.sensor.effects import PhaseNoise, SystemGain, ThermalNoise
+from radaraug.sensor.effects import (
+    ADCNoise,
+    Effect,
+    FrameDrift,
+    Interference,
+    PhaseNoise,
+    RxGainPhaseMismatch,
+    SpurTone,
+    SystemGain,
+    ThermalNoise,
+    VibratingClutter,
+)
+from radaraug.sensor.effects.base import hardware_position
 from radaraug.sensor.paths import Paths
 from radaraug.sensor.receiver import FMCWReceiver
 from radaraug.sim.scenarios import ScenarioSampler, _uniform
@@ -52,6 +78,11 @@ ROOM_STREAM = 4
 """Generator stream of the room pool (``index`` = variant number)."""
 SCATTERER_STREAM = 5
 """Generator stream of the per-item static scatterers."""
+EFFECTS_STREAM = 6
+"""Generator stream of the per-item effect catalog (spur, interference, fan, mismatch, drift, levels)."""
+MISMATCH_ANTENNAS = 16
+"""RX gain/phase mismatch is drawn for antenna numbers 1..16 (``radaraug.config.MAX_ANTENNAS``), whatever
+the config, so that the draws do not depend on it; a config's RX channels take their antennas' values."""
 SCATTERER_ANTENNA_GAIN_DBI = 6.0
 """Antenna gain (TX and RX) applied to the static scatterers: the patch antenna's peak (their
 azimuth is drawn within +-45 deg, where the pattern loses a few dB, small next to the RCS range)."""
@@ -85,9 +116,24 @@ _RANGE_FIELDS = (
     "rcs_scale_dB", "length_m", "width_m", "height_m", "radar_height_m", "radar_pitch_deg", "radar_yaw_deg",
     "person_height_m", "speed_m_s", "range_m", "system_gain_offset_dB", "noise_figure_offset_dB",
     "static_scatterer_range_m", "static_scatterer_rcs_dBsm", "static_scatterer_azimuth_deg", "phase_noise_rms_Hz",
+    # the effect catalog
+    "spur_tone_freq_nyquist", "spur_tone_amplitude_counts", "interference_chirp_probability",
+    "interference_amplitude_counts", "interference_duration_s", "vibrating_clutter_range_m",
+    "vibrating_clutter_rcs_dBsm", "vibrating_clutter_displacement_m", "vibrating_clutter_Hz", "rx_mismatch_gain_dB",
+    "rx_mismatch_phase_deg", "frame_drift_gain_rms_dB", "frame_drift_dc_rms_counts", "wide_system_gain_offset_dB",
+    "wide_noise_figure_offset_dB", "adc_noise_offset_dB",
 )
 _POSITIVE_RANGES = ("length_m", "width_m", "height_m", "radar_height_m", "person_height_m", "speed_m_s", "range_m",
-                    "static_scatterer_range_m")
+                    "static_scatterer_range_m", "vibrating_clutter_range_m",
+                    # drawn log-uniformly
+                    "spur_tone_amplitude_counts", "interference_amplitude_counts", "interference_duration_s",
+                    "vibrating_clutter_displacement_m", "vibrating_clutter_Hz")
+_PROBABILITIES = ("effects_probability", "spur_tone_probability", "interference_probability",
+                  "vibrating_clutter_probability", "rx_mismatch_probability", "frame_drift_probability",
+                  "wide_levels_probability", "static_phase_noise_probability")
+_BOUNDED_RANGES = {"spur_tone_freq_nyquist": (0.0, 1.0), "interference_chirp_probability": (0.0, 1.0),
+                   "rx_mismatch_phase_deg": (-180.0, 180.0), "frame_drift_gain_rms_dB": (0.0, math.inf),
+                   "frame_drift_dc_rms_counts": (0.0, math.inf)}
 
 
 def _materials_default() -> dict[str, tuple[str, ...]]:
@@ -163,8 +209,79 @@ class TwinRandomization:
             range -- a horizontal line, which is what a walking person looks like too -- so a
             twin that always has the same, weak skirt teaches "a line across Doppler = person".
         phase_noise_paths: how many of the strongest per-item paths (people, static scatterers,
-            leakage; ranked by amplitude x delay) get the skirt. The room pool's own returns are
-            cached through the linear stages and get none.
+            leakage and, when drawn, the room's strongest returns; ranked by amplitude x delay) get
+            the skirt.
+
+    The *effect catalog* (each effect drawn per item with probability ``effects_probability`` x its
+    own; an item may carry several; ``effects_probability=0`` turns the catalog off and gives the
+    items of the twin without it, bit for bit). Why: classifiers trained on the calibrated twin
+    collapse on captures that carry effects the twin does not make (a spur line, interference, a
+    fan, channel imbalance, drift, another floor level, a skirt around the strongest wall). Each
+    effect is inserted into the item's receiver where the hardware applies it
+    (:func:`~radaraug.sensor.effects.base.hardware_position`), after any stage of the same name the
+    receiver already has (a profile's fitted spur stays; the drawn one is a second spur). Ranges
+    are uniform unless marked log (uniform in the logarithm, the scale of the effect's own
+    :class:`~radaraug.sensor.effects.Prior`).
+
+    Args:
+        effects_probability: factor on every catalog probability below (0: catalog off, 1: each
+            effect at its own probability).
+        spur_tone_probability: chance of a :class:`~radaraug.sensor.effects.SpurTone` (0.3).
+        spur_tone_freq_nyquist: its frequency as a fraction of the Nyquist frequency (0.01, 0.99):
+            anywhere in the IF band, like the effect's prior ``[0, fs/2]`` (a clock or regulator
+            spur lands wherever its harmonic falls).
+        spur_tone_amplitude_counts: its peak amplitude at the ADC, counts, log (0.3, 5): a fraction
+            of an ADC count (visible only after the range FFT's gain, the ADC-side noise being
+            ~1.3-1.5 counts RMS at 23 dB IF gain) to a few counts (a line well above the floor);
+            inside the prior's [0.05, 200].
+        interference_probability: chance of another FMCW radar's
+            :class:`~radaraug.sensor.effects.Interference` (0.3).
+        interference_chirp_probability: the chance that a chirp gets a burst (0.01, 0.3): ramps of an
+            unsynchronised radar cross ours in a few to a third of the chirps (prior [0, 1]; the
+            effect's default 0.05 is an assumption).
+        interference_amplitude_counts: peak burst amplitude at the IF-gain output, counts, log
+            (5, 1000): from a burst that barely lifts the floor of its chirp (~15 counts doubles a
+            chirp's noise energy over 256 samples) to one near the 12-bit ADC's headroom above the
+            per-RX DC levels of ~1600-2070 counts (prior [1, 2000]).
+        interference_duration_s: burst length, s, log (0.5 us, 20 us): the time the difference
+            frequency needs to cross the IF band, set by both radars' slopes (prior [0.2, 30] us).
+        vibrating_clutter_probability: chance of a :class:`~radaraug.sensor.effects.VibratingClutter`
+            (a fan, a pump, a vibrating panel) (0.3).
+        vibrating_clutter_range_m: its range (0.5, 10) m.
+        vibrating_clutter_rcs_dBsm: its RCS (-20, +5) dBsm (a desk fan's blades to a metal
+            enclosure); the level is the radar equation with the scatterers' 6 dBi antenna gain,
+            as :func:`static_scatterer_paths`.
+        vibrating_clutter_displacement_m: peak displacement, log (0.1, 3) mm: mm scale, inside the
+            prior's [10 um, 5 mm] (modulation index 4 pi d / lambda from 0.25 to 7.5 rad at 60 GHz).
+        vibrating_clutter_Hz: vibration frequency, log (5, 60) Hz: mains-driven fans, pumps and
+            motors (prior [0.5 Hz, Doppler Nyquist]).
+        rx_mismatch_probability: chance of an :class:`~radaraug.sensor.effects.RxGainPhaseMismatch`
+            on top of the receiver's own (0.3).
+        rx_mismatch_gain_dB: per-RX gain offset (-1.5, +1.5) dB (inside the prior's [-6, 6]).
+        rx_mismatch_phase_deg: per-RX phase offset (-30, +30) deg (inside the prior's [-180, 180]).
+        frame_drift_probability: chance of a :class:`~radaraug.sensor.effects.FrameDrift` (0.3).
+        frame_drift_gain_rms_dB: RMS of its per-frame gain (0.1, 1.0) dB (prior [0, 3]).
+        frame_drift_dc_rms_counts: RMS of its per-frame, per-RX DC shift (0.2, 4) counts (prior
+            [0, 20]): field captures show 1.44-1.60 counts frame to frame against 1.3-1.5 within a
+            frame, a slow drift of about a count, and other units more.
+        wide_levels_probability: chance that the item's gain and noise levels come from the wider
+            ranges below instead of ``system_gain_offset_dB`` / ``noise_figure_offset_dB`` (0.3).
+            Those two keep their defaults, so items without this draw stay the items of before.
+        wide_system_gain_offset_dB: (-12, +12) dB: another generator (or another unit, IF-gain
+            setting 18-60 dB, a mount behind a cover) renders returns at levels the calibration
+            does not pin; the front-end gain itself moved by 20 dB once it was refitted.
+        wide_noise_figure_offset_dB: (-4, +8) dB: 60 GHz receiver noise figures span ~8-20 dB
+            around the chain's assumed 12 dB.
+        adc_noise_offset_dB: offset on the ``adc_noise`` stage's RMS, drawn with the wide levels
+            (-3, +3) dB: the ADC-side floor that dominates at low IF gain (1.3-1.5 counts at 23 dB
+            in the field captures; another unit or generator differs by more).
+        static_phase_noise_probability: chance that the room's ``static_phase_noise_paths``
+            strongest returns (by amplitude x delay, as the ``phase_noise`` stage ranks) carry the
+            item's phase-noise skirt (0.5: every real capture has one, and the drawn
+            ``phase_noise_rms_Hz`` already sets how strong it is). Those paths are taken out of
+            the room's cached signal and passed to the receiver with the people, where they
+            compete for the ``phase_noise_paths`` slots.
+        static_phase_noise_paths: how many of the room's returns are re-synthesized so (4).
     """
 
     enabled: bool = True
@@ -192,6 +309,32 @@ class TwinRandomization:
     static_scatterer_azimuth_deg: tuple[float, float] = (-45.0, 45.0)
     phase_noise_rms_Hz: tuple[float, float] = (30e3, 400e3)
     phase_noise_paths: int = 16
+    # ---- the effect catalog (per-item probabilities; the ranges' sources are in the docstring)
+    effects_probability: float = 1.0
+    spur_tone_probability: float = 0.3
+    spur_tone_freq_nyquist: tuple[float, float] = (0.01, 0.99)
+    spur_tone_amplitude_counts: tuple[float, float] = (0.3, 5.0)
+    interference_probability: float = 0.3
+    interference_chirp_probability: tuple[float, float] = (0.01, 0.3)
+    interference_amplitude_counts: tuple[float, float] = (5.0, 1000.0)
+    interference_duration_s: tuple[float, float] = (0.5e-6, 20e-6)
+    vibrating_clutter_probability: float = 0.3
+    vibrating_clutter_range_m: tuple[float, float] = (0.5, 10.0)
+    vibrating_clutter_rcs_dBsm: tuple[float, float] = (-20.0, 5.0)
+    vibrating_clutter_displacement_m: tuple[float, float] = (0.1e-3, 3e-3)
+    vibrating_clutter_Hz: tuple[float, float] = (5.0, 60.0)
+    rx_mismatch_probability: float = 0.3
+    rx_mismatch_gain_dB: tuple[float, float] = (-1.5, 1.5)
+    rx_mismatch_phase_deg: tuple[float, float] = (-30.0, 30.0)
+    frame_drift_probability: float = 0.3
+    frame_drift_gain_rms_dB: tuple[float, float] = (0.1, 1.0)
+    frame_drift_dc_rms_counts: tuple[float, float] = (0.2, 4.0)
+    wide_levels_probability: float = 0.3
+    wide_system_gain_offset_dB: tuple[float, float] = (-12.0, 12.0)
+    wide_noise_figure_offset_dB: tuple[float, float] = (-4.0, 8.0)
+    adc_noise_offset_dB: tuple[float, float] = (-3.0, 3.0)
+    static_phase_noise_probability: float = 0.5
+    static_phase_noise_paths: int = 4
 
     def __post_init__(self) -> None:
         # Normalise YAML-ish input (lists, ints) and fail early, naming the field.
@@ -199,8 +342,19 @@ class TwinRandomization:
             raise ConfigError(f"twin randomization: enabled must be true or false, got {self.enabled!r}")
         for name in _RANGE_FIELDS:
             setattr(self, name, _pair(getattr(self, name), name, positive=name in _POSITIVE_RANGES))
-        if isinstance(self.phase_noise_paths, bool) or not isinstance(self.phase_noise_paths, int) or self.phase_noise_paths < 1:
-            raise ConfigError(f"twin randomization: phase_noise_paths must be an integer >= 1, got {self.phase_noise_paths!r}")
+        for name in ("phase_noise_paths", "static_phase_noise_paths"):
+            value = getattr(self, name)
+            if isinstance(value, bool) or not isinstance(value, int) or value < 1:
+                raise ConfigError(f"twin randomization: {name} must be an integer >= 1, got {value!r}")
+        for name in _PROBABILITIES:
+            value = _number(getattr(self, name), name, minimum=0.0)
+            if value > 1.0:
+                raise ConfigError(f"twin randomization: {name} must be a probability in [0, 1], got {value!r}")
+            setattr(self, name, value)
+        for name, (lo, hi) in _BOUNDED_RANGES.items():
+            pair = getattr(self, name)
+            if pair[0] < lo or pair[1] > hi:
+                raise ConfigError(f"twin randomization: {name} must lie in [{lo}, {hi}], got {list(pair)}")
         if self.phase_noise_rms_Hz[0] < 0:
             raise ConfigError(f"twin randomization: phase_noise_rms_Hz must be >= 0, got {list(self.phase_noise_rms_Hz)}")
         if isinstance(self.room_variants, bool) or not isinstance(self.room_variants, int) or self.room_variants < 1:
@@ -298,7 +452,55 @@ class TwinRandomization:
             for _ in range(int(torch.randint(lo_n, hi_n + 1, (), generator=gs)))
         )
         phase_noise = _uniform(self.phase_noise_rms_Hz, gs)
-        return ItemDraw(variant, gain, nf, rcs, scatterers, phase_noise)
+        catalog = self.effects(seed, index)
+        if catalog.pop("wide_levels"):
+            gain, nf = catalog.pop("wide_system_gain_offset_dB"), catalog.pop("wide_noise_figure_offset_dB")
+            catalog["wide_levels"] = True
+        else:
+            for key in ("wide_system_gain_offset_dB", "wide_noise_figure_offset_dB", "adc_noise_offset_dB"):
+                catalog.pop(key)
+        return ItemDraw(variant, gain, nf, rcs, scatterers, phase_noise, **catalog)
+
+    def effects(self, seed: int, index: int) -> dict[str, Any]:
+        """The effect-catalog draws of item ``index`` (its own stream, :data:`EFFECTS_STREAM`).
+
+        Every effect draws its hit and all its parameters whether it hits or not, so one
+        probability does not shift the others' values. Returns the :class:`ItemDraw` fields (None
+        for an effect not drawn) plus ``wide_levels`` (bool) and the wide levels' three values.
+        """
+        g = item_generator(seed, index, stream=EFFECTS_STREAM)
+        scale = self.effects_probability
+
+        def hit(p: float) -> bool:
+            return bool(torch.rand((), generator=g, dtype=torch.float64) < scale * p)
+
+        out: dict[str, Any] = {}
+        on = hit(self.spur_tone_probability)
+        spur = (_uniform(self.spur_tone_freq_nyquist, g), _log_uniform(self.spur_tone_amplitude_counts, g),
+                _uniform((-math.pi, math.pi), g))
+        out["spur_tone"] = spur if on else None
+        on = hit(self.interference_probability)
+        inter = (_uniform(self.interference_chirp_probability, g), _log_uniform(self.interference_amplitude_counts, g),
+                 _log_uniform(self.interference_duration_s, g))
+        out["interference"] = inter if on else None
+        on = hit(self.vibrating_clutter_probability)
+        vib = (_uniform(self.vibrating_clutter_range_m, g), _uniform(self.vibrating_clutter_rcs_dBsm, g),
+               _log_uniform(self.vibrating_clutter_displacement_m, g), _log_uniform(self.vibrating_clutter_Hz, g),
+               _uniform((-math.pi, math.pi), g))
+        out["vibrating_clutter"] = vib if on else None
+        on = hit(self.rx_mismatch_probability)
+        gains = tuple(_uniform(self.rx_mismatch_gain_dB, g) for _ in range(MISMATCH_ANTENNAS))
+        phases = tuple(_uniform(self.rx_mismatch_phase_deg, g) for _ in range(MISMATCH_ANTENNAS))
+        out["rx_mismatch"] = (gains, phases) if on else None
+        on = hit(self.frame_drift_probability)
+        drift = (_uniform(self.frame_drift_gain_rms_dB, g), _uniform(self.frame_drift_dc_rms_counts, g))
+        out["frame_drift"] = drift if on else None
+        out["wide_levels"] = hit(self.wide_levels_probability)
+        out["wide_system_gain_offset_dB"] = _uniform(self.wide_system_gain_offset_dB, g)
+        out["wide_noise_figure_offset_dB"] = _uniform(self.wide_noise_figure_offset_dB, g)
+        out["adc_noise_offset_dB"] = _uniform(self.adc_noise_offset_dB, g)
+        out["static_phase_noise_paths"] = self.static_phase_noise_paths if hit(self.static_phase_noise_probability) else 0
+        return out
 
     def sampler(self, base: ScenarioSampler, room: RoomDraw, radar_x_m: float) -> ScenarioSampler:
         """``base`` with this randomization's people ranges, fitted inside ``room``.
@@ -399,7 +601,17 @@ class RoomDraw:
 class ItemDraw:
     """The per-item draws: room variant, receiver offsets, each person's RCS scale, static scatterers.
 
-    The scatterers are ``(range_m, azimuth_deg, elevation_deg, rcs_dBsm)``.
+    The scatterers are ``(range_m, azimuth_deg, elevation_deg, rcs_dBsm)``. The effect catalog's
+    fields are None (0, False) where the item does not carry the effect:
+
+    * ``spur_tone``: ``(frequency / Nyquist, amplitude_counts, phase_rad)``;
+    * ``interference``: ``(chirp_probability, amplitude_counts, duration_s)``;
+    * ``vibrating_clutter``: ``(range_m, rcs_dBsm, displacement_m, vibration_Hz, phase_rad)``;
+    * ``rx_mismatch``: ``(gain_dB, phase_deg)``, each a value per antenna number 1..16;
+    * ``frame_drift``: ``(gain_rms_dB, dc_rms_counts)``;
+    * ``wide_levels``: the gain and noise-figure offsets came from the wide ranges, and
+      ``adc_noise_offset_dB`` offsets the ``adc_noise`` stage;
+    * ``static_phase_noise_paths``: how many of the room's strongest returns carry the phase noise.
     """
 
     variant: int
@@ -408,6 +620,73 @@ class ItemDraw:
     rcs_scale_dB: tuple[float, ...]
     scatterers: tuple[tuple[float, float, float, float], ...] = ()
     phase_noise_rms_Hz: float | None = None
+    spur_tone: tuple[float, float, float] | None = None
+    interference: tuple[float, float, float] | None = None
+    vibrating_clutter: tuple[float, float, float, float, float] | None = None
+    rx_mismatch: tuple[tuple[float, ...], tuple[float, ...]] | None = None
+    frame_drift: tuple[float, float] | None = None
+    wide_levels: bool = False
+    adc_noise_offset_dB: float = 0.0
+    static_phase_noise_paths: int = 0
+
+    def effects_dict(self, config: RadarConfig) -> dict[str, Any]:
+        """The catalog effects this item carries, ``{name: {parameter: value}}`` (JSON-able)."""
+        out: dict[str, Any] = {}
+        if self.spur_tone is not None:
+            frac, amp, phase = self.spur_tone
+            out["spur_tone"] = {"freq_Hz": frac * float(config.sample_rate_Hz) / 2, "amplitude_counts": amp,
+                                "phase_rad": phase}
+        if self.interference is not None:
+            out["interference"] = dict(zip(("probability", "amplitude_counts", "duration_s"), self.interference))
+        if self.vibrating_clutter is not None:
+            out["vibrating_clutter"] = dict(zip(("range_m", "rcs_dBsm", "displacement_m", "vibration_Hz", "phase_rad"),
+                                                self.vibrating_clutter))
+        if self.rx_mismatch is not None:
+            gains, phases = self.rx_mismatch
+            out["rx_gain_phase_mismatch"] = {"gain_dB": [gains[a - 1] for a in config.rx_antennas],
+                                             "phase_deg": [phases[a - 1] for a in config.rx_antennas]}
+        if self.frame_drift is not None:
+            out["frame_drift"] = dict(zip(("gain_rms_dB", "dc_rms_counts"), self.frame_drift))
+        if self.wide_levels:
+            out["wide_levels"] = {"system_gain_offset_dB": self.system_gain_offset_dB,
+                                  "noise_figure_offset_dB": self.noise_figure_offset_dB,
+                                  "adc_noise_offset_dB": self.adc_noise_offset_dB}
+        if self.static_phase_noise_paths:
+            out["static_phase_noise"] = {"paths": self.static_phase_noise_paths}
+        return out
+
+    def catalog_effects(self, config: RadarConfig) -> list[Effect]:
+        """The receiver stages of the catalog effects this item carries (to insert at their place)."""
+        effects: list[Effect] = []
+        if self.vibrating_clutter is not None:
+            r, rcs, disp, hz, phase = self.vibrating_clutter
+            effects.append(VibratingClutter(range_m=r, level_dB=_radar_equation_dB(config, r, rcs),
+                                            displacement_m=disp, vibration_Hz=hz, phase_rad=phase))
+        if self.rx_mismatch is not None:
+            gains, phases = self.rx_mismatch
+            effects.append(RxGainPhaseMismatch(gain_dB=[gains[a - 1] for a in config.rx_antennas],
+                                               phase_rad=[math.radians(phases[a - 1]) for a in config.rx_antennas]))
+        if self.interference is not None:
+            p, amp, dur = self.interference
+            effects.append(Interference(probability=p, amplitude_counts=amp, duration_s=dur))
+        if self.frame_drift is not None:
+            effects.append(FrameDrift(gain_rms_dB=self.frame_drift[0], dc_rms_counts=self.frame_drift[1]))
+        if self.spur_tone is not None:
+            frac, amp, phase = self.spur_tone
+            effects.append(SpurTone(freq_Hz=frac * float(config.sample_rate_Hz) / 2, amplitude_counts=amp,
+                                    phase_rad=phase))
+        return effects
+
+
+def _radar_equation_dB(config: RadarConfig, range_m: float, rcs_dBsm: float) -> float:
+    """Received over transmitted power of a point scatterer, dB: ``G^2 lambda^2 sigma / ((4 pi)^3 R^4)``.
+
+    With the static scatterers' antenna gain (:data:`SCATTERER_ANTENNA_GAIN_DBI`), as
+    :func:`~radaraug.sensor.point_target.point_target_paths` gives them.
+    """
+    lam = float(config.wavelength_m)
+    return (2 * SCATTERER_ANTENNA_GAIN_DBI + rcs_dBsm + 20 * math.log10(lam) - 30 * math.log10(4 * math.pi)
+            - 40 * math.log10(range_m))
 
 
 # ---------------------------------------------------------------------------- simulation
@@ -458,29 +737,43 @@ def check_receiver(receiver: FMCWReceiver, randomization: TwinRandomization) -> 
     """Raise ConfigError when ``receiver`` cannot take the randomization's gain / noise offsets."""
     names = [e.name for e in receiver.effects]
     first_nonlinear = next((i for i, e in enumerate(receiver.effects) if e.kind == "nonlinear"), len(names))
-    if randomization.system_gain_offset_dB != (0.0, 0.0):
+    r = randomization
+    wide = r.effects_probability * r.wide_levels_probability > 0
+    zero = (0.0, 0.0)
+    if r.system_gain_offset_dB != zero or (wide and r.wide_system_gain_offset_dB != zero):
         if "system_gain" not in names:
             raise ConfigError("twin randomization: the receiver has no system_gain stage; add one or set "
-                              "system_gain_offset_dB to [0, 0]")
+                              "system_gain_offset_dB (and wide_system_gain_offset_dB) to [0, 0]")
         # The room's cached signal went through the linear stages before the first non-linear
         # one; only there does scaling it by the gain equal applying the gain.
         if names.index("system_gain") > first_nonlinear:
             raise ConfigError("twin randomization: the receiver's system_gain comes after a non-linear stage")
-    if randomization.noise_figure_offset_dB != (0.0, 0.0) and "thermal_noise" not in names:
+    nf_used = r.noise_figure_offset_dB != zero or (wide and r.wide_noise_figure_offset_dB != zero)
+    if nf_used and "thermal_noise" not in names:
         raise ConfigError("twin randomization: the receiver has no thermal_noise stage; add one or set "
-                          "noise_figure_offset_dB to [0, 0]")
-    if randomization.phase_noise_rms_Hz != (0.0, 0.0) and "phase_noise" not in names:
+                          "noise_figure_offset_dB (and wide_noise_figure_offset_dB) to [0, 0]")
+    if wide and r.adc_noise_offset_dB != zero and "adc_noise" not in names:
+        raise ConfigError("twin randomization: the receiver has no adc_noise stage; add one or set "
+                          "adc_noise_offset_dB to [0, 0] (or wide_levels_probability to 0)")
+    if r.phase_noise_rms_Hz != zero and "phase_noise" not in names:
         raise ConfigError("twin randomization: the receiver has no phase_noise stage; add one or set "
                           "phase_noise_rms_Hz to [0, 0]")
+    if r.effects_probability * r.static_phase_noise_probability > 0 and "phase_noise" not in names:
+        raise ConfigError("twin randomization: the receiver has no phase_noise stage for the room's strongest "
+                          "returns; add one or set static_phase_noise_probability to 0")
 
 
 def item_receiver(receiver: FMCWReceiver, system_gain_offset_dB: float, noise_figure_offset_dB: float,
-                  phase_noise: tuple[float, int] | None = None) -> FMCWReceiver:
+                  phase_noise: tuple[float, int] | None = None, *, adc_noise_offset_dB: float = 0.0,
+                  extra_effects: Sequence[Effect] = ()) -> FMCWReceiver:
     """A receiver like ``receiver`` with its ``system_gain`` and ``thermal_noise`` stages offset.
 
     The first stage of each is offset; its ``phase_noise`` stage is set to ``(rms_Hz, num_paths)`` when
-    given. ``receiver`` is not changed (its other stages are shared, not copied), so nothing leaks from
-    one item to the next, even across threads.
+    given, its ``adc_noise`` RMS scaled by ``adc_noise_offset_dB``. ``extra_effects`` (the item's catalog
+    effects) are inserted at their hardware position
+    (:func:`~radaraug.sensor.effects.base.hardware_position`: after any stage of the same name, before
+    the first stage the hardware applies after them). ``receiver`` is not changed (its other stages are
+    shared, not copied), so nothing leaks from one item to the next, even across threads.
     """
     effects = list(receiver.effects)
     if phase_noise is not None:
@@ -498,9 +791,106 @@ def item_receiver(receiver: FMCWReceiver, system_gain_offset_dB: float, noise_fi
             effects[i] = ThermalNoise(noise_figure_dB=e.noise_figure_dB + noise_figure_offset_dB,
                                       temperature_K=e.temperature_K)
             break
+    if adc_noise_offset_dB != 0.0:
+        for i, e in enumerate(effects):
+            if isinstance(e, ADCNoise):
+                effects[i] = ADCNoise(rms_counts=e.rms_counts * 10 ** (adc_noise_offset_dB / 20))
+                break
+    for new in extra_effects:
+        effects.insert(hardware_position([e.name for e in effects], new.name), new)
     return FMCWReceiver(receiver.config, effects=effects, tx_power_dBm=receiver.tx_power_dBm,
                         synthesis=receiver.synthesis, front_end_gain_dB=receiver.front_end_gain_dB,
                         taylor_tol=receiver.taylor_tol)
+
+
+# Per twin (weakly keyed: a twin's cache goes with it), what the catalog needs of its room: the
+# strongest static paths and their signal, and the quadrature of the room's signal (for the RX phase
+# mismatch). Computed once per twin and process, on first use.
+_ROOM_CACHE: weakref.WeakKeyDictionary[DigitalTwin, dict[Any, Any]] = weakref.WeakKeyDictionary()
+_ROOM_LOCK = threading.Lock()
+
+
+def _room_cached(twin: DigitalTwin, key: Any, make: Any) -> Any:
+    with _ROOM_LOCK:
+        entry = _ROOM_CACHE.setdefault(twin, {})
+        if key in entry:
+            return entry[key]
+    value = make()  # outside the lock: a room synthesis takes a second
+    with _ROOM_LOCK:
+        return _ROOM_CACHE.setdefault(twin, {}).setdefault(key, value)
+
+
+def _quadrature(receiver: FMCWReceiver, paths: Paths) -> torch.Tensor:
+    """The signal of ``paths`` through the linear stages with every beat tone turned by -90 deg.
+
+    ``Re{-j C exp(j Phi)} = Im{C exp(j Phi)}``: a path's amplitude times ``j`` (the receiver conjugates
+    it). With it a per-RX complex gain ``a exp(j phi)`` on the in-phase signal ``S`` is exactly
+    ``a (cos(phi) S - sin(phi) Q)``.
+    """
+    return receiver.static_signal(dataclasses.replace(paths, amplitude=paths.amplitude * 1j))
+
+
+def strongest_room_paths(twin: DigitalTwin, k: int) -> tuple[Paths, torch.Tensor]:
+    """The ``k`` room paths with the largest ``|amplitude| x delay`` and their cached-room signal.
+
+    The ranking of the ``phase_noise`` stage (:func:`~radaraug.sensor.effects.base.strongest_paths`,
+    strongest over RX): the paths whose phase-noise skirt is largest. Their signal (through the twin
+    receiver's linear stages, as the room's cached signal) is what leaves the cached signal when they are
+    passed to the receiver as paths instead. Cached per twin and ``k``.
+    """
+    def make() -> tuple[Paths, torch.Tensor]:
+        room = twin.tracer.static_paths()
+        strength = (room.amplitude.abs() * room.delay_s).amax(-1)  # (P,)
+        if room.mask is not None:
+            strength = strength * room.mask
+        idx = torch.topk(strength, min(k, room.num_paths)).indices.sort().values
+        picked = Paths(room.delay_s[idx], room.delay_rate[idx], room.amplitude[idx])
+        return picked, twin.receiver.static_signal(picked)
+    return _room_cached(twin, ("strongest", k), make)
+
+
+def room_quadrature(twin: DigitalTwin, k: int = 0) -> torch.Tensor:
+    """:func:`_quadrature` of the twin's room, less that of its ``k`` strongest paths (cached per twin)."""
+    def make() -> torch.Tensor:
+        if k:
+            return room_quadrature(twin) - _quadrature(twin.receiver, strongest_room_paths(twin, k)[0])
+        return _quadrature(twin.receiver, twin.tracer.static_paths())
+    return _room_cached(twin, ("quadrature", k), make)
+
+
+def _rx_gain(mismatch: RxGainPhaseMismatch, like: torch.Tensor) -> tuple[torch.Tensor, torch.Tensor]:
+    """``(amplitude, phase)`` of a mismatch stage, ``(RX, 1, 1)`` on ``like``'s device and dtype."""
+    amp = torch.pow(10.0, mismatch.gain_dB / 20).to(like)
+    return amp[:, None, None], mismatch.phase_rad.to(like)[:, None, None]
+
+
+def _mismatched_shadow(twin: DigitalTwin, people: list[Any], times: torch.Tensor,
+                       mismatch: RxGainPhaseMismatch) -> torch.Tensor | None:
+    """:meth:`DigitalTwin.shadow_signal` through the per-RX complex gain ``g`` of ``mismatch``, exactly.
+
+    The shadow is ``sum_p Re(d_p) b0_p + Im(d_p) b1_p`` over the room's paths (``d = T - 1``, ``b`` the
+    twin's :meth:`~DigitalTwin.static_basis`); the gain turns each path's coefficient, which is the same
+    sum with ``conj(g) d`` per RX: ``Re(g) shadow + Im(g) shadow(-j d)``. Both from one transmission and
+    one product (as the twin computes the shadow). A per-chirp frequency-domain turn would not do: the
+    near-range paths' beat tones hold less than a cycle per chirp.
+    """
+    from radaraug.raytrace.shadow import SHADOW_TOL
+
+    t = twin.shadow_transmission(people, times)  # (T, P)
+    if t is None:
+        return None
+    d = (t - 1).to(twin.device)
+    hit = (d.abs() > SHADOW_TOL).any(0)
+    if not bool(hit.any()):
+        return None
+    d = d * hit
+    basis = twin.static_basis()  # (P, 2, RX, N)
+    both = torch.cat([d, -1j * d])  # (2T, P)
+    coef = torch.view_as_real(both).to(basis.dtype).reshape(both.shape[0], -1)
+    out = (coef @ basis.reshape(coef.shape[1], -1)).reshape(both.shape[0], *basis.shape[2:])[:, :, None, :]
+    shadow, quad = out[: d.shape[0]], out[d.shape[0]:]
+    amp, phase = _rx_gain(mismatch, shadow)
+    return amp * (torch.cos(phase) * shadow + torch.sin(phase) * quad)
 
 
 def static_scatterer_paths(config: RadarConfig, scatterers: Sequence[tuple[float, float, float, float]],
@@ -532,7 +922,13 @@ def simulate_item(twin: DigitalTwin, people: Sequence[Any], times: torch.Tensor,
 
     The room's cached signal went through the receiver's linear stages, ``system_gain``
     included: it is scaled by the item's gain offset, which by linearity equals tracing the room
-    through the offset receiver.
+    through the offset receiver. The catalog's RX gain/phase mismatch (a linear stage the cached
+    signal did not go through) is applied to it the same way, exactly: ``a (cos(phi) S - sin(phi) Q)``
+    with ``Q`` the room's quadrature signal (:func:`room_quadrature`, synthesized once per twin), and to
+    the people's shadow correction through the twin's static basis (:func:`_mismatched_shadow`). With
+    ``draw.static_phase_noise_paths`` the room's strongest returns leave the cached signal and go
+    through the receiver as paths (:func:`strongest_room_paths`), so that its ``phase_noise`` stage
+    can give them their skirt.
     """
     from radaraug.sim.twin import negligible_paths_off
 
@@ -540,14 +936,55 @@ def simulate_item(twin: DigitalTwin, people: Sequence[Any], times: torch.Tensor,
     if draw.scatterers:
         paths = Paths.cat([paths, static_scatterer_paths(twin.config, draw.scatterers, paths)])
     pn = None if not draw.phase_noise_rms_Hz else (draw.phase_noise_rms_Hz, phase_noise_paths)
-    receiver = item_receiver(twin.receiver, draw.system_gain_offset_dB, draw.noise_figure_offset_dB, pn)
+    extra = draw.catalog_effects(twin.config)
+    receiver = item_receiver(twin.receiver, draw.system_gain_offset_dB, draw.noise_figure_offset_dB, pn,
+                             adc_noise_offset_dB=draw.adc_noise_offset_dB, extra_effects=extra)
     static = twin.static_signal()
-    shadow = twin.shadow_signal(list(people), times)  # geometry only: the RCS scale does not change it
+    k = draw.static_phase_noise_paths if any(isinstance(e, PhaseNoise) for e in receiver.effects) else 0
+    if k:
+        strong, strong_signal = strongest_room_paths(twin, k)
+        paths = Paths.cat([paths, _like(strong, paths)])
+        static = static - strong_signal
+    # The people's shadow on the room is geometry only: the RCS scale does not change it. (Room paths
+    # moved out of the cache for the phase noise keep their shadow here, in the cached part.)
+    mismatch = _static_mismatch(receiver, extra)
+    if mismatch is None:
+        shadow = twin.shadow_signal(list(people), times)
+    else:
+        amp, phase = _rx_gain(mismatch, static)
+        static = amp * (torch.cos(phase) * static - torch.sin(phase) * room_quadrature(twin, k))
+        shadow = _mismatched_shadow(twin, list(people), times, mismatch)
     if shadow is not None:
         static = static + shadow
     if draw.system_gain_offset_dB != 0.0:
         static = static * 10 ** (draw.system_gain_offset_dB / 20)
     return receiver(paths, generator=generator, frame_start_s=times.to(torch.float64), static_signal=static)
+
+
+def _static_mismatch(receiver: FMCWReceiver, extra: Sequence[Effect]) -> RxGainPhaseMismatch | None:
+    """The item's drawn mismatch stage (in ``extra``) when the room's cached signal must get it by hand.
+
+    The receiver adds the cached signal before its first non-linear stage: a drawn mismatch placed
+    before that must be applied to it here; one placed after acts on it by itself. (A mismatch of the
+    twin's own receiver is in the cached signal already.)
+    """
+    drawn = next((e for e in extra if isinstance(e, RxGainPhaseMismatch)), None)
+    if drawn is None:
+        return None
+    effects = list(receiver.effects)
+    first_nonlinear = next((i for i, e in enumerate(effects) if e.kind == "nonlinear"), len(effects))
+    position = next(i for i, e in enumerate(effects) if e is drawn)
+    return drawn if position < first_nonlinear else None
+
+
+def _like(paths: Paths, like: Paths) -> Paths:
+    """Static ``paths`` ``(P, RX)`` on ``like``'s device and dtypes, batched like it ``(..., P, RX)``."""
+    dt, dev = like.delay_s.dtype, like.delay_s.device
+    cdt = like.amplitude.dtype if like.amplitude.is_complex() else None
+    p = Paths(paths.delay_s.to(dev, dt), paths.delay_rate.to(dev, dt),
+              paths.amplitude.to(dev, cdt) if cdt is not None else paths.amplitude.to(dev, dt))
+    batch = tuple(like.delay_s.shape[:-2])
+    return p.map(lambda t: t.expand(*batch, *t.shape))
 
 
 # ---------------------------------------------------------------------------- validation
@@ -568,6 +1005,12 @@ def _pair(value: Any, name: str, *, positive: bool = False) -> tuple[float, floa
     if positive and lo <= 0:
         raise ConfigError(f"twin randomization: {name} must be positive, got {[lo, hi]}")
     return (lo, hi)
+
+
+def _log_uniform(lo_hi: tuple[float, float], g: torch.Generator) -> float:
+    """Uniform in the logarithm over ``[lo, hi]`` (both > 0), one draw from ``g``."""
+    lo, hi = lo_hi
+    return math.exp(_uniform((math.log(lo), math.log(hi)), g))
 
 
 def _count_pair(value: Any, name: str) -> tuple[int, int]:
@@ -607,6 +1050,7 @@ def _materials(value: Any) -> dict[str, tuple[str, ...]]:
 
 
 __all__ = [
-    "DEFAULT_MATERIALS", "ITEM_STREAM", "ROOM_STREAM", "ItemDraw", "RoomDraw", "TwinRandomization",
-    "check_receiver", "item_receiver", "people_paths", "scale_people_paths", "simulate_item",
+    "DEFAULT_MATERIALS", "EFFECTS_STREAM", "ITEM_STREAM", "ROOM_STREAM", "ItemDraw", "RoomDraw", "TwinRandomization",
+    "check_receiver", "item_receiver", "people_paths", "room_quadrature", "scale_people_paths", "simulate_item",
+    "strongest_room_paths",
 ]

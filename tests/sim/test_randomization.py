@@ -84,9 +84,14 @@ def test_scene_and_receiver_are_checked() -> None:
     with pytest.raises(ConfigError, match="system_gain"):
         SimulatedRadarDataset("corridor", length=2, twin_options={**FAST, "receiver": no_gain},
                               randomization=TwinRandomization(**SMALL))
+    # The effect catalog's wide levels offset the gain too.
+    with pytest.raises(ConfigError, match="wide_system_gain_offset_dB"):
+        SimulatedRadarDataset("corridor", length=2, twin_options={**FAST, "receiver": no_gain},
+                              randomization=TwinRandomization(system_gain_offset_dB=(0, 0), **SMALL))
     # Without gain offsets such a receiver is fine.
     SimulatedRadarDataset("corridor", length=2, twin_options={**FAST, "receiver": no_gain},
-                          randomization=TwinRandomization(system_gain_offset_dB=(0, 0), **SMALL))
+                          randomization=TwinRandomization(system_gain_offset_dB=(0, 0), wide_levels_probability=0,
+                                                          **SMALL))
     no_pn = FMCWReceiver(cfg, effects=[e for e in default_effects(cfg) if e.name != "phase_noise"])
     with pytest.raises(ConfigError, match="phase_noise"):
         SimulatedRadarDataset("corridor", length=2, twin_options={**FAST, "receiver": no_pn},
@@ -240,8 +245,11 @@ def test_gain_offset_scales_room_people_and_noise_alike() -> None:
     g = 4.5
     base = dict(length=8, seed=1, twin_options={**FAST, "receiver": FMCWReceiver(
         scene.config, effects=_linear_chain(scene.config, noise=True))})
-    r0 = TwinRandomization(system_gain_offset_dB=(0, 0), room_variants=1, phase_noise_rms_Hz=(0, 0))
-    rg = TwinRandomization(system_gain_offset_dB=(g, g), room_variants=1, phase_noise_rms_Hz=(0, 0))
+    # The effect catalog off: its stages (spur, drift...) do not scale with the gain.
+    r0 = TwinRandomization(system_gain_offset_dB=(0, 0), room_variants=1, phase_noise_rms_Hz=(0, 0),
+                           effects_probability=0)
+    rg = TwinRandomization(system_gain_offset_dB=(g, g), room_variants=1, phase_noise_rms_Hz=(0, 0),
+                           effects_probability=0)
     ds0 = SimulatedRadarDataset(scene, randomization=r0, **base)
     dsg = SimulatedRadarDataset(scene, randomization=rg, **base)
     dsg._variant_static = {0: ds0.prepare().variant_twin(0).static_signal()}  # one room trace
