@@ -1,4 +1,4 @@
-"""`radaraug demo`: the main job on a built-in default.
+"""`radaraug demo`: a walkthrough of one capture through the paper's chain (the main job is `make demo`).
 
 Processes the bundled BGT60TR13C recording (MIT-licensed, see ``data_cards/zharfanw_breathing.md``)
 with the paper's chain, fits CalibratedDR on it, and writes:

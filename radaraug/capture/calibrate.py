@@ -3,8 +3,9 @@
 The fit is :meth:`CalibratedDR.fit <radaraug.transforms.CalibratedDR.fit>` on the recording,
 exactly what ``radaraug fit-cdr`` does with a file, and the emptiness test is the motion check
 that fit already runs (:mod:`radaraug.transforms._motion`). Where ``fit-cdr`` only warns, this
-refuses: a calibration of a room that was not empty is not written, and the message gives the
-measured motion fraction against the threshold.
+refuses: a calibration of a room in which something moved is not written, and the message gives
+the measured motion fraction against the threshold. What does not move (a person standing still,
+a fan whose blades stay in the same cells) is not seen by the check.
 """
 
 from __future__ import annotations
@@ -70,7 +71,7 @@ def calibrate(
         A :class:`CalibrationRun`.
 
     Raises:
-        CalibrationError: the room was not empty (motion above the threshold), the recording
+        CalibrationError: something moved in the room (motion above the threshold), the recording
             has too few frames to check it (fewer than 16), or ``output`` cannot be written
             (checked before recording).
         CaptureError, DeviceError, ConfigError: as :func:`~radaraug.capture.record.record`.
