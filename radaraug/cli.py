@@ -15,7 +15,7 @@ Sub-commands::
     radaraug demo [-o DIR] [--json]             capture walkthrough: the bundled recording, a fitted CalibratedDR
     radaraug recipes [NAME] [--json]            list the installed training recipes, or print one
     radaraug train fit --config RECIPE [--key value ...]   LightningCLI recipes (RECIPE: a name or a YAML file)
-    radaraug reproduce [--quick] [--seeds N] [--calibration C] [--test PATH[:COUNT] ...] [--cdr-floor F] [--test-dr] -o OUT [--json]
+    radaraug reproduce [--quick] [--seeds N] [--calibration C --test PATH[:COUNT] ...] [--test-sets S] [--representation R] [--cdr-floor F] [--ablations A] [--test-dr] -o OUT [--json]
     radaraug make-proxy -o DIR [--frames-per-count N] [--json]   the held-out proxy test set
     radaraug diagnose CAPTURE [--scene SCENE] -o REPORT_DIR [--json]   twin vs capture, fitted twin profile
     radaraug devices [--json] [--udev-rule]     Infineon radar boards on USB
@@ -341,16 +341,28 @@ def _cmd_reproduce(args: argparse.Namespace) -> int:
 
     test = [parse_test_arg(t) for t in args.test] if args.test else None
     with _stdout_for(args):
+        settings = None
+        if args.representation is not None:
+            from dataclasses import replace
+
+            from radaraug.training.reproduce import ReproduceSettings
+
+            base = ReproduceSettings.quick() if args.quick else ReproduceSettings.full()
+            settings = replace(base, representation=args.representation)
         report = reproduce(args.output, quick=args.quick, seeds=args.seeds, calibration=args.calibration,
                            test=test, ablation=not args.no_ablation, accelerator=args.accelerator, progress=True,
-                           cdr_floor=args.cdr_floor, test_dr=args.test_dr)
+                           cdr_floor=args.cdr_floor, test_dr=args.test_dr, settings=settings,
+                           test_sets=tuple(args.test_sets.split(",")),
+                           ablations=None if args.ablations is None else [a for a in args.ablations.split(",") if a])
     if args.json:
         _print_json({"output": str(args.output), "report": str(Path(args.output) / "report.md"), **report})
         return 0
     print(f"{Path(args.output) / 'report.md'} ({report['kind']}, {report['wall_seconds'] / 60:.1f} min)")
-    for task, by in report["results"].items():
-        text = ", ".join(f"{m} {v['balanced_accuracy']['mean']:.3f}+-{v['balanced_accuracy']['std']:.3f}" for m, v in by.items())
-        print(f"  {task}: {text}")
+    for name, ts in report["test_sets"].items():
+        for task, by in ts["results"].items():
+            text = ", ".join(f"{m} {v['balanced_accuracy']['mean']:.3f}+-{v['balanced_accuracy']['std']:.3f}"
+                             for m, v in by.items())
+            print(f"  {name} {task}: {text}")
     return 0
 
 
@@ -577,16 +589,27 @@ def build_parser() -> argparse.ArgumentParser:
     rep = sub.add_parser("reproduce", help="the paper's experiment: 2 tasks x 4 methods (the paper's 3 + cdr_profile) x N seeds, report + figures")
     rep.add_argument("--quick", action="store_true", help="minutes on a 2-core CPU (what `make demo` runs)")
     rep.add_argument("--seeds", type=int, default=3, help="training seeds per method")
-    rep.add_argument("--calibration", default=None, help="empty-room capture for CDR (default: the held-out proxy's)")
+    rep.add_argument("--calibration", default=None,
+                     help="empty-room capture recorded like the --test captures (required with --test; the "
+                     "generated test sets bring their own)")
     rep.add_argument("--test", action="append", default=None, metavar="PATH[:COUNT]",
                      help="test capture; COUNT labels the whole file, else per-frame 'count' labels (repeatable)")
-    rep.add_argument("--cdr-floor", choices=("normal", "empirical"), default=None,
-                     help="CalibratedDR's floor distribution: normal (the paper's CDR; the default for a capture) "
-                     "or empirical (the calibration capture's measured distribution; docs/transforms.md)")
+    rep.add_argument("--cdr-floor", choices=("matched", "normal", "empirical"), default=None,
+                     help="CalibratedDR's floor for the CDR methods: matched (default: the capture's distribution "
+                     "deconvolved against the twin's own floor, so that max(S, N) has the capture's), normal (the "
+                     "paper's) or empirical (the capture's measured distribution); docs/training.md")
+    rep.add_argument("--representation", choices=("floor_relative", "paper"), default=None,
+                     help="network input of the main runs: floor_relative (default: each range row referenced to "
+                     "its Doppler median, zero Doppler blanked) or paper (the clipped dBFS map)")
+    rep.add_argument("--test-sets", default="proxy,independent",
+                     help="generated test sets when no --test is given, comma-separated: proxy (the twin in "
+                     "another room), independent (a NumPy generator sharing no code with the twin)")
+    rep.add_argument("--ablations", default=None,
+                     help="comma-separated ablation variants (default: the mode's list; see docs/training.md)")
     rep.add_argument("--test-dr", action="store_true",
                      help="pass the test captures through each run's DR too (not the paper's protocol; "
                      "docs/training.md)")
-    rep.add_argument("--no-ablation", action="store_true", help="skip CDR without twin randomization")
+    rep.add_argument("--no-ablation", action="store_true", help="skip the ablation variants")
     rep.add_argument("--accelerator", default="auto", help="Lightning accelerator (auto, cpu, gpu)")
     rep.add_argument("-o", "--output", required=True, help="output folder (report, runs, figures, cache)")
     rep.add_argument("--json", action="store_true", help="print the report (results per task and method, figures, settings) as one JSON object")

@@ -28,6 +28,7 @@ from radaraug.transforms import (
     ClipNormalize,
     Colormap,
     CombineRx,
+    FloorRelative,
     RadarCompose,
     RandomDR,
     RangeDoppler,
@@ -40,6 +41,14 @@ TASKS: dict[str, tuple[str, ...]] = {"occupancy": ("empty", "occupied"), "counti
 #: Noise-floor randomization methods: the paper's three, and CDR on a twin whose receiver carries
 #: the twin profile fitted (``radaraug diagnose``) on the same empty-room calibration capture.
 METHODS = ("rt", "randomdr", "cdr", "cdr_profile")
+#: Network input representations: the paper's clipped dBFS map, or each range row referenced to
+#: its own Doppler median with zero Doppler blanked (docs/training.md, "Representations").
+REPRESENTATIONS = ("paper", "floor_relative")
+#: CalibratedDR floors a run can ask for: CalibratedDR's own (``normal``: the paper's, ``empirical``:
+#: the capture's measured distribution) and ``matched``: the empirical clamp distribution
+#: deconvolved against the twin's own empty-room floor, so that ``max(S, N)`` has the capture's
+#: (:func:`radaraug.transforms.dr_fit.matched_floor_quantiles`).
+CDR_FLOORS = ("normal", "empirical", "matched")
 #: Methods whose DR is CalibratedDR (they need a calibration).
 CDR_METHODS = ("cdr", "cdr_profile")
 #: Methods whose twin receiver is the twin profile fitted on the calibration capture.
@@ -92,7 +101,8 @@ def make_dr(
         randomdr_std_db: RandomDR's range of the floor standard deviation in dB (default: the
             documented default).
         cdr_floor: CalibratedDR's floor distribution, ``"normal"`` (the paper's) or ``"empirical"``
-            (the capture's measured one); None: the calibration's own (``"normal"`` when fitted
+            (the capture's measured one; ``"matched"`` gives the empirical one here too: the data
+            module replaces its quantiles once the twin's own floor is known); None: the calibration's own (``"normal"`` when fitted
             here from a capture).
     """
     if method not in METHODS:
@@ -116,13 +126,36 @@ def make_dr(
         fitted = CalibratedDR.fit(calibration, progress=False)
     return CalibratedDR(fitted.mean_db, fitted.std_db, chain=fitted.chain, config=fitted.config,
                         map_shape=fitted.map_shape, source=fitted.source, num_frames=fitted.num_frames,
-                        motion=fitted.motion, floor=cdr_floor or fitted.floor, quantiles_db=fitted.quantiles_db,
+                        motion=fitted.motion, floor=("empirical" if cdr_floor == "matched" else cdr_floor) or fitted.floor, quantiles_db=fitted.quantiles_db,
                         seed=seed)
 
 
-def image_chain(vmin: float, vmax: float, size: Sequence[int] | None = None) -> nn.Sequential:
-    """Per-RX dB maps -> ``(3, H, W)`` viridis images in [0, 1] (the network input)."""
-    steps: list[nn.Module] = [CombineRx("mean_power", db=True), ClipNormalize(vmin, vmax), Colormap("viridis")]
+def check_representation(representation: str) -> str:
+    """``representation`` if it is one of :data:`REPRESENTATIONS` (ConfigError otherwise)."""
+    if representation not in REPRESENTATIONS:
+        raise ConfigError(f"representation must be one of {REPRESENTATIONS}, got {representation!r}")
+    return representation
+
+
+def level_chain(representation: str = "paper") -> nn.Sequential:
+    """Per-RX dB maps -> the one-channel dB map that is clipped: RX combination (+ floor referencing).
+
+    ``"paper"``: the RX-combined map in dBFS; ``"floor_relative"``: each range row referenced to its
+    Doppler median, zero Doppler ±1 bin blanked (:class:`~radaraug.transforms.FloorRelative`).
+    """
+    steps: list[nn.Module] = [CombineRx("mean_power", db=True)]
+    if check_representation(representation) == "floor_relative":
+        steps.append(FloorRelative(blank_zero_doppler=1))
+    return nn.Sequential(*steps)
+
+
+def image_chain(vmin: float, vmax: float, size: Sequence[int] | None = None,
+                representation: str = "paper") -> nn.Sequential:
+    """Per-RX dB maps -> ``(3, H, W)`` viridis images in [0, 1] (the network input).
+
+    ``representation`` picks the level chain before the clip (:func:`level_chain`).
+    """
+    steps: list[nn.Module] = [*level_chain(representation), ClipNormalize(vmin, vmax), Colormap("viridis")]
     if size is not None:
         if len(size) != 2:
             raise ConfigError(f"image size must be [H, W], got {list(size)}")
@@ -132,17 +165,19 @@ def image_chain(vmin: float, vmax: float, size: Sequence[int] | None = None) -> 
 
 @torch.no_grad()
 def estimate_clip_range(
-    db_maps: torch.Tensor, dr: nn.Module | None = None, *, percentiles: tuple[float, float] = (1.0, 99.9)
+    db_maps: torch.Tensor, dr: nn.Module | None = None, *, percentiles: tuple[float, float] = (1.0, 99.9),
+    representation: str = "paper",
 ) -> tuple[float, float]:
     """``[vmin, vmax]`` from simulated per-RX dB maps ``(N, rx, range, doppler)``.
 
     The maps go through ``dr`` (if any) and the RX combination first, so the range covers what
-    the network will see; ``vmin``/``vmax`` are the given percentiles of all cells.
+    the network will see (and the ``representation``'s level chain); ``vmin``/``vmax`` are the given
+    percentiles of all cells.
     """
     x = db_maps.float()
     if dr is not None:
         x = dr(x)
-    x = CombineRx("mean_power", db=True)(x).flatten()
+    x = level_chain(representation)(x).flatten()
     if x.numel() > 2_000_000:  # quantile() refuses very large inputs; a strided subsample is enough
         x = x[:: math.ceil(x.numel() / 2_000_000)]
     lo, hi = torch.quantile(x.double(), torch.tensor([percentiles[0] / 100, percentiles[1] / 100], dtype=torch.float64))

@@ -41,8 +41,10 @@ from radaraug.sensor.profile import PROFILE_VERSION, TwinProfile
 from radaraug.sim.dataset import SimulatedRadarDataset
 from radaraug.training.cache import CachedMaps, build_map_cache, cache_key, content_digest
 from radaraug.training.chain import (
+    CDR_FLOORS,
     CDR_METHODS,
     PROFILE_METHODS,
+    check_representation,
     check_task,
     estimate_clip_range,
     image_chain,
@@ -53,7 +55,6 @@ from radaraug.training.chain import (
 )
 from radaraug.training.testset import check_inputs
 from radaraug.transforms import CalibratedDR
-from radaraug.transforms.dr import FLOORS
 
 PROFILE_FIT_FORMAT = "radaraug-profile-fit"
 #: Version of the cached ``cdr_profile`` fits (``cache_dir/profile-<key>.json``): part of their key,
@@ -115,12 +116,18 @@ class RadarDataModule(L.LightningDataModule):
             image method, which has no ray count).
         cache_dir: folder of the simulate-once cache.
         image_size: network input ``[H, W]`` (None: the RD map's own size).
+        representation: the network input: ``"paper"`` (the RX-combined dBFS map, clipped) or
+            ``"floor_relative"`` (each range row referenced to its Doppler median, zero Doppler
+            blanked: :class:`~radaraug.transforms.FloorRelative`); see docs/training.md.
         clip_percentiles: percentiles of simulated (post-DR) maps that give ``[vmin, vmax]``.
         clip_range: a fixed ``[vmin, vmax]`` instead of the estimate.
         randomdr_mean_db, randomdr_std_db: RandomDR ranges (None: radaraug's defaults).
         cdr_floor: CalibratedDR's floor distribution for ``cdr`` / ``cdr_profile``: ``"normal"``
             (the paper's), ``"empirical"`` (the calibration capture's measured distribution, see
-            docs/transforms.md), or None (the calibration's own: ``"normal"`` for a capture).
+            docs/transforms.md), ``"matched"`` (the empirical distribution deconvolved against the
+            training twin's own empty-room floor so that ``max(S, N)`` has the capture's
+            distribution: the clamp adds only what the twin lacks; needs empty items in the
+            training split), or None (the calibration's own: ``"normal"`` for a capture).
         test_dr: also pass the test captures through the run's DR (drawn from the DR's own seeded
             generator). Not the paper's protocol, which leaves real maps untouched: with a twin whose
             floor already sits at the capture's, CDR's clamp raises the training floor ~3 dB above
@@ -152,11 +159,12 @@ class RadarDataModule(L.LightningDataModule):
         tracer_rays: int | None = None,
         cache_dir: str = "radaraug_cache",
         image_size: list[int] | None = None,
+        representation: Literal["paper", "floor_relative"] = "paper",
         clip_percentiles: tuple[float, float] = (1.0, 99.9),
         clip_range: list[float] | None = None,
         randomdr_mean_db: list[float] | None = None,
         randomdr_std_db: list[float] | None = None,
-        cdr_floor: Literal["normal", "empirical"] | None = None,
+        cdr_floor: Literal["normal", "empirical", "matched"] | None = None,
         test_dr: bool = False,
         dr_seed: int = 0,
         batch_size: int = 32,
@@ -169,8 +177,9 @@ class RadarDataModule(L.LightningDataModule):
         self.class_names = check_task(task)
         if train_items < 1 or val_items < 0:
             raise ConfigError(f"train_items must be >= 1 and val_items >= 0, got {train_items}, {val_items}")
-        if cdr_floor is not None and cdr_floor not in FLOORS:
-            raise ConfigError(f"cdr_floor must be one of {FLOORS} or null, got {cdr_floor!r}")
+        if cdr_floor is not None and cdr_floor not in CDR_FLOORS:
+            raise ConfigError(f"cdr_floor must be one of {CDR_FLOORS} or null, got {cdr_floor!r}")
+        check_representation(representation)
         self.save_hyperparameters()
         self.task, self.method = task, method
         if clip_range is not None and len(clip_range) != 2:
@@ -288,10 +297,12 @@ class RadarDataModule(L.LightningDataModule):
             if n_val > 0:
                 val = CachedMaps(build_map_cache(sim, range(n_train + rank, n_train + n_val, world), name="val", **common))
                 self._val = _Labelled(val, self.task)
+            if self.hparams["cdr_floor"] == "matched" and isinstance(self.dr, CalibratedDR):
+                self.dr = self._matched_dr(self.dr, train)
             if self.clip is None:
                 self.clip = self._estimate_clip(train)
         assert self.clip is not None  # needs_sim whenever it was None
-        self.image = image_chain(*self.clip, self.hparams["image_size"])
+        self.image = image_chain(*self.clip, self.hparams["image_size"], self.hparams["representation"])
 
         tests: list[RadarCaptureDataset] = []
         for entry in test:
@@ -409,9 +420,27 @@ class RadarDataModule(L.LightningDataModule):
         atomic_write_json(path, fit, newline=False, indent=2)
         return fit
 
+    def _matched_dr(self, dr: CalibratedDR, train: CachedMaps) -> CalibratedDR:
+        """``dr`` with its floor quantiles matched to the twin's own empty-room floor (``cdr_floor="matched"``)."""
+        from radaraug.transforms.chain import doppler_window_of
+        from radaraug.transforms.dr_fit import floor_values, matched_floor_quantiles
+
+        empty = (train.counts == 0).nonzero().flatten()[:256].tolist()
+        if not empty or dr.quantiles_db is None:
+            raise ConfigError("cdr_floor='matched' needs empty items in the training split and a calibration with "
+                              "recorded floor quantiles (fit it from the capture, not from an old JSON)")
+        twin = floor_values(train.maps(empty).float(), doppler_window_of(dr.chain) or "hann")
+        q = matched_floor_quantiles(dr.quantiles_db, twin)
+        if self.trainer is not None and self.trainer.world_size > 1:
+            q = self.trainer.strategy.broadcast(q, src=0)
+        return CalibratedDR(dr.mean_db, dr.std_db, chain=dr.chain, config=dr.config, map_shape=dr.map_shape,
+                            source=dr.source, num_frames=dr.num_frames, motion=dr.motion, floor="empirical",
+                            quantiles_db=q, seed=self.hparams["dr_seed"] + 1000 * _rank_world(self.trainer)[0])
+
     def _estimate_clip(self, train: CachedMaps) -> tuple[float, float]:
         maps = train.maps(slice(0, 256))
-        vmin, vmax = estimate_clip_range(maps, self.dr, percentiles=tuple(self.hparams["clip_percentiles"]))
+        vmin, vmax = estimate_clip_range(maps, self.dr, percentiles=tuple(self.hparams["clip_percentiles"]),
+                                         representation=self.hparams["representation"])
         if self.trainer is not None and self.trainer.world_size > 1:
             vmin, vmax = self.trainer.strategy.broadcast((vmin, vmax), src=0)
         return float(vmin), float(vmax)
@@ -448,7 +477,7 @@ class RadarDataModule(L.LightningDataModule):
         if state_dict.get("clip_range") is not None:
             vmin, vmax = state_dict["clip_range"]
             self.clip = (vmin, vmax)
-            self.image = image_chain(*self.clip, self.hparams["image_size"])
+            self.image = image_chain(*self.clip, self.hparams["image_size"], self.hparams["representation"])
 
     def _loader(self, ds: Dataset | None, *, shuffle: bool) -> DataLoader:
         if ds is None:

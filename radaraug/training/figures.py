@@ -184,3 +184,47 @@ def results_bars(results: Mapping[str, Mapping[str, Mapping[str, Any]]], path: s
         ax.set_title(f"{task}: balanced accuracy (mean +- std over seeds)", fontsize=9)
         ax.legend(fontsize=8)
     return _save(fig, path)
+
+
+def class_score(probs: torch.Tensor) -> torch.Tensor:
+    """One score per item from class probabilities ``(N, K)``: P(occupied), or the expected count.
+
+    With two classes it is the probability of the second ("occupied"); with K > 2 the expected
+    class index ``sum_k k p_k`` (counting: the expected number of people, 0 .. K-1).
+    """
+    probs = probs.double()
+    if probs.shape[-1] == 2:
+        return probs[:, 1]
+    return probs @ torch.arange(probs.shape[-1], dtype=torch.float64)
+
+
+def score_histograms(scores: Mapping[str, Mapping[str, tuple[torch.Tensor, torch.Tensor]]],
+                     class_names: Sequence[str], path: str | os.PathLike, title: str) -> Path:
+    """Score distributions per true class, simulated validation against test, one panel per method.
+
+    ``scores[method][split] = (probs (N, K), labels (N,))`` with splits such as ``"simulated val"``
+    and ``"test"``. A network that collapses to one class shows every test class piled at one
+    end while the simulated classes stay apart.
+    """
+    plt = _plt()
+    k = len(class_names)
+    fig, axes = plt.subplots(1, len(scores), figsize=(3.4 * max(len(scores), 1), 3.0), squeeze=False)
+    top = 1.0 if k == 2 else float(k - 1)
+    bins = torch.linspace(0.0, top, 26).numpy()
+    colors = ["tab:blue", "tab:orange", "tab:green", "tab:red"]
+    for ax, (name, by_split) in zip(axes[0], scores.items()):
+        for s, (split, (probs, labels)) in enumerate(by_split.items()):
+            score = class_score(probs)
+            for c in range(k):
+                v = score[labels == c]
+                if len(v) == 0:
+                    continue
+                ax.hist(v.numpy(), bins=bins, density=True, histtype="step" if s else "stepfilled",
+                        alpha=1.0 if s else 0.25, linewidth=1.4, linestyle="-" if s else "--",
+                        color=colors[c % len(colors)], label=f"{split}: {class_names[c]}")
+        ax.set_xlabel("P(occupied)" if k == 2 else "expected count", fontsize=8)
+        ax.set_title(name, fontsize=9)
+        ax.tick_params(labelsize=7)
+    axes[0][-1].legend(fontsize=6, loc="upper center")
+    fig.suptitle(title, fontsize=10)
+    return _save(fig, path)

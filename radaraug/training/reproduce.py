@@ -14,14 +14,16 @@ set: the spread reported is that of training, for a fixed twin sample.
 
 from __future__ import annotations
 
+import contextlib
+import json
 import logging
 import os
 import platform
 import statistics
 import time
 import warnings
-from collections.abc import Sequence
-from dataclasses import asdict, dataclass
+from collections.abc import Iterator, Sequence
+from dataclasses import asdict, dataclass, replace
 from pathlib import Path
 from typing import Any
 
@@ -30,7 +32,7 @@ import torch
 from radaraug._optional import lazy_import
 from radaraug.errors import ConfigError
 from radaraug.io.atomic import atomic_write_json, atomic_write_text
-from radaraug.training.chain import METHODS, PROFILE_METHODS, TASKS, is_calibration_json
+from radaraug.training.chain import CDR_METHODS, METHODS, PROFILE_METHODS, TASKS, is_calibration_json
 from radaraug.units import DB_CONVENTION
 
 
@@ -52,6 +54,15 @@ class ReproduceSettings:
     randomization: bool | dict[str, Any] = True
     #: calibration-capture frames that ``cdr_profile``'s diagnose reads (fits on half, scores on half)
     profile_max_frames: int = 100
+    #: network input of the main runs (``RadarDataModule.representation``)
+    representation: str = "floor_relative"
+    #: fit the twin's noise figure to each calibration capture (``RadarDataModule.calibrate_noise``)
+    calibrate_noise: bool = True
+    #: CalibratedDR floor of the CDR methods (``RadarDataModule.cdr_floor``)
+    cdr_floor: str | None = "matched"
+    #: ablation variants (names of :data:`ABLATIONS`) run unless ``reproduce(ablation=False)``
+    ablations: tuple[str, ...] = ("rt_paper_image", "randomdr_paper_image", "cdr_paper_image", "cdr_normal_floor",
+                                  "cdr_empirical_floor", "rt_no_twin_randomization", "rt_no_noise_fit")
 
     @classmethod
     def full(cls) -> ReproduceSettings:
@@ -83,16 +94,105 @@ def _summary(values: Sequence[float]) -> dict[str, Any]:
             "per_seed": vals}
 
 
-def _cdr_floor_of(keep: dict[tuple[str, str], tuple[Any, Any]]) -> str | None:
-    """The floor distribution the CDR runs drew from (None when no CDR method ran)."""
+def _cdr_floor_of(keep: dict[tuple[str, str, str], tuple[Any, Any]], settings: ReproduceSettings) -> str | None:
+    """The floor the main CDR runs drew from (None when no CDR method ran)."""
     from radaraug.transforms import CalibratedDR
 
-    floors = {dm.dr.floor for _, dm in keep.values() if isinstance(dm.dr, CalibratedDR)}
-    return floors.pop() if len(floors) == 1 else None
+    if not any(isinstance(dm.dr, CalibratedDR) for _, dm in keep.values()):
+        return None
+    floors = {dm.hparams["cdr_floor"] or dm.dr.floor for (_, _, n), (_, dm) in keep.items()
+              if n in CDR_METHODS and isinstance(dm.dr, CalibratedDR)}
+    return floors.pop() if len(floors) == 1 else settings.cdr_floor
 
 
-def _run_one(task: str, method: str, seed: int, *, settings: ReproduceSettings, data_kw: dict[str, Any],
-             run_dir: Path, accelerator: str, progress: bool) -> tuple[dict[str, Any], Any, Any]:
+#: The held-out test sets ``reproduce`` generates when no test captures are given: the twin in
+#: another room (:mod:`radaraug.sim.proxy`) and a NumPy generator that shares no simulation code
+#: with the twin (:mod:`radaraug.heldout`). Each comes with its own empty-room capture.
+DEFAULT_TEST_SETS = ("proxy", "independent")
+
+#: Ablation variants: name -> (method, RadarDataModule overrides). Each changes one thing of the
+#: main runs (whose settings are in ``ReproduceSettings``), so its row of the report measures it.
+ABLATIONS: dict[str, tuple[str, dict[str, Any]]] = {
+    "rt_paper_image": ("rt", {"representation": "paper"}),
+    "randomdr_paper_image": ("randomdr", {"representation": "paper"}),
+    "cdr_paper_image": ("cdr", {"representation": "paper"}),
+    "cdr_normal_floor": ("cdr", {"cdr_floor": "normal"}),
+    "cdr_empirical_floor": ("cdr", {"cdr_floor": "empirical"}),
+    "rt_no_twin_randomization": ("rt", {"randomization": False}),
+    "cdr_no_twin_randomization": ("cdr", {"randomization": False}),
+    "rt_no_noise_fit": ("rt", {"calibrate_noise": False}),
+}
+
+
+@dataclass
+class TestSet:
+    """One test side: labelled captures and the empty-room capture that calibrates for them."""
+
+    name: str
+    calibration: str | None
+    tests: list[dict[str, Any]]
+    info: dict[str, Any] | None = None
+
+
+def _test_sets(out: Path, settings: ReproduceSettings, calibration: str | None,
+               test: Sequence[dict[str, Any]] | None, names: Sequence[str], progress: bool) -> list[TestSet]:
+    """The user's captures, or the generated held-out sets named in ``names``."""
+    if test is not None:
+        if calibration is None:
+            raise ConfigError("reproduce --test needs --calibration: an empty-room capture recorded like the test "
+                              "captures (CDR and the twin's noise fit calibrate on it; without one they would "
+                              "calibrate on a generated room that has nothing to do with yours)")
+        return [TestSet("captures", calibration, [dict(e) for e in test])]
+    if calibration is not None:
+        raise ConfigError("reproduce --calibration without --test: the generated test sets bring their own "
+                          "empty-room captures; give the test captures recorded with your calibration")
+    sets = []
+    for name in names:
+        if name == "proxy":
+            from radaraug.sim.proxy import make_proxy
+
+            proxy: Any = make_proxy(out / "proxy", frames_per_count=settings.proxy_frames_per_count, progress=progress)
+        elif name == "independent":
+            from radaraug.heldout import make_independent_proxy
+
+            proxy = make_independent_proxy(out / "independent", frames_per_count=settings.proxy_frames_per_count,
+                                           progress=progress)
+        else:
+            raise ConfigError(f"unknown test set {name!r}; choose from {DEFAULT_TEST_SETS}")
+        sets.append(TestSet(name, str(proxy.calibration),
+                            [{"path": str(p), "count": int(c)} for p, c in proxy.tests], proxy.to_dict()))
+    if not sets:
+        raise ConfigError(f"no test set: name at least one of {DEFAULT_TEST_SETS}, or give --test captures")
+    return sets
+
+
+def _shared_across_test_sets(method: str, data_kw: dict[str, Any]) -> bool:
+    """True when a run does not depend on the calibration capture (train once, test on every set)."""
+    from radaraug.training.chain import CDR_METHODS
+
+    return method not in CDR_METHODS and not data_kw.get("calibrate_noise", True) and not data_kw.get("profile")
+
+
+@torch.no_grad()
+def _scores(model: Any, dm: Any, loader: Any, *, with_dr: bool, limit: int = 512) -> tuple[torch.Tensor, torch.Tensor]:
+    """Class probabilities and labels of up to ``limit`` items of ``loader`` (simulated splits with the DR)."""
+    model.eval()
+    probs, labels = [], []
+    n = 0
+    for x, y in loader:
+        x = x.to(model.device)
+        if with_dr and dm.dr is not None:
+            x = dm.dr.to(x.device).train()(x)
+        probs.append(torch.softmax(model(dm.image.to(x.device)(x)).float(), dim=1).cpu())
+        labels.append(torch.as_tensor(y).cpu())
+        n += len(y)
+        if n >= limit:
+            break
+    return torch.cat(probs)[:limit], torch.cat(labels)[:limit]
+
+
+def _fit(task: str, method: str, seed: int, *, settings: ReproduceSettings, data_kw: dict[str, Any],
+         run_dir: Path, accelerator: str, progress: bool) -> tuple[Any, Any, Any, float, float | None]:
     import lightning as L
 
     from radaraug.training.data import RadarDataModule
@@ -104,24 +204,53 @@ def _run_one(task: str, method: str, seed: int, *, settings: ReproduceSettings, 
                          image_size=list(settings.image_size), batch_size=settings.batch_size,
                          num_workers=settings.num_workers, sim_workers=settings.sim_workers,
                          tracer_rays=settings.tracer_rays, proxy_frames_per_count=settings.proxy_frames_per_count,
-                         profile_max_frames=settings.profile_max_frames, progress=progress, **({"randomization": settings.randomization} | data_kw))
+                         profile_max_frames=settings.profile_max_frames, progress=progress,
+                         **({"randomization": settings.randomization, "representation": settings.representation,
+                             "calibrate_noise": settings.calibrate_noise, "cdr_floor": settings.cdr_floor} | data_kw))
     model = RDClassifier(task=task, lr=settings.lr, out_dir=str(run_dir))
-    trainer = L.Trainer(max_epochs=settings.epochs, accelerator=accelerator, devices=1, logger=False,
-                        enable_checkpointing=False, enable_model_summary=False, num_sanity_val_steps=0,
-                        enable_progress_bar=False, default_root_dir=str(run_dir))
+    trainer = _trainer(settings, accelerator, run_dir)
     t0 = time.perf_counter()
+    with _quiet():
+        trainer.fit(model, datamodule=dm)
+    val_bacc = trainer.callback_metrics.get("val/balanced_accuracy")  # test() resets the metrics
+    return model, dm, trainer, time.perf_counter() - t0, None if val_bacc is None else float(val_bacc)
+
+
+def _trainer(settings: ReproduceSettings, accelerator: str, run_dir: Path) -> Any:
+    import lightning as L
+
+    return L.Trainer(max_epochs=settings.epochs, accelerator=accelerator, devices=1, logger=False,
+                     enable_checkpointing=False, enable_model_summary=False, num_sanity_val_steps=0,
+                     enable_progress_bar=False, default_root_dir=str(run_dir))
+
+
+@contextlib.contextmanager
+def _quiet() -> Iterator[None]:
+    """Silence Lightning's warnings that say nothing about the run (few workers, a pytree internal)."""
     with warnings.catch_warnings():
         warnings.filterwarnings("ignore", message=".*does not have many workers.*")
         warnings.filterwarnings("ignore", message=".*isinstance\\(treespec, LeafSpec\\).*")  # Lightning-internal
-        trainer.fit(model, datamodule=dm)
-        fit_s = time.perf_counter() - t0
-        val_bacc = trainer.callback_metrics.get("val/balanced_accuracy")  # test() resets the metrics
+        yield
+
+
+def _test(model: Any, dm: Any, trainer: Any, run_dir: Path) -> dict[str, Any]:
+    """Test ``model`` on ``dm``'s test captures (no DR unless ``test_dr``); the classification report."""
+    model.hparams["out_dir"] = str(run_dir)
+    with _quiet():
         trainer.test(model, datamodule=dm, verbose=False)
-    report = dict(model.last_test_report or {})
-    report.update({"task": task, "method": method, "seed": seed, "fit_seconds": fit_s,
-                   "clip_range_db": None if dm.clip is None else list(dm.clip), "val_balanced_accuracy": None if val_bacc is None else float(val_bacc)})
-    atomic_write_json(run_dir / "run.json", report, newline=False, indent=2)
-    return report, model, dm
+    return dict(model.last_test_report or {})
+
+
+def _test_dm(task: str, method: str, seed: int, trained: Any, ts: TestSet, data_kw: dict[str, Any],
+             run_dir: Path) -> Any:
+    """A data module for testing a model trained with ``trained`` (its clip range) on test set ``ts``."""
+    from radaraug.training.data import RadarDataModule
+
+    kw = dict(trained.hparams) | {"calibration": ts.calibration, "test": ts.tests, "out_dir": str(run_dir),
+                                  "proxy_dir": data_kw["proxy_dir"]}
+    dm = RadarDataModule(**kw)
+    dm.clip = trained.clip
+    return dm
 
 
 def reproduce(
@@ -134,6 +263,8 @@ def reproduce(
     tasks: Sequence[str] = tuple(TASKS),
     methods: Sequence[str] = METHODS,
     ablation: bool = True,
+    ablations: Sequence[str] | None = None,
+    test_sets: Sequence[str] = DEFAULT_TEST_SETS,
     accelerator: str = "auto",
     progress: bool = True,
     settings: ReproduceSettings | None = None,
@@ -146,17 +277,22 @@ def reproduce(
         out: output folder.
         quick: the quick settings (:meth:`ReproduceSettings.quick`) instead of the full ones.
         seeds: seeds per task x method (0 .. seeds-1).
-        calibration: empty-room capture for CDR and for ``cdr_profile``'s twin profile (None: the
-            held-out proxy's). A CalibratedDR JSON serves CDR but not ``cdr_profile``.
-        test: test entries ``{"path", "count"?}`` (None: the held-out proxy).
+        calibration: empty-room capture of the test captures, for CDR, the twin's noise fit and
+            ``cdr_profile``'s twin profile; required with ``test``, refused without it (the
+            generated test sets bring their own). A CalibratedDR JSON serves CDR but not
+            ``cdr_profile``.
+        test: test entries ``{"path", "count"?}`` (None: the generated ``test_sets``).
         tasks: subset of ``occupancy``/``counting``.
         methods: subset of ``rt``/``randomdr``/``cdr``/``cdr_profile``.
-        ablation: also train CDR without twin randomization.
+        ablation: run the ablation variants (``ablations``, default: the settings' list).
+        ablations: names from :data:`ABLATIONS` (None: ``settings.ablations``).
+        test_sets: the generated test sets used when ``test`` is None (:data:`DEFAULT_TEST_SETS`).
         accelerator: Lightning accelerator (``auto`` uses a GPU when there is one).
         progress: progress bars.
         settings: explicit sizes (overrides ``quick``).
-        cdr_floor: CalibratedDR's floor for the CDR methods: ``"normal"`` (the paper's; what None
-            means for a capture) or ``"empirical"`` (the capture's measured distribution).
+        cdr_floor: CalibratedDR's floor for the CDR methods (None: the settings'): ``"matched"``
+            (the capture's distribution deconvolved against the twin's own floor), ``"normal"``
+            (the paper's) or ``"empirical"`` (the capture's measured distribution).
         test_dr: pass the test captures through each run's DR too (not the paper's protocol; see
             :class:`~radaraug.training.data.RadarDataModule`).
     """
@@ -172,79 +308,120 @@ def reproduce(
         raise ConfigError(f"method 'cdr_profile' fits a twin profile on an empty-room capture, but the calibration "
                           f"{calibration!r} is a CalibratedDR JSON: give the capture, or leave cdr_profile out")
     settings = settings or (ReproduceSettings.quick() if quick else ReproduceSettings.full())
+    if cdr_floor is not None:
+        settings = replace(settings, cdr_floor=cdr_floor)
+    names = list(settings.ablations if ablations is None else ablations) if ablation else []
+    for n in names:
+        if n not in ABLATIONS:
+            raise ConfigError(f"unknown ablation {n!r}; choose from {sorted(ABLATIONS)}")
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     t_start = time.perf_counter()
-    proxy_info = None
-    if test is None or calibration is None:
-        from radaraug.sim.proxy import make_proxy
+    sets = _test_sets(out, settings, calibration, test, test_sets, progress)
+    from radaraug.training.testset import check_test_set
 
-        proxy = make_proxy(out / "proxy", frames_per_count=settings.proxy_frames_per_count, progress=progress)
-        proxy_info = proxy.to_dict()
-        if test is None:
-            test = [{"path": str(p), "count": int(c)} for p, c in proxy.tests]
-        if calibration is None:
-            calibration = str(proxy.calibration)
-    data_kw = {"calibration": calibration, "test": [dict(e) for e in test], "cache_dir": str(out / "cache"),
-               "proxy_dir": str(out / "proxy"), "cdr_floor": cdr_floor, "test_dr": test_dr}
+    for ts in sets:
+        for task in tasks:
+            check_test_set(ts.tests, task)
 
     variants: list[tuple[str, str, dict[str, Any]]] = [(m, m, {}) for m in methods]
-    if ablation and "cdr" in methods:
-        variants.append(("cdr_no_twin_randomization", "cdr", {"randomization": False}))
-    results: dict[str, dict[str, Any]] = {}
+    variants += [(n, *ABLATIONS[n]) for n in names if ABLATIONS[n][0] in methods]
+    results: dict[str, dict[str, dict[str, Any]]] = {ts.name: {} for ts in sets}
     runs: list[dict[str, Any]] = []
-    cms: dict[str, dict[str, torch.Tensor]] = {}
-    keep: dict[tuple[str, str], tuple[Any, Any]] = {}
+    cms: dict[str, dict[str, dict[str, torch.Tensor]]] = {ts.name: {} for ts in sets}
+    keep: dict[tuple[str, str, str], tuple[Any, Any]] = {}
+    scores: dict[str, dict[str, dict[str, dict[str, tuple[torch.Tensor, torch.Tensor]]]]] = {ts.name: {} for ts in sets}
     tqdm = lazy_import("tqdm.auto", feature="progress bars").tqdm
 
-    # Lightning logs its hardware summary at every Trainer: 24 times is noise next to the run bar.
+    # Lightning logs its hardware summary at every Trainer: dozens of times is noise next to the run bar.
     for name in ("lightning.pytorch", "lightning.fabric"):
         logging.getLogger(name).setLevel(logging.WARNING)
-    bar = tqdm(total=len(tasks) * len(variants) * seeds, desc="reproduce runs", disable=not progress)
-    for task in tasks:
-        results[task] = {}
-        cms[task] = {}
-        for name, method, extra in variants:
-            per_seed: list[float] = []
-            cm_sum: torch.Tensor | None = None
-            for seed in range(seeds):
-                run_dir = out / "runs" / f"{task}_{name}_seed{seed}"
-                bar.set_postfix_str(f"{task} {name} seed {seed}")
-                rep, model, dm = _run_one(task, method, seed, settings=settings, data_kw={**data_kw, **extra},
-                                          run_dir=run_dir, accelerator=accelerator, progress=progress)
-                bar.update(1)
-                bar.write(f"{task:9s} {name:26s} seed {seed}: balanced accuracy {rep['balanced_accuracy']:.3f} "
-                          f"(simulated val {rep['val_balanced_accuracy'] or float('nan'):.3f})")
-                runs.append({k: rep[k] for k in ("task", "method", "seed", "balanced_accuracy", "accuracy",
-                                                 "fit_seconds", "clip_range_db", "val_balanced_accuracy")}
-                            | {"variant": name})
-                per_seed.append(rep["balanced_accuracy"])
-                cm = torch.tensor(rep["confusion_matrix"])
-                cm_sum = cm if cm_sum is None else cm_sum + cm
-                if seed == 0:
-                    keep[(task, name)] = (model, dm)
-            assert cm_sum is not None  # seeds >= 1 (checked above)
-            results[task][name] = {
-                "balanced_accuracy": _summary(per_seed),
-                "accuracy": _summary([r["accuracy"] for r in runs if r["task"] == task and r["variant"] == name]),
-                "confusion_matrix_sum_over_seeds": cm_sum.tolist(),
-            }
-            cms[task][name] = cm_sum
+    bar = tqdm(total=len(sets) * len(tasks) * len(variants) * seeds, desc="reproduce runs", disable=not progress)
+    shared: dict[tuple[str, str, int], tuple[Any, Any, Any, float, float | None]] = {}
+    for ts in sets:
+        data_kw = {"calibration": ts.calibration, "test": ts.tests, "cache_dir": str(out / "cache"),
+                   "proxy_dir": str(out / "proxy"), "test_dr": test_dr}
+        for task in tasks:
+            results[ts.name][task], cms[ts.name][task], scores[ts.name][task] = {}, {}, {}
+            for name, method, extra in variants:
+                per_seed: list[float] = []
+                cm_sum: torch.Tensor | None = None
+                kw = {**data_kw, **extra}
+                is_shared = _shared_across_test_sets(
+                    method, {"calibrate_noise": settings.calibrate_noise, **extra})
+                for seed in range(seeds):
+                    run_dir = out / "runs" / ts.name / f"{task}_{name}_seed{seed}"
+                    bar.set_postfix_str(f"{ts.name} {task} {name} seed {seed}")
+                    key = (task, name, seed)
+                    if is_shared and key in shared:
+                        model, trained_dm, trainer, fit_s, val_bacc = shared[key]
+                        dm = _test_dm(task, method, seed, trained_dm, ts, kw, run_dir)
+                        trainer = _trainer(settings, accelerator, run_dir)
+                        trained_on = shared[key][1].hparams["calibration"]
+                    else:
+                        model, dm, trainer, fit_s, val_bacc = _fit(task, method, seed, settings=settings, data_kw=kw,
+                                                                   run_dir=run_dir, accelerator=accelerator,
+                                                                   progress=progress)
+                        trained_on = None
+                        if is_shared:
+                            shared[key] = (model, dm, trainer, fit_s, val_bacc)
+                    rep = _test(model, dm, trainer, run_dir)
+                    rep.update({"task": task, "method": method, "seed": seed, "fit_seconds": fit_s,
+                                "clip_range_db": None if dm.clip is None else list(dm.clip),
+                                "val_balanced_accuracy": val_bacc, "test_set": ts.name,
+                                "trained_for": trained_on or ts.calibration})
+                    atomic_write_json(run_dir / "run.json", rep, newline=False, indent=2)
+                    bar.update(1)
+                    bar.write(f"{ts.name:11s} {task:9s} {name:26s} seed {seed}: balanced accuracy "
+                              f"{rep['balanced_accuracy']:.3f} (simulated val {val_bacc or float('nan'):.3f})")
+                    runs.append({k: rep[k] for k in ("task", "method", "seed", "balanced_accuracy", "accuracy",
+                                                     "fit_seconds", "clip_range_db", "val_balanced_accuracy")}
+                                | {"variant": name, "test_set": ts.name, "shared_training": trained_on is not None})
+                    per_seed.append(rep["balanced_accuracy"])
+                    cm = torch.tensor(rep["confusion_matrix"])
+                    cm_sum = cm if cm_sum is None else cm_sum + cm
+                    if seed == 0:
+                        keep[(ts.name, task, name)] = (model, dm)
+                        if dm._val is not None or trained_on is not None:
+                            src = shared[key][1] if trained_on is not None else dm
+                            scores[ts.name][task][name] = {
+                                "simulated val": _scores(model, src, src.val_dataloader(), with_dr=True),
+                                "test": _scores(model, dm, dm.test_dataloader(), with_dr=test_dr)}
+                assert cm_sum is not None  # seeds >= 1 (checked above)
+                results[ts.name][task][name] = {
+                    "balanced_accuracy": _summary(per_seed),
+                    "accuracy": _summary([r["accuracy"] for r in runs if r["task"] == task and r["variant"] == name
+                                          and r["test_set"] == ts.name]),
+                    "confusion_matrix_sum_over_seeds": cm_sum.tolist(),
+                }
+                cms[ts.name][task][name] = cm_sum
     bar.close()
-    floors: dict[str, float] = {}
-    figures = _figures(out / "figures", keep, cms, results, calibration, test, settings, floors)
+    figures: dict[str, Path] = {}
+    floors: dict[str, dict[str, float]] = {}
+    for ts in sets:
+        floors[ts.name] = {}
+        sub = {(t, n): v for (s, t, n), v in keep.items() if s == ts.name}
+        figs = _figures(out / "figures" / ts.name, sub, cms[ts.name], results[ts.name], ts.calibration, ts.tests,
+                        settings, floors[ts.name])
+        figs |= _score_figures(out / "figures" / ts.name, scores[ts.name])
+        figures |= {f"{ts.name}/{k}": v for k, v in figs.items()}
     wall = time.perf_counter() - t_start
+    primary = sets[0]
     report = {
-        "kind": "sim-to-proxy" if proxy_info is not None else "sim-to-capture",
-        "results": results,
+        "kind": "sim-to-capture" if primary.info is None else "sim-to-generated",
+        "results": results[primary.name],
+        "test_sets": {ts.name: {"calibration": ts.calibration, "test": ts.tests, "generator": ts.info,
+                                "results": results[ts.name], "empty_room_median_db": floors[ts.name],
+                                "ablation_table": _ablation_table(results[ts.name])} for ts in sets},
         "runs": runs,
         "settings": asdict(settings) | {"seeds": seeds, "quick": quick, "tasks": list(tasks), "methods": list(methods),
-                                        "cdr_floor": _cdr_floor_of(keep), "test_dr": test_dr},
-        "test": [dict(e) for e in test],
-        "calibration": calibration,
-        "proxy": proxy_info,
+                                        "ablations": names, "cdr_floor": _cdr_floor_of(keep, settings),
+                                        "test_dr": test_dr, "test_sets": [ts.name for ts in sets]},
+        "test": primary.tests,
+        "calibration": primary.calibration,
+        "proxy": primary.info,
         "figures": {k: str(Path(v).relative_to(out)) for k, v in figures.items()},
-        "empty_room_median_db": floors,
+        "empty_room_median_db": floors[primary.name],
         "twin_noise_fit": _noise_fit_of(keep),
         "twin_profile": _profile_of(keep, out),
         "wall_seconds": wall,
@@ -256,6 +433,32 @@ def reproduce(
     atomic_write_json(out / "report.json", report, newline=False, indent=2)
     atomic_write_text(out / "report.md", _markdown(report))
     return report
+
+
+def _ablation_table(results: dict[str, dict[str, Any]]) -> list[dict[str, Any]]:
+    """Each ablation against the main run it changes: balanced accuracy with and without, per task."""
+    rows = []
+    for task, by in results.items():
+        for name, (method, change) in ABLATIONS.items():
+            if name in by and method in by:
+                main, abl = by[method]["balanced_accuracy"], by[name]["balanced_accuracy"]
+                rows.append({"task": task, "ablation": name, "changes": change, "main": method,
+                             "main_mean": main["mean"], "main_std": main["std"],
+                             "ablation_mean": abl["mean"], "ablation_std": abl["std"],
+                             "delta": abl["mean"] - main["mean"]})
+    return rows
+
+
+def _score_figures(fig_dir: Path, scores: dict[str, dict[str, Any]]) -> dict[str, Path]:
+    from radaraug.training import figures as F
+
+    figs = {}
+    for task, by in scores.items():
+        if by:
+            figs[f"scores_{task}"] = F.score_histograms(
+                by, TASKS[task], fig_dir / f"scores_{task}.png",
+                f"{task}: score per true class, simulated validation (filled) vs test (lines), seed 0")
+    return figs
 
 
 def _noise_fit_of(keep: dict) -> dict[str, Any] | None:
@@ -376,40 +579,82 @@ def _fmt(s: dict[str, Any]) -> str:
     return f"{s['mean']:.3f} ± {s['std']:.3f}"
 
 
-def _markdown(rep: dict[str, Any]) -> str:
-    lines = ["# radaraug reproduce: train on the twin, test on captures", ""]
-    if rep["kind"] == "sim-to-proxy":
-        lines += ["**These are sim-to-proxy numbers, not sim-to-real.** The test captures are the held-out proxy "
-                  "that radaraug generates from a deliberately different twin configuration (another room with "
-                  "clutter, another motion source, other sensor effects; docs/proxy.md). They show that training "
-                  "survives a twin it was not made with; they are not a measurement on a real sensor.", ""]
-    else:
-        lines += ["Test captures: " + ", ".join(f"`{e['path']}`" + (f" (count {e['count']})" if e.get('count') is not None else " (per-frame labels)") for e in rep["test"]), ""]
-    st = rep["settings"]
-    sets = ("; `cdr_profile` trains on a second set of that size, simulated with the twin profile's receiver"
-            if "cdr_profile" in st.get("methods", []) else "")
-    lines += [f"Seeds: {st['seeds']} (network init, DR draws, batch order; one shared simulated set of "
-              f"{st['train_items']} training + {st['val_items']} validation items{sets}). Epochs {st['epochs']}, image "
-              f"{st['image_size'][0]}x{st['image_size'][1]}, {'quick' if st['quick'] else 'full'} mode. "
-              f"Wall time {rep['wall_seconds'] / 60:.1f} min on {rep['machine']['device']}."
-              + (f" CalibratedDR floor: {st['cdr_floor']}"
-                 f"{' (the paper’s normal in dB)' if st['cdr_floor'] == 'normal' else ' (the capture’s measured distribution)'}."
-                 if st.get("cdr_floor") else "")
-              + (" **Test captures went through each run's DR too (`test_dr`), not the paper's protocol.**"
-                 if st.get("test_dr") else ""), "",
-              "## Balanced accuracy (mean ± std over seeds)", "",
-              "| task | " + " | ".join(next(iter(rep["results"].values())).keys()) + " |",
-              "|---|" + "---|" * len(next(iter(rep["results"].values()))), ]
-    for task, by in rep["results"].items():
-        lines.append(f"| {task} | " + " | ".join(_fmt(v["balanced_accuracy"]) for v in by.values()) + " |")
-    lines += ["", "Paper (real corridor): occupancy 97 % CDR, ~83 % RandomDR, ~50 % RT; counting 72 % / ~61 % / ~33 %.", ""]
+TEST_SET_TEXT = {
+    "proxy": ("**proxy**: radaraug's own twin in another room (other clutter, motion source, receiver effects; "
+              "docs/proxy.md). It shares the twin's simulation code."),
+    "independent": ("**independent**: a NumPy generator that shares no simulation code with the twin (its own "
+                    "receiver, room and walkers; docs/proxy.md). Its settings were fixed before any training result "
+                    "was seen."),
+}
+
+QUICK_TRADES = ("Quick mode trades, against full mode (6000 items, 15 epochs, 128 x 64, every ablation): fewer "
+                "simulated items and epochs, 64 x 32 images, and only the ablations listed in its settings; the "
+                "network is still the paper's ResNet18. Full mode is for a GPU.")
+
+
+def _results_table(results: dict[str, dict[str, Any]]) -> list[str]:
+    cols = list(next(iter(results.values())).keys())
+    lines = ["| task | " + " | ".join(cols) + " |", "|---|" + "---|" * len(cols)]
+    for task, by in results.items():
+        lines.append(f"| {task} | " + " | ".join(_fmt(by[c]["balanced_accuracy"]) if c in by else "" for c in cols)
+                     + " |")
+    return lines
+
+
+def _orderings(results: dict[str, dict[str, Any]]) -> list[str]:
     order = []
-    for task, by in rep["results"].items():
+    for task, by in results.items():
         m = {k: v["balanced_accuracy"]["mean"] for k, v in by.items()}
         if all(k in m for k in ("rt", "randomdr", "cdr")):
             holds = m["rt"] < m["randomdr"] < m["cdr"]
             order.append(f"- {task}: paper's ordering RT < RandomDR < CDR {'holds' if holds else 'does NOT hold'} "
                          f"({m['rt']:.3f} / {m['randomdr']:.3f} / {m['cdr']:.3f}).")
+        best = max(m, key=lambda k: m[k])
+        order.append(f"- {task}: best {best} {m[best]:.3f}.")
+    return order
+
+
+def _markdown(rep: dict[str, Any]) -> str:
+    lines = ["# radaraug reproduce: train on the twin, test on captures", ""]
+    st = rep["settings"]
+    sets_text = ("; `cdr_profile` trains on its own set of that size, simulated with the twin profile's receiver"
+                 if "cdr_profile" in st.get("methods", []) else "")
+    lines += [f"Seeds: {st['seeds']} (network init, DR draws, batch order; simulated sets of {st['train_items']} "
+              f"training + {st['val_items']} validation items{sets_text}). Epochs {st['epochs']}, image "
+              f"{st['image_size'][0]}x{st['image_size'][1]}, representation `{st.get('representation', 'paper')}`, "
+              f"{'quick' if st['quick'] else 'full'} mode. Wall time {rep['wall_seconds'] / 60:.1f} min on "
+              f"{rep['machine']['device']}."
+              + (f" CalibratedDR floor of the CDR methods: `{st['cdr_floor']}`." if st.get("cdr_floor") else "")
+              + (" **Test captures went through each run's DR too (`test_dr`), not the paper's protocol.**"
+                 if st.get("test_dr") else ""), ""]
+    if st["quick"]:
+        lines += [QUICK_TRADES, ""]
+    if rep["kind"] == "sim-to-generated":
+        lines += ["**These are sim-to-generated numbers, not sim-to-real.** The test captures come from generators "
+                  "that training was not made with, each with its own empty-room capture (CDR and the twin's noise "
+                  "fit see only that):", ""]
+        lines += [f"- {TEST_SET_TEXT.get(name, name)}" for name in rep["test_sets"]]
+        lines += [""]
+    for name, ts in rep["test_sets"].items():
+        lines += [f"## Test set `{name}`: balanced accuracy (mean ± std over seeds)", ""]
+        if ts["generator"] is None:
+            lines += ["Test captures: " + ", ".join(
+                f"`{e['path']}`" + (f" (count {e['count']})" if e.get("count") is not None else " (per-frame labels)")
+                for e in ts["test"]) + f"; calibration `{ts['calibration']}`.", ""]
+        lines += [*_results_table(ts["results"]), "", *_orderings(ts["results"]), ""]
+        if ts["ablation_table"]:
+            lines += ["| task | ablation | changes | main run | with | without (ablation) | delta |",
+                      "|---|---|---|---|---|---|---|"]
+            for r in ts["ablation_table"]:
+                lines.append(f"| {r['task']} | {r['ablation']} | `{json.dumps(r['changes'])}` | {r['main']} | "
+                             f"{r['main_mean']:.3f} ± {r['main_std']:.3f} | {r['ablation_mean']:.3f} ± "
+                             f"{r['ablation_std']:.3f} | {r['delta']:+.3f} |")
+            lines += [""]
+    lines += ["Paper (real corridor): occupancy 97 % CDR, ~83 % RandomDR, ~50 % RT; counting 72 % / ~61 % / ~33 %.", ""]
+    order: list[str] = []
+    rep_results = rep["results"]
+    for task, by in rep_results.items():
+        m = {k: v["balanced_accuracy"]["mean"] for k, v in by.items()}
         if "cdr_profile" in m and "cdr" in m:
             order.append(f"- {task}: CDR on the profile twin {m['cdr_profile']:.3f} vs CDR on the noise-fitted twin "
                          f"{m['cdr']:.3f}.")
@@ -425,9 +670,8 @@ def _markdown(rep: dict[str, Any]) -> str:
             f"- CDR raises the simulated empty-room floor above the capture's: median {floors['simulation']:.1f} dB "
             f"(simulation) -> {floors['simulation_cdr']:.1f} dB (simulation + CDR) against {floors['capture']:.1f} dB "
             f"(capture). {why} the simulated floor already sits near the capture's and the clamp "
-            "max(S, N) adds a second, i.i.d. floor on top: training sees a higher, rougher floor than the test "
-            "captures have, which penalises CDR against RT (see docs/training.md, 'What the numbers show').")
-    lines += ["## Ordering and ablation", "", *order, ""]
+            "max(S, N) adds a second floor on top (docs/training.md, 'What the numbers show').")
+    lines += ["## Notes on the first test set", "", *order, ""] if order else []
     prof = rep.get("twin_profile")
     if prof:
         def db(v: Any) -> str:
@@ -449,14 +693,16 @@ def _markdown(rep: dict[str, Any]) -> str:
                       f"+ CDR {floors['simulation_profile_cdr']:.1f} dB, capture {floors['capture']:.1f} dB "
                       f"(noise-fitted twin {floors['simulation']:.1f} dB, + CDR {floors['simulation_cdr']:.1f} dB).",
                       ""]
-    lines += ["## Figures", ""]
+    lines += ["## Figures", "", "Score histograms (`scores_*`): the network's score per true class on simulated "
+              "validation (filled) and on the test captures (lines), seed 0; a collapse to one class shows every test "
+              "class piled at one end.", ""]
     for key, rel in rep["figures"].items():
         lines.append(f"![{key}]({rel})")
-    lines += ["", "## Runs", "", "| task | variant | seed | balanced acc. | accuracy | val bal. acc. (sim) | clip range dB | fit s |",
-              "|---|---|---|---|---|---|---|---|"]
+    lines += ["", "## Runs", "", "| test set | task | variant | seed | balanced acc. | accuracy | val bal. acc. (sim) | "
+              "clip range dB | fit s |", "|---|---|---|---|---|---|---|---|---|"]
     for r in rep["runs"]:
         val = "n/a" if r["val_balanced_accuracy"] is None else f"{r['val_balanced_accuracy']:.3f}"
-        lines.append(f"| {r['task']} | {r['variant']} | {r['seed']} | {r['balanced_accuracy']:.3f} | "
+        lines.append(f"| {r['test_set']} | {r['task']} | {r['variant']} | {r['seed']} | {r['balanced_accuracy']:.3f} | "
                      f"{r['accuracy']:.3f} | {val} | {r['clip_range_db'][0]:.1f} .. {r['clip_range_db'][1]:.1f} | "
                      f"{r['fit_seconds']:.0f} |")
     lines += ["", f"dB convention: {rep['db_convention']}.", ""]

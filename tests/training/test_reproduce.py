@@ -1,5 +1,6 @@
 """The report builder on a tiny run (explicit captures from the independent generator)."""
 
+import dataclasses
 import inspect
 import json
 
@@ -10,7 +11,8 @@ from radaraug.errors import ConfigError
 from radaraug.training.reproduce import ReproduceSettings, parse_test_arg, reproduce
 
 TINY = ReproduceSettings(train_items=9, val_items=3, epochs=1, image_size=(32, 16), batch_size=6, tracer_rays=16,
-                         num_workers=0, sim_workers=0, randomization=False, profile_max_frames=10)
+                         num_workers=0, sim_workers=0, randomization=False, profile_max_frames=10,
+                         proxy_frames_per_count=4, ablations=())
 
 
 def test_parse_test_arg():
@@ -22,22 +24,30 @@ def test_parse_test_arg():
 def test_report_on_a_tiny_run(tmp_path, captures):
     cal, tests = captures
     rep = reproduce(tmp_path / "out", seeds=2, calibration=str(cal), settings=TINY, progress=False,
-                    accelerator="cpu", test=[{"path": str(p), "count": c} for p, c in tests])
+                    accelerator="cpu", test=[{"path": str(p), "count": c} for p, c in tests],
+                    ablations=["cdr_normal_floor", "rt_paper_image"])
     out = tmp_path / "out"
     data = json.loads((out / "report.json").read_text())
     assert data == json.loads(json.dumps(rep))
+    variants = ("rt", "randomdr", "cdr", "cdr_profile", "cdr_normal_floor", "rt_paper_image")
     for task in ("occupancy", "counting"):
-        for method in ("rt", "randomdr", "cdr", "cdr_profile", "cdr_no_twin_randomization"):
+        for method in variants:
             bacc = data["results"][task][method]["balanced_accuracy"]
             assert set(bacc) == {"mean", "std", "per_seed"} and len(bacc["per_seed"]) == 2
             assert 0 <= bacc["mean"] <= 1
-    assert data["kind"] == "sim-to-capture"
-    assert data["settings"]["cdr_floor"] == "normal"  # the paper's CDR unless asked otherwise
-    # two seeds x (4 methods + ablation) x 2 tasks, each with its own metrics files
-    assert len(data["runs"]) == 20 and len(list((out / "runs").glob("*/test_metrics.json"))) == 20
+    assert data["kind"] == "sim-to-capture" and list(data["test_sets"]) == ["captures"]
+    assert data["test_sets"]["captures"]["results"] == data["results"]
+    assert data["settings"]["cdr_floor"] == "matched" and data["settings"]["representation"] == "floor_relative"
+    # the ablation table pairs each ablation with the run it changes
+    table = {(r["task"], r["ablation"]): r for r in data["test_sets"]["captures"]["ablation_table"]}
+    row = table[("occupancy", "rt_paper_image")]
+    assert row["main"] == "rt" and row["changes"] == {"representation": "paper"}
+    assert row["delta"] == pytest.approx(row["ablation_mean"] - row["main_mean"])
+    # two seeds x (4 methods + 2 ablations) x 2 tasks, each with its own metrics files
+    assert len(data["runs"]) == 24 and len(list((out / "runs").glob("*/*/test_metrics.json"))) == 24
     for key in ("fig4_noise_floor", "fig5_rd_triplets", "fig6_static_energy", "fig7_feature_maps",
-                "fig8_confusion_occupancy", "fig9_confusion_counting"):
-        assert (out / data["figures"][key]).read_bytes()[:4] == b"\x89PNG"
+                "fig8_confusion_occupancy", "fig9_confusion_counting", "scores_occupancy", "scores_counting"):
+        assert (out / data["figures"][f"captures/{key}"]).read_bytes()[:4] == b"\x89PNG"
     assert set(data["empty_room_median_db"]) == {"simulation", "simulation_cdr", "capture", "simulation_profile",
                                                  "simulation_profile_cdr"}
     # the twin's noise figure was fitted to the calibration capture's floor (independent generator)
@@ -49,12 +59,45 @@ def test_report_on_a_tiny_run(tmp_path, captures):
     assert prof["path"].startswith("cache/profile-") and (out / prof["path"]).is_file()
     assert prof["error_after_dB"] <= prof["error_before_dB"] and isinstance(prof["effects_added"], list)
     md = (out / "report.md").read_text()
-    assert "Balanced accuracy" in md and "RT < RandomDR < CDR" in md and "## Twin profile" in md
-    assert "| task | rt | randomdr | cdr | cdr_profile | cdr_no_twin_randomization |" in md
+    assert "balanced accuracy" in md and "RT < RandomDR < CDR" in md and "## Twin profile" in md
+    assert "| task | rt | randomdr | cdr | cdr_profile | cdr_normal_floor | rt_paper_image |" in md
+    assert "| occupancy | rt_paper_image |" in md  # the ablation table
     # the main runs of a task share one simulated set (one train cache file per randomization setting),
     # but cdr_profile simulates with the profile's receiver: a set of its own
     assert len(list((out / "cache").glob("train-*.h5"))) == 2
     assert len(list((out / "cache").glob("profile-*.json"))) == 1
+
+
+def test_generated_test_sets_at_a_non_paper_config_and_shared_training(tmp_path):
+    """Two test sets; a run that does not use the calibration trains once and is tested on both."""
+    from radaraug.config import RadarConfig
+    from radaraug.heldout import make_independent_proxy
+
+    cfg = RadarConfig.bgt60tr13c(num_samples_per_chirp=64, num_chirps_per_frame=16, if_gain_dB=38.0)
+    a = make_independent_proxy(tmp_path / "a", config=cfg, frames_per_count=4, calibration_frames=16, seed=1,
+                               progress=False)
+    b = make_independent_proxy(tmp_path / "b", config=cfg, frames_per_count=4, calibration_frames=16, seed=2,
+                               progress=False)
+    import radaraug.training.reproduce as r
+
+    sets = [r.TestSet("a", str(a.calibration), [{"path": str(p), "count": c} for p, c in a.tests]),
+            r.TestSet("b", str(b.calibration), [{"path": str(p), "count": c} for p, c in b.tests])]
+    orig = r._test_sets
+    r._test_sets = lambda *args, **kw: sets
+    try:
+        settings = dataclasses.replace(TINY, calibrate_noise=False)
+        rep = reproduce(tmp_path / "out", seeds=1, settings=settings, progress=False, accelerator="cpu",
+                        tasks=["occupancy"], methods=["rt", "cdr"], ablation=False)
+    finally:
+        r._test_sets = orig
+    assert list(rep["test_sets"]) == ["a", "b"]
+    runs = {(x["test_set"], x["variant"]): x for x in rep["runs"]}
+    # RT does not use the calibration here (no noise fit): trained once, tested on both sets;
+    # CDR is calibrated on each set's own empty room: trained once per set
+    assert not runs[("a", "rt")]["shared_training"] and runs[("b", "rt")]["shared_training"]
+    assert runs[("a", "rt")]["fit_seconds"] == runs[("b", "rt")]["fit_seconds"]
+    assert not runs[("b", "cdr")]["shared_training"]
+    assert rep["settings"]["test_sets"] == ["a", "b"]
 
 
 def test_cli_reproduce_and_bad_arguments(tmp_path, captures, capsys, monkeypatch):
@@ -69,6 +112,21 @@ def test_cli_reproduce_and_bad_arguments(tmp_path, captures, capsys, monkeypatch
     assert "cdr_profile" in inspect.signature(reproduce).parameters["methods"].default
     with pytest.raises(ConfigError, match="cdr_profile.*CalibratedDR JSON"):
         reproduce(tmp_path, calibration="cdr.json", test=[{"path": str(tests[0][0]), "count": 0}])
+    # test captures without their empty room: refused, not calibrated on a generated room
+    with pytest.raises(ConfigError, match="--test needs --calibration"):
+        reproduce(tmp_path, test=[{"path": str(tests[0][0]), "count": 0}], settings=TINY)
+    with pytest.raises(ConfigError, match="--calibration without --test"):
+        reproduce(tmp_path, calibration=str(cal), settings=TINY)
+    with pytest.raises(ConfigError, match="unknown ablation"):
+        reproduce(tmp_path, calibration=str(cal), test=[{"path": str(tests[0][0]), "count": 0}], settings=TINY,
+                  ablations=["rt_with_magic"])
+    with pytest.raises(ConfigError, match="unknown test set"):
+        reproduce(tmp_path, settings=TINY, test_sets=["mars"])
+    # a count the task has no class for is refused before anything is simulated
+    with pytest.raises(ConfigError, match="count"):
+        reproduce(tmp_path / "bad", calibration=str(cal), test=[{"path": str(tests[0][0]), "count": 3}],
+                  settings=TINY, tasks=["counting"])
+    assert not (tmp_path / "bad" / "cache").exists()
     monkeypatch.setattr(r.ReproduceSettings, "quick", classmethod(lambda cls: TINY))
     import radaraug.calibration as calibration_mod
 
