@@ -119,6 +119,10 @@ class RadarDataModule(L.LightningDataModule):
         representation: the network input: ``"paper"`` (the RX-combined dBFS map, clipped) or
             ``"floor_relative"`` (each range row referenced to its Doppler median, zero Doppler
             blanked: :class:`~radaraug.transforms.FloorRelative`); see docs/training.md.
+        excise_persistent_db: with ``floor_relative``: RD cells whose median over the calibration
+            capture's frames stands more than this many dB above their row's floor (a spur's line, a
+            fan's Doppler lines: what is in every frame of the empty room) are set to the floor in
+            every map, simulated and captured alike (a CFAR-style clutter map; ``null``: none).
         clip_percentiles: percentiles of simulated (post-DR) maps that give ``[vmin, vmax]``.
         clip_range: a fixed ``[vmin, vmax]`` instead of the estimate.
         randomdr_mean_db, randomdr_std_db: RandomDR ranges (None: radaraug's defaults).
@@ -128,6 +132,11 @@ class RadarDataModule(L.LightningDataModule):
             training twin's own empty-room floor so that ``max(S, N)`` has the capture's
             distribution: the clamp adds only what the twin lacks; needs empty items in the
             training split), or None (the calibration's own: ``"normal"`` for a capture).
+        cdr_twin_noise_offset_db: for ``cdr``: lower the twin's noise (thermal and ADC-side, from the noise
+            fit or the default receiver) by this many dB (e.g. ``-15``), so that the twin's own floor
+            sits well below the capture's and CalibratedDR's clamp supplies it, as in the paper (whose
+            twin had no noise); the CDR runs then train on a simulated set of their own. None: ``cdr``
+            shares the other methods' twin (docs/training.md, "CDR on a twin with noise").
         test_dr: also pass the test captures through the run's DR (drawn from the DR's own seeded
             generator). Not the paper's protocol, which leaves real maps untouched: with a twin whose
             floor already sits at the capture's, CDR's clamp raises the training floor ~3 dB above
@@ -160,11 +169,13 @@ class RadarDataModule(L.LightningDataModule):
         cache_dir: str = "radaraug_cache",
         image_size: list[int] | None = None,
         representation: Literal["paper", "floor_relative"] = "paper",
+        excise_persistent_db: float | None = 3.0,
         clip_percentiles: tuple[float, float] = (1.0, 99.9),
         clip_range: list[float] | None = None,
         randomdr_mean_db: list[float] | None = None,
         randomdr_std_db: list[float] | None = None,
         cdr_floor: Literal["normal", "empirical", "matched"] | None = None,
+        cdr_twin_noise_offset_db: float | None = None,
         test_dr: bool = False,
         dr_seed: int = 0,
         batch_size: int = 32,
@@ -188,6 +199,7 @@ class RadarDataModule(L.LightningDataModule):
         self.dr: torch.nn.Module | None = None
         self.image: torch.nn.Module | None = None
         self.config: RadarConfig | None = None
+        self.excise: torch.Tensor | None = None
         self._train: Dataset | None = None
         self._val: Dataset | None = None
         self._test: Dataset | None = None
@@ -246,11 +258,18 @@ class RadarDataModule(L.LightningDataModule):
         extra: dict[str, Any] = {} if randomization is None else {"randomization": randomization}
         if self.twin_profile is not None:
             extra["profile"] = self.twin_profile
-        elif self.noise_fit is not None:
+        elif self.noise_fit is not None or self._quiet_twin_db() is not None:
+            from radaraug.sensor.defaults import ADC_NOISE_RMS_COUNTS, DEFAULT_NOISE_FIGURE_DB
             from radaraug.sim.noise_fit import noise_fit_receiver
 
+            fit = self.noise_fit or {"noise_figure_dB": DEFAULT_NOISE_FIGURE_DB, "adc_noise_rms_counts": ADC_NOISE_RMS_COUNTS}
+            quiet = self._quiet_twin_db()
+            if quiet is not None:
+                # CDR's twin: both noise sources lowered, so that the clamp supplies the floor (as in the paper)
+                fit = {"noise_figure_dB": float(fit["noise_figure_dB"]) + quiet,
+                       "adc_noise_rms_counts": float(fit["adc_noise_rms_counts"]) * 10 ** (quiet / 20)}
             # Both noise sources moved by the fitted offset (noise figure and ADC-side noise).
-            twin_options["receiver"] = noise_fit_receiver(self._setup_config(), self.noise_fit)
+            twin_options["receiver"] = noise_fit_receiver(self._setup_config(), fit)
         return SimulatedRadarDataset(
             self.hparams["scene"], length=self.hparams["train_items"] + self.hparams["val_items"],
             seed=self.hparams["sim_seed"], config=self.config, target="count", twin_options=twin_options, **extra,
@@ -277,6 +296,9 @@ class RadarDataModule(L.LightningDataModule):
         if isinstance(dr, CalibratedDR):  # the CDR methods
             dr.check_config(config)
 
+        if (self.excise is None and self.clip is None and self.hparams["representation"] == "floor_relative"
+                and self.hparams["excise_persistent_db"] is not None and has_capture and calibration is not None):
+            self.excise = self._persistent_cells(calibration)
         n_train, n_val = self.hparams["train_items"], self.hparams["val_items"]
         needs_sim = stage in (None, "fit", "validate") or self.clip is None
         if needs_sim:
@@ -302,7 +324,7 @@ class RadarDataModule(L.LightningDataModule):
             if self.clip is None:
                 self.clip = self._estimate_clip(train)
         assert self.clip is not None  # needs_sim whenever it was None
-        self.image = image_chain(*self.clip, self.hparams["image_size"], self.hparams["representation"])
+        self.image = image_chain(*self.clip, self.hparams["image_size"], self.hparams["representation"], self.excise)
 
         tests: list[RadarCaptureDataset] = []
         for entry in test:
@@ -420,6 +442,19 @@ class RadarDataModule(L.LightningDataModule):
         atomic_write_json(path, fit, newline=False, indent=2)
         return fit
 
+    def _persistent_cells(self, calibration: str) -> torch.Tensor:
+        """The calibration capture's persistent lines (``excise_persistent_db``), as an RD-map mask."""
+        from radaraug.transforms import CombineRx
+        from radaraug.transforms.functional import persistent_cells
+
+        with open_capture(calibration) as cap:
+            n = min(cap.num_frames, 64)
+            if n < 3:
+                raise ConfigError(f"calibration {calibration}: {n} frames; excising its persistent lines needs >= 3 "
+                                  "(record longer, or set data.excise_persistent_db: null)")
+            maps = CombineRx("mean_power", db=True)(rd_db_chain()(cap.read(0, n))).squeeze(-3)
+        return persistent_cells(maps, float(self.hparams["excise_persistent_db"]))
+
     def _matched_dr(self, dr: CalibratedDR, train: CachedMaps) -> CalibratedDR:
         """``dr`` with its floor quantiles matched to the twin's own empty-room floor (``cdr_floor="matched"``)."""
         from radaraug.transforms.chain import doppler_window_of
@@ -440,7 +475,7 @@ class RadarDataModule(L.LightningDataModule):
     def _estimate_clip(self, train: CachedMaps) -> tuple[float, float]:
         maps = train.maps(slice(0, 256))
         vmin, vmax = estimate_clip_range(maps, self.dr, percentiles=tuple(self.hparams["clip_percentiles"]),
-                                         representation=self.hparams["representation"])
+                                         representation=self.hparams["representation"], excise=self.excise)
         if self.trainer is not None and self.trainer.world_size > 1:
             vmin, vmax = self.trainer.strategy.broadcast((vmin, vmax), src=0)
         return float(vmin), float(vmax)
@@ -461,23 +496,38 @@ class RadarDataModule(L.LightningDataModule):
                 "train_class_counts": None if self.train_class_counts is None else self.train_class_counts.tolist()}
         atomic_write_json(Path(out) / "clip_range.json", info, newline=False, indent=2)
 
+    def _quiet_twin_db(self) -> float | None:
+        """The CDR twin's noise offset (``cdr_twin_noise_offset_db``), for the ``cdr`` method only."""
+        off = self.hparams["cdr_twin_noise_offset_db"]
+        return None if off is None or self.method != "cdr" else float(off)
+
     def receiver_kind(self) -> str:
-        """What the twin's receiver is: ``profile``, ``noise_fit`` or ``default``."""
+        """What the twin's receiver is: ``profile``, ``noise_fit`` or ``default`` (+ ``quiet`` for CDR's)."""
         if self.twin_profile is not None:
             return "profile"
-        return "noise_fit" if self.noise_fit is not None else "default"
+        kind = "noise_fit" if self.noise_fit is not None else "default"
+        quiet = self._quiet_twin_db()
+        return kind if quiet is None else f"{kind}, noise {quiet:+g} dB (cdr_twin_noise_offset_db)"
 
     def state_dict(self) -> dict[str, Any]:
-        """The clip range, saved in checkpoints (it is part of the model)."""
-        # The clip range is part of the model: a checkpoint tested later must clip the same way.
-        return {"clip_range": None if self.clip is None else list(self.clip)}
+        """The clip range and the excised cells, saved in checkpoints (they are part of the model)."""
+        # Part of the model: a checkpoint tested later must clip and excise the same way.
+        return {"clip_range": None if self.clip is None else list(self.clip),
+                "excise": None if self.excise is None else self.excise.nonzero().tolist(),
+                "excise_shape": None if self.excise is None else list(self.excise.shape)}
 
     def load_state_dict(self, state_dict: dict[str, Any]) -> None:
-        """Restore the clip range (and the image chain) from a checkpoint."""
+        """Restore the clip range, the excised cells (and the image chain) from a checkpoint."""
+        if state_dict.get("excise") is not None:
+            mask = torch.zeros(*state_dict["excise_shape"], dtype=torch.bool)
+            cells = torch.tensor(state_dict["excise"], dtype=torch.long).reshape(-1, 2)
+            mask[cells[:, 0], cells[:, 1]] = True
+            self.excise = mask
         if state_dict.get("clip_range") is not None:
             vmin, vmax = state_dict["clip_range"]
             self.clip = (vmin, vmax)
-            self.image = image_chain(*self.clip, self.hparams["image_size"], self.hparams["representation"])
+            self.image = image_chain(*self.clip, self.hparams["image_size"], self.hparams["representation"],
+                                     self.excise)
 
     def _loader(self, ds: Dataset | None, *, shuffle: bool) -> DataLoader:
         if ds is None:

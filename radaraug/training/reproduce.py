@@ -56,8 +56,12 @@ class ReproduceSettings:
     profile_max_frames: int = 100
     #: network input of the main runs (``RadarDataModule.representation``)
     representation: str = "floor_relative"
+    #: excise the calibration capture's persistent lines from floor-relative maps (``RadarDataModule.excise_persistent_db``)
+    excise_persistent_db: float | None = 3.0
     #: fit the twin's noise figure to each calibration capture (``RadarDataModule.calibrate_noise``)
     calibrate_noise: bool = True
+    #: CDR's twin noise below the others' (``RadarDataModule.cdr_twin_noise_offset_db``)
+    cdr_twin_noise_offset_db: float | None = -15.0
     #: CalibratedDR floor of the CDR methods (``RadarDataModule.cdr_floor``)
     cdr_floor: str | None = "matched"
     #: ablation variants (names of :data:`ABLATIONS`) run unless ``reproduce(ablation=False)``
@@ -117,10 +121,12 @@ ABLATIONS: dict[str, tuple[str, dict[str, Any]]] = {
     "randomdr_paper_image": ("randomdr", {"representation": "paper"}),
     "cdr_paper_image": ("cdr", {"representation": "paper"}),
     "cdr_normal_floor": ("cdr", {"cdr_floor": "normal"}),
+    "cdr_on_the_noisy_twin": ("cdr", {"cdr_twin_noise_offset_db": None}),
     "cdr_empirical_floor": ("cdr", {"cdr_floor": "empirical"}),
     "rt_no_twin_randomization": ("rt", {"randomization": False}),
     "cdr_no_twin_randomization": ("cdr", {"randomization": False}),
     "rt_no_noise_fit": ("rt", {"calibrate_noise": False}),
+    "rt_no_excision": ("rt", {"excise_persistent_db": None}),
 }
 
 
@@ -170,7 +176,10 @@ def _shared_across_test_sets(method: str, data_kw: dict[str, Any]) -> bool:
     """True when a run does not depend on the calibration capture (train once, test on every set)."""
     from radaraug.training.chain import CDR_METHODS
 
-    return method not in CDR_METHODS and not data_kw.get("calibrate_noise", True) and not data_kw.get("profile")
+    # the excision mask of floor_relative maps comes from the calibration capture too
+    excises = data_kw.get("representation") == "floor_relative" and data_kw.get("excise_persistent_db") is not None
+    return (method not in CDR_METHODS and not data_kw.get("calibrate_noise", True) and not data_kw.get("profile")
+            and not excises)
 
 
 @torch.no_grad()
@@ -206,7 +215,9 @@ def _fit(task: str, method: str, seed: int, *, settings: ReproduceSettings, data
                          tracer_rays=settings.tracer_rays, proxy_frames_per_count=settings.proxy_frames_per_count,
                          profile_max_frames=settings.profile_max_frames, progress=progress,
                          **({"randomization": settings.randomization, "representation": settings.representation,
-                             "calibrate_noise": settings.calibrate_noise, "cdr_floor": settings.cdr_floor} | data_kw))
+                             "calibrate_noise": settings.calibrate_noise, "cdr_floor": settings.cdr_floor,
+                             "excise_persistent_db": settings.excise_persistent_db,
+                             "cdr_twin_noise_offset_db": settings.cdr_twin_noise_offset_db} | data_kw))
     model = RDClassifier(task=task, lr=settings.lr, out_dir=str(run_dir))
     trainer = _trainer(settings, accelerator, run_dir)
     t0 = time.perf_counter()
@@ -249,7 +260,7 @@ def _test_dm(task: str, method: str, seed: int, trained: Any, ts: TestSet, data_
     kw = dict(trained.hparams) | {"calibration": ts.calibration, "test": ts.tests, "out_dir": str(run_dir),
                                   "proxy_dir": data_kw["proxy_dir"]}
     dm = RadarDataModule(**kw)
-    dm.clip = trained.clip
+    dm.clip, dm.excise = trained.clip, trained.excise
     return dm
 
 
@@ -307,6 +318,7 @@ def reproduce(
     if calibration is not None and is_calibration_json(calibration) and any(m in PROFILE_METHODS for m in methods):
         raise ConfigError(f"method 'cdr_profile' fits a twin profile on an empty-room capture, but the calibration "
                           f"{calibration!r} is a CalibratedDR JSON: give the capture, or leave cdr_profile out")
+    mode = "custom" if settings is not None else "quick" if quick else "full"
     settings = settings or (ReproduceSettings.quick() if quick else ReproduceSettings.full())
     if cdr_floor is not None:
         settings = replace(settings, cdr_floor=cdr_floor)
@@ -348,7 +360,8 @@ def reproduce(
                 cm_sum: torch.Tensor | None = None
                 kw = {**data_kw, **extra}
                 is_shared = _shared_across_test_sets(
-                    method, {"calibrate_noise": settings.calibrate_noise, **extra})
+                    method, {"calibrate_noise": settings.calibrate_noise, "representation": settings.representation,
+                             "excise_persistent_db": settings.excise_persistent_db, **extra})
                 for seed in range(seeds):
                     run_dir = out / "runs" / ts.name / f"{task}_{name}_seed{seed}"
                     bar.set_postfix_str(f"{ts.name} {task} {name} seed {seed}")
@@ -414,7 +427,7 @@ def reproduce(
                                 "results": results[ts.name], "empty_room_median_db": floors[ts.name],
                                 "ablation_table": _ablation_table(results[ts.name])} for ts in sets},
         "runs": runs,
-        "settings": asdict(settings) | {"seeds": seeds, "quick": quick, "tasks": list(tasks), "methods": list(methods),
+        "settings": asdict(settings) | {"seeds": seeds, "quick": quick, "mode": mode, "tasks": list(tasks), "methods": list(methods),
                                         "ablations": names, "cdr_floor": _cdr_floor_of(keep, settings),
                                         "test_dr": test_dr, "test_sets": [ts.name for ts in sets]},
         "test": primary.tests,
@@ -622,12 +635,12 @@ def _markdown(rep: dict[str, Any]) -> str:
     lines += [f"Seeds: {st['seeds']} (network init, DR draws, batch order; simulated sets of {st['train_items']} "
               f"training + {st['val_items']} validation items{sets_text}). Epochs {st['epochs']}, image "
               f"{st['image_size'][0]}x{st['image_size'][1]}, representation `{st.get('representation', 'paper')}`, "
-              f"{'quick' if st['quick'] else 'full'} mode. Wall time {rep['wall_seconds'] / 60:.1f} min on "
+              f"{st.get('mode', 'quick' if st['quick'] else 'full')} mode. Wall time {rep['wall_seconds'] / 60:.1f} min on "
               f"{rep['machine']['device']}."
               + (f" CalibratedDR floor of the CDR methods: `{st['cdr_floor']}`." if st.get("cdr_floor") else "")
               + (" **Test captures went through each run's DR too (`test_dr`), not the paper's protocol.**"
                  if st.get("test_dr") else ""), ""]
-    if st["quick"]:
+    if st.get("mode", "quick" if st["quick"] else "full") == "quick":
         lines += [QUICK_TRADES, ""]
     if rep["kind"] == "sim-to-generated":
         lines += ["**These are sim-to-generated numbers, not sim-to-real.** The test captures come from generators "

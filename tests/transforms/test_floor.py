@@ -79,3 +79,22 @@ def test_floor_values_leave_the_zero_doppler_main_lobe_out() -> None:
     maps[..., 6:11] = 50.0  # zero Doppler (8) and its Hann main lobe +- 2
     v = floor_values(maps, "hann")
     assert v.numel() == 2 * 3 * 4 * (16 - 5) and float(v.max()) == 0.0
+
+
+def test_persistent_cells_mark_lines_of_the_empty_room_not_its_noise() -> None:
+    maps = exp_noise_db((40, 64, 32), -100.0, seed=7)
+    maps[:, 20, 5] += 25.0  # a spur's line, in every frame
+    maps[:, 33, [10, 22]] += 8.0  # a fan's two Doppler lines
+    maps[7, 50, 3] += 40.0  # one frame's event: not persistent
+    mask = F.persistent_cells(maps, threshold_db=3.0)
+    # the median over 40 frames of a noise cell referenced to its row's median is ~0 dB, far below 3 dB
+    assert mask.shape == (64, 32) and set(map(tuple, mask.nonzero().tolist())) == {(20, 5), (33, 10), (33, 22)}
+    y = F.floor_relative(maps, excise=mask)
+    assert bool((y[:, 20, 5] == 0).all()) and bool((y[7, 50, 3] > 30).all())
+    t = FloorRelative(excise=mask)
+    torch.testing.assert_close(t(maps), y)
+    assert t.chain_spec()["excised_cells"] == 3
+    with pytest.raises(ConfigError, match="excise"):
+        F.floor_relative(maps, excise=mask[:10])
+    with pytest.raises(ConfigError, match="frames"):
+        F.persistent_cells(maps[:2])

@@ -19,7 +19,7 @@ Examples:
 """
 
 from radaraug.transforms.functional._dr import calibrated_floor, dr_clamp, empirical_floor, random_floor
-from radaraug.transforms.functional._floor import floor_relative
+from radaraug.transforms.functional._floor import floor_relative, persistent_cells
 from radaraug.transforms.functional._image import clip_normalize, colormap, colormap_lut, resize
 from radaraug.transforms.functional._spectral import (
     combine_rx,
@@ -44,6 +44,7 @@ __all__ = [
     "empirical_floor",
     "random_floor",
     "floor_relative",
+    "persistent_cells",
     "clip_normalize",
     "colormap",
     "colormap_lut",

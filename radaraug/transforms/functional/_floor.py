@@ -23,7 +23,7 @@ def check_blank_bins(bins: int) -> int:
     return bins
 
 
-def floor_relative(x: torch.Tensor, blank_zero_doppler: int = 1) -> torch.Tensor:
+def floor_relative(x: torch.Tensor, blank_zero_doppler: int = 1, excise: torch.Tensor | None = None) -> torch.Tensor:
     """Each range row of a dB RD map minus its median over Doppler; zero Doppler ± ``bins`` set to 0 dB.
 
     Args:
@@ -31,6 +31,8 @@ def floor_relative(x: torch.Tensor, blank_zero_doppler: int = 1) -> torch.Tensor
             index ``doppler // 2``, radaraug's layout), real floating.
         blank_zero_doppler: bins on each side of zero Doppler set to 0 dB (the row's floor) after
             referencing; 0 keeps them.
+        excise: optional boolean ``(range, doppler)`` mask of cells also set to 0 dB: persistent lines of
+            the empty room (a spur, a fan), found on a calibration capture by :func:`persistent_cells`.
 
     Returns:
         A map of the same shape, dtype and device, in dB relative to each row's median.
@@ -53,4 +55,33 @@ def floor_relative(x: torch.Tensor, blank_zero_doppler: int = 1) -> torch.Tensor
         centre = x.shape[-1] // 2
         lo, hi = max(centre - bins, 0), min(centre + bins + 1, x.shape[-1])
         out[..., lo:hi] = 0.0
+    if excise is not None:
+        if excise.shape != x.shape[-2:] or excise.dtype != torch.bool:
+            raise ConfigError(f"floor_relative: excise must be a bool mask of shape {tuple(x.shape[-2:])}, got "
+                              f"{excise.dtype} {tuple(excise.shape)}")
+        out = out.masked_fill(excise.to(out.device), 0.0)
     return out
+
+
+def persistent_cells(maps_db: torch.Tensor, threshold_db: float = 3.0, blank_zero_doppler: int = 1) -> torch.Tensor:
+    """Cells of an empty room's RD maps that stand persistently above their row's floor.
+
+    The median over frames of :func:`floor_relative` maps: noise alone gives ~0 dB in every cell (its
+    per-frame values scatter, their median over frames does not), so a cell whose median exceeds
+    ``threshold_db`` carries something that is there in every frame -- a spur tone's line, a fan's
+    Doppler lines, a phase-noise skirt's shoulder. Like a CFAR clutter map, these cells are then left
+    out of every map (:func:`floor_relative`'s ``excise``), simulated and captured alike.
+
+    Args:
+        maps_db: ``(frames, range, doppler)`` dB maps of the empty room (RX combined), >= 3 frames.
+        threshold_db: excess of the median over the row's floor that marks a cell.
+        blank_zero_doppler: as :func:`floor_relative` (those cells are blanked anyway, not marked).
+
+    Returns:
+        A ``(range, doppler)`` bool mask.
+    """
+    x = check_tensor(maps_db, "persistent_cells expects dB maps (frames, range, doppler)", min_ndim=3, finite=False)
+    if x.ndim != 3 or x.shape[0] < 3:
+        raise ConfigError(f"persistent_cells needs (frames >= 3, range, doppler) maps, got {tuple(x.shape)}")
+    med = floor_relative(x, blank_zero_doppler).median(dim=0).values
+    return med > float(threshold_db)
