@@ -352,7 +352,7 @@ def _cmd_reproduce(args: argparse.Namespace) -> int:
         report = reproduce(args.output, quick=args.quick, seeds=args.seeds, calibration=args.calibration,
                            test=test, ablation=not args.no_ablation, accelerator=args.accelerator, progress=True,
                            cdr_floor=args.cdr_floor, test_dr=args.test_dr, settings=settings,
-                           test_sets=tuple(args.test_sets.split(",")),
+                           test_sets=None if args.test_sets is None else tuple(args.test_sets.split(",")),
                            ablations=None if args.ablations is None else [a for a in args.ablations.split(",") if a])
     if args.json:
         _print_json({"output": str(args.output), "report": str(Path(args.output) / "report.md"), **report})
@@ -601,9 +601,10 @@ def build_parser() -> argparse.ArgumentParser:
     rep.add_argument("--representation", choices=("floor_relative", "paper"), default=None,
                      help="network input of the main runs: floor_relative (default: each range row referenced to "
                      "its Doppler median, zero Doppler blanked) or paper (the clipped dBFS map)")
-    rep.add_argument("--test-sets", default="proxy,independent",
+    rep.add_argument("--test-sets", default=None,
                      help="generated test sets when no --test is given, comma-separated: proxy (the twin in "
-                     "another room), independent (a NumPy generator sharing no code with the twin)")
+                     "another room), independent (a NumPy generator sharing no code with the twin); default: "
+                     "independent with --quick, both in full mode")
     rep.add_argument("--ablations", default=None,
                      help="comma-separated ablation variants (default: the mode's list; see docs/training.md)")
     rep.add_argument("--test-dr", action="store_true",

@@ -132,50 +132,80 @@ def build_map_cache(
     Returns:
         ``cache_dir/<name>-<key>.h5``.
     """
-    spec = cache_spec(dataset, indices)
-    key = cache_key(spec)
+    return build_map_caches(dataset, {name: indices}, cache_dir, batch_size=batch_size, num_workers=num_workers,
+                            progress=progress)[name]
+
+
+def build_map_caches(
+    dataset: SimulatedRadarDataset,
+    splits: dict[str, Sequence[int]],
+    cache_dir: str | os.PathLike,
+    *,
+    batch_size: int = 16,
+    num_workers: int = 0,
+    progress: bool = True,
+) -> dict[str, Path]:
+    """One cache file per split (``{name: indices}``), the missing ones simulated in one pass.
+
+    As :func:`build_map_cache` for each split (same file names and keys), but the splits that are not
+    cached yet are simulated by one DataLoader: its workers set up each room variant once for all of
+    them instead of once per split.
+    """
     cache_dir = Path(cache_dir)
-    path = cache_dir / f"{name}-{key}.h5"
-    if path.is_file():
-        return path
+    paths = {name: cache_dir / f"{name}-{cache_key(cache_spec(dataset, idx))}.h5" for name, idx in splits.items()}
+    todo = [name for name, path in paths.items() if not path.is_file() and len(splits[name])]
+    if not todo:
+        return paths
     cache_dir.mkdir(parents=True, exist_ok=True)
-    _remove_dead_partials(path)
+    for name in todo:
+        _remove_dead_partials(paths[name])
     sim = _RawItems(dataset)
     if num_workers > 0:
         dataset.prepare()
-    loader = DataLoader(Subset(sim, list(indices)), batch_size=batch_size, num_workers=num_workers,
+    order = [(name, i) for name in todo for i in splits[name]]
+    loader = DataLoader(Subset(sim, [i for _, i in order]), batch_size=batch_size, num_workers=num_workers,
                         persistent_workers=False)
     chain = rd_db_chain()
-    partial = path.with_suffix(f".partial-{os.getpid()}.h5")
-    n = len(indices)
+    partials = {name: paths[name].with_suffix(f".partial-{os.getpid()}.h5") for name in todo}
+    total = len(order)
     try:
-        with h5py.File(partial, "w") as f:
-            f.attrs["format"] = CACHE_FORMAT
-            f.attrs["version"] = CACHE_VERSION
-            f.attrs["key"] = key
-            f.attrs["spec"] = json.dumps(spec)
-            f.attrs["db_convention"] = DB_CONVENTION
-            maps = counts = None
-            done = 0
-            bar = _progress(n, f"simulating {n} items", progress)
+        files = {name: h5py.File(partials[name], "w") for name in todo}
+        try:
+            for name, f in files.items():
+                spec = cache_spec(dataset, splits[name])
+                f.attrs["format"] = CACHE_FORMAT
+                f.attrs["version"] = CACHE_VERSION
+                f.attrs["key"] = cache_key(spec)
+                f.attrs["spec"] = json.dumps(spec)
+                f.attrs["db_convention"] = DB_CONVENTION
+                f.create_dataset("index", data=np.asarray(list(splits[name]), dtype=np.int64))
+            done = 0  # position in ``order``
+            bar = _progress(total, f"simulating {total} items", progress)
             for x, count in loader:
-                db = chain(x)
-                if maps is None or counts is None:  # the first batch: both are created together
-                    shape = tuple(db.shape[1:])
-                    maps = f.create_dataset("maps", (n, *shape), dtype="float16", chunks=(1, *shape))
-                    counts = f.create_dataset("count", (n,), dtype="int64")
-                    f.create_dataset("index", data=np.asarray(list(indices), dtype=np.int64))
-                k = db.shape[0]
-                maps[done:done + k] = db.clamp(-300, 300).numpy().astype(np.float16)
-                counts[done:done + k] = count.numpy()
-                done += k
-                bar.update(k)
+                db = chain(x).clamp(-300, 300).numpy().astype(np.float16)
+                for k in range(db.shape[0]):  # rows of the batch may belong to two splits
+                    name, _ = order[done]
+                    f = files[name]
+                    row = done - sum(len(splits[n]) for n in todo[: todo.index(name)])
+                    if "maps" not in f:
+                        n = len(splits[name])
+                        f.create_dataset("maps", (n, *db.shape[1:]), dtype="float16", chunks=(1, *db.shape[1:]))
+                        f.create_dataset("count", (n,), dtype="int64")
+                    f["maps"][row] = db[k]
+                    f["count"][row] = int(count[k])
+                    done += 1
+                bar.update(db.shape[0])
             bar.close()
-        os.replace(partial, path)
+        finally:
+            for f in files.values():
+                f.close()
+        for name in todo:
+            os.replace(partials[name], paths[name])
     finally:
-        if partial.exists():
-            partial.unlink()
-    return path
+        for partial in partials.values():
+            if partial.exists():
+                partial.unlink()
+    return paths
 
 
 def _remove_dead_partials(path: Path) -> None:

@@ -39,7 +39,7 @@ from radaraug.io import RadarCaptureDataset, open_capture
 from radaraug.io.atomic import atomic_write_json
 from radaraug.sensor.profile import PROFILE_VERSION, TwinProfile
 from radaraug.sim.dataset import SimulatedRadarDataset
-from radaraug.training.cache import CachedMaps, build_map_cache, cache_key, content_digest
+from radaraug.training.cache import CachedMaps, build_map_caches, cache_key, content_digest
 from radaraug.training.chain import (
     CDR_FLOORS,
     CDR_METHODS,
@@ -88,7 +88,8 @@ class RadarDataModule(L.LightningDataModule):
 
     Args:
         task: ``occupancy`` (2 classes) or ``counting`` (0/1/2 people).
-        method: ``rt``, ``randomdr`` or ``cdr`` (noise-floor randomization in training), or
+        method: ``rt``, ``randomdr`` (default: it wins on held-out data, docs/training.md) or ``cdr``
+            (noise-floor randomization in training), or
             ``cdr_profile``: ``cdr``'s DR on a twin whose receiver is the twin profile fitted
             (:func:`radaraug.calibration.diagnose`, no scene) on the calibration capture.
         scene: training scene: built-in name or scene file (default: the paper's corridor).
@@ -116,9 +117,10 @@ class RadarDataModule(L.LightningDataModule):
             image method, which has no ray count).
         cache_dir: folder of the simulate-once cache.
         image_size: network input ``[H, W]`` (None: the RD map's own size).
-        representation: the network input: ``"paper"`` (the RX-combined dBFS map, clipped) or
-            ``"floor_relative"`` (each range row referenced to its Doppler median, zero Doppler
-            blanked: :class:`~radaraug.transforms.FloorRelative`); see docs/training.md.
+        representation: the network input: ``"floor_relative"`` (default: each range row referenced to
+            its Doppler median, zero Doppler blanked, the calibration's persistent lines excised:
+            :class:`~radaraug.transforms.FloorRelative`) or ``"paper"`` (the RX-combined dBFS map,
+            clipped); see docs/training.md.
         excise_persistent_db: with ``floor_relative``: RD cells whose median over the calibration
             capture's frames stands more than this many dB above their row's floor (a spur's line, a
             fan's Doppler lines: what is in every frame of the empty room) are set to the floor in
@@ -152,7 +154,7 @@ class RadarDataModule(L.LightningDataModule):
     def __init__(
         self,
         task: str = "occupancy",
-        method: str = "cdr",
+        method: str = "randomdr",
         scene: str = "corridor",
         calibration: str | None = None,
         test: list[dict[str, Any]] | None = None,
@@ -168,7 +170,7 @@ class RadarDataModule(L.LightningDataModule):
         tracer_rays: int | None = None,
         cache_dir: str = "radaraug_cache",
         image_size: list[int] | None = None,
-        representation: Literal["paper", "floor_relative"] = "paper",
+        representation: Literal["paper", "floor_relative"] = "floor_relative",
         excise_persistent_db: float | None = 3.0,
         clip_percentiles: tuple[float, float] = (1.0, 99.9),
         clip_range: list[float] | None = None,
@@ -311,13 +313,16 @@ class RadarDataModule(L.LightningDataModule):
                       "progress": self.hparams["progress"] and rank == 0}
             # Equal shards: DDP all-reduces gradients every step, so a rank with one batch more than
             # the others would wait forever. The last n_train % world items are left out.
-            train = CachedMaps(build_map_cache(sim, range(rank, n_train - n_train % world, world), name="train",
-                                               **common))
+            # train and val simulated in one pass (the workers set each room variant up once)
+            splits = {"train": range(rank, n_train - n_train % world, world),
+                      "val": range(n_train + rank, n_train + n_val, world)}
+            built = build_map_caches(sim, splits, **common)
+            train = CachedMaps(built["train"])
             self.train_class_counts = torch.bincount(label_of(train.counts, self.task),
                                                      minlength=len(self.class_names))
             self._train = _Labelled(train, self.task)
             if n_val > 0:
-                val = CachedMaps(build_map_cache(sim, range(n_train + rank, n_train + n_val, world), name="val", **common))
+                val = CachedMaps(built["val"])
                 self._val = _Labelled(val, self.task)
             if self.hparams["cdr_floor"] == "matched" and isinstance(self.dr, CalibratedDR):
                 self.dr = self._matched_dr(self.dr, train)

@@ -56,10 +56,14 @@ class ReproduceSettings:
     profile_max_frames: int = 100
     #: network input of the main runs (``RadarDataModule.representation``)
     representation: str = "floor_relative"
+    #: methods run unless ``reproduce(methods=...)`` names them
+    methods: tuple[str, ...] = METHODS
+    #: generated test sets used when no test captures are given (:data:`DEFAULT_TEST_SETS`)
+    test_sets: tuple[str, ...] = ("proxy", "independent")
     #: excise the calibration capture's persistent lines from floor-relative maps (``RadarDataModule.excise_persistent_db``)
     excise_persistent_db: float | None = 3.0
     #: fit the twin's noise figure to each calibration capture (``RadarDataModule.calibrate_noise``)
-    calibrate_noise: bool = True
+    calibrate_noise: bool = False
     #: CDR's twin noise below the others' (``RadarDataModule.cdr_twin_noise_offset_db``)
     cdr_twin_noise_offset_db: float | None = -15.0
     #: CalibratedDR floor of the CDR methods (``RadarDataModule.cdr_floor``)
@@ -80,8 +84,9 @@ class ReproduceSettings:
         And a 40-frame diagnose for ``cdr_profile`` (the room: the twin's default image-method trace,
         faster than a coarse SBR trace and converged).
         """
-        return cls(train_items=360, val_items=90, epochs=4, image_size=(64, 32), batch_size=32,
-                   proxy_frames_per_count=60, num_workers=0, sim_workers=0, profile_max_frames=40)
+        return cls(train_items=800, val_items=90, epochs=4, image_size=(64, 32), batch_size=32,
+                   proxy_frames_per_count=60, num_workers=0, sim_workers=2, profile_max_frames=40,
+                   methods=("rt", "randomdr", "cdr"), ablations=(), test_sets=("independent",))
 
 
 def parse_test_arg(text: str) -> dict[str, Any]:
@@ -124,8 +129,10 @@ ABLATIONS: dict[str, tuple[str, dict[str, Any]]] = {
     "cdr_on_the_noisy_twin": ("cdr", {"cdr_twin_noise_offset_db": None}),
     "cdr_empirical_floor": ("cdr", {"cdr_floor": "empirical"}),
     "rt_no_twin_randomization": ("rt", {"randomization": False}),
+    "rt_no_effect_catalog": ("rt", {"randomization": {"effects_probability": 0.0}}),
+    "rt_narrow_people": ("rt", {"randomization": {"rcs_scale_dB": [-3.0, 3.0]}}),
     "cdr_no_twin_randomization": ("cdr", {"randomization": False}),
-    "rt_no_noise_fit": ("rt", {"calibrate_noise": False}),
+    "rt_noise_fit": ("rt", {"calibrate_noise": True}),
     "rt_no_excision": ("rt", {"excise_persistent_db": None}),
 }
 
@@ -272,10 +279,10 @@ def reproduce(
     calibration: str | None = None,
     test: Sequence[dict[str, Any]] | None = None,
     tasks: Sequence[str] = tuple(TASKS),
-    methods: Sequence[str] = METHODS,
+    methods: Sequence[str] | None = None,
     ablation: bool = True,
     ablations: Sequence[str] | None = None,
-    test_sets: Sequence[str] = DEFAULT_TEST_SETS,
+    test_sets: Sequence[str] | None = None,
     accelerator: str = "auto",
     progress: bool = True,
     settings: ReproduceSettings | None = None,
@@ -294,10 +301,11 @@ def reproduce(
             ``cdr_profile``.
         test: test entries ``{"path", "count"?}`` (None: the generated ``test_sets``).
         tasks: subset of ``occupancy``/``counting``.
-        methods: subset of ``rt``/``randomdr``/``cdr``/``cdr_profile``.
+        methods: subset of ``rt``/``randomdr``/``cdr``/``cdr_profile`` (None: the settings').
         ablation: run the ablation variants (``ablations``, default: the settings' list).
         ablations: names from :data:`ABLATIONS` (None: ``settings.ablations``).
-        test_sets: the generated test sets used when ``test`` is None (:data:`DEFAULT_TEST_SETS`).
+        test_sets: the generated test sets used when ``test`` is None (None: the settings'; names from
+            :data:`DEFAULT_TEST_SETS`).
         accelerator: Lightning accelerator (``auto`` uses a GPU when there is one).
         progress: progress bars.
         settings: explicit sizes (overrides ``quick``).
@@ -312,16 +320,19 @@ def reproduce(
     for t in tasks:
         if t not in TASKS:
             raise ConfigError(f"unknown task {t!r}; choose from {sorted(TASKS)}")
+    mode = "custom" if settings is not None else "quick" if quick else "full"
+    settings = settings or (ReproduceSettings.quick() if quick else ReproduceSettings.full())
+    if cdr_floor is not None:
+        settings = replace(settings, cdr_floor=cdr_floor)
+    methods = tuple(settings.methods if methods is None else methods)
+    test_sets = tuple(settings.test_sets if test_sets is None else test_sets)
     for m in methods:
         if m not in METHODS:
             raise ConfigError(f"unknown method {m!r}; choose from {METHODS}")
     if calibration is not None and is_calibration_json(calibration) and any(m in PROFILE_METHODS for m in methods):
         raise ConfigError(f"method 'cdr_profile' fits a twin profile on an empty-room capture, but the calibration "
                           f"{calibration!r} is a CalibratedDR JSON: give the capture, or leave cdr_profile out")
-    mode = "custom" if settings is not None else "quick" if quick else "full"
-    settings = settings or (ReproduceSettings.quick() if quick else ReproduceSettings.full())
-    if cdr_floor is not None:
-        settings = replace(settings, cdr_floor=cdr_floor)
+
     names = list(settings.ablations if ablations is None else ablations) if ablation else []
     for n in names:
         if n not in ABLATIONS:

@@ -134,3 +134,20 @@ def test_maps_by_index_list_read_from_the_file(tmp_path):
     disk, memory = CachedMaps(path, in_memory=False), CachedMaps(path)
     assert torch.equal(disk.maps([2, 0]), memory.maps([2, 0]))
     assert torch.equal(disk.maps(slice(1, 3)), memory.maps(slice(1, 3)))
+
+
+def test_splits_built_in_one_pass_equal_separate_builds(tmp_path):
+    from radaraug.training.cache import build_map_caches
+
+    one = build_map_caches(_ds(), {"train": range(0, 4), "val": range(4, 6)}, tmp_path / "a", progress=False,
+                           batch_size=3)  # a batch straddles the two splits
+    sep = {"train": build_map_cache(_ds(), range(0, 4), tmp_path / "b", name="train", progress=False),
+           "val": build_map_cache(_ds(), range(4, 6), tmp_path / "b", name="val", progress=False)}
+    for name in ("train", "val"):
+        assert one[name].name == sep[name].name  # same keys
+        a, b = CachedMaps(one[name]), CachedMaps(sep[name])
+        assert torch.equal(a.maps(), b.maps()) and torch.equal(a.counts, b.counts)
+        assert a.indices.tolist() == b.indices.tolist()
+    mtime = one["val"].stat().st_mtime_ns
+    assert build_map_caches(_ds(), {"train": range(0, 4), "val": range(4, 6)}, tmp_path / "a",
+                            progress=False)["val"].stat().st_mtime_ns == mtime  # reused

@@ -23,7 +23,8 @@ def test_clip_range_must_be_two_values_and_setup_must_run_first():
     with pytest.raises(ConfigError, match="setup"):
         dm.images(torch.zeros(1, 3, 8, 4))
     dm.load_state_dict({"clip_range": [-110.0, -50.0]})
-    assert dm.clip == (-110.0, -50.0) and dm.state_dict() == {"clip_range": [-110.0, -50.0]}
+    assert dm.clip == (-110.0, -50.0)
+    assert dm.state_dict() == {"clip_range": [-110.0, -50.0], "excise": None, "excise_shape": None}
 
 
 def test_cdr_floor_reaches_the_dr_and_is_checked(captures, tmp_path):

@@ -12,7 +12,7 @@ from radaraug.training.reproduce import ReproduceSettings, parse_test_arg, repro
 
 TINY = ReproduceSettings(train_items=9, val_items=3, epochs=1, image_size=(32, 16), batch_size=6, tracer_rays=16,
                          num_workers=0, sim_workers=0, randomization=False, profile_max_frames=10,
-                         proxy_frames_per_count=4, ablations=())
+                         proxy_frames_per_count=4, ablations=(), calibrate_noise=True)
 
 
 def test_parse_test_arg():
@@ -62,9 +62,9 @@ def test_report_on_a_tiny_run(tmp_path, captures):
     assert "balanced accuracy" in md and "RT < RandomDR < CDR" in md and "## Twin profile" in md
     assert "| task | rt | randomdr | cdr | cdr_profile | cdr_normal_floor | rt_paper_image |" in md
     assert "| occupancy | rt_paper_image |" in md  # the ablation table
-    # the main runs of a task share one simulated set (one train cache file per randomization setting),
-    # but cdr_profile simulates with the profile's receiver: a set of its own
-    assert len(list((out / "cache").glob("train-*.h5"))) == 2
+    # rt, randomdr and the ablations share one simulated set; cdr trains on the quiet twin
+    # (cdr_twin_noise_offset_db) and cdr_profile on the profile's receiver: a set each
+    assert len(list((out / "cache").glob("train-*.h5"))) == 3
     assert len(list((out / "cache").glob("profile-*.json"))) == 1
 
 
@@ -85,7 +85,8 @@ def test_generated_test_sets_at_a_non_paper_config_and_shared_training(tmp_path)
     orig = r._test_sets
     r._test_sets = lambda *args, **kw: sets
     try:
-        settings = dataclasses.replace(TINY, calibrate_noise=False)
+        # no noise fit and no excision: RT does not use the calibration capture
+        settings = dataclasses.replace(TINY, calibrate_noise=False, excise_persistent_db=None)
         rep = reproduce(tmp_path / "out", seeds=1, settings=settings, progress=False, accelerator="cpu",
                         tasks=["occupancy"], methods=["rt", "cdr"], ablation=False)
     finally:
@@ -109,7 +110,7 @@ def test_cli_reproduce_and_bad_arguments(tmp_path, captures, capsys, monkeypatch
     import radaraug.training.reproduce as r
 
     assert r.ReproduceSettings.quick().profile_max_frames == 40
-    assert "cdr_profile" in inspect.signature(reproduce).parameters["methods"].default
+    assert "cdr_profile" in r.ReproduceSettings.full().methods and inspect.signature(reproduce).parameters["methods"].default is None
     with pytest.raises(ConfigError, match="cdr_profile.*CalibratedDR JSON"):
         reproduce(tmp_path, calibration="cdr.json", test=[{"path": str(tests[0][0]), "count": 0}])
     # test captures without their empty room: refused, not calibrated on a generated room

@@ -79,6 +79,15 @@ def persistent_cells(maps_db: torch.Tensor, threshold_db: float = 3.0, blank_zer
 
     Returns:
         A ``(range, doppler)`` bool mask.
+
+    Examples:
+        >>> import torch
+        >>> from radaraug.transforms import functional as F
+        >>> g = torch.Generator().manual_seed(0)
+        >>> maps = -100 + 10 * torch.log10(torch.empty(40, 16, 8).exponential_(generator=g))
+        >>> maps[:, 5, 1] += 20.0   # a spur's line in every frame
+        >>> F.persistent_cells(maps).nonzero().tolist()
+        [[5, 1]]
     """
     x = check_tensor(maps_db, "persistent_cells expects dB maps (frames, range, doppler)", min_ndim=3, finite=False)
     if x.ndim != 3 or x.shape[0] < 3:
