@@ -37,7 +37,6 @@ import math
 import os
 import time
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
@@ -49,6 +48,7 @@ from radaraug.heldout import room as room_mod
 from radaraug.heldout import walkers
 from radaraug.heldout.receiver import _check_effects, generate
 from radaraug.io.atomic import atomic_write_json
+from radaraug.io.generated_set import GeneratedTestSet
 
 GENERATOR_VERSION = 1
 """Bumped whenever the output changes; part of the reuse check."""
@@ -118,38 +118,8 @@ UNDECLARED_EFFECTS: tuple[dict[str, Any], ...] = (
 """
 
 
-@dataclass
-class IndependentProxySet:
-    """The generated set (the same public interface as :class:`radaraug.sim.proxy.ProxySet`).
-
-    Attributes:
-        calibration: the empty-room capture (fit :class:`~radaraug.transforms.CalibratedDR` on it).
-        tests: ``(capture path, people count of the whole file)`` per count.
-        config: the radar configuration of every file.
-        manifest: the ``manifest.json`` describing the set.
-        reused: True when existing files were reused instead of generated.
-    """
-
-    calibration: Path
-    tests: list[tuple[Path, int]]
-    config: RadarConfig
-    manifest: Path | None = None
-    reused: bool = False
-    generation_s: float | None = field(default=None, repr=False)
-
-    def test_specs(self) -> list[str]:
-        """The tests as ``PATH:COUNT`` strings."""
-        return [f"{p}:{c}" for p, c in self.tests]
-
-    def to_dict(self) -> dict[str, Any]:
-        """JSON-friendly description."""
-        return {
-            "calibration": str(self.calibration),
-            "tests": [[str(p), int(c)] for p, c in self.tests],
-            "config": self.config.to_dict(),
-            "manifest": None if self.manifest is None else str(self.manifest),
-            "reused": self.reused,
-        }
+#: The generated set (:class:`radaraug.io.generated_set.GeneratedTestSet`, shared by both generators).
+IndependentProxySet = GeneratedTestSet
 
 
 # ------------------------------------------------------------------------------------ receiver

@@ -52,7 +52,6 @@ import json
 import math
 import os
 import time
-from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
@@ -63,6 +62,7 @@ from radaraug._optional import lazy_import
 from radaraug.config import RadarConfig
 from radaraug.errors import ConfigError
 from radaraug.io.atomic import atomic_write_json
+from radaraug.io.generated_set import GeneratedTestSet
 from radaraug.safe_read import load_json
 from radaraug.scene.geometry import RadarPose, SceneGeometry
 from radaraug.scene.materials import MATERIALS, Material, register_material
@@ -306,38 +306,8 @@ def _make_people(params: list[dict[str, float]], motion_dir: Path, stem: str) ->
 
 
 # ---------------------------------------------------------------------------------- the result
-@dataclass
-class ProxySet:
-    """The generated proxy set.
-
-    Attributes:
-        calibration: the empty-room capture (fit :class:`~radaraug.transforms.CalibratedDR` on it).
-        tests: ``(capture path, people count of the whole file)`` per count.
-        config: the radar configuration of every file (:meth:`RadarConfig.bgt60tr13c`).
-        manifest: the ``proxy.json`` describing the set.
-        reused: True when existing files were reused instead of generated.
-    """
-
-    calibration: Path
-    tests: list[tuple[Path, int]]
-    config: RadarConfig
-    manifest: Path | None = None
-    reused: bool = False
-    generation_s: float | None = field(default=None, repr=False)
-
-    def test_specs(self) -> list[str]:
-        """The tests as ``PATH:COUNT`` strings."""
-        return [f"{p}:{c}" for p, c in self.tests]
-
-    def to_dict(self) -> dict[str, Any]:
-        """JSON-friendly description."""
-        return {
-            "calibration": str(self.calibration),
-            "tests": [[str(p), int(c)] for p, c in self.tests],
-            "config": self.config.to_dict(),
-            "manifest": None if self.manifest is None else str(self.manifest),
-            "reused": self.reused,
-        }
+#: The generated set (:class:`radaraug.io.generated_set.GeneratedTestSet`, shared by both generators).
+ProxySet = GeneratedTestSet
 
 
 def _training_twin_summary() -> dict[str, Any]:
