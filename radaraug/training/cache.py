@@ -18,7 +18,7 @@ import dataclasses
 import hashlib
 import json
 import os
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -138,7 +138,7 @@ def build_map_cache(
 
 def build_map_caches(
     dataset: SimulatedRadarDataset,
-    splits: dict[str, Sequence[int]],
+    splits: Mapping[str, Sequence[int]],
     cache_dir: str | os.PathLike,
     *,
     batch_size: int = 16,
