@@ -48,7 +48,7 @@ from radaraug.heldout import room as room_mod
 from radaraug.heldout import walkers
 from radaraug.heldout.receiver import _check_effects, generate
 from radaraug.io.atomic import atomic_write_json
-from radaraug.io.generated_set import GeneratedTestSet
+from radaraug.io.generated_set import GeneratedTestSet, check_count_arg, test_file_name
 
 GENERATOR_VERSION = 1
 """Bumped whenever the output changes; part of the reuse check."""
@@ -311,16 +311,6 @@ def _write_file(path: Path, config: RadarConfig, episodes: list[dict[str, Any]],
                 bar.update(b - a)
 
 
-def _check_int(name: str, value: Any, lo: int) -> int:
-    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < lo:
-        raise ConfigError(f"make_independent_proxy: {name} must be an integer >= {lo}, got {value!r}")
-    return int(value)
-
-
-def _test_name(count: int) -> str:
-    return f"test_count{count}.h5"
-
-
 def load_independent_proxy(out_dir: str | os.PathLike) -> IndependentProxySet:
     """The set described by ``out_dir/manifest.json`` (files checked to exist).
 
@@ -403,9 +393,9 @@ def make_independent_proxy(
     config = RadarConfig.bgt60tr13c() if config is None else config
     if not isinstance(config, RadarConfig):
         raise ConfigError(f"make_independent_proxy: config must be a RadarConfig, got {type(config).__name__}")
-    frames_per_count = _check_int("frames_per_count", frames_per_count, 1)
-    calibration_frames = _check_int("calibration_frames", calibration_frames, 1)
-    seed = _check_int("seed", seed, 0)
+    frames_per_count = check_count_arg("make_independent_proxy", "frames_per_count", frames_per_count, 1)
+    calibration_frames = check_count_arg("make_independent_proxy", "calibration_frames", calibration_frames, 1)
+    seed = check_count_arg("make_independent_proxy", "seed", seed, 0)
     counts = tuple(counts)
     if not counts or len(set(counts)) != len(counts) or any(
             isinstance(c, bool) or not isinstance(c, (int, np.integer)) or c not in (0, 1, 2) for c in counts):
@@ -458,7 +448,7 @@ def _generate(out: Path, settings: dict[str, Any], config: RadarConfig, effects:
             episodes = plan_episodes(c, settings["frames_per_count"], seed, config, settings["standing_probability"])
             desc = [{"frames": e["frames"], "t0_s": round(e["t0"], 6),
                      "people": [p.to_dict() for p in e["people"]]} for e in episodes]
-            path = out / _test_name(c)
+            path = out / test_file_name(c)
             _write_file(path, config, episodes, c, c + 1, seed, effects, scene,
                         {**common, "description": f"independent held-out set: {c} people in every frame",
                          "role": "test", "labels": {"count": c}, "episodes": desc}, bar)

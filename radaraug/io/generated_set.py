@@ -11,7 +11,10 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+import numpy as np
+
 from radaraug.config import RadarConfig
+from radaraug.errors import ConfigError
 
 
 @dataclass
@@ -46,3 +49,15 @@ class GeneratedTestSet:
             "manifest": None if self.manifest is None else str(self.manifest),
             "reused": self.reused,
         }
+
+
+def check_count_arg(who: str, name: str, value: Any, lo: int) -> int:
+    """``value`` as an int >= ``lo`` (bools refused), else ConfigError naming ``who`` and ``name``."""
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < lo:
+        raise ConfigError(f"{who}: {name} must be an integer >= {lo}, got {value!r}")
+    return int(value)
+
+
+def test_file_name(count: int) -> str:
+    """The file name of a generated set's capture of ``count`` people."""
+    return f"test_count{count}.h5"

@@ -62,7 +62,7 @@ from radaraug._optional import lazy_import
 from radaraug.config import RadarConfig
 from radaraug.errors import ConfigError
 from radaraug.io.atomic import atomic_write_json
-from radaraug.io.generated_set import GeneratedTestSet
+from radaraug.io.generated_set import GeneratedTestSet, check_count_arg, test_file_name
 from radaraug.safe_read import load_json
 from radaraug.scene.geometry import RadarPose, SceneGeometry
 from radaraug.scene.materials import MATERIALS, Material, register_material
@@ -388,16 +388,6 @@ def _settings(frames_per_count: int, calibration_frames: int, seed: int, counts:
     }))
 
 
-def _check_int(name: str, value: Any, lo: int) -> int:
-    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < lo:
-        raise ConfigError(f"make_proxy: {name} must be an integer >= {lo}, got {value!r}")
-    return int(value)
-
-
-def _test_name(count: int) -> str:
-    return f"test_count{count}.h5"
-
-
 def load_proxy(out_dir: str | os.PathLike) -> ProxySet:
     """The :class:`ProxySet` described by ``out_dir/proxy.json`` (files checked to exist).
 
@@ -584,9 +574,9 @@ def make_proxy(
     Raises:
         ConfigError: bad sizes, counts, seed or device.
     """
-    frames_per_count = _check_int("frames_per_count", frames_per_count, 1)
-    calibration_frames = _check_int("calibration_frames", calibration_frames, 1)
-    seed = _check_int("seed", seed, 0)
+    frames_per_count = check_count_arg("make_proxy", "frames_per_count", frames_per_count, 1)
+    calibration_frames = check_count_arg("make_proxy", "calibration_frames", calibration_frames, 1)
+    seed = check_count_arg("make_proxy", "seed", seed, 0)
     counts = tuple(counts)
     if not counts or len(set(counts)) != len(counts) or any(
             isinstance(c, bool) or not isinstance(c, (int, np.integer)) or c not in (0, 1, 2) for c in counts):
@@ -650,7 +640,7 @@ def _generate(out: Path, settings: dict[str, Any], frames_per_count: int, calibr
             walks = _plan_walks(sim, c, frames_per_count, seed, motion_dir)
             desc = [{"frames": w["frames"], "t0_s": round(w["t0"], 6), "people": _rounded(w["params"], 5),
                      "motion": w["motion"]} for w in walks]
-            path = out / _test_name(c)
+            path = out / test_file_name(c)
             _write_file(sim, path, walks, item_seed(seed, c + 1, stream=31),
                         {**common, "description": f"held-out proxy: {c} walking people in every frame",
                          "role": "test", "labels": {"count": c}, "walks": desc}, device, bar)

@@ -259,8 +259,7 @@ def _test(model: Any, dm: Any, trainer: Any, run_dir: Path) -> dict[str, Any]:
     return dict(model.last_test_report or {})
 
 
-def _test_dm(task: str, method: str, seed: int, trained: Any, ts: TestSet, data_kw: dict[str, Any],
-             run_dir: Path) -> Any:
+def _test_dm(trained: Any, ts: TestSet, data_kw: dict[str, Any], run_dir: Path) -> Any:
     """A data module for testing a model trained with ``trained`` (its clip range) on test set ``ts``."""
     from radaraug.training.data import RadarDataModule
 
@@ -360,7 +359,7 @@ def reproduce(
     for name in ("lightning.pytorch", "lightning.fabric"):
         logging.getLogger(name).setLevel(logging.WARNING)
     bar = tqdm(total=len(sets) * len(tasks) * len(variants) * seeds, desc="reproduce runs", disable=not progress)
-    shared: dict[tuple[str, str, int], tuple[Any, Any, Any, float, float | None]] = {}
+    shared: dict[tuple[str, str, int], tuple[Any, Any, float, float | None]] = {}  # model, data module, fit s, val
     for ts in sets:
         data_kw = {"calibration": ts.calibration, "test": ts.tests, "cache_dir": str(out / "cache"),
                    "proxy_dir": str(out / "proxy"), "test_dr": test_dr}
@@ -378,17 +377,17 @@ def reproduce(
                     bar.set_postfix_str(f"{ts.name} {task} {name} seed {seed}")
                     key = (task, name, seed)
                     if is_shared and key in shared:
-                        model, trained_dm, trainer, fit_s, val_bacc = shared[key]
-                        dm = _test_dm(task, method, seed, trained_dm, ts, kw, run_dir)
+                        model, trained_dm, fit_s, val_bacc = shared[key]
+                        dm = _test_dm(trained_dm, ts, kw, run_dir)
                         trainer = _trainer(settings, accelerator, run_dir)
-                        trained_on = shared[key][1].hparams["calibration"]
+                        trained_on = trained_dm.hparams["calibration"]
                     else:
                         model, dm, trainer, fit_s, val_bacc = _fit(task, method, seed, settings=settings, data_kw=kw,
                                                                    run_dir=run_dir, accelerator=accelerator,
                                                                    progress=progress)
                         trained_on = None
                         if is_shared:
-                            shared[key] = (model, dm, trainer, fit_s, val_bacc)
+                            shared[key] = (model, dm, fit_s, val_bacc)
                     rep = _test(model, dm, trainer, run_dir)
                     rep.update({"task": task, "method": method, "seed": seed, "fit_seconds": fit_s,
                                 "clip_range_db": None if dm.clip is None else list(dm.clip),
@@ -407,7 +406,7 @@ def reproduce(
                     if seed == 0:
                         keep[(ts.name, task, name)] = (model, dm)
                         if dm._val is not None or trained_on is not None:
-                            src = shared[key][1] if trained_on is not None else dm
+                            src = shared[key][1] if trained_on is not None else dm  # the trained run's val split
                             scores[ts.name][task][name] = {
                                 "simulated val": _scores(model, src, src.val_dataloader(), with_dr=True),
                                 "test": _scores(model, dm, dm.test_dataloader(), with_dr=test_dr)}
