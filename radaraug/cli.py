@@ -603,8 +603,9 @@ def build_parser() -> argparse.ArgumentParser:
                      "its Doppler median, zero Doppler blanked) or paper (the clipped dBFS map)")
     rep.add_argument("--test-sets", default=None,
                      help="generated test sets when no --test is given, comma-separated: proxy (the twin in "
-                     "another room), independent (a NumPy generator sharing no code with the twin); default: "
-                     "independent with --quick, both in full mode")
+                     "another room), independent (a NumPy generator sharing no code with the twin), standing (the "
+                     "independent generator with 30 %% of its people standing); default: independent with --quick, "
+                     "proxy and independent in full mode")
     rep.add_argument("--ablations", default=None,
                      help="comma-separated ablation variants (default: the mode's list; see docs/training.md)")
     rep.add_argument("--test-dr", action="store_true",

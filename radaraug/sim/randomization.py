@@ -128,7 +128,7 @@ _POSITIVE_RANGES = ("length_m", "width_m", "height_m", "radar_height_m", "person
                     # drawn log-uniformly
                     "spur_tone_amplitude_counts", "interference_amplitude_counts", "interference_duration_s",
                     "vibrating_clutter_displacement_m", "vibrating_clutter_Hz")
-_PROBABILITIES = ("effects_probability", "spur_tone_probability", "interference_probability",
+_PROBABILITIES = ("standing_probability", "effects_probability", "spur_tone_probability", "interference_probability",
                   "vibrating_clutter_probability", "rx_mismatch_probability", "frame_drift_probability",
                   "wide_levels_probability", "static_phase_noise_probability")
 _BOUNDED_RANGES = {"spur_tone_freq_nyquist": (0.0, 1.0), "interference_chirp_probability": (0.0, 1.0),
@@ -177,6 +177,10 @@ class TwinRandomization:
             length minus ``wall_margin_m``.
         heading_jitter_deg: heading spread around straight toward/away (30 deg instead of 5):
             people do not walk on rails.
+        standing_probability: chance that a drawn person stands (breathing, swaying) instead of
+            walking (0: walkers only, the items of before bit for bit). Passed to the
+            :class:`ScenarioSampler`; a standing person counts (docs/training.md measures what a
+            one-frame map, whose zero-Doppler bins the default representation blanks, sees of them).
         wall_margin_m: lateral positions are drawn in +-(width / 2 - margin) of the drawn room
             (0.35 m: half a shoulder width plus swinging arms).
         system_gain_offset_dB: added to the receiver's ``system_gain`` (-6, +6): the residual
@@ -299,6 +303,7 @@ class TwinRandomization:
     range_m: tuple[float, float] = (0.8, 15.0)
     heading_jitter_deg: float = 30.0
     wall_margin_m: float = 0.35
+    standing_probability: float = 0.0
     system_gain_offset_dB: tuple[float, float] = (-6.0, 6.0)
     noise_figure_offset_dB: tuple[float, float] = (-3.0, 3.0)
     clutter_objects: tuple[int, int] = (0, 6)
@@ -515,6 +520,7 @@ class TwinRandomization:
         return dataclasses.replace(
             base, speed_m_s=self.speed_m_s, height_m=self.person_height_m, range_m=(lo, hi),
             lateral_m=(-lateral, lateral), heading_jitter_deg=self.heading_jitter_deg,
+            standing_probability=max(base.standing_probability, self.standing_probability),
         )
 
 

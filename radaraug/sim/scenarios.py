@@ -15,7 +15,8 @@ from typing import Any
 
 import torch
 
-from radaraug.scene.people import Walker
+from radaraug.errors import ConfigError
+from radaraug.scene.people import StandingPerson, Walker
 
 
 @dataclass
@@ -56,6 +57,16 @@ class ScenarioSampler:
         lateral_m: lateral offset range from the corridor axis (keep people inside the walls).
         p_toward: probability that a walker heads toward the radar (else away).
         heading_jitter_deg: extra random heading around straight toward/away.
+        standing_probability: chance that a drawn person stands (breathing, swaying; a
+            :class:`~radaraug.scene.people.StandingPerson` at the drawn start, facing the drawn
+            heading) instead of walking. 0 (default, the paper's scenarios) draws nothing extra, so
+            its scenarios are those of before, bit for bit. A standing person still counts: the
+            labels are about people, not about motion (docs/training.md measures what a one-frame
+            map can see of them).
+        breathing_m: a standing person's peak chest displacement (3-12 mm: quiet to deep breaths).
+        breathing_Hz: their breathing rate (0.2-0.4 Hz).
+        sway_rad: their peak postural sway about the ankles (0.002-0.012 rad: 0.2-1.2 cm at the hips).
+        sway_Hz: their sway frequency (0.1-0.5 Hz).
     """
 
     counts: tuple[int, ...] = (0, 1, 2)
@@ -67,6 +78,17 @@ class ScenarioSampler:
     lateral_m: tuple[float, float] = (-0.6, 0.6)
     p_toward: float = 0.5
     heading_jitter_deg: float = 5.0
+    standing_probability: float = 0.0
+    breathing_m: tuple[float, float] = (0.003, 0.012)
+    breathing_Hz: tuple[float, float] = (0.2, 0.4)
+    sway_rad: tuple[float, float] = (0.002, 0.012)
+    sway_Hz: tuple[float, float] = (0.1, 0.5)
+
+    def __post_init__(self) -> None:
+        p = self.standing_probability
+        if isinstance(p, bool) or not isinstance(p, (int, float)) or not 0.0 <= float(p) <= 1.0:
+            raise ConfigError(f"scenario sampler: standing_probability must be in [0, 1], got {p!r}")
+        self.standing_probability = float(p)
 
     def sample(
         self, generator: torch.Generator, *, radar_xy: tuple[float, float] = (0.1, 0.0),
@@ -95,6 +117,17 @@ class ScenarioSampler:
             height = _uniform(self.height_m, g)
             phase = _uniform((0.0, 1.0), g)
             start = (radar_xy[0] + rng * ux - lat * uy, radar_xy[1] + rng * uy + lat * ux)
+            # Drawn only when standing people are on, so that the walkers-only draws are unchanged.
+            if self.standing_probability > 0 and float(torch.rand((), generator=g, dtype=torch.float64)) \
+                    < self.standing_probability:
+                motion = {"breathing_m": _uniform(self.breathing_m, g), "breathing_Hz": _uniform(self.breathing_Hz, g),
+                          "breathing_phase": _uniform((0.0, 1.0), g) % 1.0, "sway_rad": _uniform(self.sway_rad, g),
+                          "sway_Hz": _uniform(self.sway_Hz, g), "sway_phase": _uniform((0.0, 1.0), g) % 1.0,
+                          "sway_direction_rad": _uniform((0.0, 2 * math.pi), g)}
+                people.append(StandingPerson(height_m=height, position=start, facing_rad=heading, **motion))
+                params.append({"range_m": rng, "lateral_m": lat, "speed_m_s": 0.0, "height_m": height,
+                               "toward": float(toward), "heading_rad": heading, "standing": 1.0, **motion})
+                continue
             people.append(Walker(height_m=height, speed_m_s=speed, start=start, heading_rad=heading, phase=phase))
             params.append({"range_m": rng, "lateral_m": lat, "speed_m_s": speed, "height_m": height,
                            "toward": float(toward), "heading_rad": heading, "phase": phase})

@@ -57,6 +57,8 @@ from radaraug.training.testset import check_inputs
 from radaraug.transforms import CalibratedDR
 
 PROFILE_FIT_FORMAT = "radaraug-profile-fit"
+#: Where the twin randomization's effect catalog takes its priors (``catalog_priors``).
+CATALOG_PRIORS = ("physics", "calibration")
 #: Version of the cached ``cdr_profile`` fits (``cache_dir/profile-<key>.json``): part of their key,
 #: bumped when what :func:`radaraug.calibration.diagnose` fits changes, so old fits are not reused.
 PROFILE_FIT_VERSION = 1
@@ -104,6 +106,10 @@ class RadarDataModule(L.LightningDataModule):
         sim_seed: seed of the simulated set (item ``i`` is a function of ``(sim_seed, i)``).
         randomization: twin randomization: True (defaults), False/None (off), or a dict of
             :class:`~radaraug.sim.randomization.TwinRandomization` fields.
+        catalog_priors: where the randomization's effect catalog draws from: ``"physics"`` (its
+            own ranges) or ``"calibration"`` (each effect that ``diagnose`` adds on the calibration
+            capture, no scene, ``profile_max_frames`` frames, cached like ``cdr_profile``'s fit, is
+            drawn more often and around its fitted values: :mod:`radaraug.calibration.priors`).
         calibrate_noise: fit the twin's noise figure so that its empty-room RD noise floor equals
             the calibration capture's (:mod:`radaraug.sim.noise_fit`); twin randomization then
             draws around the fitted value. Applies to every method that simulates with the default
@@ -164,6 +170,7 @@ class RadarDataModule(L.LightningDataModule):
         val_items: int = 240,
         sim_seed: int = 0,
         randomization: bool | dict[str, Any] | None = True,
+        catalog_priors: Literal["physics", "calibration"] = "physics",
         calibrate_noise: bool = True,
         profile: str | None = None,
         profile_max_frames: int = 100,
@@ -190,6 +197,8 @@ class RadarDataModule(L.LightningDataModule):
         self.class_names = check_task(task)
         if train_items < 1 or val_items < 0:
             raise ConfigError(f"train_items must be >= 1 and val_items >= 0, got {train_items}, {val_items}")
+        if catalog_priors not in CATALOG_PRIORS:
+            raise ConfigError(f"catalog_priors must be one of {CATALOG_PRIORS}, got {catalog_priors!r}")
         if cdr_floor is not None and cdr_floor not in CDR_FLOORS:
             raise ConfigError(f"cdr_floor must be one of {CDR_FLOORS} or null, got {cdr_floor!r}")
         check_representation(representation)
@@ -209,6 +218,8 @@ class RadarDataModule(L.LightningDataModule):
         self.noise_fit: dict[str, Any] | None = None
         self.twin_profile: TwinProfile | None = None
         self.profile_info: dict[str, Any] | None = None
+        self.catalog_prior_info: dict[str, Any] | None = None
+        self._calibration_profile: TwinProfile | None = None
 
     def _setup_config(self) -> RadarConfig:
         """The radar config that :meth:`setup` read from the captures."""
@@ -254,6 +265,12 @@ class RadarDataModule(L.LightningDataModule):
             from radaraug.sim.randomization import TwinRandomization
 
             randomization = TwinRandomization() if r is True else TwinRandomization.from_dict(dict(r))
+            if self._calibration_profile is not None:
+                from radaraug.calibration.priors import calibration_priors
+
+                randomization, record = calibration_priors(self._calibration_profile, randomization,
+                                                           self._setup_config())
+                self.catalog_prior_info = {"source": "diagnose on data.calibration", **record}
         twin_options: dict[str, Any] = {}
         if self.hparams["tracer_rays"] is not None:
             twin_options["tracer_options"] = {"method": "sbr", "rays": int(self.hparams["tracer_rays"])}
@@ -305,6 +322,11 @@ class RadarDataModule(L.LightningDataModule):
         needs_sim = stage in (None, "fit", "validate") or self.clip is None
         if needs_sim:
             self._resolve_receiver(calibration, has_capture, rank, world)
+            if self.hparams["catalog_priors"] == "calibration" and self.hparams["randomization"]:
+                if not has_capture or calibration is None:
+                    raise ConfigError("catalog_priors: calibration fits the effect catalog's priors on the empty-room "
+                                      f"capture in data.calibration, but {calibration!r} is not a capture")
+                self._calibration_profile = self._shared_profile_fit(calibration, rank, world)[0]
             if self.twin_profile is None and self.hparams["calibrate_noise"] and has_capture and calibration is not None:
                 self.noise_fit = self._fit_noise(calibration)
         if needs_sim:
@@ -361,18 +383,7 @@ class RadarDataModule(L.LightningDataModule):
                     f"method {self.method!r} fits a twin profile on the empty-room capture in data.calibration, but "
                     f"{calibration!r} is a CalibratedDR JSON: give the capture itself, or a fitted profile as "
                     "data.profile (radaraug diagnose CAPTURE -o DIR writes DIR/profile.json)")
-            data: dict[str, Any] | None = None
-            path_fitted: str | None = None
-            if rank == 0:  # one diagnose per run; the other DDP ranks get its result
-                fitted, cached = self._fit_profile(calibration)
-                data, path_fitted = fitted.to_dict(), str(cached)
-            trainer = self.trainer
-            if world > 1 and trainer is not None:
-                data, path_fitted = trainer.strategy.broadcast((data, path_fitted), src=0)
-            if data is None or path_fitted is None:
-                raise CalibrationError(f"rank {rank} did not receive the twin profile fitted on rank 0")
-            path = path_fitted
-            prof = TwinProfile.from_dict(data, source=path)
+            prof, path = self._shared_profile_fit(calibration, rank, world)
             info = {"source": "fitted on data.calibration", "path": path, "calibration": str(calibration),
                     "max_frames": int(self.hparams["profile_max_frames"])}
         else:
@@ -398,6 +409,20 @@ class RadarDataModule(L.LightningDataModule):
         if self.hparams["calibrate_noise"]:
             info["calibrate_noise"] = NOISE_FIT_SKIPPED
         self.twin_profile, self.profile_info = prof, info
+
+    def _shared_profile_fit(self, calibration: str, rank: int, world: int) -> tuple[TwinProfile, str]:
+        """The profile fitted on ``calibration`` (cached), fitted on rank 0 and broadcast to the others."""
+        data: dict[str, Any] | None = None
+        path_fitted: str | None = None
+        if rank == 0:  # one diagnose per run; the other DDP ranks get its result
+            fitted, cached = self._fit_profile(calibration)
+            data, path_fitted = fitted.to_dict(), str(cached)
+        trainer = self.trainer
+        if world > 1 and trainer is not None:
+            data, path_fitted = trainer.strategy.broadcast((data, path_fitted), src=0)
+        if data is None or path_fitted is None:
+            raise CalibrationError(f"rank {rank} did not receive the twin profile fitted on rank 0")
+        return TwinProfile.from_dict(data, source=path_fitted), path_fitted
 
     def profile_cache_path(self, calibration: str) -> Path:
         """``cache_dir/profile-<key>.json`` of ``calibration``.
@@ -497,6 +522,7 @@ class RadarDataModule(L.LightningDataModule):
                 "twin_noise_fit": NOISE_FIT_SKIPPED if self.twin_profile is not None and self.hparams["calibrate_noise"]
                 else self.noise_fit,
                 "twin_profile": self.profile_info,
+                "catalog_priors": self.catalog_prior_info,
                 "classes": list(self.class_names), "config": self._setup_config().to_dict(),
                 "train_class_counts": None if self.train_class_counts is None else self.train_class_counts.tolist()}
         atomic_write_json(Path(out) / "clip_range.json", info, newline=False, indent=2)

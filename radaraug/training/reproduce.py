@@ -118,6 +118,11 @@ def _cdr_floor_of(keep: dict[tuple[str, str, str], tuple[Any, Any]], settings: R
 #: another room (:mod:`radaraug.sim.proxy`) and a NumPy generator that shares no simulation code
 #: with the twin (:mod:`radaraug.heldout`). Each comes with its own empty-room capture.
 DEFAULT_TEST_SETS = ("proxy", "independent")
+#: Every generated test set ``--test-sets`` may name: the defaults, and ``standing``, the independent
+#: generator with standing (breathing, swaying) people in 30 % of the drawn people (another seed).
+GENERATED_TEST_SETS = (*DEFAULT_TEST_SETS, "standing")
+#: Seed and standing probability of the ``standing`` set.
+STANDING_SET = {"seed": 2025, "standing_probability": 0.3}
 
 #: Ablation variants: name -> (method, RadarDataModule overrides). Each changes one thing of the
 #: main runs (whose settings are in ``ReproduceSettings``), so its row of the report measures it.
@@ -131,6 +136,9 @@ ABLATIONS: dict[str, tuple[str, dict[str, Any]]] = {
     "rt_no_twin_randomization": ("rt", {"randomization": False}),
     "rt_no_effect_catalog": ("rt", {"randomization": {"effects_probability": 0.0}}),
     "rt_narrow_people": ("rt", {"randomization": {"rcs_scale_dB": [-3.0, 3.0]}}),
+    "rt_calibration_priors": ("rt", {"catalog_priors": "calibration"}),
+    "rt_standing_people": ("rt", {"randomization": {"standing_probability": 0.3}}),
+    "rt_standing_paper_image": ("rt", {"randomization": {"standing_probability": 0.3}, "representation": "paper"}),
     "cdr_no_twin_randomization": ("cdr", {"randomization": False}),
     "rt_noise_fit": ("rt", {"calibrate_noise": True}),
     "rt_no_excision": ("rt", {"excise_persistent_db": None}),
@@ -170,12 +178,17 @@ def _test_sets(out: Path, settings: ReproduceSettings, calibration: str | None,
 
             proxy = make_independent_proxy(out / "independent", frames_per_count=settings.proxy_frames_per_count,
                                            progress=progress)
+        elif name == "standing":
+            from radaraug.heldout import make_independent_proxy
+
+            proxy = make_independent_proxy(out / "standing", frames_per_count=settings.proxy_frames_per_count,
+                                           progress=progress, **STANDING_SET)
         else:
-            raise ConfigError(f"unknown test set {name!r}; choose from {DEFAULT_TEST_SETS}")
+            raise ConfigError(f"unknown test set {name!r}; choose from {GENERATED_TEST_SETS}")
         sets.append(TestSet(name, str(proxy.calibration),
                             [{"path": str(p), "count": int(c)} for p, c in proxy.tests], proxy.to_dict()))
     if not sets:
-        raise ConfigError(f"no test set: name at least one of {DEFAULT_TEST_SETS}, or give --test captures")
+        raise ConfigError(f"no test set: name at least one of {GENERATED_TEST_SETS}, or give --test captures")
     return sets
 
 
@@ -186,7 +199,7 @@ def _shared_across_test_sets(method: str, data_kw: dict[str, Any]) -> bool:
     # the excision mask of floor_relative maps comes from the calibration capture too
     excises = data_kw.get("representation") == "floor_relative" and data_kw.get("excise_persistent_db") is not None
     return (method not in CDR_METHODS and not data_kw.get("calibrate_noise", True) and not data_kw.get("profile")
-            and not excises)
+            and not excises and data_kw.get("catalog_priors", "physics") == "physics")
 
 
 @torch.no_grad()
@@ -608,6 +621,8 @@ TEST_SET_TEXT = {
     "independent": ("**independent**: a NumPy generator that shares no simulation code with the twin (its own "
                     "receiver, room and walkers; docs/proxy.md). Its settings were fixed before any training result "
                     "was seen."),
+    "standing": ("**standing**: the independent generator (another seed) with 30 % of its people standing "
+                 "(breathing, swaying) instead of walking; they count."),
 }
 
 QUICK_TRADES = ("Quick mode trades, against full mode (6000 items, 15 epochs, 128 x 64, every ablation): fewer "

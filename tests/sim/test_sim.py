@@ -186,3 +186,54 @@ def test_dataset_with_another_config_read_from_infineon_json() -> None:
     x, y = ds[1]
     assert x.shape == (2, 3, 64, 128) and y == ds.scenario(1).count
     assert torch.isfinite(x).all() and x.abs().max() <= 1
+
+
+def test_sampler_standing_people() -> None:
+    from radaraug.errors import ConfigError
+    from radaraug.scene.people import StandingPerson, Walker
+
+    walkers = [ScenarioSampler().sample(torch.Generator().manual_seed(s)) for s in range(20)]
+    zero = [ScenarioSampler(standing_probability=0.0).sample(torch.Generator().manual_seed(s)) for s in range(20)]
+    # Off: nothing extra is drawn, so the scenarios are the walkers-only ones.
+    assert [w.params for w in walkers] == [z.params for z in zero]
+    sampler = ScenarioSampler(standing_probability=1.0, counts=(1, 2))
+    for s in range(30):
+        sc = sampler.sample(torch.Generator().manual_seed(s))
+        assert sc.count in (1, 2) and all(isinstance(p, StandingPerson) for p in sc.people)
+        for p, par in zip(sc.people, sc.params):
+            assert 0.003 <= p.breathing_m <= 0.012 and 0.1 <= p.sway_Hz <= 0.5 and par["standing"] == 1.0
+            assert 1.0 <= par["range_m"] <= 12.0
+    again = sampler.sample(torch.Generator().manual_seed(3))
+    assert again.params == sampler.sample(torch.Generator().manual_seed(3)).params
+    mixed = ScenarioSampler(standing_probability=0.5, counts=(2,))
+    kinds = {type(p) for s in range(20) for p in mixed.sample(torch.Generator().manual_seed(s)).people}
+    assert kinds == {StandingPerson, Walker}
+    with pytest.raises(ConfigError, match="standing_probability"):
+        ScenarioSampler(standing_probability=1.5)
+
+
+def test_standing_person_returns_only_at_zero_doppler() -> None:
+    """A standing person (breathing, sway) is slower than a Doppler bin: the frame shows them at
+    zero Doppler (their range bin rises over the empty room) and nowhere else (closed form: the
+    fastest joint is under one velocity bin)."""
+    from radaraug.scene.people import StandingPerson
+    from radaraug.sensor.receiver import FMCWReceiver
+    from radaraug.transforms import RangeDoppler
+
+    scene = Scene.builtin("corridor")
+    twin = DigitalTwin(scene, receiver=FMCWReceiver(scene.config, effects=[]), **FAST)  # linear, no noise
+    cfg = twin.config
+    person = StandingPerson(height_m=1.8, position=(4.1, 0.0), facing_rad=3.14159, breathing_m=0.01, sway_rad=0.01)
+    assert person.peak_speed_m_s < cfg.velocity_resolution_m_s
+    t = twin.frame_times([0])
+    g = torch.Generator().manual_seed(0)
+    x_person = twin.simulate([person], t, generators=g)
+    x_empty = twin.simulate([], t, generators=torch.Generator().manual_seed(0))
+    rd = RangeDoppler()
+    diff = (rd(x_person) - rd(x_empty)).abs().square().mean(1)[0]  # (range, doppler): the person's field
+    mid = cfg.num_chirps_per_frame // 2
+    # Inside the Doppler window's main lobe around zero (Hann: +-2 bins for a tone off a bin centre).
+    share = diff[:, mid - 2:mid + 3].sum() / diff.sum()
+    assert share > 0.99
+    r = int(diff[:, mid].argmax())
+    assert abs(r * cfg.range_resolution_m - 4.0) < 0.6

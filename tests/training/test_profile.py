@@ -181,3 +181,31 @@ def test_cdr_profile_end_to_end_with_the_real_diagnose(tmp_path, captures):
     assert info["twin_profile"]["error_after_dB"] <= info["twin_profile"]["error_before_dB"]
     x, _ = next(iter(dm.train_dataloader()))
     assert torch.isfinite(x).all()
+
+
+def test_catalog_priors_from_the_calibrations_diagnosis(tmp_path, captures, monkeypatch):
+    """catalog_priors="calibration": the (cached) diagnosis of the calibration capture moves the
+    randomization's catalog to the effects it added; the receiver stays the method's own."""
+    from radaraug.sensor.effects import SpurTone
+
+    calls = []
+
+    def diagnose(capture, scene=None, max_frames=100, progress=False, **kw):
+        calls.append(capture)
+        rx = FMCWReceiver(small_config(), effects=[SpurTone(freq_Hz=150e3, amplitude_counts=3.0)])
+        return SimpleNamespace(profile=TwinProfile(rx.to_dict(), {"capture": str(capture), "effects_added": ["spur_tone"]}))
+
+    monkeypatch.setattr(calibration_mod, "diagnose", diagnose)
+    kw = {"randomization": {"room_variants": 1}, "calibrate_noise": False, "train_items": 3}
+    dm = _dm(tmp_path, captures, method="rt", catalog_priors="calibration", **kw)
+    dm.setup("fit")
+    assert len(calls) == 1 and dm.twin_profile is None and dm.receiver_kind() == "default"
+    rz = dm.simulated_dataset().randomization
+    frac = 150e3 / (small_config().sample_rate_Hz / 2)
+    assert rz.spur_tone_freq_nyquist[0] < frac < rz.spur_tone_freq_nyquist[1] and rz.spur_tone_probability == 0.7
+    info = json.loads((tmp_path / "run" / "clip_range.json").read_text())["catalog_priors"]
+    assert info["found"] == ["spur_tone"] and "spur_tone" in info["changes"]
+    plain = _dm(tmp_path, captures, method="rt", out_dir=None, **kw)
+    plain.setup("fit")
+    assert plain.simulated_dataset().randomization.spur_tone_freq_nyquist == (0.01, 0.99)
+    assert len(calls) == 1 and plain.catalog_prior_info is None

@@ -12,9 +12,10 @@ from radaraug.scene.people.mesh_sequence import MeshSequencePerson
 from radaraug.scene.people.person import Person, SkeletonPerson, person_from_dict
 from radaraug.scene.people.simplify import simplify_mesh
 from radaraug.scene.people.skeleton import JOINT_NAMES, SEGMENT_NAMES, Skeleton
+from radaraug.scene.people.standing import StandingPerson
 from radaraug.scene.people.walker import Walker
 
 __all__ = [
     "BVHPerson", "BVHSkeleton", "JOINT_NAMES", "MeshSequencePerson", "Person", "SEGMENT_NAMES",
-    "Skeleton", "SkeletonPerson", "Walker", "person_from_dict", "read_bvh", "simplify_mesh", "write_bvh",
+    "Skeleton", "SkeletonPerson", "StandingPerson", "Walker", "person_from_dict", "read_bvh", "simplify_mesh", "write_bvh",
 ]

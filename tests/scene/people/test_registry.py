@@ -10,12 +10,13 @@ import yaml
 
 from radaraug.errors import SceneError
 from radaraug.scene import Scene
-from radaraug.scene.people import BVHPerson, MeshSequencePerson, Walker, person_from_dict
+from radaraug.scene.people import BVHPerson, MeshSequencePerson, StandingPerson, Walker, person_from_dict
 from radaraug.scene.people.person import PERSON_TYPES, person_type, register_person
 
 
 def test_builtin_types_registered_under_their_scene_names() -> None:
-    assert PERSON_TYPES == {"walker": Walker, "bvh": BVHPerson, "mesh_sequence": MeshSequencePerson}
+    assert PERSON_TYPES == {"walker": Walker, "bvh": BVHPerson, "mesh_sequence": MeshSequencePerson,
+                            "standing": StandingPerson}
     assert person_type("walker") is Walker
     with pytest.raises(SceneError, match="expected one of"):
         person_type("robot")

@@ -1,0 +1,148 @@
+"""Priors of the twin's effect catalog from what ``diagnose`` measured on the calibration capture.
+
+The training twin's randomization draws the effect catalog (spur, interference, a vibrating
+scatterer, RX mismatch, frame drift) from physics-wide ranges
+(:class:`~radaraug.sim.randomization.TwinRandomization`). The calibration capture, recorded by
+the user's sensor in the user's room, says more: if ``diagnose`` finds a spur at 212 kHz, the
+test captures will most likely carry that spur too. :func:`calibration_priors` moves the catalog's
+draws there: each effect that diagnose *added* to the chain gets a higher probability and ranges
+around its fitted values (a factor of two, or +-1 m / +-0.5 dB / +-10 deg), the others keep
+their physics priors (an effect absent from an empty room may still appear later: a fan switched on).
+
+Why ranges and not the fitted values: diagnose names the effect that explains the residual best,
+which need not be the one present (docs/calibration.md lists the known confusions), and the
+test captures are recorded later than the calibration; training on a band keeps a wrong or
+drifted estimate from becoming the only thing the network has seen.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from collections.abc import Mapping, Sequence
+from typing import Any
+
+from radaraug.config import RadarConfig
+from radaraug.sensor.profile import TwinProfile
+from radaraug.sim.randomization import SCATTERER_ANTENNA_GAIN_DBI, TwinRandomization
+
+PRIOR_PROBABILITY = 0.7
+"""Per-item probability of an effect that diagnose found on the calibration capture."""
+
+#: Catalog effects :func:`calibration_priors` can move (diagnose names -> randomization fields).
+SUPPORTED = ("spur_tone", "interference", "vibrating_clutter", "rx_gain_phase_mismatch", "frame_drift", "phase_noise")
+
+
+def _factor_band(value: float, factor: float, lo: float, hi: float) -> tuple[float, float]:
+    """``(value / factor, value * factor)`` clipped to ``[lo, hi]`` (and kept non-empty)."""
+    a = min(max(value / factor, lo), hi)
+    b = min(max(value * factor, lo), hi)
+    return (a, b) if b > a else (max(lo, b * 0.99), b)
+
+
+def _band(value: float, half: float, lo: float, hi: float) -> tuple[float, float]:
+    a, b = max(value - half, lo), min(value + half, hi)
+    return (a, b) if b > a else (min(a, b), max(a, b) + 1e-9)
+
+
+def _first(value: Any) -> float:
+    return float(value[0] if isinstance(value, (list, tuple)) else value)
+
+
+def _rcs_dBsm(config: RadarConfig, range_m: float, level_dB: float) -> float:
+    """Inverse of the radar equation the randomization uses for its vibrating scatterer."""
+    lam = float(config.wavelength_m)
+    return (level_dB - 2 * SCATTERER_ANTENNA_GAIN_DBI - 20 * math.log10(lam) + 30 * math.log10(4 * math.pi)
+            + 40 * math.log10(max(range_m, 1e-3)))
+
+
+def added_effects(profile: TwinProfile) -> dict[str, dict[str, Any]]:
+    """The effects diagnose added to the chain, with their fitted parameters (last of each name)."""
+    added: Sequence[str] = profile.fitted_on.get("effects_added") or []
+    params: dict[str, dict[str, Any]] = {}
+    for e in profile.to_dict()["receiver"]["effects"]:
+        if e.get("name") in added:
+            params[str(e["name"])] = dict(e.get("params") or {})
+    return params
+
+
+def calibration_priors(profile: TwinProfile, base: TwinRandomization, config: RadarConfig,
+                       probability: float = PRIOR_PROBABILITY) -> tuple[TwinRandomization, dict[str, Any]]:
+    """``base`` with its effect catalog centred on what ``profile``'s diagnose added.
+
+    Args:
+        profile: the twin profile ``diagnose`` fitted on the calibration capture (no scene).
+        base: the randomization to start from (its physics priors).
+        config: the radar config of the calibration capture (and the twin).
+        probability: the per-item probability of each effect found (the catalog's other
+            probabilities are kept).
+
+    Returns:
+        The new randomization and a record of what changed (effect -> fields -> new values), for
+        the run's files.
+    """
+    found = added_effects(profile)
+    changes: dict[str, dict[str, Any]] = {}
+    fs2 = float(config.sample_rate_Hz) / 2
+
+    def prob(name: str) -> float:
+        return max(float(getattr(base, name)), float(probability))
+
+    for name, p in found.items():
+        if name == "spur_tone" and "freq_Hz" in p:
+            frac = _first(p["freq_Hz"]) / fs2
+            changes[name] = {"spur_tone_probability": prob("spur_tone_probability"),
+                             "spur_tone_freq_nyquist": _band(frac, 0.02, 0.0, 1.0),
+                             "spur_tone_amplitude_counts": _factor_band(_first(p.get("amplitude_counts", 1.0)), 2.0,
+                                                                        0.05, 200.0)}
+        elif name == "interference":
+            changes[name] = {"interference_probability": prob("interference_probability"),
+                             "interference_chirp_probability": _factor_band(_first(p.get("probability", 0.05)), 2.0,
+                                                                            1e-3, 1.0),
+                             "interference_amplitude_counts": _factor_band(_first(p.get("amplitude_counts", 100.0)),
+                                                                           2.0, 1.0, 2000.0),
+                             "interference_duration_s": _factor_band(_first(p.get("duration_s", 5e-6)), 2.0,
+                                                                     0.2e-6, 30e-6)}
+        elif name == "vibrating_clutter" and "range_m" in p:
+            r = _first(p["range_m"])
+            rcs = _rcs_dBsm(config, r, _first(p.get("level_dB", -80.0)))
+            changes[name] = {"vibrating_clutter_probability": prob("vibrating_clutter_probability"),
+                             "vibrating_clutter_range_m": _band(r, 1.0, 0.3, 30.0),
+                             "vibrating_clutter_rcs_dBsm": _band(rcs, 6.0, -40.0, 20.0),
+                             "vibrating_clutter_displacement_m": _factor_band(
+                                 _first(p.get("displacement_m", 1e-3)), 2.0, 1e-5, 5e-3),
+                             "vibrating_clutter_Hz": _factor_band(_first(p.get("vibration_Hz", 20.0)), 1.5, 0.5,
+                                                                  1 / (2 * float(config.chirp_repetition_time_s)))}
+        elif name == "rx_gain_phase_mismatch":
+            gains = [float(v) for v in (p.get("gain_dB") if isinstance(p.get("gain_dB"), list) else [0.0])]
+            phases = [math.degrees(float(v)) for v in
+                      (p.get("phase_rad") if isinstance(p.get("phase_rad"), list) else [0.0])]
+            g_lo, g_hi = min(gains) - 0.5, max(gains) + 0.5
+            ph_lo, ph_hi = max(min(phases) - 10.0, -180.0), min(max(phases) + 10.0, 180.0)
+            changes[name] = {"rx_mismatch_probability": prob("rx_mismatch_probability"),
+                             "rx_mismatch_gain_dB": (max(g_lo, -6.0), min(g_hi, 6.0)),
+                             "rx_mismatch_phase_deg": (ph_lo, ph_hi)}
+        elif name == "frame_drift":
+            changes[name] = {"frame_drift_probability": prob("frame_drift_probability"),
+                             "frame_drift_gain_rms_dB": _factor_band(_first(p.get("gain_rms_dB", 0.1)), 2.0, 0.0, 3.0),
+                             "frame_drift_dc_rms_counts": _factor_band(_first(p.get("dc_rms_counts", 0.5)), 2.0, 0.0,
+                                                                       20.0)}
+        elif name == "phase_noise" and "freq_noise_rms_Hz" in p:
+            # Phase noise is drawn for every item (not a catalog effect): centre its range.
+            changes[name] = {"phase_noise_rms_Hz": _factor_band(_first(p["freq_noise_rms_Hz"]), 2.0, 1e3, 3e6)}
+    fields: dict[str, Any] = {}
+    for c in changes.values():
+        fields.update(c)
+    new = dataclasses.replace(base, **fields) if fields else base
+    record = {"found": sorted(found), "unsupported": sorted(set(found) - set(SUPPORTED)),
+              "changes": {k: {f: list(v) if isinstance(v, tuple) else v for f, v in c.items()}
+                          for k, c in changes.items()}}
+    return new, record
+
+
+def describe(record: Mapping[str, Any]) -> str:
+    """One line for logs and reports."""
+    if not record.get("found"):
+        return "diagnose added no effect on the calibration capture: the catalog keeps its physics priors"
+    return f"catalog priors moved to the calibration's {', '.join(record['changes'])}" + (
+        f" (not in the catalog: {', '.join(record['unsupported'])})" if record.get("unsupported") else "")
