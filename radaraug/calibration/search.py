@@ -6,8 +6,9 @@ view error (:func:`radaraug.calibration.views.overall_error`, dB). Twin frames f
 one fixed seed and those for scoring another, so two candidates are compared on the same noise
 (common random numbers) and the objective is a smooth function of the parameters.
 
-The optimizer is a bounded Nelder-Mead simplex in the parameters' prior ranges (linear or log
-scale), from starts the catalog reads off the residual; noise sources trade off against each
+The optimizer is SciPy's bounded Nelder-Mead simplex (``scipy.optimize.minimize``; it replaced a
+hand-written one) in the parameters' prior ranges (linear or log scale), from starts the catalog
+reads off the residual; noise sources trade off against each
 other along valleys (more ADC-side noise, lower noise figure), which a simplex follows and a
 one-parameter-at-a-time search does not.
 Gradients through the receiver would work for a few parameters, but half the views are order
@@ -359,46 +360,23 @@ class Search:
 
 def nelder_mead(f: Callable[[list[float]], float], x0: Sequence[float], step: Sequence[float],
                 lo: Sequence[float], hi: Sequence[float], max_evals: int) -> tuple[list[float], float]:
-    """Minimize ``f`` from ``x0`` with a Nelder-Mead simplex clipped to ``[lo, hi]``.
+    """Minimize ``f`` from ``x0`` with SciPy's bounded Nelder-Mead simplex in ``[lo, hi]``.
 
-    Standard coefficients: reflection 1, expansion 2, contraction 0.5, shrink 0.5.
+    The first simplex is ``x0`` plus one ``step`` along each axis (away from a bound it would
+    cross), as a radar engineer would bracket each parameter; at most ``max_evals`` evaluations.
+    Why a simplex and not a gradient method: half the views are order statistics (quantiles,
+    medians, peaks) and a spur's frequency objective is a comb of local minima (module docstring).
     """
-    n = len(x0)
+    import numpy as np
+    from scipy.optimize import minimize
 
-    def clip(x: Sequence[float]) -> list[float]:
-        return [min(max(v, a), b) for v, a, b in zip(x, lo, hi)]
-
-    pts = [clip(x0)]
-    for i in range(n):
-        x = list(pts[0])
-        x[i] = x[i] + step[i] if x[i] + step[i] <= hi[i] else x[i] - step[i]
-        pts.append(clip(x))
-    vals = [f(p) for p in pts]
-    evals = len(pts)
-    while evals < max_evals:
-        order = sorted(range(n + 1), key=lambda k: vals[k])
-        pts, vals = [pts[k] for k in order], [vals[k] for k in order]
-        centroid = [sum(p[i] for p in pts[:-1]) / n for i in range(n)]
-        refl = clip([c + (c - w) for c, w in zip(centroid, pts[-1])])
-        fr = f(refl)
-        evals += 1
-        if fr < vals[0]:
-            exp = clip([c + 2 * (c - w) for c, w in zip(centroid, pts[-1])])
-            fe = f(exp)
-            evals += 1
-            pts[-1], vals[-1] = (exp, fe) if fe < fr else (refl, fr)
-        elif fr < vals[-2]:
-            pts[-1], vals[-1] = refl, fr
-        else:
-            con = clip([c + 0.5 * (w - c) for c, w in zip(centroid, pts[-1])])
-            fc = f(con)
-            evals += 1
-            if fc < vals[-1]:
-                pts[-1], vals[-1] = con, fc
-            else:
-                for k in range(1, n + 1):
-                    pts[k] = clip([b + 0.5 * (p - b) for b, p in zip(pts[0], pts[k])])
-                    vals[k] = f(pts[k])
-                    evals += 1
-    k = min(range(n + 1), key=lambda j: vals[j])
-    return pts[k], vals[k]
+    x = np.clip(np.asarray(x0, dtype=float), lo, hi)
+    simplex = [x.copy()]
+    for i in range(len(x)):
+        p = x.copy()
+        p[i] = p[i] + step[i] if p[i] + step[i] <= hi[i] else p[i] - step[i]
+        simplex.append(np.clip(p, lo, hi))
+    res = minimize(lambda u: f([float(v) for v in u]), x, method="Nelder-Mead", bounds=list(zip(lo, hi)),
+                   options={"initial_simplex": np.stack(simplex), "maxfev": int(max_evals), "xatol": 1e-9,
+                            "fatol": 1e-9})
+    return [float(v) for v in res.x], float(res.fun)

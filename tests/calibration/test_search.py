@@ -246,3 +246,19 @@ def test_a_missing_effect_is_named():
     assert require(chain, "thermal_noise") is chain[0]
     with pytest.raises(CalibrationError, match="no 'dc_offset'.*thermal_noise"):
         get_param(chain, "dc_offset", ParamSpec("level_counts", Prior(0.0, 1.0)))
+
+
+def test_bounded_simplex_finds_closed_form_minima():
+    """The search's optimizer (SciPy's bounded Nelder-Mead): an interior minimum and one on a bound."""
+    from radaraug.calibration.search import nelder_mead
+
+    calls = []
+
+    def bowl(u):
+        calls.append(u)
+        return (u[0] - 0.3) ** 2 + 4 * (u[1] + 1.5) ** 2
+
+    x, fx = nelder_mead(bowl, [0.0, 0.0], [0.5, 0.5], [-1.0, -1.0], [1.0, 1.0], max_evals=200)
+    assert x[0] == pytest.approx(0.3, abs=1e-3) and x[1] == pytest.approx(-1.0, abs=1e-6)  # y pinned at its bound
+    assert fx == pytest.approx(1.0, abs=1e-5)
+    assert len(calls) <= 200 + 2 and all(-1 <= v <= 1 for u in calls for v in u)

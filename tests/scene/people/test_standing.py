@@ -104,3 +104,24 @@ def test_mesh_has_the_velocities_of_its_joints() -> None:
     assert m.vertex_velocity is not None
     assert m.vertex_velocity.norm(dim=-1).max().item() < 0.2
     assert m.vertices[:, 2].min().item() > -0.05
+
+
+def test_scene_file_with_a_standing_person(tmp_path) -> None:
+    import yaml
+
+    from radaraug.scene import Scene
+
+    scene = {
+        "name": "t",
+        "radar": {"position": [0.1, 0.0, 1.2], "look_at": [5.0, 0.0, 1.2]},
+        "room": {"type": "corridor", "length": 6.0, "width": 2.0, "height": 2.5, "max_edge": 1.0},
+        "people": [{"type": "standing", "height": 1.6, "position": [3.0, 0.2], "breathing_m": 0.005}],
+    }
+    path = tmp_path / "s.yaml"
+    path.write_text(yaml.safe_dump(scene))
+    s = Scene.from_file(path)
+    assert isinstance(s.people[0], StandingPerson) and s.people[0].position == (3.0, 0.2)
+    assert s.to_dict()["people"][0]["type"] == "standing"
+    path.write_text(yaml.safe_dump({**scene, "people": [{"type": "standing", "speed": 1.0}]}))
+    with pytest.raises(SceneError, match="speed"):
+        Scene.from_file(path)
