@@ -1,0 +1,1043 @@
+"""Effect signatures: one detector per catalog effect, looking for what identifies that effect.
+
+The search (:mod:`radaraug.calibration.search`) adds whichever effect lowers the residual error the
+most, which finds *a* chain that explains the capture, not necessarily the chain that is there
+(clipping taken for interference, a steeper IF high-pass for a higher noise figure, a spur for a
+vibrating object). Each detector here tests the one property that sets its effect apart from the
+others, directly on the capture's raw frames, without a twin and without a scene:
+
+=========================  ========================================================================
+effect                     signature tested
+=========================  ========================================================================
+``adc_clipping``           ADC codes pile up on the rails (0 and ``2**bits - 1``): far more samples
+                           on a rail code than on its neighbour codes; compared with what a Gaussian
+                           of the measured (robust) spread would put beyond the rails
+``phase_noise``            a noise skirt around the strongest static return, common to every RX with
+                           the carrier's inter-RX phase (one LO), white over chirps, over range bins
+                           5..40 bins away from the carrier; its level in dBc
+``spur_tone``              one narrow line off zero Doppler, in every frame and every RX, with a
+                           constant amplitude and no mirror line (a vibration makes a pair)
+``if_highpass``            the shape of the noise floor at low IF frequency, from chirp-to-chirp
+                           differences (static returns cancel): a Butterworth
+                           ``|H|^2 = (f/fc)^2n / (1 + (f/fc)^2n)`` fitted and compared with the
+                           nominal first-order high-pass at the config's cutoff
+``rx_gain_phase_mismatch`` per-RX gain relative to RX1, constant over the static returns *and* the
+                           same in the noise (both go through the RX channel)
+``tx_rx_leakage``          a coherent (every chirp, every frame) return at near-zero beat frequency
+                           (range bins 1..2, DC removed, low-sidelobe window), strong enough to see in
+                           a single chirp
+``interference``           chirps whose power (static part removed) stands far above their frame's
+                           median chirp, wideband
+``vibrating_clutter``      a symmetric pair of Doppler lines at +-f_vib at the range bin of a static
+                           return; level ``(J1(beta) / J0(beta))^2``, ``beta = 4 pi d / lambda``
+``frame_drift``            frame-to-frame wander of the DC level (per RX) or the gain (common) beyond
+                           what the within-frame noise explains
+=========================  ========================================================================
+
+Every detector takes raw frames ``(F, rx, chirps, samples)`` in Infineon SDK floats
+(``x = 2 * counts / (2**bits - 1) - 1``, :data:`radaraug.units.FLOAT_CONVENTION`) and the capture's
+:class:`~radaraug.config.RadarConfig`, and returns a :class:`Signature`. Work is in float64 ADC counts
+on the frames' device (CPU or CUDA). Range spectra are FFTs over samples divided by their window sum,
+so a tone of amplitude ``A`` counts shows ``A / 2`` at its bin; dBFS values follow the library's
+convention (``20 log10 |X|`` of the same spectrum in SDK float units, :data:`radaraug.units.DB_CONVENTION`).
+
+Limits (documented in ``docs/calibration.md``, "Signatures"): the leakage test needs the room's
+nearest static return beyond about 6 range bins (~1 m at the paper's config, a low-sidelobe window's
+main lobe); a spur whose frequency is a whole multiple of the chirp rate sits at zero Doppler and is
+not tested; the phase-noise and mismatch tests need at least two RX channels.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from functools import cached_property
+
+import torch
+
+from radaraug.config import RadarConfig
+
+_TINY = 1e-30
+
+SIGNATURE_EFFECTS = (
+    "adc_clipping",
+    "phase_noise",
+    "spur_tone",
+    "if_highpass",
+    "rx_gain_phase_mismatch",
+    "tx_rx_leakage",
+    "interference",
+    "vibrating_clutter",
+    "frame_drift",
+)
+"""The catalog effects that have a detector, in the order :func:`detect_all` reports them."""
+
+
+@dataclass(frozen=True)
+class Signature:
+    """What a detector found.
+
+    Attributes:
+        effect: catalog name of the effect (:data:`SIGNATURE_EFFECTS`).
+        score: evidence for the effect (a dB excess or a test statistic; its unit is in
+            ``detail``); 0 when there is no evidence at all.
+        present: whether the signature is there.
+        params: rough estimates of the effect's parameters (and the detector's statistics).
+        detail: one line saying what was measured.
+    """
+
+    effect: str
+    score: float
+    present: bool
+    params: dict[str, float] = field(default_factory=dict)
+    detail: str = ""
+
+
+# --------------------------------------------------------------------------- windows, spectra
+def _window(kind: str, n: int, device: torch.device) -> torch.Tensor:
+    """Periodic window of length ``n`` (float64).
+
+    ``hann``: the library's RD window (main lobe +-2 bins, sidelobes -31 dB). ``bh4``: 4-term
+    Blackman-Harris (main lobe +-4 bins, sidelobes -92 dB), where a strong line must not leak
+    into bins far from it (noise-floor shape, skirts, near-DC content).
+    """
+    t = 2 * math.pi * torch.arange(n, dtype=torch.float64, device=device) / n
+    if kind == "hann":
+        return 0.5 - 0.5 * torch.cos(t)
+    if kind == "bh4":
+        return 0.35875 - 0.48829 * torch.cos(t) + 0.14128 * torch.cos(2 * t) - 0.01168 * torch.cos(3 * t)
+    raise ValueError(f"unknown window {kind!r}")
+
+
+def _enbw(w: torch.Tensor) -> float:
+    """Equivalent noise bandwidth of a window, in bins: ``N sum w^2 / (sum w)^2``."""
+    return float(w.numel() * w.square().sum() / w.sum().square())
+
+
+def _rspec(x: torch.Tensor, w: torch.Tensor) -> torch.Tensor:
+    """Range spectrum over the last axis, divided by the window sum; bins ``0 .. N//2 - 1``."""
+    n = x.shape[-1]
+    return torch.fft.rfft(x * w, dim=-1)[..., : n // 2] / w.sum()
+
+
+def _remove_dc(x: torch.Tensor, w: torch.Tensor) -> torch.Tensor:
+    """``x`` minus its *window-weighted* mean: bin 0 of the windowed spectrum becomes exactly 0.
+
+    Subtracting the plain mean would add a constant (the mean of every return that is not a
+    whole number of cycles), and a constant fills the window's main lobe around DC, where the
+    leakage is looked for.
+    """
+    return x - (x * w).sum(dim=-1, keepdim=True) / w.sum()
+
+
+def _db(p: float | torch.Tensor) -> float:
+    return 10 * math.log10(max(float(p), _TINY))
+
+
+def _norm_cdf(z: torch.Tensor) -> torch.Tensor:
+    return 0.5 * torch.erfc(-z / math.sqrt(2))
+
+
+class Prepared:
+    """Raw frames in ADC counts and the spectra several detectors share, computed once.
+
+    Args:
+        frames: ``(F, rx, chirps, samples)`` SDK floats.
+        config: the capture's radar config.
+    """
+
+    def __init__(self, frames: torch.Tensor, config: RadarConfig) -> None:
+        if frames.ndim != 4:
+            raise ValueError(f"frames must be (F, rx, chirps, samples), got shape {tuple(frames.shape)}")
+        F, R, M, N = frames.shape
+        if R != config.num_rx or M != config.num_chirps_per_frame or N != config.num_samples_per_chirp:
+            raise ValueError(f"frames {tuple(frames.shape)} do not match the config ({config.num_rx} RX, "
+                             f"{config.num_chirps_per_frame} chirps, {config.num_samples_per_chirp} samples)")
+        self.config = config
+        self.full = float(config.adc_full_scale_counts)
+        # float64 counts: the ADC's own unit, where rails and quantization are plain numbers.
+        self.counts = (frames.detach().to(torch.float64) + 1.0) * (self.full / 2)
+        self.shape = (F, R, M, N)
+        self.device = frames.device
+        self.hann = _window("hann", N, self.device)
+        self.bh4 = _window("bh4", N, self.device)
+
+    @cached_property
+    def static(self) -> torch.Tensor:
+        """Mean chirp of each frame and RX ``(F, R, N)`` (the static scene, DC included)."""
+        return self.counts.mean(dim=2)
+
+    @cached_property
+    def moving(self) -> torch.Tensor:
+        """Samples minus their frame's mean chirp ``(F, R, M, N)``: static returns, DC and leakage gone."""
+        return self.counts - self.static[:, :, None]
+
+    @cached_property
+    def moving_hann(self) -> torch.Tensor:
+        """Hann range spectra of :attr:`moving`, ``(F, R, M, K)``."""
+        return _rspec(self.moving, self.hann)
+
+    @cached_property
+    def moving_bh4(self) -> torch.Tensor:
+        """Blackman-Harris range spectra of :attr:`moving`, ``(F, R, M, K)``."""
+        return _rspec(self.moving, self.bh4)
+
+    @cached_property
+    def static_hann(self) -> torch.Tensor:
+        """Hann range spectra of each frame's mean chirp (its DC removed), ``(F, R, K)``."""
+        return _rspec(_remove_dc(self.static, self.hann), self.hann)
+
+    @cached_property
+    def static_bh4(self) -> torch.Tensor:
+        """Blackman-Harris range spectra of each frame's mean chirp (its DC removed), ``(F, R, K)``."""
+        return _rspec(_remove_dc(self.static, self.bh4), self.bh4)
+
+    @cached_property
+    def chirp_power(self) -> torch.Tensor:
+        """Power of each chirp's moving part, all RX and samples, ``(F, M)`` (counts^2)."""
+        return self.moving.square().mean(dim=(1, 3))
+
+    @cached_property
+    def chirp_wideband(self) -> torch.Tensor:
+        """Each chirp's median over range bins of its power over its frame's median chirp, ``(F, M)``.
+
+        A burst raises most range bins of its chirp; a moving or vibrating object raises a few
+        bins in many chirps, so the median over range bins ignores it. The Hann window hides a
+        burst that lies entirely within the first or last ~5 % of the chirp (a window that does
+        not taper there spreads every strong return over all range bins instead).
+        """
+        pw = self.moving_hann.abs().square().sum(dim=1)  # (F, M, K)
+        ref = pw.median(dim=1, keepdim=True).values.clamp_min(_TINY)
+        return (pw / ref).median(dim=-1).values
+
+    @cached_property
+    def burst_mask(self) -> torch.Tensor:
+        """``(F, M)`` True for chirps hit by a burst (see :func:`detect_interference`)."""
+        return _burst_flags(self.chirp_wideband)[0]
+
+    @cached_property
+    def clipped_fraction(self) -> float:
+        """Share of samples on an ADC rail."""
+        c = torch.round(self.counts)
+        return float(((c <= 0) | (c >= self.full)).double().mean())
+
+    @cached_property
+    def floor_hann(self) -> torch.Tensor:
+        """Per-RX noise power per range bin ``(R, K)``: median over frames and chirps of ``|X|^2`` / ln 2.
+
+        The median of an exponential variable is ``ln 2`` times its mean; the median ignores
+        the few chirps a burst hits.
+        """
+        p = self.moving_hann.abs().square()
+        F, R, M, K = p.shape
+        return p.permute(1, 3, 0, 2).reshape(R, K, F * M).median(dim=-1).values / math.log(2) * M / max(M - 1, 1)
+
+
+def _prep(frames: torch.Tensor | Prepared, config: RadarConfig) -> Prepared:
+    return frames if isinstance(frames, Prepared) else Prepared(frames, config)
+
+
+def _burst_flags(r: torch.Tensor, min_db: float = 3.0, n_sigma: float = 8.0) -> tuple[torch.Tensor, torch.Tensor, float]:
+    """Chirps far above their frame's other chirps.
+
+    ``r`` is ``(F, M)``: each chirp's power relative to its own frame's median chirp, per range
+    bin, medianed over range bins (:attr:`Prepared.chirp_wideband`; a gain that wanders from frame
+    to frame moves every chirp of the frame, not a few). On a log scale whose spread is the robust
+    (MAD) spread of all chirps, a chirp is a burst when it stands ``max(min_db, n_sigma * spread)``
+    dB above. Returns the flags, the excess in dB and the spread.
+    """
+    ratio_db = 10 * torch.log10(r.clamp_min(_TINY) / r.median(dim=1, keepdim=True).values.clamp_min(_TINY))
+    mad = float((ratio_db - ratio_db.median()).abs().median()) * 1.4826
+    thr = max(min_db, n_sigma * mad)
+    return ratio_db > thr, ratio_db, mad
+
+
+def _peaks_1d(v: torch.Tensor, lo: int = 0) -> list[int]:
+    """Indices of local maxima of ``v`` from ``lo`` on, strongest first."""
+    k = torch.arange(v.numel(), device=v.device)
+    left = torch.cat([v[:1] - 1, v[:-1]])
+    right = torch.cat([v[1:], v[-1:] - 1])
+    is_pk = (v >= left) & (v >= right) & (k >= lo)
+    idx = k[is_pk]
+    order = torch.argsort(v[idx], descending=True)
+    return [int(i) for i in idx[order]]
+
+
+# --------------------------------------------------------------------------- ADC clipping
+def detect_adc_clipping(frames: torch.Tensor | Prepared, config: RadarConfig,
+                        min_fraction: float = 1e-4, min_pileup: float = 4.0) -> Signature:
+    """Samples piled up on the ADC rails.
+
+    A clipped ADC maps the whole tail beyond a rail onto the rail code, so the rail code holds far
+    more samples than the codes just inside it; an unclipped signal's histogram is smooth there.
+    The observed fraction on the rails is also compared with a Gaussian of each RX's robust spread
+    (median, IQR / 1.349: both unaffected while less than a quarter of the samples clip), which is
+    what Gaussian noise clipped at the rails gives.
+
+    Args:
+        frames: raw frames (SDK floats) or a :class:`Prepared`.
+        config: the capture's config.
+        min_fraction: smallest clipped fraction reported as present.
+        min_pileup: smallest ratio of rail-code count to the mean count of the 4 codes inside it.
+
+    Returns:
+        A :class:`Signature`; ``score`` is the clipped fraction in percent; ``params``:
+        ``fraction``, ``fraction_low``, ``fraction_high``, ``gaussian_fraction`` (the Gaussian's
+        prediction), ``pileup`` (rail code over neighbour codes, the larger rail).
+    """
+    p = _prep(frames, config)
+    c = torch.round(p.counts).clamp(0, p.full).transpose(0, 1).reshape(p.shape[1], -1)  # (R, n)
+    n = c.shape[1]
+    lo = (c <= 0).double().sum(dim=1)
+    hi = (c >= p.full).double().sum(dim=1)
+    lo_nb = ((c >= 1) & (c <= 4)).double().sum(dim=1) / 4
+    hi_nb = ((c >= p.full - 4) & (c <= p.full - 1)).double().sum(dim=1) / 4
+    q = torch.quantile(c[:, :: max(1, n // 200_000)], torch.tensor([0.25, 0.5, 0.75], dtype=torch.float64,
+                                                                  device=c.device), dim=1)
+    mu, sigma = q[1], ((q[2] - q[0]) / 1.349).clamp_min(0.5)
+    gauss = _norm_cdf((0.5 - mu) / sigma) + _norm_cdf((mu - (p.full - 0.5)) / sigma)
+    frac = float((lo + hi).sum() / (n * c.shape[0]))
+    pile = torch.maximum(torch.where(lo > 0, lo / (lo_nb + 1), torch.zeros_like(lo)),
+                         torch.where(hi > 0, hi / (hi_nb + 1), torch.zeros_like(hi)))
+    pileup = float(pile.max())
+    present = frac >= min_fraction and pileup >= min_pileup and float((lo + hi).sum()) >= 10
+    return Signature(
+        "adc_clipping", 100 * frac, present,
+        {"fraction": frac, "fraction_low": float(lo.sum() / (n * c.shape[0])),
+         "fraction_high": float(hi.sum() / (n * c.shape[0])), "gaussian_fraction": float(gauss.mean()),
+         "pileup": pileup},
+        f"{100 * frac:.3g} % of samples on the rails (Gaussian of the measured spread: "
+        f"{100 * float(gauss.mean()):.3g} %), rail code {pileup:.1f}x its neighbours; score: % clipped",
+    )
+
+
+# --------------------------------------------------------------------------- phase noise
+def detect_phase_noise(frames: torch.Tensor | Prepared, config: RadarConfig, guard: int = 5,
+                       width: int = 40, min_z: float = 8.0, min_snr_db: float = 30.0,
+                       line_db: float = 10.0, min_alignment: float = 0.9) -> Signature:
+    """A noise skirt around the strongest static return, common to all RX (one LO).
+
+    Residual LO phase noise multiplies a return by ``exp(j 2 pi tau nu(t))``: a skirt around its
+    range bin whose power follows the return's power times ``(2 pi tau)^2`` (range correlation), new
+    in every chirp (white over Doppler), and identical in every RX up to the return's own
+    inter-RX phase. Thermal noise is independent between RX, so the *cross*-RX range-Doppler
+    spectrum of the moving part (frames' mean chirp removed, burst chirps zeroed), projected on the
+    carrier's inter-RX phase, measures the skirt without the thermal floor. Narrow Doppler lines
+    (a spur, a vibration's sidebands: cells ``line_db`` over their range bin's median) are left
+    out and the remaining cells scaled up to the full Doppler band. The skirt is summed over range
+    bins ``guard .. width`` away on both sides (Blackman-Harris range window: the carrier's own
+    main lobe stays out) and divided by the carrier's power; range bins holding a strong line
+    (20 dB over the median, with the window's main lobe) are left out of the band and the sum
+    scaled back to the band's width.
+
+    Args:
+        frames: raw frames or a :class:`Prepared`.
+        config: the capture's config.
+        guard: nearest range-bin offset from the carrier counted in the skirt.
+        width: farthest range-bin offset counted.
+        min_z: smallest significance (skirt over its thermal-noise standard deviation).
+        min_snr_db: smallest static-return power over the per-chirp noise floor (dB) to test.
+        line_db: RD cells this far over their range bin's median Doppler power are lines.
+        min_alignment: smallest cosine between the skirt's inter-RX phase and the carrier's
+            (something common to the RX from another direction, an interferer, has another phase).
+
+    Returns:
+        A :class:`Signature`; ``score`` is the significance ``z``; ``params``: ``skirt_dBc``
+        (skirt over carrier power, bins ``guard..width`` both sides), ``range_m`` and ``range_bin``
+        of the carrier, ``carrier_snr_dB``, ``whiteness`` (twice the skirt's share in the outer
+        half of the Doppler band: 1 for noise new in every chirp, << 1 for a slow modulation),
+        ``alignment`` (cosine of the skirt's inter-RX phase to the carrier's),
+        ``freq_noise_rms_Hz_lower`` (``sqrt(skirt) / (2 pi tau)``: a lower bound, the band misses
+        the skirt's core and far tail).
+    """
+    p = _prep(frames, config)
+    F, R, M, N = p.shape
+    if R < 2 or M < 8:
+        return Signature("phase_noise", 0.0, False, {}, "needs at least 2 RX and 8 chirps")
+    keep = (~p.burst_mask).to(torch.float64)  # (F, M)
+    n_keep = float(keep.sum())
+    C = p.static_bh4.mean(dim=0)  # (R, K) coherent static spectrum
+    K = C.shape[-1]
+    pc = C.abs().square().mean(dim=0)
+    Dm = p.moving_bh4
+    if n_keep < F * M:
+        # Each frame's static part from its clean chirps only: a burst would otherwise leave 1/M of
+        # itself, common to all RX, in every chirp of its frame.
+        w_k = keep[:, None, :, None]
+        clean = (p.counts * w_k).sum(dim=2, keepdim=True) / w_k.sum(dim=2, keepdim=True).clamp_min(1.0)
+        Dm = _rspec(p.counts - clean, p.bh4)
+    floor = (Dm.abs().square() * keep[:, None, :, None]).sum(dim=(0, 2)) / max(n_keep, 1.0)  # (R, K)
+    # Strongest static return past the near-DC bins (leakage, DC) with room for the skirt band.
+    cand = [k for k in _peaks_1d(pc, lo=3) if k + guard < K]
+    if not cand:
+        return Signature("phase_noise", 0.0, False, {}, "no static return")
+    k0 = cand[0]
+    snr = _db(pc[k0] / floor.mean(dim=0).median().clamp_min(_TINY))
+    if snr < min_snr_db:
+        return Signature("phase_noise", 0.0, False, {"carrier_snr_dB": snr},
+                         f"strongest static return only {snr:.1f} dB over the floor")
+    # Range-Doppler spectra, burst chirps zeroed (and the loss of chirps scaled back below).
+    wd = _window("hann", M, p.device)
+    X = torch.fft.fft(Dm * (keep[:, None, :, None] * wd[:, None]), dim=2) / wd.sum()  # (F, R, M, K)
+    enbw_d = _enbw(wd) * n_keep / (F * M)
+    Pd = X.abs().square().mean(dim=(0, 1))  # (M, K)
+    line = Pd > 10 ** (line_db / 10) * Pd.median(dim=0, keepdim=True).values
+    # A line's Hann main lobe covers +-2 Doppler cells.
+    line = torch.nn.functional.max_pool1d(line.double().T[:, None], 5, stride=1, padding=2)[:, 0].T > 0
+    use = (~line).double()
+    scale = M / use.sum(dim=0).clamp_min(1.0)  # (K,) back to the full Doppler band
+    outer = torch.zeros(M, dtype=torch.float64, device=p.device)
+    dop = torch.fft.fftfreq(M, device=p.device)
+    outer[dop.abs() >= 0.25] = 1.0
+    offs = torch.arange(K, device=p.device) - k0
+    band = (offs.abs() >= guard) & (offs.abs() <= width) & (torch.arange(K, device=p.device) >= 2)
+    n_band = int(band.sum())
+    # Range bins with a strong line (and the window's main lobe around them) are left out: zeroing
+    # the burst chirps spreads a line over the whole Doppler band there.
+    strong = (Pd > 100 * Pd.median(dim=0, keepdim=True).values).any(dim=0).double()
+    strong = torch.nn.functional.max_pool1d(strong[None, None], 9, stride=1, padding=4)[0, 0] > 0
+    band = band & ~strong
+    band_scale = n_band / max(int(band.sum()), 1)
+    core = offs.abs() <= 4
+    num = torch.zeros((), dtype=torch.float64, device=p.device)
+    num_o = torch.zeros_like(num)
+    mag = torch.zeros_like(num)
+    den = torch.zeros_like(num)
+    var = torch.zeros_like(num)
+    for i in range(R):
+        for j in range(i + 1, R):
+            # Carrier's inter-RX phase: the skirt of a common LO carries it too.
+            cij = (C[i, core] * C[j, core].conj()).sum()
+            u = cij / cij.abs().clamp_min(_TINY)
+            xij = (X[:, i] * X[:, j].conj()).mean(dim=0) * use  # (M, K) complex
+            zij = (xij.sum(dim=0) * scale)[band].sum() / enbw_d
+            num = num + (zij * u.conj()).real
+            num_o = num_o + (((xij * outer[:, None]).sum(dim=0) * scale)[band].sum() / enbw_d * u.conj()).real
+            mag = mag + zij.abs()
+            den = den + cij.abs()
+            var = var + (floor[i, band] * floor[j, band]).sum() / (2 * max(n_keep, 1.0))
+    # Something common to the RX but arriving from elsewhere (an interferer) has another phase.
+    alignment = float(num / mag.clamp_min(_TINY))
+    z = float(num / var.sqrt().clamp_min(_TINY))
+    ratio = float(num / den.clamp_min(_TINY)) * band_scale
+    whiteness = float(2 * num_o / num) if float(num) > 0 else 0.0
+    tau = 2 * k0 * config.range_resolution_m / 299_792_458.0
+    pn_rms = math.sqrt(max(ratio, 0.0)) / (2 * math.pi * tau)
+    present = z >= min_z and 0.6 < whiteness < 1.5 and alignment >= min_alignment
+    return Signature(
+        "phase_noise", max(z, 0.0), present,
+        {"skirt_dBc": _db(ratio), "range_bin": float(k0), "range_m": k0 * config.range_resolution_m,
+         "carrier_snr_dB": snr, "whiteness": whiteness, "alignment": alignment, "z": z,
+         "freq_noise_rms_Hz_lower": pn_rms},
+        f"cross-RX skirt {_db(ratio):.1f} dBc over bins {guard}..{width} around bin {k0} "
+        f"(z = {z:.1f}, whiteness {whiteness:.2f}, alignment with the carrier {alignment:.2f}); score: z",
+    )
+
+
+# --------------------------------------------------------------------------- spur tone
+def detect_spur_tone(frames: torch.Tensor | Prepared, config: RadarConfig, min_db: float = 15.0,
+                     min_frames: float = 0.9, max_cv: float = 0.25, mirror_db: float = 10.0) -> Signature:
+    """A single persistent line off zero Doppler with a constant amplitude.
+
+    A spur (clock, regulator) is a tone at the ADC input locked to absolute time: in each chirp a
+    line at its frequency, advancing by ``2 pi f PRT`` from chirp to chirp, i.e. one Doppler line
+    at ``frac(f PRT)`` in every frame and every RX, with the same amplitude in all of them. A
+    moving target's line moves, a vibrating object's lines come in a symmetric pair around zero
+    Doppler, noise-like effects make no line. The frequency comes from a fine DFT over fast time
+    (1/40 bin), the aliasing fixed by the Doppler bin; the amplitude from the same DFT.
+
+    Args:
+        frames: raw frames or a :class:`Prepared`.
+        config: the capture's config.
+        min_db: smallest line height over its range bin's median Doppler power (frame average).
+        min_frames: share of frames in which the line must stand 6 dB over the floor.
+        max_cv: largest coefficient of variation of the per-frame amplitude.
+        mirror_db: a line at the mirrored Doppler bin within this many dB makes a pair (not a spur).
+
+    Returns:
+        A :class:`Signature`; ``score`` is the line height in dB; ``params``: ``freq_Hz``,
+        ``amplitude_counts`` (peak amplitude, RX mean), ``level_dBFS`` (RD level, library
+        convention), ``range_bin``, ``doppler_bin`` (centred), ``frames_fraction``, ``cv``,
+        ``mirror_dB`` (mirror line height), ``rx_spread_dB``.
+    """
+    p = _prep(frames, config)
+    F, R, M, N = p.shape
+    if M < 4:
+        return Signature("spur_tone", 0.0, False, {}, "needs at least 4 chirps")
+    wd = _window("hann", M, p.device)
+    X = torch.fft.fftshift(torch.fft.fft(p.moving_hann * wd[:, None], dim=2), dim=2) / wd.sum()  # (F,R,M,K)
+    P = X.abs().square()
+    Pm = P.mean(dim=(0, 1)).T  # (K, M)
+    c = M // 2
+    floor = Pm.median(dim=1, keepdim=True).values.clamp_min(_TINY)
+    E = Pm / floor
+    E[:, max(c - 1, 0): c + 2] = 0  # zero Doppler: static returns' residue, not a spur
+    E[:1] = 0
+    # Candidates: 2-D local maxima (a strong line fills its neighbour cells too).
+    pool = torch.nn.functional.max_pool2d(E[None, None], 3, stride=1, padding=1)[0, 0]
+    is_pk = (E >= pool) & (E > 0)
+    flat = torch.nonzero(is_pk.flatten()).flatten()
+    flat = flat[torch.argsort(E.flatten()[flat], descending=True)][:8]
+    K = E.shape[0]
+    n = torch.arange(N, dtype=torch.float64, device=p.device)
+    first: Signature | None = None
+    for idx in flat.tolist():
+        k, d = divmod(idx, M)
+        h = _db(E[k, d])
+        if h < min_db:
+            break
+        dm = 2 * c - d
+        mir = max((_db(E[k, j]) for j in range(dm - 1, dm + 2) if 0 <= j < M), default=-300.0)
+        ok = float((P[:, :, d, k].mean(dim=1) / floor[k, 0] > 10 ** 0.6).double().mean())
+        pre = mir < h - mirror_db and ok >= min_frames and 2 <= k < K - 1
+        if first is not None and not pre:
+            continue
+        # Fine DFT over fast time: frequency to 1/40 bin, amplitude free of scalloping.
+        grid = k + torch.linspace(-1, 1, 81, dtype=torch.float64, device=p.device)
+        basis = torch.exp(-2j * math.pi * grid[:, None] * n[None, :] / N) * (p.hann / p.hann.sum())  # (G, N)
+        a = torch.einsum("frmn,gn->frmg", p.moving.to(torch.complex128), basis)
+        g = int(a.abs().square().mean(dim=(0, 1, 2)).argmax())
+        amp_fr = 2 * a[..., g].abs().square().mean(dim=2).sqrt()  # (F, R): per-frame RMS amplitude
+        amp = float(amp_fr.square().mean().sqrt())
+        cv = float(amp_fr.mean(dim=1).std() / amp_fr.mean().clamp_min(_TINY)) if F > 1 else 0.0
+        rx_amp = amp_fr.square().mean(dim=0)
+        rx_spread = _db(rx_amp.max() / rx_amp.min().clamp_min(_TINY))
+        f_est = float(grid[g]) * config.sample_rate_Hz / N
+        # The line's Doppler bin gives frac(f PRT): pick the alias 1/PRT apart nearest the estimate.
+        prt = config.chirp_repetition_time_s
+        frac = (d - c) / M
+        f = (round(f_est * prt - frac) + frac) / prt
+        if abs(f - f_est) > config.sample_rate_Hz / N:
+            f = f_est
+        present = pre and cv <= max_cv
+        sig = Signature(
+            "spur_tone", h, present,
+            {"freq_Hz": f, "amplitude_counts": amp, "level_dBFS": 20 * math.log10(max(amp / p.full, _TINY)),
+             "range_bin": float(k), "doppler_bin": float(d - c), "frames_fraction": ok, "cv": cv,
+             "mirror_dB": mir, "rx_spread_dB": rx_spread},
+            f"line {h:.1f} dB over the floor at range bin {k}, Doppler bin {d - c:+d}: {amp:.2f} counts at "
+            f"{f / 1e3:.3f} kHz, in {100 * ok:.0f} % of frames, cv {cv:.2f}, mirror {mir:.1f} dB; "
+            "score: dB over the floor",
+        )
+        if present:
+            return sig
+        first = first or sig
+    if first is not None:
+        return first
+    return Signature("spur_tone", 0.0, False, {}, "no line off zero Doppler")
+
+
+# --------------------------------------------------------------------------- IF high-pass
+def butterworth_highpass_power(f: torch.Tensor, cutoff_Hz: float | torch.Tensor,
+                               order: float | torch.Tensor) -> torch.Tensor:
+    """``|H|^2 = (f/fc)^2n / (1 + (f/fc)^2n)`` of an order-``n`` Butterworth high-pass."""
+    x = (f / cutoff_Hz) ** (2 * order)
+    return x / (1 + x)
+
+
+def _hp_fit(f: torch.Tensor, psd: torch.Tensor, fcs: torch.Tensor, orders: torch.Tensor, fs: float
+            ) -> tuple[torch.Tensor, torch.Tensor]:
+    """Weighted least squares of ``psd ~ H(f; fc, n) (a + c f/fs) + b`` for every ``(fc, n)``.
+
+    Returns the misfits (RMS dB, ``(len(fcs), len(orders))``) and the coefficients ``(a, c, b)``.
+    Linear in ``(a, c, b)`` for a given shape, so the whole grid is one batched solve; the
+    weights ``1 / psd`` make it a relative (log-like) fit. ``b`` is the floor that does not go
+    through the high-pass (ADC-side noise, quantization); the tilt ``c`` takes up the anti-alias
+    filter and aliasing, which are not the high-pass's business.
+    """
+    h = butterworth_highpass_power(f[None, None], fcs[:, None, None], orders[None, :, None])  # (G, O, B)
+    x = f / fs
+    A = torch.stack([h, h * x, torch.ones_like(h)], dim=-1) / psd[:, None]  # (G, O, B, 3)
+    y = torch.ones_like(psd).expand_as(h)[..., None]
+    sol = torch.linalg.lstsq(A, y).solution  # (G, O, 3, 1)
+    coef = sol[..., 0]
+    model = (A @ sol)[..., 0] * psd
+    err = 10 * torch.log10(model.clamp_min(psd.min() * 1e-3) / psd)
+    return err.square().mean(dim=-1).sqrt(), coef
+
+
+def detect_if_highpass(frames: torch.Tensor | Prepared, config: RadarConfig, min_gain_db: float = 0.3,
+                       max_fit_Hz: float | None = None) -> Signature:
+    """The IF high-pass's cutoff and order, from the shape of the noise floor.
+
+    Chirp-to-chirp differences cancel everything static (returns, leakage, DC), leaving noise:
+    the thermal part went through the high-pass, the ADC-side part did not. Components common to
+    all RX (phase-noise skirts, spurs, interference) are removed with the cross-RX spectrum,
+    burst chirps are left out (median). A Butterworth ``|H|^2`` (free cutoff and order 1..4) plus a
+    flat floor is fitted to the floor's power spectrum up to ``max_fit_Hz`` and compared with the
+    nominal high-pass (first order at ``config.effective_hp_cutoff_Hz``, the library's twin). The
+    effect is present when the free fit beats the nominal one by ``min_gain_db`` (RMS dB) and its
+    cutoff or order differs.
+
+    Args:
+        frames: raw frames or a :class:`Prepared`.
+        config: the capture's config.
+        min_gain_db: smallest RMS improvement of the free fit over the nominal one.
+        max_fit_Hz: top of the fitted band (default ``min(0.3 fs, 6 x nominal cutoff)``).
+
+    Returns:
+        A :class:`Signature`; ``score`` is the RMS improvement (dB); ``params``: ``cutoff_Hz``,
+        ``order``, ``misfit_dB``, ``nominal_misfit_dB``, ``hp_over_floor_dB`` (high-passed noise
+        over the flat floor at the top of the band: the high-pass is only visible when > 0).
+    """
+    p = _prep(frames, config)
+    F, R, M, N = p.shape
+    if M < 2:
+        return Signature("if_highpass", 0.0, False, {}, "needs at least 2 chirps")
+    x = p.counts
+    keep = (~p.burst_mask)
+    pair_ok = (keep[:, 1:] & keep[:, :-1])  # (F, M-1)
+    dd = _rspec(x[:, :, 1:] - x[:, :, :-1], p.bh4)  # (F, R, M-1, K)
+    K = dd.shape[-1]
+    pw = dd.abs().square()
+    sel = pair_ok.flatten()
+    pw_sel = pw.permute(1, 3, 0, 2).reshape(R, K, -1)[:, :, sel]
+    psd = pw_sel.median(dim=-1).values.mean(dim=0) / math.log(2)  # (K,)
+    if R > 1:
+        # Remove what is common to the RX (the thermal floor is independent between them).
+        ddk = dd.permute(1, 3, 0, 2).reshape(R, K, -1)[:, :, sel]
+        coh = torch.zeros(K, dtype=torch.float64, device=p.device)
+        n = 0
+        for i in range(R):
+            for j in range(i + 1, R):
+                coh = coh + (ddk[i] * ddk[j].conj()).mean(dim=-1).abs()
+                n += 1
+        # The mean power (not the median) is what the cross spectrum compares with.
+        psd_mean = pw_sel.mean(dim=(0, 2))
+        psd = psd * (1 - (coh / n / psd_mean.clamp_min(_TINY)).clamp(0, 0.9))
+    fs = config.sample_rate_Hz
+    nom = config.effective_hp_cutoff_Hz
+    fmax = max_fit_Hz if max_fit_Hz is not None else min(0.3 * fs, 6 * nom)
+    f_all = torch.arange(K, dtype=torch.float64, device=p.device) * fs / N
+    band = (torch.arange(K, device=p.device) >= 2) & (f_all <= fmax)
+    f, y = f_all[band], psd[band].clamp_min(_TINY)
+    if f.numel() < 6:
+        return Signature("if_highpass", 0.0, False, {}, "too few low-frequency bins")
+    orders = torch.tensor([1.0, 2.0, 3.0, 4.0], dtype=torch.float64, device=p.device)
+    lo_fc, hi_fc = max(fs / N, 2e3), min(0.45 * fs, 3 * fmax)
+    fcs = torch.logspace(math.log10(lo_fc), math.log10(hi_fc), 80, dtype=torch.float64, device=p.device)
+    err, coef = _hp_fit(f, y, fcs, orders, fs)
+    gi, oi = divmod(int(err.argmin()), len(orders))
+    # Refine the cutoff around the best grid point.
+    fine = fcs[gi] * torch.logspace(-0.06, 0.06, 25, dtype=torch.float64, device=p.device)
+    err_f, coef_f = _hp_fit(f, y, fine, orders[oi: oi + 1], fs)
+    fi = int(err_f.argmin())
+    fc_best, n_best, mis = float(fine[fi]), float(orders[oi]), float(err_f[fi, 0])
+    a, c, b = (float(v) for v in coef_f[fi, 0])
+    err_n, coef_n = _hp_fit(f, y, torch.tensor([nom], dtype=torch.float64, device=p.device), orders[:1], fs)
+    mis_n = float(err_n[0, 0])
+    hp_over = _db(max(a * (1 + c * fmax / fs), _TINY) / max(b, _TINY)) if b > 0 else 99.0
+    gain = mis_n - mis
+    differs = n_best >= 2 or abs(math.log(fc_best / nom)) > math.log(1.3)
+    present = gain >= min_gain_db and differs and hp_over > 0
+    return Signature(
+        "if_highpass", max(gain, 0.0), present,
+        {"cutoff_Hz": fc_best, "order": n_best, "misfit_dB": mis, "nominal_misfit_dB": mis_n,
+         "hp_over_floor_dB": hp_over},
+        f"noise floor fits a Butterworth high-pass of order {n_best:g} at {fc_best / 1e3:.1f} kHz "
+        f"({mis:.2f} dB RMS) vs nominal order 1 at {nom / 1e3:.1f} kHz ({mis_n:.2f} dB RMS); "
+        "score: RMS dB gained",
+    )
+
+
+# --------------------------------------------------------------------------- RX mismatch
+def detect_rx_gain_phase_mismatch(frames: torch.Tensor | Prepared, config: RadarConfig,
+                                  min_gain_db: float = 0.5, max_spread_db: float = 1.0,
+                                  min_noise_share: float = 0.4, min_snr_db: float = 20.0) -> Signature:
+    """A per-RX gain that scales the static returns and the noise alike.
+
+    A gain mismatch sits in the RX channel, so every static return *and* the channel's noise are
+    scaled by it: the same ratio to RX1 at every static return (a return's angle of arrival
+    changes its phase, not its level; two returns in one bin change the level differently in each
+    bin) and in the noise floor (its thermal part; an ADC-side floor dilutes it, hence
+    ``min_noise_share``). Phases relative to RX1 are reported for the strongest return but not
+    tested: without a scene they cannot be told from the angle of arrival.
+
+    Args:
+        frames: raw frames or a :class:`Prepared`.
+        config: the capture's config.
+        min_gain_db: smallest |gain| (static returns) reported as a mismatch.
+        max_spread_db: largest spread of the ratio over the static returns (MAD x 1.48).
+        min_noise_share: the noise's ratio must carry at least this share of the returns' (same sign).
+        min_snr_db: static returns used must stand this far over the per-chirp floor (dB).
+
+    Returns:
+        A :class:`Signature`; ``score`` is the largest |gain| (dB) when the two agree, else 0;
+        ``params``: ``gain_dB_rx{i}`` (from the static returns, else the noise),
+        ``static_gain_dB_rx{i}``, ``noise_gain_dB_rx{i}``, ``phase_rad_rx{i}``, ``spread_dB``,
+        ``num_returns``.
+    """
+    p = _prep(frames, config)
+    F, R, M, N = p.shape
+    if R < 2:
+        return Signature("rx_gain_phase_mismatch", 0.0, False, {}, "needs at least 2 RX")
+    floor = p.floor_hann  # (R, K)
+    K = floor.shape[1]
+    mid = slice(max(K // 4, 2), max(3 * K // 4, 3))
+    g_noise = 10 * torch.log10((floor[:, mid] / floor[:1, mid]).median(dim=1).values)
+    C = p.static_hann.mean(dim=0)  # (R, K)
+    pc = C.abs().square()
+    pcm = pc.mean(dim=0)
+    fl = floor.mean(dim=0)
+    peaks = [k for k in _peaks_1d(pcm, lo=3) if float(pcm[k] / fl[k]) > 10 ** (min_snr_db / 10)]
+    peaks = [k for k in peaks if float(pcm[k]) > float(pcm[peaks[0]]) * 1e-3][:12] if peaks else []
+    params: dict[str, float] = {"num_returns": float(len(peaks))}
+    for i in range(R):
+        params[f"noise_gain_dB_rx{i + 1}"] = float(g_noise[i])
+    if not peaks:
+        for i in range(R):
+            params[f"gain_dB_rx{i + 1}"] = float(g_noise[i])
+        return Signature("rx_gain_phase_mismatch", 0.0, False, params, "no static return to compare")
+    ks = torch.tensor(peaks, device=p.device)
+    g_k = 10 * torch.log10(pc[:, ks] / pc[:1, ks])  # (R, P)
+    g_static = g_k.median(dim=1).values
+    spread = float(((g_k - g_static[:, None]).abs().median(dim=1).values * 1.4826).max()) if len(peaks) > 2 else 0.0
+    k0 = peaks[0]
+    ph = torch.angle(C[:, k0] * C[0, k0].conj())
+    worst, agree = 0.0, True
+    for i in range(1, R):
+        gs, gn = float(g_static[i]), float(g_noise[i])
+        params[f"static_gain_dB_rx{i + 1}"] = gs
+        if abs(gs) >= min_gain_db:
+            ok = gs * gn > 0 and abs(gn) >= min_noise_share * abs(gs) and abs(gn) <= abs(gs) + 0.5
+            agree = agree and ok
+            worst = max(worst, abs(gs))
+    params["static_gain_dB_rx1"] = 0.0
+    for i in range(R):
+        params[f"gain_dB_rx{i + 1}"] = float(g_static[i])
+        params[f"phase_rad_rx{i + 1}"] = float(ph[i])
+    params["spread_dB"] = spread
+    present = worst >= min_gain_db and agree and spread <= max_spread_db
+    gains = ", ".join(f"{float(g_static[i]):+.2f}/{float(g_noise[i]):+.2f}" for i in range(1, R))
+    return Signature(
+        "rx_gain_phase_mismatch", worst if (agree and spread <= max_spread_db) else 0.0, present, params,
+        f"gain re RX1 (static returns / noise) {gains} dB over {len(peaks)} returns, spread {spread:.2f} dB; "
+        "score: largest |gain| dB when both agree",
+    )
+
+
+# --------------------------------------------------------------------------- TX->RX leakage
+def detect_tx_rx_leakage(frames: torch.Tensor | Prepared, config: RadarConfig, bins: int = 3,
+                         min_chirp_snr_db: float = 0.0, min_coherence: float = 0.9,
+                         max_clipped: float = 1e-3) -> Signature:
+    """A coherent return at near-zero beat frequency: the on-chip/in-package TX->RX coupling.
+
+    Leakage is a path a few millimetres to centimetres long: its beat frequency is far below one
+    range bin, and after the IF high-pass (and its start-up at the ramp start) it is a slow
+    curve in every chirp, identical from chirp to chirp and frame to frame. The mean chirp over
+    the whole capture (its mean, the DC offset, removed) is analysed with a Blackman-Harris window
+    (sidelobes -92 dB, so returns beyond ~6 bins do not leak into bins 0..2) after removing its
+    window-weighted mean (the DC offset; bin 0 is then empty): the power in range bins
+    ``1 .. bins - 1`` must reach ``min_chirp_snr_db`` over the *per-chirp* noise of those bins
+    (visible in a single chirp, not just in the average of thousands), with the same complex
+    value in every frame (coherence over frames, magnitudes ignored so that a wandering gain does
+    not matter).
+
+    Args:
+        frames: raw frames or a :class:`Prepared`.
+        config: the capture's config.
+        bins: near-DC range bins counted.
+        min_chirp_snr_db: smallest near-DC power over the per-chirp noise in those bins (dB).
+        min_coherence: smallest frame-to-frame phase coherence.
+        max_clipped: above this share of clipped samples the test is not made (the clipping's
+            intermodulation products of the static returns land near DC too).
+
+    Returns:
+        A :class:`Signature`; ``score`` is the near-DC power over the per-chirp noise (dB, best RX);
+        ``params``: ``level_dBFS_rx{i}`` (near-DC power, dBFS), ``chirp_snr_dB``, ``coherence``,
+        ``clipped_fraction``.
+    """
+    p = _prep(frames, config)
+    F, R, M, N = p.shape
+    S = p.static_bh4[..., 1:bins]  # (F, R, bins - 1); bin 0 is the DC, removed
+    mean_s = S.mean(dim=0)  # (R, bins)
+    pl = mean_s.abs().square().sum(dim=-1)  # (R,)
+    noise = p.moving_bh4[..., 1:bins].abs().square().mean(dim=(0, 2)).sum(dim=-1) * M / max(M - 1, 1)  # (R,)
+    snr = 10 * torch.log10(pl.clamp_min(_TINY) / noise.clamp_min(_TINY))
+    # Phase coherence over frames, per RX: |sum_f <S_f, mean>| / sum_f |<S_f, mean>|.
+    dot = (S * mean_s.conj()[None]).sum(dim=-1)  # (F, R)
+    coh = dot.sum(dim=0).abs() / dot.abs().sum(dim=0).clamp_min(_TINY)
+    i = int(snr.argmax())
+    params = {"chirp_snr_dB": float(snr[i]), "coherence": float(coh[i])}
+    for r in range(R):
+        params[f"level_dBFS_rx{r + 1}"] = _db(pl[r] * (2 / p.full) ** 2)
+    params["clipped_fraction"] = p.clipped_fraction
+    present = float(snr[i]) >= min_chirp_snr_db and float(coh[i]) >= min_coherence
+    if present and p.clipped_fraction > max_clipped:
+        # The rails distort every chirp the same way: intermodulation of the static returns lands
+        # near DC, coherent in every chirp, and cannot be told from a leakage path.
+        return Signature("tx_rx_leakage", 0.0, False, params,
+                         f"near-DC coherent content {float(snr[i]):.1f} dB over the noise, but "
+                         f"{100 * p.clipped_fraction:.2g} % of samples clip: clipping intermodulation")
+    return Signature(
+        "tx_rx_leakage", max(float(snr[i]), 0.0), present, params,
+        f"near-DC coherent return (range bins 1..{bins - 1}) {float(snr[i]):.1f} dB over the per-chirp noise, "
+        f"frame coherence {float(coh[i]):.3f}; score: dB over the per-chirp noise",
+    )
+
+
+# --------------------------------------------------------------------------- interference
+def detect_interference(frames: torch.Tensor | Prepared, config: RadarConfig, min_bursts: int = 2,
+                        min_wideband: float = 0.2) -> Signature:
+    """Bursts: a few chirps whose power (static part removed) stands far above their frame's other chirps.
+
+    A crossing FMCW interferer adds a short chirp-like burst to the chirps it hits; the rest are
+    untouched. With the static scene removed (each frame's mean chirp), the power of a chirp in a
+    range bin relative to the frame's median chirp in that bin is noise-like; its median over the
+    range bins barely varies from chirp to chirp (a fraction of a dB), and a burst, which sweeps
+    the IF band, lifts it by many dB. A vibrating or moving object lifts a few range bins in many
+    chirps and leaves that median alone; a gain that wanders from frame to frame lifts whole
+    frames, not single chirps. The threshold is 8 robust standard deviations and at least 3 dB;
+    the share of range bins a flagged chirp raises by 3 dB is reported (``min_wideband``).
+
+    Args:
+        frames: raw frames or a :class:`Prepared`.
+        config: the capture's config.
+        min_bursts: fewest flagged chirps to report the effect.
+        min_wideband: smallest median share of range bins raised by 3 dB in flagged chirps.
+
+    Returns:
+        A :class:`Signature`; ``score`` is the median excess (dB) of the flagged chirps;
+        ``params``: ``probability`` (share of chirps hit), ``num_bursts``, ``excess_dB``,
+        ``wideband`` (share of range bins raised), ``amplitude_counts`` and ``duration_s``
+        (Hann-burst equivalents: energy ``A^2 / 2 * 3/8 * duration * fs``).
+    """
+    p = _prep(frames, config)
+    F, R, M, N = p.shape
+    flags, ex_db, mad = _burst_flags(p.chirp_wideband)
+    nb = int(flags.sum())
+    params = {"probability": nb / (F * M), "num_bursts": float(nb), "spread_dB": mad}
+    if nb == 0:
+        return Signature("interference", 0.0, False, params, f"no chirp above its frame (spread {mad:.2f} dB)")
+    fi, mi = torch.nonzero(flags, as_tuple=True)
+    spec = p.moving_hann.abs().square().mean(dim=1)  # (F, M, K)
+    ref = spec.median(dim=1, keepdim=True).values  # per frame, per bin
+    wide = (spec[fi, mi] > 2 * ref[fi, 0]).double().mean(dim=-1)  # (nb,)
+    wideband = float(wide.median())
+    excess = float(ex_db[flags].median())
+    # Energy and extent of the bursts, per flagged chirp (RX mean).
+    med = p.chirp_power.median(dim=1).values[fi]  # (nb,)
+    energy = ((p.chirp_power[fi, mi] - med).clamp_min(0) * N)  # counts^2 x samples
+    env = p.moving[fi, :, mi].square().mean(dim=1)  # (nb, N)
+    dur = (env > 9 * med[:, None]).double().sum(dim=-1) / config.sample_rate_Hz
+    dur_s = max(float(dur.median()), 1.0 / config.sample_rate_Hz)
+    amp = math.sqrt(max(float(energy.median()), 0.0) * 2 / (0.375 * dur_s * config.sample_rate_Hz))
+    params.update({"excess_dB": excess, "wideband": wideband, "amplitude_counts": amp, "duration_s": dur_s})
+    present = nb >= min_bursts and wideband >= min_wideband
+    return Signature(
+        "interference", excess, present, params,
+        f"{nb} of {F * M} chirps ({100 * nb / (F * M):.2g} %) stand {excess:.1f} dB over their frame, "
+        f"{100 * wideband:.0f} % of range bins raised; score: median excess dB",
+    )
+
+
+# --------------------------------------------------------------------------- vibrating clutter
+_BETA = torch.linspace(1e-4, 2.3, 4000, dtype=torch.float64)
+_J_RATIO = (torch.special.bessel_j1(_BETA) / torch.special.bessel_j0(_BETA)) ** 2
+
+
+def _beta_from_ratio(r: float) -> float:
+    """``beta`` with ``(J1(beta) / J0(beta))^2 = r`` (monotone on (0, 2.3))."""
+    i = int(torch.searchsorted(_J_RATIO, torch.tensor([r], dtype=torch.float64)).clamp(0, len(_BETA) - 1))
+    return float(_BETA[i])
+
+
+def detect_vibrating_clutter(frames: torch.Tensor | Prepared, config: RadarConfig, min_db: float = 10.0,
+                             max_asym_db: float = 3.0, min_carrier_db: float = 20.0,
+                             min_lock: float = 0.5) -> Signature:
+    """A symmetric pair of Doppler lines around a static return: a vibrating object.
+
+    A return whose range oscillates, ``R + d sin(2 pi f_v t)``, is phase-modulated by
+    ``beta sin(2 pi f_v t)``, ``beta = 4 pi d / lambda``; by Jacobi-Anger its range bin shows
+    lines at Doppler ``k f_v`` with amplitudes ``|J_k(beta)|``: a carrier ``J0`` at zero Doppler
+    and a pair ``J1`` at ``+-f_v`` of equal height. A spur or a moving target makes one line, not
+    a pair. The pair must be phase-locked to the carrier (``X+ X- / C^2`` the same in every frame).
+    The sidebands' power (5x5 RD cells, floor removed) over the carrier's (the frames' mean chirp,
+    +-2 range bins), both with Hann windows, gives ``(J1/J0)^2`` and hence ``beta``.
+
+    Args:
+        frames: raw frames or a :class:`Prepared`.
+        config: the capture's config.
+        min_db: both lines this far over their range bin's median Doppler power.
+        max_asym_db: largest level difference of the two lines.
+        min_carrier_db: the static return at that range this far over the per-chirp floor.
+        min_lock: smallest frame-to-frame coherence of ``X+ X- / C^2`` (1 for a phase-modulated
+            return, whatever its vibration phase; ~0 for two unrelated lines).
+
+    Returns:
+        A :class:`Signature`; ``score`` is the weaker line's height (dB); ``params``:
+        ``vibration_Hz``, ``displacement_m``, ``beta``, ``sideband_dBc`` (one line over the carrier),
+        ``range_m``, ``range_bin``, ``doppler_bin``, ``asymmetry_dB``, ``phase_lock``.
+    """
+    p = _prep(frames, config)
+    F, R, M, N = p.shape
+    if M < 8:
+        return Signature("vibrating_clutter", 0.0, False, {}, "needs at least 8 chirps")
+    wd = _window("hann", M, p.device)
+    X = torch.fft.fftshift(torch.fft.fft(p.moving_hann * wd[:, None], dim=2), dim=2) / wd.sum()
+    Pm = X.abs().square().mean(dim=(0, 1)).T  # (K, M)
+    K = Pm.shape[0]
+    c = M // 2
+    floor = Pm.median(dim=1, keepdim=True).values.clamp_min(_TINY)
+    E = Pm / floor
+    pc = p.static_hann.abs().square().mean(dim=(0, 1))  # (K,)
+    # The noise level over all range bins: the vibrating bin's own floor holds the modulation.
+    fl = p.floor_hann.mean(dim=0).median()
+    j = torch.arange(2, c - 1, device=p.device)
+    if j.numel() == 0:
+        return Signature("vibrating_clutter", 0.0, False, {}, "too few chirps")
+    up, dn = E[:, c + j], E[:, c - j]  # (K, J)
+    weak = torch.minimum(up, dn)
+    asym = (10 * torch.log10(up / dn)).abs()
+    carrier_ok = (pc / fl.clamp_min(_TINY) > 10 ** (min_carrier_db / 10))[:, None]
+    score = torch.where((asym <= max_asym_db) & carrier_ok, weak, torch.zeros_like(weak))
+    score[:2] = 0
+    k, ji = divmod(int(score.argmax()), j.numel())
+    h = _db(score[k, ji])
+    if h < min_db:
+        # Report the strongest pair anyway (not present).
+        return Signature("vibrating_clutter", max(h, 0.0), False, {"range_bin": float(k)},
+                         f"no symmetric Doppler pair {min_db:.0f} dB over the floor (best {h:.1f} dB)")
+    jj = int(j[ji])
+    ks = slice(max(k - 2, 0), min(k + 3, K))
+
+    def line(d: int) -> tuple[float, float]:
+        ds = slice(max(d - 2, 0), min(d + 3, M))
+        blk = Pm[ks, ds]
+        pw = float((blk - floor[ks]).clamp_min(0).sum()) / (1.5 * 1.5)
+        # Sub-bin Doppler: power-weighted centre of the 3 cells around the line.
+        w3 = Pm[k, max(d - 1, 0): d + 2]
+        pos = float((w3 * torch.arange(-1, w3.numel() - 1, device=p.device, dtype=torch.float64)).sum() / w3.sum())
+        return pw, d + pos
+
+    # Phase lock: a phase-modulated return's lines are C J1 e^{j phi} and -C J1 e^{-j phi}, so
+    # X+ X- / C^2 = -(J1/J0)^2 in every frame whatever the vibration's phase; two unrelated lines
+    # (e.g. intermodulation of a spur with a static return on a clipping ADC) wander from frame
+    # to frame.
+    q = X[:, :, c + jj, k] * X[:, :, c - jj, k] / p.static_hann[:, :, k].square()  # (F, R)
+    lock = float(q.sum().abs() / q.abs().sum().clamp_min(_TINY))
+    p_up, d_up = line(c + jj)
+    p_dn, d_dn = line(c - jj)
+    carrier = float(pc[ks].sum()) / 1.5
+    ratio = 0.5 * (p_up + p_dn) / max(carrier, _TINY)
+    beta = _beta_from_ratio(ratio)
+    f_v = 0.5 * ((d_up - c) + (c - d_dn)) / (M * config.chirp_repetition_time_s)
+    disp = beta * config.wavelength_m / (4 * math.pi)
+    return Signature(
+        "vibrating_clutter", h, lock >= min_lock,
+        {"vibration_Hz": f_v, "displacement_m": disp, "beta": beta, "sideband_dBc": _db(ratio),
+         "range_bin": float(k), "range_m": k * config.range_resolution_m, "doppler_bin": float(jj),
+         "asymmetry_dB": float(asym[k, ji]), "phase_lock": lock},
+        f"Doppler pair +-{jj} bins ({f_v:.2f} Hz) at range bin {k}, {_db(ratio):.1f} dBc each "
+        f"(beta {beta:.3f}, {disp * 1e3:.3f} mm), phase lock to the carrier {lock:.2f}; "
+        "score: weaker line dB over the floor",
+    )
+
+
+# --------------------------------------------------------------------------- frame drift
+def detect_frame_drift(frames: torch.Tensor | Prepared, config: RadarConfig, min_dc_counts: float = 0.5,
+                       min_gain_db: float = 0.15, min_f: float = 4.0) -> Signature:
+    """The DC level (per RX) or the gain (common to the RX) wandering from frame to frame.
+
+    Within a frame the chirps' means scatter only by noise; from frame to frame the frame means
+    scatter by noise / sqrt(M) *plus* any drift: the excess variance is the drift's (a variance
+    ratio, ``min_f``). The gain is read from the strongest static return (range bins >= 3) in each
+    frame and the per-frame noise power; a common gain moves both, in every RX alike.
+
+    Args:
+        frames: raw frames or a :class:`Prepared`.
+        config: the capture's config.
+        min_dc_counts: smallest DC drift RMS (counts) reported.
+        min_gain_db: smallest gain drift RMS (dB) reported.
+        min_f: smallest ratio of observed to noise-explained frame-mean variance.
+
+    Returns:
+        A :class:`Signature`; ``score`` is the larger variance ratio; ``params``: ``dc_rms_counts``,
+        ``gain_rms_dB``, ``dc_f``, ``gain_f``.
+    """
+    p = _prep(frames, config)
+    F, R, M, N = p.shape
+    if F < 4:
+        return Signature("frame_drift", 0.0, False, {}, "needs at least 4 frames")
+    cm = p.counts.mean(dim=-1)  # (F, R, M) chirp means
+    fm = cm.mean(dim=-1)  # (F, R)
+    expect = (cm.var(dim=-1) / M).mean(dim=0)  # (R,)
+    obs = fm.var(dim=0)
+    dc_f = float((obs / expect.clamp_min(1e-12)).max())
+    dc_rms = float((obs - expect).clamp_min(0).sqrt().max())
+    # Gain: log-amplitude of the strongest static return per frame (RX mean), and noise power.
+    pcf = p.static_hann.abs().square()  # (F, R, K)
+    k0 = _peaks_1d(pcf.mean(dim=(0, 1)), lo=3)
+    g_rms, g_f = 0.0, 0.0
+    if k0:
+        a = 10 * torch.log10(pcf[:, :, k0[0]].clamp_min(_TINY))  # (F, R) dB
+        # Noise-explained spread of a return's level: sigma_dB ~ 4.34 * sqrt(2 noise / P) (small noise).
+        noise = p.floor_hann[:, k0[0]] / M  # per-frame mean's noise power
+        sig_n = 4.343 * torch.sqrt(2 * noise / pcf[:, :, k0[0]].mean(dim=0).clamp_min(_TINY))
+        common = a.mean(dim=1)
+        var_obs = float(common.var())
+        var_exp = float(sig_n.square().mean()) / R
+        g_f = var_obs / max(var_exp, 1e-12)
+        g_rms = math.sqrt(max(var_obs - var_exp, 0.0))  # 10 log10 |S|^2 is the amplitude in dB
+    present = (dc_f >= min_f and dc_rms >= min_dc_counts) or (g_f >= min_f and g_rms >= min_gain_db)
+    return Signature(
+        "frame_drift", max(dc_f, g_f) if present else 0.0, present,
+        {"dc_rms_counts": dc_rms, "gain_rms_dB": g_rms, "dc_f": dc_f, "gain_f": g_f},
+        f"frame-to-frame DC {dc_rms:.2f} counts RMS (variance ratio {dc_f:.1f}), gain {g_rms:.2f} dB RMS "
+        f"(ratio {g_f:.1f}); score: variance ratio",
+    )
+
+
+# --------------------------------------------------------------------------- all
+DETECTORS = {
+    "adc_clipping": detect_adc_clipping,
+    "phase_noise": detect_phase_noise,
+    "spur_tone": detect_spur_tone,
+    "if_highpass": detect_if_highpass,
+    "rx_gain_phase_mismatch": detect_rx_gain_phase_mismatch,
+    "tx_rx_leakage": detect_tx_rx_leakage,
+    "interference": detect_interference,
+    "vibrating_clutter": detect_vibrating_clutter,
+    "frame_drift": detect_frame_drift,
+}
+"""Effect name -> detector ``(frames, config) -> Signature``."""
+
+
+@torch.no_grad()
+def detect_all(frames: torch.Tensor, config: RadarConfig) -> list[Signature]:
+    """Every detector on raw frames ``(F, rx, chirps, samples)`` (SDK floats), shared work done once.
+
+    Returns one :class:`Signature` per effect of :data:`SIGNATURE_EFFECTS`, in that order. One
+    joint rule: on a clipping capture with a spur, a Doppler pair at the spur's Doppler offset is
+    the spur's intermodulation with a static return, not a vibration.
+    """
+    p = Prepared(frames, config)
+    sigs = {name: DETECTORS[name](p, config) for name in SIGNATURE_EFFECTS}
+    vib, spur, clip = sigs["vibrating_clutter"], sigs["spur_tone"], sigs["adc_clipping"]
+    if vib.present and spur.present and clip.present and \
+            abs(vib.params["doppler_bin"] - abs(spur.params["doppler_bin"])) <= 1:
+        # A clipping ADC mixes the spur with every static return: lines at f_spur +- f_return with
+        # the spur's Doppler +-d, a phase-locked pair around a static return's bin, like a vibration.
+        sigs["vibrating_clutter"] = Signature(
+            "vibrating_clutter", 0.0, False, dict(vib.params),
+            f"Doppler pair at the spur's Doppler offset on a clipping capture: intermodulation ({vib.detail})")
+    return [sigs[name] for name in SIGNATURE_EFFECTS]
+
+
+__all__ = [
+    "DETECTORS",
+    "SIGNATURE_EFFECTS",
+    "Prepared",
+    "Signature",
+    "butterworth_highpass_power",
+    "detect_adc_clipping",
+    "detect_all",
+    "detect_frame_drift",
+    "detect_if_highpass",
+    "detect_interference",
+    "detect_phase_noise",
+    "detect_rx_gain_phase_mismatch",
+    "detect_spur_tone",
+    "detect_tx_rx_leakage",
+    "detect_vibrating_clutter",
+]

@@ -1,0 +1,332 @@
+"""Effect signatures (``radaraug.calibration.signatures``) against closed forms.
+
+Every input is built here with NumPy from first principles: white Gaussian noise in ADC counts,
+static returns as tones of known amplitude and per-RX phase, then one effect with known
+parameters, quantized to 12-bit codes and converted to SDK floats (``x = 2 * counts / 4095 - 1``).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+import torch
+from scipy.special import j0, j1, ndtr
+
+from radaraug.calibration.signatures import (
+    SIGNATURE_EFFECTS,
+    Signature,
+    detect_adc_clipping,
+    detect_all,
+    detect_frame_drift,
+    detect_if_highpass,
+    detect_interference,
+    detect_phase_noise,
+    detect_rx_gain_phase_mismatch,
+    detect_spur_tone,
+    detect_tx_rx_leakage,
+    detect_vibrating_clutter,
+)
+from radaraug.config import RadarConfig
+
+FULL = 4095.0
+C = 299_792_458.0
+# Static room: (range bin, amplitude in counts) of a few point returns, all beyond ~2 m.
+ROOM = ((14.3, 60.0), (25.7, 150.0), (41.0, 40.0), (63.4, 25.0))
+SIGMA = 3.0  # thermal noise, counts RMS
+
+
+@pytest.fixture(scope="module")
+def cfg() -> RadarConfig:
+    return RadarConfig.bgt60tr13c()
+
+
+def fast_time(cfg: RadarConfig) -> np.ndarray:
+    return np.arange(cfg.num_samples_per_chirp) / cfg.sample_rate_Hz
+
+
+def abs_time(cfg: RadarConfig, frames: int) -> np.ndarray:
+    """Absolute time of every sample ``(F, 1, M, N)``."""
+    f = np.arange(frames)[:, None, None, None] * cfg.frame_repetition_time_s
+    m = np.arange(cfg.num_chirps_per_frame)[None, None, :, None] * cfg.chirp_repetition_time_s
+    return f + m + cfg.adc_delay_s + fast_time(cfg)[None, None, None, :]
+
+
+def room(cfg: RadarConfig, rng: np.random.Generator, returns=ROOM, gains=None) -> np.ndarray:
+    """Static returns ``(RX, N)`` in counts: tones at fractional range bins, random phase per RX."""
+    n = np.arange(cfg.num_samples_per_chirp)
+    N = cfg.num_samples_per_chirp
+    out = np.zeros((cfg.num_rx, N))
+    for k, a in returns:
+        ph = rng.uniform(0, 2 * np.pi, cfg.num_rx)
+        out += a * np.cos(2 * np.pi * k * n[None] / N + ph[:, None])
+    if gains is not None:
+        out *= np.asarray(gains)[:, None]
+    return out
+
+
+def noise(cfg: RadarConfig, rng: np.random.Generator, frames: int, sigma: float = SIGMA) -> np.ndarray:
+    return rng.normal(0, sigma, (frames, cfg.num_rx, cfg.num_chirps_per_frame, cfg.num_samples_per_chirp))
+
+
+def to_frames(counts: np.ndarray, dc=(2010.0, 2080.0, 1985.0)) -> torch.Tensor:
+    """Counts around 0 -> 12-bit codes (DC offset per RX, rounding, rails) -> SDK floats."""
+    c = np.clip(np.round(counts + np.asarray(dc)[None, :, None, None]), 0, FULL)
+    return torch.from_numpy(2 * c / FULL - 1)
+
+
+def base(cfg: RadarConfig, seed: int = 0, frames: int = 16) -> np.ndarray:
+    rng = np.random.default_rng(seed)
+    return room(cfg, rng)[None, :, None, :] + noise(cfg, rng, frames)
+
+
+def by_name(sigs: list[Signature]) -> dict[str, Signature]:
+    return {s.effect: s for s in sigs}
+
+
+# --------------------------------------------------------------------------- no false positives
+@pytest.mark.parametrize("seed", [0, 1])
+def test_thermal_noise_and_static_room_show_no_effect(cfg, seed):
+    sigs = detect_all(to_frames(base(cfg, seed)), cfg)
+    assert [s.effect for s in sigs] == list(SIGNATURE_EFFECTS)
+    assert [s.effect for s in sigs if s.present] == [], [s.detail for s in sigs if s.present]
+
+
+# --------------------------------------------------------------------------- clipping
+def test_clipping_fraction_matches_clipped_gaussian(cfg):
+    rng = np.random.default_rng(3)
+    mu, sigma = 2047.5 + 250.0, 900.0
+    x = noise(cfg, rng, 8, sigma) + mu
+    frames = to_frames(x, dc=(0.0, 0.0, 0.0))
+    s = detect_adc_clipping(frames, cfg)
+    # Codes round to the nearest integer: code 0 holds everything below 0.5, code 4095 above 4094.5.
+    expect = ndtr((0.5 - mu) / sigma) + ndtr((mu - (FULL - 0.5)) / sigma)
+    n = x.size
+    assert s.present
+    assert abs(s.params["fraction"] - expect) < 4 * math.sqrt(expect * (1 - expect) / n) + 1e-4
+    assert s.params["gaussian_fraction"] == pytest.approx(expect, rel=0.05)
+    assert s.params["fraction_high"] > s.params["fraction_low"]
+
+
+def test_clipping_not_reported_for_a_full_swing_that_stays_inside(cfg):
+    # A strong tone that reaches within 40 codes of the rails: lots of high codes, no pile-up.
+    n = np.arange(cfg.num_samples_per_chirp)
+    x = 2000.0 * np.cos(2 * np.pi * 10.3 * n / cfg.num_samples_per_chirp)
+    x = x[None, None, None, :] + noise(cfg, np.random.default_rng(0), 4)
+    s = detect_adc_clipping(to_frames(x, dc=(2047.5,) * 3), cfg)
+    assert not s.present and s.params["fraction"] == 0.0
+
+
+# --------------------------------------------------------------------------- IF high-pass
+def butterworth_noise(cfg, rng, frames, fc, order, sigma, floor_sigma):
+    """White noise through a zero-phase Butterworth high-pass ``|H|^2 = x^2n / (1 + x^2n)``, plus a flat floor.
+
+    Filtered in the frequency domain over 8 chirp lengths, the middle one kept (no circular wrap).
+    """
+    N = cfg.num_samples_per_chirp
+    L = 8 * N
+    shape = (frames, cfg.num_rx, cfg.num_chirps_per_frame)
+    w = rng.normal(0, sigma, (*shape, L))
+    f = np.fft.rfftfreq(L, 1 / cfg.sample_rate_Hz)
+    x = (f / fc) ** (2 * order)
+    h = np.sqrt(x / (1 + x))
+    y = np.fft.irfft(np.fft.rfft(w, axis=-1) * h, n=L, axis=-1)[..., 3 * N: 4 * N]
+    return y + rng.normal(0, floor_sigma, y.shape)
+
+
+@pytest.mark.parametrize("fc,order", [(120e3, 2), (40e3, 1), (200e3, 3)])
+def test_highpass_cutoff_and_order_fitted(cfg, fc, order):
+    rng = np.random.default_rng(4)
+    x = butterworth_noise(cfg, rng, 12, fc, order, 12.0, 0.8)
+    x = x + room(cfg, rng)[None, :, None, :]  # static returns cancel in chirp differences
+    s = detect_if_highpass(to_frames(x), cfg)
+    assert s.params["order"] == order
+    assert s.params["cutoff_Hz"] == pytest.approx(fc, rel=0.08)
+    assert s.present
+
+
+def test_highpass_nominal_is_not_reported(cfg):
+    rng = np.random.default_rng(5)
+    x = butterworth_noise(cfg, rng, 12, cfg.effective_hp_cutoff_Hz, 1, 12.0, 0.8)
+    s = detect_if_highpass(to_frames(x), cfg)
+    assert not s.present
+    assert s.params["cutoff_Hz"] == pytest.approx(cfg.effective_hp_cutoff_Hz, rel=0.1)
+
+
+# --------------------------------------------------------------------------- spur
+def test_spur_frequency_and_amplitude(cfg):
+    F = 16
+    x = base(cfg, 6, F)
+    f_sp, a_sp = 123_456.0, 5.0
+    x = x + a_sp * np.cos(2 * np.pi * f_sp * abs_time(cfg, F) + 0.7)
+    s = detect_spur_tone(to_frames(x), cfg)
+    assert s.present, s.detail
+    assert s.params["freq_Hz"] == pytest.approx(f_sp, abs=30.0)
+    assert abs(20 * math.log10(s.params["amplitude_counts"] / a_sp)) < 0.5
+
+
+# --------------------------------------------------------------------------- RX mismatch
+def test_rx_gain_estimated_from_returns_and_noise(cfg):
+    rng = np.random.default_rng(7)
+    g_db = np.array([0.0, 1.5, -2.0])
+    g = 10 ** (g_db / 20)
+    x = (room(cfg, rng)[None, :, None, :] + noise(cfg, rng, 16)) * g[None, :, None, None]
+    s = detect_rx_gain_phase_mismatch(to_frames(x), cfg)
+    assert s.present, s.detail
+    for i in (1, 2):
+        assert abs(s.params[f"gain_dB_rx{i + 1}"] - g_db[i]) < 0.3
+        assert abs(s.params[f"noise_gain_dB_rx{i + 1}"] - g_db[i]) < 0.3
+
+
+def test_rx_gain_in_the_returns_only_is_not_a_mismatch(cfg):
+    # Returns differ per RX (e.g. an antenna pattern or two returns per bin), the noise does not.
+    rng = np.random.default_rng(8)
+    x = room(cfg, rng, gains=[1.0, 1.3, 0.8])[None, :, None, :] + noise(cfg, rng, 16)
+    assert not detect_rx_gain_phase_mismatch(to_frames(x), cfg).present
+
+
+# --------------------------------------------------------------------------- phase noise
+def test_phase_noise_skirt_level(cfg):
+    """A strong return with LO frequency noise: the skirt's level in dBc, closed form.
+
+    ``nu`` is white noise (variance ``s2`` per sample) filtered per chirp, circularly, by ``h_k``
+    (Lorentzian, corner ``fc``): its per-bin variance is ``s2 |h_k|^2 / N``, and the return's
+    phase ``2 pi tau nu`` puts ``(2 pi tau)^2 s2 |h_k|^2 / N`` of the carrier's power at
+    ``k`` bins from it (both sides). Summed over the detector's band (5..40 bins).
+    """
+    N, M, F = cfg.num_samples_per_chirp, cfg.num_chirps_per_frame, 12
+    rng = np.random.default_rng(9)
+    k0, A = 40, 400.0
+    tau = 2 * k0 * cfg.range_resolution_m / C
+    fcorner, s2 = 100e3, (250e3) ** 2
+    kf = np.fft.rfftfreq(N, 1 / cfg.sample_rate_Hz)
+    h = 1 / np.sqrt(1 + (kf / fcorner) ** 2)
+    nu = np.fft.irfft(np.fft.rfft(rng.normal(0, math.sqrt(s2), (F, 1, M, N)), axis=-1) * h, n=N, axis=-1)
+    n = np.arange(N)
+    ph = np.array([0.3, 1.9, -2.2])[None, :, None, None]
+    x = A * np.cos(2 * np.pi * k0 * n / N + ph + 2 * np.pi * tau * nu) + noise(cfg, rng, F, 2.0)
+    s = detect_phase_noise(to_frames(x), cfg)
+    offs = np.arange(5, 41)
+    expect = 2 * np.sum((2 * np.pi * tau) ** 2 * s2 * h[offs] ** 2 / N)
+    assert s.present, s.detail
+    assert s.params["range_bin"] == k0
+    assert abs(s.params["skirt_dBc"] - 10 * np.log10(expect)) < 2.0
+    assert s.params["whiteness"] == pytest.approx(1.0, abs=0.2)
+
+
+def test_independent_noise_around_a_return_is_not_phase_noise(cfg):
+    # Same strong return, thermal noise 10 dB stronger (independent per RX): no common skirt.
+    N = cfg.num_samples_per_chirp
+    rng = np.random.default_rng(10)
+    x = 400.0 * np.cos(2 * np.pi * 40 * np.arange(N) / N) + noise(cfg, rng, 12, 6.0)
+    assert not detect_phase_noise(to_frames(x), cfg).present
+
+
+# --------------------------------------------------------------------------- interference
+def test_bursts_flag_exactly_the_hit_chirps(cfg):
+    F, M, N = 10, cfg.num_chirps_per_frame, cfg.num_samples_per_chirp
+    x = base(cfg, 11, F)
+    rng = np.random.default_rng(12)
+    hit = [(0, 5), (2, 40), (3, 3), (7, 63), (9, 20)]
+    fs, dur, A = cfg.sample_rate_Hz, 20e-6, 80.0
+    t = np.arange(N) / fs
+    for f, m in hit:
+        t0 = rng.uniform(0.1 * N / fs, 0.9 * N / fs - dur)  # the Hann window hides the chirp's ends
+        u = t - t0
+        inside = (u >= 0) & (u <= dur)
+        burst = np.where(inside, A * np.sin(np.pi * u / dur) ** 2
+                         * np.cos(2 * np.pi * (fs / 2) * u * (u / dur - 1)), 0.0)
+        x[f, :, m] += burst[None, :]
+    frames = to_frames(x)
+    s = detect_interference(frames, cfg)
+    assert s.present
+    assert s.params["num_bursts"] == len(hit)
+    from radaraug.calibration.signatures import Prepared
+
+    flags = Prepared(frames, cfg).burst_mask
+    assert sorted(map(tuple, torch.nonzero(flags).tolist())) == sorted(hit)
+    assert s.params["probability"] == pytest.approx(len(hit) / (F * M))
+
+
+def test_gain_wander_between_frames_is_not_interference(cfg):
+    x = base(cfg, 13, 16) * (10 ** (np.random.default_rng(1).normal(0, 1.5, 16) / 20))[:, None, None, None]
+    assert not detect_interference(to_frames(x), cfg).present
+
+
+# --------------------------------------------------------------------------- vibrating clutter
+def test_vibration_sidebands_spacing_and_bessel_level(cfg):
+    """``R + d sin(2 pi f_v t)``: lines at +-f_v, each ``(J1(beta) / J0(beta))^2`` of the carrier."""
+    F, N = 16, cfg.num_samples_per_chirp
+    x = base(cfg, 14, F)
+    k0, A, d, f_v = 33, 120.0, 0.25e-3, 150.0
+    beta = 4 * np.pi * d / cfg.wavelength_m
+    psi = beta * np.sin(2 * np.pi * f_v * abs_time(cfg, F) + 0.4)
+    x = x + A * np.cos(2 * np.pi * k0 * np.arange(N) / N + 1.1 + psi)
+    s = detect_vibrating_clutter(to_frames(x), cfg)
+    assert s.present, s.detail
+    dopp = 1 / (cfg.num_chirps_per_frame * cfg.chirp_repetition_time_s)
+    assert s.params["range_bin"] == k0
+    assert abs(s.params["vibration_Hz"] - f_v) < 0.3 * dopp
+    assert abs(s.params["sideband_dBc"] - 20 * np.log10(j1(beta) / j0(beta))) < 1.0
+    assert s.params["displacement_m"] == pytest.approx(d, rel=0.12)
+
+
+def test_single_doppler_line_is_a_spur_not_a_vibration(cfg):
+    F = 16
+    x = base(cfg, 15, F) + 5.0 * np.cos(2 * np.pi * 87_654.0 * abs_time(cfg, F))
+    frames = to_frames(x)
+    assert not detect_vibrating_clutter(frames, cfg).present
+    assert detect_spur_tone(frames, cfg).present
+
+
+# --------------------------------------------------------------------------- leakage
+def test_leakage_near_dc_level(cfg):
+    """A slow near-DC curve in every chirp (a 4 cm path after the high-pass).
+
+    Its level is the power of the noiseless curve in the Blackman-Harris bins 1..2 (window-weighted
+    mean removed, so bin 0 is empty).
+    """
+    F, N = 12, cfg.num_samples_per_chirp
+    t = fast_time(cfg)
+    f_leak = 2 * 0.04 * cfg.slope_Hz_per_s / C  # ~0.9 kHz
+    fc = cfg.effective_hp_cutoff_Hz
+    # A tone far below the high-pass cutoff comes out as its derivative scaled by 1/(2 pi fc).
+    A = 2500.0 * f_leak / fc
+    leak = A * np.sin(2 * np.pi * f_leak * t + 0.3)
+    x = base(cfg, 16, F) + leak[None, None, None, :]
+    s = detect_tx_rx_leakage(to_frames(x), cfg)
+    assert s.present, s.detail
+    n = np.arange(N)
+    w = 0.35875 - 0.48829 * np.cos(2 * np.pi * n / N) + 0.14128 * np.cos(4 * np.pi * n / N) \
+        - 0.01168 * np.cos(6 * np.pi * n / N)
+    spec = np.fft.rfft((leak - np.sum(leak * w) / w.sum()) * w)[1:3] / w.sum()
+    expect_db = 10 * np.log10(np.sum(np.abs(spec) ** 2) * (2 / FULL) ** 2)
+    for r in (1, 2, 3):
+        assert abs(s.params[f"level_dBFS_rx{r}"] - expect_db) < 0.5
+
+
+# --------------------------------------------------------------------------- frame drift
+def test_frame_drift_dc_and_gain(cfg):
+    F = 40
+    rng = np.random.default_rng(17)
+    dc = rng.normal(0, 3.0, (F, 3, 1, 1))
+    g = 10 ** (rng.normal(0, 0.5, (F, 1, 1, 1)) / 20)
+    x = base(cfg, 18, F) * g + dc
+    s = detect_frame_drift(to_frames(x), cfg)
+    assert s.present
+    # The estimates are the sample RMS of the drawn drifts (40 frames), not the nominal ones.
+    assert s.params["dc_rms_counts"] == pytest.approx(float(dc.std(axis=0, ddof=1).max()), rel=0.15)
+    assert s.params["gain_rms_dB"] == pytest.approx(float(np.std(20 * np.log10(g), ddof=1)), rel=0.2)
+
+
+# --------------------------------------------------------------------------- devices, dtypes
+@pytest.mark.parametrize("device", ["cpu", pytest.param("cuda", marks=pytest.mark.skipif(
+    not torch.cuda.is_available(), reason="no CUDA"))])
+def test_device_and_float32_input(cfg, device):
+    F = 8
+    x = base(cfg, 19, F) + 5.0 * np.cos(2 * np.pi * 123_456.0 * abs_time(cfg, F))
+    frames = to_frames(x).to(device=device, dtype=torch.float32)
+    sigs = by_name(detect_all(frames, cfg))
+    assert sigs["spur_tone"].present
+    assert [k for k, s in sigs.items() if s.present] == ["spur_tone"]
