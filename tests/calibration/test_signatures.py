@@ -206,7 +206,9 @@ def test_phase_noise_skirt_level(cfg):
     n = np.arange(N)
     ph = np.array([0.3, 1.9, -2.2])[None, :, None, None]
     x = A * np.cos(2 * np.pi * k0 * n / N + ph + 2 * np.pi * tau * nu) + noise(cfg, rng, F, 2.0)
-    s = detect_phase_noise(to_frames(x), cfg)
+    # ~96 kHz RMS after the filter: about the declared (default receiver's) level, so the skirt's
+    # measurement is tested alone (min_excess_db=None), not whether it exceeds the declared one.
+    s = detect_phase_noise(to_frames(x), cfg, min_excess_db=None)
     offs = np.arange(5, 41)
     expect = 2 * np.sum((2 * np.pi * tau) ** 2 * s2 * h[offs] ** 2 / N)
     assert s.present, s.detail
@@ -295,7 +297,8 @@ def test_leakage_near_dc_level(cfg):
     A = 2500.0 * f_leak / fc
     leak = A * np.sin(2 * np.pi * f_leak * t + 0.3)
     x = base(cfg, 16, F) + leak[None, None, None, :]
-    s = detect_tx_rx_leakage(to_frames(x), cfg)
+    # About the default receiver's own (declared) leakage: the level is tested alone.
+    s = detect_tx_rx_leakage(to_frames(x), cfg, max_declared_db=None)
     assert s.present, s.detail
     n = np.arange(N)
     w = 0.35875 - 0.48829 * np.cos(2 * np.pi * n / N) + 0.14128 * np.cos(4 * np.pi * n / N) \
