@@ -51,6 +51,9 @@ class Diagnosis:
     runtime_s: float
     capture_views: Views
     extra: dict[str, Any] = field(default_factory=dict)
+    evidence: dict[str, Any] = field(default_factory=dict)
+    """Per effect with a detector, its :class:`~radaraug.calibration.evidence.Evidence` (empty when
+    the signatures were not read)."""
 
     def report(self) -> dict[str, Any]:
         """The ``report.json`` content."""
@@ -73,6 +76,8 @@ class Diagnosis:
             "steps": [{k: v for k, v in s.items() if k not in ("views_before", "views_after")} | {
                 "views_before": s["views_before"], "views_after": s["views_after"]} for s in r.steps],
             "candidates_tried": r.tried,
+            "signatures": [e.as_dict() for e in self.evidence.values()],
+            "verdict": verdicts(self),
             "unexplained": self.unexplained,
             "catalog": list(CATALOG_NAMES),
             "evaluations": r.evaluations,
@@ -271,10 +276,21 @@ def diagnose(
         # The start profile's room values where this scene has them (clipped to the prior).
         room = {k: min(max(v, ROOM_PRIORS[k].lo), ROOM_PRIORS[k].hi) for k, v in start.room.items()
                 if k in source.room_params}
-    result = search.run(chain, room=room)
+    evidence: dict[str, Any] = {}
+    if settings.use_signatures:
+        from radaraug.calibration.evidence import assess, declared_signatures
+        from radaraug.calibration.signatures import detect_all
+
+        # Identifiability first: what the capture's raw frames show, against what the declared
+        # chain makes, before anything is fitted.
+        declared = declared_signatures(source, chain, int(frames.shape[0]), seed=settings.seed * 7919 + 3)
+        evidence = assess(detect_all(frames, config), declared, config.num_rx)
+    result = search.run(chain, room=room, evidence=evidence or None)
     unexplained = locate_unexplained(search.cap_held, result.after.twin, config)
     runtime = time.perf_counter() - t0
     full_chain = profile_chain(result.chain_after, default_chain, source.mode)
+    if source.mode == "estimated" and any(st["effect"] == "tx_rx_leakage" for st in result.steps):
+        full_chain = _measured_leakage(full_chain, evidence["tx_rx_leakage"], config.num_rx)
     rx_dict = {**receiver.to_dict(), "effects": full_chain}
     # The room parameters fitted (scene mode, a room with diffuse paths); what the loop could not
     # see (estimated mode, no diffuse paths) is kept from a start profile, like the static stages.
@@ -292,7 +308,25 @@ def diagnose(
     return Diagnosis(path, scene_name, source.mode, config, result, unexplained, profile,
                      {"read": int(frames.shape[0]), "fit": int(half), "held_out": int(frames.shape[0] - half),
                       "simulated_per_evaluation": search.n_fit}, runtime, search.cap_held,
-                     extra={"evaluations": search.evaluations})
+                     extra={"evaluations": search.evaluations}, evidence=evidence)
+
+
+def _measured_leakage(chain: Chain, ev: Any, num_rx: int) -> Chain:
+    """``chain`` with its leakage moved by the level the capture shows over the declared one (per RX)."""
+    from radaraug.calibration.catalog import with_effect
+
+    leak = find(chain, "tx_rx_leakage")
+    if leak is None:
+        return chain
+    cur = leak["params"].get("coupling_dB", -60.0)
+    cur = list(cur) if isinstance(cur, list) else [float(cur)] * num_rx
+    new = []
+    for i in range(num_rx):
+        a = ev.capture.params.get(f"level_dBFS_rx{i + 1}")
+        b = ev.capture.params.get(f"declared_dBFS_rx{i + 1}")  # the detector's declared level
+        shift = float(a) - float(b) if a is not None and b is not None else 0.0
+        new.append(min(-20.0, max(-100.0, float(cur[i]) + shift)))
+    return with_effect(chain, "tx_rx_leakage", {**leak["params"], "coupling_dB": new})
 
 
 def write_report(diag: Diagnosis, out_dir: str | os.PathLike, figures: bool = True) -> Path:
@@ -333,6 +367,28 @@ def _fmt_params(params: dict[str, Any]) -> str:
     return ", ".join(f"{k}={f(v)}" for k, v in params.items())
 
 
+def verdicts(diag: Diagnosis) -> list[dict[str, Any]]:
+    """One verdict per effect that was added or has a detector: what the loop concludes, and why."""
+    out: list[dict[str, Any]] = []
+    steps = {s["effect"]: s for s in diag.result.steps}
+    for name, s in steps.items():
+        line = f"{name}: added" if not s.get("source") else f"{name}: named from its signature"
+        if s.get("verdict") == "ambiguous":
+            alts = ", ".join(f"{a['effect']} {a['held_out_error']:.2f} dB" for a in s.get("alternatives", [])
+                             if a["effect"] in s.get("ambiguous_with", []))
+            line += f" (ambiguous: {name} {s['error_after']:.2f} dB vs {alts})"
+        out.append({"effect": name, "verdict": s.get("verdict", "clear"), "added": True, "text": line,
+                    "signature": s.get("signature")})
+    for name, e in diag.evidence.items():
+        if name in steps:
+            continue
+        text = (f"{name}: signature present ({e.reason}) but adding it did not lower the held-out error"
+                if e.present else f"{name}: not found ({e.reason})")
+        out.append({"effect": name, "verdict": "present, not added" if e.present else "absent", "added": False,
+                    "text": text, "signature": e.reason})
+    return out
+
+
 def summary_text(diag: Diagnosis, report: dict[str, Any]) -> str:
     """A short readable summary of the diagnosis (Markdown)."""
     r = diag.result
@@ -354,6 +410,9 @@ def summary_text(diag: Diagnosis, report: dict[str, Any]) -> str:
     for s in r.steps:
         lines.append(f"1. `{s['effect']}`{' (refit)' if s['refit'] else ''}: {s['error_before']:.3f} -> "
                      f"{s['error_after']:.3f} dB; {_fmt_params(s['params'])}")
+    if diag.evidence:
+        lines += ["", "## Verdict per effect", ""]
+        lines += [f"- {v['text']}" for v in verdicts(diag)]
     lines += ["", "## Room", ""]
     if r.room_after:
         lines += [f"- `{k}`: {r.room_before[k]:.2f} -> base refit {r.room_base[k]:.2f} -> final "

@@ -114,9 +114,10 @@ def calibration_priors(profile: TwinProfile, base: TwinRandomization, config: Ra
                              "vibrating_clutter_Hz": _factor_band(_first(p.get("vibration_Hz", 20.0)), 1.5, 0.5,
                                                                   1 / (2 * float(config.chirp_repetition_time_s)))}
         elif name == "rx_gain_phase_mismatch":
-            gains = [float(v) for v in (p.get("gain_dB") if isinstance(p.get("gain_dB"), list) else [0.0])]
+            g_raw, ph_raw = p.get("gain_dB"), p.get("phase_rad")
+            gains = [float(v) for v in (g_raw if isinstance(g_raw, list) else [0.0 if g_raw is None else g_raw])]
             phases = [math.degrees(float(v)) for v in
-                      (p.get("phase_rad") if isinstance(p.get("phase_rad"), list) else [0.0])]
+                      (ph_raw if isinstance(ph_raw, list) else [0.0 if ph_raw is None else ph_raw])]
             g_lo, g_hi = min(gains) - 0.5, max(gains) + 0.5
             ph_lo, ph_hi = max(min(phases) - 10.0, -180.0), min(max(phases) + 10.0, 180.0)
             changes[name] = {"rx_mismatch_probability": prob("rx_mismatch_probability"),

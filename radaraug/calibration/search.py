@@ -20,20 +20,30 @@ the room's diffuse power gain (:mod:`radaraug.calibration.room`). It is not a re
 it is not in the chain: every method carries a ``room`` dict beside the chain, and parameter lists
 name it with the pseudo-stage :data:`~radaraug.calibration.room.ROOM_STAGE`.
 
-Decision rule (documented margin): a candidate is added when it lowers the held-out overall error
-by at least ``max(min_gain_db, min_gain_rel * current)``; the search stops when none does.
+Decision rule (documented margin): identifiability first. When the capture's signatures are given
+(:mod:`radaraug.calibration.evidence`), an effect with a detector is a candidate only when its
+signature says the capture carries it beyond the declared chain; effects without a detector stay
+candidates. Candidates are ranked by held-out error plus ``per_param_db`` per fitted parameter, and
+the best is added when it lowers the held-out overall error by at least ``min_gain_db +
+per_param_db * k`` with its signature, ``max(min_gain_db, min_gain_rel * current) + per_param_db * k``
+without one (``k`` its parameter count); the search stops when none does. Alternatives within
+the ambiguity band are recorded with their scores. Effects whose signature is present but that the
+chain already holds (ADC clipping; in estimated mode the leakage, copied by the static scene) are
+reported from their signature, and a high-pass whose signature departs from the config's is refitted
+(cutoff and order) with the base.
 """
 
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
 import torch
 
 from radaraug.calibration.catalog import (
+    BASE_STAGES,
     Candidate,
     Chain,
     Context,
@@ -63,6 +73,14 @@ class SearchSettings:
         max_steps: most effects added.
         min_gain_rel: relative held-out improvement an effect must bring (5 %).
         min_gain_db: absolute held-out improvement it must bring (dB).
+        per_param_db: held-out improvement each fitted parameter must pay for (dB): candidates
+            are ranked by held-out error plus this times their parameter count (an information
+            criterion's penalty in the view error's units), and the margin grows by it too.
+        ambiguity_db: alternatives whose penalized held-out error is within this of the chosen
+            one's are listed as ambiguous with it (dB; at least ``ambiguity_rel`` of the step's gain).
+        ambiguity_rel: relative part of the ambiguity band.
+        use_signatures: let :func:`~radaraug.calibration.diagnose` read the capture's signatures
+            first (False: every candidate competes on the error alone, as before the signatures).
         seed: seed of the twin's noise.
     """
 
@@ -72,6 +90,10 @@ class SearchSettings:
     max_steps: int = 5
     min_gain_rel: float = 0.05
     min_gain_db: float = 0.02
+    per_param_db: float = 0.005
+    ambiguity_db: float = 0.03
+    ambiguity_rel: float = 0.15
+    use_signatures: bool = True
     seed: int = 0
 
 
@@ -264,6 +286,65 @@ class Search:
         chain = self.dc_closed_form(chain, iterations=1, room=room)
         return chain, room, self.fit_score(chain, room)
 
+    # ------------------------------------------------------------------ signature-led steps
+    def _signature_steps(self, chain: Chain, room: Room, held: Score, ev: Mapping[str, Any],
+                         steps: list[dict[str, Any]], added: set[str]) -> tuple[Chain, Room, Score]:
+        """Effects the chain already holds whose signature departs from the declaration.
+
+        * ``if_highpass``: the stage takes the cutoff and order the noise floor shows, then the
+          base is refitted with the cutoff free (kept when the held-out error does not grow by more
+          than ``min_gain_db``: the signature is direct evidence, the error a summary of nine views).
+        * ``adc_clipping``: always in the chain (the twin clips at the same rails); reported from
+          its signature with the clipped fraction.
+        * ``tx_rx_leakage`` in estimated mode: the static scene copies the capture's leakage, so it
+          is reported from its signature (its level over the declared one); the profile carries it.
+        """
+        hp = ev.get("if_highpass")
+        if hp is not None and hp.present and find(chain, "if_highpass") is not None:
+            p = hp.capture.params
+            start = {**require(chain, "if_highpass")["params"], "cutoff_Hz": float(p["cutoff_Hz"]),
+                     "order": int(round(float(p["order"])))}
+            cand = with_effect(chain, "if_highpass", start)
+            prior = EFFECTS["if_highpass"].priors(self.config)["cutoff_Hz"]
+            lo, hi = max(prior.lo, start["cutoff_Hz"] / 2), min(prior.hi, start["cutoff_Hz"] * 2)
+            extra = [("if_highpass", ParamSpec("cutoff_Hz", Prior(min(lo, hi * 0.99), hi, "log")))]
+            fitted, fitted_room, _ = self.refit_base(cand, extra, room=room)
+            new_held = self.held_score(fitted, fitted_room)
+            keep = new_held.overall <= held.overall + self.settings.min_gain_db
+            steps.append({
+                "effect": "if_highpass", "refit": True, "source": "signature",
+                "params": require(fitted if keep else chain, "if_highpass")["params"],
+                "signature": hp.reason, "verdict": "clear" if keep else "signature only",
+                "ambiguous_with": [], "alternatives": [],
+                "error_before": round(held.overall, 4), "error_after": round((new_held if keep else held).overall, 4),
+                "views_before": {k: round(v, 4) for k, v in held.views.items()},
+                "views_after": {k: round(v, 4) for k, v in (new_held if keep else held).views.items()},
+            })
+            self.progress(f"refit if_highpass from its signature ({hp.reason}): held-out {held.overall:.3f} -> "
+                          f"{new_held.overall:.3f} dB{'' if keep else ' (not kept)'}")
+            added.add("if_highpass")
+            if keep:
+                chain, room, held = fitted, fitted_room, new_held
+        reported = [("adc_clipping", "always in the chain: the capture's ADC sits at its rails"),
+                    ("tx_rx_leakage", "estimated mode: the static scene copies the capture's leakage")]
+        for name, why in reported:
+            e = ev.get(name)
+            if e is None or not e.present or name in added:
+                continue
+            if name == "tx_rx_leakage" and self.source.mode != "estimated":
+                continue  # scene mode: the catalog's leakage candidate fits it
+            steps.append({
+                "effect": name, "refit": True, "source": "signature", "params": dict(e.capture.params),
+                "signature": e.reason, "verdict": "signature only", "note": why,
+                "ambiguous_with": [], "alternatives": [],
+                "error_before": round(held.overall, 4), "error_after": round(held.overall, 4),
+                "views_before": {k: round(v, 4) for k, v in held.views.items()},
+                "views_after": {k: round(v, 4) for k, v in held.views.items()},
+            })
+            self.progress(f"{name}: {e.reason} ({why})")
+            added.add(name)
+        return chain, room, held
+
     # ------------------------------------------------------------------ the loop
     def _context(self, chain: Chain, twin_views: Views, room: Room | None = None) -> Context:
         return Context(self.config, self.source.mode, chain, self.cap_fit, twin_views,
@@ -280,10 +361,14 @@ class Search:
                 best = (ch, sc)
         return best
 
-    def run(self, chain: Chain, room: Room | None = None) -> SearchResult:
+    def run(self, chain: Chain, room: Room | None = None, evidence: Mapping[str, Any] | None = None) -> SearchResult:
         """Refit the base, then add effects while they improve the held-out error.
 
-        ``room``: the room parameters to start from (default: as the source traced them).
+        Args:
+            chain: the declared chain to start from.
+            room: the room parameters to start from (default: as the source traced them).
+            evidence: :func:`radaraug.calibration.evidence.assess` of the capture (None: every
+                candidate may be added, by the error alone).
         """
         st = self.settings
         room_before = self.source.check_room(room)
@@ -297,12 +382,24 @@ class Search:
         steps: list[dict[str, Any]] = []
         tried: list[dict[str, Any]] = []
         added: set[str] = set()
+        ev = dict(evidence or {})
+        if ev:
+            current, cur_room, cur_held = self._signature_steps(current, cur_room, cur_held, ev, steps, added)
+
+        def allowed(name: str) -> bool:
+            return name not in ev or bool(ev[name].present)
+
         for _ in range(st.max_steps):
             fit_now = self.fit_score(current, cur_room)
             ctx = self._context(current, fit_now.twin, cur_room)
             screened = []
             for cand in catalog():
                 if self.source.mode not in cand.modes or cand.name in added:
+                    continue
+                if not allowed(cand.name):
+                    continue
+                if ev and cand.name in BASE_STAGES and find(current, cand.name) is not None:
+                    # A base stage the chain holds is refitted with the base, not named as an effect.
                     continue
                 res = self.try_candidate(current, cand, ctx, cur_room)
                 if res is not None and res[1].overall < fit_now.overall:
@@ -313,6 +410,10 @@ class Search:
                 start = require(ch, cand.name)["params"]
                 specs = [(cand.name, sp) for sp in cand.specs(ctx, start)]
                 joint = set(cand.joint)
+                if cand.name in ev and ev[cand.name].present:
+                    # Its signature says it is there: the base noise, bent to imitate it by the base
+                    # refit, is fitted jointly with it (not instead of it).
+                    joint |= {("thermal_noise", "noise_figure_dB"), ("adc_noise", "rms_counts")}
                 specs += [(e, sp) for e, sp in self.base_specs(ch) if (e, sp.name) in joint]
                 fitted, _, fit_sc = self.optimize(ch, specs, cur_room)
                 fitted = self.dc_closed_form(fitted, iterations=1, room=cur_room)
@@ -322,17 +423,37 @@ class Search:
                               "held_out_error": round(held.overall, 4)})
             if not results:
                 break
-            held, cand, fitted, _, cand_specs = min(results, key=lambda t: t[0].overall)
+
+            def penalized(r: tuple[Score, Candidate, Chain, Score, list[tuple[str, ParamSpec]]]) -> float:
+                return r[0].overall + st.per_param_db * _own_params(r[1].name, r[4])
+
+            results.sort(key=penalized)
+            held, cand, fitted, _, cand_specs = results[0]
             gain = cur_held.overall - held.overall
-            need = max(st.min_gain_db, st.min_gain_rel * cur_held.overall)
+            k = _own_params(cand.name, cand_specs)
+            backed = cand.name in ev and bool(ev[cand.name].present)
+            need = (st.min_gain_db if backed else max(st.min_gain_db, st.min_gain_rel * cur_held.overall)) \
+                + st.per_param_db * k
             if gain < need:
                 self.progress(f"best candidate {cand.name} gains {gain:.3f} dB < {need:.3f} dB: stop")
                 break
+            band = max(st.ambiguity_db, st.ambiguity_rel * gain)
+            alternatives = [{"effect": r[1].name, "held_out_error": round(r[0].overall, 4),
+                             "penalized_error": round(penalized(r), 4), "params_fitted": _own_params(r[1].name, r[4]),
+                             "signature": None if r[1].name not in ev else bool(ev[r[1].name].present)}
+                            for r in results[1:]]
+            best_pen = penalized(results[0])
+            close = [r[1].name for r in results[1:] if penalized(r) - best_pen <= band]
             refit = find(current, cand.name) is not None
             steps.append({
                 "effect": cand.name,
                 "refit": refit,
                 "params": require(fitted, cand.name)["params"],
+                "params_fitted": k,
+                "signature": None if cand.name not in ev else ev[cand.name].reason,
+                "verdict": "ambiguous" if close else "clear",
+                "ambiguous_with": close,
+                "alternatives": alternatives,
                 "error_before": round(cur_held.overall, 4),
                 "error_after": round(held.overall, 4),
                 "views_before": {k: round(v, 4) for k, v in cur_held.views.items()},
@@ -354,8 +475,26 @@ class Search:
                 steps[-1]["params"] = require(current, cand.name)["params"]
                 if cur_room:
                     steps[-1]["room_after_base_refit"] = dict(cur_room)
+        for name, e in ev.items():
+            if e.present and name not in added:
+                # Named by its signature even though no fit beat the margin: the report says both.
+                steps.append({
+                    "effect": name, "refit": find(current, name) is not None, "source": "signature",
+                    "params": dict(e.capture.params), "signature": e.reason, "verdict": "signature only",
+                    "note": "its signature is present, but fitting it did not lower the held-out error by the margin",
+                    "ambiguous_with": [], "alternatives": [],
+                    "error_before": round(cur_held.overall, 4), "error_after": round(cur_held.overall, 4),
+                    "views_before": {k: round(v, 4) for k, v in cur_held.views.items()},
+                    "views_after": {k: round(v, 4) for k, v in cur_held.views.items()},
+                })
+                self.progress(f"{name}: signature present ({e.reason}); no fit beat the margin")
         return SearchResult(chain, base_chain, current, before, base, cur_held, steps, tried, self.evaluations,
                             room_before, base_room, cur_room)
+
+
+def _own_params(name: str, specs: Sequence[tuple[str, ParamSpec]]) -> int:
+    """Parameters of effect ``name`` itself among ``specs`` (the joint base parameters are refitted anyway)."""
+    return sum(1 for e, _ in specs if e == name)
 
 
 def nelder_mead(f: Callable[[list[float]], float], x0: Sequence[float], step: Sequence[float],

@@ -50,6 +50,7 @@ not tested; the phase-noise and mismatch tests need at least two RX channels.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from functools import cached_property, lru_cache
 
@@ -1117,7 +1118,7 @@ def detect_frame_drift(frames: torch.Tensor | Prepared, config: RadarConfig, min
 
 
 # --------------------------------------------------------------------------- all
-DETECTORS = {
+DETECTORS: dict[str, Callable[..., Signature]] = {
     "adc_clipping": detect_adc_clipping,
     "phase_noise": detect_phase_noise,
     "spur_tone": detect_spur_tone,

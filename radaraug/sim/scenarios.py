@@ -107,7 +107,8 @@ class ScenarioSampler:
         speeds = self._speeds(count, g)
         axis = math.radians(axis_deg)
         ux, uy = math.cos(axis), math.sin(axis)
-        people, params = [], []
+        people: list[Walker | StandingPerson] = []
+        params: list[dict[str, float]] = []
         for speed in speeds:
             rng = _uniform(self.range_m, g)
             lat = _uniform(self.lateral_m, g)

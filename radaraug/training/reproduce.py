@@ -122,7 +122,7 @@ DEFAULT_TEST_SETS = ("proxy", "independent")
 #: generator with standing (breathing, swaying) people in 30 % of the drawn people (another seed).
 GENERATED_TEST_SETS = (*DEFAULT_TEST_SETS, "standing")
 #: Seed and standing probability of the ``standing`` set.
-STANDING_SET = {"seed": 2025, "standing_probability": 0.3}
+STANDING_SEED, STANDING_PROBABILITY = 2025, 0.3
 
 #: Ablation variants: name -> (method, RadarDataModule overrides). Each changes one thing of the
 #: main runs (whose settings are in ``ReproduceSettings``), so its row of the report measures it.
@@ -182,7 +182,8 @@ def _test_sets(out: Path, settings: ReproduceSettings, calibration: str | None,
             from radaraug.heldout import make_independent_proxy
 
             proxy = make_independent_proxy(out / "standing", frames_per_count=settings.proxy_frames_per_count,
-                                           progress=progress, **STANDING_SET)
+                                           progress=progress, seed=STANDING_SEED,
+                                           standing_probability=STANDING_PROBABILITY)
         else:
             raise ConfigError(f"unknown test set {name!r}; choose from {GENERATED_TEST_SETS}")
         sets.append(TestSet(name, str(proxy.calibration),
