@@ -92,4 +92,39 @@ def view_figures(diag: Diagnosis, out: Path) -> list[str]:
     fig.colorbar(im, ax=ax, label="capture - twin after (dB)")
     ax.set(xlabel="velocity (m/s)", ylabel="range (m)", title="RD residual after the search (circles: unexplained)")
     save(fig, "rd_residual.png")
+    names += signature_figures(diag, out)
+    return names
+
+
+#: The view in which each signature's effect shows (what its small figure plots).
+SIGNATURE_VIEWS = {
+    "adc_clipping": "adc_histogram", "phase_noise": "doppler_profile", "spur_tone": "lines",
+    "if_highpass": "noise_floor", "rx_gain_phase_mismatch": "rx_balance", "tx_rx_leakage": "range_profile",
+    "interference": "frame_power", "vibrating_clutter": "lines", "frame_drift": "frame_power",
+}
+
+
+def signature_figures(diag: Diagnosis, out: Path) -> list[str]:
+    """One small figure per signature found (``signature_<effect>.png``): its view, capture vs twin, and the evidence."""
+    from radaraug._optional import pyplot
+
+    plt = pyplot()
+    names: list[str] = []
+    cap, before, after = diag.capture_views, diag.result.before.twin, diag.result.after.twin
+    for name, ev in diag.evidence.items():
+        if not ev.present:
+            continue
+        view = SIGNATURE_VIEWS[name]
+        fig, ax = plt.subplots(figsize=(5, 3.0))
+        for label, v, style in (("capture", cap, "k-"), ("twin before", before, "C3--"), ("twin after", after, "C0-")):
+            y = v[view].reshape(-1)
+            ax.plot(range(y.numel()), y.tolist(), style, lw=1, label=label)
+        ax.set(title=f"{name}: signature present (view {view})", xlabel=f"{view} element", ylabel="dB / code")
+        ax.legend(fontsize=7)
+        fig.text(0.01, 0.01, ev.reason[:150], fontsize=6)
+        fig.tight_layout(rect=(0, 0.06, 1, 1))
+        fname = f"signature_{name}.png"
+        atomic_savefig(fig, out / fname, dpi=80)
+        plt.close(fig)
+        names.append(fname)
     return names

@@ -451,6 +451,9 @@ class Search:
                 "params": require(fitted, cand.name)["params"],
                 "params_fitted": k,
                 "signature": None if cand.name not in ev else ev[cand.name].reason,
+                # The detector's own estimate beside the fit: two independent readings of one effect.
+                "signature_params": None if cand.name not in ev else {
+                    k: round(float(v), 6) for k, v in ev[cand.name].capture.params.items()},
                 "verdict": "ambiguous" if close else "clear",
                 "ambiguous_with": close,
                 "alternatives": alternatives,

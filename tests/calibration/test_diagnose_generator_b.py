@@ -35,7 +35,7 @@ def _named(tmp_path, name: str, seed: int = 1):
 def test_quick_cases_name_what_is_there(tmp_path, name):
     diag, named, expected = _named(tmp_path, name)
     assert named == expected
-    out = write_report(diag, tmp_path / "report", figures=False)
+    out = write_report(diag, tmp_path / "report", figures=bool(expected))
     report = json.loads((out / "report.json").read_text())
     assert [s["effect"] for s in report["signatures"]] and len(report["verdict"]) >= len(expected)
     present = sorted(s["effect"] for s in report["signatures"] if s["present"])
@@ -43,6 +43,7 @@ def test_quick_cases_name_what_is_there(tmp_path, name):
     summary = (out / "summary.md").read_text()
     assert "Verdict per effect" in summary
     if expected:
+        assert sorted(p.name for p in out.glob("signature_*.png")) == [f"signature_{e}.png" for e in expected]
         leak = diag.profile.to_dict()["receiver"]["effects"]
         # Estimated mode: the undeclared leakage moves the profile's coupling by what the capture shows.
         coupling = next(e for e in leak if e["name"] == "tx_rx_leakage")["params"]["coupling_dB"]
