@@ -383,10 +383,11 @@ def _cmd_make_proxy(args: argparse.Namespace) -> int:
 
 def _cmd_diagnose(args: argparse.Namespace) -> int:
     from radaraug.calibration import SearchSettings, diagnose, write_report
+    from radaraug.calibration.diagnose import verdicts
 
     if args.max_frames < 4:
         raise ConfigError(f"--max-frames must be >= 4, got {args.max_frames}")
-    settings = SearchSettings(seed=args.seed)
+    settings = SearchSettings(seed=args.seed, use_signatures=not args.no_signatures)
     with _stdout_for(args):
         diag = diagnose(args.capture, scene=_scene_arg(args.scene) if args.scene else None,
                         max_frames=args.max_frames, settings=settings, start_profile=args.profile, progress=True)
@@ -400,7 +401,8 @@ def _cmd_diagnose(args: argparse.Namespace) -> int:
                                   "final": r.after.overall},
             "room": {k: {"before": r.room_before[k], "after": v} for k, v in sorted(r.room_after.items())},
             "effects_added": [{"effect": st["effect"], "error_before_db": st["error_before"],
-                               "error_after_db": st["error_after"]} for st in r.steps],
+                               "error_after_db": st["error_after"], "verdict": st.get("verdict")} for st in r.steps],
+            "verdict": [v["text"] for v in verdicts(diag)],
             "unexplained": len(diag.unexplained),
         })
         return 0
@@ -410,7 +412,11 @@ def _cmd_diagnose(args: argparse.Namespace) -> int:
     for k, v in sorted(r.room_after.items()):
         print(f"  room {k}: {r.room_before[k]:.2f} -> {v:.2f}")
     for s in r.steps:
-        print(f"  + {s['effect']}: {s['error_before']:.3f} -> {s['error_after']:.3f} dB")
+        how = f" ({s['verdict']})" if s.get("verdict") not in (None, "clear") else ""
+        print(f"  + {s['effect']}: {s['error_before']:.3f} -> {s['error_after']:.3f} dB{how}")
+    for v in verdicts(diag):
+        if not v["added"] and v["verdict"] != "absent":
+            print(f"  ! {v['text']}")
     print(f"  unexplained: {len(diag.unexplained)} item(s); profile {out / 'profile.json'}")
     return 0
 
@@ -633,6 +639,8 @@ def build_parser() -> argparse.ArgumentParser:
     dia.add_argument("--profile", default=None, help="start from this twin profile instead of the default chain")
     dia.add_argument("--seed", type=int, default=0, help="seed of the twin's noise")
     dia.add_argument("--no-figures", action="store_true", help="skip the figures (faster)")
+    dia.add_argument("--no-signatures", action="store_true",
+                     help="do not read the effects' signatures first: every candidate competes on the error alone")
     dia.add_argument("--json", action="store_true", help="print the held-out errors, effects added and output paths as one JSON object")
     dia.set_defaults(func=_cmd_diagnose)
 

@@ -137,6 +137,8 @@ def test_diagnose_on_bundled_recording_writes_report_and_profile(tmp_path, capsy
     assert report["mode"] == "estimated" and report["scene"] is None
     assert report["error_after"]["overall"] <= report["error_before"]["overall"] + 1e-9
     assert (out / "profile.json").is_file() and (out / "summary.md").is_file()
+    assert len(printed["verdict"]) == len(report["verdict"]) >= 9  # one line per detector at least
+    assert {s["effect"] for s in report["signatures"]} >= {"adc_clipping", "spur_tone", "if_highpass"}
 
 
 def test_diagnose_and_simulate_profile_bad_input_are_one_line_errors(tmp_path, capsys) -> None:
