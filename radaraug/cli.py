@@ -414,9 +414,9 @@ def _cmd_diagnose(args: argparse.Namespace) -> int:
     for s in r.steps:
         how = f" ({s['verdict']})" if s.get("verdict") not in (None, "clear") else ""
         print(f"  + {s['effect']}: {s['error_before']:.3f} -> {s['error_after']:.3f} dB{how}")
-    for v in verdicts(diag):
-        if not v["added"] and v["verdict"] != "absent":
-            print(f"  ! {v['text']}")
+    for verdict in verdicts(diag):
+        if not verdict["added"] and verdict["verdict"] != "absent":
+            print(f"  ! {verdict['text']}")
     print(f"  unexplained: {len(diag.unexplained)} item(s); profile {out / 'profile.json'}")
     return 0
 

@@ -2,11 +2,12 @@
 
 The sensor plays a scene continuously, as ``radaraug simulate`` does: frame ``k`` starts at
 ``k * frame_repetition_time``, the people walk on from their start positions, and frames are
-simulated in blocks of :data:`BLOCK_FRAMES` whose receiver noise comes from a generator seeded by
-``(seed, block)`` (:func:`radaraug.sim.seeding.item_generator`, the same stream ``simulate``
-uses). Frame ``k`` is therefore a pure function of (scene, config, profile, seed, ``k``): two
-sensors with the same settings give identical frames, and they equal the frames of
-``radaraug simulate`` with the same scene and seed.
+simulated in blocks of :data:`radaraug.io.blocks.BLOCK_FRAMES` (the block size of ``radaraug
+simulate``, so the streams agree) whose receiver noise comes from a generator seeded by
+``(seed, block)`` (:func:`radaraug.sim.seeding.item_generator`, ``Stream.BLOCK_NOISE``, the
+stream ``simulate`` uses). Frame ``k`` is therefore a pure function of (scene, config, profile,
+seed, ``k``): two sensors with the same settings give identical frames, and they equal the
+frames of ``radaraug simulate`` with the same scene and seed.
 
 Pacing: with ``realtime=True`` frame ``k`` is handed out when a real sensor would have it, at
 ``k * frame_period + chirps * chirp_repetition_time`` after :meth:`start` (its last chirp's end);
@@ -24,16 +25,13 @@ import torch
 
 from radaraug.capture.base import Frame, RadarDevice
 from radaraug.config import RadarConfig
+from radaraug.io.blocks import BLOCK_FRAMES, block_of, frame_times
 from radaraug.scene.scene import Scene
-from radaraug.sim.seeding import item_generator
+from radaraug.sim.seeding import Stream, item_generator
 
 if TYPE_CHECKING:
     from radaraug.sim.twin import DigitalTwin
 
-BLOCK_FRAMES = 16
-"""Frames simulated per twin call; the same block size as ``radaraug simulate`` (so the streams agree)."""
-
-_NOISE_STREAM = 2  # the receiver-noise stream of radaraug.sim.offline
 
 
 class VirtualSensor(RadarDevice):
@@ -154,7 +152,7 @@ class VirtualSensor(RadarDevice):
             self._twin = DigitalTwin(self.scene, config=self.config, device=self.device, **options)
 
     def _frame(self, k: int) -> torch.Tensor:
-        block = k // BLOCK_FRAMES
+        block = block_of(k)
         if self._block is None or self._block[0] != block:
             self._block = (block, self._simulate_block(block))
         return self._block[1][k - block * BLOCK_FRAMES]
@@ -163,8 +161,8 @@ class VirtualSensor(RadarDevice):
         twin = self._twin
         assert twin is not None
         first = block * BLOCK_FRAMES
-        times = torch.arange(first, first + BLOCK_FRAMES, dtype=torch.float64) * self.config.frame_repetition_time_s
-        gen = item_generator(self.seed, block, stream=_NOISE_STREAM, device=self.device)
+        times = frame_times(first, first + BLOCK_FRAMES, self.config.frame_repetition_time_s)
+        gen = item_generator(self.seed, block, stream=Stream.BLOCK_NOISE, device=self.device)
         with torch.no_grad():
             x = twin.simulate(self.scene.people, times, generators=gen)
         return x.detach().to("cpu", torch.float32).contiguous()

@@ -49,6 +49,7 @@ from radaraug.heldout import walkers
 from radaraug.heldout.receiver import _check_effects, generate
 from radaraug.io.atomic import atomic_write_json
 from radaraug.io.generated_set import GeneratedTestSet, check_count_arg, test_file_name
+from radaraug.safe_read import load_json
 
 GENERATOR_VERSION = 1
 """Bumped whenever the output changes; part of the reuse check."""
@@ -320,8 +321,8 @@ def load_independent_proxy(out_dir: str | os.PathLike) -> IndependentProxySet:
     out = Path(out_dir)
     path = out / MANIFEST_NAME
     try:
-        data = json.loads(path.read_text(encoding="utf-8"))
-    except (OSError, ValueError) as err:
+        data = load_json(path, error=ConfigError, what="manifest")
+    except ConfigError as err:
         raise ConfigError(f"{path}: no readable manifest ({err})") from None
     if not isinstance(data, dict) or data.get("format") != MANIFEST_FORMAT:
         raise ConfigError(f"{path}: not a radaraug independent held-out manifest")
@@ -338,7 +339,7 @@ def _reusable(out: Path, settings: dict[str, Any], config: RadarConfig) -> Indep
     from radaraug.io import open_capture
 
     try:
-        data = json.loads((out / MANIFEST_NAME).read_text(encoding="utf-8"))
+        data = load_json(out / MANIFEST_NAME, error=ConfigError, what="manifest")
         if data.get("format") != MANIFEST_FORMAT or data.get("settings") != settings:
             return None
         found = load_independent_proxy(out)

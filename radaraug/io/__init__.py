@@ -3,6 +3,7 @@
 * :func:`open_capture` reads either kind and returns a :class:`CaptureReader`;
 * :class:`CaptureWriter` / :func:`write_capture` record radaraug HDF5 captures (crash-safe);
 * :func:`write_infineon_recording` writes Infineon's recording layout;
+* :mod:`radaraug.io.blocks`: the block size and the one block writer of simulated captures;
 * :class:`RadarCaptureDataset` serves frames or frame windows of many captures to a DataLoader;
 * :func:`sample_recording_path` points at the small real recording shipped with radaraug.
 

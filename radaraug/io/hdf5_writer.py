@@ -11,6 +11,9 @@ On top of that:
   it is in SWMR mode (first append) or closed, so a file at the target name is always one that
   opens; a kill before that leaves only the hidden temporary ``.<name>.*.partial``, which the
   next writer of the same name removes (when no process holds it and it is older than a minute).
+  The name follows the one convention of temporary files (:mod:`radaraug.io.atomic`). A
+  generated file that must appear only complete is written with ``publish="close"``: renamed at
+  :meth:`CaptureWriter.close`, dropped on an exception in its ``with`` block.
 - After each append's data is flushed, the count of complete frames is written to
   ``frames_written`` and flushed again; readers serve no frame past it.
 - The writer holds a ``flock`` on the file while it writes (:mod:`radaraug.io.hdf5_recovery`),
@@ -23,14 +26,11 @@ On top of that:
 
 from __future__ import annotations
 
-import glob
 import json
 import os
 import re
 import resource
-import secrets
 import shutil
-import time
 from collections.abc import Mapping
 from datetime import datetime, timezone
 from pathlib import Path
@@ -43,9 +43,11 @@ import torch
 from radaraug.config import RadarConfig
 from radaraug.errors import CaptureError, ConfigError
 from radaraug.io import hdf5_format as fmt
+from radaraug.io.atomic import PARTIAL_SUFFIX, remove_stale_temporaries, temporaries_of, temporary_name
 from radaraug.io.counts import as_counts
 from radaraug.io.hdf5_reader import committed_frame_count
 from radaraug.io.hdf5_recovery import BUSY, hold_writer_lock, release_writer_lock, writer_is_alive
+from radaraug.safe_read import parse_json
 from radaraug.units import DB_CONVENTION, FLOAT_CONVENTION
 
 _COMPRESSION = {
@@ -83,23 +85,14 @@ STALE_PARTIAL_S = 60.0
 def _remove_stale_partials(path: Path) -> list[Path]:
     """Remove the temporaries ``.<name>.*.partial`` that killed writers of ``path`` left; the removed paths.
 
-    A writer killed before its first frame leaves its hidden temporary behind (nothing in it is a
-    frame). One is stale when no process holds a lock on it (a live writer holds its lock from
-    right after creating it to the rename) and it was last written more than
+    A writer killed before its first frame (or, with ``publish="close"``, before it closed) leaves
+    its hidden temporary behind. One is stale when no process holds a lock on it (a live writer
+    holds its lock from right after creating it to the rename) and it was last written more than
     :data:`STALE_PARTIAL_S` ago (so a writer between creating and locking its file is never hit).
-    Files that cannot be checked or removed are left alone.
+    Files that cannot be checked or removed are left alone (:func:`radaraug.io.atomic.remove_stale_temporaries`).
     """
-    removed = []
-    now = time.time()
-    for tmp in path.parent.glob(f".{glob.escape(path.name)}.*.partial"):
-        try:
-            if now - tmp.stat().st_mtime < STALE_PARTIAL_S or writer_is_alive(tmp):
-                continue
-            tmp.unlink()
-        except (OSError, CaptureError):
-            continue
-        removed.append(tmp)
-    return removed
+    return remove_stale_temporaries(path.parent, temporaries_of(path, PARTIAL_SUFFIX),
+                                    older_than_s=STALE_PARTIAL_S, in_use=writer_is_alive)
 
 
 class CaptureWriter:
@@ -122,6 +115,11 @@ class CaptureWriter:
         expected_frames: frames this run will write, when known: the folder's free space (and
             the process's file-size limit) must hold their uncompressed size plus
             :data:`SPACE_MARGIN_BYTES`, else nothing is written and CaptureError is raised.
+        publish: when the file gets its name: ``"first_append"`` (default: a recording, readable
+            under its name while it grows and after a kill) or ``"close"`` (a generated file that
+            appears under its name only complete; until then, and after a kill or an exception in
+            the ``with`` block, only the hidden temporary exists, and a file already at ``path``
+            stays as it was and may be open elsewhere).
 
     Timestamps: pass one with every append or with none; the choice made by the first append
     holds for the file (SWMR files cannot gain datasets later).
@@ -141,6 +139,7 @@ class CaptureWriter:
     _lock_fd: int | None
     _tmp: Path | None  # the file's name until it is published under self.path
     _failed: str | None
+    _publish_on_close: bool
 
     def __init__(
         self,
@@ -151,23 +150,28 @@ class CaptureWriter:
         compression: str | None = "gzip",
         attrs: Mapping[str, Any] | None = None,
         expected_frames: int | None = None,
+        publish: str = "first_append",
     ) -> None:
         self.path = Path(path)
+        if publish not in ("first_append", "close"):
+            raise ConfigError(f"{self.path}: publish must be 'first_append' or 'close', got {publish!r}")
         if not isinstance(config, RadarConfig):
             raise ConfigError(f"{self.path}: config must be a RadarConfig, got {type(config).__name__}")
         if compression not in _COMPRESSION:
             raise CaptureError(f"{self.path}: compression must be 'gzip', 'lzf' or None, got {compression!r}")
         self.config = config
         self._init_state()
+        self._publish_on_close = publish == "close"
         self._schema = self._check_schema(labels_schema) if labels_schema is not None else None
         file_attrs = self._file_attrs(attrs or {})
         self._check_space(expected_frames)
         if self.path.is_dir():
             raise CaptureError(f"{self.path}: is a folder; cannot create a capture file there")
-        if self.path.exists() and writer_is_alive(self.path):
+        # With publish="close", an existing file is only ever replaced whole, by a rename.
+        if not self._publish_on_close and self.path.exists() and writer_is_alive(self.path):
             raise CaptureError(f"{self.path}: {BUSY}")
         _remove_stale_partials(self.path)
-        tmp = self.path.with_name(f".{self.path.name}.{os.getpid()}.{secrets.token_hex(4)}.partial")
+        tmp = temporary_name(self.path, PARTIAL_SUFFIX)
         try:
             # O_EXCL: a fresh name; mode 0o666 minus the umask, as for any file the user creates.
             os.close(os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666))
@@ -211,6 +215,7 @@ class CaptureWriter:
         self._lock_fd = None
         self._tmp = None
         self._failed = None
+        self._publish_on_close = False
 
     def _check_space(self, frames: int | None, existing: int = 0) -> None:
         if frames is not None:
@@ -270,7 +275,8 @@ class CaptureWriter:
         f.swmr_mode = True
         self._started = True
         f.flush()
-        self._publish()
+        if not self._publish_on_close:
+            self._publish()
 
     def _publish(self) -> None:
         """Give the temporary file its real name (it opens from now on)."""
@@ -297,7 +303,7 @@ class CaptureWriter:
                 f.close()
             except Exception:  # noqa: BLE001 - a broken file (full disk) may fail to close; h5py drops the id
                 pass
-        if self._tmp is not None:  # never published: holds no frame, nothing to keep
+        if self._tmp is not None:  # never published: no frame, or (publish="close") not complete
             self._tmp.unlink(missing_ok=True)
             self._tmp = None
         release_writer_lock(self._lock_fd)
@@ -342,7 +348,8 @@ class CaptureWriter:
             self._file = f
             if f.attrs.get("format") != fmt.FORMAT_NAME or fmt.FRAMES not in f:
                 raise CaptureError(f"{self.path}: not a radaraug capture; cannot resume it")
-            stored = json.loads(f.attrs["radar_config"])
+            stored = parse_json(f.attrs["radar_config"], source=self.path, error=CaptureError,
+                                what="attribute 'radar_config'")
             if RadarConfig.from_dict(stored) != config:
                 raise CaptureError(f"{self.path}: was recorded with another radar config; cannot resume it")
             self._frames = f[fmt.FRAMES]
@@ -526,14 +533,18 @@ class CaptureWriter:
     def __enter__(self) -> CaptureWriter:
         return self
 
-    def __exit__(self, *exc: object) -> None:
+    def __exit__(self, exc_type: object, *exc: object) -> None:
+        if exc_type is not None and self._publish_on_close:
+            self._abort()  # the file was to appear only complete: drop the temporary
+            return
         self.close()
 
     def __del__(self) -> None:
         # A writer dropped without close(): close the file here, not at interpreter exit, where
         # h5py closing a file in a broken state (full disk) has crashed the process.
         try:
-            self._abort() if self._failed else self.close()
+            # publish="close": a writer never closed did not complete its file.
+            self._abort() if self._failed or self._publish_on_close else self.close()
         except Exception:  # noqa: BLE001 - nothing to report to at garbage collection
             pass
 

@@ -18,14 +18,13 @@ from __future__ import annotations
 
 import hashlib
 import os
-import time
 import warnings
 from pathlib import Path
 from typing import Any
 
 import torch
 
-from radaraug.io.atomic import atomic_save
+from radaraug.io.atomic import TMP_SUFFIX, atomic_save, remove_stale_temporaries
 
 TRACER_VERSION = 2
 """Bump when a change to the tracer changes the static paths of an unchanged scene."""
@@ -93,10 +92,5 @@ seconds): the next write of that entry removes it."""
 
 
 def _remove_stale_temporaries(folder: Path, key: str) -> None:
-    now = time.time()
-    for tmp in folder.glob(f".static-{key}.*.tmp"):
-        try:
-            if now - tmp.stat().st_mtime > STALE_TEMPORARY_S:
-                tmp.unlink()
-        except OSError:
-            pass  # another process removed or is replacing it
+    # Any temporary of this key's entry (radaraug.io.atomic's convention), however old its writer.
+    remove_stale_temporaries(folder, f".static-{key}.*.{TMP_SUFFIX}", older_than_s=STALE_TEMPORARY_S)

@@ -22,6 +22,7 @@ import yaml
 from radaraug.config import RadarConfig
 from radaraug.errors import ConfigError, SceneError
 from radaraug.io.atomic import atomic_write_text
+from radaraug.safe_read import load_json
 from radaraug.scene.geometry import Ellipsoids, RadarPose, SceneGeometry
 from radaraug.scene.materials import MATERIALS, Material, get_material, register_material
 from radaraug.scene.people._rotations import axis_rotation
@@ -558,13 +559,16 @@ class Scene:
         suffix = path.suffix.lower()
         if suffix not in (".yaml", ".yml", ".json"):
             raise SceneError(f"scene file {path}: suffix must be .yaml, .yml or .json")
+        if suffix == ".json":
+            data = load_json(path, error=SceneError, what="scene file")
+            return cls.from_dict(data if data is not None else {}, source=path)
         try:
             text = path.read_text()
         except OSError as err:
             raise SceneError(f"scene file {path}: cannot be read ({err.strerror or err})") from None
         try:
-            data = json.loads(text) if suffix == ".json" else yaml.safe_load(text)
-        except (json.JSONDecodeError, yaml.YAMLError) as err:
+            data = yaml.safe_load(text)
+        except yaml.YAMLError as err:
             raise SceneError(f"scene file {path}: not valid {suffix[1:].upper()}: {err}") from None
         return cls.from_dict(data if data is not None else {}, source=path)
 

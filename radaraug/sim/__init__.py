@@ -8,7 +8,7 @@ Also the simulated Dataset, offline sharded generation and the held-out proxy se
 * :class:`TwinRandomization`: room, people and sensor randomization of the twin;
 * :func:`simulate_capture`: a scene simulated into a radaraug HDF5 capture (sharded, resumable);
 * :func:`make_proxy` / :func:`load_proxy`: the held-out proxy set (another room, another sensor chain);
-* :func:`item_generator` / :func:`item_seed`: the per-item seeding.
+* :func:`item_generator` / :func:`item_seed`: the per-item seeding; :class:`Stream`: its named streams.
 """
 
 from radaraug.sim.dataset import SimulatedRadarDataset
@@ -16,7 +16,7 @@ from radaraug.sim.offline import simulate_capture
 from radaraug.sim.proxy import load_proxy, make_proxy
 from radaraug.sim.randomization import TwinRandomization
 from radaraug.sim.scenarios import Scenario, ScenarioSampler
-from radaraug.sim.seeding import item_generator, item_seed
+from radaraug.sim.seeding import Stream, item_generator, item_seed
 from radaraug.sim.twin import DigitalTwin
 
 __all__ = [
@@ -24,6 +24,7 @@ __all__ = [
     "Scenario",
     "ScenarioSampler",
     "SimulatedRadarDataset",
+    "Stream",
     "TwinRandomization",
     "item_generator",
     "item_seed",

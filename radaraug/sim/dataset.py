@@ -26,7 +26,7 @@ from radaraug.sensor.profile import as_profile
 from radaraug.sensor.receiver import FMCWReceiver
 from radaraug.sim.randomization import RoomDraw, TwinRandomization, check_receiver, simulate_item
 from radaraug.sim.scenarios import Scenario, ScenarioSampler
-from radaraug.sim.seeding import item_generator
+from radaraug.sim.seeding import Stream, item_generator
 from radaraug.sim.twin import DigitalTwin
 from radaraug.transforms.per_item import check_augmentation, check_epoch, transform_item
 
@@ -210,12 +210,12 @@ class SimulatedRadarDataset(Dataset):
             room = self._rooms[rz.variant_of(self.seed, index)]
             x = float(self.scene.radar.position[0])
             sampler = rz.sampler(self.sampler, room, x)
-            return sampler.sample(item_generator(self.seed, index, stream=0), radar_xy=(x, 0.0), axis_deg=0.0)
+            return sampler.sample(item_generator(self.seed, index, stream=Stream.SCENARIO), radar_xy=(x, 0.0), axis_deg=0.0)
         radar = self.scene.radar
         pos = radar.position.tolist()
         boresight = radar.rotation[:, 2].tolist()
         axis_deg = math.degrees(math.atan2(boresight[1], boresight[0]))
-        return self.sampler.sample(item_generator(self.seed, index, stream=0), radar_xy=(pos[0], pos[1]),
+        return self.sampler.sample(item_generator(self.seed, index, stream=Stream.SCENARIO), radar_xy=(pos[0], pos[1]),
                                    axis_deg=axis_deg)
 
     def item_params(self, index: int) -> dict[str, Any]:
@@ -275,7 +275,7 @@ class SimulatedRadarDataset(Dataset):
     def __getitem__(self, index: int) -> Any:
         index = self._check_index(index)
         scenario = self.scenario(index)
-        noise = item_generator(self.seed, index, stream=1, device=self.device)
+        noise = item_generator(self.seed, index, stream=Stream.ITEM_NOISE, device=self.device)
         rz = self._drawn_randomization
         if rz is not None:
             draw = rz.item(self.seed, index, scenario.count)

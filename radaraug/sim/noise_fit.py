@@ -31,7 +31,7 @@ from radaraug.io.summary import noise_floor_db
 from radaraug.scene.scene import Scene
 from radaraug.sensor.defaults import ADC_NOISE_RMS_COUNTS, DEFAULT_NOISE_FIGURE_DB
 from radaraug.sensor.receiver import FMCWReceiver
-from radaraug.sim.seeding import item_generator
+from radaraug.sim.seeding import Stream, item_generator
 from radaraug.sim.twin import DigitalTwin
 from radaraug.transforms import RangeDoppler, ToDecibels
 
@@ -97,7 +97,7 @@ def fit_noise_figure(
     for step in range(iterations):
         rx = FMCWReceiver(config, noise_figure_dB=nf,
                           adc_noise_rms_counts=_adc_rms(config, nf)).to(twin.device)
-        gens = [item_generator(seed, k, stream=7, device=twin.device) for k in range(frames)]
+        gens = [item_generator(seed, k, stream=Stream.NOISE_FIT, device=twin.device) for k in range(frames)]
         paths = twin.paths([], times)
         x = torch.stack([rx(paths.select(k), generator=g, frame_start_s=float(times[k]),
                             static_signal=static) for k, g in enumerate(gens)])

@@ -30,16 +30,16 @@ import torch
 
 from radaraug._optional import lazy_import
 from radaraug.errors import CaptureError, ConfigError
-from radaraug.io import CaptureWriter, open_capture
 from radaraug.io import hdf5_format as fmt
+from radaraug.io import open_capture
+from radaraug.io.blocks import BLOCK_FRAMES, BlockWriter, blocks_covering, frame_times
 from radaraug.io.hdf5_recovery import status_flags, writer_is_alive
 from radaraug.io.hdf5_writer import check_free_space
+from radaraug.safe_read import parse_json
 from radaraug.scene.scene import Scene
 from radaraug.sensor.profile import as_profile
-from radaraug.sim.seeding import item_generator
+from radaraug.sim.seeding import Stream, item_generator
 from radaraug.sim.twin import DigitalTwin
-
-BLOCK_FRAMES = 16
 
 
 def parse_shard(text: str | None) -> tuple[int, int]:
@@ -162,13 +162,12 @@ def simulate_capture(
     twin = DigitalTwin(scene, device=device, **(twin_options or {}))
     period = twin.config.frame_repetition_time_s
     if done:
-        writer = CaptureWriter.resume(path, twin.config, expected_frames=todo)
+        writer = BlockWriter.resume(path, twin.config, expected_frames=todo)
     else:
-        writer = CaptureWriter(path, twin.config, labels_schema={"count": "int64", "occupancy": "int64"},
-                               attrs=attrs, expected_frames=todo)
+        writer = BlockWriter.create(path, twin.config, attrs=attrs, expected_frames=todo)
     with writer:
         first = start + done
-        blocks = range(first // BLOCK_FRAMES, -(-stop // BLOCK_FRAMES))
+        blocks = blocks_covering(first, stop)
         if progress:
             tqdm = lazy_import("tqdm.auto", feature="progress bars").tqdm
 
@@ -177,14 +176,12 @@ def simulate_capture(
             # The whole block is simulated even where only part of it is written (a shard edge or
             # a resume point), so a frame is the same whichever run produced it.
             b_start = block_id * BLOCK_FRAMES
-            times = torch.arange(b_start, b_start + BLOCK_FRAMES, dtype=torch.float64) * period
-            gen = item_generator(seed, block_id, stream=2, device=device)
+            times = frame_times(b_start, b_start + BLOCK_FRAMES, period)
+            gen = item_generator(seed, block_id, stream=Stream.BLOCK_NOISE, device=device)
             counts = twin.receiver.to_counts(twin.simulate(scene.people, times, generators=gen)).cpu()
             inside = people_inside(twin, scene.people, times)
-            for k in range(max(b_start, first), min(b_start + BLOCK_FRAMES, stop)):
-                j = k - b_start
-                writer.append(counts[j].to(torch.int32).numpy().astype(np.uint16), timestamp=float(times[j]),
-                              labels={"count": int(inside[j]), "occupancy": int(inside[j] > 0)})
+            lo, hi = max(b_start, first) - b_start, min(b_start + BLOCK_FRAMES, stop) - b_start
+            writer.write(counts[lo:hi], times[lo:hi], inside[lo:hi])
     return {"path": str(path), "frames": [start, stop], "resumed_from": start + done,
             "simulated": stop - start - done}
 
@@ -227,11 +224,9 @@ def _existing_frames(path: Path, job: dict[str, Any]) -> int:
     if isinstance(sim, bytes):
         sim = sim.decode()
     if isinstance(sim, str):
-        import json
-
         try:
-            sim = json.loads(sim)
-        except ValueError:
+            sim = parse_json(sim, source=path, error=CaptureError, what="attribute 'simulation'")
+        except CaptureError:
             raise refuse from None
     if not isinstance(sim, dict):
         raise refuse

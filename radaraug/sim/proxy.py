@@ -62,6 +62,7 @@ from radaraug._optional import lazy_import
 from radaraug.config import RadarConfig
 from radaraug.errors import ConfigError
 from radaraug.io.atomic import atomic_write_json
+from radaraug.io.blocks import BLOCK_FRAMES, BlockWriter, frame_times
 from radaraug.io.generated_set import GeneratedTestSet, check_count_arg, test_file_name
 from radaraug.safe_read import load_json
 from radaraug.scene.geometry import RadarPose, SceneGeometry
@@ -87,7 +88,7 @@ from radaraug.sensor.effects import (
 from radaraug.sensor.paths import Paths
 from radaraug.sensor.receiver import FMCWReceiver
 from radaraug.sim.offline import people_inside
-from radaraug.sim.seeding import item_generator, item_seed
+from radaraug.sim.seeding import Stream, item_generator, item_seed
 from radaraug.sim.twin import DigitalTwin
 from radaraug.units import DB_CONVENTION, FLOAT_CONVENTION
 
@@ -99,7 +100,6 @@ MANIFEST_FORMAT = "radaraug-heldout-proxy"
 CALIBRATION_NAME = "calibration_empty.h5"
 ROOM_SCENE_NAME = "room.json"
 MOTION_DIR = "motion"
-BLOCK_FRAMES = 16
 
 # ------------------------------------------------------------------------------------- the room
 ROOM_SIZE_M = (14.0, 2.6, 3.0)
@@ -416,7 +416,7 @@ def _reusable(out: Path, settings: dict[str, Any]) -> ProxySet | None:
     from radaraug.io import open_capture
 
     try:
-        data = json.loads((out / MANIFEST_NAME).read_text())
+        data = load_json(out / MANIFEST_NAME, error=ConfigError, what="proxy manifest")
         if data.get("format") != MANIFEST_FORMAT or data.get("settings") != settings:
             return None
         found = load_proxy(out)
@@ -492,33 +492,30 @@ def _with_static(moving: Paths, strong: Paths) -> Paths:
 
 def _write_file(sim: _Simulator, path: Path, walks: list[dict[str, Any]], noise_base: int, attrs: dict[str, Any],
                 device: str, bar: Any) -> None:
-    """Simulate ``walks`` (each ``{"people", "frames", "t0"}``) into ``path`` (via a temporary file)."""
-    from radaraug.io import CaptureWriter
+    """Simulate ``walks`` (each ``{"people", "frames", "t0"}``) into ``path``.
 
-    tmp = path.with_name(path.stem + ".partial.h5")
-    if tmp.exists():
-        tmp.unlink()
+    The file appears under its name only complete (``publish="close"``): a killed run leaves the
+    hidden temporary of :class:`~radaraug.io.CaptureWriter`, which a later writer of ``path``
+    removes, and a file already at ``path`` (an earlier run's) stays until the new one replaces it.
+    """
+    path.with_name(path.stem + ".partial.h5").unlink(missing_ok=True)  # the temporary name of older versions
     block = 0
-    with CaptureWriter(tmp, sim.twin.config, labels_schema={"count": "int64", "occupancy": "int64"},
-                       attrs=attrs) as writer:
+    with BlockWriter.create(path, sim.twin.config, attrs=attrs, publish="close") as writer:
         for walk in walks:
             for a in range(0, walk["frames"], BLOCK_FRAMES):
                 b = min(a + BLOCK_FRAMES, walk["frames"])
-                local = torch.arange(a, b, dtype=torch.float64) * sim.period
+                local = frame_times(a, b, sim.period)
                 glob = walk["t0"] + local
-                gen = item_generator(noise_base, block, stream=2, device=device)
+                gen = item_generator(noise_base, block, stream=Stream.BLOCK_NOISE, device=device)
                 counts = sim.frames(walk["people"], local, glob, gen)
-                labels = walk["labels"][a:b]
-                writer.append(counts, timestamp=glob.numpy(),
-                              labels={"count": labels, "occupancy": (labels > 0).astype(np.int64)})
+                writer.write(counts, glob, walk["labels"][a:b])
                 block += 1
                 bar.update(b - a)
-    os.replace(tmp, path)
 
 
 def _plan_walks(sim: _Simulator, count: int, frames: int, seed: int, motion_dir: Path) -> list[dict[str, Any]]:
     """Draw the walks of the file of ``count`` people (labels checked against ``count``)."""
-    g = torch.Generator().manual_seed(item_seed(seed, count + 1, stream=30))
+    g = torch.Generator().manual_seed(item_seed(seed, count + 1, stream=Stream.PROXY_WALKS))
     x_lo = RADAR_POSITION_M[0] + MIN_RANGE_M + 0.3
     x_hi = ROOM_SIZE_M[0] - FAR_MARGIN_M
     walks, t_start = [], FILE_TIME_ORIGIN_S * (count + 1)
@@ -630,7 +627,7 @@ def _generate(out: Path, settings: dict[str, Any], frames_per_count: int, calibr
         cal_walk = {"people": [], "frames": calibration_frames, "t0": 0.0,
                     "labels": np.zeros(calibration_frames, dtype=np.int64)}
         cal_path = out / CALIBRATION_NAME
-        _write_file(sim, cal_path, [cal_walk], item_seed(seed, 0, stream=31),
+        _write_file(sim, cal_path, [cal_walk], item_seed(seed, 0, stream=Stream.PROXY_NOISE),
                     {**common, "description": "held-out proxy: empty room, for CalibratedDR.fit", "role": "calibration",
                      "labels": {"count": 0}}, device, bar)
         files["calibration"] = {"path": CALIBRATION_NAME, "frames": calibration_frames, "count": 0}
@@ -641,7 +638,7 @@ def _generate(out: Path, settings: dict[str, Any], frames_per_count: int, calibr
             desc = [{"frames": w["frames"], "t0_s": round(w["t0"], 6), "people": _rounded(w["params"], 5),
                      "motion": w["motion"]} for w in walks]
             path = out / test_file_name(c)
-            _write_file(sim, path, walks, item_seed(seed, c + 1, stream=31),
+            _write_file(sim, path, walks, item_seed(seed, c + 1, stream=Stream.PROXY_NOISE),
                         {**common, "description": f"held-out proxy: {c} walking people in every frame",
                          "role": "test", "labels": {"count": c}, "walks": desc}, device, bar)
             tests.append((path, c))

@@ -24,12 +24,13 @@ item around the calibrated values, all from generators seeded by ``(seed, index)
   probability per item, inserted into the item's receiver at its hardware position
   (:data:`~radaraug.sensor.effects.HARDWARE_ORDER`).
 
-Generator streams (:func:`radaraug.sim.seeding.item_generator`): the dataset uses stream 0 for
-the scenario and 1 for the receiver noise (the catalog's effects draw their own randomness,
-e.g. which chirps an interferer hits, from it too); this module uses :data:`ITEM_STREAM` for the
-per-item draws, :data:`ROOM_STREAM` (index = variant number) for the room pool,
-:data:`SCATTERER_STREAM` for the static scatterers and the phase noise, and
-:data:`EFFECTS_STREAM` for the effect catalog. The catalog has its own stream so that the older
+Generator streams (:class:`radaraug.sim.seeding.Stream`, the registry of every stream): the
+dataset uses ``Stream.SCENARIO`` for the scenario and ``Stream.ITEM_NOISE`` for the receiver
+noise (the catalog's effects draw their own randomness, e.g. which chirps an interferer hits,
+from it too); this module uses :data:`ITEM_STREAM` (``Stream.ITEM_DRAWS``) for the per-item
+draws, :data:`ROOM_STREAM` (``Stream.ROOM_POOL``, index = variant number) for the room pool,
+:data:`SCATTERER_STREAM` (``Stream.SCATTERERS``) for the static scatterers and the phase noise,
+and :data:`EFFECTS_STREAM` (``Stream.EFFECTS``) for the effect catalog. The catalog has its own stream so that the older
 draws do not shift: an item that draws no catalog effect (every item with
 ``effects_probability=0``) is bit for bit the item of a randomization without the catalog. The
 order of the draws inside a stream is part of the contract: changing it changes every item of
@@ -69,16 +70,16 @@ from radaraug.sensor.effects.base import hardware_position
 from radaraug.sensor.paths import Paths
 from radaraug.sensor.receiver import FMCWReceiver
 from radaraug.sim.scenarios import ScenarioSampler, _uniform
-from radaraug.sim.seeding import item_generator
+from radaraug.sim.seeding import Stream, item_generator
 from radaraug.sim.twin import DigitalTwin
 
-ITEM_STREAM = 3
+ITEM_STREAM = Stream.ITEM_DRAWS
 """Generator stream of the per-item draws (room variant, gain, noise figure, RCS per person)."""
-ROOM_STREAM = 4
+ROOM_STREAM = Stream.ROOM_POOL
 """Generator stream of the room pool (``index`` = variant number)."""
-SCATTERER_STREAM = 5
+SCATTERER_STREAM = Stream.SCATTERERS
 """Generator stream of the per-item static scatterers."""
-EFFECTS_STREAM = 6
+EFFECTS_STREAM = Stream.EFFECTS
 """Generator stream of the per-item effect catalog (spur, interference, fan, mismatch, drift, levels)."""
 MISMATCH_ANTENNAS = 16
 """RX gain/phase mismatch is drawn for antenna numbers 1..16 (``radaraug.config.MAX_ANTENNAS``), whatever
@@ -408,7 +409,7 @@ class TwinRandomization:
         """Room variant ``k`` of the pool of a dataset seeded ``seed`` (a pure function of both)."""
         if not 0 <= k < self.room_variants:
             raise ConfigError(f"room variant {k} out of range: the pool has {self.room_variants}")
-        g = item_generator(seed, k, stream=ROOM_STREAM)
+        g = item_generator(seed, k, stream=Stream.ROOM_POOL)
         length = _uniform(self.length_m, g)
         width = _uniform(self.width_m, g)
         height = _uniform(self.height_m, g)
@@ -435,7 +436,7 @@ class TwinRandomization:
 
     def variant_of(self, seed: int, index: int) -> int:
         """Which room variant item ``index`` uses (the first draw of its stream)."""
-        g = item_generator(seed, index, stream=ITEM_STREAM)
+        g = item_generator(seed, index, stream=Stream.ITEM_DRAWS)
         return int(torch.randint(self.room_variants, (), generator=g))
 
     def item(self, seed: int, index: int, num_people: int) -> ItemDraw:
@@ -443,13 +444,13 @@ class TwinRandomization:
 
         Person ``j``'s RCS scale does not depend on how many people follow it.
         """
-        g = item_generator(seed, index, stream=ITEM_STREAM)
+        g = item_generator(seed, index, stream=Stream.ITEM_DRAWS)
         variant = int(torch.randint(self.room_variants, (), generator=g))
         gain = _uniform(self.system_gain_offset_dB, g)
         nf = _uniform(self.noise_figure_offset_dB, g)
         rcs = tuple(_uniform(self.rcs_scale_dB, g) for _ in range(num_people))
         # Own stream: the scatterers do not depend on the number of people (or vice versa).
-        gs = item_generator(seed, index, stream=SCATTERER_STREAM)
+        gs = item_generator(seed, index, stream=Stream.SCATTERERS)
         lo_n, hi_n = self.static_scatterers
         scatterers = tuple(
             (_uniform(self.static_scatterer_range_m, gs), _uniform(self.static_scatterer_azimuth_deg, gs),
@@ -473,7 +474,7 @@ class TwinRandomization:
         probability does not shift the others' values. Returns the :class:`ItemDraw` fields (None
         for an effect not drawn) plus ``wide_levels`` (bool) and the wide levels' three values.
         """
-        g = item_generator(seed, index, stream=EFFECTS_STREAM)
+        g = item_generator(seed, index, stream=Stream.EFFECTS)
         scale = self.effects_probability
 
         def hit(p: float) -> bool:

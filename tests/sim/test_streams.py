@@ -1,0 +1,60 @@
+"""The registry of generator streams (`radaraug.sim.seeding.Stream`): unique, stable values, and items unchanged."""
+
+from __future__ import annotations
+
+import hashlib
+import re
+from pathlib import Path
+
+import pytest
+import torch
+
+from radaraug.sim import SimulatedRadarDataset
+from radaraug.sim.seeding import Stream, item_seed
+
+ROOT = Path(__file__).resolve().parents[2]
+
+# The values every recorded simulation was made with: a member may be added, never renumbered.
+KNOWN = {
+    "SCENARIO": 0, "ITEM_NOISE": 1, "BLOCK_NOISE": 2, "ITEM_DRAWS": 3, "ROOM_POOL": 4, "SCATTERERS": 5,
+    "EFFECTS": 6, "NOISE_FIT": 7, "PROXY_WALKS": 30, "PROXY_NOISE": 31,
+}
+
+# sha256 of the float32 bytes of SimulatedRadarDataset("corridor", length=4, seed=3,
+# twin_options={"tracer_options": {"rays": 16}})[i], and its label, computed on the CPU before the
+# streams were named (the registry must leave every item bit-identical).
+RECORDED_WITH = "2.14.1"  # torch version the digests were computed with (float results may differ on another)
+ITEMS = {
+    0: (2, "1deddb4f32edc7deb85fa6303c8bf9ee17a6737820671f59fc7d2ba964d1f2db"),
+    1: (2, "e51f8411c1a90f9a9359b5f6d5c25a93d8eb90e6af76c485f53c1eb6303ccdf0"),
+    2: (0, "05ba94a5f1c184f875e8bee2a2fa9eccb49051395128e67ff41a8711bda8776d"),
+    3: (1, "bc7d7b07eca68318779b2ef431ae1da090c6073daf43ebb785a65ac1006f530c"),
+}
+
+
+def test_stream_values_are_unique_and_unchanged() -> None:
+    assert {m.name: int(m) for m in Stream} == KNOWN
+    # An IntEnum silently turns a repeated value into an alias: every name must be its own member.
+    assert len(Stream.__members__) == len(set(Stream.__members__.values())) == len(KNOWN)
+    # A member seeds exactly as its bare integer did.
+    assert item_seed(3, 5, Stream.PROXY_NOISE) == item_seed(3, 5, 31)
+
+
+def test_no_bare_stream_integers_in_the_library() -> None:
+    bare = re.compile(r"stream\s*=\s*\d")
+    hits = [f"{p.relative_to(ROOT)}:{i}" for p in sorted((ROOT / "radaraug").rglob("*.py"))
+            for i, line in enumerate(p.read_text().splitlines(), 1) if bare.search(line)]
+    assert hits == []
+
+
+@pytest.mark.parametrize("index", sorted(ITEMS))
+def test_known_items_are_bit_identical(index: int) -> None:
+    if not torch.__version__.startswith(RECORDED_WITH):
+        pytest.skip(f"digests recorded with torch {RECORDED_WITH}; this is {torch.__version__}")
+    ds = SimulatedRadarDataset("corridor", length=4, seed=3, twin_options={"tracer_options": {"rays": 16}})
+    x, y = ds[index]
+    assert x.dtype == torch.float32 and tuple(x.shape) == (3, 64, 256)
+    label, digest = ITEMS[index]
+    assert int(y) == label
+    assert hashlib.sha256(x.contiguous().numpy().tobytes()).hexdigest() == digest, (
+        "item changed: a stream value, the order of draws or the simulation itself moved")
