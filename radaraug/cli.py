@@ -90,7 +90,7 @@ def _stdout_for(args: argparse.Namespace) -> Iterator[None]:
 
 def _cmd_info(args: argparse.Namespace) -> int:
     from radaraug.io import open_capture
-    from radaraug.io.summary import summarize_capture
+    from radaraug.transforms.summary import summarize_capture
 
     with open_capture(args.path) as reader:
         info = summarize_capture(reader, max_frames=args.max_frames)

@@ -30,7 +30,6 @@ def run_demo(out_dir: Path, *, capture: str | Path | None = None) -> dict:
     plt = pyplot()
 
     from radaraug.io import open_capture, sample_recording_path
-    from radaraug.io.summary import summarize_capture
     from radaraug.transforms import (
         CalibratedDR,
         ClipNormalize,
@@ -40,6 +39,7 @@ def run_demo(out_dir: Path, *, capture: str | Path | None = None) -> dict:
         Resize,
         ToDecibels,
     )
+    from radaraug.transforms.summary import summarize_capture
     from radaraug.units import DB_CONVENTION
 
     out_dir.mkdir(parents=True, exist_ok=True)

@@ -116,3 +116,70 @@ def test_the_checker_sees_function_level_and_relative_imports() -> None:
     assert "radaraug.io" in graph["radaraug.transforms._fit_sources"]  # inside a function
     assert "radaraug.scene.people._rotations" in graph["radaraug.scene.people.walker"]  # from pkg import mod
     assert _cycles({"a": {"b"}, "b": {"c"}, "c": {"a"}, "d": {"a"}}) == [["a", "b", "c"]]
+
+
+def _absolute(node: ast.ImportFrom, name: str, path: Path) -> str:
+    """The absolute module a ``from ... import`` names (relative imports resolved against ``name``)."""
+    if not node.level:
+        return node.module or ""
+    anchor = (name if path.name == "__init__.py" else name.rpartition(".")[0]).split(".")
+    anchor = anchor[: len(anchor) - (node.level - 1)]
+    return ".".join([*anchor, node.module] if node.module else anchor)
+
+
+def _imported_names(name: str, path: Path) -> set[str]:
+    """Every module ``name`` imports, at module level, inside functions, or under ``TYPE_CHECKING``.
+
+    ``from X import y`` counts as ``X.y`` too (``y`` may be a submodule), and a literal
+    ``importlib.import_module("...")`` / ``__import__("...")`` as the module it names.
+    """
+    found: set[str] = set()
+    for node in ast.walk(ast.parse(path.read_text(), str(path))):
+        if isinstance(node, ast.Import):
+            found.update(alias.name for alias in node.names)
+        elif isinstance(node, ast.ImportFrom):
+            base = _absolute(node, name, path)
+            found.add(base)
+            found.update(f"{base}.{alias.name}" for alias in node.names)
+        elif isinstance(node, ast.Call) and node.args and isinstance(node.args[0], ast.Constant):
+            func = node.func
+            called = func.id if isinstance(func, ast.Name) else func.attr if isinstance(func, ast.Attribute) else ""
+            if called in ("import_module", "__import__") and isinstance(node.args[0].value, str):
+                found.add(node.args[0].value)
+    return found
+
+
+def _io_imports_of_transforms() -> dict[str, list[str]]:
+    out = {}
+    for name, path in sorted(_modules().items()):
+        if name == "radaraug.io" or name.startswith("radaraug.io."):
+            bad = sorted(m for m in _imported_names(name, path)
+                         if m == "radaraug.transforms" or m.startswith("radaraug.transforms."))
+            if bad:
+                out[name] = bad
+    return out
+
+
+def test_io_imports_nothing_of_transforms() -> None:
+    """radaraug.io knows nothing of transforms (its docstring): no import of radaraug.transforms, anywhere in it."""
+    bad = _io_imports_of_transforms()
+    assert not bad, "radaraug.io must not import radaraug.transforms (move the code above io):\n" + "\n".join(
+        f"    {m} -> {', '.join(v)}" for m, v in bad.items())
+
+
+def test_the_io_check_sees_every_kind_of_import(tmp_path: Path) -> None:
+    pkg = tmp_path / "radaraug" / "io"
+    pkg.mkdir(parents=True)
+    cases = {
+        "a.py": "def f():\n    from radaraug.transforms.per_item import transform_item\n",
+        "b.py": "import radaraug.transforms\n",
+        "c.py": "from typing import TYPE_CHECKING\nif TYPE_CHECKING:\n    from radaraug import transforms\n",
+        "d.py": "import importlib\ndef f():\n    return importlib.import_module('radaraug.transforms.dr')\n",
+        "e.py": "from ..transforms import RangeDoppler\n",
+        "f.py": "from radaraug.io.base import CaptureReader\nimport radaraug.units\n",
+    }
+    for file, text in cases.items():
+        (pkg / file).write_text(text)
+    seen = {f: any(m == "radaraug.transforms" or m.startswith("radaraug.transforms.")
+                   for m in _imported_names(f"radaraug.io.{f[:-3]}", pkg / f)) for f in cases}
+    assert seen == {"a.py": True, "b.py": True, "c.py": True, "d.py": True, "e.py": True, "f.py": False}

@@ -14,6 +14,7 @@ import numpy as np
 import torch
 from torch.utils.data import Dataset
 
+from radaraug._augmentation import check_augmentation, check_epoch, transform_item
 from radaraug.config import RadarConfig
 from radaraug.errors import CaptureError, ConfigError
 from radaraug.io.base import CaptureReader, CaptureWarning
@@ -102,8 +103,6 @@ class RadarCaptureDataset(Dataset):
         frames_per_sample: int | None = None,
         as_float: bool | None = None,
     ) -> None:
-        from radaraug.transforms.per_item import check_augmentation
-
         if frames_per_sample is not None:
             if frames_per_item is not None:
                 raise CaptureError("RadarCaptureDataset: give frames_per_item, not also frames_per_sample")
@@ -246,8 +245,6 @@ class RadarCaptureDataset(Dataset):
 
         DataLoader workers started afterwards see it; persistent workers keep the one they started with.
         """
-        from radaraug.transforms.per_item import check_epoch
-
         try:
             self.epoch = check_epoch(epoch, "RadarCaptureDataset")
         except ConfigError as e:
@@ -261,8 +258,6 @@ class RadarCaptureDataset(Dataset):
             x = x[0]
         if self.transform is not None:
             if self.augmentation == "per_item":
-                from radaraug.transforms.per_item import transform_item
-
                 item = int(self._offsets[k]) + (start // self.stride)  # the global index, >= 0
                 x = transform_item(self.transform, x, mode="per_item", seed=self.augmentation_seed,
                                    index=item, epoch=self.epoch)

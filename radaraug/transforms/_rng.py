@@ -18,7 +18,8 @@ Case 3 needs nothing: torch already seeds each worker's global RNG the same way.
 
 All three make a sample's random parameters depend on which worker drew it and on what that
 worker drew before (a *stream* per worker). For per-item reproducible augmentation, a dataset
-wraps its transform call in :func:`use_generator` with a generator derived from
+wraps its transform call in :func:`use_generator` (defined in :mod:`radaraug._augmentation`, below
+``io``, ``sim`` and ``transforms``, and re-exported here) with a generator derived from
 ``(seed, index, epoch)``: inside the block every random radaraug transform draws from that
 generator instead (it wins over all three above), so item ``i`` of an epoch is the same however
 the DataLoader splits the work (``augmentation="per_item"`` of the radaraug datasets).
@@ -27,38 +28,15 @@ the DataLoader splits the work (``augmentation="per_item"`` of the radaraug data
 from __future__ import annotations
 
 import os
-from collections.abc import Iterator
-from contextlib import contextmanager
-from contextvars import ContextVar
 from typing import Any
 
 import torch
 from torch.utils.data import get_worker_info
 
+from radaraug._augmentation import scoped_generator, use_generator
 from radaraug._seeding import mix
 
-_SCOPED: ContextVar[torch.Generator | None] = ContextVar("radaraug_scoped_generator", default=None)
-
-
-@contextmanager
-def use_generator(generator: torch.Generator) -> Iterator[torch.Generator]:
-    """Inside the block, every random radaraug transform draws from ``generator``.
-
-    It takes precedence over a transform's own ``generator``/``seed`` and over the global RNG,
-    for any nesting of transforms (RadarCompose, torchvision Compose, nn.Sequential), and only in
-    the current thread / context.
-
-    Example:
-        >>> with use_generator(torch.Generator().manual_seed(7)):  # doctest: +SKIP
-        ...     y = pipeline(x)   # CalibratedDR / RandomDR noise drawn from that generator
-    """
-    if not isinstance(generator, torch.Generator):
-        raise TypeError(f"use_generator needs a torch.Generator, got {type(generator).__name__}")
-    token = _SCOPED.set(generator)
-    try:
-        yield generator
-    finally:
-        _SCOPED.reset(token)
+__all__ = ["use_generator", "draw", "mix_seed", "GeneratorSource"]
 
 
 def draw(
@@ -127,7 +105,7 @@ class GeneratorSource:
 
     def get(self, device: torch.device) -> torch.Generator | None:
         """The generator to use for a draw on ``device`` (None: global RNG)."""
-        scoped = _SCOPED.get()
+        scoped = scoped_generator()
         if scoped is not None:  # per-item augmentation (use_generator) wins
             return scoped
         if self.uses_global_rng:

@@ -25,7 +25,6 @@ import math
 import os
 import warnings
 from collections.abc import Mapping
-from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -51,10 +50,16 @@ FORMAT_VERSION = 1
 FORMAT_VERSION_EMPIRICAL = 2
 #: CalibratedDR's floor distributions: the paper's normal in dB, or the measured one.
 FLOORS = ("normal", "empirical")
-ENV_VAR = "RADARAUG_CDR"
-"""Environment variable naming the calibration ``CalibratedDR()`` (no arguments) uses: a JSON
-written by ``radaraug fit-cdr`` / :meth:`CalibratedDR.save`, or an empty-room capture (fitted
-with the default chain when the transform is made)."""
+
+
+_MISSING_FLOOR = (
+    "CalibratedDR needs its fitted floor, got no {missing}. radaraug ships no default noise floor (it depends "
+    "on your sensor, IF gain, DSP chain and room): fit one on ~10 s of your empty room with "
+    "CalibratedDR.fit(EMPTY_ROOM) (a capture path, reader or tensor; `radaraug fit-cdr EMPTY_ROOM -o cdr.json` "
+    "on the command line), load a saved one with CalibratedDR.load('cdr.json'), or pass the numbers: "
+    "CalibratedDR(mean_db, std_db, ...)"
+)
+"""The :class:`ConfigError` of ``CalibratedDR()`` without ``mean_db``/``std_db``."""
 
 
 def _range_arg(name: str, value: Any, cls: str) -> tuple[float, float]:
@@ -169,13 +174,15 @@ class CalibratedDR(_DRClamp):
     exponential, whose upper tail is far lighter than a normal's with the same std (on the proxy's
     empty room, 99.9th percentile -89.4 dB measured vs -81.2 dB for the normal; docs/transforms.md).
 
-    Usually made by :meth:`fit` (or :meth:`load`), which records the DSP chain, radar config and
-    map shape the floor was measured with; a :class:`~radaraug.transforms.compose.RadarCompose`
-    then refuses a different chain, and a map of another shape is refused at call time.
+    Made by :meth:`fit` (from an empty-room capture) or :meth:`load` (from a saved calibration
+    JSON), which record the DSP chain, radar config and map shape the floor was measured with; a
+    :class:`~radaraug.transforms.compose.RadarCompose` then refuses a different chain, and a map
+    of another shape is refused at call time. The constructor itself only takes fitted numbers:
+    it never reads a file or the environment and never fits anything.
 
     Args:
-        mean_db: floor mean ``m_t`` in dB (dBFS with radaraug's chain).
-        std_db: floor standard deviation ``s_t`` in dB.
+        mean_db: floor mean ``m_t`` in dB (dBFS with radaraug's chain). Required.
+        std_db: floor standard deviation ``s_t`` in dB. Required.
         chain: chain spec list the maps were made with (None: not checked).
         config: ``RadarConfig`` (or its dict) of the calibration capture (None: not checked).
         map_shape: ``(rx, range, doppler)`` of the fitted maps (None: not checked).
@@ -188,22 +195,23 @@ class CalibratedDR(_DRClamp):
         quantiles_db: quantiles of the floor's dB values at equally spaced probabilities from 0 to
             1 (non-decreasing, >= 2 values; :meth:`fit` records 1025, off zero Doppler).
 
-    With no ``mean_db``/``std_db``, ``CalibratedDR()`` reads the calibration named by the
-    ``RADARAUG_CDR`` environment variable (:data:`ENV_VAR`): a calibration JSON, or an empty-room
-    capture that is fitted there and then with the default chain. radaraug ships no default
-    floor: the floor depends on the sensor, its IF gain, the chain and the room, and no empty-room
-    recording at the paper's configuration is available to fit one from (docs/transforms.md).
+    radaraug ships no default floor: the floor depends on the sensor, its IF gain, the chain and
+    the room, and no empty-room recording at the paper's configuration is available to fit one
+    from (docs/transforms.md). So ``CalibratedDR()`` without ``mean_db``/``std_db`` is a
+    :class:`~radaraug.errors.ConfigError` that says what to call instead:
+    ``CalibratedDR.fit(empty_room_capture)`` or ``CalibratedDR.load("cdr.json")``.
     :attr:`provenance` says where the numbers came from.
 
     Raises:
-        CalibrationError: only one of ``mean_db``/``std_db`` given; neither given and
-            ``RADARAUG_CDR`` unset, or naming a file that is not a calibration or a capture; an
-            unknown ``floor``; ``floor="empirical"`` without valid ``quantiles_db``.
+        ConfigError: ``mean_db`` or ``std_db`` not given (use :meth:`fit` or :meth:`load`).
+        CalibrationError: invalid fitted values: non-finite ``mean_db``/``std_db`` or a negative
+            ``std_db``, a malformed ``chain``/``config``/``map_shape``, an unknown ``floor``,
+            ``floor="empirical"`` without valid ``quantiles_db``.
     """
 
     provenance: dict[str, Any]
-    """Where ``(mean_db, std_db)`` came from: ``{"from": "arguments" | "file" | "RADARAUG_CDR",
-    "path": ..., "source": capture name, "num_frames": ...}``."""
+    """Where ``(mean_db, std_db)`` came from: ``{"from": "arguments" | "file", "path": ...,
+    "source": capture name, "num_frames": ...}`` (``path`` for a loaded file only)."""
 
     def __init__(
         self,
@@ -226,19 +234,8 @@ class CalibratedDR(_DRClamp):
         super().__init__(p=p, same_on_batch=same_on_batch, generator=generator, **rng)
         self.provenance = {"from": "arguments"}
         if mean_db is None or std_db is None:
-            if mean_db is not None or std_db is not None:
-                raise CalibrationError("CalibratedDR: give both mean_db and std_db, or neither (RADARAUG_CDR)")
-            if any(v is not None for v in (chain, config, map_shape, source, num_frames, motion, quantiles_db)):
-                raise CalibrationError(
-                    "CalibratedDR: chain, config, map_shape, source, num_frames, motion and quantiles_db come with "
-                    "mean_db/std_db"
-                )
-            record, self.provenance = _from_environment()
-            mean_db, std_db = record["mean_db"], record["std_db"]
-            chain, config, map_shape = record["chain"], record["config"], record["map_shape"]
-            source, num_frames, motion = record["source"], record["num_frames"], record["motion"]
-            quantiles_db = record.get("quantiles_db")
-            floor = record.get("floor") if floor is None else floor
+            raise ConfigError(_MISSING_FLOOR.format(
+                missing=" and ".join(n for n, v in (("mean_db", mean_db), ("std_db", std_db)) if v is None)))
         self.mean_db, self.std_db = float(mean_db), float(std_db)
         if not (math.isfinite(self.mean_db) and math.isfinite(self.std_db)) or self.std_db < 0:
             raise CalibrationError(
@@ -278,8 +275,6 @@ class CalibratedDR(_DRClamp):
         self.source = source
         # the calibration file it was loaded from, if any (named by the errors raised when it is used)
         self.file: str | None = None
-        if self.provenance["from"] == ENV_VAR and not self.provenance.get("fitted"):
-            self.file = self.provenance["path"]
         self.provenance.update(source=source, num_frames=num_frames)
         self.num_frames = num_frames
         self.motion = motion
@@ -512,23 +507,3 @@ def _valid_quantiles(values: Any) -> torch.Tensor:
         )
     return q.clone()
 
-
-def _from_environment() -> tuple[dict[str, Any], dict[str, Any]]:
-    """``CalibratedDR()``'s calibration: the record named by ``RADARAUG_CDR`` and its provenance."""
-    path = os.environ.get(ENV_VAR, "").strip()
-    if not path:
-        raise CalibrationError(
-            f"CalibratedDR() with no arguments uses the calibration named by the {ENV_VAR} environment "
-            "variable, which is not set. radaraug ships no default noise floor (it depends on your sensor, "
-            "IF gain, DSP chain and room). Record ~10 s of your empty room, then either "
-            f"`radaraug fit-cdr EMPTY_ROOM -o cdr.json` and `export {ENV_VAR}=cdr.json`, or "
-            "CalibratedDR.fit(EMPTY_ROOM)"
-        )
-    provenance: dict[str, Any] = {"from": ENV_VAR, "path": path}
-    if Path(path).suffix.lower() == ".json":
-        return _read_record(path), provenance
-    if not Path(path).exists():
-        raise CalibrationError(f"{ENV_VAR}={path}: no such calibration JSON or capture")
-    stats = floor_statistics(path)  # an empty-room capture: fit it with the default chain
-    provenance["fitted"] = True
-    return stats, provenance

@@ -9,7 +9,7 @@ more data than the file stores, FIFOs and links to ``/dev/zero`` in place of fil
 
 :func:`run_cases` runs every case in a forked child process (so a hang is a finding, not a stuck
 test run, and a runaway allocation hits an address-space limit), against ``open_capture`` +
-``read``, the ``info`` command's :func:`radaraug.io.summary.summarize_capture`,
+``read``, the ``info`` command's :func:`radaraug.transforms.summary.summarize_capture`,
 ``RadarCaptureDataset(...)[0]`` and ``CalibratedDR.load`` (then used). The outcome of a case is
 ``"ok"``, ``"error:<RadarAugError subclass>"`` (both pass), or a failure: another exception
 type, a ``RuntimeWarning``, numpy's ``allow_pickle`` advice in a message, an error message that
@@ -504,8 +504,8 @@ def run_one(case: Case, case_dir: Path) -> str:
 
     from radaraug.errors import RadarAugError
     from radaraug.io import RadarCaptureDataset, open_capture
-    from radaraug.io.summary import summarize_capture
     from radaraug.transforms import CalibratedDR, RadarCompose, RangeDoppler, ToDecibels
+    from radaraug.transforms.summary import summarize_capture
 
     case_dir.mkdir(parents=True)
     target = case.build(case_dir)

@@ -14,7 +14,7 @@ from radaraug_tests_io_data import pattern_counts
 
 from radaraug.errors import CaptureError
 from radaraug.io import CaptureWarning, RadarCaptureDataset, open_capture
-from radaraug.io.summary import summarize_capture
+from radaraug.transforms.summary import summarize_capture
 
 
 def _edit(path, edit) -> None:

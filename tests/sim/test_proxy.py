@@ -15,7 +15,6 @@ import torch
 from radaraug import RadarConfig
 from radaraug.errors import ConfigError, SceneError
 from radaraug.io import RadarCaptureDataset, open_capture
-from radaraug.io.summary import summarize_capture
 from radaraug.scene.people import BVHPerson, Walker, read_bvh
 from radaraug.scene.people.sine_gait import SineGait, write_sine_gait_bvh
 from radaraug.scene.people.skeleton import JOINT_INDEX
@@ -23,6 +22,7 @@ from radaraug.scene.scene import Scene
 from radaraug.sensor.defaults import default_effects
 from radaraug.sim import proxy
 from radaraug.transforms import CalibratedDR, RangeDoppler, ToDecibels
+from radaraug.transforms.summary import summarize_capture
 
 SMALL = {"frames_per_count": 8, "calibration_frames": 16, "seed": 3, "progress": False,
          "tracer_options": {"rays": 48}}  # a coarse room trace keeps the tests quick

@@ -70,9 +70,11 @@ def test_resize_refuses_an_int_and_bad_sizes(size):
 @pytest.mark.parametrize("size", [(224, 224), (5, 9), (64, 20)])
 @pytest.mark.parametrize("antialias", [True, False])
 def test_resize_equals_torchvision_v2_resize(size, antialias):
-    x = torch.rand(2, 3, 32, 24, dtype=torch.float64)
+    x = torch.rand(2, 3, 32, 24, dtype=torch.float64, generator=torch.Generator().manual_seed(0))
     ref = v2.functional.resize(x, list(size), antialias=antialias)
-    assert torch.equal(Resize(size, antialias=antialias)(x), ref)
+    # Equal to float rounding: torchvision interpolates (N, C, H, W), radaraug (N*C, 1, H, W), and
+    # with one thread PyTorch's kernel sums in another order for the two layouts (1e-16 apart).
+    torch.testing.assert_close(Resize(size, antialias=antialias)(x), ref, rtol=0, atol=1e-12)
     assert torch.equal(v2.Resize(size, antialias=antialias)(x), ref)
 
 

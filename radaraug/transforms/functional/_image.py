@@ -125,7 +125,8 @@ def resize(x: torch.Tensor, size: Sequence[int], antialias: bool = True) -> torc
     """Resample the last two dims to ``size = (height, width)`` (bilinear, antialiased when shrinking).
 
     The same values as ``torchvision.transforms.v2.functional.resize(x, [height, width])`` on a
-    float tensor (bilinear, ``antialias=True``).
+    float tensor (bilinear, ``antialias=True``), to float rounding (the channels are resized as
+    separate images, which a single-threaded kernel may sum in another order).
 
     Args:
         x: an image or map ``(..., H, W)``, real floating.
