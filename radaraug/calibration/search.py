@@ -286,6 +286,41 @@ class Search:
         chain = self.dc_closed_form(chain, iterations=1, room=room)
         return chain, room, self.fit_score(chain, room)
 
+    def uncertainty(self, chain: Chain, specs: Sequence[tuple[str, ParamSpec]], room: Room | None,
+                    noise_db: float) -> dict[str, list[float] | None]:
+        """A +-1 sigma interval per fitted parameter from the fit objective's curvature.
+
+        The objective (mean view error, dB) is not a likelihood; its noise scale is taken as the
+        gap between the fitting and the held-out half's error (at least 0.01 dB), and a parameter's
+        sigma is where a parabola through the optimum and two probes 2 % of the prior range away
+        rises by that much: ``sigma = sqrt(2 noise / curvature)`` (in the prior's scale: a factor for
+        log parameters). None when the objective does not curve there (the parameter is not
+        identified by the views). Two evaluations per parameter.
+        """
+        R = self.config.num_rx
+        f0 = self.fit_score(chain, room).overall
+        delta = max(float(noise_db), 0.01)
+        out: dict[str, list[float] | None] = {}
+        for eff, sp in specs:
+            log = sp.prior.scale == "log"
+            lo, hi = (math.log10(sp.prior.lo), math.log10(sp.prior.hi)) if log else (sp.prior.lo, sp.prior.hi)
+            v = get_param(chain, eff, sp)
+            u = math.log10(max(v, sp.prior.lo)) if log else v
+            h = 0.02 * (hi - lo)
+
+            def at(uu: float, eff: str = eff, sp: ParamSpec = sp, log: bool = log) -> float:
+                return self.fit_score(set_params(chain, eff, [sp], [10**uu if log else uu], R), room).overall
+
+            curv = (at(u + h) + at(u - h) - 2 * f0) / h**2
+            label = sp.name if sp.index is None else f"{sp.name}[{sp.index}]"
+            if not curv > 0:
+                out[label] = None
+                continue
+            sig = math.sqrt(2 * delta / curv)
+            a, b = max(u - sig, lo), min(u + sig, hi)
+            out[label] = [10**a, 10**b] if log else [a, b]
+        return out
+
     # ------------------------------------------------------------------ signature-led steps
     def _signature_steps(self, chain: Chain, room: Room, held: Score, ev: Mapping[str, Any],
                          steps: list[dict[str, Any]], added: set[str]) -> tuple[Chain, Room, Score]:
@@ -428,7 +463,7 @@ class Search:
                 return r[0].overall + st.per_param_db * _own_params(r[1].name, r[4])
 
             results.sort(key=penalized)
-            held, cand, fitted, _, cand_specs = results[0]
+            held, cand, fitted, fit_sc, cand_specs = results[0]
             gain = cur_held.overall - held.overall
             k = _own_params(cand.name, cand_specs)
             backed = cand.name in ev and bool(ev[cand.name].present)
@@ -449,6 +484,8 @@ class Search:
                 "effect": cand.name,
                 "refit": refit,
                 "params": require(fitted, cand.name)["params"],
+                "uncertainty": self.uncertainty(fitted, [(e, sp) for e, sp in cand_specs if e == cand.name], cur_room,
+                                                abs(held.overall - fit_sc.overall)),
                 "params_fitted": k,
                 "signature": None if cand.name not in ev else ev[cand.name].reason,
                 # The detector's own estimate beside the fit: two independent readings of one effect.

@@ -262,3 +262,27 @@ def test_bounded_simplex_finds_closed_form_minima():
     assert x[0] == pytest.approx(0.3, abs=1e-3) and x[1] == pytest.approx(-1.0, abs=1e-6)  # y pinned at its bound
     assert fx == pytest.approx(1.0, abs=1e-5)
     assert len(calls) <= 200 + 2 and all(-1 <= v <= 1 for u in calls for v in u)
+
+
+def test_uncertainty_is_the_closed_form_of_a_parabola():
+    """sigma = sqrt(2 noise / curvature): on an objective k (u - u0)^2 + c it is sqrt(noise / k)."""
+    import math
+    from types import SimpleNamespace
+
+    from radaraug.calibration.catalog import ParamSpec, get_param
+    from radaraug.calibration.search import Search
+    from radaraug.config import RadarConfig
+    from radaraug.sensor.effects.base import Prior
+
+    k, u0, noise = 3.0, math.log10(2.0), 0.05
+    spec = ParamSpec("amplitude_counts", Prior(0.05, 200.0, "log"))
+    flat = ParamSpec("phase_rad", Prior(-math.pi, math.pi))
+    chain = [{"name": "spur_tone", "params": {"freq_Hz": 1e5, "amplitude_counts": 2.0, "phase_rad": 0.0}}]
+    search = Search.__new__(Search)
+    search.config = RadarConfig.bgt60tr13c()
+    search.fit_score = lambda ch, room=None: SimpleNamespace(
+        overall=k * (math.log10(get_param(ch, "spur_tone", spec)) - u0) ** 2 + 0.7)
+    out = search.uncertainty(chain, [("spur_tone", spec), ("spur_tone", flat)], None, noise)
+    sig = math.sqrt(noise / k)
+    assert out["amplitude_counts"] == pytest.approx([2.0 * 10**-sig, 2.0 * 10**sig], rel=1e-6)
+    assert out["phase_rad"] is None  # the objective does not see it: not identified
