@@ -23,7 +23,6 @@
 
 from __future__ import annotations
 
-import json
 import warnings
 from collections.abc import Sized
 from pathlib import Path
@@ -436,54 +435,24 @@ class RadarDataModule(L.LightningDataModule):
 
     def _fit_profile(self, calibration: str) -> tuple[TwinProfile, Path]:
         """The twin profile fitted on the calibration capture (empty room, no scene), cached."""
-        path = self.profile_cache_path(calibration)
-        if path.is_file():
-            try:
-                return TwinProfile.load(path), path
-            except CalibrationError:
-                pass  # unreadable (e.g. written by another radaraug): fit again and replace it
-        from radaraug import calibration as cal_mod
+        from radaraug.calibration.record import cached_profile_fit
 
-        diag = cal_mod.diagnose(str(calibration), scene=None, max_frames=int(self.hparams["profile_max_frames"]),
-                                progress=bool(self.hparams["progress"]))
-        path.parent.mkdir(parents=True, exist_ok=True)
-        diag.profile.save(path)
-        return diag.profile, path
+        path = self.profile_cache_path(calibration)
+        return cached_profile_fit(calibration, path, max_frames=int(self.hparams["profile_max_frames"]),
+                                  progress=bool(self.hparams["progress"])), path
 
     def _fit_noise(self, calibration: str) -> dict[str, Any]:
         """The twin's noise figure fitted to the calibration capture's floor (cached in cache_dir)."""
-        from radaraug.scene.scene import Scene
-        from radaraug.sim.noise_fit import capture_noise_floor_db, fit_noise_figure
+        from radaraug.calibration.record import cached_noise_fit
 
-        target = capture_noise_floor_db(calibration)
-        # "noise-offset-v2": the fit moves thermal and ADC-side noise together (older fits moved
-        # the noise figure alone and must not be reused).
-        config = self._setup_config()
-        key = cache_key([str(self.hparams["scene"]), config.to_dict(), round(target, 4), self.hparams["tracer_rays"],
-                         "noise-offset-v2"])
-        path = Path(self.hparams["cache_dir"]) / f"noise_fit-{key}.json"
-        if path.is_file():
-            return json.loads(path.read_text())
-        opts = ({"method": "sbr", "rays": int(self.hparams["tracer_rays"])} if self.hparams["tracer_rays"] is not None
-                else None)
-        fit = fit_noise_figure(Scene.load(self.hparams["scene"]), config, target, tracer_options=opts)
-        fit["calibration"] = str(calibration)
-        path.parent.mkdir(parents=True, exist_ok=True)
-        atomic_write_json(path, fit, newline=False, indent=2)
-        return fit
+        return cached_noise_fit(calibration, scene=str(self.hparams["scene"]), config=self._setup_config(),
+                                cache_dir=self.hparams["cache_dir"], tracer_rays=self.hparams["tracer_rays"])
 
     def _persistent_cells(self, calibration: str) -> torch.Tensor:
         """The calibration capture's persistent lines (``excise_persistent_db``), as an RD-map mask."""
-        from radaraug.transforms import CombineRx
-        from radaraug.transforms.functional import persistent_cells
+        from radaraug.calibration.record import persistent_cells_of
 
-        with open_capture(calibration) as cap:
-            n = min(cap.num_frames, 64)
-            if n < 3:
-                raise ConfigError(f"calibration {calibration}: {n} frames; excising its persistent lines needs >= 3 "
-                                  "(record longer, or set data.excise_persistent_db: null)")
-            maps = CombineRx("mean_power", db=True)(rd_db_chain()(cap.read(0, n))).squeeze(-3)
-        return persistent_cells(maps, float(self.hparams["excise_persistent_db"]))
+        return persistent_cells_of(calibration, float(self.hparams["excise_persistent_db"]))
 
     def _matched_dr(self, dr: CalibratedDR, train: CachedMaps) -> CalibratedDR:
         """``dr`` with its floor quantiles matched to the twin's own empty-room floor (``cdr_floor="matched"``)."""
