@@ -19,7 +19,7 @@ import torchvision
 
 from radaraug.config import RadarConfig
 from radaraug.io.atomic import atomic_write_json
-from radaraug.training.chain import image_chain
+from radaraug.training.pipeline import image_chain
 from radaraug.transforms import CalibratedDR
 
 

@@ -128,7 +128,7 @@ def persistent_cells_of(calibration: str, threshold_db: float, frames: int = PER
         if n < 3:
             raise ConfigError(f"calibration {calibration}: {n} frames; excising its persistent lines needs >= 3 "
                               "(record longer, or set data.excise_persistent_db: null)")
-        # The recipes' map chain (radaraug.training.chain.rd_db_chain): per-RX RD dB, then RX power-combined.
+        # The recipes' map chain (radaraug.training.pipeline.rd_db_chain): per-RX RD dB, then RX power-combined.
         rd_db = RadarCompose([RangeDoppler(), ToDecibels()])
         maps = CombineRx("mean_power", db=True)(rd_db(cap.read(0, n))).squeeze(-3)
     return persistent_cells(maps, float(threshold_db))

@@ -7,7 +7,6 @@
 * ``radaraug train`` (LightningCLI, :mod:`.cli`) and ``radaraug reproduce`` (:mod:`.reproduce`).
 """
 
-from radaraug.training.chain import METHODS, TASKS, estimate_clip_range, image_chain, make_dr, rd_db_chain
 from radaraug.training.data import RadarDataModule
 from radaraug.training.metrics import (
     accuracy,
@@ -17,6 +16,7 @@ from radaraug.training.metrics import (
     save_metrics,
 )
 from radaraug.training.module import RDClassifier
+from radaraug.training.pipeline import METHODS, TASKS, estimate_clip_range, image_chain, make_dr, rd_db_chain
 from radaraug.training.testset import CalibrationWarning, TestSetWarning, check_test_set
 
 __all__ = [

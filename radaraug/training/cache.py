@@ -30,7 +30,7 @@ from torch.utils.data import DataLoader, Dataset, Subset
 from radaraug._optional import lazy_import
 from radaraug.errors import CaptureError
 from radaraug.sim.dataset import SimulatedRadarDataset
-from radaraug.training.chain import rd_db_chain
+from radaraug.training.pipeline import rd_db_chain
 from radaraug.units import DB_CONVENTION
 
 CACHE_FORMAT = "radaraug-sim-rd-cache"

@@ -15,7 +15,7 @@
   the one named by ``profile``, or, for ``cdr_profile``, the one ``radaraug diagnose`` fits on
   the calibration capture (cached in ``cache_dir`` as ``profile-<key>.json``). A profile replaces
   the noise-figure fit; the simulated set of a profile twin has its own cache key.
-* the chain (:mod:`radaraug.training.chain`): per-RX dB maps arrive on the device; on the
+* the chain (:mod:`radaraug.training.pipeline`): per-RX dB maps arrive on the device; on the
   simulated splits (train and val) the run's DR is applied there, per sample, from its own seeded
   generator (captures never get DR); then RX combination,
   clip to ``[vmin, vmax]``, normalize, viridis and resize, for every split.
@@ -39,7 +39,7 @@ from radaraug.io.atomic import atomic_write_json
 from radaraug.sensor.profile import PROFILE_VERSION, TwinProfile
 from radaraug.sim.dataset import SimulatedRadarDataset
 from radaraug.training.cache import CachedMaps, build_map_caches, cache_key, content_digest
-from radaraug.training.chain import (
+from radaraug.training.pipeline import (
     CDR_FLOORS,
     CDR_METHODS,
     PROFILE_METHODS,
@@ -456,8 +456,8 @@ class RadarDataModule(L.LightningDataModule):
 
     def _matched_dr(self, dr: CalibratedDR, train: CachedMaps) -> CalibratedDR:
         """``dr`` with its floor quantiles matched to the twin's own empty-room floor (``cdr_floor="matched"``)."""
-        from radaraug.transforms.chain import doppler_window_of
         from radaraug.transforms.dr_fit import floor_values, matched_floor_quantiles
+        from radaraug.transforms.dsp_spec import doppler_window_of
 
         empty = (train.counts == 0).nonzero().flatten()[:256].tolist()
         if not empty or dr.quantiles_db is None:

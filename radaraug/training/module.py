@@ -10,8 +10,8 @@ import torch
 import torch.nn.functional as F
 import torchvision
 
-from radaraug.training.chain import check_task
 from radaraug.training.metrics import balanced_accuracy, classification_report, confusion_matrix, save_metrics
+from radaraug.training.pipeline import check_task
 
 
 class RDClassifier(L.LightningModule):

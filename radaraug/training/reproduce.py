@@ -32,7 +32,7 @@ import torch
 from radaraug._optional import lazy_import
 from radaraug.errors import ConfigError
 from radaraug.io.atomic import atomic_write_json, atomic_write_text
-from radaraug.training.chain import CDR_METHODS, METHODS, PROFILE_METHODS, TASKS, is_calibration_json
+from radaraug.training.pipeline import CDR_METHODS, METHODS, PROFILE_METHODS, TASKS, is_calibration_json
 from radaraug.units import DB_CONVENTION
 
 
@@ -195,7 +195,7 @@ def _test_sets(out: Path, settings: ReproduceSettings, calibration: str | None,
 
 def _shared_across_test_sets(method: str, data_kw: dict[str, Any]) -> bool:
     """True when a run does not depend on the calibration capture (train once, test on every set)."""
-    from radaraug.training.chain import CDR_METHODS
+    from radaraug.training.pipeline import CDR_METHODS
 
     # the excision mask of floor_relative maps comes from the calibration capture too
     excises = data_kw.get("representation") == "floor_relative" and data_kw.get("excise_persistent_db") is not None
@@ -532,7 +532,7 @@ def _maps_of(cache_dm: Any, count: int, n: int) -> torch.Tensor:
 
 def _capture_maps(path: str, n: int) -> torch.Tensor:
     from radaraug.io import open_capture
-    from radaraug.training.chain import rd_db_chain
+    from radaraug.training.pipeline import rd_db_chain
 
     with open_capture(path) as cap:
         x = cap.read(0, min(n, cap.num_frames))

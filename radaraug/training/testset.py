@@ -32,7 +32,7 @@ import numpy as np
 
 from radaraug.errors import ConfigError
 from radaraug.io import open_capture
-from radaraug.training.chain import PROFILE_METHODS, check_task, is_calibration_json, label_of
+from radaraug.training.pipeline import PROFILE_METHODS, check_task, is_calibration_json, label_of
 
 #: The people counts each task accepts: counting's classes, or any count >= 0 for occupancy.
 COUNTING_COUNTS = (0, 1, 2)

@@ -9,7 +9,7 @@ import torch
 from torch import nn
 
 from radaraug.transforms import _sample
-from radaraug.transforms.chain import chain_of
+from radaraug.transforms.dsp_spec import chain_of
 
 
 class RadarCompose(nn.Module):

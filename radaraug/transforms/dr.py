@@ -37,8 +37,8 @@ from radaraug.safe_read import load_json, safe_repr
 from radaraug.transforms import functional as F
 from radaraug.transforms._motion import DEFAULT_THRESHOLD_DB
 from radaraug.transforms.base import Params, RandomRadarTransform
-from radaraug.transforms.chain import canonical_chain, describe_chain
 from radaraug.transforms.dr_fit import floor_statistics
+from radaraug.transforms.dsp_spec import canonical_chain, describe_chain
 from radaraug.units import DB_CONVENTION
 
 DEFAULT_RANDOM_DR_MEAN_DB = (-120.0, -90.0)

@@ -24,8 +24,8 @@ from radaraug.transforms._motion import (
     cells_motion_fraction,
     off_zero_doppler,
 )
-from radaraug.transforms.chain import chain_of, doppler_window_of
 from radaraug.transforms.compose import RadarCompose
+from radaraug.transforms.dsp_spec import chain_of, doppler_window_of
 from radaraug.transforms.spectral import RangeDoppler, ToDecibels
 from radaraug.transforms.windows import MAIN_LOBE_HALF_WIDTH_BINS
 

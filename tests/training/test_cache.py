@@ -10,7 +10,7 @@ from radaraug.errors import CaptureError
 from radaraug.sim.dataset import SimulatedRadarDataset
 from radaraug.sim.scenarios import ScenarioSampler
 from radaraug.training.cache import CachedMaps, build_map_cache, cache_key, cache_spec
-from radaraug.training.chain import rd_db_chain
+from radaraug.training.pipeline import rd_db_chain
 
 TWIN = {"tracer_options": {"rays": 16}}
 

@@ -17,7 +17,7 @@ from radaraug.sim.dataset import SimulatedRadarDataset
 from radaraug.sim.randomization import TwinRandomization
 from radaraug.training import RadarDataModule
 from radaraug.training.cache import cache_key, cache_spec, content_digest
-from radaraug.training.chain import METHODS, make_dr
+from radaraug.training.pipeline import METHODS, make_dr
 from radaraug.transforms import CalibratedDR
 
 SMALL = {"train_items": 6, "val_items": 0, "tracer_rays": 16, "image_size": [32, 16], "randomization": False,

@@ -14,7 +14,7 @@ import pytest
 import yaml
 
 from radaraug.cli import RECIPES_DIR, main, recipe_names
-from radaraug.training.chain import METHODS, TASKS
+from radaraug.training.pipeline import METHODS, TASKS
 
 RECIPES = sorted(RECIPES_DIR.glob("*.yaml"))
 

@@ -4,8 +4,8 @@ import pytest
 import torch
 
 from radaraug.errors import ConfigError
-from radaraug.training.chain import image_chain
 from radaraug.training.data import RadarDataModule
+from radaraug.training.pipeline import image_chain
 
 
 def test_image_size_must_be_height_and_width():
@@ -28,7 +28,7 @@ def test_clip_range_must_be_two_values_and_setup_must_run_first():
 
 
 def test_cdr_floor_reaches_the_dr_and_is_checked(captures, tmp_path):
-    from radaraug.training.chain import make_dr
+    from radaraug.training.pipeline import make_dr
     from radaraug.transforms import CalibratedDR
 
     cal, _ = captures
