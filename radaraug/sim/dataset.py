@@ -24,7 +24,7 @@ from radaraug.errors import ConfigError
 from radaraug.scene.scene import Scene
 from radaraug.sensor.profile import as_profile
 from radaraug.sensor.receiver import FMCWReceiver
-from radaraug.sim.randomization import RoomDraw, TwinRandomization, check_receiver, simulate_item
+from radaraug.sim.randomization import RoomDraw, TwinRandomization, check_receiver
 from radaraug.sim.scenarios import Scenario, ScenarioSampler
 from radaraug.sim.seeding import Stream, item_generator
 from radaraug.sim.twin import DigitalTwin
@@ -277,15 +277,9 @@ class SimulatedRadarDataset(Dataset):
         scenario = self.scenario(index)
         noise = item_generator(self.seed, index, stream=Stream.ITEM_NOISE, device=self.device)
         rz = self._drawn_randomization
-        if rz is not None:
-            draw = rz.item(self.seed, index, scenario.count)
-            twin = self.variant_twin(draw.variant)
-            times = twin.frame_times(range(self.frames_per_item))
-            x = simulate_item(twin, scenario.people, times, draw, noise, rz.phase_noise_paths)
-        else:
-            twin = self.twin
-            times = twin.frame_times(range(self.frames_per_item))
-            x = twin.simulate(scenario.people, times, generators=noise)
+        draw = None if rz is None else rz.item(self.seed, index, scenario.count)
+        twin = self.twin if draw is None else self.variant_twin(draw.variant)
+        x = twin.simulate(scenario.people, twin.frame_times(range(self.frames_per_item)), generators=noise, draw=draw)
         if self.as_counts:
             x = twin.receiver.to_counts(x)
         if self.frames_per_item == 1:

@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import dataclasses
 from collections.abc import Sequence
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import torch
 
@@ -30,6 +30,10 @@ from radaraug.sensor.profile import as_profile
 from radaraug.sensor.receiver import FMCWReceiver
 from radaraug.sensor.synthesis import ChirpTiming
 from radaraug.sim.intra_frame import DEFAULT_TOL_CYCLES, check_intra_frame, intra_frame_paths
+from radaraug.sim.item_signal import drawn_signal, people_paths
+
+if TYPE_CHECKING:
+    from radaraug.sim.randomization import ItemDraw
 
 WEAK_PATH_DB = 100.0
 """A person's path more than this below its frame's strongest person's path is left out of the
@@ -281,8 +285,11 @@ class DigitalTwin:
         times: torch.Tensor,
         *,
         generators: Sequence[torch.Generator] | torch.Generator | None = None,
+        draw: ItemDraw | None = None,
     ) -> torch.Tensor:
         """Raw frames ``(T, rx, chirps, samples)`` in SDK floats at frame start ``times`` ``(T,)``.
+
+        The one simulation path: the dataset (plain or randomized) calls it.
 
         Args:
             people: the people (default: none); ``scene.people`` for the scene's own.
@@ -290,23 +297,31 @@ class DigitalTwin:
             generators: one generator per frame (then frame ``k`` is a pure function of its
                 generator's seed, whatever the batch), a single generator for the batch, or
                 None (global RNG).
+            draw: a per-item draw of :class:`~radaraug.sim.randomization.TwinRandomization`
+                (:meth:`~radaraug.sim.randomization.TwinRandomization.item`) to simulate this twin
+                under: each person's RCS scale, static scatterers, the receiver's gain / noise /
+                phase-noise offsets and the effect catalog (:func:`~radaraug.sim.item_signal.drawn_signal`).
+                The draw's room variant is not applied here: simulate with that variant's twin.
+                None (default): the twin as it is.
         """
         people = list(people or [])
-        paths = negligible_paths_off(self.paths(people, times))
-        static = self.static_signal()
-        shadow = self.shadow_signal(people, times)
-        if shadow is not None:
-            static = static + shadow  # (T, RX, chirps, samples): the shadowed room per frame
+        if draw is None:
+            paths = negligible_paths_off(self.paths(people, times))
+            receiver, static = self.receiver, self.static_signal()
+            shadow = self.shadow_signal(people, times)
+            if shadow is not None:
+                static = static + shadow  # (T, RX, chirps, samples): the shadowed room per frame
+        else:
+            paths = negligible_paths_off(people_paths(self, people, times, draw.rcs_scale_dB))
+            receiver, paths, static = drawn_signal(self, people, times, draw, paths)
         if isinstance(generators, Sequence):
             if len(generators) != times.shape[0]:
                 raise InputTensorError(f"need one generator per frame: {len(generators)} for {times.shape[0]} frames")
             frames = [
-                self.receiver(paths.select(k), generator=g, frame_start_s=float(times[k]),
-                              static_signal=static[k] if static.dim() == 4 else static)
+                receiver(paths.select(k), generator=g, frame_start_s=float(times[k]),
+                         static_signal=static[k] if static.dim() == 4 else static)
                 for k, g in enumerate(generators)
             ]
             return torch.stack(frames)
         # Each frame of the batch starts at its own time (time-locked effects such as a spur tone).
-        return self.receiver(paths, generator=generators, frame_start_s=times.to(torch.float64),
-                             static_signal=static)
-
+        return receiver(paths, generator=generators, frame_start_s=times.to(torch.float64), static_signal=static)

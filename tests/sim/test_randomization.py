@@ -3,6 +3,7 @@ are applied exactly (closed forms), YAML round trip, and ``off()`` is the plain 
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import pickle
 
@@ -23,7 +24,6 @@ from radaraug.sim.randomization import (
     DEFAULT_MATERIALS,
     ItemDraw,
     TwinRandomization,
-    simulate_item,
 )
 from radaraug.sim.twin import DigitalTwin
 
@@ -207,7 +207,7 @@ def test_rcs_scale_gives_the_same_db_on_the_person_rd_peak(ideal_twin) -> None:
     static = ideal_twin.static_signal()
 
     def peak(db: float) -> float:
-        x = simulate_item(ideal_twin, [walker], times, ItemDraw(0, 0.0, 0.0, (db,)), None) - static
+        x = ideal_twin.simulate([walker], times, draw=ItemDraw(0, 0.0, 0.0, (db,))) - static
         return float(ToDecibels()(RangeDoppler()(x)).amax())
 
     assert peak(6.0) - peak(0.0) == pytest.approx(6.0, abs=1e-3)
@@ -225,7 +225,7 @@ def test_rcs_scale_is_per_person_including_wall_multipath(ideal_twin) -> None:
     static = ideal_twin.static_signal()
 
     def sim(people, rcs):
-        return simulate_item(ideal_twin, people, times, ItemDraw(0, 0.0, 0.0, rcs), None) - static
+        return ideal_twin.simulate(people, times, draw=ItemDraw(0, 0.0, 0.0, rcs)) - static
 
     both = sim([a, b], (6.0, -10.0))
     alone = 10 ** (6 / 20) * sim([a], (0.0,)) + 10 ** (-10 / 20) * sim([b], (0.0,))
@@ -313,7 +313,7 @@ def test_static_scatterer_lands_in_its_range_bin_at_zero_doppler() -> None:
     levels = []
     for rcs in (0.0, 10.0):
         draw = ItemDraw(0, 0.0, 0.0, (), ((6.0, 0.0, 0.0, rcs),))
-        x = simulate_item(twin, [], times, draw, None)
+        x = twin.simulate([], times, draw=draw)
         x = x - twin.static_signal()  # the room's part (same in every frame) out
         db = ToDecibels()(RangeDoppler()(x))[0].amax(0)  # (range, doppler), strongest RX
         r, d = divmod(int(db.argmax()), db.shape[-1])
@@ -361,7 +361,7 @@ def test_drawn_phase_noise_skirts_a_strong_static_scatterer() -> None:
     off = []
     for pn in (30e3, 400e3):
         draw = ItemDraw(0, 0.0, 0.0, (), ((8.0, 0.0, 0.0, 40.0),), pn)
-        x = simulate_item(twin, [], times, draw, torch.Generator().manual_seed(0))
+        x = twin.simulate([], times, generators=torch.Generator().manual_seed(0), draw=draw)
         db = ToDecibels()(RangeDoppler()(x))[0].amax(0)
         r = min(range(db.shape[0]), key=lambda k: abs(cfg.range_axis_m()[k] - 8.0))
         m = cfg.num_chirps_per_frame
@@ -369,3 +369,16 @@ def test_drawn_phase_noise_skirts_a_strong_static_scatterer() -> None:
     assert off[1] - off[0] > 6.0
     draws = [TwinRandomization().item(0, i, 0).phase_noise_rms_Hz for i in range(100)]
     assert min(draws) < 80e3 and max(draws) > 350e3
+
+
+def test_simulate_item_is_a_deprecated_wrapper_of_the_twin(ideal_twin: DigitalTwin) -> None:
+    """``simulate_item`` warns and gives ``DigitalTwin.simulate(..., draw=...)`` bit for bit."""
+    from radaraug.sim.randomization import simulate_item
+
+    times = ideal_twin.frame_times([0])
+    draw = ItemDraw(0, 1.5, -1.0, (), ((6.0, 0.0, 0.0, 0.0),), 2e5)
+    with pytest.warns(DeprecationWarning, match="DigitalTwin.simulate"):
+        old = simulate_item(ideal_twin, [], times, draw, torch.Generator().manual_seed(1), phase_noise_paths=3)
+    new = ideal_twin.simulate([], times, generators=torch.Generator().manual_seed(1),
+                              draw=dataclasses.replace(draw, phase_noise_paths=3))
+    assert torch.equal(old, new)

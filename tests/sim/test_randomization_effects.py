@@ -36,7 +36,6 @@ from radaraug.sim.randomization import (
     ItemDraw,
     TwinRandomization,
     item_receiver,
-    simulate_item,
     static_scatterer_paths,
     strongest_room_paths,
 )
@@ -60,7 +59,7 @@ def twin() -> DigitalTwin:
 
 def _sim(twin: DigitalTwin, draw: ItemDraw, frames: int = 1, seed: int = 0) -> torch.Tensor:
     times = twin.frame_times(range(frames))
-    return simulate_item(twin, [], times, draw, torch.Generator().manual_seed(seed))
+    return twin.simulate([], times, generators=torch.Generator().manual_seed(seed), draw=draw)
 
 
 def _quiet_chain(config, *, phase_noise: bool = False) -> list:
@@ -264,8 +263,8 @@ def test_rx_mismatch_is_exact_on_the_cached_room_and_changes_the_rx_power_ratio(
     scatterer = ((7.0, 10.0, 0.0, 5.0),)
     draw = ItemDraw(0, 0.0, 0.0, (), scatterer, rx_mismatch=(gains, phases))
     times = quiet.frame_times([0])
-    got = simulate_item(quiet, [], times, draw, None)
-    plain = simulate_item(quiet, [], times, dataclasses.replace(draw, rx_mismatch=None), None)
+    got = quiet.simulate([], times, draw=draw)
+    plain = quiet.simulate([], times, draw=dataclasses.replace(draw, rx_mismatch=None))
     chain = insert_in_order(_quiet_chain(cfg), RxGainPhaseMismatch(
         gain_dB=list(gains[:3]), phase_rad=[math.radians(p) for p in phases[:3]]))
     room = quiet.tracer.static_paths().map(lambda t: t.expand(1, *t.shape))
@@ -296,7 +295,7 @@ def test_rx_mismatch_is_exact_on_the_cached_room_and_changes_the_rx_power_ratio(
     shadowed = DigitalTwin(scene, receiver=FMCWReceiver(cfg, effects=_quiet_chain(cfg)),
                            tracer_options=FAST["tracer_options"], static_signal=quiet.static_signal())
     walker = Walker(height_m=1.8, speed_m_s=1.2, start=(4.1, 0.0), heading_rad=0.0)
-    got = simulate_item(shadowed, [walker], times, dataclasses.replace(draw, scatterers=()), None)
+    got = shadowed.simulate([walker], times, draw=dataclasses.replace(draw, scatterers=()))
     ref = FMCWReceiver(cfg, effects=chain)(Paths.cat([room, shadowed.frame_paths([walker], times)]),
                                            frame_start_s=times)
     assert shadowed.shadow_signal([walker], times) is not None
@@ -362,9 +361,8 @@ def test_moving_room_paths_out_of_the_cache_changes_nothing_else() -> None:
     mismatch = ((1.0, -0.5, 0.2) + (0.0,) * 13, (25.0, -10.0, 3.0) + (0.0,) * 13)
     for extra in ({}, {"rx_mismatch": mismatch}):
         draw = ItemDraw(0, 0.0, 0.0, (), **extra)
-        a = simulate_item(quiet, [], quiet.frame_times([0]), draw, None)
-        b = simulate_item(quiet, [], quiet.frame_times([0]), dataclasses.replace(draw, static_phase_noise_paths=4),
-                          None)
+        a = quiet.simulate([], quiet.frame_times([0]), draw=draw)
+        b = quiet.simulate([], quiet.frame_times([0]), draw=dataclasses.replace(draw, static_phase_noise_paths=4))
         assert torch.allclose(a, b, rtol=1e-4, atol=1e-5 * float(a.abs().max()))
 
 
@@ -411,8 +409,8 @@ def test_probability_zero_gives_the_items_without_the_catalog() -> None:
         legacy = ItemDraw(d.variant, d.system_gain_offset_dB, d.noise_figure_offset_dB, d.rcs_scale_dB,
                           d.scatterers, d.phase_noise_rms_Hz)
         assert d == legacy
-        ref = simulate_item(twin, scenario.people, twin.frame_times([0]), legacy,
-                            item_generator(off.seed, k, stream=1), off.randomization.phase_noise_paths)[0]
+        ref = twin.simulate(scenario.people, twin.frame_times([0]), generators=item_generator(off.seed, k, stream=1),
+                            draw=legacy)[0]
         assert torch.equal(off[k][0], ref)
     assert torch.equal(on[i][0], off[i][0])
     assert not torch.equal(on[j][0], off[j][0])

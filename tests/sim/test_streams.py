@@ -31,6 +31,19 @@ ITEMS = {
     3: (1, "bc7d7b07eca68318779b2ef431ae1da090c6073daf43ebb785a65ac1006f530c"),
 }
 
+# The same for randomized items: SimulatedRadarDataset("corridor", length=4, seed=3,
+# randomization=TwinRandomization(room_variants=1), twin_options={"tracer_options": {"rays": 16}})[i],
+# recorded (torch 2.14.1, CPU) before the dataset's two simulation branches became one
+# (`DigitalTwin.simulate(..., draw=...)`). Between them the items draw the effect catalog's spur tone,
+# vibrating clutter, RX gain/phase mismatch (with people shadowing the room), frame drift, wide levels
+# and the room's static phase noise.
+RANDOMIZED_ITEMS = {
+    0: (2, "96a94d198c29a1afd930335865476150b1bbbcb1b9024b42f455e7abd2de95a1"),
+    1: (2, "2ca019ec1d4e76e6cbb2b79913b180e230f32547437a23abd2055a74aab90c2c"),
+    2: (0, "9ae268fd9168f14b3758e7d7b6516f57ba3159bc5e9808179efc8472a69d0e58"),
+    3: (1, "46ff0443bb8f64af56c90a380a55ce52daf14a6d44843690d9e0521fdd5f5699"),
+}
+
 
 def test_stream_values_are_unique_and_unchanged() -> None:
     assert {m.name: int(m) for m in Stream} == KNOWN
@@ -58,3 +71,23 @@ def test_known_items_are_bit_identical(index: int) -> None:
     assert int(y) == label
     assert hashlib.sha256(x.contiguous().numpy().tobytes()).hexdigest() == digest, (
         "item changed: a stream value, the order of draws or the simulation itself moved")
+
+
+@pytest.fixture(scope="module")
+def randomized_dataset() -> SimulatedRadarDataset:
+    from radaraug.sim.randomization import TwinRandomization
+
+    return SimulatedRadarDataset("corridor", length=4, seed=3, randomization=TwinRandomization(room_variants=1),
+                                 twin_options={"tracer_options": {"rays": 16}})
+
+
+@pytest.mark.parametrize("index", sorted(RANDOMIZED_ITEMS))
+def test_known_randomized_items_are_bit_identical(index: int, randomized_dataset: SimulatedRadarDataset) -> None:
+    if not torch.__version__.startswith(RECORDED_WITH):
+        pytest.skip(f"digests recorded with torch {RECORDED_WITH}; this is {torch.__version__}")
+    x, y = randomized_dataset[index]
+    assert x.dtype == torch.float32 and tuple(x.shape) == (3, 64, 256)
+    label, digest = RANDOMIZED_ITEMS[index]
+    assert int(y) == label
+    assert hashlib.sha256(x.contiguous().numpy().tobytes()).hexdigest() == digest, (
+        "randomized item changed: a stream value, the order of draws or the simulation itself moved")

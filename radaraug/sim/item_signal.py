@@ -1,0 +1,308 @@
+"""What a per-item draw changes in the twin's signal: the pieces of ``DigitalTwin.simulate(..., draw=...)``.
+
+A :class:`~radaraug.sim.randomization.ItemDraw` (from :class:`~radaraug.sim.randomization.TwinRandomization`)
+scales each person's paths by its RCS draw (:func:`people_paths`), adds static point scatterers
+(:func:`static_scatterer_paths`), builds the item's receiver (offsets, phase noise and the catalog's
+effects: :func:`item_receiver`) and adjusts the room's cached signal to that receiver
+(:func:`drawn_signal`). :meth:`~radaraug.sim.twin.DigitalTwin.simulate` calls these; the dependency
+goes one way (``twin -> item_signal``; ``randomization`` imports both and re-exports these names).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import threading
+import weakref
+from collections.abc import Sequence
+from typing import TYPE_CHECKING, Any
+
+import torch
+
+from radaraug.config import RadarConfig
+from radaraug.sensor.effects import (
+    ADCNoise,
+    Effect,
+    PhaseNoise,
+    RxGainPhaseMismatch,
+    SystemGain,
+    ThermalNoise,
+)
+from radaraug.sensor.effects.base import hardware_position
+from radaraug.sensor.paths import Paths
+from radaraug.sensor.receiver import FMCWReceiver
+
+if TYPE_CHECKING:
+    from radaraug.sim.randomization import ItemDraw
+    from radaraug.sim.twin import DigitalTwin
+
+SCATTERER_ANTENNA_GAIN_DBI = 6.0
+"""Antenna gain (TX and RX) applied to the static scatterers: the patch antenna's peak (their
+azimuth is drawn within +-45 deg, where the pattern loses a few dB, small next to the RCS range)."""
+
+
+def scale_people_paths(paths: Paths, segments: Sequence[int], rcs_scale_dB: Sequence[float]) -> Paths:
+    """Scale each person's paths by ``10**(dB/20)`` (amplitude ~ sqrt(RCS)).
+
+    ``paths`` are the target paths of people traced together (so that they still shadow each
+    other), ``segments`` the number of body segments of each person in the order traced. The
+    ellipsoid tracer lays out ``S`` direct paths (one per segment), then ``S K`` paths
+    radar -> wall -> segment -> radar, ``S K`` of the reverse and ``S K`` radar -> wall ->
+    segment -> same wall -> radar, each segment-major (``K`` mirror planes); a multipath path
+    scatters off its segment, so it belongs to that segment's person.
+
+    Raises:
+        RuntimeError: the paths do not have that layout (the tracer changed: fix this helper).
+    """
+    s = int(sum(segments))
+    p = paths.num_paths
+    if s == 0 or not rcs_scale_dB:
+        return paths
+    if len(segments) != len(rcs_scale_dB):
+        raise ValueError(f"{len(segments)} people but {len(rcs_scale_dB)} RCS scales")
+    blocks = 3  # multipath blocks of S K slots (see ellipsoid_paths)
+    if p < s or (p - s) % (blocks * s):
+        raise RuntimeError(f"unexpected target path layout: {p} paths for {s} segments")
+    k = (p - s) // (blocks * s)
+    if paths.kind is not None and not (bool((paths.kind[..., :s] == 0).all())
+                                       and bool((paths.kind[..., s:] == 1).all())):
+        raise RuntimeError("unexpected target path layout: direct paths do not come first")
+    dev = paths.amplitude.device
+    per_person = torch.tensor([10 ** (db / 20) for db in rcs_scale_dB], dtype=torch.float64)
+    per_segment = per_person.repeat_interleave(torch.tensor(list(segments)))
+    mp = per_segment.repeat_interleave(k)
+    per_path = torch.cat([per_segment, *([mp] * blocks)]).to(device=dev, dtype=paths.amplitude.real.dtype)
+    return dataclasses.replace(paths, amplitude=paths.amplitude * per_path[:, None])
+
+
+def people_paths(twin: DigitalTwin, people: Sequence[Any], times: torch.Tensor,
+                 rcs_scale_dB: Sequence[float]) -> Paths:
+    """The twin's target paths of ``people`` at ``times``, each person's scaled by its RCS scale."""
+    paths = twin.paths(list(people), times)
+    t0 = times[:1].to(torch.float64)
+    segments = [int(p.ellipsoids(t0).centers.shape[-2]) for p in people]
+    return scale_people_paths(paths, segments, rcs_scale_dB)
+
+
+
+def item_receiver(receiver: FMCWReceiver, system_gain_offset_dB: float, noise_figure_offset_dB: float,
+                  phase_noise: tuple[float, int] | None = None, *, adc_noise_offset_dB: float = 0.0,
+                  extra_effects: Sequence[Effect] = ()) -> FMCWReceiver:
+    """A receiver like ``receiver`` with its ``system_gain`` and ``thermal_noise`` stages offset.
+
+    The first stage of each is offset; its ``phase_noise`` stage is set to ``(rms_Hz, num_paths)`` when
+    given, its ``adc_noise`` RMS scaled by ``adc_noise_offset_dB``. ``extra_effects`` (the item's catalog
+    effects) are inserted at their hardware position
+    (:func:`~radaraug.sensor.effects.base.hardware_position`: after any stage of the same name, before
+    the first stage the hardware applies after them). ``receiver`` is not changed (its other stages are
+    shared, not copied), so nothing leaks from one item to the next, even across threads.
+    """
+    effects = list(receiver.effects)
+    if phase_noise is not None:
+        for i, e in enumerate(effects):
+            if isinstance(e, PhaseNoise):
+                effects[i] = PhaseNoise(freq_noise_rms_Hz=phase_noise[0], corner_Hz=e.corner_Hz,
+                                        num_paths=phase_noise[1])
+                break
+    for i, e in enumerate(effects):
+        if isinstance(e, SystemGain):
+            effects[i] = SystemGain(gain_dB=e.gain_dB + system_gain_offset_dB)
+            break
+    for i, e in enumerate(effects):
+        if isinstance(e, ThermalNoise):
+            effects[i] = ThermalNoise(noise_figure_dB=e.noise_figure_dB + noise_figure_offset_dB,
+                                      temperature_K=e.temperature_K)
+            break
+    if adc_noise_offset_dB != 0.0:
+        for i, e in enumerate(effects):
+            if isinstance(e, ADCNoise):
+                effects[i] = ADCNoise(rms_counts=e.rms_counts * 10 ** (adc_noise_offset_dB / 20))
+                break
+    for new in extra_effects:
+        effects.insert(hardware_position([e.name for e in effects], new.name), new)
+    return FMCWReceiver(receiver.config, effects=effects, tx_power_dBm=receiver.tx_power_dBm,
+                        synthesis=receiver.synthesis, front_end_gain_dB=receiver.front_end_gain_dB,
+                        taylor_tol=receiver.taylor_tol)
+
+
+# Per twin (weakly keyed: a twin's cache goes with it), what the catalog needs of its room: the
+# strongest static paths and their signal, and the quadrature of the room's signal (for the RX phase
+# mismatch). Computed once per twin and process, on first use.
+_ROOM_CACHE: weakref.WeakKeyDictionary[DigitalTwin, dict[Any, Any]] = weakref.WeakKeyDictionary()
+_ROOM_LOCK = threading.Lock()
+
+
+def _room_cached(twin: DigitalTwin, key: Any, make: Any) -> Any:
+    with _ROOM_LOCK:
+        entry = _ROOM_CACHE.setdefault(twin, {})
+        if key in entry:
+            return entry[key]
+    value = make()  # outside the lock: a room synthesis takes a second
+    with _ROOM_LOCK:
+        return _ROOM_CACHE.setdefault(twin, {}).setdefault(key, value)
+
+
+def _quadrature(receiver: FMCWReceiver, paths: Paths) -> torch.Tensor:
+    """The signal of ``paths`` through the linear stages with every beat tone turned by -90 deg.
+
+    ``Re{-j C exp(j Phi)} = Im{C exp(j Phi)}``: a path's amplitude times ``j`` (the receiver conjugates
+    it). With it a per-RX complex gain ``a exp(j phi)`` on the in-phase signal ``S`` is exactly
+    ``a (cos(phi) S - sin(phi) Q)``.
+    """
+    return receiver.static_signal(dataclasses.replace(paths, amplitude=paths.amplitude * 1j))
+
+
+def strongest_room_paths(twin: DigitalTwin, k: int) -> tuple[Paths, torch.Tensor]:
+    """The ``k`` room paths with the largest ``|amplitude| x delay`` and their cached-room signal.
+
+    The ranking of the ``phase_noise`` stage (:func:`~radaraug.sensor.effects.base.strongest_paths`,
+    strongest over RX): the paths whose phase-noise skirt is largest. Their signal (through the twin
+    receiver's linear stages, as the room's cached signal) is what leaves the cached signal when they are
+    passed to the receiver as paths instead. Cached per twin and ``k``.
+    """
+    def make() -> tuple[Paths, torch.Tensor]:
+        room = twin.tracer.static_paths()
+        strength = (room.amplitude.abs() * room.delay_s).amax(-1)  # (P,)
+        if room.mask is not None:
+            strength = strength * room.mask
+        idx = torch.topk(strength, min(k, room.num_paths)).indices.sort().values
+        picked = Paths(room.delay_s[idx], room.delay_rate[idx], room.amplitude[idx])
+        return picked, twin.receiver.static_signal(picked)
+    return _room_cached(twin, ("strongest", k), make)
+
+
+def room_quadrature(twin: DigitalTwin, k: int = 0) -> torch.Tensor:
+    """:func:`_quadrature` of the twin's room, less that of its ``k`` strongest paths (cached per twin)."""
+    def make() -> torch.Tensor:
+        if k:
+            return room_quadrature(twin) - _quadrature(twin.receiver, strongest_room_paths(twin, k)[0])
+        return _quadrature(twin.receiver, twin.tracer.static_paths())
+    return _room_cached(twin, ("quadrature", k), make)
+
+
+def _rx_gain(mismatch: RxGainPhaseMismatch, like: torch.Tensor) -> tuple[torch.Tensor, torch.Tensor]:
+    """``(amplitude, phase)`` of a mismatch stage, ``(RX, 1, 1)`` on ``like``'s device and dtype."""
+    amp = torch.pow(10.0, mismatch.gain_dB / 20).to(like)
+    return amp[:, None, None], mismatch.phase_rad.to(like)[:, None, None]
+
+
+def _mismatched_shadow(twin: DigitalTwin, people: list[Any], times: torch.Tensor,
+                       mismatch: RxGainPhaseMismatch) -> torch.Tensor | None:
+    """:meth:`DigitalTwin.shadow_signal` through the per-RX complex gain ``g`` of ``mismatch``, exactly.
+
+    The shadow is ``sum_p Re(d_p) b0_p + Im(d_p) b1_p`` over the room's paths (``d = T - 1``, ``b`` the
+    twin's :meth:`~DigitalTwin.static_basis`); the gain turns each path's coefficient, which is the same
+    sum with ``conj(g) d`` per RX: ``Re(g) shadow + Im(g) shadow(-j d)``. Both from one transmission and
+    one product (as the twin computes the shadow). A per-chirp frequency-domain turn would not do: the
+    near-range paths' beat tones hold less than a cycle per chirp.
+    """
+    from radaraug.raytrace.shadow import SHADOW_TOL
+
+    t = twin.shadow_transmission(people, times)  # (T, P)
+    if t is None:
+        return None
+    d = (t - 1).to(twin.device)
+    hit = (d.abs() > SHADOW_TOL).any(0)
+    if not bool(hit.any()):
+        return None
+    d = d * hit
+    basis = twin.static_basis()  # (P, 2, RX, N)
+    both = torch.cat([d, -1j * d])  # (2T, P)
+    coef = torch.view_as_real(both).to(basis.dtype).reshape(both.shape[0], -1)
+    out = (coef @ basis.reshape(coef.shape[1], -1)).reshape(both.shape[0], *basis.shape[2:])[:, :, None, :]
+    shadow, quad = out[: d.shape[0]], out[d.shape[0]:]
+    amp, phase = _rx_gain(mismatch, shadow)
+    return amp * (torch.cos(phase) * shadow + torch.sin(phase) * quad)
+
+
+def static_scatterer_paths(config: RadarConfig, scatterers: Sequence[tuple[float, float, float, float]],
+                           like: Paths) -> Paths:
+    """Paths of static point scatterers ``(range_m, azimuth_deg, elevation_deg, rcs_dBsm)``.
+
+    In the radar's frame (x right, y up, z boresight), batched like ``like`` ``(..., P, RX)``.
+    """
+    from radaraug.sensor.point_target import point_target_paths
+
+    dt, dev = like.delay_s.dtype, like.delay_s.device
+    sc = torch.tensor(scatterers, dtype=torch.float64)
+    r, az, el = sc[:, 0], torch.deg2rad(sc[:, 1]), torch.deg2rad(sc[:, 2])
+    pos = torch.stack([r * torch.sin(az) * torch.cos(el), r * torch.sin(el), r * torch.cos(az) * torch.cos(el)], -1)
+    p = point_target_paths(config, pos, rcs_m2=10 ** (sc[:, 3] / 10), antenna_gain_dBi=SCATTERER_ANTENNA_GAIN_DBI)
+    batch = tuple(like.delay_s.shape[:-2])
+    cdt = like.amplitude.dtype if like.amplitude.is_complex() else None
+    p = Paths(p.delay_s.to(dev, dt), p.delay_rate.to(dev, dt),
+              p.amplitude.to(dev, cdt) if cdt is not None else p.amplitude.to(dev, dt))
+    return p.map(lambda t: t.expand(*batch, *t.shape))
+
+
+
+def drawn_signal(twin: DigitalTwin, people: list[Any], times: torch.Tensor, draw: ItemDraw,
+                 paths: Paths) -> tuple[FMCWReceiver, Paths, torch.Tensor]:
+    """The item's receiver, all its paths and the room's signal for :meth:`DigitalTwin.simulate` with a draw.
+
+    ``paths`` are the people's (RCS-scaled, negligible ones off). The room's cached signal went through
+    the receiver's linear stages, ``system_gain`` included: it is scaled by the item's gain offset,
+    which by linearity equals tracing the room through the offset receiver. The catalog's RX
+    gain/phase mismatch (a linear stage the cached signal did not go through) is applied to it the
+    same way, exactly: ``a (cos(phi) S - sin(phi) Q)`` with ``Q`` the room's quadrature signal
+    (:func:`room_quadrature`, synthesized once per twin), and to the people's shadow correction
+    through the twin's static basis (:func:`_mismatched_shadow`). With ``draw.static_phase_noise_paths``
+    the room's strongest returns leave the cached signal and go through the receiver as paths
+    (:func:`strongest_room_paths`), so that its ``phase_noise`` stage can give them their skirt.
+    """
+    if draw.scatterers:
+        paths = Paths.cat([paths, static_scatterer_paths(twin.config, draw.scatterers, paths)])
+    pn = None if not draw.phase_noise_rms_Hz else (draw.phase_noise_rms_Hz, draw.phase_noise_paths)
+    extra = draw.catalog_effects(twin.config)
+    receiver = item_receiver(twin.receiver, draw.system_gain_offset_dB, draw.noise_figure_offset_dB, pn,
+                             adc_noise_offset_dB=draw.adc_noise_offset_dB, extra_effects=extra)
+    static = twin.static_signal()
+    k = draw.static_phase_noise_paths if any(isinstance(e, PhaseNoise) for e in receiver.effects) else 0
+    if k:
+        strong, strong_signal = strongest_room_paths(twin, k)
+        paths = Paths.cat([paths, _like(strong, paths)])
+        static = static - strong_signal
+    # The people's shadow on the room is geometry only: the RCS scale does not change it. (Room paths
+    # moved out of the cache for the phase noise keep their shadow here, in the cached part.)
+    mismatch = _static_mismatch(receiver, extra)
+    if mismatch is None:
+        shadow = twin.shadow_signal(people, times)
+    else:
+        amp, phase = _rx_gain(mismatch, static)
+        static = amp * (torch.cos(phase) * static - torch.sin(phase) * room_quadrature(twin, k))
+        shadow = _mismatched_shadow(twin, people, times, mismatch)
+    if shadow is not None:
+        static = static + shadow
+    if draw.system_gain_offset_dB != 0.0:
+        static = static * 10 ** (draw.system_gain_offset_dB / 20)
+    return receiver, paths, static
+
+def _static_mismatch(receiver: FMCWReceiver, extra: Sequence[Effect]) -> RxGainPhaseMismatch | None:
+    """The item's drawn mismatch stage (in ``extra``) when the room's cached signal must get it by hand.
+
+    The receiver adds the cached signal before its first non-linear stage: a drawn mismatch placed
+    before that must be applied to it here; one placed after acts on it by itself. (A mismatch of the
+    twin's own receiver is in the cached signal already.)
+    """
+    drawn = next((e for e in extra if isinstance(e, RxGainPhaseMismatch)), None)
+    if drawn is None:
+        return None
+    effects = list(receiver.effects)
+    first_nonlinear = next((i for i, e in enumerate(effects) if e.kind == "nonlinear"), len(effects))
+    position = next(i for i, e in enumerate(effects) if e is drawn)
+    return drawn if position < first_nonlinear else None
+
+
+def _like(paths: Paths, like: Paths) -> Paths:
+    """Static ``paths`` ``(P, RX)`` on ``like``'s device and dtypes, batched like it ``(..., P, RX)``."""
+    dt, dev = like.delay_s.dtype, like.delay_s.device
+    cdt = like.amplitude.dtype if like.amplitude.is_complex() else None
+    p = Paths(paths.delay_s.to(dev, dt), paths.delay_rate.to(dev, dt),
+              paths.amplitude.to(dev, cdt) if cdt is not None else paths.amplitude.to(dev, dt))
+    batch = tuple(like.delay_s.shape[:-2])
+    return p.map(lambda t: t.expand(*batch, *t.shape))
+
+
+__all__ = [
+    "SCATTERER_ANTENNA_GAIN_DBI", "drawn_signal", "item_receiver", "people_paths", "room_quadrature",
+    "scale_people_paths", "static_scatterer_paths", "strongest_room_paths",
+]
