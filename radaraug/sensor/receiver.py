@@ -25,7 +25,7 @@ from torch import nn
 
 from radaraug.config import RadarConfig
 from radaraug.errors import ConfigError, InputTensorError
-from radaraug.sensor.chain import ChainState
+from radaraug.sensor.chain_state import ChainState
 from radaraug.sensor.defaults import FRONT_END_GAIN_DB, default_effects, tx_power_dBm
 from radaraug.sensor.effects import Effect, effect_from_dict
 from radaraug.sensor.effects.base import EffectList

@@ -9,7 +9,7 @@ from __future__ import annotations
 import torch
 
 from radaraug.config import RadarConfig
-from radaraug.sensor.chain import ChainState
+from radaraug.sensor.chain_state import ChainState
 from radaraug.sensor.effects.base import Effect, Prior, per_rx, register
 
 

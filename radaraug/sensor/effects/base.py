@@ -3,7 +3,7 @@
 An effect is one physical mechanism of the receiver (a filter, a noise source, the ADC...). It
 is a ``torch.nn.Module`` whose parameters are tensors (registered as buffers, so ``.to()``
 moves them and a calibration loop can call ``requires_grad_()`` on them and fit them by
-gradient). It acts on a :class:`~radaraug.sensor.chain.ChainState` in place; the receiver
+gradient). It acts on a :class:`~radaraug.sensor.chain_state.ChainState` in place; the receiver
 applies its effects in list order, which is the order the hardware applies them.
 
 Every effect carries a ``name`` from the project's effect list (DESIGN.md), :meth:`params`
@@ -28,7 +28,7 @@ from torch import nn
 
 from radaraug.config import RadarConfig
 from radaraug.errors import ConfigError
-from radaraug.sensor.chain import ChainState
+from radaraug.sensor.chain_state import ChainState
 
 EFFECTS: dict[str, type[Effect]] = {}
 """Registry: effect name -> effect class."""

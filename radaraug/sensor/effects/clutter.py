@@ -15,7 +15,7 @@ import torch
 
 from radaraug.config import SPEED_OF_LIGHT, RadarConfig
 from radaraug.errors import ConfigError
-from radaraug.sensor.chain import ChainState, ModulatedPaths
+from radaraug.sensor.chain_state import ChainState, ModulatedPaths
 from radaraug.sensor.effects.base import (
     Effect,
     Prior,

@@ -12,7 +12,7 @@ import math
 
 import torch
 
-from radaraug.sensor.chain import ChainState
+from radaraug.sensor.chain_state import ChainState
 from radaraug.sensor.effects.base import Effect, Prior, check_nonnegative, per_rx, register
 
 

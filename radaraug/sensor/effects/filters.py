@@ -14,7 +14,7 @@ import torch
 
 from radaraug.config import RadarConfig
 from radaraug.errors import ConfigError
-from radaraug.sensor.chain import ChainState
+from radaraug.sensor.chain_state import ChainState
 from radaraug.sensor.effects.base import Effect, Prior, register
 
 

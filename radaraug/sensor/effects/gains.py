@@ -6,7 +6,7 @@ import math
 
 import torch
 
-from radaraug.sensor.chain import ChainState
+from radaraug.sensor.chain_state import ChainState
 from radaraug.sensor.effects.base import Effect, Prior, per_rx, register
 
 

@@ -12,7 +12,7 @@ import math
 import torch
 
 from radaraug.errors import ConfigError
-from radaraug.sensor.chain import ChainState
+from radaraug.sensor.chain_state import ChainState
 from radaraug.sensor.effects.base import Effect, Prior, check_nonnegative, check_positive, rand, register
 
 

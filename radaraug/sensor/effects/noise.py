@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import torch
 
-from radaraug.sensor.chain import ChainState
+from radaraug.sensor.chain_state import ChainState
 from radaraug.sensor.effects.base import Effect, Prior, check_nonnegative, per_rx, register
 
 BOLTZMANN = 1.380649e-23

@@ -17,7 +17,7 @@ import torch
 
 from radaraug.config import RadarConfig
 from radaraug.errors import ConfigError
-from radaraug.sensor.chain import ChainState, ModulatedPaths
+from radaraug.sensor.chain_state import ChainState, ModulatedPaths
 from radaraug.sensor.effects.base import (
     Effect,
     Prior,

@@ -18,7 +18,7 @@ import math
 
 import torch
 
-from radaraug.sensor.chain import ChainState, ModulatedPaths
+from radaraug.sensor.chain_state import ChainState, ModulatedPaths
 from radaraug.sensor.effects.base import Effect, Prior, register, strongest_index, strongest_paths
 
 
