@@ -18,13 +18,13 @@ shared by runs is safe.
 
 from __future__ import annotations
 
-import hashlib
-import json
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
 import torch
 
+from radaraug._cache_key import cache_key
 from radaraug.config import RadarConfig
 from radaraug.errors import CalibrationError, ConfigError, RadarAugError
 from radaraug.io.atomic import atomic_write_json
@@ -38,15 +38,10 @@ NOISE_FIT_VERSION = 2
 PERSISTENT_FRAMES = 64
 
 
-def _cache_key(parts: Any) -> str:
-    """A 20-hex-digit content hash (the same recipe as ``radaraug.training.cache.cache_key``)."""
-    return hashlib.sha256(json.dumps(parts, sort_keys=True).encode()).hexdigest()[:20]
-
-
 def noise_fit_path(cache_dir: str | Path, scene: str, config: RadarConfig, target_db: float,
                    tracer_rays: int | None) -> Path:
     """``cache_dir/noise_fit-<key>.json`` of a noise fit (the key covers everything the fit reads)."""
-    key = _cache_key([NOISE_FIT_FORMAT, NOISE_FIT_VERSION, str(scene), config.to_dict(), round(float(target_db), 4),
+    key = cache_key([NOISE_FIT_FORMAT, NOISE_FIT_VERSION, str(scene), config.to_dict(), round(float(target_db), 4),
                       tracer_rays])
     return Path(cache_dir) / f"noise_fit-{key}.json"
 
@@ -109,18 +104,20 @@ def cached_profile_fit(calibration: str, path: str | Path, *, max_frames: int,
     return diag.profile
 
 
-def persistent_cells_of(calibration: str, threshold_db: float, frames: int = PERSISTENT_FRAMES) -> torch.Tensor:
+def persistent_cells_of(calibration: str, threshold_db: float, rd_db: Callable[[torch.Tensor], torch.Tensor],
+                        frames: int = PERSISTENT_FRAMES) -> torch.Tensor:
     """The calibration capture's persistent lines as a ``(range, doppler)`` mask of its RD maps.
 
     Cells that stand more than ``threshold_db`` above their row's floor in every one of the first
-    ``frames`` frames (RX power-combined dB maps of the recipes' chain): what every frame of the empty
-    room shows (a spur's line, a fan's Doppler lines).
+    ``frames`` frames (``rd_db``'s per-RX dB maps, RX power-combined): what every frame of the empty
+    room shows (a spur's line, a fan's Doppler lines). ``rd_db`` is the caller's map chain (the
+    recipes': :func:`radaraug.training.pipeline.rd_db_chain`), so the mask lines up with its maps.
 
     Raises:
         ConfigError: fewer than 3 frames.
     """
     from radaraug.io import open_capture
-    from radaraug.transforms import CombineRx, RadarCompose, RangeDoppler, ToDecibels
+    from radaraug.transforms import CombineRx
     from radaraug.transforms.functional import persistent_cells
 
     with open_capture(calibration) as cap:
@@ -128,8 +125,6 @@ def persistent_cells_of(calibration: str, threshold_db: float, frames: int = PER
         if n < 3:
             raise ConfigError(f"calibration {calibration}: {n} frames; excising its persistent lines needs >= 3 "
                               "(record longer, or set data.excise_persistent_db: null)")
-        # The recipes' map chain (radaraug.training.pipeline.rd_db_chain): per-RX RD dB, then RX power-combined.
-        rd_db = RadarCompose([RangeDoppler(), ToDecibels()])
         maps = CombineRx("mean_power", db=True)(rd_db(cap.read(0, n))).squeeze(-3)
     return persistent_cells(maps, float(threshold_db))
 

@@ -107,7 +107,7 @@ class Score:
 
     def as_dict(self) -> dict[str, Any]:
         """The overall and per-view errors rounded to 4 decimals, JSON-able (the twin's views left out)."""
-        return {"overall": round(self.overall, 4), "views": {k: round(v, 4) for k, v in self.views.items()}}
+        return {"overall": round(self.overall, 4), "views": _rounded(self.views)}
 
 
 @dataclass
@@ -346,15 +346,9 @@ class Search:
             fitted, fitted_room, _ = self.refit_base(cand, extra, room=room)
             new_held = self.held_score(fitted, fitted_room)
             keep = new_held.overall <= held.overall + self.settings.min_gain_db
-            steps.append({
-                "effect": "if_highpass", "refit": True, "source": "signature",
-                "params": require(fitted if keep else chain, "if_highpass")["params"],
-                "signature": hp.reason, "verdict": "clear" if keep else "signature only",
-                "ambiguous_with": [], "alternatives": [],
-                "error_before": round(held.overall, 4), "error_after": round((new_held if keep else held).overall, 4),
-                "views_before": {k: round(v, 4) for k, v in held.views.items()},
-                "views_after": {k: round(v, 4) for k, v in (new_held if keep else held).views.items()},
-            })
+            steps.append(_signature_step("if_highpass", held, new_held if keep else held,
+                                         require(fitted if keep else chain, "if_highpass")["params"], hp.reason,
+                                         "clear" if keep else "signature only", refit=True))
             self.progress(f"refit if_highpass from its signature ({hp.reason}): held-out {held.overall:.3f} -> "
                           f"{new_held.overall:.3f} dB{'' if keep else ' (not kept)'}")
             added.add("if_highpass")
@@ -368,14 +362,8 @@ class Search:
                 continue
             if name == "tx_rx_leakage" and self.source.mode != "estimated":
                 continue  # scene mode: the catalog's leakage candidate fits it
-            steps.append({
-                "effect": name, "refit": True, "source": "signature", "params": dict(e.capture.params),
-                "signature": e.reason, "verdict": "signature only", "note": why,
-                "ambiguous_with": [], "alternatives": [],
-                "error_before": round(held.overall, 4), "error_after": round(held.overall, 4),
-                "views_before": {k: round(v, 4) for k, v in held.views.items()},
-                "views_after": {k: round(v, 4) for k, v in held.views.items()},
-            })
+            steps.append(_signature_step(name, held, held, dict(e.capture.params), e.reason, "signature only",
+                                         refit=True, note=why))
             self.progress(f"{name}: {e.reason} ({why})")
             added.add(name)
         return chain, room, held
@@ -496,8 +484,8 @@ class Search:
                 "alternatives": alternatives,
                 "error_before": round(cur_held.overall, 4),
                 "error_after": round(held.overall, 4),
-                "views_before": {k: round(v, 4) for k, v in cur_held.views.items()},
-                "views_after": {k: round(v, 4) for k, v in held.views.items()},
+                "views_before": _rounded(cur_held.views),
+                "views_after": _rounded(held.views),
             })
             self.progress(f"{'refit' if refit else 'add'} {cand.name}: held-out {cur_held.overall:.3f} -> "
                           f"{held.overall:.3f} dB")
@@ -518,18 +506,29 @@ class Search:
         for name, e in ev.items():
             if e.present and name not in added:
                 # Named by its signature even though no fit beat the margin: the report says both.
-                steps.append({
-                    "effect": name, "refit": find(current, name) is not None, "source": "signature",
-                    "params": dict(e.capture.params), "signature": e.reason, "verdict": "signature only",
-                    "note": "its signature is present, but fitting it did not lower the held-out error by the margin",
-                    "ambiguous_with": [], "alternatives": [],
-                    "error_before": round(cur_held.overall, 4), "error_after": round(cur_held.overall, 4),
-                    "views_before": {k: round(v, 4) for k, v in cur_held.views.items()},
-                    "views_after": {k: round(v, 4) for k, v in cur_held.views.items()},
-                })
+                steps.append(_signature_step(
+                    name, cur_held, cur_held, dict(e.capture.params), e.reason, "signature only",
+                    refit=find(current, name) is not None,
+                    note="its signature is present, but fitting it did not lower the held-out error by the margin"))
                 self.progress(f"{name}: signature present ({e.reason}); no fit beat the margin")
         return SearchResult(chain, base_chain, current, before, base, cur_held, steps, tried, self.evaluations,
                             room_before, base_room, cur_room)
+
+
+def _rounded(views: dict[str, float]) -> dict[str, float]:
+    return {k: round(v, 4) for k, v in views.items()}
+
+
+def _signature_step(name: str, before: Score, after: Score, params: dict[str, Any], reason: str, verdict: str,
+                    refit: bool, note: str | None = None) -> dict[str, Any]:
+    """A step of an effect named from its signature (no alternatives competed for it)."""
+    step = {"effect": name, "refit": refit, "source": "signature", "params": params, "signature": reason,
+            "verdict": verdict, "ambiguous_with": [], "alternatives": [],
+            "error_before": round(before.overall, 4), "error_after": round(after.overall, 4),
+            "views_before": _rounded(before.views), "views_after": _rounded(after.views)}
+    if note is not None:
+        step["note"] = note
+    return step
 
 
 def _own_params(name: str, specs: Sequence[tuple[str, ParamSpec]]) -> int:

@@ -122,8 +122,8 @@ class ScenarioSampler:
             if self.standing_probability > 0 and float(torch.rand((), generator=g, dtype=torch.float64)) \
                     < self.standing_probability:
                 motion = {"breathing_m": _uniform(self.breathing_m, g), "breathing_Hz": _uniform(self.breathing_Hz, g),
-                          "breathing_phase": _uniform((0.0, 1.0), g) % 1.0, "sway_rad": _uniform(self.sway_rad, g),
-                          "sway_Hz": _uniform(self.sway_Hz, g), "sway_phase": _uniform((0.0, 1.0), g) % 1.0,
+                          "breathing_phase": _uniform((0.0, 1.0), g), "sway_rad": _uniform(self.sway_rad, g),
+                          "sway_Hz": _uniform(self.sway_Hz, g), "sway_phase": _uniform((0.0, 1.0), g),
                           "sway_direction_rad": _uniform((0.0, 2 * math.pi), g)}
                 people.append(StandingPerson(height_m=height, position=start, facing_rad=heading, **motion))
                 params.append({"range_m": rng, "lateral_m": lat, "speed_m_s": 0.0, "height_m": height,

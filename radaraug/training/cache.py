@@ -27,6 +27,7 @@ import numpy as np
 import torch
 from torch.utils.data import DataLoader, Dataset, Subset
 
+from radaraug._cache_key import cache_key
 from radaraug._optional import lazy_import
 from radaraug.errors import CaptureError
 from radaraug.sim.dataset import SimulatedRadarDataset
@@ -75,11 +76,6 @@ def cache_spec(dataset: SimulatedRadarDataset, indices: Sequence[int]) -> dict[s
         "chain": rd_db_chain().chain_spec(),
         "db_convention": DB_CONVENTION,
     }
-
-
-def cache_key(spec: dict[str, Any] | list[Any]) -> str:
-    """A 20-hex-digit content hash of a cache spec."""
-    return hashlib.sha256(json.dumps(spec, sort_keys=True).encode()).hexdigest()[:20]
 
 
 def content_digest(path: str | os.PathLike) -> str:

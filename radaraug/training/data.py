@@ -452,7 +452,7 @@ class RadarDataModule(L.LightningDataModule):
         """The calibration capture's persistent lines (``excise_persistent_db``), as an RD-map mask."""
         from radaraug.calibration.record import persistent_cells_of
 
-        return persistent_cells_of(calibration, float(self.hparams["excise_persistent_db"]))
+        return persistent_cells_of(calibration, float(self.hparams["excise_persistent_db"]), rd_db_chain())
 
     def _matched_dr(self, dr: CalibratedDR, train: CachedMaps) -> CalibratedDR:
         """``dr`` with its floor quantiles matched to the twin's own empty-room floor (``cdr_floor="matched"``)."""

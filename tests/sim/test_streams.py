@@ -60,17 +60,21 @@ def test_no_bare_stream_integers_in_the_library() -> None:
     assert hits == []
 
 
-@pytest.mark.parametrize("index", sorted(ITEMS))
-def test_known_items_are_bit_identical(index: int) -> None:
+def _assert_recorded(ds: SimulatedRadarDataset, index: int, recorded: dict[int, tuple[int, str]], what: str) -> None:
     if not torch.__version__.startswith(RECORDED_WITH):
         pytest.skip(f"digests recorded with torch {RECORDED_WITH}; this is {torch.__version__}")
-    ds = SimulatedRadarDataset("corridor", length=4, seed=3, twin_options={"tracer_options": {"rays": 16}})
     x, y = ds[index]
     assert x.dtype == torch.float32 and tuple(x.shape) == (3, 64, 256)
-    label, digest = ITEMS[index]
+    label, digest = recorded[index]
     assert int(y) == label
     assert hashlib.sha256(x.contiguous().numpy().tobytes()).hexdigest() == digest, (
-        "item changed: a stream value, the order of draws or the simulation itself moved")
+        f"{what} changed: a stream value, the order of draws or the simulation itself moved")
+
+
+@pytest.mark.parametrize("index", sorted(ITEMS))
+def test_known_items_are_bit_identical(index: int) -> None:
+    ds = SimulatedRadarDataset("corridor", length=4, seed=3, twin_options={"tracer_options": {"rays": 16}})
+    _assert_recorded(ds, index, ITEMS, "item")
 
 
 @pytest.fixture(scope="module")
@@ -83,11 +87,4 @@ def randomized_dataset() -> SimulatedRadarDataset:
 
 @pytest.mark.parametrize("index", sorted(RANDOMIZED_ITEMS))
 def test_known_randomized_items_are_bit_identical(index: int, randomized_dataset: SimulatedRadarDataset) -> None:
-    if not torch.__version__.startswith(RECORDED_WITH):
-        pytest.skip(f"digests recorded with torch {RECORDED_WITH}; this is {torch.__version__}")
-    x, y = randomized_dataset[index]
-    assert x.dtype == torch.float32 and tuple(x.shape) == (3, 64, 256)
-    label, digest = RANDOMIZED_ITEMS[index]
-    assert int(y) == label
-    assert hashlib.sha256(x.contiguous().numpy().tobytes()).hexdigest() == digest, (
-        "randomized item changed: a stream value, the order of draws or the simulation itself moved")
+    _assert_recorded(randomized_dataset, index, RANDOMIZED_ITEMS, "randomized item")
