@@ -55,8 +55,8 @@ def test_velocity_axis_closed_forms() -> None:
     assert len(cfg.range_axis_m()) == 128
 
 
-def test_field_notes_anchor_numbers() -> None:
-    # FIELD_NOTES: 58-63.5 GHz, 64 samples @ 2 MHz -> ~3.0 cm sampled bin, v_max ~2.1 m/s at PRT 591 us.
+def test_sensor_anchor_numbers() -> None:
+    # the BGT60TR13C default: 58-63.5 GHz, 64 samples @ 2 MHz -> ~3.0 cm sampled bin, v_max ~2.1 m/s at PRT 591 us.
     cfg = RadarConfig(58e9, 63.5e9, 2e6, 64, 8, 0.0005911249900236726, 0.07726884633302689)
     assert cfg.nominal_range_resolution_m == pytest.approx(0.0273, abs=1e-4)
     assert cfg.range_resolution_m == pytest.approx(0.0300, abs=5e-4)

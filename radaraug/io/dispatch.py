@@ -5,12 +5,12 @@ from __future__ import annotations
 import os
 from pathlib import Path
 
+from radaraug._files import regular_file_size
 from radaraug.errors import CaptureError
 from radaraug.io import hdf5_format as fmt
 from radaraug.io.base import CaptureReader
 from radaraug.io.hdf5_reader import HDF5Capture
 from radaraug.io.infineon import InfineonRecording
-from radaraug.safe_read import regular_file_size
 
 
 def open_capture(path: str | os.PathLike) -> CaptureReader:

@@ -11,12 +11,12 @@ from typing import Any
 import h5py
 import numpy as np
 
+from radaraug._files import parse_json, regular_file_size
 from radaraug.config import RadarConfig
 from radaraug.errors import CaptureError, ConfigError, RadarAugError
 from radaraug.io import hdf5_format as fmt
 from radaraug.io.base import CaptureReader, CaptureWarning, broadcast_label, timestamp_problem
 from radaraug.io.hdf5_open import open_hdf5_readonly
-from radaraug.safe_read import parse_json, regular_file_size
 
 # What h5py raises for damaged or unexpected HDF5 content (RadarAugError is a ValueError too,
 # and is re-raised untouched).

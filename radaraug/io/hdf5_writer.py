@@ -1,6 +1,6 @@
 """Writing radaraug HDF5 captures: a crash-safe frame-by-frame recorder and a one-shot helper.
 
-Crash safety follows what was measured with h5py (FIELD_NOTES): every attribute and dataset is
+Crash safety follows what was measured with h5py (docs/capture.md): every attribute and dataset is
 created first, then the file switches to SWMR mode, and each :meth:`CaptureWriter.append`
 ends with a flush. A process killed (even SIGKILL) while recording leaves a file that opens
 with every frame flushed before the kill; without SWMR such a file is unreadable.
@@ -11,7 +11,7 @@ On top of that:
   it is in SWMR mode (first append) or closed, so a file at the target name is always one that
   opens; a kill before that leaves only the hidden temporary ``.<name>.*.partial``, which the
   next writer of the same name removes (when no process holds it and it is older than a minute).
-  The name follows the one convention of temporary files (:mod:`radaraug.io.atomic`). A
+  The name follows the one convention of temporary files (:mod:`radaraug._files`). A
   generated file that must appear only complete is written with ``publish="close"``: renamed at
   :meth:`CaptureWriter.close`, dropped on an exception in its ``with`` block.
 - After each append's data is flushed, the count of complete frames is written to
@@ -40,14 +40,19 @@ import h5py
 import numpy as np
 import torch
 
+from radaraug._files import (
+    PARTIAL_SUFFIX,
+    parse_json,
+    remove_stale_temporaries,
+    temporaries_of,
+    temporary_name,
+)
 from radaraug.config import RadarConfig
 from radaraug.errors import CaptureError, ConfigError
 from radaraug.io import hdf5_format as fmt
-from radaraug.io.atomic import PARTIAL_SUFFIX, remove_stale_temporaries, temporaries_of, temporary_name
 from radaraug.io.counts import as_counts
 from radaraug.io.hdf5_reader import committed_frame_count
 from radaraug.io.hdf5_recovery import BUSY, hold_writer_lock, release_writer_lock, writer_is_alive
-from radaraug.safe_read import parse_json
 from radaraug.units import DB_CONVENTION, FLOAT_CONVENTION
 
 _COMPRESSION = {
@@ -89,7 +94,7 @@ def _remove_stale_partials(path: Path) -> list[Path]:
     its hidden temporary behind. One is stale when no process holds a lock on it (a live writer
     holds its lock from right after creating it to the rename) and it was last written more than
     :data:`STALE_PARTIAL_S` ago (so a writer between creating and locking its file is never hit).
-    Files that cannot be checked or removed are left alone (:func:`radaraug.io.atomic.remove_stale_temporaries`).
+    Files that cannot be checked or removed are left alone (:func:`radaraug._files.remove_stale_temporaries`).
     """
     return remove_stale_temporaries(path.parent, temporaries_of(path, PARTIAL_SUFFIX),
                                     older_than_s=STALE_PARTIAL_S, in_use=writer_is_alive)

@@ -28,13 +28,12 @@ from typing import Any
 import numpy as np
 import torch
 
+from radaraug._files import MAX_TEXT_BYTES, atomic_open, atomic_write_text, load_json, read_bytes
 from radaraug.config import DEFAULT_ADC_DELAY_S, RadarConfig
 from radaraug.errors import CaptureError, ConfigError
-from radaraug.io.atomic import atomic_open, atomic_write_text
 from radaraug.io.base import CaptureReader, CaptureWarning, timestamp_problem
 from radaraug.io.counts import as_counts
 from radaraug.io.npy import open_npy
-from radaraug.safe_read import MAX_TEXT_BYTES, load_json, read_bytes
 
 DEVICE_FOLDER = "RadarIfxAvian_00"
 FORMAT_VERSION = "1.0.0"

@@ -13,10 +13,19 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Protocol
 
 import torch
 
 from radaraug.errors import ConfigError
+
+
+class Antenna(Protocol):
+    """What the tracer needs of an antenna (TX and RX alike): its power gain toward directions."""
+
+    def gain(self, directions: torch.Tensor) -> torch.Tensor:
+        """Linear power gain toward ``directions`` ``(..., 3)`` given in the radar frame."""
+        ...
 
 
 @dataclass(frozen=True)

@@ -24,7 +24,7 @@ from typing import Any
 
 import torch
 
-from radaraug.io.atomic import TMP_SUFFIX, atomic_save, remove_stale_temporaries
+from radaraug._files import TMP_SUFFIX, atomic_save, remove_stale_temporaries
 
 TRACER_VERSION = 2
 """Bump when a change to the tracer changes the static paths of an unchanged scene."""
@@ -76,7 +76,7 @@ def store(folder: Path, key: str, data: dict[str, Any]) -> None:
     try:
         folder.mkdir(parents=True, exist_ok=True)
         _remove_stale_temporaries(folder, key)
-        # Temporary name .static-<key>.pt.<pid>.<random>.tmp (radaraug.io.atomic).
+        # Temporary name .static-<key>.pt.<pid>.<random>.tmp (radaraug._files).
         atomic_save(folder / f"static-{key}.pt", lambda f: torch.save({**data, "version": TRACER_VERSION}, f))
     except OSError as err:
         if str(folder) not in _warned_dirs:
@@ -92,5 +92,5 @@ seconds): the next write of that entry removes it."""
 
 
 def _remove_stale_temporaries(folder: Path, key: str) -> None:
-    # Any temporary of this key's entry (radaraug.io.atomic's convention), however old its writer.
+    # Any temporary of this key's entry (radaraug._files' convention), however old its writer.
     remove_stale_temporaries(folder, f".static-{key}.*.{TMP_SUFFIX}", older_than_s=STALE_TEMPORARY_S)

@@ -52,20 +52,19 @@ person in front of a wall) still acts on the right place.
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping
-from typing import Any
 
 import torch
 
 from radaraug.config import SPEED_OF_LIGHT
 from radaraug.errors import SceneError
 from radaraug.raytrace.accel import TriangleBVH
+from radaraug.raytrace.antenna import Antenna
 from radaraug.raytrace.merge import coherent_sum, weighted_mean
 from radaraug.raytrace.radar import RadarGeometry, radar_amplitude
 from radaraug.raytrace.reflect import FaceReflectivity
 from radaraug.raytrace.sbr import surface_offset
 from radaraug.scene.geometry import SceneGeometry
-from radaraug.scene.scattering import DiffuseScattering, get_scattering
+from radaraug.scene.scattering import ScatteringOverrides, get_scattering
 from radaraug.sensor.paths import Paths
 
 DEFAULT_CELL_M = 0.1
@@ -135,12 +134,12 @@ def _sub_triangles(n: int) -> torch.Tensor:
 def diffuse_paths(
     room: SceneGeometry,
     radar: RadarGeometry,
-    antenna: Any,
+    antenna: Antenna,
     bvh: TriangleBVH | None,
     *,
     frequency_Hz: float,
     seed: int,
-    scattering: Mapping[str, DiffuseScattering | Mapping[str, Any] | float] | None = None,
+    scattering: ScatteringOverrides | None = None,
     gain_dB: float = 0.0,
     cell_m: float = DEFAULT_CELL_M,
     occlusion: bool = True,

@@ -25,6 +25,7 @@ import torch
 
 from radaraug.config import SPEED_OF_LIGHT
 from radaraug.raytrace.accel import TriangleBVH
+from radaraug.raytrace.antenna import Antenna
 from radaraug.raytrace.po import facet_normals, facet_root_rcs
 from radaraug.raytrace.radar import RadarGeometry, radar_amplitude
 from radaraug.raytrace.reflect import FaceReflectivity
@@ -96,7 +97,7 @@ def facet_paths(
     face: torch.Tensor,
     face_material: torch.Tensor,
     radar: RadarGeometry,
-    antenna,
+    antenna: Antenna,
     reflectivity: FaceReflectivity,
     bvh: TriangleBVH,
     *,

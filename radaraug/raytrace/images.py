@@ -39,6 +39,7 @@ import math
 import torch
 
 from radaraug.config import SPEED_OF_LIGHT
+from radaraug.raytrace.antenna import Antenna
 from radaraug.raytrace.intersect import any_hit
 from radaraug.raytrace.radar import RadarGeometry
 from radaraug.raytrace.reflect import FaceReflectivity
@@ -71,7 +72,7 @@ def image_paths(
     room: SceneGeometry,
     mirrors: MirrorPlanes,
     radar: RadarGeometry,
-    antenna,
+    antenna: Antenna,
     reflectivity: FaceReflectivity,
     *,
     max_order: int,

@@ -25,6 +25,7 @@ import torch
 
 from radaraug.config import SPEED_OF_LIGHT
 from radaraug.raytrace.accel import TriangleBVH
+from radaraug.raytrace.antenna import Antenna
 from radaraug.raytrace.po import facet_normals, parallelogram_integral, po_prefactor
 from radaraug.raytrace.radar import RadarGeometry, radar_amplitude
 from radaraug.raytrace.rays import RayTubes
@@ -44,7 +45,7 @@ def shoot_and_bounce(
     reflectivity: FaceReflectivity,
     radar: RadarGeometry,
     tubes: RayTubes,
-    antenna,
+    antenna: Antenna,
     *,
     max_bounces: int = 2,
 ) -> Paths:

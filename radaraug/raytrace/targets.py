@@ -4,7 +4,7 @@
 an ellipsoid of semi-axes ``a, b, c`` seen along the unit direction ``l`` (local frame)::
 
     h     = sqrt(a^2 lx^2 + b^2 ly^2 + c^2 lz^2)       (support distance: centre -> specular plane)
-    sigma = pi a^2 b^2 c^2 / h^4                         (= the FIELD_NOTES formula in theta, phi)
+    sigma = pi a^2 b^2 c^2 / h^4                         (= the same closed form in theta, phi)
 
 times ``|Gamma_skin|^2`` at normal incidence (the root RCS is ``Gamma_skin * sqrt(sigma)``, the
 stationary-phase result of PO on a convex surface: -sqrt(sigma) for metal). The specular point
@@ -44,6 +44,7 @@ from radaraug._optional import lazy_import
 from radaraug.config import SPEED_OF_LIGHT
 from radaraug.errors import SceneError
 from radaraug.raytrace.accel import TriangleBVH
+from radaraug.raytrace.antenna import Antenna
 from radaraug.raytrace.facets import monostatic_facet_rcs
 from radaraug.raytrace.po import facet_normals
 from radaraug.raytrace.radar import RadarGeometry, radar_amplitude
@@ -177,7 +178,7 @@ def _is_closed_convex(tri: torch.Tensor, area: torch.Tensor) -> bool:
 def ellipsoid_paths(
     ell: Ellipsoids,
     radar: RadarGeometry,
-    antenna,
+    antenna: Antenna,
     *,
     room_bvh: TriangleBVH | None = None,
     room_face_material: torch.Tensor | None = None,
@@ -423,7 +424,7 @@ def _bistatic(p, root, tx, rx, q, vel, radar: RadarGeometry, antenna, valid, fir
 def mesh_po_paths(
     mesh: SceneGeometry,
     radar: RadarGeometry,
-    antenna,
+    antenna: Antenna,
     reflectivity: FaceReflectivity,
     *,
     room_bvh: TriangleBVH | None = None,

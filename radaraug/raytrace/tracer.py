@@ -28,7 +28,7 @@ from radaraug.config import SPEED_OF_LIGHT, RadarConfig
 from radaraug.errors import SceneError
 from radaraug.raytrace import cache as static_cache
 from radaraug.raytrace.accel import TriangleBVH
-from radaraug.raytrace.antenna import PatchAntenna
+from radaraug.raytrace.antenna import Antenna, PatchAntenna
 from radaraug.raytrace.diffuse import diffuse_paths
 from radaraug.raytrace.facets import facet_paths
 from radaraug.raytrace.images import image_paths
@@ -40,7 +40,7 @@ from radaraug.raytrace.sbr import shoot_and_bounce
 from radaraug.raytrace.targets import MirrorPlanes, ellipsoid_paths, mesh_po_paths
 from radaraug.scene.geometry import Ellipsoids, RadarPose, SceneGeometry
 from radaraug.scene.materials import get_material
-from radaraug.scene.scattering import get_scattering, specular_reduction
+from radaraug.scene.scattering import ScatteringOverrides, get_scattering, specular_reduction
 from radaraug.sensor.paths import Paths
 
 STATIC_METHODS = ("image", "sbr")
@@ -97,7 +97,7 @@ class RayTracer:
         max_bounces: int | None = None,
         rays: int | tuple[int, int] = 512,
         fov_deg: float | tuple[float, float] = 70.0,
-        antenna: Any = None,
+        antenna: Antenna | None = None,
         polarization: tuple[float, float, float] = (0.0, 1.0, 0.0),
         merge_bin_m: float | None = 0.01,
         floor_dB: float = -100.0,
@@ -105,7 +105,7 @@ class RayTracer:
         density: float = 1.0,
         cache: bool | str | os.PathLike = True,
         diffuse: bool = True,
-        scattering: Any = None,
+        scattering: ScatteringOverrides | None = None,
         diffuse_gain_dB: float = 0.0,
         diffuse_seed: int | None = None,
         device: torch.device | str | None = None,

@@ -181,6 +181,9 @@ DIFFUSE_DEFAULTS: dict[str, DiffuseScattering] = {
 FALLBACK = _FINISH
 """Used for materials without a default (a scene's own materials): the fitted finish value."""
 
+ScatteringOverrides = Mapping[str, DiffuseScattering | Mapping[str, Any] | float]
+"""Per-material diffuse-scattering overrides (``Scene.scattering``): each value as :func:`as_scattering` takes it."""
+
 
 def as_scattering(value: DiffuseScattering | Mapping[str, Any] | float, where: str = "diffuse") -> DiffuseScattering:
     """A :class:`DiffuseScattering` from itself, a dict ``{S, pattern, alpha_R}`` or a number ``S``."""
@@ -203,7 +206,7 @@ def as_scattering(value: DiffuseScattering | Mapping[str, Any] | float, where: s
 
 
 def get_scattering(
-    key: str, overrides: Mapping[str, DiffuseScattering | Mapping[str, Any] | float] | None = None,
+    key: str, overrides: ScatteringOverrides | None = None,
 ) -> DiffuseScattering:
     """Scattering of material ``key`` (``"name"`` or ``"name@thickness"``).
 
@@ -220,7 +223,7 @@ def get_scattering(
 
 def specular_reduction(
     names: Sequence[str],
-    overrides: Mapping[str, DiffuseScattering | Mapping[str, Any] | float] | None = None,
+    overrides: ScatteringOverrides | None = None,
     *,
     device: torch.device | str | None = None,
     dtype: torch.dtype = torch.float32,
@@ -238,6 +241,7 @@ __all__ = [
     "DIFFUSE_DEFAULTS",
     "FALLBACK",
     "PATTERNS",
+    "ScatteringOverrides",
     "DiffuseScattering",
     "as_scattering",
     "directive_norm",

@@ -20,10 +20,11 @@ calibration loop fits them against a capture):
   the assumption that all the noise was thermal, which put signals ~20 dB too high (a simulated
   walker clipped the ADC at 48 dB; real ones do not).
 * TX->RX leakage, equivalent range 4 cm (*assumed*), coupling -35.8 dB on RX1 and -43.8 dB on
-  RX2/RX3: *pinned* to the field notes' range-domain leakage levels (-19 dB on RX1, -27 dB on
-  RX2/RX3 at 23 dB, Hann-normalised range FFT) through the front-end gain above.
-* DC offsets RX1 1620, RX2 1945, RX3 2067.5 counts (field notes, 23 dB IF gain; kept in counts
-  at every gain: how they scale with the gain is not known).
+  RX2/RX3: *pinned* to the measured range-domain leakage levels (-19 dB on RX1, -27 dB on
+  RX2/RX3 at 23 dB, Hann-normalised range FFT; ``docs/receiver.md``) through the front-end gain
+  above.
+* DC offsets RX1 1620, RX2 1945, RX3 2067.5 counts (measured at 23 dB IF gain, see
+  ``docs/receiver.md``; kept in counts at every gain: how they scale with the gain is not known).
 * Phase noise: 100 kHz RMS frequency noise, 200 kHz corner, 4 strongest paths (*assumed*; with
   the ~0.3 ns leakage delay its skirt stays below the thermal noise).
 * IF filters: first-order, cutoffs from the config (80 kHz / 500 kHz SDK defaults).

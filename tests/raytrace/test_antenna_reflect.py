@@ -45,7 +45,7 @@ def test_metal_is_minus_one_and_normal_incidence_is_gamma_te():
     g0 = refl(torch.ones(1, dtype=torch.long), torch.ones(1, dtype=torch.float64), -n[None], n[None], pol)
     expected = (1 - eps**0.5) / (1 + eps**0.5)
     assert abs(complex(g0[0]) - expected) < 1e-9
-    assert 10 * math.log10(abs(expected) ** 2) == pytest.approx(-8.1, abs=0.1)  # FIELD_NOTES table
+    assert 10 * math.log10(abs(expected) ** 2) == pytest.approx(-8.1, abs=0.1)  # ITU-R P.2040 table
 
 
 def test_te_weight():

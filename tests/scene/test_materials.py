@@ -25,7 +25,7 @@ from radaraug.scene.materials import (
 
 F_C = 60e9
 
-# FIELD_NOTES / ITU-R P.2040 table: |Gamma|^2 at normal incidence, 60 GHz, half-space.
+# ITU-R P.2040 table: |Gamma|^2 at normal incidence, 60 GHz, half-space.
 NORMAL_INCIDENCE_DB = {
     "concrete": -8.1,
     "plasterboard": -12.2,

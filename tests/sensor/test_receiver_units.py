@@ -69,7 +69,7 @@ def test_r4_law_and_highpass_in_rd_map(cfg, rd, make_paths):
             assert levels[i + 1] - levels[i] == pytest.approx(expected, abs=1e-3)
 
 
-def test_highpass_matches_field_notes_first_order_losses():
+def test_highpass_matches_measured_first_order_losses():
     """-16.9 dB at 0.5 m, -11.2 dB at 1 m, -6.0 dB at 2 m, -1.7 dB at 5 m (80 kHz, 22.99 kHz/m)."""
     config = RadarConfig.bgt60tr13c(adc_delay_s=0.0)
     assert config.beat_Hz_per_m == pytest.approx(22.99e3, rel=1e-3)
@@ -135,7 +135,7 @@ def test_filtered_noise_rms_closed_form(small_cfg, make_paths):
 
 
 def test_default_noise_pinned_to_measured_counts(make_paths):
-    """Field notes: 1.3-1.5 counts RMS slow-time noise at 23 dB IF gain (2 MHz, 64 samples)."""
+    """Measured on a BGT60TR13C: 1.3-1.5 counts RMS slow-time noise at 23 dB IF gain (2 MHz, 64 samples)."""
     config = RadarConfig.bgt60tr13c(
         start_frequency_Hz=58e9, end_frequency_Hz=63.5e9, sample_rate_Hz=2e6, num_samples_per_chirp=64,
         num_chirps_per_frame=64, chirp_repetition_time_s=591.125e-6, frame_repetition_time_s=77.27e-3,
@@ -146,7 +146,7 @@ def test_default_noise_pinned_to_measured_counts(make_paths):
     counts = rx.to_counts(make_paths(config, [1.0], amplitudes=[0.0]), generator=gen).to(torch.float64)
     slow_time_std = counts.std(dim=-2)  # over chirps, per RX and sample (the leakage is static)
     assert 1.3 <= float(slow_time_std.mean()) <= 1.5
-    # DC levels (field notes: RX1 ~1600-1650, RX2 ~1920-1970, RX3 ~2065-2070); the leakage tone
+    # DC levels (measured, docs/receiver.md: RX1 ~1600-1650, RX2 ~1920-1970, RX3 ~2065-2070); the leakage tone
     # (1.3 cycles per chirp here) shifts the per-chirp mean by up to ~100 codes on RX1.
     mean_codes = counts.mean(dim=(-1, -2))
     assert abs(float(mean_codes[0]) - 1620) < 150 and abs(float(mean_codes[2]) - 2067.5) < 60

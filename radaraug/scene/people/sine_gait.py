@@ -43,8 +43,8 @@ from typing import Any
 
 import torch
 
+from radaraug._files import atomic_write_text
 from radaraug.errors import SceneError
-from radaraug.io.atomic import atomic_write_text
 from radaraug.scene.people import _rotations as rot
 from radaraug.scene.people.bvh_person import UNIT_SCALES
 from radaraug.scene.people.bvh_writer import hierarchy_lines

@@ -6,7 +6,7 @@ moves them and a calibration loop can call ``requires_grad_()`` on them and fit 
 gradient). It acts on a :class:`~radaraug.sensor.chain_state.ChainState` in place; the receiver
 applies its effects in list order, which is the order the hardware applies them.
 
-Every effect carries a ``name`` from the project's effect list (DESIGN.md), :meth:`params`
+Every effect carries a ``name`` from the effect catalog (``docs/receiver.md``), :meth:`params`
 (the live tensors), :meth:`from_params` (build from numbers or tensors), a JSON-friendly
 :meth:`to_dict` / :func:`effect_from_dict` pair for twin profiles, and :meth:`Effect.priors`: the
 search range (:class:`Prior`) of each parameter a calibration search may move.

@@ -1,9 +1,9 @@
 """IF filters: the high-pass after the mixer and the anti-alias low-pass before the ADC.
 
 Both are modelled as ``order`` cascaded first-order RC sections (order 1 by default; the BGT60's
-filter order is not public, and the first-order high-pass reproduces the power losses in
-the project's field notes: -16.9 dB at 0.5 m, -11.2 dB at 1 m, -6.0 dB at 2 m, -1.7 dB at 5 m
-for an 80 kHz cutoff and 22.99 kHz/m). Paths get the exact response at their beat frequency
+filter order is not public, and the first-order high-pass reproduces the measured power losses
+listed in ``docs/receiver.md``, "Defaults": -16.9 dB at 0.5 m, -11.2 dB at 1 m, -6.0 dB at 2 m,
+-1.7 dB at 5 m for an 80 kHz cutoff and 22.99 kHz/m). Paths get the exact response at their beat frequency
 (a tone through an LTI filter, the start-up transient of each chirp ignored); additive signals
 (noise) are filtered per chirp in the frequency domain (circular).
 """

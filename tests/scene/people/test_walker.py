@@ -22,7 +22,7 @@ def test_cycle_duration_matches_boulic_closed_form() -> None:
     w = Walker(height_m=1.8, speed_m_s=1.4)
     rv = 1.4 / (0.491 * 1.8)
     assert w.cycle_duration_s == pytest.approx(1.346 / math.sqrt(rv), rel=1e-12)
-    assert w.cycle_duration_s == pytest.approx(1.07, abs=0.01)  # field notes: ~1.07 s
+    assert w.cycle_duration_s == pytest.approx(1.07, abs=0.01)  # docs/people.md: ~1.07 s
     assert w.stance_fraction == pytest.approx((0.752 * w.cycle_duration_s - 0.143) / w.cycle_duration_s)
 
 
