@@ -3,11 +3,15 @@
 ``radaraug diagnose CAPTURE [--scene SCENE] -o REPORT_DIR`` (or :func:`diagnose` +
 :func:`write_report`) compares a capture with the twin, adds the sensor effects that explain the
 residual with fitted parameters, and writes a report and a fitted :class:`TwinProfile` that the
-simulator and the recipes load. See ``docs/calibration.md``.
+simulator and the recipes load. What one empty-room capture calibrates (CalibratedDR's floor, the
+twin profile, the noise fit, the persistent cells) is one :class:`CalibrationRecord`, fitted by
+:func:`radaraug.calibration.record.fit_record`, saved as one versioned file and read by
+:func:`load_record`. See ``docs/calibration.md``.
 """
 
 from radaraug.calibration.catalog import CATALOG_NAMES, Candidate, ParamSpec, catalog
 from radaraug.calibration.diagnose import Diagnosis, diagnose, locate_unexplained, write_report
+from radaraug.calibration.record_file import CalibrationRecord, load_record
 from radaraug.calibration.search import Search, SearchResult, SearchSettings
 from radaraug.calibration.twin_source import TwinSource
 from radaraug.calibration.views import VIEW_NAMES, Views, compute_views, overall_error, view_errors
@@ -18,6 +22,8 @@ __all__ = [
     "Candidate",
     "ParamSpec",
     "catalog",
+    "CalibrationRecord",
+    "load_record",
     "Diagnosis",
     "diagnose",
     "locate_unexplained",

@@ -33,9 +33,9 @@ from radaraug.transforms import RangeDoppler, ToDecibels
 
 
 def capture_floor_db(path: str | os.PathLike, max_frames: int = 64) -> tuple[RadarConfig, float]:
-    """A recording's config and RD noise floor (dBFS, :func:`radaraug.sim.noise_fit.capture_noise_floor_db`)."""
+    """A recording's config and RD noise floor (dBFS, :func:`radaraug.calibration.noise_fit.capture_noise_floor_db`)."""
+    from radaraug.calibration.noise_fit import capture_noise_floor_db
     from radaraug.io import open_capture
-    from radaraug.sim.noise_fit import capture_noise_floor_db
 
     with open_capture(path) as reader:
         return reader.config, capture_noise_floor_db(reader, max_frames)

@@ -1,10 +1,16 @@
-"""What an empty-room capture calibrates, fitted in one place and cached in tagged, versioned files.
+"""What an empty-room capture calibrates: every fit on it, and the one record that holds them.
 
-The recipes calibrate the training twin on the user's empty-room capture in three ways, each a fit
-that belongs to the calibration layer, not to the Lightning DataModule that asks for it:
+:func:`fit_record` fits a :class:`~radaraug.calibration.record_file.CalibrationRecord` on an
+empty-room capture (CalibratedDR's floor, and on request the twin profile, the twin's noise fit and
+the persistent cells); :meth:`CalibrationRecord.save` writes it as one versioned file and
+:func:`load_record` reads it back (or an older CalibratedDR JSON, twin profile or noise fit, as a
+partial record). ``CalibratedDR.from_record(record)`` makes the clamp.
+
+The recipes also calibrate the training twin on the capture in three ways, each a fit that belongs
+to the calibration layer, not to the Lightning DataModule that asks for it:
 
 * :func:`cached_noise_fit`: the twin's noise figure (and ADC-side noise, moved together) whose
-  empty-room floor equals the capture's (:func:`radaraug.sim.noise_fit.fit_noise_figure`);
+  empty-room floor equals the capture's (:func:`radaraug.calibration.noise_fit.fit_noise_figure`);
 * :func:`cached_profile_fit`: the twin profile ``radaraug diagnose`` fits on the capture without a
   scene (``cdr_profile``, ``catalog_priors: calibration``);
 * :func:`persistent_cells_of`: the cells of the capture's range-Doppler maps that stand above their
@@ -18,6 +24,7 @@ shared by runs is safe.
 
 from __future__ import annotations
 
+import os
 from collections.abc import Callable
 from pathlib import Path
 from typing import Any
@@ -25,14 +32,22 @@ from typing import Any
 import torch
 
 from radaraug._cache_key import cache_key
+from radaraug.calibration.record_file import (
+    NOISE_FIT_FORMAT,
+    RECORD_FORMAT,
+    RECORD_VERSION,
+    CalibrationRecord,
+    content_digest,
+    load_record,
+)
 from radaraug.config import RadarConfig
 from radaraug.errors import CalibrationError, ConfigError, RadarAugError
 from radaraug.io.atomic import atomic_write_json
 from radaraug.sensor.profile import TwinProfile
+from radaraug.transforms._motion import DEFAULT_THRESHOLD_DB
 
-NOISE_FIT_FORMAT = "radaraug-noise-fit"
 NOISE_FIT_VERSION = 2
-"""2: the fit moves thermal and ADC-side noise together (version 1 moved the noise figure alone)."""
+"""The version :func:`cached_noise_fit` writes and reuses (2: thermal and ADC-side noise moved together)."""
 
 #: Frames of the calibration capture read for the excision mask.
 PERSISTENT_FRAMES = 64
@@ -58,12 +73,11 @@ def cached_noise_fit(calibration: str, *, scene: str, config: RadarConfig, cache
         tracer_rays: SBR rays of the room trace (None: the tracer's default method).
 
     Returns:
-        :func:`~radaraug.sim.noise_fit.fit_noise_figure`'s dict plus ``calibration``, ``format`` and
+        :func:`~radaraug.calibration.noise_fit.fit_noise_figure`'s dict plus ``calibration``, ``format`` and
         ``version``.
     """
+    from radaraug.calibration.noise_fit import capture_noise_floor_db
     from radaraug.safe_read import load_json
-    from radaraug.scene.scene import Scene
-    from radaraug.sim.noise_fit import capture_noise_floor_db, fit_noise_figure
 
     target = capture_noise_floor_db(calibration)
     path = noise_fit_path(cache_dir, scene, config, target, tracer_rays)
@@ -75,8 +89,7 @@ def cached_noise_fit(calibration: str, *, scene: str, config: RadarConfig, cache
                 return fit
         except RadarAugError:
             pass  # unreadable or another writer's: fit again and replace it
-    opts = {"method": "sbr", "rays": int(tracer_rays)} if tracer_rays is not None else None
-    fit = fit_noise_figure(Scene.load(scene), config, target, tracer_options=opts)
+    fit = _noise_fit(scene, config, target, tracer_rays)
     fit.update(calibration=str(calibration), format=NOISE_FIT_FORMAT, version=NOISE_FIT_VERSION)
     path.parent.mkdir(parents=True, exist_ok=True)
     atomic_write_json(path, fit, newline=False, indent=2)
@@ -90,18 +103,16 @@ def cached_profile_fit(calibration: str, path: str | Path, *, max_frames: int,
     ``path`` is the caller's cache file (its key must cover the capture's content and ``max_frames``);
     a file that does not load as a profile is fitted again and replaced.
     """
-    from radaraug import calibration as cal_mod
-
     path = Path(path)
     if path.is_file():
         try:
             return TwinProfile.load(path)
         except CalibrationError:
             pass  # unreadable (e.g. written by another radaraug): fit again and replace it
-    diag = cal_mod.diagnose(str(calibration), scene=None, max_frames=int(max_frames), progress=progress)
+    profile = _profile_fit(calibration, max_frames, progress)
     path.parent.mkdir(parents=True, exist_ok=True)
-    diag.profile.save(path)
-    return diag.profile
+    profile.save(path)
+    return profile
 
 
 def persistent_cells_of(calibration: str, threshold_db: float, rd_db: Callable[[torch.Tensor], torch.Tensor],
@@ -129,5 +140,88 @@ def persistent_cells_of(calibration: str, threshold_db: float, rd_db: Callable[[
     return persistent_cells(maps, float(threshold_db))
 
 
-__all__ = ["NOISE_FIT_FORMAT", "NOISE_FIT_VERSION", "cached_noise_fit", "cached_profile_fit", "noise_fit_path",
+def fit_record(
+    capture: str | os.PathLike,
+    *,
+    floor: str = "normal",
+    pipeline: Any = None,
+    max_frames: int | None = None,
+    motion_threshold_db: float = DEFAULT_THRESHOLD_DB,
+    profile_frames: int | None = None,
+    noise_scene: str | None = None,
+    tracer_rays: int | None = None,
+    persistent_db: float | None = None,
+    progress: bool = False,
+) -> CalibrationRecord:
+    """Fit the calibration record of an empty-room capture: CalibratedDR's floor and, on request, the rest.
+
+    Args:
+        capture: the empty-room capture (radaraug ``.h5`` or Infineon recording folder).
+        floor: CalibratedDR's floor distribution, ``"normal"`` or ``"empirical"``.
+        pipeline: raw cube -> dB map chain of the floor (and of the persistent cells); default
+            ``RangeDoppler() -> ToDecibels()``.
+        max_frames: frames the floor is fitted on (default: all).
+        motion_threshold_db: threshold of the motion check (warns ``MotionWarning``, as
+            :meth:`CalibratedDR.fit <radaraug.transforms.CalibratedDR.fit>`).
+        profile_frames: also fit the twin profile (``diagnose`` without a scene) on this many frames.
+        noise_scene: also fit the twin's noise to the capture's floor, simulating this scene
+            (:func:`~radaraug.calibration.noise_fit.fit_noise_figure`).
+        tracer_rays: SBR rays of the noise fit's room trace (None: the tracer's default method).
+        persistent_db: also record the persistent cells at this threshold (:func:`persistent_cells_of`).
+        progress: progress bars.
+
+    Returns:
+        The record (``file`` None until saved and read back); the capture's identity holds its name,
+        content digest and frame count.
+
+    Raises:
+        CalibrationError, CaptureError: as the fits they come from.
+    """
+    from radaraug.calibration.floor_fit import floor_statistics
+    from radaraug.transforms.dr import FLOORS
+
+    if floor not in FLOORS:
+        raise CalibrationError(f"fit_record: floor must be one of {FLOORS}, got {floor!r}")
+    stats = floor_statistics(capture, pipeline=pipeline, max_frames=max_frames, motion_threshold_db=motion_threshold_db,
+                             progress=progress)
+    config = stats.pop("config")
+    stats["quantiles_db"] = stats["quantiles_db"].tolist()  # float64 -> float -> float64 is exact: the same floor
+    record = CalibrationRecord(cdr={**stats, "floor": floor}, config=config,
+                               capture={"name": Path(capture).name, "sha256": content_digest(capture),
+                                        "frames": stats["num_frames"]})
+    if profile_frames is not None:
+        record.profile = _profile_fit(capture, profile_frames, progress)
+    if noise_scene is not None:
+        from radaraug.calibration.noise_fit import capture_noise_floor_db
+
+        if config is None:
+            raise CalibrationError(f"{capture}: no radar config to simulate the noise fit with")
+        record.noise_fit = _noise_fit(noise_scene, config, capture_noise_floor_db(capture), tracer_rays)
+    if persistent_db is not None:
+        from radaraug.transforms.compose import RadarCompose
+        from radaraug.transforms.spectral import RangeDoppler, ToDecibels
+
+        chain = pipeline if pipeline is not None else RadarCompose([RangeDoppler(), ToDecibels()])
+        mask = persistent_cells_of(str(capture), persistent_db, chain)
+        record.persistent_cells = {"threshold_db": float(persistent_db), "shape": list(mask.shape),
+                                   "cells": mask.nonzero().tolist()}
+    return record
+
+
+def _noise_fit(scene: str, config: RadarConfig, target_db: float, tracer_rays: int | None) -> dict[str, Any]:
+    from radaraug.calibration.noise_fit import fit_noise_figure
+    from radaraug.scene.scene import Scene
+
+    opts = {"method": "sbr", "rays": int(tracer_rays)} if tracer_rays is not None else None
+    return fit_noise_figure(Scene.load(scene), config, target_db, tracer_options=opts)
+
+
+def _profile_fit(capture: str | os.PathLike, max_frames: int, progress: bool) -> TwinProfile:
+    from radaraug import calibration as cal_mod  # through the package, where tests replace diagnose
+
+    return cal_mod.diagnose(str(capture), scene=None, max_frames=int(max_frames), progress=progress).profile
+
+
+__all__ = ["NOISE_FIT_FORMAT", "NOISE_FIT_VERSION", "RECORD_FORMAT", "RECORD_VERSION", "CalibrationRecord",
+           "cached_noise_fit", "cached_profile_fit", "fit_record", "load_record", "noise_fit_path",
            "persistent_cells_of"]

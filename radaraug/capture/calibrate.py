@@ -1,8 +1,9 @@
-"""One-step calibration: record the empty room from a device and fit `CalibratedDR` on it.
+"""One-step calibration: record the empty room from a device and fit its calibration record.
 
-The fit is :meth:`CalibratedDR.fit <radaraug.transforms.CalibratedDR.fit>` on the recording,
-exactly what ``radaraug fit-cdr`` does with a file, and the emptiness test is the motion check
-that fit already runs (:mod:`radaraug.transforms._motion`). Where ``fit-cdr`` only warns, this
+The fit is :func:`radaraug.calibration.record.fit_record` on the recording (CalibratedDR's floor,
+exactly what ``radaraug fit-cdr`` fits on a file), written as one calibration record
+(:mod:`radaraug.calibration.record_file`) that ``CalibratedDR.load`` reads. The emptiness test is
+the motion check that fit already runs (:mod:`radaraug.transforms._motion`). Where ``fit-cdr`` only warns, this
 refuses: a calibration of a room in which something moved is not written, and the message gives
 the measured motion fraction against the threshold. What does not move (a person standing still,
 a fan whose blades stay in the same cells) is not seen by the check.
@@ -15,6 +16,7 @@ import tempfile
 import warnings
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from radaraug.capture.base import RadarDevice
 from radaraug.capture.record import RecordResult, record
@@ -22,6 +24,9 @@ from radaraug.errors import CalibrationError
 from radaraug.transforms import CalibratedDR, MotionWarning
 from radaraug.transforms._motion import DEFAULT_THRESHOLD_DB, MIN_FRAMES, WARN_FRACTION
 from radaraug.transforms.dr import FLOORS
+
+if TYPE_CHECKING:
+    from radaraug.calibration.record_file import CalibrationRecord
 
 CALIBRATION_SECONDS = 10.0
 """The empty-room sequence's length (the paper's 10 s, ~100 frames at 10 Hz)."""
@@ -32,15 +37,17 @@ class CalibrationRun:
     """What :func:`calibrate` did.
 
     Attributes:
-        cdr: the fitted calibration (also saved to ``output``).
-        output: the calibration JSON written.
+        cdr: the fitted clamp (``CalibratedDR.from_record(record)``).
+        output: the calibration record written.
         recording: the recording's :class:`~radaraug.capture.record.RecordResult` (its ``path``
             is None unless the recording was kept).
+        record: the calibration record saved to ``output``.
     """
 
     cdr: CalibratedDR
     output: Path
     recording: RecordResult
+    record: CalibrationRecord
 
 
 def calibrate(
@@ -54,11 +61,12 @@ def calibrate(
     progress: bool = False,
     floor: str = "normal",
 ) -> CalibrationRun:
-    """Record ``seconds`` of the empty room from ``device``, fit CalibratedDR, save it to ``output``.
+    """Record ``seconds`` of the empty room from ``device``, fit its calibration record, save it to ``output``.
 
     Args:
         device: a :class:`RadarDevice`, not started.
-        output: the calibration JSON (``CalibratedDR.load(output)`` reads it).
+        output: the calibration record (``CalibratedDR.load(output)`` and
+            :func:`~radaraug.calibration.record.load_record` read it).
         seconds: length of the empty-room recording.
         keep_recording: also keep the recording as this ``.h5`` capture (else it is deleted).
         overwrite: replace an existing ``keep_recording`` file.
@@ -78,6 +86,8 @@ def calibrate(
         KeyboardInterrupt: Ctrl-C during the recording (nothing is fitted or written; a kept
             recording holds the frames so far).
     """
+    from radaraug.calibration.record import fit_record
+
     output = Path(output)
     if floor not in FLOORS:  # before recording, not after ten seconds of it
         raise CalibrationError(f"calibrate: floor must be one of {FLOORS}, got {floor!r}")
@@ -95,25 +105,28 @@ def calibrate(
         with warnings.catch_warnings():
             # The motion warning of fit() becomes the refusal below.
             warnings.simplefilter("ignore", MotionWarning)
-            cdr = CalibratedDR.fit(rec_path, motion_threshold_db=motion_threshold_db, floor=floor)
+            cal = fit_record(rec_path, floor=floor, motion_threshold_db=motion_threshold_db)
     finally:
         if temporary:
             rec_path.unlink(missing_ok=True)
-    if cdr.motion is None:
+    assert cal.cdr is not None and cal.capture is not None  # fit_record fits the floor
+    motion = cal.cdr["motion"]
+    if motion is None:
         raise CalibrationError(
             f"{output}: {rec.frames} frames are too few to check that the room is empty (the motion check needs "
             f"at least {MIN_FRAMES}); record longer (--seconds); nothing was written"
         )
-    if cdr.motion > WARN_FRACTION:
+    if motion > WARN_FRACTION:
         raise CalibrationError(
-            f"{output}: the room is not empty: {100 * cdr.motion:.2f} % of the range-Doppler cells off zero Doppler "
+            f"{output}: the room is not empty: {100 * motion:.2f} % of the range-Doppler cells off zero Doppler "
             f"are > {motion_threshold_db:g} dB above their own median over the {rec.frames} frames (threshold "
             f"{100 * WARN_FRACTION:g} %; noise and static clutter alone give ~0 %): something moved. Leave the "
             "room, stop fans and anything that moves, and run again; nothing was written"
         )
-    cdr.source = str(rec_path) if not temporary else f"radaraug calibrate ({device.info.get('name', 'device')})"
-    cdr.save(output)
-    return CalibrationRun(cdr, output, rec)
+    cal.cdr["source"] = str(rec_path) if not temporary else f"radaraug calibrate ({device.info.get('name', 'device')})"
+    cal.capture["name"] = cal.cdr["source"]
+    cal.save(output)
+    return CalibrationRun(CalibratedDR.from_record(cal), output, rec, cal)
 
 
 def _check_writable(output: Path) -> None:

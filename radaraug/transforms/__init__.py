@@ -15,11 +15,11 @@ Units: ``radaraug.units.DB_CONVENTION`` (dBFS: both FFTs divided by their window
 """
 
 from radaraug.transforms import functional
+from radaraug.transforms._motion import MotionWarning
 from radaraug.transforms._rng import use_generator
 from radaraug.transforms.base import RadarTransform, RandomRadarTransform
 from radaraug.transforms.compose import RadarCompose
 from radaraug.transforms.dr import CalibratedDR, RandomDR
-from radaraug.transforms.dr_fit import MotionWarning
 from radaraug.transforms.floor import FloorRelative
 from radaraug.transforms.image import ClipNormalize, Colormap, Resize
 from radaraug.transforms.per_item import augmentation_generator

@@ -24,6 +24,14 @@ DEFAULT_THRESHOLD_DB = 15.0
 WARN_FRACTION = 1e-3
 
 
+class MotionWarning(UserWarning):
+    """The capture a floor is fitted on should be an empty scene but shows motion.
+
+    Its own category so that callers can act on it (``radaraug calibrate`` refuses instead of
+    warning) without matching the message text.
+    """
+
+
 def off_zero_doppler(maps_db: torch.Tensor, guard_bins: int) -> torch.Tensor:
     """The cells of ``(..., doppler)`` dB maps (Doppler centred) more than ``guard_bins`` from zero Doppler."""
     doppler = maps_db.shape[-1]

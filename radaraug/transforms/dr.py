@@ -6,7 +6,8 @@ exactly unchanged. ``N`` is i.i.d. Gaussian per cell, per RX and per frame (samp
 
 * :class:`RandomDR`: per frame, ``m ~ U(mean_db)``, ``s ~ U(std_db)``, ``N ~ Normal(m, s**2)``.
 * :class:`CalibratedDR`: fixed ``(m_t, s_t)``, the mean and standard deviation of all RD dB
-  values of an empty-room capture processed by the same chain (:meth:`CalibratedDR.fit`).
+  values of an empty-room capture processed by the same chain (fitted by
+  :mod:`radaraug.calibration.floor_fit`; :meth:`CalibratedDR.fit` delegates to it).
 
 Replayable parameters (``last_params``): ``apply`` (bool per sample), ``noise_db`` (the floor
 map ``N``, broadcastable to the input), and for RandomDR ``mean_db``/``std_db`` per sample.
@@ -20,34 +21,28 @@ measurement and how the floor moves with IF gain, samples and chirps.
 
 from __future__ import annotations
 
-import json
 import math
 import os
 import warnings
 from collections.abc import Mapping
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import torch
 
 from radaraug.config import RadarConfig
 from radaraug.errors import CalibrationError, ConfigError, RadarAugError
-from radaraug.io.atomic import atomic_write_text
-from radaraug.safe_read import load_json, safe_repr
+from radaraug.safe_read import safe_repr
 from radaraug.transforms import functional as F
 from radaraug.transforms._motion import DEFAULT_THRESHOLD_DB
 from radaraug.transforms.base import Params, RandomRadarTransform
-from radaraug.transforms.dr_fit import floor_statistics
 from radaraug.transforms.dsp_spec import canonical_chain, describe_chain
-from radaraug.units import DB_CONVENTION
+
+if TYPE_CHECKING:
+    from radaraug.calibration.record_file import CalibrationRecord
 
 DEFAULT_RANDOM_DR_MEAN_DB = (-120.0, -90.0)
 DEFAULT_RANDOM_DR_STD_DB = (1.0, 4.0)
-FORMAT = "radaraug.CalibratedDR"
-FORMAT_VERSION = 1
-#: Written for ``floor="empirical"``: an older radaraug refuses the file instead of silently drawing
-#: a normal floor from it (a ``floor="normal"`` file stays version 1; its quantiles are extra).
-FORMAT_VERSION_EMPIRICAL = 2
 #: CalibratedDR's floor distributions: the paper's normal in dB, or the measured one.
 FLOORS = ("normal", "empirical")
 
@@ -174,8 +169,10 @@ class CalibratedDR(_DRClamp):
     exponential, whose upper tail is far lighter than a normal's with the same std (on the proxy's
     empty room, 99.9th percentile -89.4 dB measured vs -81.2 dB for the normal; docs/transforms.md).
 
-    Made by :meth:`fit` (from an empty-room capture) or :meth:`load` (from a saved calibration
-    JSON), which record the DSP chain, radar config and map shape the floor was measured with; a
+    Made by :meth:`fit` (from an empty-room capture), :meth:`load` (from a calibration file) or
+    :meth:`from_record` (from a :class:`~radaraug.calibration.record_file.CalibrationRecord`); the
+    fitting and the file belong to :mod:`radaraug.calibration`, these classmethods delegate to it.
+    They record the DSP chain, radar config and map shape the floor was measured with; a
     :class:`~radaraug.transforms.compose.RadarCompose` then refuses a different chain, and a map
     of another shape is refused at call time. The constructor itself only takes fitted numbers:
     it never reads a file or the environment and never fits anything.
@@ -210,7 +207,7 @@ class CalibratedDR(_DRClamp):
     """
 
     provenance: dict[str, Any]
-    """Where ``(mean_db, std_db)`` came from: ``{"from": "arguments" | "file", "path": ...,
+    """Where ``(mean_db, std_db)`` came from: ``{"from": "arguments" | "file" | "record", "path": ...,
     "source": capture name, "num_frames": ...}`` (``path`` for a loaded file only)."""
 
     def __init__(
@@ -390,6 +387,9 @@ class CalibratedDR(_DRClamp):
         The standard deviation is the population one (``correction=0``); statistics are
         accumulated in float64.
         """
+        # The fit is calibration's; this delegates (imported here: calibration sits above the transforms).
+        from radaraug.calibration.floor_fit import floor_statistics
+
         stats = floor_statistics(
             source, pipeline=pipeline, config=config, max_frames=max_frames, input=input,
             batch_size=batch_size, motion_threshold_db=motion_threshold_db, progress=progress,
@@ -398,101 +398,57 @@ class CalibratedDR(_DRClamp):
 
     # ------------------------------------------------------------------ persistence
     def to_dict(self) -> dict[str, Any]:
-        """The calibration record (what :meth:`save` writes)."""
-        import radaraug
+        """The calibration record :meth:`save` writes (``radaraug fit-cdr --json`` prints it)."""
+        from radaraug.calibration.record_file import CalibrationRecord  # the record is calibration's
 
-        return {
-            "format": FORMAT,
-            "format_version": FORMAT_VERSION_EMPIRICAL if self.floor == "empirical" else FORMAT_VERSION,
-            "mean_db": self.mean_db,
-            "std_db": self.std_db,
-            "floor": self.floor,
-            # rounded to 0.1 mdB: the file stays small (1025 values) and the floor unchanged in effect
-            "quantiles_db": None if self.quantiles_db is None else [round(float(v), 4) for v in self.quantiles_db],
-            "db_convention": DB_CONVENTION,
-            "chain": self.chain,
-            "config": None if self.config is None else self.config.to_dict(),
-            "map_shape": None if self.map_shape is None else list(self.map_shape),
-            "source": self.source,
-            "num_frames": self.num_frames,
-            "motion_fraction": self.motion,
-            "radaraug_version": radaraug.__version__,
-        }
+        return CalibrationRecord.from_cdr(self).to_dict()
 
     def save(self, path: str | os.PathLike) -> None:
-        """Write the calibration as a small JSON file, atomically.
+        """Write the calibration as a :class:`~radaraug.calibration.record_file.CalibrationRecord`, atomically.
 
-        Through :mod:`radaraug.io.atomic`: a full disk or a crash leaves the previous file, or none, never
-        a partial one.
+        A full disk or a crash leaves the previous file, or none, never a partial one.
 
         Raises:
             CalibrationError: the file cannot be written (the message names it).
         """
-        text = json.dumps(self.to_dict(), indent=2) + "\n"
-        try:
-            atomic_write_text(path, text)
-        except OSError as e:
-            raise CalibrationError(f"cannot write calibration file {path}: {e.strerror or e}") from None
+        from radaraug.calibration.record_file import CalibrationRecord  # the record is calibration's
+
+        CalibrationRecord.from_cdr(self).save(path)
 
     @classmethod
     def load(cls, path: str | os.PathLike, **kwargs: Any) -> CalibratedDR:
-        """Read a calibration JSON written by :meth:`save` (``kwargs`` go to the constructor).
+        """Read a calibration record (or an older CalibratedDR JSON); ``kwargs`` go to the constructor.
+
+        ``CalibratedDR.from_record(load_record(path), **kwargs)``
+        (:func:`radaraug.calibration.record_file.load_record`).
 
         Raises:
-            CalibrationError: missing, unreadable or malformed file, another ``format_version``,
-                or another ``db_convention`` (the message names the file).
+            CalibrationError: missing, unreadable or malformed file, another format or version, another
+                ``db_convention``, or a record without a floor (the message names the file).
+        """
+        from radaraug.calibration.record_file import load_record  # the one reader of calibration files
+
+        return cls.from_record(load_record(path), **kwargs)
+
+    @classmethod
+    def from_record(cls, record: CalibrationRecord, **kwargs: Any) -> CalibratedDR:
+        """The clamp of a :class:`~radaraug.calibration.record_file.CalibrationRecord`'s floor.
+
+        Nothing is fitted or read: the record's numbers go to the constructor, ``kwargs`` after them
+        (e.g. ``seed=``, or ``floor=`` to override the record's).
+
+        Raises:
+            CalibrationError: the record holds no floor, or a value the constructor refuses (the message
+                names the record's file).
         """
         try:
-            loaded = cls(**(_read_record(path) | kwargs))  # e.g. floor= overrides the file's
+            made = cls(**(record.cdr_arguments() | kwargs))
         except CalibrationError as e:
-            msg = str(e)
-            raise CalibrationError(msg if str(path) in msg else f"calibration file {path}: {msg}") from None
-        loaded.file = str(path)  # named by the errors raised when it is used
-        loaded.provenance.update({"from": "file", "path": str(path)})
-        return loaded
-
-
-def _read_record(path: str | os.PathLike) -> dict[str, Any]:
-    """The constructor arguments stored in a calibration JSON (checked)."""
-    data = load_json(path, error=CalibrationError, what="calibration file")
-    if not isinstance(data, dict) or data.get("format") != FORMAT:
-        raise CalibrationError(f"calibration file {path} is not a {FORMAT} record")
-    version = data.get("format_version", FORMAT_VERSION)
-    if version not in (FORMAT_VERSION, FORMAT_VERSION_EMPIRICAL) or isinstance(version, bool):
-        raise CalibrationError(
-            f"calibration file {path} has format_version {version!r}; this radaraug reads {FORMAT_VERSION} and "
-            f"{FORMAT_VERSION_EMPIRICAL}"
-        )
-    convention = data.get("db_convention", DB_CONVENTION)
-    if convention != DB_CONVENTION:
-        # (m_t, s_t) in another dB scale would clamp at a silently wrong level.
-        raise CalibrationError(
-            f"calibration file {path} was fitted in another dB convention ({convention!r}); "
-            f"radaraug's maps use {DB_CONVENTION!r}"
-        )
-    try:
-        mean, std = data["mean_db"], data["std_db"]
-        if isinstance(mean, bool) or isinstance(std, bool):
-            raise TypeError("mean_db/std_db must be numbers")
-        chain = data.get("chain")
-        if chain is not None and not (isinstance(chain, list) and all(isinstance(s, dict) for s in chain)):
-            raise TypeError("chain must be a list of step objects")
-        return {
-            "mean_db": float(mean),
-            "std_db": float(std),
-            "chain": chain,
-            "config": data.get("config"),
-            "map_shape": data.get("map_shape"),
-            "source": data.get("source"),
-            "num_frames": data.get("num_frames"),
-            "motion": data.get("motion_fraction"),
-            "floor": data.get("floor"),
-            "quantiles_db": data.get("quantiles_db"),
-        }
-    except KeyError as e:
-        raise CalibrationError(f"calibration file {path} lacks the key {e}") from None
-    except (TypeError, ValueError, OverflowError) as e:
-        raise CalibrationError(f"calibration file {path} is malformed: {str(e)[:200]}") from None
+            msg, file = str(e), record.file
+            raise CalibrationError(msg if not file or file in msg else f"calibration file {file}: {msg}") from None
+        made.file = record.file  # named by the errors raised when it is used
+        made.provenance.update({"from": "file", "path": record.file} if record.file else {"from": "record"})
+        return made
 
 
 def _valid_quantiles(values: Any) -> torch.Tensor:

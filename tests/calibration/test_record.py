@@ -6,7 +6,7 @@ import json
 
 import pytest
 
-import radaraug.sim.noise_fit as noise_fit_mod
+import radaraug.calibration.noise_fit as noise_fit_mod
 from radaraug.calibration.record import NOISE_FIT_FORMAT, NOISE_FIT_VERSION, cached_noise_fit, noise_fit_path
 from radaraug.config import RadarConfig
 

@@ -1,4 +1,4 @@
-"""calibrate(): empty-room recording -> CalibratedDR in one step; a room with a walker is refused."""
+"""calibrate(): empty-room recording -> calibration record in one step; a room with a walker is refused."""
 
 from __future__ import annotations
 
@@ -8,6 +8,7 @@ import warnings
 
 import pytest
 
+from radaraug.calibration.record_file import content_digest, load_record
 from radaraug.capture import VirtualSensor, calibrate
 from radaraug.cli import main
 from radaraug.errors import CalibrationError
@@ -26,6 +27,11 @@ def test_empty_corridor_gives_a_calibration_that_loads(tmp_path) -> None:
     cdr = CalibratedDR.load(tmp_path / "cdr.json")
     assert cdr.mean_db == run.cdr.mean_db and cdr.std_db == run.cdr.std_db and cdr.motion == 0.0
     assert cdr.num_frames == 32 and cdr.config == CFG
+    # One calibration record: the floor and the identity of the capture it was fitted on.
+    rec = load_record(tmp_path / "cdr.json")
+    assert rec.read_as == "radaraug-calibration 1" and rec.to_dict() == run.record.to_dict()
+    assert rec.capture == {"name": str(tmp_path / "empty.h5"), "sha256": content_digest(tmp_path / "empty.h5"),
+                           "frames": 32}
     # The same fit as fit-cdr on the same frames, made here from the sensor's stream directly.
     with warnings.catch_warnings():
         warnings.simplefilter("error")
@@ -39,7 +45,7 @@ def test_empty_corridor_gives_a_calibration_that_loads(tmp_path) -> None:
 def test_a_walker_is_refused_with_the_reason(tmp_path, capsys) -> None:
     cfg = tmp_path / "cfg.json"
     CFG.to_json(cfg)
-    rc = main(["calibrate", "--device", "virtual", "--scene", "corridor_one_walker", "--config", str(cfg),
+    rc = main(["calibrate", "--device", "virtual", "--scene", "corridor_one_walker", "--radar-config", str(cfg),
                "--seconds", "3.2", "--no-realtime", "--no-progress", "-o", str(tmp_path / "cdr.json")])
     err = capsys.readouterr().err
     assert rc == 3 and err.count("\n") == 1
@@ -55,7 +61,7 @@ def test_too_short_to_check_is_refused(tmp_path) -> None:
 def test_cli_calibrate(tmp_path, capsys) -> None:
     cfg = tmp_path / "cfg.json"
     CFG.to_json(cfg)
-    rc = main(["calibrate", "--device", "virtual", "--config", str(cfg), "--seconds", "2", "--no-realtime",
+    rc = main(["calibrate", "--device", "virtual", "--radar-config", str(cfg), "--seconds", "2", "--no-realtime",
                "--no-progress", "-o", str(tmp_path / "cdr.json"), "--json", "--floor", "empirical"])
     assert rc == 0
     out = json.loads(capsys.readouterr().out)

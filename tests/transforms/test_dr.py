@@ -78,18 +78,11 @@ def test_save_load_round_trip(tmp_path, cfg):
     )
     path = tmp_path / "cdr.json"
     cdr.save(path)
-    data = json.loads(path.read_text())
+    data = json.loads(path.read_text())  # a calibration record holding the floor
+    assert (data["format"], data["version"]) == ("radaraug-calibration", 1)
     assert data["db_convention"].startswith("dB = 20*log10(|X|)")
-    assert {
-        "mean_db",
-        "std_db",
-        "chain",
-        "config",
-        "map_shape",
-        "source",
-        "num_frames",
-        "radaraug_version",
-    } <= set(data)
+    assert {"config", "radaraug_version", "cdr"} <= set(data)
+    assert {"mean_db", "std_db", "chain", "map_shape", "source", "num_frames"} <= set(data["cdr"])
     back = CalibratedDR.load(path, seed=4)
     assert back.to_dict() == cdr.to_dict()
     assert back.config == cfg
@@ -101,7 +94,7 @@ def test_save_load_round_trip(tmp_path, cfg):
     "text, match",
     [
         ("{not json", "not valid JSON"),
-        ('{"format": "something else"}', "is not a radaraug.CalibratedDR"),
+        ('{"format": "something else"}', "is not a calibration record: format 'something else'"),
         ('{"format": "radaraug.CalibratedDR", "std_db": 1}', "lacks the key 'mean_db'"),
         ('{"format": "radaraug.CalibratedDR", "mean_db": "x", "std_db": 1}', "malformed"),
         (

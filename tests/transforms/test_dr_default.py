@@ -7,6 +7,7 @@ radaraug ships no default floor; ``CalibratedDR()`` without ``mean_db``/``std_db
 import pytest
 import torch
 
+from radaraug.calibration import floor_fit
 from radaraug.errors import CalibrationError, ConfigError
 from radaraug.transforms import CalibratedDR, RadarCompose, RangeDoppler, ToDecibels
 from radaraug.transforms import dr as dr_module
@@ -48,7 +49,7 @@ def test_the_constructor_never_fits(monkeypatch):
     def refuse(*args, **kwargs):
         raise AssertionError("CalibratedDR(...) fitted a capture")
 
-    monkeypatch.setattr(dr_module, "floor_statistics", refuse)
+    monkeypatch.setattr(floor_fit, "floor_statistics", refuse)  # the fit CalibratedDR.fit delegates to
     cdr = CalibratedDR(-100, 2, seed=0)
     assert (cdr.mean_db, cdr.std_db) == (-100.0, 2.0)
     assert cdr.provenance == {"from": "arguments", "source": None, "num_frames": None}
