@@ -19,7 +19,7 @@ $(STAMP): pyproject.toml
 	touch $(STAMP)
 
 demo: $(STAMP)
-	$(VENV)/bin/radaraug reproduce --quick -o demo_out
+	$(VENV)/bin/radaraug reproduce --quick --resume -o demo_out
 
 test: $(STAMP)
 	$(PY) -m pytest -q

@@ -3,24 +3,31 @@
 Sub-commands::
 
     radaraug info PATH [--json]                 config, shape, duration, labels, plausibility
-    radaraug fit-cdr PATH -o cdr.json [--floor F] [--json]  fit CalibratedDR on an empty-room capture
-    radaraug bench transforms [--json]          RD+CDR+clip+colormap chain vs NumPy
-    radaraug bench twin [--json]                digital-twin throughput vs real time and baselines
-    radaraug bench training [--json]            recipe training step vs a bare ResNet18 step
+    radaraug fit-cdr PATH -o cdr.json [--floor F] [--overwrite] [--json]  fit CalibratedDR on an empty-room capture
+    radaraug bench transforms [--accelerator A] [--json]   RD+CDR+clip+colormap chain vs NumPy
+    radaraug bench twin [--accelerator A] [--json]         digital-twin throughput vs real time and baselines
+    radaraug bench training [--accelerator A] [--json]     recipe training step vs a bare ResNet18 step
     radaraug bench diagnose [--json]            diagnose a 100-frame paper-config capture vs simulating it
     radaraug bench static-room [--json]         room trace: image method vs SBR ray counts, convergence
     radaraug bench micro-doppler --out PNG      a walker's micro-Doppler: one snapshot vs motion in the frame
     radaraug trace SCENE [--time T] [--json]    the propagation paths of one instant
-    radaraug simulate SCENE --frames N --seed S -o out.h5 [--shard i/n] [--profile P] [--json]
-    radaraug demo [-o DIR] [--json]             capture walkthrough: the bundled recording, a fitted CalibratedDR
+    radaraug simulate SCENE --frames N --seed S -o out.h5 [--shard i/n] [--profile P] [--accelerator A] [--resume|--overwrite] [--json]
+    radaraug demo [-o DIR] [--overwrite] [--json]   capture walkthrough: the bundled recording, a fitted CalibratedDR
     radaraug recipes [NAME] [--json]            list the installed training recipes, or print one
     radaraug train fit --config RECIPE [--key value ...]   LightningCLI recipes (RECIPE: a name or a YAML file)
-    radaraug reproduce [--quick] [--seeds N] [--calibration C --test PATH[:COUNT] ...] [--test-sets S] [--representation R] [--cdr-floor F] [--ablations A] [--test-dr] -o OUT [--json]
-    radaraug make-proxy -o DIR [--frames-per-count N] [--json]   the held-out proxy test set
-    radaraug diagnose CAPTURE [--scene SCENE] -o REPORT_DIR [--json]   twin vs capture, fitted twin profile
+    radaraug reproduce [--quick] [--seeds N] [--calibration C --test PATH[:COUNT] ...] [--test-sets S] [--representation R] [--cdr-floor F] [--ablations A] [--test-dr] [--accelerator A] -o OUT [--resume|--overwrite] [--json]
+    radaraug make-proxy -o DIR [--frames-per-count N] [--resume|--overwrite] [--json]   the held-out proxy test set
+    radaraug diagnose CAPTURE [--scene SCENE] -o REPORT_DIR [--overwrite] [--json]   twin vs capture, fitted twin profile
     radaraug devices [--json] [--udev-rule]     Infineon radar boards on USB
-    radaraug capture --device auto|virtual|SERIAL [--config C] --seconds S -o out.h5 [--label N] [--json]
-    radaraug calibrate --device auto|virtual|SERIAL -o cdr.json [--keep-recording PATH] [--json]
+    radaraug capture --device auto|virtual|SERIAL [--radar-config C] --seconds S -o out.h5 [--label N] [--overwrite] [--json]
+    radaraug calibrate --device auto|virtual|SERIAL -o cdr.json [--keep-recording PATH] [--overwrite] [--json]
+
+One vocabulary (docs/cli.md, "Conventions"): ``--accelerator {auto,cpu,cuda}`` picks the torch device
+(Lightning's word), ``--device`` only a radar board; ``--config`` is only a recipe YAML (``train``), a
+radar JSON is ``--radar-config``; a command refuses an output that exists unless ``--overwrite``
+(replace) or, where it can continue one, ``--resume``; ``--json`` names the main file written
+``output``. The old spellings (``--device`` for a torch device, ``--config`` for a radar JSON, the
+``path`` key) still work for one release and say so on stderr.
 
 ``radaraug train --config NAME`` takes a recipe installed with the package by its name
 (``occupancy_randomdr``; ``radaraug recipes`` lists them) wherever no file of that name exists;
@@ -88,6 +95,52 @@ def _stdout_for(args: argparse.Namespace) -> Iterator[None]:
         yield
 
 
+def _deprecated(command: str, old: str, new: str) -> None:
+    """Say on stderr (never in ``--json``'s stdout) that ``old`` is an alias kept for one release."""
+    print(f"DeprecationWarning: radaraug {command} {old} is deprecated and will be removed in the next release; "
+          f"use {new}", file=sys.stderr)
+
+
+def _exists(path: Path, folder: bool) -> bool:
+    """An earlier output at ``path``: a file (or link), or a folder that is not empty."""
+    if folder and path.is_dir():
+        return any(path.iterdir())
+    return path.exists() or path.is_symlink()
+
+
+def _check_output(args: argparse.Namespace, path: str | os.PathLike, *, folder: bool = False) -> bool:
+    """Refuse an existing output unless ``--overwrite`` (or ``--resume``, where the command has it).
+
+    Returns:
+        True when ``path`` exists and is to be replaced or continued (False: a new output).
+
+    Raises:
+        ConfigError: ``path`` exists and neither ``--overwrite`` nor ``--resume`` was given.
+    """
+    path = Path(path)
+    if not _exists(path, folder):
+        return False
+    if args.overwrite or getattr(args, "resume", False):
+        return True
+    what = "a folder that is not empty" if path.is_dir() else "exists"
+    how = "pass --overwrite to replace it"
+    if hasattr(args, "resume"):
+        how += f", or --resume to {args.resume_means}"
+    raise ConfigError(f"{path}: {what}; choose another output, or {how}")
+
+
+def _output_args(parser: argparse.ArgumentParser, *, resume: str | None = None) -> None:
+    """``--overwrite`` (and ``--resume`` with what it does), the one rule for existing outputs."""
+    if resume is None:
+        parser.add_argument("--overwrite", action="store_true", help="replace an existing output (else it is refused)")
+        return
+    group = parser.add_mutually_exclusive_group()
+    group.add_argument("--overwrite", action="store_true",
+                       help="replace an existing output (without --overwrite or --resume it is refused)")
+    group.add_argument("--resume", action="store_true", help=f"use an existing output: {resume}")
+    parser.set_defaults(resume_means=resume)
+
+
 def _cmd_info(args: argparse.Namespace) -> int:
     from radaraug.io import open_capture
     from radaraug.transforms.summary import summarize_capture
@@ -118,42 +171,72 @@ def _cmd_info(args: argparse.Namespace) -> int:
 
 
 def _cmd_fit_cdr(args: argparse.Namespace) -> int:
+    from radaraug.calibration.record import fit_record
     from radaraug.transforms import CalibratedDR
 
+    _check_output(args, args.output)
     with _stdout_for(args):
-        cdr = CalibratedDR.fit(args.path, max_frames=args.max_frames, progress=True, floor=args.floor)
-        cdr.save(args.output)
+        # the calibration record: the floor fit and the capture's identity (its content digest)
+        record = fit_record(args.path, max_frames=args.max_frames, progress=True, floor=args.floor)
+        record.save(args.output)
+        cdr = CalibratedDR.from_record(record)
     if args.json:
-        _print_json({"output": str(args.output), **cdr.to_dict()})
+        _print_json({"output": str(args.output), **record.to_dict()})
         return 0
     print(f"CalibratedDR: m_t = {cdr.mean_db:.2f} dB, s_t = {cdr.std_db:.2f} dB, {cdr.floor} floor -> {args.output}")
     return 0
 
 
-def _device_arg(text: str) -> str:
-    """Check a ``--device`` value: a torch device that exists on this machine."""
+ACCELERATORS = ("auto", "cpu", "cuda")
+"""``--accelerator`` values (Lightning's word; ``auto``: cuda where there is one, else cpu)."""
+
+
+def _device_arg(text: str, option: str = "--device") -> str:
+    """Check a torch device that must exist on this machine (``cpu``, ``cuda``, ``cuda:N``)."""
     import torch
 
     try:
         dev = torch.device(text)
     except (RuntimeError, TypeError):
-        raise ConfigError(f"--device {text!r}: not a torch device (use cpu, cuda or cuda:N)") from None
+        raise ConfigError(f"{option} {text!r}: not a torch device (use cpu, cuda or cuda:N)") from None
     if dev.type == "cuda" and not torch.cuda.is_available():
-        raise ConfigError(f"--device {text!r}: CUDA is not available on this machine")
+        raise ConfigError(f"{option} {text!r}: CUDA is not available on this machine")
     if dev.type == "cuda" and dev.index is not None and dev.index >= torch.cuda.device_count():
-        raise ConfigError(f"--device {text!r}: this machine has {torch.cuda.device_count()} CUDA device(s)")
+        raise ConfigError(f"{option} {text!r}: this machine has {torch.cuda.device_count()} CUDA device(s)")
     if dev.type not in ("cpu", "cuda"):
-        raise ConfigError(f"--device {text!r}: only cpu and cuda are supported")
+        raise ConfigError(f"{option} {text!r}: only cpu and cuda are supported")
     return text
 
 
+def _accelerator_args(parser: argparse.ArgumentParser, default: str) -> None:
+    """``--accelerator`` and its deprecated alias ``--device`` (a torch device, one more release)."""
+    parser.add_argument("--accelerator", choices=ACCELERATORS, default=default,
+                        help="torch device: cpu, cuda, or auto (cuda where there is one, else cpu)")
+    parser.add_argument("--device", dest="torch_device", default=None, metavar="DEVICE",
+                        help="deprecated alias of --accelerator (a torch device: cpu, cuda or cuda:N); "
+                        "removed in the next release")
+
+
+def _torch_device(args: argparse.Namespace) -> str:
+    """The torch device that ``--accelerator`` (or the deprecated ``--device``) picks, checked."""
+    if args.torch_device is not None:
+        device = _device_arg(args.torch_device)  # a bad value: its one error line, no warning before it
+        _deprecated(args.command, f"--device {device}", "--accelerator")
+        return device
+    if args.accelerator == "auto":
+        import torch
+
+        return "cuda" if torch.cuda.is_available() else "cpu"
+    return _device_arg(args.accelerator, "--accelerator")
+
+
 def _cmd_bench(args: argparse.Namespace) -> int:
-    _device_arg(args.device)
+    device = _torch_device(args)
     if args.what == "transforms":
         from radaraug.bench.transforms import run_transforms_benchmark
 
         result = run_transforms_benchmark(
-            batch=args.batch, repeats=args.repeats, device=args.device, out=args.out
+            batch=args.batch, repeats=args.repeats, device=device, out=args.out
         )
     elif args.what == "diagnose":
         from radaraug.bench.diagnose import run_diagnose_benchmark
@@ -170,11 +253,11 @@ def _cmd_bench(args: argparse.Namespace) -> int:
     elif args.what == "training":
         from radaraug.bench.training import run_training_benchmark
 
-        result = run_training_benchmark(batch=args.batch, steps=args.repeats, device=args.device, out=args.out)
+        result = run_training_benchmark(batch=args.batch, steps=args.repeats, device=device, out=args.out)
     else:
         from radaraug.bench.twin import run_twin_benchmark
 
-        result = run_twin_benchmark(blocks=args.blocks, workers=args.workers, device=args.device,
+        result = run_twin_benchmark(blocks=args.blocks, workers=args.workers, device=device,
                                     compiled=not args.no_compile, out=args.out)
     if args.json:
         print(json.dumps(result))
@@ -219,76 +302,62 @@ def _cmd_trace(args: argparse.Namespace) -> int:
 
 
 def _cmd_simulate(args: argparse.Namespace) -> int:
-    from radaraug.sim.offline import parse_shard, simulate_capture
+    from radaraug.sim.offline import parse_shard, shard_path, simulate_capture
 
     shard = parse_shard(args.shard)
     if args.frames < 1:
         raise ConfigError(f"--frames must be >= 1, got {args.frames}")
+    device = _torch_device(args)
+    out = shard_path(args.output, shard)
+    if _check_output(args, out) and args.overwrite:
+        from radaraug.io.hdf5_recovery import writer_is_alive
+
+        if writer_is_alive(out):  # never pull a file from under a live writer
+            raise ConfigError(f"{out}: another process has this file open; wait for it or choose another output")
+        out.unlink()
     with _stdout_for(args):
         result = simulate_capture(_scene_arg(args.scene), args.output, frames=args.frames, seed=args.seed,
-                                  shard=shard, device=_device_arg(args.device), profile=args.profile)
+                                  shard=shard, device=device, profile=args.profile)
     if args.json:
-        _print_json(result)
+        _print_json({"output": result["path"], **result})  # "path": deprecated duplicate, one release
         return 0
     print(f"{result['path']}: frames [{result['frames'][0]}, {result['frames'][1]}), "
           f"{result['simulated']} simulated, resumed from frame {result['resumed_from']}")
     return 0
 
 
-RECIPES_DIR = Path(__file__).resolve().parent / "recipes"
-"""The training recipes installed with the package (package data ``radaraug/recipes/*.yaml``)."""
+def _train_configs(value: str) -> list[str]:
+    """A ``--config`` value of ``radaraug train``: a file as given, else the installed recipe files it names."""
+    from radaraug import recipes
 
-
-def recipe_names() -> list[str]:
-    """The names of the installed recipes (``occupancy_rt`` ... ``counting_cdr_profile``)."""
-    return sorted(p.stem for p in RECIPES_DIR.glob("*.yaml"))
-
-
-def _recipe_stem(text: str) -> str | None:
-    """The recipe that ``text`` names (``NAME``, ``NAME.yaml``, ``recipes/NAME.yaml``), else None."""
-    from pathlib import PurePosixPath
-
-    p = PurePosixPath(text.replace("\\", "/"))
-    if p.suffix not in ("", ".yaml", ".yml") or p.parent.parts not in ((), ("recipes",)):
-        return None
-    return p.stem if p.stem in recipe_names() else None
-
-
-def recipe_path(name: str) -> Path:
-    """The installed recipe ``name`` (``occupancy_randomdr``, also with ``.yaml`` or ``recipes/``).
-
-    Raises:
-        ConfigError: no installed recipe has that name (the message lists them).
-    """
-    stem = _recipe_stem(name)
-    if stem is None:
-        raise ConfigError(f"no recipe named {name!r}; the installed recipes are {', '.join(recipe_names())}")
-    return RECIPES_DIR / f"{stem}.yaml"
-
-
-def _train_config(value: str) -> str:
-    """A ``--config`` value of ``radaraug train``: a file as given, else an installed recipe's path."""
     if os.path.lexists(value):
-        return value
-    stem = _recipe_stem(value)
-    if stem is not None:
-        return str(RECIPES_DIR / f"{stem}.yaml")
+        return [value]
+    if recipes.is_recipe_name(value):
+        return [str(p) for p in recipes.recipe_files(value)]
     if any(c in value for c in ":{\n"):  # inline YAML: LightningCLI reads (or refuses) it
-        return value
+        return [value]
     raise ConfigError(f"--config {value}: no such file, and not the name of an installed recipe "
-                      f"({', '.join(recipe_names())}; radaraug recipes lists them)")
+                      f"({', '.join(recipes.recipe_names())}; radaraug recipes lists them)")
 
 
 def resolve_train_args(argv: Sequence[str]) -> list[str]:
-    """``radaraug train`` arguments with every ``--config NAME`` / ``-c NAME`` of a recipe made a path."""
+    """``radaraug train`` arguments with every ``--config NAME`` / ``-c NAME`` of a recipe made its files.
+
+    A recipe name stands for its base + task + method files (:mod:`radaraug.recipes`), passed as that
+    many ``--config`` files, which LightningCLI merges in order.
+    """
     out: list[str] = []
     it = iter(argv)
     for arg in it:
         if arg in ("--config", "-c"):
             value = next(it, None)
-            out += [arg] if value is None else [arg, _train_config(value)]
+            if value is None:
+                out.append(arg)
+            else:
+                for path in _train_configs(value):
+                    out += [arg, path]
         elif arg.startswith("--config="):
-            out.append("--config=" + _train_config(arg.split("=", 1)[1]))
+            out += [f"--config={p}" for p in _train_configs(arg.split("=", 1)[1])]
         else:
             out.append(arg)
     return out
@@ -301,27 +370,28 @@ def _cmd_train(argv: Sequence[str]) -> int:
 
 
 def _cmd_recipes(args: argparse.Namespace) -> int:
-    import yaml
+    from radaraug import recipes
 
     if args.name is not None:
-        path = recipe_path(args.name)
-        text = path.read_text(encoding="utf-8")
+        files = [str(p) for p in recipes.recipe_files(args.name)]
+        text = recipes.recipe_text(args.name)
         if args.json:
-            _print_json({"name": path.stem, "path": str(path), "text": text})
+            _print_json({"name": args.name, "files": files, "text": text})
         else:
             print(text, end="")
         return 0
     rows = []
-    for name in recipe_names():
-        path = RECIPES_DIR / f"{name}.yaml"
-        data = yaml.safe_load(path.read_text(encoding="utf-8"))["data"]
-        rows.append({"name": name, "path": str(path), "task": data["task"], "method": data["method"]})
+    for name in recipes.recipe_names():
+        data = recipes.compose(name)["data"]
+        rows.append({"name": name, "files": [str(p) for p in recipes.recipe_files(name)], "task": data["task"],
+                     "method": data["method"]})
     if args.json:
-        _print_json({"folder": str(RECIPES_DIR), "recipes": rows})
+        _print_json({"folder": str(recipes.RECIPES_DIR), "recipes": rows, "ablations": recipes.ablations()})
         return 0
     for r in rows:
         print(f"{r['name']:24s} task {r['task']:10s} method {r['method']}")
-    print(f"installed in {RECIPES_DIR}; run one with `radaraug train fit --config NAME`, "
+    print(f"installed in {recipes.RECIPES_DIR} (base.yaml + task/ + method/; ablation/ overrides: "
+          f"{', '.join(recipes.ablations())}); run one with `radaraug train fit --config NAME [--config ablation/A]`, "
           "or edit a copy: `radaraug recipes NAME > my.yaml`", file=sys.stderr)
     return 0
 
@@ -329,6 +399,7 @@ def _cmd_recipes(args: argparse.Namespace) -> int:
 def _cmd_demo(args: argparse.Namespace) -> int:
     from radaraug.demo import run_demo
 
+    _check_output(args, args.output, folder=True)
     with _stdout_for(args):
         summary = run_demo(Path(args.output))
     if args.json:
@@ -336,10 +407,32 @@ def _cmd_demo(args: argparse.Namespace) -> int:
     return 0
 
 
+REPRODUCE_OUTPUTS = ("report.md", "report.json", "runs", "figures", "cache", "proxy", "independent", "standing")
+"""What ``reproduce`` writes in its output folder (``--overwrite`` removes these first, nothing else)."""
+
+
+def _remove(folder: Path, names: Sequence[str]) -> None:
+    """Remove the entries ``names`` of ``folder`` that exist: the ones a command owns there."""
+    import shutil
+
+    for name in names:
+        path = folder / name
+        if path.is_dir() and not path.is_symlink():
+            shutil.rmtree(path)
+        elif path.exists() or path.is_symlink():
+            path.unlink()
+
+
 def _cmd_reproduce(args: argparse.Namespace) -> int:
     from radaraug.training.reproduce import parse_test_arg, reproduce
 
     test = [parse_test_arg(t) for t in args.test] if args.test else None
+    accelerator = args.accelerator
+    if accelerator == "gpu":  # Lightning's other word for cuda, the old help's spelling
+        _deprecated("reproduce", "--accelerator gpu", "--accelerator cuda")
+        accelerator = "cuda"
+    if _check_output(args, args.output, folder=True) and args.overwrite:
+        _remove(Path(args.output), REPRODUCE_OUTPUTS)
     with _stdout_for(args):
         settings = None
         if args.representation is not None:
@@ -350,7 +443,7 @@ def _cmd_reproduce(args: argparse.Namespace) -> int:
             base = ReproduceSettings.quick() if args.quick else ReproduceSettings.full()
             settings = replace(base, representation=args.representation)
         report = reproduce(args.output, quick=args.quick, seeds=args.seeds, calibration=args.calibration,
-                           test=test, ablation=not args.no_ablation, accelerator=args.accelerator, progress=True,
+                           test=test, ablation=not args.no_ablation, accelerator=accelerator, progress=True,
                            cdr_floor=args.cdr_floor, test_dr=args.test_dr, settings=settings,
                            test_sets=None if args.test_sets is None else tuple(args.test_sets.split(",")),
                            ablations=None if args.ablations is None else [a for a in args.ablations.split(",") if a])
@@ -367,8 +460,10 @@ def _cmd_reproduce(args: argparse.Namespace) -> int:
 
 
 def _cmd_make_proxy(args: argparse.Namespace) -> int:
-    from radaraug.sim.proxy import make_proxy
+    from radaraug.sim.proxy import MANIFEST_NAME, make_proxy
 
+    if _check_output(args, args.output, folder=True) and args.overwrite:
+        _remove(Path(args.output), [MANIFEST_NAME])  # no manifest: the set is generated again, file by file
     with _stdout_for(args):
         proxy = make_proxy(args.output, frames_per_count=args.frames_per_count, seed=args.seed, progress=True)
     if args.json:
@@ -388,6 +483,7 @@ def _cmd_diagnose(args: argparse.Namespace) -> int:
     if args.max_frames < 4:
         raise ConfigError(f"--max-frames must be >= 4, got {args.max_frames}")
     settings = SearchSettings(seed=args.seed, use_signatures=not args.no_signatures)
+    _check_output(args, args.output, folder=True)
     with _stdout_for(args):
         diag = diagnose(args.capture, scene=_scene_arg(args.scene) if args.scene else None,
                         max_frames=args.max_frames, settings=settings, start_profile=args.profile, progress=True)
@@ -426,7 +522,11 @@ def _live_device(args: argparse.Namespace):
     from radaraug.capture import open_device
     from radaraug.config import RadarConfig
 
-    config = RadarConfig.from_json(args.config) if args.config else None
+    radar_config = args.radar_config
+    if args.deprecated_config is not None:
+        _deprecated(args.command, "--config", "--radar-config (--config is a recipe YAML, in train)")
+        radar_config = radar_config or args.deprecated_config
+    config = RadarConfig.from_json(radar_config) if radar_config else None
     # The virtual-only options default to None so that one given with a board is refused, not ignored.
     return open_device(args.device, config, scene=args.scene, profile=args.profile, seed=args.seed,
                        realtime=args.realtime)
@@ -458,7 +558,8 @@ def _cmd_devices(args: argparse.Namespace) -> int:
 
 def _print_record(result, as_json: bool) -> None:
     if as_json:
-        print(json.dumps(result.to_dict()))
+        record = result.to_dict()
+        print(json.dumps({"output": record["path"], **record}))  # "path": deprecated duplicate, one release
         return
     rate = result.frames / result.seconds if result.seconds > 0 else float("nan")
     where = result.path if result.path is not None else "no file (no frame recorded)"
@@ -469,6 +570,7 @@ def _print_record(result, as_json: bool) -> None:
 def _cmd_capture(args: argparse.Namespace) -> int:
     from radaraug.capture import record
 
+    _check_output(args, args.output)
     result = record(_live_device(args), args.output, seconds=args.seconds, label=args.label,
                     overwrite=args.overwrite, progress=not args.no_progress)
     _print_record(result, args.json)
@@ -482,6 +584,9 @@ def _cmd_capture(args: argparse.Namespace) -> int:
 def _cmd_calibrate(args: argparse.Namespace) -> int:
     from radaraug.capture import calibrate
 
+    _check_output(args, args.output)
+    if args.keep_recording is not None:
+        _check_output(args, args.keep_recording)
     run = calibrate(_live_device(args), args.output, seconds=args.seconds, keep_recording=args.keep_recording,
                     overwrite=args.overwrite, progress=not args.no_progress, floor=args.floor)
     cdr = run.cdr
@@ -534,6 +639,7 @@ def build_parser() -> argparse.ArgumentParser:
     fit.add_argument("--floor", choices=("normal", "empirical"), default="normal",
                      help="the floor distribution the calibration draws from: normal (the paper's CDR) or empirical "
                      "(the capture's measured one; its quantiles are recorded either way)")
+    _output_args(fit)
     fit.add_argument("--json", action="store_true", help="print the calibration record (with the output path) as one JSON object")
     fit.set_defaults(func=_cmd_fit_cdr)
 
@@ -545,7 +651,7 @@ def build_parser() -> argparse.ArgumentParser:
     bench.add_argument("--blocks", type=int, default=8, help="twin: 16-frame blocks per process")
     bench.add_argument("--workers", type=int, default=2, help="twin: DataLoader worker processes")
     bench.add_argument("--no-compile", action="store_true", help="twin: skip the torch.compile kernel")
-    bench.add_argument("--device", default="cpu", help="torch device (cpu, cuda)")
+    _accelerator_args(bench, "cpu")
     bench.add_argument("--json", action="store_true", help="print the figures as one JSON object")
     bench.add_argument("--out", default=None, help="also write the JSON figures to this file (micro-doppler: the PNG)")
     bench.add_argument("--figure", default=None, help="static-room: write the range-profile figure (PNG) here")
@@ -566,17 +672,19 @@ def build_parser() -> argparse.ArgumentParser:
     sim.add_argument("scene", help="scene file (.yaml/.json) or built-in scene name")
     sim.add_argument("--frames", type=int, required=True, help="frames to simulate")
     sim.add_argument("--seed", type=int, default=0, help="seed of the receiver noise")
-    sim.add_argument("-o", "--output", required=True, help="radaraug HDF5 capture to write (an interrupted one resumes)")
+    sim.add_argument("-o", "--output", required=True, help="radaraug HDF5 capture to write")
+    _output_args(sim, resume="continue it after its last complete frame (the same job only)")
     sim.add_argument("--shard", default=None, help="i/n: simulate the i-th of n pieces (0-based)")
-    sim.add_argument("--device", default="cpu", help="torch device (cpu, cuda)")
+    _accelerator_args(sim, "cpu")  # cpu: a file's frames depend on the device type (part of the job)
     sim.add_argument("--profile", default=None, help="twin profile JSON (from radaraug diagnose) for the receiver")
-    sim.add_argument("--json", action="store_true", help="print the result (path, frame range, frames simulated, resume point) as one JSON object")
+    sim.add_argument("--json", action="store_true", help="print the result (output, frame range, frames simulated, resume point) as one JSON object")
     sim.set_defaults(func=_cmd_simulate)
 
     demo_text = ("capture walkthrough: the bundled recording through the paper's chain, a fitted CalibratedDR, RD "
                  "images and a noise-floor histogram (the main job, `make demo`, is `radaraug reproduce --quick`)")
     demo = sub.add_parser("demo", help=demo_text, description=demo_text)
     demo.add_argument("-o", "--output", default="demo_out", help="output folder")
+    _output_args(demo)
     demo.add_argument("--json", action="store_true", help="print the demo's summary as one JSON object")
     demo.set_defaults(func=_cmd_demo)
 
@@ -618,13 +726,18 @@ def build_parser() -> argparse.ArgumentParser:
                      help="pass the test captures through each run's DR too (not the paper's protocol; "
                      "docs/training.md)")
     rep.add_argument("--no-ablation", action="store_true", help="skip the ablation variants")
-    rep.add_argument("--accelerator", default="auto", help="Lightning accelerator (auto, cpu, gpu)")
+    rep.add_argument("--accelerator", choices=(*ACCELERATORS, "gpu"), default="auto",
+                     help="Lightning accelerator: cpu, cuda, or auto (cuda where there is one); gpu: deprecated "
+                     "alias of cuda")
     rep.add_argument("-o", "--output", required=True, help="output folder (report, runs, figures, cache)")
+    _output_args(rep, resume="run again in it, reusing its generated test sets and simulated sets (cached by "
+                 "content, never stale)")
     rep.add_argument("--json", action="store_true", help="print the report (results per task and method, figures, settings) as one JSON object")
     rep.set_defaults(func=_cmd_reproduce)
 
     proxy = sub.add_parser("make-proxy", help="generate the held-out proxy test set (docs/proxy.md)")
     proxy.add_argument("-o", "--output", required=True, help="output folder")
+    _output_args(proxy, resume="reuse the set it holds when made with the same arguments (else generate it again)")
     proxy.add_argument("--frames-per-count", type=int, default=120, help="frames per people count (0, 1, 2)")
     proxy.add_argument("--seed", type=int, default=1234, help="seed of the walks and the noise")
     proxy.add_argument("--json", action="store_true", help="print the calibration and test capture paths as one JSON object")
@@ -635,6 +748,7 @@ def build_parser() -> argparse.ArgumentParser:
     dia.add_argument("--scene", default=None, help="the capture's scene (file or built-in name); "
                      "default: estimate the static scene from the capture")
     dia.add_argument("-o", "--output", required=True, help="report folder")
+    _output_args(dia)
     dia.add_argument("--max-frames", type=int, default=100, help="frames read (half fit, half held out)")
     dia.add_argument("--profile", default=None, help="start from this twin profile instead of the default chain")
     dia.add_argument("--seed", type=int, default=0, help="seed of the twin's noise")
@@ -654,9 +768,12 @@ def build_parser() -> argparse.ArgumentParser:
         parser.add_argument("--device", default="auto",
                             help="'auto' (first board, through Infineon's ifxradarsdk), 'virtual' (the digital "
                             "twin) or a board's serial")
-        parser.add_argument("--config", default=None,
+        parser.add_argument("--radar-config", default=None,
                             help="radar config JSON (radaraug or Infineon config.json; default: the scene's "
                             "for virtual, the BGT60TR13C preset for a board)")
+        parser.add_argument("--config", dest="deprecated_config", default=None,
+                            help="deprecated alias of --radar-config (--config is a recipe YAML, in train); "
+                            "removed in the next release")
         parser.add_argument("--seconds", type=float, default=seconds, help="how long to record")
         parser.add_argument("--scene", default=None, help="virtual: scene file or built-in scene name "
                             "(default: corridor)")
@@ -666,7 +783,7 @@ def build_parser() -> argparse.ArgumentParser:
         parser.add_argument("--realtime", action=argparse.BooleanOptionalAction, default=None,
                             help="virtual: hand frames out at the config's frame rate (--no-realtime: as fast "
                             "as the twin simulates; default: --realtime)")
-        parser.add_argument("--overwrite", action="store_true", help="replace an existing recording")
+        _output_args(parser)
         parser.add_argument("--no-progress", action="store_true", help="no progress bar")
         parser.add_argument("--json", action="store_true", help="print the result as one JSON object")
 

@@ -30,7 +30,7 @@ def test_info_json_on_bundled_recording(capsys) -> None:
     info = json.loads(capsys.readouterr().out)
     assert info["shape"] == [256, 3, 8, 64]
     assert info["duration_s"] == pytest.approx(256 * 0.07726884633302689, rel=1e-6)
-    # FIELD_NOTES: RX1 ~1580-1655, RX3 ~2065-2070 counts; slow-time noise ~1-1.6 counts.
+    # measured on a BGT60TR13C: RX1 ~1580-1655, RX3 ~2065-2070 counts; slow-time noise ~1-1.6 counts.
     assert 1550 < info["dc_offset_counts"][0] < 1660
     assert 2050 < info["dc_offset_counts"][2] < 2080
     assert all(0.8 < v < 2.0 for v in info["slow_time_noise_rms_counts"])
@@ -133,7 +133,8 @@ def test_diagnose_on_bundled_recording_writes_report_and_profile(tmp_path, capsy
     printed = json.loads(capsys.readouterr().out)
     report = json.loads((out / "report.json").read_text())
     assert printed["held_out_error_db"]["final"] == pytest.approx(report["error_after"]["overall"], abs=1e-4)  # report rounds
-    assert printed["mode"] == "estimated" and printed["profile"] == str(out / "profile.json")
+    assert printed["output"] == str(out) and printed["profile"] == str(out / "profile.json")
+    assert printed["mode"] == "estimated"
     assert report["mode"] == "estimated" and report["scene"] is None
     assert report["error_after"]["overall"] <= report["error_before"]["overall"] + 1e-9
     assert (out / "profile.json").is_file() and (out / "summary.md").is_file()
@@ -222,9 +223,10 @@ def test_fit_cdr_on_a_full_disk_keeps_the_old_calibration(tmp_path) -> None:
     out = tmp_path / "cdr.json"
     out.write_text("old calibration\n")
     # 200 bytes: the capture is read, but cdr.json (~1.4 kB) cannot be written.
-    run = _cli("fit-cdr", str(path), "-o", str(out), limit=200)
+    run = _cli("fit-cdr", str(path), "-o", str(out), "--overwrite", limit=200)
     assert run.returncode == 3, run.stderr[-2000:]
     last = run.stderr.strip().split("\r")[-1].splitlines()[-1]
+    assert "exists" not in last  # the write failed, not the existing-output check
     assert last.startswith("error: ") and "cdr.json" in last and "Traceback" not in run.stderr
     assert out.read_text() == "old calibration\n"  # not a 0-byte file
     assert sorted(p.name for p in tmp_path.iterdir()) == ["cdr.json", "room.h5"]  # no temporary left
@@ -262,7 +264,9 @@ def test_fit_cdr_and_simulate_json(tmp_path, capsys) -> None:
     assert rec == {"output": str(tmp_path / "cdr.json"), **json.loads((tmp_path / "cdr.json").read_text())}
     assert main(["simulate", "corridor", "--frames", "1", "-o", str(tmp_path / "s.h5"), "--json"]) == 0
     res = json.loads(capsys.readouterr().out)
-    assert res == {"path": str(tmp_path / "s.h5"), "frames": [0, 1], "resumed_from": 0, "simulated": 1}
+    # "path": the deprecated duplicate of "output", kept for one release
+    assert res == {"output": str(tmp_path / "s.h5"), "path": str(tmp_path / "s.h5"), "frames": [0, 1],
+                   "resumed_from": 0, "simulated": 1}
 
 
 def test_make_proxy_and_reproduce_json(tmp_path, capsys, monkeypatch) -> None:
@@ -300,35 +304,49 @@ def test_every_reporting_command_has_json() -> None:
 
 
 def test_recipes_are_installed_listed_printed_and_taken_by_name(tmp_path, capsys, monkeypatch) -> None:
-    from radaraug.cli import RECIPES_DIR, recipe_names, resolve_train_args
+    import yaml
 
-    names = recipe_names()
+    from radaraug import recipes
+    from radaraug.cli import resolve_train_args
+
+    names = recipes.recipe_names()
     assert len(names) == 8 and "occupancy_randomdr" in names
-    assert RECIPES_DIR.parent.name == "radaraug"  # package data, not a folder of the checkout
+    assert recipes.RECIPES_DIR.parent.name == "radaraug"  # package data, not a folder of the checkout
     assert main(["recipes"]) == 0
     listed = capsys.readouterr().out.splitlines()
     assert [line.split()[0] for line in listed] == names
     assert main(["recipes", "--json"]) == 0
-    rows = json.loads(capsys.readouterr().out)["recipes"]
+    listing = json.loads(capsys.readouterr().out)
+    rows = listing["recipes"]
     assert {(r["name"], r["task"], r["method"]) for r in rows} >= {("counting_cdr_profile", "counting", "cdr_profile")}
+    assert "rt_paper_image" in listing["ablations"]
     assert main(["recipes", "occupancy_rt"]) == 0  # a copy to edit: radaraug recipes NAME > my.yaml
-    assert capsys.readouterr().out == (RECIPES_DIR / "occupancy_rt.yaml").read_text()
+    assert yaml.safe_load(capsys.readouterr().out) == recipes.compose("occupancy_rt")
     assert main(["recipes", "occupancy_nope"]) == 3
     assert "no recipe named 'occupancy_nope'" in capsys.readouterr().err
 
     monkeypatch.chdir(tmp_path)  # no recipes/ folder here: names resolve to the installed recipes
-    installed = str(RECIPES_DIR / "counting_rt.yaml")
+    installed = [str(p) for p in recipes.recipe_files("counting_rt")]  # base + task + method
+    as_args = [a for p in installed for a in ("--config", p)]
     for given in ("counting_rt", "counting_rt.yaml", "recipes/counting_rt.yaml"):
         assert resolve_train_args(["fit", "--config", given, "--trainer.max_epochs", "1"]) == [
-            "fit", "--config", installed, "--trainer.max_epochs", "1"]
-    assert resolve_train_args(["fit", f"--config={'counting_rt'}"]) == ["fit", f"--config={installed}"]
+            "fit", *as_args, "--trainer.max_epochs", "1"]
+    assert resolve_train_args(["fit", f"--config={'counting_rt'}"]) == ["fit", *[f"--config={p}" for p in installed]]
+    assert resolve_train_args(["fit", "-c", "ablation/rt_paper_image"]) == [
+        "fit", "-c", str(recipes.RECIPES_DIR / "ablation" / "rt_paper_image.yaml")]
     (tmp_path / "counting_rt.yaml").write_text("seed_everything: 1\n")  # a file of that name wins
     assert resolve_train_args(["fit", "-c", "counting_rt.yaml"]) == ["fit", "-c", "counting_rt.yaml"]
     assert main(["train", "fit", "--config", "counting_typo"]) == 3
     assert "not the name of an installed recipe" in capsys.readouterr().err
     with pytest.raises(SystemExit) as e:
         main(["train", "fit", "--config", "occupancy_randomdr", "--print_config"])
-    assert e.value.code == 0 and "method: randomdr" in capsys.readouterr().out
+    printed = yaml.safe_load(capsys.readouterr().out)
+    assert e.value.code == 0 and printed["data"]["method"] == "randomdr" and printed["data"]["task"] == "occupancy"
+    # the merged recipe LightningCLI sees is the one `radaraug recipes NAME` prints (model.task is linked)
+    for section in ("data", "trainer"):
+        for key, value in recipes.compose("occupancy_randomdr")[section].items():
+            if key != "logger":
+                assert printed[section][key] == value, (section, key)
 
 
 def test_demo_help_does_not_call_it_the_main_job() -> None:

@@ -19,8 +19,8 @@ from typing import Any
 import numpy as np
 import torch
 
+from radaraug._files import atomic_write_json
 from radaraug.config import SPEED_OF_LIGHT, RadarConfig
-from radaraug.io.atomic import atomic_write_json
 from radaraug.sensor import FMCWReceiver, Paths
 from radaraug.sensor.effects import FrameDrift, SpurTone, insert_in_order
 

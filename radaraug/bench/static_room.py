@@ -22,7 +22,7 @@ from typing import Any
 
 import torch
 
-from radaraug.io.atomic import atomic_savefig, atomic_write_json
+from radaraug._files import atomic_savefig, atomic_write_json
 
 SBR_RAYS = (128, 256, 512, 1024)
 

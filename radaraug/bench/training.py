@@ -17,8 +17,8 @@ import torch
 import torch.nn.functional as F
 import torchvision
 
+from radaraug._files import atomic_write_json
 from radaraug.config import RadarConfig
-from radaraug.io.atomic import atomic_write_json
 from radaraug.training.pipeline import image_chain
 from radaraug.transforms import CalibratedDR
 

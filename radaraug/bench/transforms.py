@@ -15,9 +15,9 @@ from typing import Any
 import numpy as np
 import torch
 
+from radaraug._files import atomic_write_json
 from radaraug.bench.numpy_reference import numpy_rd_chain
 from radaraug.config import RadarConfig
-from radaraug.io.atomic import atomic_write_json
 
 
 def _best_time(fn, repeats: int) -> float:

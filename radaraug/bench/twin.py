@@ -26,7 +26,7 @@ from typing import TYPE_CHECKING, Any
 import torch
 from torch.utils.data import DataLoader, Dataset
 
-from radaraug.io.atomic import atomic_write_json
+from radaraug._files import atomic_write_json
 
 if TYPE_CHECKING:
     from radaraug.sim.twin import DigitalTwin

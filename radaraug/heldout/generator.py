@@ -42,14 +42,13 @@ from typing import Any
 
 import numpy as np
 
+from radaraug._files import atomic_write_json, load_json
 from radaraug.config import RadarConfig
 from radaraug.errors import ConfigError
 from radaraug.heldout import room as room_mod
 from radaraug.heldout import walkers
 from radaraug.heldout.receiver import _check_effects, generate
-from radaraug.io.atomic import atomic_write_json
 from radaraug.io.generated_set import GeneratedTestSet, check_count_arg, test_file_name
-from radaraug.safe_read import load_json
 
 GENERATOR_VERSION = 1
 """Bumped whenever the output changes; part of the reuse check."""
@@ -91,7 +90,7 @@ RECEIVER: dict[str, Any] = {
   levels scale the amplitude linearly with the level (assumed).
 * leakage: a few cm of on-board coupling, ~-41 dB re TX at the ADC's reference on RX2/RX3 and
   ~8 dB more on RX1 (closest to the TX), a strong near-DC return as on the real sensor.
-* ``dc_counts_12bit``: per-RX DC levels of a 12-bit ADC (another device than the field notes').
+* ``dc_counts_12bit``: per-RX DC levels of a 12-bit ADC (another device than the twin's default chain).
 * ``phase_noise_min_level_dB``: paths below -110 dB re TX carry no LO noise: the skirt lies
   > 50 dB under its path (see :data:`UNDECLARED_EFFECTS`), and such a path is at most ~25 dB
   above the RD noise floor, so it would change nothing but the run time.

@@ -1,7 +1,8 @@
 """Training from the twin and testing on captures: Lightning recipes, metrics, the reproduce report.
 
 * :class:`RadarDataModule` -- simulated train/val (cached once), captures for test, the paper's chain;
-* :class:`RDClassifier` -- ResNet18 (random init) occupancy / counting classifier;
+* :class:`RDClassifier` -- occupancy / counting classifier (default ResNet18, random init; any backbone:
+  :mod:`.models`);
 * :mod:`.metrics` -- balanced accuracy from the confusion matrix, JSON + PNG reports;
 * :mod:`.testset` -- the test set and calibration checked before training (:class:`TestSetWarning`);
 * ``radaraug train`` (LightningCLI, :mod:`.cli`) and ``radaraug reproduce`` (:mod:`.reproduce`).
@@ -15,6 +16,7 @@ from radaraug.training.metrics import (
     confusion_matrix,
     save_metrics,
 )
+from radaraug.training.models import TorchvisionClassifier
 from radaraug.training.module import RDClassifier
 from radaraug.training.pipeline import METHODS, TASKS, estimate_clip_range, image_chain, make_dr, rd_db_chain
 from radaraug.training.testset import CalibrationWarning, TestSetWarning, check_test_set
@@ -24,6 +26,7 @@ __all__ = [
     "METHODS",
     "RadarDataModule",
     "RDClassifier",
+    "TorchvisionClassifier",
     "rd_db_chain",
     "image_chain",
     "make_dr",

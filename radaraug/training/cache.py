@@ -28,8 +28,10 @@ import torch
 from torch.utils.data import DataLoader, Dataset, Subset
 
 from radaraug._cache_key import cache_key
+from radaraug._cache_key import content_digest as content_digest  # re-exported: its old home
 from radaraug._optional import lazy_import
 from radaraug.errors import CaptureError
+from radaraug.raytrace.cache import default_cache_dir as default_cache_dir  # one folder for every cache
 from radaraug.sim.dataset import SimulatedRadarDataset
 from radaraug.training.pipeline import rd_db_chain
 from radaraug.units import DB_CONVENTION
@@ -76,30 +78,6 @@ def cache_spec(dataset: SimulatedRadarDataset, indices: Sequence[int]) -> dict[s
         "chain": rd_db_chain().chain_spec(),
         "db_convention": DB_CONVENTION,
     }
-
-
-def content_digest(path: str | os.PathLike) -> str:
-    """SHA-256 of a file's bytes, or of a folder's files.
-
-    A folder (an Infineon recording folder) is hashed as its files' relative names and bytes, in sorted
-    order. The name and modification time of ``path`` do not count, so a copied or renamed capture keeps
-    its digest and an edited one does not.
-
-    Raises:
-        CaptureError: ``path`` does not exist.
-    """
-    root = Path(path)
-    if not root.exists():
-        raise CaptureError(f"{root}: does not exist")
-    files = [root] if root.is_file() else sorted(p for p in root.rglob("*") if p.is_file())
-    h = hashlib.sha256()
-    for f in files:
-        name = b"" if f == root else f.relative_to(root).as_posix().encode()
-        h.update(name + b"\0" + f.stat().st_size.to_bytes(8, "little"))  # unambiguous boundaries
-        with open(f, "rb") as fh:
-            for block in iter(lambda: fh.read(1 << 20), b""):
-                h.update(block)
-    return h.hexdigest()
 
 
 def build_map_cache(

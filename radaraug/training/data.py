@@ -32,13 +32,13 @@ import lightning as L
 import torch
 from torch.utils.data import ConcatDataset, DataLoader, Dataset, Subset
 
+from radaraug._files import atomic_write_json
 from radaraug.config import RadarConfig
 from radaraug.errors import CalibrationError, ConfigError
 from radaraug.io import RadarCaptureDataset, open_capture
-from radaraug.io.atomic import atomic_write_json
 from radaraug.sensor.profile import PROFILE_VERSION, TwinProfile
 from radaraug.sim.dataset import SimulatedRadarDataset
-from radaraug.training.cache import CachedMaps, build_map_caches, cache_key, content_digest
+from radaraug.training.cache import CachedMaps, build_map_caches, cache_key, content_digest, default_cache_dir
 from radaraug.training.pipeline import (
     CDR_FLOORS,
     CDR_METHODS,
@@ -52,7 +52,7 @@ from radaraug.training.pipeline import (
     make_dr,
     rd_db_chain,
 )
-from radaraug.training.testset import check_inputs
+from radaraug.training.testset import check_inputs, parse_test_entry
 from radaraug.transforms import CalibratedDR
 
 PROFILE_FIT_FORMAT = "radaraug-profile-fit"
@@ -97,9 +97,11 @@ class RadarDataModule(L.LightningDataModule):
         calibration: empty-room capture (or a CalibratedDR JSON) for ``cdr`` / ``cdr_profile``;
             its radar config is the one simulated. None with no ``test``: the held-out proxy's.
             ``cdr_profile`` fits its profile on it, so it must be a capture (or give ``profile``).
-        test: test captures, each ``{"path": ..., "count": N}`` (whole file has N people) or
-            ``{"path": ...}`` (per-frame ``count`` labels in the file). None: the held-out proxy.
-        proxy_dir: where the held-out proxy is generated (and reused) when it is needed.
+        test: test captures, each ``{"path": ..., "count": N}`` or ``"PATH:N"`` (whole file has N
+            people) or ``{"path": ...}`` / ``"PATH"`` (per-frame ``count`` labels in the file). None: the
+            held-out proxy.
+        proxy_dir: where the held-out proxy is generated (and reused) when it is needed (None:
+            ``cache_dir/proxy``).
         proxy_frames_per_count: test frames per people count of a generated proxy.
         train_items, val_items: simulated items for training and validation.
         sim_seed: seed of the simulated set (item ``i`` is a function of ``(sim_seed, i)``).
@@ -110,7 +112,7 @@ class RadarDataModule(L.LightningDataModule):
             capture, no scene, ``profile_max_frames`` frames, cached like ``cdr_profile``'s fit, is
             drawn more often and around its fitted values: :mod:`radaraug.calibration.priors`).
         calibrate_noise: fit the twin's noise figure so that its empty-room RD noise floor equals
-            the calibration capture's (:mod:`radaraug.sim.noise_fit`); twin randomization then
+            the calibration capture's (:mod:`radaraug.calibration.noise_fit`); twin randomization then
             draws around the fitted value. Applies to every method that simulates with the default
             receiver (they share one simulated set); skipped when the receiver is a profile.
         profile: a twin profile JSON (``radaraug diagnose CAPTURE -o DIR`` writes
@@ -120,7 +122,8 @@ class RadarDataModule(L.LightningDataModule):
         profile_max_frames: frames of the calibration capture that ``cdr_profile``'s diagnose reads.
         tracer_rays: trace the room with SBR at this many rays per axis (None: the twin's default
             image method, which has no ray count).
-        cache_dir: folder of the simulate-once cache.
+        cache_dir: folder of the simulate-once cache and the cached fits (None: the user's cache folder,
+            :func:`radaraug.raytrace.cache.default_cache_dir`, not the working folder).
         image_size: network input ``[H, W]`` (None: the RD map's own size).
         representation: the network input: ``"floor_relative"`` (default: each range row referenced to
             its Doppler median, zero Doppler blanked, the calibration's persistent lines excised:
@@ -148,6 +151,12 @@ class RadarDataModule(L.LightningDataModule):
             generator). Not the paper's protocol, which leaves real maps untouched: with a twin whose
             floor already sits at the capture's, CDR's clamp raises the training floor ~3 dB above
             the capture's, and a network learns the raised floor as "empty" (docs/training.md).
+        dr: the run's noise-floor randomization as an object (in a recipe a ``class_path``, e.g.
+            :class:`~radaraug.transforms.RandomDR` with its ranges, or any ``nn.Module`` acting on
+            per-RX dB maps ``(B, rx, range, doppler)``), used instead of the one ``method`` builds;
+            ``method`` still picks the twin (``cdr``: the quiet twin, ``cdr_profile``: the profile twin).
+            Under DDP every rank applies its own copy: one with a seeded generator draws the same
+            sequence on every rank (on other items). None: ``method``'s.
         dr_seed: seed of the DR draws (rank ``r`` uses ``dr_seed + 1000 r``).
         batch_size: training batch size.
         num_workers: DataLoader workers for training and test reads.
@@ -162,8 +171,8 @@ class RadarDataModule(L.LightningDataModule):
         method: str = "randomdr",
         scene: str = "corridor",
         calibration: str | None = None,
-        test: list[dict[str, Any]] | None = None,
-        proxy_dir: str = "radaraug_proxy",
+        test: list[dict[str, Any] | str] | None = None,
+        proxy_dir: str | None = None,
         proxy_frames_per_count: int = 120,
         train_items: int = 1200,
         val_items: int = 240,
@@ -174,7 +183,7 @@ class RadarDataModule(L.LightningDataModule):
         profile: str | None = None,
         profile_max_frames: int = 100,
         tracer_rays: int | None = None,
-        cache_dir: str = "radaraug_cache",
+        cache_dir: str | None = None,
         image_size: list[int] | None = None,
         representation: Literal["paper", "floor_relative"] = "floor_relative",
         excise_persistent_db: float | None = 3.0,
@@ -185,6 +194,7 @@ class RadarDataModule(L.LightningDataModule):
         cdr_floor: Literal["normal", "empirical", "matched"] | None = None,
         cdr_twin_noise_offset_db: float | None = None,
         test_dr: bool = False,
+        dr: torch.nn.Module | None = None,
         dr_seed: int = 0,
         batch_size: int = 32,
         num_workers: int = 0,
@@ -201,8 +211,14 @@ class RadarDataModule(L.LightningDataModule):
         if cdr_floor is not None and cdr_floor not in CDR_FLOORS:
             raise ConfigError(f"cdr_floor must be one of {CDR_FLOORS} or null, got {cdr_floor!r}")
         check_representation(representation)
-        self.save_hyperparameters()
+        # dr is an object: the saved config (LightningCLI's config.yaml) names it, hparams cannot
+        self.save_hyperparameters(ignore=["dr"])
+        cache = Path(cache_dir) if cache_dir is not None else default_cache_dir()
+        self.hparams["cache_dir"] = str(cache)
+        self.hparams["proxy_dir"] = str(proxy_dir) if proxy_dir is not None else str(cache / "proxy")
+        self.hparams["test"] = None if test is None else [parse_test_entry(e, f"test[{i}]") for i, e in enumerate(test)]
         self.task, self.method = task, method
+        self._given_dr = dr
         if clip_range is not None and len(clip_range) != 2:
             raise ConfigError(f"clip_range must be [vmin, vmax], got {clip_range!r}")
         self.clip: tuple[float, float] | None = None if clip_range is None else (clip_range[0], clip_range[1])
@@ -245,10 +261,7 @@ class RadarDataModule(L.LightningDataModule):
             # The proxy's empty room says nothing about the user's captures: no silent stand-in.
             raise ConfigError(f"method {self.method!r} needs data.calibration: an empty-room capture (or CalibratedDR "
                               "JSON) recorded like the test captures")
-        for i, entry in enumerate(test):
-            if not isinstance(entry, dict) or "path" not in entry:
-                raise ConfigError(f"test[{i}] must be a mapping with a 'path' (and optionally 'count'), got {entry!r}")
-        return calibration, list(test)
+        return calibration, [parse_test_entry(e, f"test[{i}]") for i, e in enumerate(test)]
 
     def prepare_data(self) -> None:
         """Generate the held-out proxy captures once per node when no test captures are given."""
@@ -278,7 +291,7 @@ class RadarDataModule(L.LightningDataModule):
             extra["profile"] = self.twin_profile
         elif self.noise_fit is not None or self._quiet_twin_db() is not None:
             from radaraug.sensor.defaults import ADC_NOISE_RMS_COUNTS, DEFAULT_NOISE_FIGURE_DB
-            from radaraug.sim.noise_fit import noise_fit_receiver
+            from radaraug.calibration.noise_fit import noise_fit_receiver
 
             fit = self.noise_fit or {"noise_figure_dB": DEFAULT_NOISE_FIGURE_DB, "adc_noise_rms_counts": ADC_NOISE_RMS_COUNTS}
             quiet = self._quiet_twin_db()
@@ -308,9 +321,10 @@ class RadarDataModule(L.LightningDataModule):
         source = calibration if calibration is not None and has_capture else test[0]["path"]
         with open_capture(source) as cap:
             self.config = config = cap.config
-        self.dr = dr = make_dr(self.method, calibration=calibration, seed=self.hparams["dr_seed"] + 1000 * rank,
-                               randomdr_mean_db=self.hparams["randomdr_mean_db"],
-                               randomdr_std_db=self.hparams["randomdr_std_db"], cdr_floor=self.hparams["cdr_floor"])
+        self.dr = dr = self._given_dr if self._given_dr is not None else make_dr(
+            self.method, calibration=calibration, seed=self.hparams["dr_seed"] + 1000 * rank,
+            randomdr_mean_db=self.hparams["randomdr_mean_db"], randomdr_std_db=self.hparams["randomdr_std_db"],
+            cdr_floor=self.hparams["cdr_floor"])
         if isinstance(dr, CalibratedDR):  # the CDR methods
             dr.check_config(config)
 
@@ -456,7 +470,7 @@ class RadarDataModule(L.LightningDataModule):
 
     def _matched_dr(self, dr: CalibratedDR, train: CachedMaps) -> CalibratedDR:
         """``dr`` with its floor quantiles matched to the twin's own empty-room floor (``cdr_floor="matched"``)."""
-        from radaraug.transforms.dr_fit import floor_values, matched_floor_quantiles
+        from radaraug.calibration.floor_fit import floor_values, matched_floor_quantiles
         from radaraug.transforms.dsp_spec import doppler_window_of
 
         empty = (train.counts == 0).nonzero().flatten()[:256].tolist()

@@ -14,7 +14,7 @@ from typing import TYPE_CHECKING, Any
 
 import torch
 
-from radaraug.io.atomic import atomic_savefig
+from radaraug._files import atomic_savefig
 from radaraug.training.metrics import balanced_accuracy
 from radaraug.transforms import CombineRx
 

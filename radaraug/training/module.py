@@ -1,16 +1,17 @@
-"""`RDClassifier`: torchvision ResNet18 (random init) on viridis RD images, as a LightningModule."""
+"""`RDClassifier`: a classifier of viridis RD images (default: torchvision ResNet18, random init), as a LightningModule."""
 
 from __future__ import annotations
 
 from collections import deque
+from collections.abc import Callable
 from typing import Any
 
 import lightning as L
 import torch
 import torch.nn.functional as F
-import torchvision
 
 from radaraug.training.metrics import balanced_accuracy, classification_report, confusion_matrix, save_metrics
+from radaraug.training.models import resnet18
 from radaraug.training.pipeline import check_task
 
 
@@ -34,6 +35,11 @@ class RDClassifier(L.LightningModule):
             counting run, eval-mode accuracy was 0.29-0.35 on both the training and the validation
             set while train-mode (batch statistics) accuracy was 0.99 / 0.94.
         out_dir: where test metrics are written.
+        backbone: the network, as a callable taking the class count (None: the paper's ResNet18,
+            :func:`radaraug.training.models.resnet18`); in a recipe a ``class_path`` such as
+            :class:`radaraug.training.TorchvisionClassifier` (docs/training.md, "Another network").
+            Not saved in the checkpoint's hyperparameters: give it again to
+            ``RDClassifier.load_from_checkpoint(path, backbone=...)`` (the recipe's saved config has it).
     """
 
     # The constructor's arguments are read from ``self.hparams`` (Lightning's record of them,
@@ -48,13 +54,14 @@ class RDClassifier(L.LightningModule):
         balance_classes: bool = True,
         precise_bn_batches: int = 8,
         out_dir: str | None = None,
+        backbone: Callable[[int], torch.nn.Module] | None = None,
     ) -> None:
         super().__init__()
-        self.save_hyperparameters()
+        # the backbone is an object (a class or partial): the saved config names it, hparams cannot
+        self.save_hyperparameters(ignore=["backbone"])
         self.class_names = check_task(task)
         k = len(self.class_names)
-        # weights=None: torchvision refuses pretrained weights with num_classes != 1000.
-        self.net = torchvision.models.resnet18(weights=None, num_classes=k)
+        self.net = (backbone or resnet18)(k)
         self.register_buffer("class_weights", torch.ones(k), persistent=False)
         self._cm: dict[str, torch.Tensor] = {}
         self._recent: deque[torch.Tensor] = deque(maxlen=max(int(precise_bn_batches), 1))

@@ -29,46 +29,62 @@ from typing import Any
 
 import torch
 
+from radaraug import recipes
+from radaraug._files import atomic_write_json, atomic_write_text
 from radaraug._optional import lazy_import
 from radaraug.errors import ConfigError
-from radaraug.io.atomic import atomic_write_json, atomic_write_text
 from radaraug.training.pipeline import CDR_METHODS, METHODS, PROFILE_METHODS, TASKS, is_calibration_json
 from radaraug.units import DB_CONVENTION
+
+#: A :class:`ReproduceSettings` field left to the recipes (``radaraug.recipes``): the run takes the value
+#: of its recipe (base + task + method [+ ablation]).
+RECIPE = "recipe"
+#: The settings fields that override a recipe key when set: field -> (section, key).
+RECIPE_KEYS = {"randomization": ("data", "randomization"), "representation": ("data", "representation"),
+               "excise_persistent_db": ("data", "excise_persistent_db"),
+               "calibrate_noise": ("data", "calibrate_noise"),
+               "cdr_twin_noise_offset_db": ("data", "cdr_twin_noise_offset_db"),
+               "cdr_floor": ("data", "cdr_floor"), "lr": ("model", "lr")}
 
 
 @dataclass(frozen=True)
 class ReproduceSettings:
-    """Sizes of one reproduce run (``quick()`` for a 2-core CPU in minutes, ``full()`` for a GPU)."""
+    """Sizes of one reproduce run (``quick()`` for a 2-core CPU in minutes, ``full()`` for a GPU).
+
+    The hyperparameters of the runs come from the recipes (:mod:`radaraug.recipes`): the fields of
+    :data:`RECIPE_KEYS` are ``"recipe"`` (take the recipe's value) unless set to override it for
+    every run of the experiment.
+    """
 
     train_items: int = 6000
     val_items: int = 600
     epochs: int = 15
     image_size: tuple[int, int] = (128, 64)
     batch_size: int = 64
-    lr: float = 1e-3
+    lr: float | str = RECIPE
     proxy_frames_per_count: int = 300
     tracer_rays: int | None = None
     num_workers: int = 2
     sim_workers: int = 2
     #: twin randomization of the main runs: True (defaults), or a dict of TwinRandomization fields
-    randomization: bool | dict[str, Any] = True
+    randomization: bool | dict[str, Any] | str = RECIPE
     #: calibration-capture frames that ``cdr_profile``'s diagnose reads (fits on half, scores on half)
     profile_max_frames: int = 100
     #: network input of the main runs (``RadarDataModule.representation``)
-    representation: str = "floor_relative"
+    representation: str = RECIPE
     #: methods run unless ``reproduce(methods=...)`` names them
     methods: tuple[str, ...] = METHODS
     #: generated test sets used when no test captures are given (:data:`DEFAULT_TEST_SETS`)
     test_sets: tuple[str, ...] = ("proxy", "independent")
     #: excise the calibration capture's persistent lines from floor-relative maps (``RadarDataModule.excise_persistent_db``)
-    excise_persistent_db: float | None = 3.0
+    excise_persistent_db: float | None | str = RECIPE
     #: fit the twin's noise figure to each calibration capture (``RadarDataModule.calibrate_noise``)
-    calibrate_noise: bool = False
+    calibrate_noise: bool | str = RECIPE
     #: CDR's twin noise below the others' (``RadarDataModule.cdr_twin_noise_offset_db``)
-    cdr_twin_noise_offset_db: float | None = -15.0
+    cdr_twin_noise_offset_db: float | None | str = RECIPE
     #: CalibratedDR floor of the CDR methods (``RadarDataModule.cdr_floor``)
-    cdr_floor: str | None = "matched"
-    #: ablation variants (names of :data:`ABLATIONS`) run unless ``reproduce(ablation=False)``
+    cdr_floor: str | None = RECIPE
+    #: ablation variants (``radaraug/recipes/ablation/NAME.yaml``) run unless ``reproduce(ablation=False)``
     ablations: tuple[str, ...] = ("rt_paper_image", "randomdr_paper_image", "cdr_paper_image", "cdr_normal_floor",
                                   "cdr_empirical_floor", "rt_no_twin_randomization", "rt_no_noise_fit")
 
@@ -90,11 +106,10 @@ class ReproduceSettings:
 
 
 def parse_test_arg(text: str) -> dict[str, Any]:
-    """``PATH`` or ``PATH:COUNT`` -> a test entry (``count`` None: per-frame labels in the file)."""
-    path, sep, count = text.rpartition(":")
-    if sep and count.isdigit() and path:
-        return {"path": path, "count": int(count)}
-    return {"path": text}
+    """``PATH`` or ``PATH:COUNT`` -> a test entry (:func:`radaraug.training.testset.parse_test_entry`)."""
+    from radaraug.training.testset import parse_test_entry
+
+    return parse_test_entry(text, "--test")
 
 
 def _summary(values: Sequence[float]) -> dict[str, Any]:
@@ -111,7 +126,7 @@ def _cdr_floor_of(keep: dict[tuple[str, str, str], tuple[Any, Any]], settings: R
         return None
     floors = {dm.hparams["cdr_floor"] or dm.dr.floor for (_, _, n), (_, dm) in keep.items()
               if n in CDR_METHODS and isinstance(dm.dr, CalibratedDR)}
-    return floors.pop() if len(floors) == 1 else settings.cdr_floor
+    return floors.pop() if len(floors) == 1 else effective_settings(settings)["cdr_floor"]
 
 
 #: The held-out test sets ``reproduce`` generates when no test captures are given: the twin in
@@ -124,25 +139,40 @@ GENERATED_TEST_SETS = (*DEFAULT_TEST_SETS, "standing")
 #: Seed and standing probability of the ``standing`` set.
 STANDING_SEED, STANDING_PROBABILITY = 2025, 0.3
 
-#: Ablation variants: name -> (method, RadarDataModule overrides). Each changes one thing of the
-#: main runs (whose settings are in ``ReproduceSettings``), so its row of the report measures it.
-ABLATIONS: dict[str, tuple[str, dict[str, Any]]] = {
-    "rt_paper_image": ("rt", {"representation": "paper"}),
-    "randomdr_paper_image": ("randomdr", {"representation": "paper"}),
-    "cdr_paper_image": ("cdr", {"representation": "paper"}),
-    "cdr_normal_floor": ("cdr", {"cdr_floor": "normal"}),
-    "cdr_on_the_noisy_twin": ("cdr", {"cdr_twin_noise_offset_db": None}),
-    "cdr_empirical_floor": ("cdr", {"cdr_floor": "empirical"}),
-    "rt_no_twin_randomization": ("rt", {"randomization": False}),
-    "rt_no_effect_catalog": ("rt", {"randomization": {"effects_probability": 0.0}}),
-    "rt_narrow_people": ("rt", {"randomization": {"rcs_scale_dB": [-3.0, 3.0]}}),
-    "rt_calibration_priors": ("rt", {"catalog_priors": "calibration"}),
-    "rt_standing_people": ("rt", {"randomization": {"standing_probability": 0.3}}),
-    "rt_standing_paper_image": ("rt", {"randomization": {"standing_probability": 0.3}, "representation": "paper"}),
-    "cdr_no_twin_randomization": ("cdr", {"randomization": False}),
-    "rt_noise_fit": ("rt", {"calibrate_noise": True}),
-    "rt_no_excision": ("rt", {"excise_persistent_db": None}),
-}
+def _ablation(name: str) -> tuple[str, dict[str, Any]]:
+    data = dict(recipes.compose(f"ablation/{name}").get("data", {}))
+    return recipes.ablation_method(name), {k: v for k, v in data.items() if k != "method"}
+
+
+#: Ablation variants: name -> (the method whose run it changes, the data keys it changes). Each is a
+#: recipe override (``radaraug/recipes/ablation/NAME.yaml``) that changes one thing of the method's
+#: run, so its row of the report measures it.
+ABLATIONS: dict[str, tuple[str, dict[str, Any]]] = {name: _ablation(name) for name in recipes.ablations()}
+
+
+def run_recipe(task: str, method: str, settings: ReproduceSettings, ablation: str | None = None) -> dict[str, Any]:
+    """The recipe of one run: base + task + method (+ the ablation), with ``settings``' overrides."""
+    cfg = recipes.compose(f"{task}_{method}")
+    for field, (section, key) in RECIPE_KEYS.items():
+        value = getattr(settings, field)
+        if not (isinstance(value, str) and value == RECIPE):
+            cfg.setdefault(section, {})[key] = value
+    if ablation is not None:  # last: an ablation's one change wins over the experiment's settings
+        cfg = recipes.merge(cfg, recipes.compose(f"ablation/{ablation}"))
+    return cfg
+
+
+def effective_settings(settings: ReproduceSettings) -> dict[str, Any]:
+    """``settings`` as a mapping with every ``"recipe"`` field replaced by the recipes' value.
+
+    The data keys of the CDR methods (``cdr_floor``, ``cdr_twin_noise_offset_db``) are read from the
+    ``cdr`` method's recipe; the others from the base recipe.
+    """
+    cfg = run_recipe("occupancy", "cdr", settings)
+    out = asdict(settings)
+    for field, (section, key) in RECIPE_KEYS.items():
+        out[field] = cfg.get(section, {}).get(key)
+    return out
 
 
 @dataclass
@@ -222,30 +252,33 @@ def _scores(model: Any, dm: Any, loader: Any, *, with_dr: bool, limit: int = 512
 
 
 def _fit(task: str, method: str, seed: int, *, settings: ReproduceSettings, data_kw: dict[str, Any],
-         run_dir: Path, accelerator: str, progress: bool) -> tuple[Any, Any, Any, float, float | None]:
+         model_kw: dict[str, Any], run_dir: Path, accelerator: str,
+         progress: bool) -> tuple[Any, Any, Any, float, float | None]:
+    """Train one run: ``data_kw`` / ``model_kw`` are its recipe's sections with this experiment's inputs."""
     import lightning as L
 
     from radaraug.training.data import RadarDataModule
     from radaraug.training.module import RDClassifier
 
     L.seed_everything(seed, workers=True, verbose=False)
-    dm = RadarDataModule(task=task, method=method, dr_seed=seed, out_dir=str(run_dir),
-                         train_items=settings.train_items, val_items=settings.val_items,
-                         image_size=list(settings.image_size), batch_size=settings.batch_size,
-                         num_workers=settings.num_workers, sim_workers=settings.sim_workers,
-                         tracer_rays=settings.tracer_rays, proxy_frames_per_count=settings.proxy_frames_per_count,
-                         profile_max_frames=settings.profile_max_frames, progress=progress,
-                         **({"randomization": settings.randomization, "representation": settings.representation,
-                             "calibrate_noise": settings.calibrate_noise, "cdr_floor": settings.cdr_floor,
-                             "excise_persistent_db": settings.excise_persistent_db,
-                             "cdr_twin_noise_offset_db": settings.cdr_twin_noise_offset_db} | data_kw))
-    model = RDClassifier(task=task, lr=settings.lr, out_dir=str(run_dir))
+    dm = RadarDataModule(**(data_kw | {"task": task, "method": method, "dr_seed": seed, "out_dir": str(run_dir),
+                                       "progress": progress}))
+    model = RDClassifier(**(model_kw | {"task": task, "out_dir": str(run_dir)}))
     trainer = _trainer(settings, accelerator, run_dir)
     t0 = time.perf_counter()
     with _quiet():
         trainer.fit(model, datamodule=dm)
     val_bacc = trainer.callback_metrics.get("val/balanced_accuracy")  # test() resets the metrics
     return model, dm, trainer, time.perf_counter() - t0, None if val_bacc is None else float(val_bacc)
+
+
+def _size_kw(settings: ReproduceSettings) -> dict[str, Any]:
+    """The data keys ``reproduce`` sets from its settings (sizes and workers), whatever the recipe says."""
+    return {"train_items": settings.train_items, "val_items": settings.val_items,
+            "image_size": list(settings.image_size), "batch_size": settings.batch_size,
+            "num_workers": settings.num_workers, "sim_workers": settings.sim_workers,
+            "tracer_rays": settings.tracer_rays, "proxy_frames_per_count": settings.proxy_frames_per_count,
+            "profile_max_frames": settings.profile_max_frames}
 
 
 def _trainer(settings: ReproduceSettings, accelerator: str, run_dir: Path) -> Any:
@@ -360,8 +393,9 @@ def reproduce(
         for task in tasks:
             check_test_set(ts.tests, task)
 
-    variants: list[tuple[str, str, dict[str, Any]]] = [(m, m, {}) for m in methods]
-    variants += [(n, *ABLATIONS[n]) for n in names if ABLATIONS[n][0] in methods]
+    # (row name, method, ablation override or None): every run is its recipe (+ the ablation)
+    variants: list[tuple[str, str, str | None]] = [(m, m, None) for m in methods]
+    variants += [(n, ABLATIONS[n][0], n) for n in names if ABLATIONS[n][0] in methods]
     results: dict[str, dict[str, dict[str, Any]]] = {ts.name: {} for ts in sets}
     runs: list[dict[str, Any]] = []
     cms: dict[str, dict[str, dict[str, torch.Tensor]]] = {ts.name: {} for ts in sets}
@@ -379,13 +413,12 @@ def reproduce(
                    "proxy_dir": str(out / "proxy"), "test_dr": test_dr}
         for task in tasks:
             results[ts.name][task], cms[ts.name][task], scores[ts.name][task] = {}, {}, {}
-            for name, method, extra in variants:
+            for name, method, ablation_name in variants:
                 per_seed: list[float] = []
                 cm_sum: torch.Tensor | None = None
-                kw = {**data_kw, **extra}
-                is_shared = _shared_across_test_sets(
-                    method, {"calibrate_noise": settings.calibrate_noise, "representation": settings.representation,
-                             "excise_persistent_db": settings.excise_persistent_db, **extra})
+                recipe = run_recipe(task, method, settings, ablation_name)
+                kw = recipe.get("data", {}) | _size_kw(settings) | data_kw
+                is_shared = _shared_across_test_sets(method, kw)
                 for seed in range(seeds):
                     run_dir = out / "runs" / ts.name / f"{task}_{name}_seed{seed}"
                     bar.set_postfix_str(f"{ts.name} {task} {name} seed {seed}")
@@ -397,7 +430,7 @@ def reproduce(
                         trained_on = trained_dm.hparams["calibration"]
                     else:
                         model, dm, trainer, fit_s, val_bacc = _fit(task, method, seed, settings=settings, data_kw=kw,
-                                                                   run_dir=run_dir, accelerator=accelerator,
+                                                                   model_kw=recipe.get("model", {}), run_dir=run_dir, accelerator=accelerator,
                                                                    progress=progress)
                         trained_on = None
                         if is_shared:
@@ -451,7 +484,7 @@ def reproduce(
                                 "results": results[ts.name], "empty_room_median_db": floors[ts.name],
                                 "ablation_table": _ablation_table(results[ts.name])} for ts in sets},
         "runs": runs,
-        "settings": asdict(settings) | {"seeds": seeds, "quick": quick, "mode": mode, "tasks": list(tasks), "methods": list(methods),
+        "settings": effective_settings(settings) | {"seeds": seeds, "quick": quick, "mode": mode, "tasks": list(tasks), "methods": list(methods),
                                         "ablations": names, "cdr_floor": _cdr_floor_of(keep, settings),
                                         "test_dr": test_dr, "test_sets": [ts.name for ts in sets]},
         "test": primary.tests,

@@ -26,6 +26,7 @@ from __future__ import annotations
 import math
 import warnings
 from collections.abc import Mapping, Sequence
+from os import PathLike
 from typing import Any
 
 import numpy as np
@@ -46,6 +47,25 @@ class TestSetWarning(UserWarning):
 
 class CalibrationWarning(UserWarning):
     """The calibration cannot serve a step the run asked for (the run goes on without that step)."""
+
+
+def parse_test_entry(entry: Any, where: str = "test") -> dict[str, Any]:
+    """One test entry as ``{"path", "count"?}``: from that mapping or the string ``PATH[:COUNT]``.
+
+    ``count`` absent: the file carries per-frame ``count`` labels. The string form is the one
+    ``radaraug reproduce --test`` takes, so the recipes' ``data.test`` and the command line spell a
+    test capture the same way.
+    """
+    if isinstance(entry, (str, PathLike)):
+        text = str(entry)
+        path, sep, count = text.rpartition(":")
+        if sep and count.isdigit() and path:
+            return {"path": path, "count": int(count)}
+        return {"path": text}
+    if not isinstance(entry, Mapping) or "path" not in entry:
+        raise ConfigError(f"{where} must be PATH, PATH:COUNT or a mapping with a 'path' (and optionally 'count'), "
+                          f"got {entry!r}")
+    return dict(entry)
 
 
 def _whole_count(value: Any, where: str) -> int:

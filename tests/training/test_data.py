@@ -41,10 +41,12 @@ def test_config_mismatch_and_bad_entries_are_clear_errors(tmp_path):
                          cache_dir=str(tmp_path / "c"), **SMALL)
     with pytest.raises(ConfigError, match="walk.h5.*another radar config"):
         dm.setup("fit")
-    bad = RadarDataModule(task="occupancy", method="rt", calibration=str(cal), test=["walk.h5"],
-                          cache_dir=str(tmp_path / "c"), **SMALL)
-    with pytest.raises(ConfigError, match="test\\[0\\]"):
-        bad.setup("fit")
+    with pytest.raises(ConfigError, match="test\\[0\\] must be PATH, PATH:COUNT or a mapping"):
+        RadarDataModule(task="occupancy", method="rt", calibration=str(cal), test=[{"count": 1}],
+                        cache_dir=str(tmp_path / "c"), **SMALL)
+    # the command line's spelling is the recipes' too: PATH:COUNT, PATH (per-frame labels)
+    spelt = RadarDataModule(test=[f"{walk}:1", str(walk)], cache_dir=str(tmp_path / "c"))
+    assert spelt.hparams["test"] == [{"path": str(walk), "count": 1}, {"path": str(walk)}]
     with pytest.raises(ConfigError, match="task"):
         RadarDataModule(task="segmentation")
     with pytest.raises(ConfigError, match="needs data.calibration"):
@@ -75,6 +77,22 @@ def test_dr_only_on_simulated_splits(tmp_path, captures):
     lifted, _ = dm.on_after_batch_transfer((x, torch.zeros(2)), 0)
     assert bool((lifted > -150).all())
     assert RadarDataModule().hparams["test_dr"] is False
+    # a DR given as an object is the run's DR (the method still picks the twin)
+    from radaraug.transforms import RandomDR
+
+    mine = RandomDR(mean_db=(-90.0, -80.0), seed=5)
+    dm2 = RadarDataModule(task="occupancy", method="rt", calibration=str(cal), dr=mine,
+                          test=[f"{tests[0][0]}:0"], cache_dir=str(tmp_path / "c"), **SMALL)
+    dm2.setup("fit")
+    assert dm2.dr is mine and "dr" not in dm2.hparams
+
+
+def test_caches_default_to_the_user_cache_folder_not_the_working_folder(tmp_path, monkeypatch):
+    monkeypatch.setenv("RADARAUG_CACHE_DIR", str(tmp_path / "user_cache"))
+    dm = RadarDataModule()
+    assert dm.hparams["cache_dir"] == str(tmp_path / "user_cache")
+    assert dm.hparams["proxy_dir"] == str(tmp_path / "user_cache" / "proxy")
+    assert RadarDataModule(cache_dir="c", proxy_dir="p").hparams["proxy_dir"] == "p"
 
 
 def test_floor_relative_excises_the_calibrations_lines_and_cdr_gets_a_quiet_twin(tmp_path, captures):

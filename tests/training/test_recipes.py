@@ -13,10 +13,10 @@ import numpy as np
 import pytest
 import yaml
 
-from radaraug.cli import RECIPES_DIR, main, recipe_names
-from radaraug.training.pipeline import METHODS, TASKS
+from radaraug import recipes
+from radaraug.cli import main
 
-RECIPES = sorted(RECIPES_DIR.glob("*.yaml"))
+RECIPES = recipes.recipe_names()
 
 
 def _small_args(tmp: Path, captures, randomization: str = "false") -> list[str]:
@@ -29,24 +29,14 @@ def _small_args(tmp: Path, captures, randomization: str = "false") -> list[str]:
             "--trainer.enable_progress_bar", "false", "--trainer.enable_model_summary", "false"]
 
 
-def test_one_recipe_per_task_and_method():
-    names = {p.stem for p in RECIPES}
-    assert names == {f"{t}_{m}" for t in TASKS for m in METHODS} == set(recipe_names())
-    for p in RECIPES:
-        cfg = yaml.safe_load(p.read_text())
-        task, method = p.stem.split("_", 1)
-        assert cfg["data"]["task"] == task and cfg["data"]["method"] == method
-        assert cfg["data"]["randomization"] is True  # twin randomization on by default
-
-
 # the recipes name their logger (Lightning's default one warns that TensorBoard is missing), and
 # `radaraug train` does not make LightningCLI warn about args given beside sys.argv
 @pytest.mark.filterwarnings("error:Starting from v1.9.0")
 @pytest.mark.filterwarnings("error:LightningCLI's args parameter")
-@pytest.mark.parametrize("recipe", RECIPES, ids=lambda p: p.stem)
+@pytest.mark.parametrize("recipe", RECIPES)
 def test_recipe_fast_dev_run(recipe, tmp_path, captures, monkeypatch):
     monkeypatch.chdir(tmp_path)
-    rc = main(["train", "fit", "--config", recipe.stem, "--trainer.fast_dev_run", "true",
+    rc = main(["train", "fit", "--config", recipe, "--trainer.fast_dev_run", "true",
                "--trainer.accelerator", "cpu", *_small_args(tmp_path, captures)])
     assert rc == 0
     assert len(list((tmp_path / "cache").glob("train-*.h5"))) == 1
@@ -91,3 +81,25 @@ def test_ddp_two_gloo_processes_each_simulate_their_own_shard(recipe, tmp_path, 
         assert len(list((tmp_path / "cache").glob("profile-*.json"))) == 1
         info = json.loads((out / "clip_range.json").read_text())
         assert info["twin_receiver"] == "profile" and info["twin_profile"]["capture"] == captures[0].name
+
+
+def test_objects_and_override_files_through_the_cli(tmp_path, captures, monkeypatch):
+    # a backbone and a DR as class_path objects, an ablation override as a second --config, test captures
+    # spelt PATH:COUNT as on reproduce's command line
+    monkeypatch.chdir(tmp_path)
+    cal, tests = captures
+    args = _small_args(tmp_path, captures)
+    i = args.index("--data.test")
+    args[i + 1] = f"[{tests[0][0]}:0, {tests[1][0]}]"
+    backbone = json.dumps({"class_path": "radaraug.training.TorchvisionClassifier", "init_args": {"arch": "resnet18"}})
+    dr = json.dumps({"class_path": "radaraug.transforms.RandomDR", "init_args": {"mean_db": [-90.0, -80.0], "seed": 3}})
+    rc = main(["train", "fit", "--config", "counting_rt", "--config", "ablation/rt_paper_image",
+               "--model.backbone", backbone, "--data.dr", dr, "--trainer.max_epochs", "1",
+               "--trainer.accelerator", "cpu", "--trainer.enable_checkpointing", "false", *args])
+    assert rc == 0
+    saved = yaml.safe_load((tmp_path / "lightning_logs" / "version_0" / "config.yaml").read_text())
+    assert saved["model"]["backbone"]["init_args"]["arch"] == "resnet18"
+    assert saved["data"]["dr"]["class_path"] == "radaraug.transforms.RandomDR"
+    assert saved["data"]["representation"] == "paper" and saved["data"]["method"] == "rt"
+    info = json.loads((tmp_path / "lightning_logs" / "version_0" / "clip_range.json").read_text())
+    assert info["task"] == "counting"

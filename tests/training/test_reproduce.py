@@ -6,6 +6,7 @@ import json
 
 import pytest
 
+import radaraug.training.reproduce as R
 from radaraug.cli import main
 from radaraug.errors import ConfigError
 from radaraug.training.reproduce import ReproduceSettings, parse_test_arg, reproduce
@@ -145,3 +146,16 @@ def test_cli_reproduce_and_bad_arguments(tmp_path, captures, capsys, monkeypatch
     data = json.loads((tmp_path / "o" / "report.json").read_text())
     assert set(data["results"]["counting"]) == {"rt", "randomdr", "cdr", "cdr_profile"}
     assert frames == [TINY.profile_max_frames]  # quick settings reach the diagnose; one fit for both tasks
+
+
+def test_the_runs_take_their_hyperparameters_from_the_recipes():
+    # the values the experiment's reports were measured with, now written once, in the recipes
+    eff = R.effective_settings(R.ReproduceSettings.quick())
+    assert {k: eff[k] for k in R.RECIPE_KEYS} == {
+        "randomization": True, "representation": "floor_relative", "excise_persistent_db": 3.0,
+        "calibrate_noise": False, "cdr_twin_noise_offset_db": -15.0, "cdr_floor": "matched", "lr": 0.001}
+    # an explicit setting overrides every run's recipe; an ablation's one change wins over it
+    s = R.ReproduceSettings(representation="paper")
+    assert R.run_recipe("counting", "rt", s)["data"]["representation"] == "paper"
+    assert R.run_recipe("counting", "cdr", s, "cdr_normal_floor")["data"]["cdr_floor"] == "normal"
+    assert R.ABLATIONS["rt_no_excision"] == ("rt", {"excise_persistent_db": None})

@@ -1,0 +1,153 @@
+"""The training recipes: one base recipe and small per-task, per-method and ablation overrides.
+
+The recipes are YAML files installed with the package (LightningCLI configs of ``radaraug train``)::
+
+    base.yaml              what every run shares (trainer, model, data)
+    task/TASK.yaml         occupancy | counting
+    method/METHOD.yaml     rt | randomdr | cdr | cdr_profile (and what the method needs)
+    ablation/NAME.yaml     one change to a method's run (the ablation rows of ``radaraug reproduce``)
+
+A recipe *name* ``TASK_METHOD`` (``occupancy_randomdr``) is ``base.yaml`` + ``task/TASK.yaml`` +
+``method/METHOD.yaml``, merged in that order the way LightningCLI merges several ``--config`` files
+(mappings key by key, anything else replaced): ``radaraug train fit --config occupancy_randomdr`` passes
+the three files, ``radaraug recipes occupancy_randomdr`` prints the merged recipe, and
+``radaraug reproduce`` builds each of its runs from the same files (:func:`compose`), so the
+hyperparameters are written once. This module reads only YAML: no torch, no Lightning.
+"""
+
+from __future__ import annotations
+
+import copy
+from pathlib import Path, PurePosixPath
+from typing import Any
+
+from radaraug.errors import ConfigError
+
+RECIPES_DIR = Path(__file__).resolve().parent
+"""The folder of the installed recipe files (package data)."""
+
+
+def _stems(kind: str) -> list[str]:
+    return sorted(p.stem for p in (RECIPES_DIR / kind).glob("*.yaml"))
+
+
+def tasks() -> list[str]:
+    """The tasks with an override file (``task/*.yaml``)."""
+    return _stems("task")
+
+
+def methods() -> list[str]:
+    """The methods with an override file (``method/*.yaml``)."""
+    return _stems("method")
+
+
+def ablations() -> list[str]:
+    """The ablation overrides (``ablation/*.yaml``)."""
+    return _stems("ablation")
+
+
+def recipe_names() -> list[str]:
+    """The recipe names, one per task x method (``occupancy_rt`` ... ``counting_cdr_profile``)."""
+    return sorted(f"{t}_{m}" for t in tasks() for m in methods())
+
+
+def _parts(text: str) -> list[Path] | None:
+    """The files that ``text`` names, or None.
+
+    ``TASK_METHOD`` (also with ``.yaml`` or ``recipes/`` before it, the recipes' old place in the
+    checkout) names three files; ``base``, ``task/T``, ``method/M`` and ``ablation/A`` name one.
+    """
+    p = PurePosixPath(text.replace("\\", "/"))
+    if p.suffix not in ("", ".yaml", ".yml"):
+        return None
+    parts = list(p.with_suffix("").parts)
+    if parts[:1] == ["recipes"]:
+        parts = parts[1:]
+    if len(parts) == 1:
+        (stem,) = parts
+        if stem == "base":
+            return [RECIPES_DIR / "base.yaml"]
+        for task in tasks():
+            method = stem[len(task) + 1:]
+            if stem.startswith(task + "_") and method in methods():
+                return [RECIPES_DIR / "base.yaml", RECIPES_DIR / "task" / f"{task}.yaml",
+                        RECIPES_DIR / "method" / f"{method}.yaml"]
+        return None
+    if len(parts) == 2 and parts[0] in ("task", "method", "ablation") and parts[1] in _stems(parts[0]):
+        return [RECIPES_DIR / parts[0] / f"{parts[1]}.yaml"]
+    return None
+
+
+def recipe_files(name: str) -> list[Path]:
+    """The installed files a recipe name stands for, in merge order.
+
+    Raises:
+        ConfigError: ``name`` is no installed recipe (the message lists them).
+    """
+    files = _parts(name)
+    if files is None:
+        raise ConfigError(f"no recipe named {name!r}; the installed recipes are {', '.join(recipe_names())} "
+                          f"(and the overrides base, task/*, method/*, ablation/*)")
+    return files
+
+
+def is_recipe_name(text: str) -> bool:
+    """True when ``text`` names installed recipe files (a name, not a path of the working folder)."""
+    return _parts(text) is not None
+
+
+def merge(base: dict[str, Any], override: dict[str, Any]) -> dict[str, Any]:
+    """``override`` merged into a copy of ``base``: mappings key by key, anything else replaced."""
+    out = copy.deepcopy(base)
+    for key, value in override.items():
+        if isinstance(value, dict) and isinstance(out.get(key), dict):
+            out[key] = merge(out[key], value)
+        else:
+            out[key] = copy.deepcopy(value)
+    return out
+
+
+def load(path: str | Path) -> dict[str, Any]:
+    """One recipe file as a mapping (ConfigError naming the file when it is not one)."""
+    import yaml
+
+    try:
+        data = yaml.safe_load(Path(path).read_text(encoding="utf-8"))
+    except (OSError, yaml.YAMLError) as e:
+        raise ConfigError(f"recipe {path}: cannot be read as YAML ({e})") from e
+    if data is None:
+        return {}
+    if not isinstance(data, dict):
+        raise ConfigError(f"recipe {path}: must be a mapping (trainer / model / data keys), got {type(data).__name__}")
+    return data
+
+
+def compose(*names: str) -> dict[str, Any]:
+    """The merged recipe of ``names`` (recipe names or YAML files), in order.
+
+    Example: ``compose("counting_cdr", "ablation/cdr_normal_floor")["data"]["cdr_floor"] == "normal"``.
+    """
+    out: dict[str, Any] = {}
+    for name in names:
+        for path in _parts(name) or [Path(name)]:
+            out = merge(out, load(path))
+    return out
+
+
+def ablation_method(name: str) -> str:
+    """The method an ablation override changes (its ``data.method``)."""
+    data = compose(f"ablation/{name}").get("data", {})
+    method = data.get("method")
+    if method not in methods():
+        raise ConfigError(f"recipe ablation/{name}.yaml must name its method (data.method: one of {methods()})")
+    return str(method)
+
+
+def recipe_text(*names: str) -> str:
+    """The merged recipe of ``names`` as YAML, headed by the files it came from."""
+    import yaml
+
+    files = [str(p.relative_to(RECIPES_DIR)) for n in names for p in recipe_files(n)]
+    head = (f"# radaraug recipe {' + '.join(names)}: merged from {' + '.join(files)} (installed with radaraug;\n"
+            "# docs/training.md explains every key). Edit a copy and run it with --config my.yaml.\n")
+    return head + yaml.safe_dump(compose(*names), sort_keys=False)
