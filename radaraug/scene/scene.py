@@ -20,7 +20,6 @@ from radaraug.scene.geometry import Ellipsoids, RadarPose, SceneGeometry
 from radaraug.scene.room import merge
 from radaraug.scene.scattering import DiffuseScattering
 from radaraug.scene.scene_file import (
-    _yaw_pitch_roll,  # noqa: F401  (re-exported: radaraug.sim.randomization imports it from here)
     builtin_scene,
     parse_scene,
     read_scene_data,

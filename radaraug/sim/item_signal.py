@@ -236,7 +236,7 @@ def static_scatterer_paths(config: RadarConfig, scatterers: Sequence[tuple[float
 
 
 def drawn_signal(twin: DigitalTwin, people: list[Any], times: torch.Tensor, draw: ItemDraw,
-                 paths: Paths) -> tuple[FMCWReceiver, Paths, torch.Tensor]:
+                 paths: Paths, *, shadow: bool = True) -> tuple[FMCWReceiver, Paths, torch.Tensor]:
     """The item's receiver, all its paths and the room's signal for :meth:`DigitalTwin.simulate` with a draw.
 
     ``paths`` are the people's (RCS-scaled, negligible ones off). The room's cached signal went through
@@ -248,6 +248,8 @@ def drawn_signal(twin: DigitalTwin, people: list[Any], times: torch.Tensor, draw
     through the twin's static basis (:func:`_mismatched_shadow`). With ``draw.static_phase_noise_paths``
     the room's strongest returns leave the cached signal and go through the receiver as paths
     (:func:`strongest_room_paths`), so that its ``phase_noise`` stage can give them their skirt.
+    ``shadow=False``: the people's shadow is not added to the room's signal (the caller passes it
+    in ``paths``, ``DigitalTwin(shadow_method="paths")``).
     """
     if draw.scatterers:
         paths = Paths.cat([paths, static_scatterer_paths(twin.config, draw.scatterers, paths)])
@@ -264,14 +266,14 @@ def drawn_signal(twin: DigitalTwin, people: list[Any], times: torch.Tensor, draw
     # The people's shadow on the room is geometry only: the RCS scale does not change it. (Room paths
     # moved out of the cache for the phase noise keep their shadow here, in the cached part.)
     mismatch = _static_mismatch(receiver, extra)
-    if mismatch is None:
-        shadow = twin.shadow_signal(people, times)
-    else:
+    if mismatch is not None:
         amp, phase = _rx_gain(mismatch, static)
         static = amp * (torch.cos(phase) * static - torch.sin(phase) * room_quadrature(twin, k))
-        shadow = _mismatched_shadow(twin, people, times, mismatch)
-    if shadow is not None:
-        static = static + shadow
+    if shadow:
+        change = (twin.shadow_signal(people, times) if mismatch is None
+                  else _mismatched_shadow(twin, people, times, mismatch))
+        if change is not None:
+            static = static + change
     if draw.system_gain_offset_dB != 0.0:
         static = static * 10 ** (draw.system_gain_offset_dB / 20)
     return receiver, paths, static

@@ -8,35 +8,22 @@ configuration. It shows whether training survives a twin it was not made with. I
 sim-to-proxy test, **not** a sim-to-real one, and its settings were fixed before any training
 result was seen: do not tune them to make a method look good.
 
+The proxy is data plus the shared simulator. ``radaraug/data/proxy.yaml`` (:data:`SPEC_PATH`)
+holds what it simulates: the room and radar (a scene in the scene-file format), the clutter, the
+people and walk ranges, and the receiver's effect chain. This module loads it, draws the walks,
+simulates them with :meth:`DigitalTwin.simulate <radaraug.sim.twin.DigitalTwin.simulate>` (one
+fixed :class:`~radaraug.sim.randomization.ItemDraw`: phase noise on the room's strongest static
+returns) and writes the files with :class:`~radaraug.io.blocks.BlockWriter`.
+
 What is the same as training: the radar configuration (:meth:`RadarConfig.bgt60tr13c`, so that
 CalibratedDR's chain and map shape match), the ray tracer, the IF synthesis and the 16-segment
-body model. What differs (also written into ``proxy.json`` and ``docs/proxy.md``):
-
-* **Room**: 14 m x 2.6 m x 3.0 m instead of 20 m x 2 m x 2.7 m; concrete floor, 12.5 mm
-  plasterboard ceiling (slab), a glass left wall, concrete right and near walls, a 4 cm wooden
-  far wall (slab); plus clutter the training corridor lacks: a metal cabinet, a wooden bench and
-  a concrete pillar (:func:`proxy_room`).
-* **Radar pose**: 1.5 m high (training 1.2 m), 0.55 m off the corridor axis, 0.3 m from the near
-  wall, boresight tilted 6 degrees down and turned toward the axis (training: on the axis,
-  horizontal).
-* **Motion source**: :class:`~radaraug.scene.people.BVHPerson` playing clips of
-  :class:`~radaraug.scene.people.sine_gait.SineGait` (a sinusoidal gait with a linear cadence law
-  and a larger arm swing) that the generator writes into ``motion/``; training uses the
-  Boulic-Thalmann :class:`~radaraug.scene.people.Walker`. No motion capture is used.
-* **Body surface**: an effective "clothed body" permittivity ``4.5 - j4.0`` (normal-incidence
-  reflectivity -6.8 dB) instead of dry skin ``7.98 - j10.90`` (-4.2 dB): an assumption, inside
-  the ~4 dB spread of human RCS.
-* **Walks**: several short walks per file (1.6-3.2 s each), 0.5-1.6 m/s toward or away from the
-  radar, heights 1.5-1.95 m, from anywhere that keeps the whole walk inside the room and at
-  least 1 m in front of the radar; training draws 0.6-1.8 m/s, 1.55-1.95 m, 1-12 m.
-* **Receiver** (:func:`proxy_effects`, hardware order): other TX->RX leakage (level, range and
-  phase), 3x the RMS LO frequency noise with a wider corner, carried by 16 paths including the 8
-  strongest *static room returns* (the training twin puts phase noise on leakage and people
-  only), noise figure 9 dB (12), system gain -4 dB (0), an RX gain/phase mismatch (none), a
-  233 kHz spur tone at the ADC input (none) and other DC offsets.
+body model. What differs (the room, the radar pose, the motion source :class:`SineGait
+<radaraug.scene.people.sine_gait.SineGait>` played by :class:`~radaraug.scene.people.BVHPerson`,
+the body surface, the walks and the receiver) is written into ``proxy.json`` (:func:`differences`)
+and ``docs/proxy.md``.
 
 Labels: a person counts in a frame when :func:`radaraug.sim.offline.people_inside` puts the body
-centre inside the room and it is at least ``MIN_RANGE_M`` in front of the radar along its
+centre inside the room and it is at least ``people.min_range_m`` in front of the radar along its
 horizontal boresight. Walks are drawn so that every frame of a file has the file's count (a walk
 that would break this is drawn again), so files work both as ``PATH:COUNT`` and per frame.
 
@@ -48,6 +35,8 @@ folder reuses the files (``proxy.json`` is written last and checked).
 
 from __future__ import annotations
 
+import copy
+import dataclasses
 import json
 import math
 import os
@@ -57,43 +46,45 @@ from typing import Any
 
 import numpy as np
 import torch
+import yaml
 
+from radaraug._files import atomic_write_json, load_json
 from radaraug._optional import lazy_import
 from radaraug.config import RadarConfig
 from radaraug.errors import ConfigError
-from radaraug.io.atomic import atomic_write_json
 from radaraug.io.blocks import BLOCK_FRAMES, BlockWriter, frame_times
 from radaraug.io.generated_set import GeneratedTestSet, check_count_arg, test_file_name
-from radaraug.safe_read import load_json
 from radaraug.scene.geometry import RadarPose, SceneGeometry
-from radaraug.scene.materials import MATERIALS, Material, register_material
-from radaraug.scene.room import box, corridor, merge
+from radaraug.scene.materials import Material
+from radaraug.scene.room import box, merge
 from radaraug.scene.scene import Scene
-from radaraug.sensor.effects import (
-    ADCClipping,
-    ADCNoise,
-    ADCQuantization,
-    AntiAliasLowPass,
-    DCOffset,
-    Effect,
-    IFGain,
-    IFHighPass,
-    PhaseNoise,
-    RxGainPhaseMismatch,
-    SpurTone,
-    SystemGain,
-    ThermalNoise,
-    TxRxLeakage,
-)
-from radaraug.sensor.paths import Paths
+from radaraug.sensor.effects import Effect, effect_from_dict
 from radaraug.sensor.receiver import FMCWReceiver
 from radaraug.sim.offline import people_inside
+from radaraug.sim.randomization import ItemDraw
 from radaraug.sim.seeding import Stream, item_generator, item_seed
 from radaraug.sim.twin import DigitalTwin
 from radaraug.units import DB_CONVENTION, FLOAT_CONVENTION
 
-GENERATOR_VERSION = 3
-"""Bumped whenever the generator's output changes; part of the reuse check."""
+SPEC_PATH = Path(__file__).resolve().parents[1] / "data" / "proxy.yaml"
+"""What the proxy simulates (shipped with the package)."""
+
+
+def _load_spec(path: Path) -> dict[str, Any]:
+    try:
+        spec = yaml.safe_load(path.read_text(encoding="utf-8"))
+    except (OSError, yaml.YAMLError) as err:
+        raise ConfigError(f"{path}: cannot read the proxy description ({err})") from None
+    keys = set(spec) if isinstance(spec, dict) else set()
+    missing = {"generator_version", "scene", "aim", "clutter", "people", "walks", "receiver"} - keys
+    if missing:
+        raise ConfigError(f"{path}: the proxy description lacks {sorted(missing)}")
+    return spec
+
+
+SPEC = _load_spec(SPEC_PATH)
+GENERATOR_VERSION: int = SPEC["generator_version"]
+"""Bumped (in the data file) whenever the generator's output changes; part of the reuse check."""
 
 MANIFEST_NAME = "proxy.json"
 MANIFEST_FORMAT = "radaraug-heldout-proxy"
@@ -101,117 +92,65 @@ CALIBRATION_NAME = "calibration_empty.h5"
 ROOM_SCENE_NAME = "room.json"
 MOTION_DIR = "motion"
 
-# ------------------------------------------------------------------------------------- the room
-ROOM_SIZE_M = (14.0, 2.6, 3.0)
-"""Length (x), width (y), height (z) of the proxy room."""
-
-ROOM_MATERIALS: dict[str, str] = {
-    "floor": "concrete",
-    "ceiling": "plasterboard",
-    "left_wall": "glass",
-    "right_wall": "concrete",
-    "near_wall": "concrete",
-    "far_wall": "wood",
-}
-ROOM_THICKNESS_M: dict[str, float] = {"ceiling": 0.0125, "far_wall": 0.04}
-
-CLUTTER: tuple[dict[str, Any], ...] = (
-    {"name": "metal_cabinet", "material": "metal", "min": (4.5, -1.3, 0.0), "max": (5.0, -0.8, 1.9)},
-    {"name": "wooden_bench", "material": "wood", "min": (8.0, 0.9, 0.0), "max": (9.6, 1.3, 0.45)},
-    {"name": "concrete_pillar", "material": "concrete", "min": (10.8, -1.3, 0.0), "max": (11.15, -0.95, 3.0)},
-)
+CLUTTER: tuple[dict[str, Any], ...] = tuple(SPEC["clutter"])
 """Objects the training corridor lacks: axis-aligned boxes ``min``/``max`` corners in metres."""
-
-RADAR_POSITION_M = (0.3, 0.55, 1.5)
-RADAR_TILT_DOWN_DEG = 6.0
-RADAR_AIM_XY = (14.0, 0.0)
-"""The boresight points at the far wall's centre line, tilted ``RADAR_TILT_DOWN_DEG`` down."""
-
-# ---------------------------------------------------------------------------------------- people
-BODY_MATERIAL = Material("proxy_clothed_body", 4.5, 0.0, 0.0, 0.0, eps_complex_override=complex(4.5, -4.0))
-"""Effective permittivity of a clothed body (assumed; normal-incidence |Gamma|^2 = -6.8 dB, against
--4.2 dB for the training twin's dry skin)."""
-
-WALK_SPEED_M_S = (0.5, 1.6)
-HEIGHT_M = (1.5, 1.95)
-LATERAL_M = (-0.5, 0.5)
-LATERAL_LIMIT_M = 0.65  # the clutter leaves |y| < 0.75 free
-HEADING_JITTER_DEG = 4.0
-ARM_SWING = (0.8, 1.2)
-WALK_FRAMES = (16, 32)
-MIN_WALK_FRAMES = 12
-MIN_RANGE_M = 1.0
-"""A person counts when at least this far in front of the radar (horizontal boresight)."""
-FAR_MARGIN_M = 0.6
-MIN_SEPARATION_M = 0.6
-WALK_GAP_S = 1.5
-FILE_TIME_ORIGIN_S = 1000.0
-BVH_FPS = 100.0
-
-# -------------------------------------------------------------------------------------- receiver
-STATIC_PHASE_NOISE_PATHS = 8
-"""The strongest static room returns that carry phase noise (re-synthesized per frame)."""
-
-
-def _register_body_material() -> None:
-    known = MATERIALS.get(BODY_MATERIAL.name)
-    if known is None:
-        register_material(BODY_MATERIAL)
-    elif known != BODY_MATERIAL:
-        raise ConfigError(f"material {BODY_MATERIAL.name!r} is registered with other values")
+_PEOPLE, _WALKS = SPEC["people"], SPEC["walks"]
+_BODY_EPS = SPEC["scene"]["materials"][_PEOPLE["material"]]["eps"]
+BODY_MATERIAL = Material(_PEOPLE["material"], _BODY_EPS[0], 0.0, 0.0, 0.0,
+                         eps_complex_override=complex(*_BODY_EPS))
+"""Effective permittivity of a clothed body (assumed; the scene registers it when loaded)."""
 
 
 def proxy_room(max_edge_m: float = 0.5) -> SceneGeometry:
-    """The proxy room: the corridor plus the :data:`CLUTTER` boxes, merged.
+    """The proxy room: the scene's corridor plus the :data:`CLUTTER` boxes, merged.
 
-    The corridor is :data:`ROOM_SIZE_M` / :data:`ROOM_MATERIALS`; object id 0 = walls, 1.. = the objects.
+    Object id 0 = walls, 1.. = the objects.
     """
-    length, width, height = ROOM_SIZE_M
-    walls = corridor(length, width, height, materials=ROOM_MATERIALS, thickness_m=ROOM_THICKNESS_M,
-                     max_edge_m=max_edge_m)
-    objects = [box(c["min"], c["max"], c["material"], max_edge_m=max_edge_m) for c in CLUTTER]
-    return merge([walls, *objects])
+    return proxy_scene(max_edge_m=max_edge_m).room
 
 
 def proxy_pose() -> RadarPose:
-    """The proxy radar pose (see :data:`RADAR_POSITION_M`)."""
-    x, y, z = RADAR_POSITION_M
-    dist = math.hypot(RADAR_AIM_XY[0] - x, RADAR_AIM_XY[1] - y)
-    target = (RADAR_AIM_XY[0], RADAR_AIM_XY[1], z - dist * math.tan(math.radians(RADAR_TILT_DOWN_DEG)))
-    return RadarPose.look_at(RADAR_POSITION_M, target)
+    """The proxy radar pose (the data file's ``scene.radar`` and ``aim``)."""
+    return proxy_scene().radar
 
 
-def proxy_scene(config: RadarConfig | None = None) -> Scene:
-    """The empty proxy room with the radar (``config`` default :meth:`RadarConfig.bgt60tr13c`)."""
-    return Scene(room=proxy_room(), radar=proxy_pose(), config=config or RadarConfig.bgt60tr13c(),
-                 name="heldout-proxy-room")
+def proxy_scene(config: RadarConfig | None = None, *, max_edge_m: float | None = None) -> Scene:
+    """The empty proxy room with the radar (``config`` default: the data file's, :meth:`RadarConfig.bgt60tr13c`).
+
+    Loading it registers the proxy's body material.
+    """
+    spec = copy.deepcopy(SPEC["scene"])
+    if max_edge_m is not None:
+        spec["room"]["max_edge"] = max_edge_m
+    radar, aim = spec["radar"], SPEC["aim"]
+    x, y, z = radar["position"]
+    (ax, ay), tilt = aim["at_xy_m"], aim["tilt_down_deg"]
+    radar["look_at"] = [ax, ay, z - math.hypot(ax - x, ay - y) * math.tan(math.radians(tilt))]
+    scene = Scene.from_dict(spec, source=SPEC_PATH)
+    edge = spec["room"]["max_edge"]
+    room = merge([scene.room, *(box(c["min"], c["max"], c["material"], max_edge_m=edge) for c in CLUTTER)])
+    return dataclasses.replace(scene, room=room, room_spec=None, config=config or scene.config)
+
+
+_FROM_CONFIG = {"if_highpass": lambda c: c.effective_hp_cutoff_Hz, "if_gain": lambda c: float(c.if_gain_dB),
+                "anti_alias_lowpass": lambda c: c.effective_aaf_cutoff_Hz}
 
 
 def proxy_effects(config: RadarConfig) -> list[Effect]:
-    """The proxy receiver's effect chain, in hardware order.
+    """The proxy receiver's effect chain, in hardware order (the data file's ``receiver.effects``).
 
     leakage -> phase noise -> thermal noise -> system gain -> RX gain/phase mismatch -> IF
     high-pass -> IF gain -> ADC-side noise -> anti-alias low-pass -> spur tone -> DC offset -> ADC
-    quantization -> ADC clipping. Values are fixed, not fitted to anything (see the module doc).
-    Generator version 2: the leakage couplings moved with the library's front-end gain (-20.5 dB)
-    so the proxy's leakage keeps its level at the ADC, and the proxy's own ADC-side noise
-    (2.2 counts, the default's is 1.75) was added with it.
+    quantization -> ADC clipping. Values are fixed, not fitted to anything; a ``config`` parameter
+    comes from ``config``, and the ADC-side noise (12-bit counts) is scaled to its ADC.
     """
-    return [
-        TxRxLeakage(coupling_dB=[-31.5, -40.5, -42.0], range_m=0.07, phase_rad=[0.4, -1.2, 2.0]),
-        PhaseNoise(freq_noise_rms_Hz=300e3, corner_Hz=400e3, num_paths=16),
-        ThermalNoise(noise_figure_dB=9.0),
-        SystemGain(gain_dB=-4.0),
-        RxGainPhaseMismatch(gain_dB=[0.0, -1.2, 0.7], phase_rad=[0.0, 0.35, -0.25]),
-        IFHighPass(cutoff_Hz=config.effective_hp_cutoff_Hz),
-        IFGain(gain_dB=float(config.if_gain_dB)),
-        ADCNoise(rms_counts=2.2 * (2**config.adc_bits - 1) / 4095),
-        AntiAliasLowPass(cutoff_Hz=config.effective_aaf_cutoff_Hz),
-        SpurTone(freq_Hz=233e3, amplitude_counts=[0.4, 0.4, 0.4], phase_rad=0.7),
-        DCOffset(level_counts=[1585.0, 1990.0, 2040.0]),
-        ADCQuantization(),
-        ADCClipping(),
-    ]
+    out = []
+    for e in SPEC["receiver"]["effects"]:
+        params = {k: _FROM_CONFIG[e["name"]](config) if v == "config" else v for k, v in e.get("params", {}).items()}
+        if e["name"] == "adc_noise":
+            params["rms_counts"] = params["rms_counts"] * (2**config.adc_bits - 1) / 4095
+        out.append(effect_from_dict({"name": e["name"], "params": params}))
+    return out
 
 
 def proxy_receiver(config: RadarConfig | None = None) -> FMCWReceiver:
@@ -220,9 +159,15 @@ def proxy_receiver(config: RadarConfig | None = None) -> FMCWReceiver:
     return FMCWReceiver(config, effects=proxy_effects(config))
 
 
+def proxy_draw() -> ItemDraw:
+    """What the proxy changes in :meth:`DigitalTwin.simulate`: phase noise on the room's strongest returns."""
+    return ItemDraw(variant=0, system_gain_offset_dB=0.0, noise_figure_offset_dB=0.0, rcs_scale_dB=(),
+                    static_phase_noise_paths=int(SPEC["receiver"]["static_phase_noise_paths"]))
+
+
 # ------------------------------------------------------------------------------------ labelling
 def people_in_view(twin: DigitalTwin, people: list[Any], times: torch.Tensor,
-                   min_range_m: float = MIN_RANGE_M) -> np.ndarray:
+                   min_range_m: float = _PEOPLE["min_range_m"]) -> np.ndarray:
     """Per frame, the people inside the room and at least ``min_range_m`` in front of the radar.
 
     Inside: the body centre, :func:`people_inside`; in front: along the radar's horizontal boresight.
@@ -250,8 +195,8 @@ def _split_frames(g: torch.Generator, total: int) -> list[int]:
     """Walk lengths (frames) adding up to ``total``."""
     out, left = [], total
     while left > 0:
-        n = int(torch.randint(WALK_FRAMES[0], WALK_FRAMES[1] + 1, (), generator=g))
-        if left - n < MIN_WALK_FRAMES:
+        n = int(torch.randint(_WALKS["frames"][0], _WALKS["frames"][1] + 1, (), generator=g))
+        if left - n < _WALKS["min_frames"]:
             n = left
         out.append(n)
         left -= n
@@ -259,22 +204,23 @@ def _split_frames(g: torch.Generator, total: int) -> list[int]:
 
 
 def _draw_person(g: torch.Generator, duration_s: float, x_lo: float, x_hi: float) -> dict[str, float]:
-    """One walker's parameters; its straight path stays in ``[x_lo, x_hi]`` and ``|y| <= LATERAL_LIMIT_M``."""
+    """One walker's parameters; its straight path stays in ``[x_lo, x_hi]`` and ``|y| <= lateral_limit_m``."""
+    p = _PEOPLE
     for _ in range(200):
-        speed = _u(g, *WALK_SPEED_M_S)
+        speed = _u(g, *p["speed_m_s"])
         toward = bool(torch.rand((), generator=g) < 0.5)
-        jitter = math.radians(_u(g, -HEADING_JITTER_DEG, HEADING_JITTER_DEG))
+        jitter = math.radians(_u(g, -p["heading_jitter_deg"], p["heading_jitter_deg"]))
         heading = (math.pi if toward else 0.0) + jitter
-        lateral = _u(g, *LATERAL_M)
+        lateral = _u(g, *p["lateral_m"])
         dx, dy = speed * duration_s * math.cos(heading), speed * duration_s * math.sin(heading)
         lo, hi = max(x_lo, x_lo - dx), min(x_hi, x_hi - dx)
         x0 = _u(g, lo, hi) if hi > lo else float("nan")
         params = {
             "speed_m_s": speed, "toward_radar": float(toward), "heading_rad": heading, "start_x_m": x0,
-            "start_y_m": lateral, "height_m": _u(g, *HEIGHT_M), "phase": _u(g, 0.0, 1.0),
-            "arm_swing": _u(g, *ARM_SWING),
+            "start_y_m": lateral, "height_m": _u(g, *p["height_m"]), "phase": _u(g, 0.0, 1.0),
+            "arm_swing": _u(g, *p["arm_swing"]),
         }
-        if hi > lo and abs(lateral + dy) <= LATERAL_LIMIT_M:
+        if hi > lo and abs(lateral + dy) <= p["lateral_limit_m"]:
             return params
     raise RuntimeError("proxy: could not place a walk inside the room")  # pragma: no cover
 
@@ -287,7 +233,7 @@ def _too_close(a: dict[str, float], b: dict[str, float], duration_s: float) -> b
         return np.stack([p["start_x_m"] + v * t * math.cos(p["heading_rad"]),
                          p["start_y_m"] + v * t * math.sin(p["heading_rad"])], axis=1)
 
-    return bool(np.linalg.norm(track(a) - track(b), axis=1).min() < MIN_SEPARATION_M)
+    return bool(np.linalg.norm(track(a) - track(b), axis=1).min() < _PEOPLE["min_separation_m"])
 
 
 def _make_people(params: list[dict[str, float]], motion_dir: Path, stem: str) -> tuple[list[Any], list[str]]:
@@ -297,9 +243,9 @@ def _make_people(params: list[dict[str, float]], motion_dir: Path, stem: str) ->
     people, files = [], []
     for k, p in enumerate(params):
         gait = SineGait(height_m=p["height_m"], speed_m_s=p["speed_m_s"], phase=p["phase"], arm_swing=p["arm_swing"])
-        clip = write_sine_gait_bvh(gait, motion_dir / f"{stem}_p{k}.bvh", fps=BVH_FPS)
+        clip = write_sine_gait_bvh(gait, motion_dir / f"{stem}_p{k}.bvh", fps=_PEOPLE["bvh_fps"])
         person = BVHPerson(clip, start=(p["start_x_m"], p["start_y_m"]), heading_rad=p["heading_rad"], scale=0.01)
-        person.material = BODY_MATERIAL.name
+        person.material = _PEOPLE["material"]
         people.append(person)
         files.append(clip.name)
     return people, files
@@ -354,26 +300,26 @@ def _effect_differences(config: RadarConfig) -> list[dict[str, Any]]:
 def differences(config: RadarConfig | None = None) -> dict[str, Any]:
     """What the proxy changes against the training twin (the ``differences`` of ``proxy.json``)."""
     config = config or RadarConfig.bgt60tr13c()
+    room = SPEC["scene"]["room"]
     return {
         "room": {"training": "20 m x 2 m x 2.7 m corridor, floorboard / ceiling_board / plasterboard / concrete, "
                              "no clutter",
-                 "proxy": {"size_m": list(ROOM_SIZE_M), "materials": ROOM_MATERIALS,
-                           "slab_thickness_m": ROOM_THICKNESS_M,
+                 "proxy": {"size_m": [room["length"], room["width"], room["height"]], "materials": room["materials"],
+                           "slab_thickness_m": room["thickness"],
                            "clutter": [{**c, "min": list(c["min"]), "max": list(c["max"])} for c in CLUTTER]}},
         "radar_pose": {"training": {"position_m": [0.1, 0.0, 1.2], "boresight": "horizontal, along the axis"},
-                       "proxy": {"position_m": list(RADAR_POSITION_M), "tilt_down_deg": RADAR_TILT_DOWN_DEG,
-                                 "aimed_at_xy_m": list(RADAR_AIM_XY)}},
+                       "proxy": {"position_m": SPEC["scene"]["radar"]["position"],
+                                 "tilt_down_deg": SPEC["aim"]["tilt_down_deg"], "aimed_at_xy_m": SPEC["aim"]["at_xy_m"]}},
         "motion_source": {"training": "Walker (Boulic-Thalmann)",
                           "proxy": "BVHPerson playing SineGait clips written by radaraug (see motion/)"},
         "body_surface": {"training": "skin, eps 7.98 - j10.90, |Gamma|^2 -4.2 dB",
                          "proxy": f"{BODY_MATERIAL.name}, eps 4.5 - j4.0, |Gamma|^2 -6.8 dB (assumed)"},
         "walks": {"training": "ScenarioSampler: 0.6-1.8 m/s, 1.55-1.95 m, start 1-12 m, lateral +-0.6 m, "
                               "jitter +-5 deg",
-                  "proxy": {"speed_m_s": list(WALK_SPEED_M_S), "height_m": list(HEIGHT_M),
-                            "lateral_m": list(LATERAL_M), "heading_jitter_deg": HEADING_JITTER_DEG,
-                            "walk_frames": list(WALK_FRAMES), "min_range_m": MIN_RANGE_M,
-                            "min_separation_m": MIN_SEPARATION_M}},
-        "phase_noise_on_static_clutter": {"training": 0, "proxy": STATIC_PHASE_NOISE_PATHS},
+                  "proxy": {**{k: _PEOPLE[k] for k in ("speed_m_s", "height_m", "lateral_m", "heading_jitter_deg")},
+                            "walk_frames": _WALKS["frames"], "min_range_m": _PEOPLE["min_range_m"],
+                            "min_separation_m": _PEOPLE["min_separation_m"]}},
+        "phase_noise_on_static_clutter": {"training": 0, "proxy": SPEC["receiver"]["static_phase_noise_paths"]},
         "receiver_effects": _effect_differences(config),
     }
 
@@ -435,93 +381,40 @@ def _reusable(out: Path, settings: dict[str, Any]) -> ProxySet | None:
     return found
 
 
-class _Simulator:
-    """One twin for every file: the room is traced once.
-
-    The strongest static returns are kept apart so that phase noise modulates them (re-synthesized with
-    every frame).
-    """
-
-    def __init__(self, device: str, tracer_options: dict[str, Any]) -> None:
-        config = RadarConfig.bgt60tr13c()
-        self.scene = proxy_scene(config)
-        self.device = torch.device(device)
-        receiver = proxy_receiver(config)
-        self.twin = DigitalTwin(self.scene, receiver=receiver, tracer_options=tracer_options, device=self.device)
-        static = self.twin.tracer.static_paths()
-        k = min(STATIC_PHASE_NOISE_PATHS, static.num_paths)
-        strength = (static.amplitude.abs() * static.delay_s.abs()).amax(dim=-1)
-        strong = torch.topk(strength, k).indices if k else torch.zeros(0, dtype=torch.long, device=self.device)
-        rest = torch.ones(static.num_paths, dtype=torch.bool, device=self.device)
-        rest[strong] = False
-        self.strong = static.map(lambda x: x[strong])
-        self.static_signal = self.twin.receiver.static_signal(static.map(lambda x: x[rest]))
-        self.period = config.frame_repetition_time_s
-
-    def frames(self, people: list[Any], local_t: torch.Tensor, global_t: torch.Tensor,
-               generator: torch.Generator) -> np.ndarray:
-        """ADC counts ``(T, rx, chirps, samples)`` uint16."""
-        with torch.no_grad():
-            moving = self.twin.frame_paths(people, local_t)
-            paths = _with_static(moving, self.strong)
-            x = self.twin.receiver(paths, generator=generator, static_signal=self.static_signal,
-                                   frame_start_s=global_t.to(device=self.device, dtype=torch.float64))
-            return self.twin.receiver.to_counts(x).cpu().numpy()
-
-
-def _with_static(moving: Paths, strong: Paths) -> Paths:
-    """``moving`` ``(T, P, RX)`` with the static ``strong`` ``(K, RX)`` appended to every frame."""
-    t = moving.delay_s.shape[0]
-    k = strong.delay_s.shape[0]
-    dev = moving.delay_s.device
-    s = strong.map(lambda x: x.expand(t, *x.shape))
-    kind_m = moving.kind if moving.kind is not None else torch.zeros(moving.delay_s.shape[:-1], dtype=torch.int8,
-                                                                        device=dev)
-    kind_s = s.kind if s.kind is not None else torch.zeros(t, k, dtype=torch.int8, device=dev)
-    mask_m = moving.mask if moving.mask is not None else torch.ones(moving.delay_s.shape[:-1], dtype=torch.bool,
-                                                                    device=dev)
-    # Paths.cat keeps the moving paths' per-chirp delays and gains (static ones get none).
-    return Paths.cat([
-        Paths(moving.delay_s, moving.delay_rate, moving.amplitude, kind_m.to(torch.int8), mask_m,
-              moving.chirp_delay_s, moving.chirp_gain),
-        Paths(s.delay_s.to(moving.delay_s.dtype), s.delay_rate.to(moving.delay_rate.dtype),
-              s.amplitude.to(moving.amplitude.dtype), kind_s.to(torch.int8),
-              torch.ones(t, k, dtype=torch.bool, device=dev)),
-    ])
-
-
-def _write_file(sim: _Simulator, path: Path, walks: list[dict[str, Any]], noise_base: int, attrs: dict[str, Any],
+def _write_file(twin: DigitalTwin, path: Path, walks: list[dict[str, Any]], noise_base: int, attrs: dict[str, Any],
                 device: str, bar: Any) -> None:
-    """Simulate ``walks`` (each ``{"people", "frames", "t0"}``) into ``path``.
+    """Simulate ``walks`` (each ``{"people", "frames", "t0", "labels"}``) into ``path``, :data:`BLOCK_FRAMES` at a time.
 
-    The file appears under its name only complete (``publish="close"``): a killed run leaves the
-    hidden temporary of :class:`~radaraug.io.CaptureWriter`, which a later writer of ``path``
-    removes, and a file already at ``path`` (an earlier run's) stays until the new one replaces it.
+    Each walk's people move from its time 0; the recording's time is ``t0`` later
+    (``DigitalTwin.simulate(..., t0=...)``). The file appears under its name only complete
+    (``publish="close"``): a killed run leaves the hidden temporary of
+    :class:`~radaraug.io.CaptureWriter`, which a later writer of ``path`` removes, and a file
+    already at ``path`` (an earlier run's) stays until the new one replaces it.
     """
     path.with_name(path.stem + ".partial.h5").unlink(missing_ok=True)  # the temporary name of older versions
-    block = 0
-    with BlockWriter.create(path, sim.twin.config, attrs=attrs, publish="close") as writer:
+    draw, period, block = proxy_draw(), twin.config.frame_repetition_time_s, 0
+    with BlockWriter.create(path, twin.config, attrs=attrs, publish="close") as writer:
         for walk in walks:
             for a in range(0, walk["frames"], BLOCK_FRAMES):
                 b = min(a + BLOCK_FRAMES, walk["frames"])
-                local = frame_times(a, b, sim.period)
-                glob = walk["t0"] + local
+                local = frame_times(a, b, period)
                 gen = item_generator(noise_base, block, stream=Stream.BLOCK_NOISE, device=device)
-                counts = sim.frames(walk["people"], local, glob, gen)
-                writer.write(counts, glob, walk["labels"][a:b])
+                x = twin.simulate(walk["people"], local, generators=gen, draw=draw, t0=walk["t0"])
+                writer.write(twin.receiver.to_counts(x).cpu().numpy(), walk["t0"] + local, walk["labels"][a:b])
                 block += 1
                 bar.update(b - a)
 
 
-def _plan_walks(sim: _Simulator, count: int, frames: int, seed: int, motion_dir: Path) -> list[dict[str, Any]]:
+def _plan_walks(twin: DigitalTwin, count: int, frames: int, seed: int, motion_dir: Path) -> list[dict[str, Any]]:
     """Draw the walks of the file of ``count`` people (labels checked against ``count``)."""
     g = torch.Generator().manual_seed(item_seed(seed, count + 1, stream=Stream.PROXY_WALKS))
-    x_lo = RADAR_POSITION_M[0] + MIN_RANGE_M + 0.3
-    x_hi = ROOM_SIZE_M[0] - FAR_MARGIN_M
-    walks, t_start = [], FILE_TIME_ORIGIN_S * (count + 1)
+    period = twin.config.frame_repetition_time_s
+    x_lo = SPEC["scene"]["radar"]["position"][0] + _PEOPLE["min_range_m"] + _PEOPLE["near_margin_m"]
+    x_hi = SPEC["scene"]["room"]["length"] - _PEOPLE["far_margin_m"]
+    walks, t_start = [], _WALKS["file_time_origin_s"] * (count + 1)
     for j, n in enumerate(_split_frames(g, frames)):
-        duration = n * sim.period
-        local = torch.arange(n, dtype=torch.float64) * sim.period
+        duration = n * period
+        local = torch.arange(n, dtype=torch.float64) * period
         for _attempt in range(100):
             params: list[dict[str, float]] = []
             while len(params) < count:
@@ -529,14 +422,14 @@ def _plan_walks(sim: _Simulator, count: int, frames: int, seed: int, motion_dir:
                 if all(not _too_close(p, q, duration) for q in params):
                     params.append(p)
             people, files = _make_people(params, motion_dir, f"count{count}_walk{j:02d}")
-            labels = people_in_view(sim.twin, people, local)
+            labels = people_in_view(twin, people, local)
             if bool((labels == count).all()):
                 break
         else:  # pragma: no cover - the draw keeps walks in view by construction
             raise RuntimeError(f"proxy: could not draw a walk with {count} people in view")
         walks.append({"people": people, "frames": n, "t0": t_start, "labels": labels,
                       "params": params, "motion": files})
-        t_start += duration + WALK_GAP_S
+        t_start += duration + _WALKS["gap_s"]
     return walks
 
 
@@ -590,7 +483,6 @@ def make_proxy(
     if found is not None:
         return found
 
-    _register_body_material()
     # One intra-op thread: the per-frame kernels are small, and several threads contend (measured
     # several times slower on a loaded 2-core machine). Restored on return.
     threads = torch.get_num_threads()
@@ -612,9 +504,13 @@ def _generate(out: Path, settings: dict[str, Any], frames_per_count: int, calibr
     motion_dir = out / MOTION_DIR
     motion_dir.mkdir(exist_ok=True)
 
-    sim = _Simulator(device, tracer_options)
-    config = sim.twin.config
-    sim.scene.save(out / ROOM_SCENE_NAME)
+    scene = proxy_scene()
+    # One twin for every file (the room is traced once). The people's shadow on the room goes to the
+    # receiver as paths: the proxy's frames were made so.
+    twin = DigitalTwin(scene, receiver=proxy_receiver(scene.config), tracer_options=tracer_options,
+                       device=torch.device(device), shadow_method="paths")
+    config = twin.config
+    scene.save(out / ROOM_SCENE_NAME)
     tqdm = lazy_import("tqdm.auto", feature="progress bars").tqdm
 
     total = calibration_frames + frames_per_count * len(counts)
@@ -627,18 +523,18 @@ def _generate(out: Path, settings: dict[str, Any], frames_per_count: int, calibr
         cal_walk = {"people": [], "frames": calibration_frames, "t0": 0.0,
                     "labels": np.zeros(calibration_frames, dtype=np.int64)}
         cal_path = out / CALIBRATION_NAME
-        _write_file(sim, cal_path, [cal_walk], item_seed(seed, 0, stream=Stream.PROXY_NOISE),
+        _write_file(twin, cal_path, [cal_walk], item_seed(seed, 0, stream=Stream.PROXY_NOISE),
                     {**common, "description": "held-out proxy: empty room, for CalibratedDR.fit", "role": "calibration",
                      "labels": {"count": 0}}, device, bar)
         files["calibration"] = {"path": CALIBRATION_NAME, "frames": calibration_frames, "count": 0}
         tests: list[tuple[Path, int]] = []
         files["tests"] = []
         for c in counts:
-            walks = _plan_walks(sim, c, frames_per_count, seed, motion_dir)
+            walks = _plan_walks(twin, c, frames_per_count, seed, motion_dir)
             desc = [{"frames": w["frames"], "t0_s": round(w["t0"], 6), "people": _rounded(w["params"], 5),
                      "motion": w["motion"]} for w in walks]
             path = out / test_file_name(c)
-            _write_file(sim, path, walks, item_seed(seed, c + 1, stream=Stream.PROXY_NOISE),
+            _write_file(twin, path, walks, item_seed(seed, c + 1, stream=Stream.PROXY_NOISE),
                         {**common, "description": f"held-out proxy: {c} walking people in every frame",
                          "role": "test", "labels": {"count": c}, "walks": desc}, device, bar)
             tests.append((path, c))
@@ -654,10 +550,10 @@ def _generate(out: Path, settings: dict[str, Any], frames_per_count: int, calibr
         "config": config.to_dict(),
         "files": files,
         "room_scene": ROOM_SCENE_NAME,
-        "label_rule": f"count = people whose body centre is inside the room and >= {MIN_RANGE_M} m in front "
+        "label_rule": f"count = people whose body centre is inside the room and >= {_PEOPLE['min_range_m']} m in front "
                       "of the radar; every frame of a test file has the file's count",
         "dsp_chain_expected": "RangeDoppler() -> ToDecibels() (the chain CalibratedDR is fitted with)",
-        "receiver": _rounded(sim.twin.receiver.to_dict()),
+        "receiver": _rounded(twin.receiver.to_dict()),
         "differences": differences(config),
         "training_twin": _training_twin_summary(),
         "float_convention": FLOAT_CONVENTION,
@@ -671,5 +567,5 @@ def _generate(out: Path, settings: dict[str, Any], frames_per_count: int, calibr
 
 __all__ = [
     "BODY_MATERIAL", "CLUTTER", "ProxySet", "differences", "load_proxy", "make_proxy", "people_in_view",
-    "proxy_effects", "proxy_pose", "proxy_receiver", "proxy_room", "proxy_scene",
+    "proxy_draw", "proxy_effects", "proxy_pose", "proxy_receiver", "proxy_room", "proxy_scene",
 ]

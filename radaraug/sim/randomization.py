@@ -52,7 +52,8 @@ from radaraug.config import RadarConfig
 from radaraug.errors import ConfigError, SceneError
 from radaraug.scene.materials import get_material
 from radaraug.scene.room import CORRIDOR_SURFACES, box, merge
-from radaraug.scene.scene import Scene, _yaw_pitch_roll
+from radaraug.scene.scene import Scene
+from radaraug.scene.scene_file import _yaw_pitch_roll
 from radaraug.sensor.effects import (
     Effect,
     FrameDrift,
@@ -151,7 +152,7 @@ class TwinRandomization:
     Args:
         enabled: False gives the twin without randomization (see :meth:`off`).
         rcs_scale_dB: per-person RCS scale in dB (amplitude x ``10**(dB/20)``). Default
-            (-20, +10): the field notes found people's RCS drawn over -20...+5 dB the largest
+            (-20, +10): drawing people's RCS over -20...+5 dB was measured to be the largest
             single sim-to-real gain, and nothing pins which side of the twin's own walker level
             (itself ~18 dB brighter than independently generated data) real people sit on, so
             the range also reaches +10 dB; human RCS at 60 GHz alone fluctuates by several dB.
@@ -187,7 +188,7 @@ class TwinRandomization:
             gain a calibration leaves uncertain (unit to unit, temperature, the IF gain law).
         noise_figure_offset_dB: added to the receiver's ``thermal_noise`` noise figure (-3, +3),
             around the calibrated value (the recipes fit it on the empty-room capture,
-            :mod:`radaraug.sim.noise_fit`): the floor a capture shows is known to a few dB, but
+            :mod:`radaraug.calibration.noise_fit`): the floor a capture shows is known to a few dB, but
             the gain and noise figure behind it shift with the unit and its temperature.
         clutter_objects: number of clutter objects per room variant, ``[lo, hi]`` inclusive
             (default 0-6). Real rooms hold furniture: boxes of :data:`CLUTTER_LENGTH_M` x

@@ -87,6 +87,11 @@ class DigitalTwin:
         shadowing: the people shadow the room's paths (knife-edge diffraction by their body
             segments, :mod:`radaraug.raytrace.shadow`); needs the static paths' geometry
             (:meth:`RayTracer.static_vertices`, given by the default image method, not by SBR).
+        shadow_method: how :meth:`simulate` applies that shadow: ``"signal"`` (default) changes the
+            room's cached signal through the static basis (:meth:`shadow_signal`, one small matrix
+            product per batch); ``"paths"`` passes the shadowed room paths' corrections to the
+            receiver as paths (:meth:`shadow_paths`, slower; the held-out proxy's frames were made
+            so). The two agree to float rounding (see ``tests/sim/test_twin_shadowing.py``).
         intra_frame: motion of the people inside a frame: ``"auto"`` (default) traces as many
             sub-frame snapshots as each frame needs for its paths' delays to be interpolated to
             every chirp within ``intra_frame_tol_cycles`` (see :mod:`radaraug.sim.intra_frame`);
@@ -108,6 +113,7 @@ class DigitalTwin:
         static_signal: torch.Tensor | None = None,
         profile: Any = None,
         shadowing: bool = True,
+        shadow_method: str = "signal",
         intra_frame: int | str = "auto",
         intra_frame_tol_cycles: float = DEFAULT_TOL_CYCLES,
     ) -> None:
@@ -117,6 +123,9 @@ class DigitalTwin:
         self.dtype = dtype
         self.multipath = multipath
         self.shadowing = shadowing
+        if shadow_method not in ("signal", "paths"):
+            raise ConfigError(f"DigitalTwin: shadow_method must be 'signal' or 'paths', got {shadow_method!r}")
+        self.shadow_method = shadow_method
         profile = as_profile(profile)
         # A profile's room section (its fitted diffuse gain) is a tracer option; the caller's win.
         room = profile.tracer_options() if profile is not None else {}
@@ -286,6 +295,7 @@ class DigitalTwin:
         *,
         generators: Sequence[torch.Generator] | torch.Generator | None = None,
         draw: ItemDraw | None = None,
+        t0: float = 0.0,
     ) -> torch.Tensor:
         """Raw frames ``(T, rx, chirps, samples)`` in SDK floats at frame start ``times`` ``(T,)``.
 
@@ -303,25 +313,35 @@ class DigitalTwin:
                 phase-noise offsets and the effect catalog (:func:`~radaraug.sim.item_signal.drawn_signal`).
                 The draw's room variant is not applied here: simulate with that variant's twin.
                 None (default): the twin as it is.
+            t0: the recording's time at ``times == 0``, seconds: the people move at ``times``, the
+                receiver's time-locked effects (a spur tone) see ``t0 + times``, so that several
+                scenes (e.g. the held-out proxy's walks) can be played into one long recording.
         """
         people = list(people or [])
         if draw is None:
             paths = negligible_paths_off(self.paths(people, times))
+        else:
+            paths = negligible_paths_off(people_paths(self, people, times, draw.rcs_scale_dB))
+        as_paths = self.shadow_paths(people, times) if self.shadow_method == "paths" else None
+        if as_paths is not None:
+            paths = Paths.cat([paths, as_paths])
+        if draw is None:
             receiver, static = self.receiver, self.static_signal()
-            shadow = self.shadow_signal(people, times)
+            shadow = self.shadow_signal(people, times) if self.shadow_method == "signal" else None
             if shadow is not None:
                 static = static + shadow  # (T, RX, chirps, samples): the shadowed room per frame
         else:
-            paths = negligible_paths_off(people_paths(self, people, times, draw.rcs_scale_dB))
-            receiver, paths, static = drawn_signal(self, people, times, draw, paths)
+            receiver, paths, static = drawn_signal(self, people, times, draw, paths,
+                                                   shadow=self.shadow_method == "signal")
+        start = times.to(torch.float64) + t0 if t0 else times.to(torch.float64)
         if isinstance(generators, Sequence):
             if len(generators) != times.shape[0]:
                 raise InputTensorError(f"need one generator per frame: {len(generators)} for {times.shape[0]} frames")
             frames = [
-                receiver(paths.select(k), generator=g, frame_start_s=float(times[k]),
+                receiver(paths.select(k), generator=g, frame_start_s=float(start[k]),
                          static_signal=static[k] if static.dim() == 4 else static)
                 for k, g in enumerate(generators)
             ]
             return torch.stack(frames)
         # Each frame of the batch starts at its own time (time-locked effects such as a spur tone).
-        return receiver(paths, generator=generators, frame_start_s=times.to(torch.float64), static_signal=static)
+        return receiver(paths, generator=generators, frame_start_s=start, static_signal=static)

@@ -290,8 +290,8 @@ class RadarDataModule(L.LightningDataModule):
         if self.twin_profile is not None:
             extra["profile"] = self.twin_profile
         elif self.noise_fit is not None or self._quiet_twin_db() is not None:
-            from radaraug.sensor.defaults import ADC_NOISE_RMS_COUNTS, DEFAULT_NOISE_FIGURE_DB
             from radaraug.calibration.noise_fit import noise_fit_receiver
+            from radaraug.sensor.defaults import ADC_NOISE_RMS_COUNTS, DEFAULT_NOISE_FIGURE_DB
 
             fit = self.noise_fit or {"noise_figure_dB": DEFAULT_NOISE_FIGURE_DB, "adc_noise_rms_counts": ADC_NOISE_RMS_COUNTS}
             quiet = self._quiet_twin_db()

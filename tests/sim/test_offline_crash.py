@@ -59,7 +59,7 @@ def test_simulate_killed_after_two_flushes_resumes_to_the_uninterrupted_file(tmp
     killed_at = _frames_in(target)
     assert killed_at >= kill_after
 
-    again = subprocess.run([sys.executable, "-c", CLI, *argv], cwd=REPO, capture_output=True, text=True,
+    again = subprocess.run([sys.executable, "-c", CLI, *argv, "--resume"], cwd=REPO, capture_output=True, text=True,
                            timeout=900)
     assert again.returncode == 0, again.stderr[-2000:]
     assert f"resumed from frame {offline.shard_range(frames, offline.parse_shard(shard))[0] + killed_at}" \

@@ -224,3 +224,18 @@ def test_sine_gait_is_not_the_boulic_walker() -> None:
     assert SineGait(speed_m_s=0.5).cycle_duration_s == pytest.approx(1 / (0.575 + 0.275 * 0.5))
     with pytest.raises(SceneError):
         SineGait(speed_m_s=3.0)
+
+
+def test_proxy_is_data(tmp_path: Path) -> None:
+    """The proxy's settings come from the shipped data file; a broken one is refused, naming the file."""
+    assert proxy.SPEC_PATH.is_file() and proxy.GENERATOR_VERSION == proxy.SPEC["generator_version"]
+    assert [e.name for e in proxy.proxy_effects(RadarConfig.bgt60tr13c())] == [
+        e["name"] for e in proxy.SPEC["receiver"]["effects"]]
+    assert proxy.proxy_draw().static_phase_noise_paths == 8
+    bad = tmp_path / "proxy.yaml"
+    bad.write_text("generator_version: 4\nscene: {}\n")
+    with pytest.raises(ConfigError, match="proxy.yaml: the proxy description lacks"):
+        proxy._load_spec(bad)
+    bad.write_text("scene: [unclosed\n")
+    with pytest.raises(ConfigError, match="proxy.yaml: cannot read"):
+        proxy._load_spec(bad)

@@ -71,7 +71,7 @@ def test_output_units_like_a_real_capture(dataset) -> None:
     # SDK floats of 12-bit codes: integers after conversion, inside [0, 4095].
     assert torch.allclose(counts, counts.round(), atol=2e-3)
     assert counts.min() >= 0 and counts.max() <= 4095
-    # Per-RX DC offsets of the default BGT60TR13C chain (FIELD_NOTES: ~1620 / ~1945 / ~2067 counts).
+    # Per-RX DC offsets of the default BGT60TR13C chain (measured: ~1620 / ~1945 / ~2067 counts).
     dc = counts.mean(dim=(1, 2))
     assert torch.allclose(dc, torch.tensor([1620.0, 1945.0, 2067.5]), atol=25)
 
