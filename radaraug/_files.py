@@ -31,10 +31,6 @@ what a killed writer left (:func:`remove_stale_temporaries`). The suffix says wh
   Its writer holds a lock on it, so a stale one is told from a live one by the lock, not only by
   its age.
 
-One temporary name is outside this convention: the map cache of :mod:`radaraug.training.cache`
-(``<stem>.partial-<pid>.h5``, removed by the next build when its pid is dead) -- left as it is
-for now; moving it here changes nothing in its crash safety.
-
 **Safe reads.** Every JSON document radaraug reads (an Infineon ``config.json`` and ``meta.json``, the HDF5
 ``radar_config`` and ``labels`` attributes, a ``CalibratedDR`` file, a twin profile) goes through
 :func:`parse_json` / :func:`load_json`, and every small text file (timestamps, ``format.version``)

@@ -8,8 +8,9 @@ size) with the people count of each item. The file name carries a hash of everyt
 depend on -- scene, radar config, receiver, scenario sampler, twin randomization, seed, the item
 indices and the RD chain -- so a change of any of them re-simulates and an unchanged one does not.
 
-A file is written under a temporary name and renamed when complete: a killed run leaves no
-half-written cache that a later run would trust.
+A file is written under a temporary name (the package's one convention, :mod:`radaraug._files`) and
+renamed when complete: a killed run leaves no half-written cache that a later run would trust, and
+the next build of the same key removes what a dead process left.
 """
 
 from __future__ import annotations
@@ -29,6 +30,7 @@ from torch.utils.data import DataLoader, Dataset, Subset
 
 from radaraug._cache_key import cache_key
 from radaraug._cache_key import content_digest as content_digest  # re-exported: its old home
+from radaraug._files import remove_stale_temporaries, temporaries_of, temporary_name
 from radaraug._optional import lazy_import
 from radaraug.errors import CaptureError
 from radaraug.raytrace.cache import default_cache_dir as default_cache_dir  # one folder for every cache
@@ -140,7 +142,7 @@ def build_map_caches(
     loader = DataLoader(Subset(sim, [i for _, i in order]), batch_size=batch_size, num_workers=num_workers,
                         persistent_workers=False)
     chain = rd_db_chain()
-    partials = {name: paths[name].with_suffix(f".partial-{os.getpid()}.h5") for name in todo}
+    partials = {name: temporary_name(paths[name]) for name in todo}
     total = len(order)
     try:
         files = {name: h5py.File(partials[name], "w") for name in todo}
@@ -182,16 +184,21 @@ def build_map_caches(
     return paths
 
 
+def _writer_alive(tmp: Path) -> bool:
+    """True when the process that named ``tmp`` (``.<name>.<pid>.<random>.tmp``) still runs."""
+    try:
+        os.kill(int(tmp.name.rsplit(".", 3)[1]), 0)
+    except (ValueError, IndexError, ProcessLookupError):
+        return False
+    except PermissionError:  # alive, another user's process
+        return True
+    return True
+
+
 def _remove_dead_partials(path: Path) -> None:
     """Delete temporary files of this cache left by killed processes (SIGKILL skips cleanup)."""
-    for p in path.parent.glob(f"{path.stem}.partial-*.h5"):
-        try:
-            pid = int(p.name.rsplit("-", 1)[1].split(".")[0])
-            os.kill(pid, 0)
-        except (ValueError, IndexError, ProcessLookupError):
-            p.unlink(missing_ok=True)
-        except PermissionError:  # alive, another user's process
-            pass
+    # any age: a dead writer's file is stale at once, a live one's (another rank's) never
+    remove_stale_temporaries(path.parent, temporaries_of(path), older_than_s=0.0, in_use=_writer_alive)
 
 
 class _RawItems(Dataset):

@@ -151,6 +151,13 @@ class RadarDataModule(L.LightningDataModule):
             generator). Not the paper's protocol, which leaves real maps untouched: with a twin whose
             floor already sits at the capture's, CDR's clamp raises the training floor ~3 dB above
             the capture's, and a network learns the raised floor as "empty" (docs/training.md).
+        simulated: the training twin's dataset as an object (in a recipe a ``class_path:
+            radaraug.sim.SimulatedRadarDataset`` with its ``init_args``), used as given for the train and
+            val items instead of the one built from ``scene``, ``sim_seed``, ``randomization``,
+            ``tracer_rays`` and the fitted receiver (``calibrate_noise``, ``profile``, ``cdr_profile``,
+            ``catalog_priors``, ``cdr_twin_noise_offset_db``: those are then not applied, and a warning
+            names the ones set). Its radar config must be the test captures' (ConfigError), its target
+            ``count`` and its length at least ``train_items + val_items``. Cached like the built one.
         dr: the run's noise-floor randomization as an object (in a recipe a ``class_path``, e.g.
             :class:`~radaraug.transforms.RandomDR` with its ranges, or any ``nn.Module`` acting on
             per-RX dB maps ``(B, rx, range, doppler)``), used instead of the one ``method`` builds;
@@ -195,6 +202,7 @@ class RadarDataModule(L.LightningDataModule):
         cdr_twin_noise_offset_db: float | None = None,
         test_dr: bool = False,
         dr: torch.nn.Module | None = None,
+        simulated: SimulatedRadarDataset | None = None,
         dr_seed: int = 0,
         batch_size: int = 32,
         num_workers: int = 0,
@@ -212,13 +220,13 @@ class RadarDataModule(L.LightningDataModule):
             raise ConfigError(f"cdr_floor must be one of {CDR_FLOORS} or null, got {cdr_floor!r}")
         check_representation(representation)
         # dr is an object: the saved config (LightningCLI's config.yaml) names it, hparams cannot
-        self.save_hyperparameters(ignore=["dr"])
+        self.save_hyperparameters(ignore=["dr", "simulated"])
         cache = Path(cache_dir) if cache_dir is not None else default_cache_dir()
         self.hparams["cache_dir"] = str(cache)
         self.hparams["proxy_dir"] = str(proxy_dir) if proxy_dir is not None else str(cache / "proxy")
         self.hparams["test"] = None if test is None else [parse_test_entry(e, f"test[{i}]") for i, e in enumerate(test)]
         self.task, self.method = task, method
-        self._given_dr = dr
+        self._given_dr, self._given_simulated = dr, simulated
         if clip_range is not None and len(clip_range) != 2:
             raise ConfigError(f"clip_range must be [vmin, vmax], got {clip_range!r}")
         self.clip: tuple[float, float] | None = None if clip_range is None else (clip_range[0], clip_range[1])
@@ -271,6 +279,8 @@ class RadarDataModule(L.LightningDataModule):
 
     def simulated_dataset(self) -> SimulatedRadarDataset:
         """The training twin's dataset (train + val items), in the test captures' radar config."""
+        if self._given_simulated is not None:
+            return self._checked_given_simulated()
         r = self.hparams["randomization"]
         randomization = None
         if r:
@@ -306,6 +316,26 @@ class RadarDataModule(L.LightningDataModule):
             seed=self.hparams["sim_seed"], config=self.config, target="count", twin_options=twin_options, **extra,
         )
 
+    def _checked_given_simulated(self) -> SimulatedRadarDataset:
+        """``simulated`` as given, after the checks its docstring names."""
+        ds = self._given_simulated
+        assert ds is not None
+        if ds.config != self._setup_config():
+            raise ConfigError(f"data.simulated has another radar config ({ds.config.describe()}) than the test "
+                              f"captures ({self._setup_config().describe()})")
+        n = self.hparams["train_items"] + self.hparams["val_items"]
+        if len(ds) < n or ds.target != "count":
+            raise ConfigError(f"data.simulated must give people counts (target='count') for at least "
+                              f"train_items + val_items = {n} items; it has {len(ds)} items, target {ds.target!r}")
+        h = self.hparams
+        unused = [k for k, on in (("calibrate_noise", h["calibrate_noise"]), ("profile", h["profile"]),
+                                  ("catalog_priors", h["catalog_priors"] != "physics"),
+                                  ("cdr_twin_noise_offset_db", self._quiet_twin_db() is not None),
+                                  ("method cdr_profile", self.method in PROFILE_METHODS)) if on]
+        if unused:
+            warnings.warn(f"data.simulated is used as given: {', '.join(unused)} not applied to it", stacklevel=3)
+        return ds
+
     # ------------------------------------------------------------------ Lightning hooks
     def setup(self, stage: str | None = None) -> None:
         """Resolve captures, DR and receiver; build the simulated splits (cached) and the image chain."""
@@ -333,7 +363,7 @@ class RadarDataModule(L.LightningDataModule):
             self.excise = self._persistent_cells(calibration)
         n_train, n_val = self.hparams["train_items"], self.hparams["val_items"]
         needs_sim = stage in (None, "fit", "validate") or self.clip is None
-        if needs_sim:
+        if needs_sim and self._given_simulated is None:  # a given dataset brings its own receiver
             self._resolve_receiver(calibration, has_capture, rank, world)
             if self.hparams["catalog_priors"] == "calibration" and self.hparams["randomization"]:
                 if not has_capture or calibration is None:

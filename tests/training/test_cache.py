@@ -107,21 +107,21 @@ def test_sigkill_during_build_leaves_no_trusted_file(tmp_path):
     proc = subprocess.Popen([sys.executable, "-c", script])
     try:
         deadline = time.time() + 120
-        while not list(tmp_path.glob("*.partial-*.h5")) and time.time() < deadline:
+        while not list(tmp_path.glob(".sim-*.tmp")) and time.time() < deadline:
             time.sleep(0.2)
         time.sleep(1.0)  # let it write some items
         assert proc.poll() is None, "the build finished before it could be killed"
     finally:
         os.kill(proc.pid, signal.SIGKILL)
         proc.wait()
-    assert [p.name for p in tmp_path.glob("sim-*.h5") if "partial" not in p.name] == []
+    assert list(tmp_path.glob("sim-*.h5")) == []  # only the hidden temporary: nothing a later run trusts
     from radaraug.training.cache import _remove_dead_partials
 
     big = SimulatedRadarDataset("corridor", length=4000, seed=0, config=small_config(), twin_options=TWIN)
     dead = tmp_path / f"sim-{cache_key(cache_spec(big, range(4000)))}.h5"
-    assert len(list(tmp_path.glob(f"{dead.stem}.partial-*.h5"))) == 1
+    assert len(list(tmp_path.glob(f".{dead.name}.*.tmp"))) == 1  # the _files convention's temporary
     _remove_dead_partials(dead)  # what the next build of that key does first
-    assert list(tmp_path.glob("*.partial-*.h5")) == []
+    assert list(tmp_path.glob(".*.tmp")) == []
     # the next build (here a smaller one of another key) cleans the dead partial of its own key only
     ds = _ds()
     path = build_map_cache(ds, range(2), tmp_path, progress=False)

@@ -5,8 +5,8 @@ import torch
 from data import point_scatterer_frames, small_config
 
 from radaraug.errors import ConfigError
-from radaraug.io import write_capture, write_infineon_recording
-from radaraug.training import RadarDataModule
+from radaraug.io import open_capture, write_capture, write_infineon_recording
+from radaraug.training import RadarDataModule, rd_db_chain
 
 SMALL = {"train_items": 6, "val_items": 0, "tracer_rays": 16, "image_size": [32, 16], "randomization": False,
          "progress": False, "batch_size": 3}
@@ -141,3 +141,34 @@ def test_floor_relative_excises_the_calibrations_lines_and_cdr_gets_a_quiet_twin
                          calibrate_noise=False, **kw)
     rt.config = cfg
     assert "receiver" not in rt.simulated_dataset().twin_options and rt.receiver_kind() == "default"
+
+
+def test_a_simulated_dataset_given_as_an_object_is_used_as_given(tmp_path, captures):
+    from radaraug.sim.dataset import SimulatedRadarDataset
+
+    cal, tests = captures
+    with open_capture(str(cal)) as cap:
+        config = cap.config
+    mine = SimulatedRadarDataset("corridor", length=8, seed=11, config=config, target="count",
+                                 twin_options={"tracer_options": {"method": "sbr", "rays": 16}})
+    kw = SMALL | {"train_items": 5, "val_items": 2}
+    dm = RadarDataModule(task="counting", method="rt", calibration=str(cal), test=[f"{tests[0][0]}:0"],
+                         simulated=mine, cache_dir=str(tmp_path / "c"), calibrate_noise=False, **kw)
+    dm.setup("fit")
+    assert dm.simulated_dataset() is mine and "simulated" not in dm.hparams
+    # the maps are mine (seed 11), item for item
+    x0 = dm._train.base.maps([0])[0].float()
+    raw, count = mine[0]
+    assert torch.allclose(x0, rd_db_chain()(raw[None])[0].clamp(-300, 300).half().float())
+    # fitted-receiver options are not applied to a given dataset: said, not silent
+    with pytest.warns(UserWarning, match="calibrate_noise not applied"):
+        RadarDataModule(task="counting", method="rt", calibration=str(cal), test=[f"{tests[0][0]}:0"],
+                        simulated=mine, cache_dir=str(tmp_path / "c"), calibrate_noise=True, **kw).setup("fit")
+    other = SimulatedRadarDataset("corridor", length=8, seed=11, config=config.replace(if_gain_dB=48), target="count")
+    with pytest.raises(ConfigError, match="data.simulated has another radar config"):
+        RadarDataModule(task="counting", method="rt", calibration=str(cal), test=[f"{tests[0][0]}:0"],
+                        simulated=other, cache_dir=str(tmp_path / "c"), **kw).setup("fit")
+    short = SimulatedRadarDataset("corridor", length=3, seed=11, config=config, target="count")
+    with pytest.raises(ConfigError, match="at least"):
+        RadarDataModule(task="counting", method="rt", calibration=str(cal), test=[f"{tests[0][0]}:0"],
+                        simulated=short, cache_dir=str(tmp_path / "c"), **kw).setup("fit")
