@@ -286,8 +286,9 @@ def _cmd_trace(args: argparse.Namespace) -> int:
     t = torch.tensor([args.time], dtype=torch.float64)
     ell = scene.people_ellipsoids(t) if scene.people else None
     if ell is not None:
+        omega = ell.angular_velocities
         ell = type(ell)(*(x.float()[0] for x in (ell.centers, ell.semi_axes, ell.rotations, ell.velocities)),
-                        ell.material)
+                        ell.material, None if omega is None else omega.float()[0])
     paths = tracer.trace(ellipsoids=ell)
     data = {"scene": scene.name, "time_s": args.time, "convex_room": bool(tracer.convex_room),
             **paths_to_json(paths, scene.config)}

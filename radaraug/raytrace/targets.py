@@ -10,7 +10,9 @@ times ``|Gamma_skin|^2`` at normal incidence (the root RCS is ``Gamma_skin * sqr
 stationary-phase result of PO on a convex surface: -sqrt(sigma) for metal). The specular point
 is ``centre - h * l``, so a sphere's echo comes from its front, ``R - a``. Monostatic
 ``delay_rate = v . (u_tx + u_rx) / c`` with ``u`` the unit vectors from the antennas to the
-scatterer. A segment is dropped (mask False) when the line of sight to its specular point
+scatterer and ``v`` the material velocity at the specular point, ``v_centre + omega x (p - centre)``
+when the segments' angular velocities are given (the envelope theorem: the stationary-phase range
+of a rotating segment changes at that rate, not at its centre's). A segment is dropped (mask False) when the line of sight to its specular point
 crosses another ellipsoid or the room.
 
 **First-order multipath** (``multipath=True``): for each large planar face group of the room
@@ -213,6 +215,36 @@ def ellipsoid_paths(
     ax = ell.semi_axes.to(device=dev, dtype=dt).reshape(-1, s_count, 3)
     rot = ell.rotations.to(device=dev, dtype=dt).reshape(-1, s_count, 3, 3)
     vel = ell.velocities.to(device=dev, dtype=dt).reshape(-1, s_count, 3)
+    omega = None if ell.angular_velocities is None else \
+        ell.angular_velocities.to(device=dev, dtype=dt).reshape(-1, s_count, 3)
+
+    def point_velocity(bis: torch.Tensor, rot_: torch.Tensor, ax_: torch.Tensor,
+                       distance: torch.Tensor | None = None) -> torch.Tensor:
+        """Material velocity ``(N, S, ..., 3)`` at each segment's true specular point for bisector ``bis``.
+
+        ``v + omega x o`` with ``o = R (-(A^2 l) / h)`` the offset of the surface point whose normal is
+        the bisector (``l = R^T bis`` in the local frame, ``A = diag(semi-axes)``): the range of a
+        rotating segment's echo changes at the velocity of that point along the bisector (the
+        envelope theorem). The point ``c - h bis`` the paths use has the same range but not this
+        velocity: ``omega x (-h bis)`` has no component along ``bis``. With ``distance`` (a monostatic
+        path: the radar -> centre distance, ``bis`` the direction) the aspect's turn as the centre moves
+        across the line of sight is added, ``bis (o . (v - (v . bis) bis)) / distance``, so that the rate
+        is the time derivative of the path's delay ``|c - r| - h`` (tested against a finite difference).
+        """
+        extra = bis.ndim - 3
+        v = vel.reshape(*vel.shape[:2], *([1] * extra), 3).expand_as(bis)
+        if omega is None:
+            return v
+        local = (rot_.transpose(-1, -2) @ bis[..., None])[..., 0]
+        a2l = ax_.square() * local
+        h = (a2l * local).sum(-1, keepdim=True).sqrt().clamp_min(1e-12)
+        offset = -(rot_ @ (a2l / h)[..., None])[..., 0]
+        w = omega.reshape(*omega.shape[:2], *([1] * extra), 3).expand_as(bis)
+        out = v + torch.linalg.cross(w, offset, dim=-1)
+        if distance is not None:
+            across = v - (v * bis).sum(-1, keepdim=True) * bis
+            out = out + ((offset * across).sum(-1, keepdim=True) / distance[..., None]) * bis
+        return out
     if (ax <= 0).any() or not torch.isfinite(ax).all():
         raise SceneError("ellipsoid semi_axes must be finite and positive")
     eps_skin = get_material(ell.material).permittivity(frequency_Hz)
@@ -238,7 +270,9 @@ def ellipsoid_paths(
     if room_bvh is not None and not convex_room:
         blocked = blocked | room_bvh.any_hit(radar.centre.expand_as(p).reshape(-1, 3), u_los.reshape(-1, 3),
                                               (r_los - eps).reshape(-1)).reshape(blocked.shape)
-    direct = _bistatic(p, root, radar.tx, radar.rx, p, vel, radar, antenna, ~blocked)
+    # the echo's range moves at the material velocity of its specular point (envelope theorem)
+    direct = _bistatic(p, root, radar.tx, radar.rx, p, point_velocity(u, rot, ax, to_t.norm(dim=-1)), radar,
+                       antenna, ~blocked)
     parts = [direct + (torch.zeros_like(blocked, dtype=torch.int8),)]
 
     # --- first-order multipath via mirror planes
@@ -275,12 +309,12 @@ def ellipsoid_paths(
         g_wall = room_reflectivity(wall_material, cos_w, u_wall_in, nrm.expand_as(u_wall_in), radar.polarization)
         root_k = gamma_skin * sigma.sqrt() * g_wall
         # Path A: TX -> wall -> segment -> RX ; path B: TX -> segment -> wall -> RX.
-        vel_k = vel[:, :, None].expand_as(pk)
+        vel_k = point_velocity(bis, rot_k, ax_k)
         a = _bistatic(pk, root_k, radar.tx, radar.rx, q, vel_k, radar, antenna, ok, first_leg_via=True)
         b = _bistatic(pk, root_k, radar.tx, radar.rx, q, vel_k, radar, antenna, ok, first_leg_via=False)
         # Path C (second order, same wall twice): TX -> wall -> segment -> wall -> RX, the segment
         # seen monostatically from the radar's image in the plane.
-        c2 = _second_order(c, ax, rot, vel, radar, antenna, nrm, off, img, gamma_skin, mirrors, room_bvh,
+        c2 = _second_order(c, ax, rot, point_velocity, radar, antenna, nrm, off, img, gamma_skin, mirrors, room_bvh,
                            room_face_material, room_reflectivity, convex_room)
         for part in (a, b, c2):
             parts.append(tuple(x.reshape(x.shape[0], -1, *x.shape[3:]) for x in part)
@@ -294,7 +328,7 @@ def ellipsoid_paths(
                  kind.reshape(*lead, -1), mask.reshape(*lead, -1))
 
 
-def _second_order(c, ax, rot, vel, radar: RadarGeometry, antenna, nrm, off, img, gamma_skin, mirrors: MirrorPlanes,
+def _second_order(c, ax, rot, point_velocity, radar: RadarGeometry, antenna, nrm, off, img, gamma_skin, mirrors: MirrorPlanes,
                   room_bvh: TriangleBVH, room_face_material, room_reflectivity, convex_room: bool):
     """Wall -> segment -> same wall paths ``(N, S, K, RX)``: delay, rate, amplitude, valid.
 
@@ -346,8 +380,10 @@ def _second_order(c, ax, rot, vel, radar: RadarGeometry, antenna, nrm, off, img,
     amp = torch.where(ok[..., None], amp, torch.zeros_like(amp))
     delay = (r_t[..., None] + r_r) / SPEED_OF_LIGHT
     # Both legs leave the segment towards the images: d|p - img|/dt = v . (p - img) / |p - img|.
-    rate_t = (vel[:, :, None] * _unit(p - tx_img)).sum(-1)
-    rate_r = (vel[:, :, None, None] * (u_rp / r_r[..., None])).sum(-1)
+    # (N, S, K, 3): the true specular point's material velocity, seen monostatically from the image radar
+    vel = point_velocity(u, rot_k, ax_k, (cc - img).norm(dim=-1))
+    rate_t = (vel * _unit(p - tx_img)).sum(-1)
+    rate_r = (vel[..., None, :] * (u_rp / r_r[..., None])).sum(-1)
     rate = (rate_t[..., None] + rate_r) / SPEED_OF_LIGHT
     return delay.to(dt), rate.to(dt), amp, ok
 

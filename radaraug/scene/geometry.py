@@ -109,6 +109,11 @@ class Ellipsoids:
         rotations: ``(..., S, 3, 3)`` world-from-local rotations (columns: local axes in world).
         velocities: ``(..., S, 3)`` velocity of each centre, m/s.
         material: material name of the surface (for reflectivity), default human skin.
+        angular_velocities: ``(..., S, 3)`` world-frame angular velocity of each segment, rad/s, or
+            None (not given: the tracer then moves every point of a segment with its centre). A
+            rotating segment's echo sits at its specular point, whose range changes at the
+            material velocity there, ``v + omega x (p - centre)`` (the envelope theorem), not at
+            the centre's: a swinging lower leg's differs by several Doppler bins.
     """
 
     centers: torch.Tensor
@@ -116,6 +121,7 @@ class Ellipsoids:
     rotations: torch.Tensor
     velocities: torch.Tensor
     material: str = "skin"
+    angular_velocities: torch.Tensor | None = None
 
     @property
     def num_segments(self) -> int:
@@ -127,6 +133,7 @@ class Ellipsoids:
         return Ellipsoids(
             self.centers.to(device), self.semi_axes.to(device), self.rotations.to(device),
             self.velocities.to(device), self.material,
+            None if self.angular_velocities is None else self.angular_velocities.to(device),
         )
 
     @staticmethod
@@ -138,4 +145,7 @@ class Ellipsoids:
             torch.cat([e.rotations for e in items], dim=-3),
             torch.cat([e.velocities for e in items], dim=-2),
             items[0].material,
+            None if all(e.angular_velocities is None for e in items) else torch.cat(
+                [torch.zeros_like(e.velocities) if e.angular_velocities is None else e.angular_velocities
+                 for e in items], dim=-2),
         )

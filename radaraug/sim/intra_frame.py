@@ -14,11 +14,14 @@ carried as ``Paths.chirp_delay_s``. The amplitude at the knots gives ``Paths.chi
 in between, relative to the amplitude at the first knot where the slot exists), so a slot that
 becomes occluded or visible mid-frame fades in or out (resolved to the knot spacing).
 
-Integrating the rate (rather than interpolating the traced delays) keeps the one-snapshot model's
-physics: a segment's echo sits at its specular point and moves with the segment's velocity, the
-point-scatterer walker of V.C. Chen's micro-Doppler model. The specular point of a rotating,
-elongated segment also slides over its surface (the stationary-phase delay of a lower leg changes
-at a rate up to ~6 Doppler bins away from its centre's); that sliding is not followed, as before.
+Integrating the rate (rather than interpolating the traced delays) is exact because the tracer's
+rate is the derivative of its delay: a segment's echo sits at its specular point, and the tracer
+moves it with the material velocity of that point, ``v + omega x offset`` plus the aspect's turn as
+the segment crosses the line of sight (:mod:`radaraug.raytrace.targets`; the envelope theorem). Up to
+``TWIN_MODEL_VERSION`` 1 the rate was the segment centre's, and a rotating, elongated segment's
+sliding specular point was not followed (a lower leg's echo up to ~6 Doppler bins off): a walker's
+Doppler profile then differed from a trace at every chirp by 12.9 dB RMS, now by 0.11 dB
+(tests/sim/test_intra_frame.py).
 
 **Choosing K (no user setting).** Knots are refined dyadically per frame: with ``K`` intervals
 of length ``H`` the midpoints of the next level are traced and their rates compared with the

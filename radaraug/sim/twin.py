@@ -32,6 +32,12 @@ from radaraug.sensor.synthesis import ChirpTiming
 from radaraug.sim.intra_frame import DEFAULT_TOL_CYCLES, check_intra_frame, intra_frame_paths
 from radaraug.sim.item_signal import drawn_signal, people_paths
 
+#: Version of the twin's physics, part of the cache key of every simulated map set
+#: (:func:`radaraug.training.cache.cache_spec`): bumped when a change makes the same inputs simulate
+#: other frames, so that no cache made before is reused. 2: a moving segment's echo moves with the
+#: material velocity of its specular point (rotation included), not with the segment's centre.
+TWIN_MODEL_VERSION = 2
+
 if TYPE_CHECKING:
     from radaraug.sim.randomization import ItemDraw
 
@@ -177,8 +183,10 @@ class DigitalTwin:
         parts = [p.ellipsoids(t) for p in people]
         e = Ellipsoids.cat(parts) if len(parts) > 1 else parts[0]
         dev, dt = self.device, self.dtype
+        omega = None if e.angular_velocities is None else e.angular_velocities.to(device=dev, dtype=dt)
         return Ellipsoids(e.centers.to(device=dev, dtype=dt), e.semi_axes.to(device=dev, dtype=dt),
-                          e.rotations.to(device=dev, dtype=dt), e.velocities.to(device=dev, dtype=dt), e.material)
+                          e.rotations.to(device=dev, dtype=dt), e.velocities.to(device=dev, dtype=dt), e.material,
+                          omega)
 
     def paths(self, people: Sequence[Any], times: torch.Tensor) -> Paths:
         """Paths of the people over the frames starting at ``times`` ``(T, P, RX)``.

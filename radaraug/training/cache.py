@@ -6,7 +6,7 @@ another receiver, the fitted twin profile's: its set has its own key.) So the tw
 *before* DR as ``(rx, range, doppler)`` dB maps (float16: 0.06 dB steps at -100 dB, half the
 size) with the people count of each item. The file name carries a hash of everything the maps
 depend on -- scene, radar config, receiver, scenario sampler, twin randomization, seed, the item
-indices and the RD chain -- so a change of any of them re-simulates and an unchanged one does not.
+indices, the RD chain and the twin's physics version (``TWIN_MODEL_VERSION``) -- so a change of any of them re-simulates and an unchanged one does not.
 
 A file is written under a temporary name (the package's one convention, :mod:`radaraug._files`) and
 renamed when complete: a killed run leaves no half-written cache that a later run would trust, and
@@ -35,6 +35,7 @@ from radaraug._optional import lazy_import
 from radaraug.errors import CaptureError
 from radaraug.raytrace.cache import default_cache_dir as default_cache_dir  # one folder for every cache
 from radaraug.sim.dataset import SimulatedRadarDataset
+from radaraug.sim.twin import TWIN_MODEL_VERSION
 from radaraug.training.pipeline import rd_db_chain
 from radaraug.units import DB_CONVENTION
 
@@ -66,6 +67,7 @@ def cache_spec(dataset: SimulatedRadarDataset, indices: Sequence[int]) -> dict[s
     return {
         "format": CACHE_FORMAT,
         "version": CACHE_VERSION,
+        "twin_model": TWIN_MODEL_VERSION,
         "scene": _jsonable(dataset.scene.to_dict()),
         "config": dataset.config.to_dict(),
         "receiver": _jsonable(receiver.to_dict()) if receiver is not None else "default",

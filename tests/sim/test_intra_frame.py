@@ -48,23 +48,20 @@ def _doppler_extent(x: torch.Tensor, threshold_db: float) -> tuple[float, float]
     return float(above.min()), float(above.max())
 
 
-def _analytic_bins(walker: Walker, seg: int, t0: float, scene: Scene, cfg) -> tuple[float, float]:
-    """Min and max over the frame's chirps of the segment centre's radial velocity (from the
-    walker's analytic kinematics), in Doppler bins ``2 v / lambda * M * T``."""
+def _analytic_bins(walker: Walker, seg: int, t0: float, one: DigitalTwin, cfg) -> tuple[float, float]:
+    """Min and max over the frame's chirps of the segment's echo radial velocity, in Doppler bins
+    ``2 v / lambda * M * T``: the tracer's rate at every chirp time (the specular point's material
+    velocity, which tests/raytrace/test_targets.py checks against the derivative of the traced delay)."""
     timing = ChirpTiming.from_config(cfg)
     t = t0 + chirp_times(timing)
-    e = walker.ellipsoids(t)
-    radar = torch.tensor([0.1, 0.0, 1.2], dtype=torch.float64)
-    u = e.centers[:, seg].double() - radar
-    u = u / u.norm(dim=-1, keepdim=True)
-    v_r = (e.velocities[:, seg].double() * u).sum(-1)  # positive = receding
-    bins = 2 * v_r * timing.f0 / 299792458.0 * timing.num_chirps * timing.prt
+    rate = one.paths([walker], t).delay_rate[:, seg].double().mean(-1)  # (M,), seconds per second
+    bins = rate * timing.f0 * timing.num_chirps * timing.prt  # = 2 v_r / lambda * M * T
     return float(bins.min()), float(bins.max())
 
 
 def test_limb_doppler_spread_matches_the_walkers_velocity_range(scene) -> None:
-    """A foot's / lower leg's Doppler over one frame spans its analytic radial velocity range
-    (one sharp line with one snapshot per frame)."""
+    """A foot's / lower leg's Doppler over one frame spans its echo's radial velocity range over the
+    frame's chirps (one sharp line with one snapshot per frame)."""
     cfg = scene.config
     walker = Walker(height_m=1.8, speed_m_s=1.4, start=(5.0, 0.1), heading_rad=math.pi)
     auto, one = _twin(scene), _twin(scene, intra_frame=0)
@@ -72,26 +69,30 @@ def test_limb_doppler_spread_matches_the_walkers_velocity_range(scene) -> None:
     times = torch.arange(0, 1.0, 0.02, dtype=torch.float64)
     # Hann window over the chirps, extent at -20 dB: a pure tone spans +-1.5 bins, and a sweep's
     # extremes (at the frame's ends, where the window tapers) lose about as much; the extent is in
-    # whole bins (+-0.5). Tolerance: 1.5 bins.
+    # whole bins (+-0.5); and the echo's amplitude changes over the frame as its specular point slides
+    # (a glint), which moves the -20 dB extent by up to half a bin more. Tolerance: 2 bins. (The frame's
+    # whole spectrum is checked against a trace at every chirp in the test below, to 0.5 dB RMS.)
     threshold = 20.0
     pure = _doppler_extent(auto.receiver(_slot(one.paths([walker], times[:1]), SEGMENT_NAMES.index("torso")))[0],
                            threshold)
     checked = 0
-    for name in ("right_foot", "left_foot", "right_lower_leg", "left_lower_leg"):
+    # The feet: their echoes sweep 3+ bins in a frame. (The lower legs' echoes, at their specular points,
+    # sweep at most ~2.6 bins in this walk, about a line's width: the per-chirp test below covers them.)
+    for name in ("right_foot", "left_foot"):
         seg = SEGMENT_NAMES.index(name)
-        spans = [(_analytic_bins(walker, seg, float(t), scene, cfg), float(t)) for t in times]
+        spans = [(_analytic_bins(walker, seg, float(t), one, cfg), float(t)) for t in times]
         (lo, hi), t0 = max(spans, key=lambda s: s[0][1] - s[0][0])
         assert hi - lo > 3  # the limb accelerates by several bins in that frame
         tt = torch.tensor([t0], dtype=torch.float64)
         got = _doppler_extent(auto.receiver(_slot(auto.paths([walker], tt), seg))[0], threshold)
-        assert got[0] == pytest.approx(lo, abs=1.5), name
-        assert got[1] == pytest.approx(hi, abs=1.5), name
+        assert got[0] == pytest.approx(lo, abs=2.0), name
+        assert got[1] == pytest.approx(hi, abs=2.0), name
         before = _doppler_extent(one.receiver(_slot(one.paths([walker], tt), seg))[0], threshold)
         # One snapshot: a single line (as wide as a tone, +1 bin when it falls between bins).
         assert before[1] - before[0] <= pure[1] - pure[0] + 1, name
         assert got[1] - got[0] >= before[1] - before[0] + 2, name
         checked += 1
-    assert checked == 4
+    assert checked == 2
 
 
 def test_constant_radial_velocity_needs_no_residual(scene) -> None:
@@ -189,3 +190,40 @@ def test_interpolation_weights_reproduce_the_interpolants() -> None:
         trap = torch.trapezoid(_hermite(y, fine), fine, dim=-1)
         torch.testing.assert_close(_hermite_integral(y, torch.tensor([float(k)], dtype=torch.float64))[..., 0],
                                    trap, atol=1e-6, rtol=1e-6)
+
+
+def _doppler_profiles(x: torch.Tensor) -> torch.Tensor:
+    """Per-frame Doppler profiles (power summed over range, mean over RX), dB."""
+    from radaraug.transforms import RangeDoppler
+
+    p = RangeDoppler()(x).abs().square().mean(dim=1).sum(dim=1)
+    return 10 * torch.log10(p.clamp_min(1e-30))
+
+
+def test_walker_doppler_matches_a_trace_at_every_chirp(scene) -> None:
+    """The reference does not use the rate model at all: 64 one-chirp frames, each traced at its own
+    chirp's time (the echo at its specular point then), stacked into a frame. The twin's frames (the
+    tracer's delay rates integrated between the automatic knots) must give the same Doppler profile.
+
+    Before the specular point's velocity was used (issue 22) the limbs' echoes moved with their
+    segments' centres: 12.9 dB RMS (51 dB max) over bins within 30 dB of each frame's peak; now 0.11 dB
+    RMS (0.61 dB max) over 16 frames of a gait cycle (this test's 6 frames: measured below)."""
+    cfg = scene.config
+    walker = Walker(start=(2.0, 0.3), heading_rad=0.0)
+    times = torch.arange(6, dtype=torch.float64) * 0.19  # a gait cycle (~1.1 s)
+    twin = DigitalTwin(scene, receiver=FMCWReceiver(cfg, effects=[]), multipath=False, dtype=torch.float64)
+    frames = twin.simulate([walker], times) - twin.simulate([], times)
+    one = cfg.replace(num_chirps_per_frame=1)
+    single = Scene.builtin("corridor")
+    single.config = one
+    chirp = DigitalTwin(single, config=one, receiver=FMCWReceiver(one, effects=[]), multipath=False, intra_frame=0,
+                        dtype=torch.float64)
+    m = cfg.num_chirps_per_frame
+    tc = (times[:, None] + torch.arange(m, dtype=torch.float64) * cfg.chirp_repetition_time_s).reshape(-1)
+    stacked = chirp.simulate([walker], tc) - chirp.simulate([], tc)  # (T M, RX, 1, samples)
+    stacked = stacked.reshape(len(times), m, *stacked.shape[1:]).squeeze(3).transpose(1, 2)
+    ref, got = _doppler_profiles(stacked), _doppler_profiles(frames)
+    sel = ref > ref.amax(dim=1, keepdim=True) - 30
+    err = (got - ref)[sel]
+    assert int(sel.sum()) > 60
+    assert float(err.square().mean().sqrt()) < 0.5 and float(err.abs().max()) < 2.0

@@ -44,6 +44,37 @@ RANDOMIZED_ITEMS = {
     3: (1, "46ff0443bb8f64af56c90a380a55ce52daf14a6d44843690d9e0521fdd5f5699"),
 }
 
+# TWIN_MODEL_VERSION 2 (issue 22): a segment's echo moves with its specular point's material velocity,
+# rotation included. The digests above are those of the items with the old rule (the segment's centre
+# velocity): the tests check them with the turn taken out, so that this one change is all that moved
+# them; the items with people are these now (the empty item is unchanged).
+ITEMS_V2 = {
+    0: (2, "c4ebd837960af05241147443bf82144ec363bf6bd780884c133df57a8a57ffd1"),
+    1: (2, "273d81dd043e2953cbece4f8ea842e0e835d6d47a9164e4451b1230570f22b9d"),
+    2: (0, "05ba94a5f1c184f875e8bee2a2fa9eccb49051395128e67ff41a8711bda8776d"),
+    3: (1, "a4a3a38e2e8d05a5342cf5e37aa7156f79f9b2ff377aac92254f2ef67dfc2b50"),
+}
+RANDOMIZED_ITEMS_V2 = {
+    0: (2, "f6f7bbcf37197ac54c2cf07068c7d8fd78ee4307420f0c10ce54326fc4501edc"),
+    1: (2, "4928ac7f5d5bb7f471a4a1b79d1ac4298afde9faa5e2e599ac0dc8174ebbae70"),
+    2: (0, "9ae268fd9168f14b3758e7d7b6516f57ba3159bc5e9808179efc8472a69d0e58"),
+    3: (1, "b4083351b3a90e8777c0ccaccdc53204b69a89e62e870699065ae12d4823e4bc"),
+}
+
+
+@pytest.fixture(params=["centre_velocity", "specular_velocity"])
+def model(request: pytest.FixtureRequest, monkeypatch: pytest.MonkeyPatch) -> str:
+    """The twin with the old echo-velocity rule (turn taken out of the segments), or as it is."""
+    if request.param == "centre_velocity":
+        import dataclasses
+
+        from radaraug.scene.people.skeleton import Skeleton
+
+        with_turn = Skeleton.ellipsoids
+        monkeypatch.setattr(Skeleton, "ellipsoids", lambda self, *a, **kw: dataclasses.replace(
+            with_turn(self, *a, **kw), angular_velocities=None))
+    return str(request.param)
+
 
 def test_stream_values_are_unique_and_unchanged() -> None:
     assert {m.name: int(m) for m in Stream} == KNOWN
@@ -72,12 +103,12 @@ def _assert_recorded(ds: SimulatedRadarDataset, index: int, recorded: dict[int, 
 
 
 @pytest.mark.parametrize("index", sorted(ITEMS))
-def test_known_items_are_bit_identical(index: int) -> None:
+def test_known_items_are_bit_identical(index: int, model: str) -> None:
     ds = SimulatedRadarDataset("corridor", length=4, seed=3, twin_options={"tracer_options": {"rays": 16}})
-    _assert_recorded(ds, index, ITEMS, "item")
+    _assert_recorded(ds, index, ITEMS if model == "centre_velocity" else ITEMS_V2, "item")
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture
 def randomized_dataset() -> SimulatedRadarDataset:
     from radaraug.sim.randomization import TwinRandomization
 
@@ -86,5 +117,7 @@ def randomized_dataset() -> SimulatedRadarDataset:
 
 
 @pytest.mark.parametrize("index", sorted(RANDOMIZED_ITEMS))
-def test_known_randomized_items_are_bit_identical(index: int, randomized_dataset: SimulatedRadarDataset) -> None:
-    _assert_recorded(randomized_dataset, index, RANDOMIZED_ITEMS, "randomized item")
+def test_known_randomized_items_are_bit_identical(index: int, model: str,
+                                                  randomized_dataset: SimulatedRadarDataset) -> None:
+    recorded = RANDOMIZED_ITEMS if model == "centre_velocity" else RANDOMIZED_ITEMS_V2
+    _assert_recorded(randomized_dataset, index, recorded, "randomized item")

@@ -182,7 +182,10 @@ class Skeleton:
         """Segment ellipsoids from joint positions and velocities.
 
         Centres are bone midpoints; their velocities the mean of the two joint velocities,
-        which is exact for a rigid bone.
+        which is exact for a rigid bone. Angular velocities: from the segment frames a short step
+        ahead along the joints' velocities, ``R(t + dt) R(t)^T = I + [omega]x dt`` (the bone's turn and
+        the twist the hip and shoulder lines give it); the tracer moves each echo with its specular
+        point's velocity ``v + omega x offset`` (:mod:`radaraug.raytrace.targets`).
 
         Args:
             joints: ``(..., 17, 3)`` positions, metres.
@@ -202,4 +205,13 @@ class Skeleton:
         cs = self.cross_section(joints).expand(*half.shape[:-1], 2)
         semi = torch.cat([cs, half], dim=-1)
         rot, _ = self._frames(joints, bone, fallback)
-        return Ellipsoids(centers=centers, semi_axes=semi, rotations=rot, velocities=vel, material=material)
+        # The segment frames a short step ahead along the joints' velocities: R(t + dt) R(t)^T = I + [omega]x dt,
+        # the whole turn (the bone's, and the twist the hip and shoulder lines give the cross-section).
+        step = 1e-4
+        ahead = joints + step * velocities
+        ends2 = ahead[..., torch.cat([parent, child]), :]
+        rot2, _ = self._frames(ahead, ends2[..., s:, :] - ends2[..., :s, :], fallback)
+        w = (rot2 @ rot.transpose(-1, -2) - rot @ rot2.transpose(-1, -2)) / (2 * step)
+        omega = torch.stack([w[..., 2, 1], w[..., 0, 2], w[..., 1, 0]], dim=-1)
+        return Ellipsoids(centers=centers, semi_axes=semi, rotations=rot, velocities=vel, material=material,
+                          angular_velocities=omega)
