@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import dataclasses
 import os
 from pathlib import Path
 
@@ -12,11 +11,37 @@ from radaraug._files import atomic_savefig
 from radaraug._optional import lazy_import
 
 
-def _doppler_db(x: torch.Tensor) -> torch.Tensor:
+def doppler_profiles_db(x: torch.Tensor) -> torch.Tensor:
+    """Per-frame Doppler profiles ``(T, chirps)`` of frames ``(T, RX, chirps, samples)``, dB.
+
+    RD power summed over range, mean over RX (zero Doppler centred).
+    """
     from radaraug.transforms import RangeDoppler
 
     p = RangeDoppler()(x).abs().square().mean(dim=1).sum(dim=1)
     return 10 * torch.log10(p.clamp_min(1e-30))
+
+
+def traced_at_every_chirp(scene_name: str, people: list, times: torch.Tensor) -> torch.Tensor:
+    """The people's frames ``(T, RX, chirps, samples)`` built without any rate model (the empty room's subtracted).
+
+    One-chirp frames, each traced at its own chirp's time, stacked (ideal receiver, no multipath,
+    float64): the reference the twin's motion inside a frame is checked against.
+    """
+    from radaraug.scene.scene import Scene
+    from radaraug.sensor.receiver import FMCWReceiver
+    from radaraug.sim.twin import DigitalTwin
+
+    single = Scene.builtin(scene_name)
+    cfg = single.config
+    one = cfg.replace(num_chirps_per_frame=1)
+    single.config = one
+    chirp = DigitalTwin(single, config=one, receiver=FMCWReceiver(one, effects=[]), multipath=False, intra_frame=0,
+                        dtype=torch.float64)
+    m = cfg.num_chirps_per_frame
+    tc = (times[:, None] + torch.arange(m, dtype=torch.float64) * cfg.chirp_repetition_time_s).reshape(-1)
+    stacked = chirp.simulate(people, tc) - chirp.simulate([], tc)  # (T M, RX, 1, samples)
+    return stacked.reshape(len(times), m, *stacked.shape[1:]).squeeze(3).transpose(1, 2)
 
 
 def plot_limb_doppler_check(path: str | os.PathLike, frames: int = 4) -> Path:
@@ -27,7 +52,7 @@ def plot_limb_doppler_check(path: str | os.PathLike, frames: int = 4) -> Path:
     """
     plt = lazy_import("matplotlib.pyplot", feature="figures")
     from radaraug.scene.people import Walker
-    from radaraug.scene.people.skeleton import Skeleton
+    from radaraug.scene.people.skeleton import without_turn
     from radaraug.scene.scene import Scene
     from radaraug.sensor.receiver import FMCWReceiver
     from radaraug.sim.twin import DigitalTwin
@@ -42,24 +67,13 @@ def plot_limb_doppler_check(path: str | os.PathLike, frames: int = 4) -> Path:
         return twin.simulate([walker], times) - twin.simulate([], times)
 
     now = twin_frames()
-    with_turn = Skeleton.ellipsoids
-    Skeleton.ellipsoids = lambda self, *a, **kw: dataclasses.replace(  # type: ignore[method-assign]
-        with_turn(self, *a, **kw), angular_velocities=None)
-    try:
+    with without_turn():
         before = twin_frames()
-    finally:
-        Skeleton.ellipsoids = with_turn  # type: ignore[method-assign]
-    one = cfg.replace(num_chirps_per_frame=1)
-    single = Scene.builtin("corridor")
-    single.config = one
-    chirp = DigitalTwin(single, config=one, receiver=FMCWReceiver(one, effects=[]), multipath=False, intra_frame=0,
-                        dtype=torch.float64)
+    ref = traced_at_every_chirp("corridor", [walker], times)
+    curves = {"a trace at every chirp (reference)": doppler_profiles_db(ref),
+              "twin, echo at the centre's velocity (before)": doppler_profiles_db(before),
+              "twin, echo at the specular point (now)": doppler_profiles_db(now)}
     m = cfg.num_chirps_per_frame
-    tc = (times[:, None] + torch.arange(m, dtype=torch.float64) * cfg.chirp_repetition_time_s).reshape(-1)
-    ref = chirp.simulate([walker], tc) - chirp.simulate([], tc)
-    ref = ref.reshape(frames, m, *ref.shape[1:]).squeeze(3).transpose(1, 2)
-    curves = {"a trace at every chirp (reference)": _doppler_db(ref), "twin, echo at the centre's velocity (before)":
-              _doppler_db(before), "twin, echo at the specular point (now)": _doppler_db(now)}
     bins = torch.arange(m) - m // 2
     fig, axes = plt.subplots(1, frames, figsize=(3.2 * frames, 3.0), sharey=True)
     for k, ax in enumerate(axes):

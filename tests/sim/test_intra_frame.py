@@ -13,6 +13,7 @@ from radaraug.scene.scene import Scene
 from radaraug.sensor.paths import Paths
 from radaraug.sensor.receiver import FMCWReceiver
 from radaraug.sensor.synthesis import ChirpTiming
+from radaraug.sim.figures import doppler_profiles_db, traced_at_every_chirp
 from radaraug.sim.intra_frame import chirp_times
 from radaraug.sim.twin import DigitalTwin
 
@@ -192,14 +193,6 @@ def test_interpolation_weights_reproduce_the_interpolants() -> None:
                                    trap, atol=1e-6, rtol=1e-6)
 
 
-def _doppler_profiles(x: torch.Tensor) -> torch.Tensor:
-    """Per-frame Doppler profiles (power summed over range, mean over RX), dB."""
-    from radaraug.transforms import RangeDoppler
-
-    p = RangeDoppler()(x).abs().square().mean(dim=1).sum(dim=1)
-    return 10 * torch.log10(p.clamp_min(1e-30))
-
-
 def test_walker_doppler_matches_a_trace_at_every_chirp(scene) -> None:
     """The reference does not use the rate model at all: 64 one-chirp frames, each traced at its own
     chirp's time (the echo at its specular point then), stacked into a frame. The twin's frames (the
@@ -213,16 +206,8 @@ def test_walker_doppler_matches_a_trace_at_every_chirp(scene) -> None:
     times = torch.arange(6, dtype=torch.float64) * 0.19  # a gait cycle (~1.1 s)
     twin = DigitalTwin(scene, receiver=FMCWReceiver(cfg, effects=[]), multipath=False, dtype=torch.float64)
     frames = twin.simulate([walker], times) - twin.simulate([], times)
-    one = cfg.replace(num_chirps_per_frame=1)
-    single = Scene.builtin("corridor")
-    single.config = one
-    chirp = DigitalTwin(single, config=one, receiver=FMCWReceiver(one, effects=[]), multipath=False, intra_frame=0,
-                        dtype=torch.float64)
-    m = cfg.num_chirps_per_frame
-    tc = (times[:, None] + torch.arange(m, dtype=torch.float64) * cfg.chirp_repetition_time_s).reshape(-1)
-    stacked = chirp.simulate([walker], tc) - chirp.simulate([], tc)  # (T M, RX, 1, samples)
-    stacked = stacked.reshape(len(times), m, *stacked.shape[1:]).squeeze(3).transpose(1, 2)
-    ref, got = _doppler_profiles(stacked), _doppler_profiles(frames)
+    ref = doppler_profiles_db(traced_at_every_chirp("corridor", [walker], times))
+    got = doppler_profiles_db(frames)
     sel = ref > ref.amax(dim=1, keepdim=True) - 30
     err = (got - ref)[sel]
     assert int(sel.sum()) > 60

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import hashlib
 import re
+from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
@@ -63,17 +64,15 @@ RANDOMIZED_ITEMS_V2 = {
 
 
 @pytest.fixture(params=["centre_velocity", "specular_velocity"])
-def model(request: pytest.FixtureRequest, monkeypatch: pytest.MonkeyPatch) -> str:
+def model(request: pytest.FixtureRequest) -> Iterator[str]:
     """The twin with the old echo-velocity rule (turn taken out of the segments), or as it is."""
     if request.param == "centre_velocity":
-        import dataclasses
+        from radaraug.scene.people.skeleton import without_turn
 
-        from radaraug.scene.people.skeleton import Skeleton
-
-        with_turn = Skeleton.ellipsoids
-        monkeypatch.setattr(Skeleton, "ellipsoids", lambda self, *a, **kw: dataclasses.replace(
-            with_turn(self, *a, **kw), angular_velocities=None))
-    return str(request.param)
+        with without_turn():
+            yield str(request.param)
+    else:
+        yield str(request.param)
 
 
 def test_stream_values_are_unique_and_unchanged() -> None:

@@ -8,6 +8,9 @@ the table below, from anthropometric tables for a 1.8 m adult, scaled linearly w
 
 from __future__ import annotations
 
+import dataclasses
+from collections.abc import Iterator
+from contextlib import contextmanager
 from dataclasses import dataclass
 from typing import Any
 
@@ -215,3 +218,22 @@ class Skeleton:
         omega = torch.stack([w[..., 2, 1], w[..., 0, 2], w[..., 1, 0]], dim=-1)
         return Ellipsoids(centers=centers, semi_axes=semi, rotations=rot, velocities=vel, material=material,
                           angular_velocities=omega)
+
+
+@contextmanager
+def without_turn() -> Iterator[None]:
+    """Inside, skeleton people give no angular velocities: echoes move with their segments' centres.
+
+    The rule before ``TWIN_MODEL_VERSION`` 2 (for before/after comparisons and the pinned digests of
+    items simulated that way). Not thread-safe: it replaces :meth:`Skeleton.ellipsoids`.
+    """
+    with_turn = Skeleton.ellipsoids
+
+    def centre_only(self: Skeleton, *args: Any, **kwargs: Any) -> Ellipsoids:
+        return dataclasses.replace(with_turn(self, *args, **kwargs), angular_velocities=None)
+
+    Skeleton.ellipsoids = centre_only  # type: ignore[method-assign]
+    try:
+        yield
+    finally:
+        Skeleton.ellipsoids = with_turn  # type: ignore[method-assign]
