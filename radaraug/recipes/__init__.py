@@ -134,13 +134,21 @@ def compose(*names: str) -> dict[str, Any]:
     return out
 
 
-def ablation_method(name: str) -> str:
-    """The method an ablation override changes (its ``data.method``)."""
-    data = compose(f"ablation/{name}").get("data", {})
-    method = data.get("method")
+def ablation(name: str) -> tuple[str, dict[str, Any]]:
+    """``(method, changes)`` of an ablation override.
+
+    The method its run changes (its ``data.method``) and the data keys it changes.
+    """
+    data = dict(compose(f"ablation/{name}").get("data", {}))
+    method = data.pop("method", None)
     if method not in methods():
         raise ConfigError(f"recipe ablation/{name}.yaml must name its method (data.method: one of {methods()})")
-    return str(method)
+    return str(method), data
+
+
+def ablation_method(name: str) -> str:
+    """The method an ablation override changes (its ``data.method``)."""
+    return ablation(name)[0]
 
 
 def recipe_text(*names: str) -> str:

@@ -269,7 +269,7 @@ class RadarDataModule(L.LightningDataModule):
             # The proxy's empty room says nothing about the user's captures: no silent stand-in.
             raise ConfigError(f"method {self.method!r} needs data.calibration: an empty-room capture (or CalibratedDR "
                               "JSON) recorded like the test captures")
-        return calibration, [parse_test_entry(e, f"test[{i}]") for i, e in enumerate(test)]
+        return calibration, [dict(e) for e in test]  # the config's entries were checked in __init__
 
     def prepare_data(self) -> None:
         """Generate the held-out proxy captures once per node when no test captures are given."""

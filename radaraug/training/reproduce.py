@@ -139,15 +139,10 @@ GENERATED_TEST_SETS = (*DEFAULT_TEST_SETS, "standing")
 #: Seed and standing probability of the ``standing`` set.
 STANDING_SEED, STANDING_PROBABILITY = 2025, 0.3
 
-def _ablation(name: str) -> tuple[str, dict[str, Any]]:
-    data = dict(recipes.compose(f"ablation/{name}").get("data", {}))
-    return recipes.ablation_method(name), {k: v for k, v in data.items() if k != "method"}
-
-
 #: Ablation variants: name -> (the method whose run it changes, the data keys it changes). Each is a
 #: recipe override (``radaraug/recipes/ablation/NAME.yaml``) that changes one thing of the method's
 #: run, so its row of the report measures it.
-ABLATIONS: dict[str, tuple[str, dict[str, Any]]] = {name: _ablation(name) for name in recipes.ablations()}
+ABLATIONS: dict[str, tuple[str, dict[str, Any]]] = {name: recipes.ablation(name) for name in recipes.ablations()}
 
 
 def run_recipe(task: str, method: str, settings: ReproduceSettings, ablation: str | None = None) -> dict[str, Any]:
