@@ -37,7 +37,9 @@ float32 outputs do not lose the ~1e4 cycles of carrier phase to rounding.
 
 from __future__ import annotations
 
+import contextlib
 import math
+from collections.abc import Iterator
 from dataclasses import dataclass
 
 import torch
@@ -52,6 +54,7 @@ relative to the amplitude of the strongest path of the call."""
 _EXACT_CHUNK_ELEMENTS = 1 << 22
 _FAST_CHUNK_ELEMENTS = 1 << 19  # fast-time factors per chunk of rows (2 MiB in float32)
 _MAX_TAYLOR_ORDERS = 60
+_SHARE_RX = True  # the RX channels share the fast-time factor where exact (:func:`per_channel_synthesis`)
 
 
 @dataclass(frozen=True)
@@ -209,17 +212,24 @@ def synthesize_fast(
     batch = coef.shape[:-1]
     if coef.shape[-1] == 0:
         return torch.zeros(*batch, M, N, dtype=dtype, device=dev)
+    P = coef.shape[-1]
+    mag = coef.abs().reshape(-1, P).amax(dim=0).double()
+    if chirp_gain is not None:
+        mag = mag * chirp_gain.abs().reshape(-1, P, chirp_gain.shape[-1]).amax(dim=(0, 2)).double()
+    rel = mag / mag.max().clamp_min(1e-300)
+    # The RX channels of a frame see each path at delays a few picoseconds apart. Their fast-time
+    # rates differ by a few mHz (a phase linear in the sample index: ~0.04 rad over a chirp) and
+    # their in-chirp quadratic terms by ~1e-5 rad: the channels share one fast-time factor (its
+    # trig and one GEMM whose slow side stacks the channels) and the linear difference joins the
+    # coupling's Taylor term (``theta w_m v_n + phi v_n`` has the same form). Shared only where the
+    # neglected quadratic difference is below the Taylor tolerance.
+    theta_p, share = _coupling_phase(delay_s, delay_rate, timing, chirp_delay, rel, taylor_tol)
     # Taylor orders per path: term k of a path is at most theta^k / k! times its amplitude; it is
     # kept while that is at least ``taylor_tol`` times the strongest path of the call (so weak
     # multipath needs fewer orders than the torso for the same error bound on the frame). Paths
     # are sorted by the orders they need, so those that need order k form a prefix: each order is
     # one GEMM on a view, and static clutter (theta = 0) costs one GEMM in all.
-    P = coef.shape[-1]
-    theta_p = _coupling_phase(delay_rate, timing, chirp_delay).reshape(-1, P).amax(dim=0)  # (P,) over batch and RX
-    mag = coef.abs().reshape(-1, P).amax(dim=0).double()
-    if chirp_gain is not None:
-        mag = mag * chirp_gain.abs().reshape(-1, P, chirp_gain.shape[-1]).amax(dim=(0, 2)).double()
-    need = taylor_orders_needed(theta_p, mag / mag.max().clamp_min(1e-300), taylor_tol)
+    need = taylor_orders_needed(theta_p, rel, taylor_tol)
     order = torch.argsort(need, descending=True, stable=True)
     coef, delay_s, delay_rate = (t.index_select(-1, order) for t in (coef, delay_s, delay_rate))
     chirp_delay, chirp_gain = (None if t is None else t.index_select(-2, order) for t in (chirp_delay, chirp_gain))
@@ -227,23 +237,36 @@ def synthesize_fast(
     counts = [int(c) for c in (need[None, :] >= torch.arange(1, K, device=dev)[:, None]).sum(dim=1).cpu()]
     v = torch.linspace(-1, 1, N, dtype=dtype, device=dev)
     v_pow = [v.pow(k) for k in range(1, K)]
-    # The batch rows (frames x RX) are done in chunks whose per-path work (phases, slow factors
-    # P x M, fast-time factors 2P x N per row) stays in the CPU's cache: the trig, the GEMMs and
-    # the Taylor updates then run at cache speed instead of streaming (frames x RX x P x M) and
-    # (frames x RX x 2P x N) tensors through memory many times (measured ~2x faster for a
-    # 16-frame corridor batch on a 2-core CPU).
-    rows = math.prod(batch)
+    # Rows are the frames when the RX channels share the fast-time factor, else (frame, RX) pairs.
+    # They are done in chunks whose per-path work (phases, slow factors P x M, fast-time factors
+    # 2P x N per row) stays in the CPU's cache: the trig, the GEMMs and the Taylor updates then run
+    # at cache speed instead of streaming (frames x RX x P x M) and (frames x RX x 2P x N) tensors
+    # through memory many times (measured ~2x faster for a 16-frame corridor batch on a 2-core CPU).
+    group = (1, *batch) if share else (1, *batch, 1)  # a leading 1: a batch of one row has a row index
+    R = group[-1]
+    rows = math.prod(group[:-1])
     step = max(1, _FAST_CHUNK_ELEMENTS // (2 * P * N))
-    out = torch.empty(rows, M, N, dtype=dtype, device=dev)
+    nc = (N - 1) / 2
+    out = torch.empty(rows, R * M, N, dtype=dtype, device=dev)
     for r0 in range(0, rows, step):
-        idx = _unravel(torch.arange(r0, min(r0 + step, rows), device=dev), batch)
+        idx = _unravel(torch.arange(r0, min(r0 + step, rows), device=dev), group[:-1])
 
         def pick(t: torch.Tensor, tail: int, idx: tuple[torch.Tensor, ...] = idx) -> torch.Tensor:
-            """Rows ``idx`` of ``t`` broadcast to (*batch, ...) -> (c, ...) (no full-size copy)."""
-            return t.expand(*batch, *t.shape[len(t.shape) - tail:])[idx]
+            """Rows ``idx`` of ``t`` broadcast to (*batch, ...) -> (c, R, ...) (no full-size copy)."""
+            full = t.expand(*batch, *t.shape[t.dim() - tail:])
+            return full.reshape(*group, *full.shape[len(batch):])[idx]
 
         slow, per_sample, theta, quad, w = _phase_terms(pick(delay_s, 1), pick(delay_rate, 1), timing,
                                                         None if chirp_delay is None else pick(chirp_delay, 2))
+        # The coupling theta w_m (c, R, P, M), rad, on the slow side of the Taylor terms.
+        tw = theta.to(dtype)[..., None] * w.to(dtype) if K > 1 else None
+        if R > 1:
+            shared = per_sample.mean(dim=1, keepdim=True)
+            dev_rate = per_sample - shared  # cycles per sample: 2 pi dev (n - nc) = 2 pi dev nc v_n
+            slow = _frac(slow + (dev_rate * nc)[..., None])
+            if K > 1:
+                tw = (theta[..., None] * w + (2 * math.pi * nc * dev_rate)[..., None]).to(dtype)
+            per_sample, quad = shared, quad.mean(dim=1, keepdim=True)
         c = pick(coef, 1)
         cr, ci = c.real.to(dtype)[..., None], c.imag.to(dtype)[..., None]
         g = None if chirp_gain is None else pick(chirp_gain, 2)
@@ -252,11 +275,31 @@ def synthesize_fast(
             cr, ci = cr * g, ci * g
         slow_rad = (2 * math.pi * slow).to(dtype)
         cs, ss = torch.cos(slow_rad), torch.sin(slow_rad)
-        # Slow side: Re, Im of C e^{j slow} (c, P, M); fast side: cos, sin (:func:`_fast_rows`).
-        tw = theta.to(dtype)[..., None] * w.to(dtype) if K > 1 else None
-        out[r0:r0 + step] = _fast_rows(cr * cs - ci * ss, cr * ss + ci * cs, per_sample, quad, tw, counts,
-                                       v_pow, N, dtype)
+
+        def stack(t: torch.Tensor) -> torch.Tensor:
+            """(c, R, P, M) -> (c, P, R M): the channels side by side on the GEMM's slow side."""
+            return t.transpose(1, 2).reshape(t.shape[0], P, R * M)
+
+        # Slow side: Re, Im of C e^{j slow} (c, P, R M); fast side: cos, sin (:func:`_fast_rows`).
+        out[r0:r0 + step] = _fast_rows(stack(cr * cs - ci * ss), stack(cr * ss + ci * cs), per_sample[:, 0],
+                                       quad[:, 0], None if tw is None else stack(tw), counts, v_pow, N,
+                                       dtype)
     return out.reshape(*batch, M, N)
+
+
+@contextlib.contextmanager
+def per_channel_synthesis() -> Iterator[None]:
+    """Synthesize every RX channel with its own fast-time factor (the rule before the channels shared it).
+
+    The items recorded before then are reproduced bit for bit inside this context (their pinned
+    digests are checked so); the shared factor agrees with the exact sum to the Taylor tolerance.
+    """
+    global _SHARE_RX
+    before, _SHARE_RX = _SHARE_RX, False
+    try:
+        yield
+    finally:
+        _SHARE_RX = before
 
 
 def _unravel(flat: torch.Tensor, shape: tuple[int, ...]) -> tuple[torch.Tensor, ...]:
@@ -271,23 +314,46 @@ def _unravel(flat: torch.Tensor, shape: tuple[int, ...]) -> tuple[torch.Tensor, 
     return tuple(reversed(coords))
 
 
-def _coupling_phase(delay_rate: torch.Tensor, timing: ChirpTiming, chirp_delay: torch.Tensor | None) -> torch.Tensor:
-    """``theta`` of :func:`_phase_terms` (the largest residual coupling phase, rad) without the rest.
+def _coupling_phase(
+    delay_s: torch.Tensor, delay_rate: torch.Tensor, timing: ChirpTiming, chirp_delay: torch.Tensor | None,
+    rel_amplitude: torch.Tensor, tol: float,
+) -> tuple[torch.Tensor, bool]:
+    """Per path, the largest residual coupling phase (rad) over all rows; and whether the RX share.
 
-    The coupling ``g_m = S (1 - r) e_m / fs`` with ``e_m = r m T + d_m``: its half range over the
-    chirps is ``S (1 - r) (max e - min e) / (2 fs)`` (``1 - r > 0``).
+    ``theta`` of :func:`_phase_terms` without the rest: the coupling ``g_m = S (1 - r) e_m / fs``
+    with ``e_m = r m T + d_m`` has the half range ``S (1 - r) (max e - min e) / (2 fs)`` over the
+    chirps (``1 - r > 0``). Where the RX channels (the last batch dimension) share the fast-time
+    factor, their linear rate difference from the channels' mean, ``2 pi nc |d rate|``, is added
+    (:func:`synthesize_fast`); they share it when each path's quadratic-term difference,
+    ``2 pi |d quad| (N - 1)^2`` rad, times its relative amplitude stays below ``tol``.
     """
     r = delay_rate.double()
+    nc = (timing.num_samples - 1) / 2
     if chirp_delay is None:
         span = r.abs() * ((timing.num_chirps - 1) * timing.prt)
+        mid = r * ((timing.num_chirps - 1) * timing.prt / 2)
     else:
-        # float32 (relative error ~1e-7) is plenty for choosing Taylor orders; the phases
-        # themselves are computed in float64 by _phase_terms.
+        # float32 (relative error ~1e-7) is plenty for choosing Taylor orders and the sharing; the
+        # phases themselves are computed in float64 by _phase_terms.
         m = torch.arange(timing.num_chirps, device=r.device, dtype=torch.float32) * timing.prt
         e = delay_rate.float()[..., None] * m + chirp_delay.float()
-        span = (e.amax(dim=-1) - e.amin(dim=-1)).double() * (1 + 1e-5)
-    half = timing.slope * (1 - r) / timing.fs * span / 2
-    return 2 * math.pi * half * ((timing.num_samples - 1) / 2)
+        hi, lo = e.amax(dim=-1).double(), e.amin(dim=-1).double()
+        span, mid = (hi - lo) * (1 + 1e-5), (hi + lo) / 2
+    k = timing.slope * (1 - r) / timing.fs
+    theta = 2 * math.pi * (k * span / 2) * nc
+    P = delay_s.shape[-1]
+    if not _SHARE_RX or delay_s.dim() < 2 or delay_s.shape[-2] < 2:
+        return theta.reshape(-1, P).amax(dim=0), False
+    # The fast-time rate of _phase_terms (beat + Doppler + the coupling's centre g_bar) and the quadratic term.
+    tau = delay_s.double() + r * timing.adc_delay
+    rate = (timing.f0 * r + timing.slope * tau * (1 - r)) / timing.fs + k * mid
+    quad = timing.slope * r * (1 - r / 2) / timing.fs**2
+    d_rate = (rate - rate.mean(dim=-2, keepdim=True)).abs()
+    d_quad = (quad - quad.mean(dim=-2, keepdim=True)).abs()
+    quad_err = (2 * math.pi * (timing.num_samples - 1) ** 2 * d_quad).reshape(-1, P).amax(dim=0)
+    if bool((quad_err * rel_amplitude > tol).any()):
+        return theta.reshape(-1, P).amax(dim=0), False
+    return (theta + 2 * math.pi * nc * d_rate).reshape(-1, P).amax(dim=0), True
 
 
 def _fast_rows(

@@ -36,7 +36,9 @@ from radaraug.sim.item_signal import drawn_signal, people_paths
 #: (:func:`radaraug.training.cache.cache_spec`): bumped when a change makes the same inputs simulate
 #: other frames, so that no cache made before is reused. 2: a moving segment's echo moves with the
 #: material velocity of its specular point (rotation included), not with the segment's centre.
-TWIN_MODEL_VERSION = 2
+#: 3: the RX channels share the fast-time synthesis factor (:mod:`radaraug.sensor.synthesis`; one ADC
+#: code moves in ~1e-4 of the samples).
+TWIN_MODEL_VERSION = 3
 
 if TYPE_CHECKING:
     from radaraug.sim.randomization import ItemDraw

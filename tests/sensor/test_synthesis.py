@@ -111,3 +111,31 @@ def test_fast_chunked_rows_agree_with_exact_and_broadcast_chirp_terms(small_cfg,
     exact = synthesize_exact(coef, tau, rate, timing, **kw)
     assert fast.shape == (T, RX, M, timing.num_samples)
     assert ((fast - exact).pow(2).mean() / exact.pow(2).mean()).sqrt() < 1e-5
+
+
+@pytest.mark.parametrize("spread", ["antenna", "wide"])
+def test_rx_channels_share_the_fast_time_factor_only_where_exact(cfg, spread):
+    """The RX channels of a frame share one fast-time factor (their linear rate difference joins the
+    coupling's Taylor term) when their delays differ by an antenna spacing (picoseconds, as the twin
+    gives them); with rates far apart (in-chirp quadratic terms differing by more than the Taylor
+    tolerance) they are synthesized apart. Either way the result is the exact sum."""
+    import radaraug.sensor.synthesis as synthesis
+
+    timing = ChirpTiming.from_config(cfg)
+    g = torch.Generator().manual_seed(7)
+    T, RX, P = 2, 3, 20
+    r = 0.5 + 9.5 * torch.rand(T, 1, P, generator=g, dtype=torch.float64)
+    v = (torch.rand(T, 1, P, generator=g, dtype=torch.float64) * 2 - 1) * 5.0
+    step_s, step_rate = (8e-12, 5e-12) if spread == "antenna" else (3e-10, 2e-10)
+    k = torch.arange(RX, dtype=torch.float64)[:, None]
+    tau = 2 * r / SPEED_OF_LIGHT + step_s * k
+    rate = 2 * v / SPEED_OF_LIGHT + step_rate * k
+    coef = torch.polar(torch.rand(T, RX, P, generator=g, dtype=torch.float64),
+                       2 * math.pi * torch.rand(T, RX, P, generator=g, dtype=torch.float64))
+    mag = coef.abs().reshape(-1, P).amax(dim=0)
+    _, share = synthesis._coupling_phase(tau, rate, timing, None, mag / mag.max(), synthesis.DEFAULT_TAYLOR_TOL)
+    assert share == (spread == "antenna")
+    exact = synthesize_exact(coef, tau, rate, timing, dtype=torch.float64)
+    for dtype in (torch.float64, torch.float32):
+        fast = synthesize_fast(coef, tau, rate, timing, dtype=dtype).double()
+        assert ((fast - exact).pow(2).mean() / exact.pow(2).mean()).sqrt() < 1e-5

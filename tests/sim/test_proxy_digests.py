@@ -26,25 +26,33 @@ FILES = {
     "test_count2": ("641f60bb6b690f5cf46bbd1447e284b44ea2ac0d3374a166fa0605662b3c6fb8", "dc63d789310165a5"),
 }
 # Generator version 5 (the twin's TWIN_MODEL_VERSION 2, issue 22): the people's echoes move with their
-# specular points' velocity. The files above are checked with the segments' turn taken out (the old
-# rule), so that this is all that changed; the files with people are these now.
-FILES_V5 = FILES | {
-    "test_count1": ("ea2f5c21a53350a520dc271cd6c1f7e16081f0876152ab58988dfcd440f3e9e5", "1a039263566d9ce3"),
-    "test_count2": ("fc13f0d03f02ab1a4afbd4aeee0040365db8b40d83d021e4f723b1ed94183022", "dc63d789310165a5"),
+# specular points' velocity; version 6 (TWIN_MODEL_VERSION 3): the RX channels share the fast-time
+# synthesis factor (6 to 35 of each file's 196,608 ADC codes move by one). The files above are checked
+# with both taken out (the old rules), so that these are all that changed; the files are these now.
+# (Version 5, with only the turn in: test_count1 ea2f5c21, test_count2 fc13f0d0.)
+FILES_V6 = {
+    "calibration_empty": ("4fb54647639142c8430cf05b3a09523153d4ff3e284aadcff8696bed2f3c4c3f", "aa9effd2f9d38713"),
+    "test_count0": ("b8b44702aa2468458248de9c0378e1452949e5f81ced61c028b767ed6621e39e", "b501d6a99d770503"),
+    "test_count1": ("23cc9d78f75fa5e970a5c84e50a026c586ccca5f4ca5c836672370c9d23427e4", "1a039263566d9ce3"),
+    "test_count2": ("d0289a288385a0c7f4489c5a92cdec0e91ac49dd459b6ba3d21ef146c3244ef7", "dc63d789310165a5"),
 }
 
 
-@pytest.mark.parametrize("rule", ["centre_velocity", "specular_velocity"])
+@pytest.mark.parametrize("rule", ["before", "now"])
 def test_proxy_frames_are_bit_identical(tmp_path: Path, rule: str) -> None:
     if not torch.__version__.startswith(RECORDED_WITH):
         pytest.skip(f"digests recorded with torch {RECORDED_WITH}; this is {torch.__version__}")
     from radaraug.scene.people.skeleton import without_turn
+    from radaraug.sensor.synthesis import per_channel_synthesis
 
-    old = rule == "centre_velocity"
-    with without_turn() if old else contextlib.nullcontext():
+    old = rule == "before"
+    with contextlib.ExitStack() as rules:
+        if old:
+            rules.enter_context(without_turn())
+            rules.enter_context(per_channel_synthesis())
         made = proxy.make_proxy(tmp_path, frames_per_count=4, calibration_frames=4, seed=3, progress=False,
                                 tracer_options={"rays": 16})
-    recorded = FILES if old else FILES_V5
+    recorded = FILES if old else FILES_V6
     for path in [made.calibration, *(p for p, _ in made.tests)]:
         with open_capture(path) as cap:
             codes = cap.read(as_float=False).numpy().astype(np.uint16)

@@ -45,31 +45,34 @@ RANDOMIZED_ITEMS = {
     3: (1, "46ff0443bb8f64af56c90a380a55ce52daf14a6d44843690d9e0521fdd5f5699"),
 }
 
-# TWIN_MODEL_VERSION 2 (issue 22): a segment's echo moves with its specular point's material velocity,
-# rotation included. The digests above are those of the items with the old rule (the segment's centre
-# velocity): the tests check them with the turn taken out, so that this one change is all that moved
-# them; the items with people are these now (the empty item is unchanged).
-ITEMS_V2 = {
-    0: (2, "c4ebd837960af05241147443bf82144ec363bf6bd780884c133df57a8a57ffd1"),
-    1: (2, "273d81dd043e2953cbece4f8ea842e0e835d6d47a9164e4451b1230570f22b9d"),
-    2: (0, "05ba94a5f1c184f875e8bee2a2fa9eccb49051395128e67ff41a8711bda8776d"),
-    3: (1, "a4a3a38e2e8d05a5342cf5e37aa7156f79f9b2ff377aac92254f2ef67dfc2b50"),
+# TWIN_MODEL_VERSION 2 (issue 22) moved a segment's echo with its specular point's material velocity,
+# rotation included; version 3 lets the RX channels share the fast-time synthesis factor (1 to 18 of
+# the 49,152 samples of an item move by one ADC code). The digests above are checked with both
+# changes taken out (``without_turn``, ``per_channel_synthesis``), so that these two are all that moved
+# them; the items are these now. (Between the two, with only the turn in, the items with people were
+# c4ebd837, 273d81dd, a4a3a38e and randomized f6f7bbcf, 4928ac7f, b4083351.)
+ITEMS_V3 = {
+    0: (2, "308cf232f4a463bea0506d675928847d8b55979da5e2152cd3f40d588e383897"),
+    1: (2, "478b666afeeabc1dfb8179418306ec8ee64a68568be9245f2224406c81278eef"),
+    2: (0, "ebecd62b8522c5bfa2176b004306038374a09081d7a1dea3f9cd921fac0d8f94"),
+    3: (1, "0706512382a70405be52aeabbe116168096a1994cc2d33032b800dcead89e994"),
 }
-RANDOMIZED_ITEMS_V2 = {
-    0: (2, "f6f7bbcf37197ac54c2cf07068c7d8fd78ee4307420f0c10ce54326fc4501edc"),
-    1: (2, "4928ac7f5d5bb7f471a4a1b79d1ac4298afde9faa5e2e599ac0dc8174ebbae70"),
-    2: (0, "9ae268fd9168f14b3758e7d7b6516f57ba3159bc5e9808179efc8472a69d0e58"),
-    3: (1, "b4083351b3a90e8777c0ccaccdc53204b69a89e62e870699065ae12d4823e4bc"),
+RANDOMIZED_ITEMS_V3 = {
+    0: (2, "03bf3a48a3e762c62a6541b7651dbbc8438fbf44cd7d85bb6f566a86a9ecb2e1"),
+    1: (2, "51bb9f3a06e6f76d961fd6149b8514b750e6c8e4f58117f809888fc0ca37cd5d"),
+    2: (0, "7f854310ded5ba55ba8c20b9d4796f296a60103b6f663d19e5d312ba5ccba1f1"),
+    3: (1, "0df9d2403f5ee61fa65a7413897b3dff45b545142262d739daaa83fc30384eec"),
 }
 
 
-@pytest.fixture(params=["centre_velocity", "specular_velocity"])
+@pytest.fixture(params=["before", "now"])
 def model(request: pytest.FixtureRequest) -> Iterator[str]:
-    """The twin with the old echo-velocity rule (turn taken out of the segments), or as it is."""
-    if request.param == "centre_velocity":
+    """The twin with the old echo-velocity rule and per-channel synthesis, or as it is."""
+    if request.param == "before":
         from radaraug.scene.people.skeleton import without_turn
+        from radaraug.sensor.synthesis import per_channel_synthesis
 
-        with without_turn():
+        with without_turn(), per_channel_synthesis():
             yield str(request.param)
     else:
         yield str(request.param)
@@ -104,7 +107,7 @@ def _assert_recorded(ds: SimulatedRadarDataset, index: int, recorded: dict[int, 
 @pytest.mark.parametrize("index", sorted(ITEMS))
 def test_known_items_are_bit_identical(index: int, model: str) -> None:
     ds = SimulatedRadarDataset("corridor", length=4, seed=3, twin_options={"tracer_options": {"rays": 16}})
-    _assert_recorded(ds, index, ITEMS if model == "centre_velocity" else ITEMS_V2, "item")
+    _assert_recorded(ds, index, ITEMS if model == "before" else ITEMS_V3, "item")
 
 
 @pytest.fixture
@@ -118,5 +121,5 @@ def randomized_dataset() -> SimulatedRadarDataset:
 @pytest.mark.parametrize("index", sorted(RANDOMIZED_ITEMS))
 def test_known_randomized_items_are_bit_identical(index: int, model: str,
                                                   randomized_dataset: SimulatedRadarDataset) -> None:
-    recorded = RANDOMIZED_ITEMS if model == "centre_velocity" else RANDOMIZED_ITEMS_V2
+    recorded = RANDOMIZED_ITEMS if model == "before" else RANDOMIZED_ITEMS_V3
     _assert_recorded(randomized_dataset, index, recorded, "randomized item")
