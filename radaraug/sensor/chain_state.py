@@ -18,6 +18,7 @@ which stages act on the samples directly.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 from dataclasses import dataclass
 
@@ -120,6 +121,11 @@ class ChainState:
         """``(…, RX, M, N)``."""
         return (*self.batch_shape, self.num_rx, self.timing.num_chirps, self.timing.num_samples)
 
+    @property
+    def float_per_count(self) -> float:
+        """One ADC count in SDK floats (``2 / (2**bits - 1)``): converts parameters given in counts."""
+        return 2.0 / self.config.adc_full_scale_counts
+
     def param(self, value: torch.Tensor) -> torch.Tensor:
         """An effect parameter on this call's device and dtype (keeps the autograd graph)."""
         return value.to(device=self.device, dtype=self.dtype)
@@ -128,6 +134,24 @@ class ChainState:
         """Frequencies of the real-FFT bins over fast time (float64)."""
         return torch.fft.rfftfreq(self.timing.num_samples, d=1 / self.timing.fs, dtype=torch.float64,
                                   device=self.device)
+
+    def sample_times_s(self) -> torch.Tensor:
+        """Absolute time ``frame_start_s + m PRT + adc_delay + n / fs`` of every sample, float64 ``(…, 1, M, N)``.
+
+        ``(M, N)`` when :attr:`frame_start_s` is a float. For time-locked effects (spurs, vibration),
+        which continue from frame to frame.
+        """
+        tm = self.timing
+        m = torch.arange(tm.num_chirps, device=self.device, dtype=torch.float64)
+        n = torch.arange(tm.num_samples, device=self.device, dtype=torch.float64)
+        start = self.frame_start_s
+        if isinstance(start, torch.Tensor):  # one start per frame of the batch: (…, 1, 1, 1)
+            start = start.to(device=self.device, dtype=torch.float64)[..., None, None, None]
+        return start + (m * tm.prt + tm.adc_delay)[:, None] + (n / tm.fs)[None, :]
+
+    def cycle_phase(self, cycles: torch.Tensor) -> torch.Tensor:
+        """``2 pi cycles`` in :attr:`dtype`; the (possibly huge) float64 count is reduced mod 1 before the cast."""
+        return 2 * math.pi * (cycles - torch.round(cycles)).to(self.dtype)
 
     def randn(self, shape: tuple[int, ...]) -> torch.Tensor:
         """Standard normal draws from :attr:`generator` (or the global RNG)."""
@@ -160,18 +184,16 @@ class ChainState:
             raise RuntimeError("paths cannot be added after the samples were synthesized")
         shape = (*self.batch_shape, self.num_rx, coef.shape[-1])
         per_chirp = (*self.batch_shape, 1, coef.shape[-1], self.timing.num_chirps)
-        old_p = self.coef.shape[-1]
-        old_shape = (*self.batch_shape, 1, old_p, self.timing.num_chirps)
-        if self.chirp_delay is not None or chirp_delay is not None:
-            dt = self.delay_s.dtype
-            old = self.chirp_delay if self.chirp_delay is not None else torch.zeros(old_shape, dtype=dt, device=self.device)
-            new = chirp_delay if chirp_delay is not None else torch.zeros((), dtype=dt, device=self.device)
-            self.chirp_delay = torch.cat([old.expand(old_shape), new.to(dt).expand(per_chirp)], dim=-2)
-        if self.chirp_gain is not None or chirp_gain is not None:
-            old = self.chirp_gain if self.chirp_gain is not None else torch.ones(old_shape, dtype=self.dtype,
-                                                                                 device=self.device)
-            new = chirp_gain if chirp_gain is not None else torch.ones((), dtype=self.dtype, device=self.device)
-            self.chirp_gain = torch.cat([old.expand(old_shape), new.to(old.dtype).expand(per_chirp)], dim=-2)
+        old_shape = (*self.batch_shape, 1, self.coef.shape[-1], self.timing.num_chirps)
+        # A missing per-chirp term is its neutral value (zero extra delay, unit gain) for every chirp.
+        for name, new, fill, dt in (("chirp_delay", chirp_delay, 0.0, self.delay_s.dtype),
+                                    ("chirp_gain", chirp_gain, 1.0, self.dtype)):
+            old = getattr(self, name)
+            if old is None and new is None:
+                continue
+            old = torch.full(old_shape, fill, dtype=dt, device=self.device) if old is None else old
+            new = torch.full((), fill, dtype=dt, device=self.device) if new is None else new
+            setattr(self, name, torch.cat([old.expand(old_shape), new.to(old.dtype).expand(per_chirp)], dim=-2))
         self.coef = torch.cat([self.coef, coef.to(self.coef.dtype).expand(shape)], dim=-1)
         self.delay_s = torch.cat([self.delay_s, delay_s.to(self.delay_s.dtype).expand(shape)], dim=-1)
         self.delay_rate = torch.cat([self.delay_rate, delay_rate.to(self.delay_rate.dtype).expand(shape)], dim=-1)

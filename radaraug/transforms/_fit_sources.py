@@ -57,10 +57,7 @@ def iter_source(
         name = Path(str(source.path)).name if getattr(source, "path", None) else None
         return _iter_reader(source, limit, batch_size, close=False), name, getattr(source, "config", None)
     if isinstance(source, torch.Tensor):
-        frames = _frames(source, "the tensor")
-        if limit is not None:
-            frames = frames[:limit]
-        return iter(frames.split(batch_size)), None, None
+        return iter(_frames(source, "the tensor")[:limit].split(batch_size)), None, None
     if hasattr(source, "__getitem__") and hasattr(source, "__len__"):
         return (
             _iter_dataset(source, limit, batch_size),

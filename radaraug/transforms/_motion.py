@@ -39,26 +39,17 @@ def off_zero_doppler(maps_db: torch.Tensor, guard_bins: int) -> torch.Tensor:
     return maps_db[..., keep]
 
 
-def motion_fraction(
-    maps_db: torch.Tensor, guard_bins: int, threshold_db: float = DEFAULT_THRESHOLD_DB
-) -> float | None:
-    """Fraction of off-zero-Doppler cells above their median over frames + ``threshold_db``.
+def cells_motion_fraction(cells: torch.Tensor, threshold_db: float = DEFAULT_THRESHOLD_DB) -> float | None:
+    """Fraction of cells above their median over frames + ``threshold_db``.
 
     Args:
-        maps_db: ``(frames, rx, range, doppler)`` dB maps, Doppler centred.
-        guard_bins: Doppler bins on each side of zero left out (static clutter's main lobe).
+        cells: ``(frames, ...)`` dB values off zero Doppler, e.g. ``off_zero_doppler(maps_db, guard_bins)``
+            of ``(frames, rx, range, doppler)`` maps with ``guard_bins`` Doppler bins on each side of zero
+            left out (static clutter's main lobe).
         threshold_db: excess over the cell's median that counts as motion.
 
     Returns:
         The fraction, or None when there are too few frames or no Doppler bins left.
-    """
-    return cells_motion_fraction(off_zero_doppler(maps_db, guard_bins), threshold_db)
-
-
-def cells_motion_fraction(cells: torch.Tensor, threshold_db: float = DEFAULT_THRESHOLD_DB) -> float | None:
-    """:func:`motion_fraction` of cells already taken off zero Doppler (:func:`off_zero_doppler`).
-
-    For a caller that needs those cells anyway (the fit's empirical floor), so they are cut once.
     """
     if cells.shape[0] < MIN_FRAMES or cells.shape[-1] == 0:
         return None

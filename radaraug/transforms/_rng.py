@@ -120,9 +120,7 @@ class GeneratorSource:
         if gen is None:
             seed = self._active_seed
             assert seed is not None  # not the global RNG (returned above), no user generator: seeded
-            gen = torch.Generator(device=device)
-            gen.manual_seed(seed)
-            self._owned[name] = gen
+            gen = self._owned[name] = torch.Generator(device=device).manual_seed(seed)
         return gen
 
     def _enter_process(self, key: tuple[int, int | None]) -> None:
@@ -131,9 +129,8 @@ class GeneratorSource:
         if worker_seed is None or not self.reseed_in_workers:
             return
         if self.user_generator is not None:
-            gen = torch.Generator(device=self.user_generator.device)
-            gen.manual_seed(mix_seed(self.user_generator.initial_seed(), worker_seed))
-            self.user_generator = gen
+            seed = mix_seed(self.user_generator.initial_seed(), worker_seed)
+            self.user_generator = torch.Generator(device=self.user_generator.device).manual_seed(seed)
         elif self.seed is not None:  # (no generator and no seed: the global RNG, not re-seeded here)
             self._active_seed = mix_seed(self.seed, worker_seed)
             self._owned = {}
@@ -147,12 +144,10 @@ class GeneratorSource:
     def _unpack(packed: tuple[str, int, torch.Tensor]) -> torch.Generator:
         device, initial_seed, state = packed
         try:
-            gen = torch.Generator(device=device)
+            # manual_seed keeps initial_seed() meaningful after the round trip
+            gen = torch.Generator(device=device).manual_seed(initial_seed)
         except RuntimeError:  # e.g. a CUDA generator unpickled on a CPU-only machine
-            gen = torch.Generator()
-            gen.manual_seed(initial_seed)
-            return gen
-        gen.manual_seed(initial_seed)  # keeps initial_seed() meaningful after the round trip
+            return torch.Generator().manual_seed(initial_seed)
         gen.set_state(state)
         return gen
 

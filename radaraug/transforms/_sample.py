@@ -58,20 +58,7 @@ def radar_leaves(flat: list[Any], accepts: Callable[[Any], bool]) -> list[int]:
 def most_likely_radar_leaf(flat: list[Any], min_ndim: int) -> Any:
     """For an error message: the first tensor with at least ``min_ndim`` dims, else the first tensor."""
     tensors = [leaf for leaf in flat if isinstance(leaf, torch.Tensor)]
-    big = [t for t in tensors if t.ndim >= min_ndim]
-    if big or tensors:
-        return (big or tensors)[0]
-    return None
-
-
-def flatten(sample: Any) -> tuple[list[Any], pytree.TreeSpec]:
-    """``tree_flatten`` of a sample."""
-    return pytree.tree_flatten(sample)
-
-
-def unflatten(flat: list[Any], spec: pytree.TreeSpec) -> Any:
-    """``tree_unflatten``: the sample with its leaves replaced."""
-    return pytree.tree_unflatten(flat, spec)
+    return next((t for t in tensors if t.ndim >= min_ndim), tensors[0] if tensors else None)
 
 
 def is_sample_aware(module: Any) -> bool:
@@ -100,7 +87,7 @@ def apply_to_radar_leaves(fn: Callable[[torch.Tensor], Any], sample: Any, min_nd
     """
     if isinstance(sample, torch.Tensor):
         return fn(sample)
-    flat, spec = flatten(sample)
+    flat, spec = pytree.tree_flatten(sample)
     chosen = radar_leaves(flat, lambda leaf: eligible(leaf, min_ndim, True))
     if not chosen:
         raise InputTensorError(
@@ -109,4 +96,4 @@ def apply_to_radar_leaves(fn: Callable[[torch.Tensor], Any], sample: Any, min_nd
         )
     for i in chosen:
         flat[i] = fn(flat[i])
-    return unflatten(flat, spec)
+    return pytree.tree_unflatten(flat, spec)

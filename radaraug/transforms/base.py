@@ -28,6 +28,7 @@ from typing import Any
 
 import torch
 from torch import nn
+from torch.utils import _pytree as pytree
 
 from radaraug.errors import InputTensorError, RadarAugError
 from radaraug.transforms import _sample
@@ -82,7 +83,7 @@ class RadarTransform(nn.Module):
         """
         if isinstance(sample, torch.Tensor):
             return [self.check_input(sample)], None, [0]
-        flat, spec = _sample.flatten(sample)
+        flat, spec = pytree.tree_flatten(sample)
         chosen = _sample.radar_leaves(flat, self.is_radar_tensor)
         if not chosen:
             likely = _sample.most_likely_radar_leaf(flat, self.event_ndim)
@@ -101,7 +102,7 @@ class RadarTransform(nn.Module):
         flat, spec, chosen = self.select(_sample.as_sample(inputs))
         for i in chosen:
             flat[i] = self.transform(flat[i], {})
-        return flat[0] if spec is None else _sample.unflatten(flat, spec)
+        return flat[0] if spec is None else pytree.tree_unflatten(flat, spec)
 
     def extra_spec(self) -> dict[str, Any]:
         """The transform's parameters as JSON types (for :meth:`chain_spec`)."""
@@ -157,32 +158,16 @@ class RandomRadarTransform(RadarTransform):
         batch = tuple(x.shape[: x.ndim - self.event_ndim])
         return tuple(1 for _ in batch) if self.same_on_batch else batch
 
-    @staticmethod
-    def draw(
-        kind: str,
-        shape: tuple[int, ...],
-        like: torch.Tensor,
-        generator: torch.Generator | None,
-        mean: float = 0.0,
-        std: float = 1.0,
-    ) -> torch.Tensor:
-        """Uniform [0, 1) (``kind="rand"``) or ``Normal(mean, std**2)`` (``"normal"``) draws.
-
-        The result has ``shape`` and ``like``'s dtype and device. A generator on another device
-        than ``like`` draws on its own device and the result is moved (correct but slower: give a
-        generator on the data's device).
-        """
-        return draw(kind, shape, like, generator, mean, std)
+    #: Uniform [0, 1) or normal draws with ``like``'s dtype and device (:func:`._rng.draw`).
+    draw = staticmethod(draw)
 
     def make_params(self, x: torch.Tensor, generator: torch.Generator | None = None) -> Params:
         """Draw the parameters for ``x``: ``apply`` (bool, per sample) and the subclass's own."""
         shape = self.param_shape(x)
-        if self.p >= 1.0:
-            apply = torch.ones(shape, dtype=torch.bool, device=x.device)
-        elif self.p <= 0.0:
-            apply = torch.zeros(shape, dtype=torch.bool, device=x.device)
-        else:
+        if 0.0 < self.p < 1.0:
             apply = self.draw("rand", shape, x, generator) < self.p
+        else:  # p = 0 or 1: nothing to draw
+            apply = torch.full(shape, self.p >= 1.0, dtype=torch.bool, device=x.device)
         return {"apply": apply, **self.sample_params(x, shape, generator)}
 
     def sample_params(
@@ -207,17 +192,16 @@ class RandomRadarTransform(RadarTransform):
             self.last_params = None
             return sample
         x = flat[chosen[0]]
+        # Fresh draws with p = 1 (the default) apply to every sample: skip _apply_where's two host syncs.
+        every = params is None and self.p >= 1.0
         if params is None:
             params = self.make_params(x, self.rng.get(x.device))
-            # p = 1 (the default): every sample applies; skip _apply_where's two host syncs.
-            every = self.p >= 1.0
         else:
             params = {k: torch.as_tensor(v, device=x.device) for k, v in params.items()}
-            every = False
         self.last_params = dict(params)
         for i in chosen:
             flat[i] = self.transform(flat[i], params) if every else self._apply_where(flat[i], params)
-        return flat[0] if spec is None else _sample.unflatten(flat, spec)
+        return flat[0] if spec is None else pytree.tree_unflatten(flat, spec)
 
     def _apply_where(self, x: torch.Tensor, params: Params) -> torch.Tensor:
         apply = params["apply"]

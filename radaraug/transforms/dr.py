@@ -69,11 +69,8 @@ def _range_arg(name: str, value: Any, cls: str) -> tuple[float, float]:
 
 def _ends_in_db(prefix: list[dict[str, Any]]) -> bool:
     for spec in reversed(prefix):
-        if spec["name"] == "ToDecibels":
-            return True
-        if spec["name"] == "CombineRx" and spec.get("db", False):
-            continue
-        return False
+        if not (spec["name"] == "CombineRx" and spec.get("db", False)):  # CombineRx(db=True) keeps dB
+            return spec["name"] == "ToDecibels"
     return False
 
 
@@ -229,7 +226,6 @@ class CalibratedDR(_DRClamp):
         **rng: Any,
     ) -> None:
         super().__init__(p=p, same_on_batch=same_on_batch, generator=generator, **rng)
-        self.provenance = {"from": "arguments"}
         if mean_db is None or std_db is None:
             raise ConfigError(_MISSING_FLOOR.format(
                 missing=" and ".join(n for n, v in (("mean_db", mean_db), ("std_db", std_db)) if v is None)))
@@ -272,7 +268,7 @@ class CalibratedDR(_DRClamp):
         self.source = source
         # the calibration file it was loaded from, if any (named by the errors raised when it is used)
         self.file: str | None = None
-        self.provenance.update(source=source, num_frames=num_frames)
+        self.provenance = {"from": "arguments", "source": source, "num_frames": num_frames}
         self.num_frames = num_frames
         self.motion = motion
         self.floor = "normal" if floor is None else floor

@@ -61,12 +61,8 @@ def chain_of(pipeline: Any) -> list[dict[str, Any]] | None:
     if callable(spec_fn):
         spec = spec_fn()
         return list(spec) if isinstance(spec, list) else [spec]
-    steps: list[Any] | None
-    if isinstance(pipeline, (list, tuple, nn.ModuleList, nn.Sequential)):
-        steps = list(pipeline)
-    else:
-        found = getattr(pipeline, "transforms", None)  # torchvision Compose
-        steps = None if found is None else list(found)
+    is_list = isinstance(pipeline, (list, tuple, nn.ModuleList, nn.Sequential))
+    steps = pipeline if is_list else getattr(pipeline, "transforms", None)  # else a torchvision Compose
     if steps is None:
         return None
     out: list[dict[str, Any]] = []

@@ -18,7 +18,7 @@ import torch
 from radaraug.errors import InputTensorError, RadarAugError
 from radaraug.transforms import functional as F
 from radaraug.transforms.base import Params, RadarTransform
-from radaraug.transforms.functional._image import check_clip_range, check_size
+from radaraug.transforms.functional._image import check_clip_range, check_one_channel, check_size
 
 
 class ClipNormalize(RadarTransform):
@@ -127,13 +127,7 @@ class Colormap(RadarTransform):
 
     def check_input(self, x: Any) -> torch.Tensor:
         """As :meth:`RadarTransform.check_input`; more than one channel raises InputTensorError."""
-        x = super().check_input(x)
-        if x.shape[-3] != 1:
-            raise InputTensorError(
-                f"Colormap expects one channel (..., 1, H, W), got {x.shape[-3]} in shape {tuple(x.shape)}; "
-                "combine the RX channels first (CombineRx)"
-            )
-        return x
+        return check_one_channel(super().check_input(x))
 
     def transform(self, x: torch.Tensor, params: Params) -> torch.Tensor:
         """Look every value up in the colour table: ``(..., 1, H, W)`` -> ``(..., 3, H, W)``."""

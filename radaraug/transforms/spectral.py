@@ -26,10 +26,10 @@ from radaraug.transforms import functional as F
 from radaraug.transforms.base import Params, RadarTransform
 from radaraug.transforms.functional._spectral import (
     COMBINE_MODES,
-    FFT_DTYPES,
     PROFILE_LAYOUT,
     RAW_LAYOUT,
     check_combine_args,
+    check_fft_input,
 )
 from radaraug.transforms.windows import check_window_name
 
@@ -38,16 +38,21 @@ class _FFTTransform(RadarTransform):
     """A transform that runs an FFT: float32/float64 (or complex64/128) input only."""
 
     def check_input(self, x: Any) -> torch.Tensor:
-        x = super().check_input(x)
-        if x.dtype not in FFT_DTYPES:
-            # torch's FFTs refuse half precision on the CPU (and on CUDA for most sizes).
-            raise InputTensorError(
-                f"{type(self).__name__} expects {self.input_layout} of float32 or float64, got {x.dtype} "
-                "(convert with .float())"
-            )
-        if x.shape[-1] < 2 and self.input_layout == RAW_LAYOUT:
-            raise InputTensorError(f"{type(self).__name__} needs at least 2 samples per chirp, got {x.shape[-1]}")
-        return x
+        return check_fft_input(
+            super().check_input(x), type(self).__name__, self.input_layout, allow_complex=self.accepts_complex
+        )
+
+
+class _WindowedFFT(_FFTTransform):
+    """An FFT along one axis with a named window (:class:`RangeFFT`, :class:`DopplerFFT`)."""
+
+    def __init__(self, window: str = "hann") -> None:
+        super().__init__()
+        self.window = check_window_name(window)
+
+    def extra_spec(self) -> dict[str, Any]:
+        """The window's name."""
+        return {"window": self.window}
 
 
 class RemoveMean(RadarTransform):
@@ -80,7 +85,7 @@ class StaticClutterRemoval(RadarTransform):
         return F.static_clutter_removal(x)
 
 
-class RangeFFT(_FFTTransform):
+class RangeFFT(_WindowedFFT):
     """Window over samples, real FFT, keep the ``N // 2`` positive bins, divide by the window sum.
 
     Input ``(..., rx, chirps, samples)`` real; output complex ``(..., rx, chirps, N // 2)``
@@ -93,20 +98,12 @@ class RangeFFT(_FFTTransform):
 
     input_layout = RAW_LAYOUT
 
-    def __init__(self, window: str = "hann") -> None:
-        super().__init__()
-        self.window = check_window_name(window)
-
     def transform(self, x: torch.Tensor, params: Params) -> torch.Tensor:
         """The range FFT of the last dim (samples)."""
         return F.range_fft(x, self.window)
 
-    def extra_spec(self) -> dict[str, Any]:
-        """The window's name."""
-        return {"window": self.window}
 
-
-class DopplerFFT(_FFTTransform):
+class DopplerFFT(_WindowedFFT):
     """Window over chirps, FFT, divide by the window sum, centre zero Doppler (fftshift).
 
     Input complex range profiles ``(..., rx, chirps, range)``; output ``(..., rx, range,
@@ -120,17 +117,9 @@ class DopplerFFT(_FFTTransform):
     input_layout = PROFILE_LAYOUT
     accepts_complex = True
 
-    def __init__(self, window: str = "hann") -> None:
-        super().__init__()
-        self.window = check_window_name(window)
-
     def transform(self, x: torch.Tensor, params: Params) -> torch.Tensor:
         """The centred Doppler FFT of the chirp dim."""
         return F.doppler_fft(x, self.window)
-
-    def extra_spec(self) -> dict[str, Any]:
-        """The window's name."""
-        return {"window": self.window}
 
 
 class RangeDoppler(_FFTTransform):

@@ -20,7 +20,7 @@ import torch
 
 from radaraug.errors import RadarAugError
 from radaraug.io.summary import noise_floor_db
-from radaraug.transforms._motion import WARN_FRACTION, motion_fraction
+from radaraug.transforms._motion import WARN_FRACTION, cells_motion_fraction, off_zero_doppler
 from radaraug.transforms.spectral import RangeDoppler, ToDecibels
 from radaraug.units import DB_CONVENTION, counts_to_float
 
@@ -59,16 +59,11 @@ def summarize_capture(reader: Any, *, max_frames: int = 256) -> dict[str, Any]:
 
     x = counts_to_float(raw, cfg.adc_bits)  # the same SDK floats read(as_float=True) gives
     db = ToDecibels()(RangeDoppler()(x))  # (F, rx, range, doppler)
-    m = cfg.num_chirps_per_frame
-    zero = m // 2
-    rng_axis = np.asarray(cfg.range_axis_m())
-    static = db[..., zero].mean(dim=0)  # (rx, range)
+    static = db[..., cfg.num_chirps_per_frame // 2].mean(dim=0)  # (rx, range) at zero Doppler
     # Skip range bin 0 (residual DC after mean removal).
-    static_wo_dc = static[:, 1:]
-    k = int(static_wo_dc.max(dim=0).values.argmax()) + 1
+    k = int(static[:, 1:].max(dim=0).values.argmax()) + 1
     floor = noise_floor_db(db)
-    floor = None if floor is None else round(floor, 2)
-    frac = motion_fraction(db, guard_bins=2)
+    frac = cells_motion_fraction(off_zero_doppler(db, guard_bins=2))
     motion = None if frac is None else {
         "motion": frac > WARN_FRACTION,
         "fraction": frac,
@@ -88,9 +83,9 @@ def summarize_capture(reader: Any, *, max_frames: int = 256) -> dict[str, Any]:
         "dc_offset_counts": [round(float(v), 1) for v in dc],
         "slow_time_noise_rms_counts": [round(float(v), 3) for v in slow_std],
         "clipped_fraction": [float(v) for v in clipped],
-        "noise_floor_db": floor,
+        "noise_floor_db": None if floor is None else round(floor, 2),
         "strongest_static_return": {
-            "range_m": round(float(rng_axis[k]), 3),
+            "range_m": round(cfg.range_axis_m()[k], 3),
             "range_bin": k,
             "level_db": round(float(static[:, k].max()), 2),
         },

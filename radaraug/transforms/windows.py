@@ -25,14 +25,14 @@ BLACKMAN_HARRIS = [0.35875, 0.48829, 0.14128, 0.01168]
 # energy of a perfectly static target. Used to keep static clutter out of motion checks.
 MAIN_LOBE_HALF_WIDTH_BINS = {"rect": 0, "hann": 1, "hamming": 1, "blackman": 2, "blackmanharris": 3}
 
+_ALIASES = {"hanning": "hann", "rectangular": "rect", "boxcar": "rect", "none": "rect"}
+_TORCH_WINDOWS = {"hann": torch.hann_window, "hamming": torch.hamming_window, "blackman": torch.blackman_window}
+
 
 def check_window_name(name: str) -> str:
     """Return ``name`` lower-cased if it is a known window, else raise :class:`InputTensorError`."""
     key = str(name).lower().replace("-", "").replace("_", "")
-    if key == "hanning":
-        key = "hann"
-    if key in ("rectangular", "boxcar", "none"):
-        key = "rect"
+    key = _ALIASES.get(key, key)
     if key not in WINDOWS:
         raise InputTensorError(f"unknown window {name!r}; choose one of {', '.join(WINDOWS)}")
     return key
@@ -40,16 +40,10 @@ def check_window_name(name: str) -> str:
 
 def _window_f64(name: str, n: int) -> torch.Tensor:
     """The window in float64 on the CPU (computed once, then cast and moved)."""
-    if n == 1:
-        return torch.ones(1, dtype=torch.float64)
-    if name == "rect":
+    if n == 1 or name == "rect":
         return torch.ones(n, dtype=torch.float64)
-    if name == "hann":
-        return torch.hann_window(n, periodic=False, dtype=torch.float64)
-    if name == "hamming":
-        return torch.hamming_window(n, periodic=False, dtype=torch.float64)
-    if name == "blackman":
-        return torch.blackman_window(n, periodic=False, dtype=torch.float64)
+    if name in _TORCH_WINDOWS:
+        return _TORCH_WINDOWS[name](n, periodic=False, dtype=torch.float64)
     # 4-term Blackman-Harris (-92 dB sidelobes), coefficients as in scipy.signal.windows.
     return torch.signal.windows.general_cosine(n, a=BLACKMAN_HARRIS, sym=True, dtype=torch.float64)
 

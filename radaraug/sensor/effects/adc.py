@@ -40,9 +40,8 @@ class DCOffset(Effect):
 
     def forward(self, state: ChainState) -> None:
         """Add each RX's DC level, converted from ADC code to SDK floats in [-1, 1]."""
-        full = float(state.config.adc_full_scale_counts)
         level = per_rx(state, self.level_counts, "level_counts", self.name)
-        state.add_constant(level * (2.0 / full) - 1.0)
+        state.add_constant(level * state.float_per_count - 1.0)
 
 
 @register

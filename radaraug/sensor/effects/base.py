@@ -28,7 +28,7 @@ from torch import nn
 
 from radaraug.config import RadarConfig
 from radaraug.errors import ConfigError
-from radaraug.sensor.chain_state import ChainState
+from radaraug.sensor.chain_state import ChainState, ModulatedPaths
 
 EFFECTS: dict[str, type[Effect]] = {}
 """Registry: effect name -> effect class."""
@@ -201,17 +201,14 @@ class Effect(nn.Module):
 
     def to_dict(self) -> dict[str, Any]:
         """``{"name": ..., "params": {...}}`` with plain JSON numbers/lists."""
-        out = {}
-        for k, v in self.params().items():
-            out[k] = None if v is None else v.detach().cpu().tolist()
+        out = {k: None if v is None else v.detach().cpu().tolist() for k, v in self.params().items()}
         return {"name": self.name, "params": out}
 
     def extra_repr(self) -> str:
         """The parameters for ``repr`` (``config`` where a value comes from the radar config)."""
-        parts = []
-        for k, v in self.params().items():
-            parts.append(f"{k}={'config' if v is None else v.detach().cpu().tolist()}")
-        return ", ".join(parts)
+        return ", ".join(
+            f"{k}={'config' if v is None else v.detach().cpu().tolist()}" for k, v in self.params().items()
+        )
 
 
 class EffectList(nn.ModuleList):
@@ -292,11 +289,6 @@ def tone_amplitude(state: ChainState, level_dB: torch.Tensor) -> torch.Tensor:
     return math.sqrt(2 * state.tx_power_W) * state.front_end_gain * torch.pow(10.0, level_dB / 20)
 
 
-def rand(state: ChainState, shape: tuple[int, ...]) -> torch.Tensor:
-    """Uniform draws in [0, 1) from the call's generator (or the global RNG), like ``state.randn``."""
-    return state.rand(shape)
-
-
 def check_nonnegative(effect: Effect, **values: torch.Tensor | None) -> None:
     """Raise :class:`ConfigError` when a parameter holds a negative value."""
     for key, v in values.items():
@@ -313,13 +305,11 @@ def check_positive(effect: Effect, **values: torch.Tensor | None) -> None:
 
 def scatterer_count(effect: Effect, **values: torch.Tensor) -> int:
     """Common length K of per-scatterer parameters (each a scalar or a 1-D tensor of length K or 1)."""
-    shapes = []
     for key, v in values.items():
         if v.ndim > 1:
             raise ConfigError(f"effect {effect.name}: {key} must be a number or a list, got shape {tuple(v.shape)}")
-        shapes.append(v.shape)
     try:
-        shape = torch.broadcast_shapes(*shapes)
+        shape = torch.broadcast_shapes(*(v.shape for v in values.values()))
     except RuntimeError:
         lens = {k: (v.numel() if v.ndim else 1) for k, v in values.items()}
         raise ConfigError(f"effect {effect.name}: per-scatterer parameters have different lengths {lens}") from None
@@ -329,20 +319,15 @@ def scatterer_count(effect: Effect, **values: torch.Tensor) -> int:
     return k
 
 
-def strongest_paths(state: ChainState, k: int) -> tuple[torch.Tensor, torch.Tensor, torch.Tensor]:
-    """Coefficients, delays and delay rates ``(…, RX, k)`` of the ``k`` paths with the largest ``|C| tau``.
+def modulate_strongest_paths(state: ChainState, k: int, multiplier: torch.Tensor) -> None:
+    """Add the LO-borne copies ``j 2 pi tau C`` of the ``k`` paths with the largest ``|C| tau``, times ``multiplier``.
 
     Strongest over RX, chosen per frame: the paths whose LO-borne modulation (phase noise, ramp ripple,
-    both proportional to the delay) is largest.
-    """
-    idx = strongest_index(state, k)
-    return state.coef.gather(-1, idx), state.delay_s.gather(-1, idx), state.delay_rate.gather(-1, idx)
-
-
-def strongest_index(state: ChainState, k: int) -> torch.Tensor:
-    """Indices ``(…, RX, k)`` of the paths :func:`strongest_paths` picks.
-
-    For :meth:`ChainState.chirp_terms`.
+    both proportional to the delay) is largest. Each copy follows its path's intra-frame motion too
+    (per-chirp delay, gain: :meth:`ChainState.chirp_terms`).
     """
     strength = (state.coef.abs() * state.delay_s.abs()).amax(dim=-2)  # (…, P)
-    return torch.topk(strength, k, dim=-1).indices[..., None, :].expand(*state.batch_shape, state.num_rx, k)
+    idx = torch.topk(strength, k, dim=-1).indices[..., None, :].expand(*state.batch_shape, state.num_rx, k)
+    coef, delay, rate = (t.gather(-1, idx) for t in (state.coef, state.delay_s, state.delay_rate))
+    mod_coef = coef * (2j * math.pi) * delay.to(coef.dtype)
+    state.modulated.append(ModulatedPaths(mod_coef, delay, rate, multiplier, *state.chirp_terms(idx)))

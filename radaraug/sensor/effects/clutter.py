@@ -180,21 +180,16 @@ class VibratingClutter(Effect):
 
     def modulation_rad(self, state: ChainState) -> torch.Tensor:
         """``psi = beta sin(w t + phi)`` at every sample, ``(…, K, 1, M, N)`` (``…``: per-frame starts)."""
-        tm = state.timing
         k = self.num_scatterers
-        m = torch.arange(tm.num_chirps, device=state.device, dtype=torch.float64)
-        n = torch.arange(tm.num_samples, device=state.device, dtype=torch.float64)
-        start = state.frame_start_s
-        if isinstance(start, torch.Tensor):  # one start per frame of the batch
-            start = start.to(device=state.device, dtype=torch.float64)[..., None, None, None, None]
-        t = start + (m * tm.prt + tm.adc_delay)[:, None] + (n / tm.fs)[None, :]  # (…, 1, 1, M, N)
+        t = state.sample_times_s().unsqueeze(-3)  # (…, 1, 1, M, N)
         f = self.vibration_Hz.to(device=state.device, dtype=torch.float64).reshape(-1).expand(k)
-        cycles = f[:, None, None, None] * t  # (…, K, 1, M, N)
-        # Reduce the (possibly huge, absolute-time) cycle count mod 1 in float64 before the cast.
-        phase = 2 * math.pi * (cycles - torch.round(cycles)).to(state.dtype)
+        phase = state.cycle_phase(f[:, None, None, None] * t)  # (…, K, 1, M, N)
         phase = phase + _per_scatterer(state, self.phase_rad, k)[:, None, None, None]
-        beta = (4 * math.pi / state.config.wavelength_m) * _per_scatterer(state, self.displacement_m, k)
-        return beta[:, None, None, None] * torch.sin(phase)
+        return self._beta(state)[:, None, None, None] * torch.sin(phase)
+
+    def _beta(self, state: ChainState) -> torch.Tensor:
+        """The modulation index ``4 pi displacement_m / lambda`` of each scatterer, ``(K,)``."""
+        return (4 * math.pi / state.config.wavelength_m) * _per_scatterer(state, self.displacement_m, self.num_scatterers)
 
     def forward(self, state: ChainState) -> None:
         """Add the ``K`` scatterers: a static path each plus their vibration's phase modulation."""
@@ -205,8 +200,7 @@ class VibratingClutter(Effect):
         rate = torch.zeros_like(delay)
         if float(self.carrier) == 0.0:
             # Leave out the time mean J0(beta) C of C exp(j psi): the static path becomes (1 - J0) C.
-            beta = (4 * math.pi / state.config.wavelength_m) * _per_scatterer(state, self.displacement_m, k)
-            state.add_paths(coef * (1 - torch.special.bessel_j0(beta)).to(coef.dtype)[None, :], delay, rate)
+            state.add_paths(coef * (1 - torch.special.bessel_j0(self._beta(state))).to(coef.dtype)[None, :], delay, rate)
         else:
             state.add_paths(coef, delay, rate)
         psi = self.modulation_rad(state)

@@ -57,8 +57,6 @@ class FrameDrift(Effect):
         x = state.materialize()
         batch = state.batch_shape
         g_db = state.param(self.gain_rms_dB) * state.randn((*batch, 1, 1, 1))
-        dc_sigma = per_rx(state, self.dc_rms_counts, "dc_rms_counts", self.name) * (
-            2.0 / state.config.adc_full_scale_counts
-        )
+        dc_sigma = per_rx(state, self.dc_rms_counts, "dc_rms_counts", self.name) * state.float_per_count
         dc = dc_sigma[:, None, None] * state.randn((*batch, state.num_rx, 1, 1))
         state.samples = x * torch.exp(g_db * (math.log(10.0) / 20)) + dc

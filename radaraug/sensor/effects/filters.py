@@ -10,6 +10,8 @@ listed in ``docs/receiver.md``, "Defaults": -16.9 dB at 0.5 m, -11.2 dB at 1 m, 
 
 from __future__ import annotations
 
+from typing import ClassVar
+
 import torch
 
 from radaraug.config import RadarConfig
@@ -31,6 +33,7 @@ def lowpass_response(freq_Hz: torch.Tensor, cutoff_Hz: torch.Tensor, order: int 
 
 
 class _FirstOrderFilter(Effect):
+    kind = "linear"
     param_names = ("cutoff_Hz", "order")
     cutoff_Hz: torch.Tensor | None
     order: torch.Tensor
@@ -43,13 +46,23 @@ class _FirstOrderFilter(Effect):
         if self.cutoff_Hz is not None and not bool((self.cutoff_Hz > 0).all()):
             raise ConfigError(f"effect {self.name}: cutoff_Hz must be positive, got {cutoff_Hz!r}")
 
+    # Set by each filter: its sections' response and the config attribute of its default cutoff.
+    _response: ClassVar[staticmethod[[torch.Tensor, torch.Tensor, int], torch.Tensor]]
+    _config_cutoff: ClassVar[str]
+
     def _cutoff(self, state: ChainState) -> torch.Tensor:
         if self.cutoff_Hz is None:
-            return torch.tensor(self._config_cutoff(state), dtype=torch.float64, device=state.device)
+            cutoff = getattr(state.config, self._config_cutoff)
+            return torch.tensor(cutoff, dtype=torch.float64, device=state.device)
         return self.cutoff_Hz.to(device=state.device, dtype=torch.float64)
 
-    def _config_cutoff(self, state: ChainState) -> float:  # pragma: no cover - abstract
-        raise NotImplementedError
+    def response(self, freq_Hz: torch.Tensor, state: ChainState) -> torch.Tensor:
+        """Complex response at ``freq_Hz``."""
+        return self._response(freq_Hz, self._cutoff(state), int(self.order))
+
+    def forward(self, state: ChainState) -> None:
+        """Apply the filter's frequency response to what is present."""
+        state.apply_linear(response=lambda f: self.response(f, state))
 
 
 @register
@@ -66,19 +79,9 @@ class IFHighPass(_FirstOrderFilter):
     """
 
     name = "if_highpass"
-    kind = "linear"
     PRIORS = {"cutoff_Hz": Prior(5e3, 300e3, "log")}
-
-    def _config_cutoff(self, state: ChainState) -> float:
-        return state.config.effective_hp_cutoff_Hz
-
-    def response(self, freq_Hz: torch.Tensor, state: ChainState) -> torch.Tensor:
-        """Complex response at ``freq_Hz``."""
-        return highpass_response(freq_Hz, self._cutoff(state), int(self.order))
-
-    def forward(self, state: ChainState) -> None:
-        """Apply the high-pass's frequency response to what is present."""
-        state.apply_linear(response=lambda f: self.response(f, state))
+    _response = staticmethod(highpass_response)
+    _config_cutoff = "effective_hp_cutoff_Hz"
 
 
 @register
@@ -94,20 +97,11 @@ class AntiAliasLowPass(_FirstOrderFilter):
     """
 
     name = "anti_alias_lowpass"
-    kind = "linear"
 
     @classmethod
     def priors(cls, config: RadarConfig) -> dict[str, Prior]:
         """``cutoff_Hz`` from 50 kHz up to the sample rate (a cutoff above it no longer matters)."""
         return {"cutoff_Hz": Prior(50e3, max(float(config.sample_rate_Hz), 100e3), "log")}
 
-    def _config_cutoff(self, state: ChainState) -> float:
-        return state.config.effective_aaf_cutoff_Hz
-
-    def response(self, freq_Hz: torch.Tensor, state: ChainState) -> torch.Tensor:
-        """Complex response at ``freq_Hz``."""
-        return lowpass_response(freq_Hz, self._cutoff(state), int(self.order))
-
-    def forward(self, state: ChainState) -> None:
-        """Apply the low-pass's frequency response to what is present."""
-        state.apply_linear(response=lambda f: self.response(f, state))
+    _response = staticmethod(lowpass_response)
+    _config_cutoff = "effective_aaf_cutoff_Hz"

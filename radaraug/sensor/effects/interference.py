@@ -13,7 +13,7 @@ import torch
 
 from radaraug.errors import ConfigError
 from radaraug.sensor.chain_state import ChainState
-from radaraug.sensor.effects.base import Effect, Prior, check_nonnegative, check_positive, rand, register
+from radaraug.sensor.effects.base import Effect, Prior, check_nonnegative, check_positive, register
 
 
 @register
@@ -79,9 +79,9 @@ class Interference(Effect):
         tm = state.timing
         M, N, fs = tm.num_chirps, tm.num_samples, tm.fs
         per_chirp = (*state.batch_shape, 1, M, 1)
-        hit = rand(state, per_chirp) < state.param(self.probability).detach()
-        centre = rand(state, per_chirp) * (N / fs)
-        phi = (2 * math.pi) * rand(state, (*state.batch_shape, state.num_rx, M, 1))
+        hit = state.rand(per_chirp) < state.param(self.probability).detach()
+        centre = state.rand(per_chirp) * (N / fs)
+        phi = (2 * math.pi) * state.rand((*state.batch_shape, state.num_rx, M, 1))
         d = state.param(self.duration_s)
         t = torch.arange(N, device=state.device, dtype=state.dtype) / fs
         u = t - centre + d / 2  # time since the burst's start, (…, 1, M, N)
@@ -89,6 +89,6 @@ class Interference(Effect):
         w = torch.where(inside, torch.sin(math.pi * u / d) ** 2, torch.zeros_like(u))
         # Sweep -fs/2 -> +fs/2 over the burst: f_a u + k u^2 / 2 = (fs / 2) u (u / d - 1) cycles.
         cycles = (fs / 2) * u * (u / d - 1)
-        amp = state.param(self.amplitude_counts) * (2.0 / state.config.adc_full_scale_counts)
+        amp = state.param(self.amplitude_counts) * state.float_per_count
         burst = torch.where(hit & inside, amp * w, torch.zeros_like(w))
         state.add_samples(burst * torch.cos(2 * math.pi * cycles + phi))

@@ -89,5 +89,5 @@ class ADCNoise(Effect):
 
     def forward(self, state: ChainState) -> None:
         """Add white noise of ``rms_counts`` ADC codes (RMS) per RX."""
-        sigma = per_rx(state, self.rms_counts, "rms_counts", self.name) * (2.0 / state.config.adc_full_scale_counts)
+        sigma = per_rx(state, self.rms_counts, "rms_counts", self.name) * state.float_per_count
         state.add_samples(sigma[:, None, None] * state.randn(state.sample_shape))

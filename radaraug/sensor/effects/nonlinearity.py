@@ -17,15 +17,14 @@ import torch
 
 from radaraug.config import RadarConfig
 from radaraug.errors import ConfigError
-from radaraug.sensor.chain_state import ChainState, ModulatedPaths
+from radaraug.sensor.chain_state import ChainState
 from radaraug.sensor.effects.base import (
     Effect,
     Prior,
     check_nonnegative,
     check_positive,
+    modulate_strongest_paths,
     register,
-    strongest_index,
-    strongest_paths,
 )
 
 
@@ -91,19 +90,14 @@ class ChirpNonlinearity(Effect):
         tm = state.timing
         t = torch.arange(tm.num_samples, device=state.device, dtype=torch.float64) / tm.fs
         # Cycles in float64, reduced mod 1 before the cast, so float32 keeps the phase.
-        cycles = self.ripple_Hz.to(device=state.device, dtype=torch.float64) * t
-        phase = 2 * math.pi * (cycles - torch.round(cycles)).to(state.dtype) + state.param(self.phase_rad)
+        phase = state.cycle_phase(self.ripple_Hz.to(device=state.device, dtype=torch.float64) * t)
+        phase = phase + state.param(self.phase_rad)
         return state.param(self.deviation_Hz) * torch.sin(phase)
 
     def forward(self, state: ChainState) -> None:
         """Add the ripple's frequency-modulated copies of the ``num_paths`` strongest paths."""
         k = min(int(self.num_paths), state.coef.shape[-1])
-        if k == 0:
-            return
-        coef, delay, rate = strongest_paths(state, k)
-        # The modulated copy follows its path's intra-frame motion too (per-chirp delay, gain).
-        chirp = state.chirp_terms(strongest_index(state, k))
-        mod_coef = coef * (2j * math.pi) * delay.to(coef.dtype)
-        tm = state.timing
-        multiplier = self.frequency_error_Hz(state).reshape(1, 1, tm.num_samples).expand(1, tm.num_chirps, -1)
-        state.modulated.append(ModulatedPaths(mod_coef, delay, rate, multiplier, *chirp))
+        if k:
+            tm = state.timing
+            multiplier = self.frequency_error_Hz(state).reshape(1, 1, tm.num_samples).expand(1, tm.num_chirps, -1)
+            modulate_strongest_paths(state, k, multiplier)

@@ -14,12 +14,10 @@ weaker ones would be buried in the thermal noise.
 
 from __future__ import annotations
 
-import math
-
 import torch
 
-from radaraug.sensor.chain_state import ChainState, ModulatedPaths
-from radaraug.sensor.effects.base import Effect, Prior, register, strongest_index, strongest_paths
+from radaraug.sensor.chain_state import ChainState
+from radaraug.sensor.effects.base import Effect, Prior, modulate_strongest_paths, register
 
 
 @register
@@ -54,15 +52,9 @@ class PhaseNoise(Effect):
 
     def forward(self, state: ChainState) -> None:
         """Add the phase noise's frequency-modulated copies of the ``num_paths`` strongest paths."""
-        P = state.coef.shape[-1]
-        k = min(int(self.num_paths), P)
-        if k == 0:
-            return
-        coef, delay, rate = strongest_paths(state, k)
-        # The modulated copy follows its path's intra-frame motion too (per-chirp delay, gain).
-        chirp = state.chirp_terms(strongest_index(state, k))
-        mod_coef = coef * (2j * math.pi) * delay.to(coef.dtype)
-        state.modulated.append(ModulatedPaths(mod_coef, delay, rate, self._frequency_noise(state), *chirp))
+        k = min(int(self.num_paths), state.coef.shape[-1])
+        if k:
+            modulate_strongest_paths(state, k, self._frequency_noise(state))
 
     def _frequency_noise(self, state: ChainState) -> torch.Tensor:
         """``nu(m, n)`` in Hz, ``(…, 1, M, N)``."""

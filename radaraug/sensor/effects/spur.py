@@ -55,17 +55,7 @@ class SpurTone(Effect):
 
     def forward(self, state: ChainState) -> None:
         """Add the tone at the absolute time of every sample of the frame(s)."""
-        tm = state.timing
-        m = torch.arange(tm.num_chirps, device=state.device, dtype=torch.float64)
-        n = torch.arange(tm.num_samples, device=state.device, dtype=torch.float64)
-        start = state.frame_start_s
-        if isinstance(start, torch.Tensor):  # one start per frame of the batch: (..., 1, 1, 1)
-            start = start.to(device=state.device, dtype=torch.float64)[..., None, None, None]
-        t = start + (m * tm.prt + tm.adc_delay)[:, None] + (n / tm.fs)[None, :]
-        f = self.freq_Hz.to(device=state.device, dtype=torch.float64)
-        cycles = f * t
-        phase = 2 * math.pi * (cycles - torch.round(cycles)).to(state.dtype) + state.param(self.phase_rad)
-        amp = per_rx(state, self.amplitude_counts, "amplitude_counts", self.name) * (
-            2.0 / state.config.adc_full_scale_counts
-        )
+        cycles = self.freq_Hz.to(device=state.device, dtype=torch.float64) * state.sample_times_s()
+        phase = state.cycle_phase(cycles) + state.param(self.phase_rad)
+        amp = per_rx(state, self.amplitude_counts, "amplitude_counts", self.name) * state.float_per_count
         state.add_samples(amp[:, None, None] * torch.cos(phase))

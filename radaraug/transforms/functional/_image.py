@@ -71,6 +71,16 @@ def colormap_lut(name: str = "viridis") -> torch.Tensor:
     return _lut_f64(str(name)).clone()
 
 
+def check_one_channel(x: torch.Tensor) -> torch.Tensor:
+    """``x`` if it holds one channel ``(..., 1, H, W)``, else :class:`InputTensorError`."""
+    if x.shape[-3] != 1:
+        raise InputTensorError(
+            f"Colormap expects one channel (..., 1, H, W), got {x.shape[-3]} in shape {tuple(x.shape)}; "
+            "combine the RX channels first (CombineRx)"
+        )
+    return x
+
+
 def colormap(x: torch.Tensor, cmap: str | torch.Tensor = "viridis") -> torch.Tensor:
     """One-channel map in [0, 1] ``(..., 1, H, W)`` -> RGB ``(..., 3, H, W)`` through a lookup table.
 
@@ -88,12 +98,7 @@ def colormap(x: torch.Tensor, cmap: str | torch.Tensor = "viridis") -> torch.Ten
         >>> rgb.shape, torch.allclose(rgb[:, 0, 1], F.colormap_lut()[-1].float())
         (torch.Size([3, 1, 2]), True)
     """
-    x = check_tensor(x, "colormap expects a one-channel map (..., 1, H, W) in [0, 1]", finite=False)
-    if x.shape[-3] != 1:
-        raise InputTensorError(
-            f"Colormap expects one channel (..., 1, H, W), got {x.shape[-3]} in shape {tuple(x.shape)}; "
-            "combine the RX channels first (CombineRx)"
-        )
+    x = check_one_channel(check_tensor(x, "colormap expects a one-channel map (..., 1, H, W) in [0, 1]", finite=False))
     lut = colormap_lut(cmap) if isinstance(cmap, str) else cmap
     if not (isinstance(lut, torch.Tensor) and lut.ndim == 2 and lut.shape[1] == 3 and lut.shape[0] >= 1):
         raise InputTensorError(f"colormap: cmap must be a name or a (K, 3) tensor, got {cmap!r}")

@@ -25,6 +25,8 @@ COMBINE_MODES = ("mean_power", "coherent", "max", "select")
 def check_fft_input(x: object, what: str, layout: str, *, allow_complex: bool) -> torch.Tensor:
     """:func:`~radaraug.transforms._checks.check_tensor` (no value test) plus the FFT dtypes.
 
+    A raw cube (``layout`` :data:`RAW_LAYOUT`) also needs at least 2 samples per chirp.
+
     Args:
         x: the input.
         what: the caller's name, for the message.
@@ -35,6 +37,8 @@ def check_fft_input(x: object, what: str, layout: str, *, allow_complex: bool) -
     if x.dtype not in FFT_DTYPES:
         # torch's FFTs refuse half precision on the CPU (and on CUDA for most sizes).
         raise InputTensorError(f"{what} expects {layout} of float32 or float64, got {x.dtype} (convert with .float())")
+    if layout == RAW_LAYOUT and x.shape[-1] < 2:
+        raise InputTensorError(f"{what} needs at least 2 samples per chirp, got {x.shape[-1]}")
     return x
 
 
@@ -117,8 +121,6 @@ def range_fft(x: torch.Tensor, window: str = "hann") -> torch.Tensor:
     window = check_window_name(window)
     x = check_fft_input(x, "range_fft", RAW_LAYOUT, allow_complex=False)
     n = x.shape[-1]
-    if n < 2:
-        raise InputTensorError(f"range_fft needs at least 2 samples per chirp, got {n}")
 
     def kernel(v: torch.Tensor) -> torch.Tensor:
         w = normalized_window(window, n, v.dtype, v.device)
@@ -192,8 +194,6 @@ def range_doppler(
     range_window, doppler_window = check_window_name(range_window), check_window_name(doppler_window)
     x = check_fft_input(x, "range_doppler", RAW_LAYOUT, allow_complex=False)
     n = x.shape[-1]
-    if n < 2:
-        raise InputTensorError(f"range_doppler needs at least 2 samples per chirp, got {n}")
 
     def kernel(v: torch.Tensor) -> torch.Tensor:
         m = v.shape[-2]
