@@ -154,8 +154,18 @@ def _around(value: float, prior: Prior, rel: float | None = None, half: float | 
     return Prior(lo, hi, prior.scale)
 
 
-def _spec(ctx: Context, name: str, pname: str, index: int | None = None, prior: Prior | None = None) -> ParamSpec:
-    return ParamSpec(pname, prior or _priors(ctx, name)[pname], index)
+def _narrow(ctx: Context, name: str, start: dict[str, Any], pname: str, **around: float) -> ParamSpec:
+    """Parameter ``pname`` of effect ``name`` searched in a range :func:`_around` its start."""
+    return ParamSpec(pname, _around(start[pname], _priors(ctx, name)[pname], **around))
+
+
+def _plain_specs(name: str, *pnames: str) -> Callable[[Context, dict[str, Any]], list[ParamSpec]]:
+    """Specs of ``pnames`` over the effect's own prior ranges, whatever the start."""
+
+    def specs(ctx: Context, start: dict[str, Any]) -> list[ParamSpec]:
+        return [ParamSpec(p, _priors(ctx, name)[p]) for p in pnames]
+
+    return specs
 
 
 # --------------------------------------------------------------------------- residual reading
@@ -210,15 +220,11 @@ def _level_probe(ctx: Context, name: str, params: dict[str, Any], r: int, col: i
     The level is in dB, the effect's ``level_key``: one simulation at the current level, then linear
     scaling.
     """
-    probe_chain = with_effect(ctx.chain, name, params)
-    v = ctx.probe(probe_chain)
-    p_with = float(v.stats.power.mean(dim=0)[r, col])
+    p_with = float(ctx.probe(with_effect(ctx.chain, name, params)).stats.power.mean(dim=0)[r, col])
     p_without = float(ctx.twin.stats.power.mean(dim=0)[r, col])
     gain = p_with - p_without
-    if gain <= 0:
-        return None
     want = p_without * (10 ** (target_db / 10) - 1)
-    if want <= 0:
+    if gain <= 0 or want <= 0:
         return None
     return float(params[level_key]) + 10 * math.log10(want / gain)
 
@@ -231,18 +237,13 @@ def _range_level_specs(name: str, range_key: str) -> Callable[[Context, dict[str
     """
 
     def specs(ctx: Context, start: dict[str, Any]) -> list[ParamSpec]:
-        pr = _priors(ctx, name)
-        res = ctx.config.range_resolution_m
-        return [_spec(ctx, name, range_key, prior=_around(start[range_key], pr[range_key], half=res)),
-                _spec(ctx, name, "level_dB", prior=_around(start["level_dB"], pr["level_dB"], half=6.0))]
+        return [_narrow(ctx, name, start, range_key, half=ctx.config.range_resolution_m),
+                _narrow(ctx, name, start, "level_dB", half=6.0)]
 
     return specs
 
 
 def _noise_like(name: str, pname: str, grid: Sequence[float], joint: tuple[tuple[str, str], ...] = ()) -> Candidate:
-    def specs(ctx: Context, start: dict[str, Any]) -> list[ParamSpec]:
-        return [_spec(ctx, name, pname)]
-
     def starts(ctx: Context) -> list[dict[str, Any]]:
         cur = find(ctx.chain, name)
         if cur is not None:
@@ -251,7 +252,7 @@ def _noise_like(name: str, pname: str, grid: Sequence[float], joint: tuple[tuple
             return [{pname: v}] + [{pname: v * f} for f in (0.3, 3.0)]
         return [{pname: g} for g in grid]
 
-    return Candidate(name, specs, starts, joint=joint)
+    return Candidate(name, _plain_specs(name, pname), starts, joint=joint)
 
 
 def _spur() -> Candidate:
@@ -278,13 +279,9 @@ def _spur() -> Candidate:
         return out
 
     def specs(ctx: Context, start: dict[str, Any]) -> list[ParamSpec]:
-        pr = _priors(ctx, "spur_tone")
         half = 0.5 / (ctx.config.num_chirps_per_frame * ctx.config.chirp_repetition_time_s)
-        return [
-            _spec(ctx, "spur_tone", "freq_Hz", prior=_around(start["freq_Hz"], pr["freq_Hz"], half=half)),
-            _spec(ctx, "spur_tone", "amplitude_counts", prior=_around(start["amplitude_counts"],
-                                                                      pr["amplitude_counts"], rel=0.7)),
-        ]
+        return [_narrow(ctx, "spur_tone", start, "freq_Hz", half=half),
+                _narrow(ctx, "spur_tone", start, "amplitude_counts", rel=0.7)]
 
     return Candidate("spur_tone", specs, starts)
 
@@ -330,16 +327,11 @@ def _vibrating() -> Candidate:
         return out
 
     def specs(ctx: Context, start: dict[str, Any]) -> list[ParamSpec]:
-        pr = _priors(ctx, "vibrating_clutter")
-        cfg = ctx.config
-        dopp = 1 / (cfg.num_chirps_per_frame * cfg.chirp_repetition_time_s)
-        return [
-            _spec(ctx, "vibrating_clutter", "level_dB", prior=_around(start["level_dB"], pr["level_dB"], half=8.0)),
-            _spec(ctx, "vibrating_clutter", "displacement_m",
-                  prior=_around(start["displacement_m"], pr["displacement_m"], rel=0.6)),
-            _spec(ctx, "vibrating_clutter", "vibration_Hz",
-                  prior=Prior(max(start["vibration_Hz"] - dopp, 1e-3), start["vibration_Hz"] + dopp, "lin")),
-        ]
+        dopp = 1 / (ctx.config.num_chirps_per_frame * ctx.config.chirp_repetition_time_s)
+        f_v = start["vibration_Hz"]
+        return [_narrow(ctx, "vibrating_clutter", start, "level_dB", half=8.0),
+                _narrow(ctx, "vibrating_clutter", start, "displacement_m", rel=0.6),
+                ParamSpec("vibration_Hz", Prior(max(f_v - dopp, 1e-3), f_v + dopp, "lin"))]
 
     return Candidate("vibrating_clutter", specs, starts)
 
@@ -391,13 +383,10 @@ def _chirp_nonlinearity() -> Candidate:
         return [{"deviation_Hz": dev, "ripple_Hz": max(ripple, pr["ripple_Hz"].lo), "phase_rad": 0.0}]
 
     def specs(ctx: Context, start: dict[str, Any]) -> list[ParamSpec]:
-        pr = _priors(ctx, "chirp_nonlinearity")
+        ripple = _priors(ctx, "chirp_nonlinearity")["ripple_Hz"]
         bin_hz = ctx.config.sample_rate_Hz / ctx.config.num_samples_per_chirp
-        return [_spec(ctx, "chirp_nonlinearity", "deviation_Hz",
-                      prior=_around(start["deviation_Hz"], pr["deviation_Hz"], rel=0.6)),
-                _spec(ctx, "chirp_nonlinearity", "ripple_Hz",
-                      prior=_around(start["ripple_Hz"], Prior(pr["ripple_Hz"].lo, pr["ripple_Hz"].hi, "lin"),
-                                    half=bin_hz))]
+        return [_narrow(ctx, "chirp_nonlinearity", start, "deviation_Hz", rel=0.6),
+                ParamSpec("ripple_Hz", _around(start["ripple_Hz"], Prior(ripple.lo, ripple.hi, "lin"), half=bin_hz))]
 
     return Candidate("chirp_nonlinearity", specs, starts, modes=("scene",))
 
@@ -410,11 +399,8 @@ def _interference() -> Candidate:
         return [{"probability": q, "amplitude_counts": a, "duration_s": d}
                 for q in probs for a in (30.0, 300.0) for d in (5e-6, 15e-6)]
 
-    def specs(ctx: Context, start: dict[str, Any]) -> list[ParamSpec]:
-        return [_spec(ctx, "interference", "probability"), _spec(ctx, "interference", "amplitude_counts"),
-                _spec(ctx, "interference", "duration_s")]
-
-    return Candidate("interference", specs, starts, joint=NOISE_BASE)
+    return Candidate("interference", _plain_specs("interference", "probability", "amplitude_counts", "duration_s"),
+                     starts, joint=NOISE_BASE)
 
 
 def _frame_drift() -> Candidate:
@@ -429,10 +415,7 @@ def _frame_drift() -> Candidate:
         return [{"gain_rms_dB": g, "dc_rms_counts": dc}, {"gain_rms_dB": 0.0, "dc_rms_counts": dc},
                 {"gain_rms_dB": max(g, 0.3), "dc_rms_counts": 0.0}]
 
-    def specs(ctx: Context, start: dict[str, Any]) -> list[ParamSpec]:
-        return [_spec(ctx, "frame_drift", "gain_rms_dB"), _spec(ctx, "frame_drift", "dc_rms_counts")]
-
-    return Candidate("frame_drift", specs, starts)
+    return Candidate("frame_drift", _plain_specs("frame_drift", "gain_rms_dB", "dc_rms_counts"), starts)
 
 
 def _rx_mismatch() -> Candidate:
@@ -446,11 +429,8 @@ def _rx_mismatch() -> Candidate:
         ft = ctx.twin["rx_balance"][part]
         d = (fc - ft) - (fc - ft)[0]
         cur = find(ctx.chain, "rx_gain_phase_mismatch")
-        g0 = [0.0] * R
-        p0 = [0.0] * R
-        if cur is not None:
-            g0 = _as_list(cur["params"]["gain_dB"], R)
-            p0 = _as_list(cur["params"]["phase_rad"], R)
+        params = cur["params"] if cur is not None else {"gain_dB": 0.0, "phase_rad": 0.0}
+        g0, p0 = _as_list(params["gain_dB"], R), _as_list(params["phase_rad"], R)
         gains = [g0[i] + float(d[i]) for i in range(R)]
         phases = list(p0)
         if ctx.mode == "scene":
@@ -503,10 +483,7 @@ def _phase_noise() -> Candidate:
         v = float(cur["params"]["freq_noise_rms_Hz"]) if cur is not None else 100e3
         return [{"freq_noise_rms_Hz": v * f} for f in (0.3, 3.0, 10.0)]
 
-    def specs(ctx: Context, start: dict[str, Any]) -> list[ParamSpec]:
-        return [_spec(ctx, "phase_noise", "freq_noise_rms_Hz")]
-
-    return Candidate("phase_noise", specs, starts)
+    return Candidate("phase_noise", _plain_specs("phase_noise", "freq_noise_rms_Hz"), starts)
 
 
 def catalog() -> list[Candidate]:

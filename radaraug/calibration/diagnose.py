@@ -18,7 +18,7 @@ from typing import Any
 
 import torch
 
-from radaraug.calibration.catalog import BASE_STAGES, CATALOG_NAMES, Chain, find
+from radaraug.calibration.catalog import BASE_STAGES, CATALOG_NAMES, Chain, _as_list, find, with_effect
 from radaraug.calibration.room import ROOM_PRIORS
 from radaraug.calibration.search import Search, SearchResult, SearchSettings
 from radaraug.calibration.twin_source import STATIC_STAGES, TwinSource
@@ -104,12 +104,7 @@ def _room_note(mode: str, room: dict[str, float]) -> str:
 
 
 def _base_params(chain: Chain) -> dict[str, Any]:
-    out = {}
-    for name in BASE_STAGES:
-        e = find(chain, name)
-        if e is not None:
-            out[name] = e["params"]
-    return out
+    return {name: e["params"] for name in BASE_STAGES if (e := find(chain, name)) is not None}
 
 
 def _read_capture(capture: Any, max_frames: int) -> tuple[str, RadarConfig, torch.Tensor]:
@@ -221,8 +216,6 @@ def profile_chain(result_chain: Chain, default_chain: Chain, mode: str) -> Chain
     """
     if mode == "scene":
         return result_chain
-    from radaraug.calibration.catalog import with_effect
-
     out = list(result_chain)
     for e in default_chain:
         if e["name"] in STATIC_STAGES and find(out, e["name"]) is None:
@@ -313,13 +306,10 @@ def diagnose(
 
 def _measured_leakage(chain: Chain, ev: Any, num_rx: int) -> Chain:
     """``chain`` with its leakage moved by the level the capture shows over the declared one (per RX)."""
-    from radaraug.calibration.catalog import with_effect
-
     leak = find(chain, "tx_rx_leakage")
     if leak is None:
         return chain
-    cur = leak["params"].get("coupling_dB", -60.0)
-    cur = list(cur) if isinstance(cur, list) else [float(cur)] * num_rx
+    cur = _as_list(leak["params"].get("coupling_dB", -60.0), num_rx)
     new = []
     for i in range(num_rx):
         a = ev.capture.params.get(f"level_dBFS_rx{i + 1}")

@@ -73,9 +73,7 @@ def floor_statistics(
             UserWarning,
             stacklevel=3,
         )
-    batches, source_name, capture_config = iter_source(
-        source, max_frames=max_frames, batch_size=batch_size
-    )
+    batches, source_name, capture_config = iter_source(source, max_frames=max_frames, batch_size=batch_size)
     if capture_config is not None:
         if config is not None and config != capture_config:
             raise CalibrationError(
@@ -103,9 +101,7 @@ def floor_statistics(
         raise CalibrationError(f"CalibratedDR.fit: {where} has no frames")
     shapes = {tuple(m.shape[1:]) for m in maps}
     if len(shapes) > 1:
-        raise CalibrationError(
-            f"CalibratedDR.fit: frames of {where} have different shapes {sorted(shapes)}"
-        )
+        raise CalibrationError(f"CalibratedDR.fit: frames of {where} have different shapes {sorted(shapes)}")
     all_maps = torch.cat(maps)
     values = all_maps.double()
     mean, std = float(values.mean()), float(values.std(correction=0))
@@ -147,8 +143,9 @@ def floor_values(maps_db: torch.Tensor, window: str = "hann") -> torch.Tensor:
     return (off if off.numel() else maps_db).double().flatten()
 
 
-def matched_floor_quantiles(capture_quantiles_db: torch.Tensor, twin_values_db: torch.Tensor,
-                            points: int = QUANTILES) -> torch.Tensor:
+def matched_floor_quantiles(
+    capture_quantiles_db: torch.Tensor, twin_values_db: torch.Tensor, points: int = QUANTILES
+) -> torch.Tensor:
     """Quantiles of a clamp floor ``N`` such that ``max(S, N)`` has the capture's floor distribution.
 
     ``S`` is the twin's own empty-room RD level (``twin_values_db``, e.g. :func:`floor_values` of

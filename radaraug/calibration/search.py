@@ -48,6 +48,7 @@ from radaraug.calibration.catalog import (
     Chain,
     Context,
     ParamSpec,
+    _as_list,
     catalog,
     find,
     get_param,
@@ -239,8 +240,7 @@ class Search:
         for _ in range(iterations):
             tv = self.fit_score(chain, room).twin
             d = (self.cap_fit["adc_histogram"][:, mid] - tv["adc_histogram"][:, mid]).tolist()
-            cur = require(chain, "dc_offset")["params"]["level_counts"]
-            cur = list(cur) if isinstance(cur, list) else [float(cur)] * R
+            cur = _as_list(require(chain, "dc_offset")["params"]["level_counts"], R)
             new = [min(max(c + di, 0.0), float(self.config.adc_full_scale_counts)) for c, di in zip(cur, d)]
             chain = set_params(chain, "dc_offset", [ParamSpec("level_counts", EFFECTS["dc_offset"].priors(
                 self.config)["level_counts"], i) for i in range(R)], new, R)
@@ -409,17 +409,16 @@ class Search:
         if ev:
             current, cur_room, cur_held = self._signature_steps(current, cur_room, cur_held, ev, steps, added)
 
-        def allowed(name: str) -> bool:
-            return name not in ev or bool(ev[name].present)
+        def signature(name: str) -> bool | None:
+            """Whether ``name``'s signature is present (None: ``name`` has no detector)."""
+            return bool(ev[name].present) if name in ev else None
 
         for _ in range(st.max_steps):
             fit_now = self.fit_score(current, cur_room)
             ctx = self._context(current, fit_now.twin, cur_room)
             screened = []
             for cand in catalog():
-                if self.source.mode not in cand.modes or cand.name in added:
-                    continue
-                if not allowed(cand.name):
+                if self.source.mode not in cand.modes or cand.name in added or signature(cand.name) is False:
                     continue
                 if ev and cand.name in BASE_STAGES and find(current, cand.name) is not None:
                     # A base stage the chain holds is refitted with the base, not named as an effect.
@@ -433,7 +432,7 @@ class Search:
                 start = require(ch, cand.name)["params"]
                 specs = [(cand.name, sp) for sp in cand.specs(ctx, start)]
                 joint = set(cand.joint)
-                if cand.name in ev and ev[cand.name].present:
+                if signature(cand.name):
                     # Its signature says it is there: the base noise, bent to imitate it by the base
                     # refit, is fitted jointly with it (not instead of it).
                     joint |= {("thermal_noise", "noise_figure_dB"), ("adc_noise", "rms_counts")}
@@ -454,7 +453,7 @@ class Search:
             held, cand, fitted, fit_sc, cand_specs = results[0]
             gain = cur_held.overall - held.overall
             k = _own_params(cand.name, cand_specs)
-            backed = cand.name in ev and bool(ev[cand.name].present)
+            backed = bool(signature(cand.name))
             need = (st.min_gain_db if backed else max(st.min_gain_db, st.min_gain_rel * cur_held.overall)) \
                 + st.per_param_db * k
             if gain < need:
@@ -463,7 +462,7 @@ class Search:
             band = max(st.ambiguity_db, st.ambiguity_rel * gain)
             alternatives = [{"effect": r[1].name, "held_out_error": round(r[0].overall, 4),
                              "penalized_error": round(penalized(r), 4), "params_fitted": _own_params(r[1].name, r[4]),
-                             "signature": None if r[1].name not in ev else bool(ev[r[1].name].present)}
+                             "signature": signature(r[1].name)}
                             for r in results[1:]]
             best_pen = penalized(results[0])
             close = [r[1].name for r in results[1:] if penalized(r) - best_pen <= band]

@@ -49,6 +49,7 @@ not tested; the phase-noise and mismatch tests need at least two RX channels.
 
 from __future__ import annotations
 
+import itertools
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -297,16 +298,14 @@ def detect_adc_clipping(frames: torch.Tensor | Prepared, config: RadarConfig,
                                                                   device=c.device), dim=1)
     mu, sigma = q[1], ((q[2] - q[0]) / 1.349).clamp_min(0.5)
     gauss = _norm_cdf((0.5 - mu) / sigma) + _norm_cdf((mu - (p.full - 0.5)) / sigma)
-    frac = float((lo + hi).sum() / (n * c.shape[0]))
-    pile = torch.maximum(torch.where(lo > 0, lo / (lo_nb + 1), torch.zeros_like(lo)),
-                         torch.where(hi > 0, hi / (hi_nb + 1), torch.zeros_like(hi)))
-    pileup = float(pile.max())
+    frac = float((lo + hi).sum() / c.numel())
+    # A rail without samples gives 0 (the counts are >= 0).
+    pileup = float(torch.maximum(lo / (lo_nb + 1), hi / (hi_nb + 1)).max())
     present = frac >= min_fraction and pileup >= min_pileup and float((lo + hi).sum()) >= 10
     return Signature(
         "adc_clipping", 100 * frac, present,
-        {"fraction": frac, "fraction_low": float(lo.sum() / (n * c.shape[0])),
-         "fraction_high": float(hi.sum() / (n * c.shape[0])), "gaussian_fraction": float(gauss.mean()),
-         "pileup": pileup},
+        {"fraction": frac, "fraction_low": float(lo.sum() / c.numel()), "fraction_high": float(hi.sum() / c.numel()),
+         "gaussian_fraction": float(gauss.mean()), "pileup": pileup},
         f"{100 * frac:.3g} % of samples on the rails (Gaussian of the measured spread: "
         f"{100 * float(gauss.mean()):.3g} %), rail code {pileup:.1f}x its neighbours; score: % clipped",
     )
@@ -643,15 +642,11 @@ def detect_if_highpass(frames: torch.Tensor | Prepared, config: RadarConfig, min
     if R > 1:
         # Remove what is common to the RX (the thermal floor is independent between them).
         ddk = dd.permute(1, 3, 0, 2).reshape(R, K, -1)[:, :, sel]
-        coh = torch.zeros(K, dtype=torch.float64, device=p.device)
-        n = 0
-        for i in range(R):
-            for j in range(i + 1, R):
-                coh = coh + (ddk[i] * ddk[j].conj()).mean(dim=-1).abs()
-                n += 1
+        pairs = list(itertools.combinations(range(R), 2))
+        coh = sum((ddk[i] * ddk[j].conj()).mean(dim=-1).abs() for i, j in pairs)
         # The mean power (not the median) is what the cross spectrum compares with.
         psd_mean = pw_sel.mean(dim=(0, 2))
-        psd = psd * (1 - (coh / n / psd_mean.clamp_min(_TINY)).clamp(0, 0.9))
+        psd = psd * (1 - (coh / len(pairs) / psd_mean.clamp_min(_TINY)).clamp(0, 0.9))
     fs = config.sample_rate_Hz
     nom = config.effective_hp_cutoff_Hz
     fmax = max_fit_Hz if max_fit_Hz is not None else min(0.3 * fs, 6 * nom)
@@ -729,11 +724,9 @@ def detect_rx_gain_phase_mismatch(frames: torch.Tensor | Prepared, config: Radar
     peaks = [k for k in _peaks_1d(pcm, lo=3) if float(pcm[k] / fl[k]) > 10 ** (min_snr_db / 10)]
     peaks = [k for k in peaks if float(pcm[k]) > float(pcm[peaks[0]]) * 1e-3][:12] if peaks else []
     params: dict[str, float] = {"num_returns": float(len(peaks))}
-    for i in range(R):
-        params[f"noise_gain_dB_rx{i + 1}"] = float(g_noise[i])
+    params.update({f"noise_gain_dB_rx{i + 1}": float(g_noise[i]) for i in range(R)})
     if not peaks:
-        for i in range(R):
-            params[f"gain_dB_rx{i + 1}"] = float(g_noise[i])
+        params.update({f"gain_dB_rx{i + 1}": float(g_noise[i]) for i in range(R)})
         return Signature("rx_gain_phase_mismatch", 0.0, False, params, "no static return to compare")
     ks = torch.tensor(peaks, device=p.device)
     g_k = 10 * torch.log10(pc[:, ks] / pc[:1, ks])  # (R, P)
@@ -840,8 +833,7 @@ def detect_tx_rx_leakage(frames: torch.Tensor | Prepared, config: RadarConfig, b
     coh = dot.sum(dim=0).abs() / dot.abs().sum(dim=0).clamp_min(_TINY)
     i = int(snr.argmax())
     params = {"chirp_snr_dB": float(snr[i]), "coherence": float(coh[i])}
-    for r in range(R):
-        params[f"level_dBFS_rx{r + 1}"] = _db(pl[r] * (2 / p.full) ** 2)
+    params.update({f"level_dBFS_rx{r + 1}": _db(pl[r] * (2 / p.full) ** 2) for r in range(R)})
     params["clipped_fraction"] = p.clipped_fraction
     present = float(snr[i]) >= min_chirp_snr_db and float(coh[i]) >= min_coherence
     declared_note = ""
@@ -849,8 +841,7 @@ def detect_tx_rx_leakage(frames: torch.Tensor | Prepared, config: RadarConfig, b
         decl = declared_leakage_dBFS(config, bins)
         dev = [params[f"level_dBFS_rx{r + 1}"] - decl[r] for r in range(R) if float(snr[r]) >= min_chirp_snr_db]
         excess = max(dev, key=abs) if dev else 0.0
-        for r in range(R):
-            params[f"declared_dBFS_rx{r + 1}"] = decl[r]
+        params.update({f"declared_dBFS_rx{r + 1}": decl[r] for r in range(R)})
         params["excess_dB"] = excess
         if present and abs(excess) <= max_declared_db:
             return Signature("tx_rx_leakage", 0.0, False, params,

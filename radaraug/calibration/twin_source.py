@@ -43,11 +43,8 @@ STATIC_STAGES = ("tx_rx_leakage", "multipath", "static_clutter")
 def chain_receiver(config: RadarConfig, chain: Sequence[Mapping[str, Any]], tx_power_dBm: float | None = None,
                    front_end_gain_dB: float | None = None) -> FMCWReceiver:
     """An :class:`FMCWReceiver` for ``config`` with the effect chain ``chain`` (effect dicts)."""
-    kw: dict[str, Any] = {}
-    if tx_power_dBm is not None:
-        kw["tx_power_dBm"] = tx_power_dBm
-    if front_end_gain_dB is not None:
-        kw["front_end_gain_dB"] = front_end_gain_dB
+    given = {"tx_power_dBm": tx_power_dBm, "front_end_gain_dB": front_end_gain_dB}
+    kw: dict[str, Any] = {k: v for k, v in given.items() if v is not None}
     return FMCWReceiver(config, effects=[effect_from_dict(e) for e in chain], **kw)
 
 

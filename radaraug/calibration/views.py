@@ -116,8 +116,7 @@ def frame_stats(frames: torch.Tensor, config: RadarConfig, chunk: int = 32) -> F
         per_cell_db.append(d)
     power /= F
     static /= F
-    alldb = torch.cat(dbs)
-    q = torch.quantile(alldb, torch.tensor(RD_QUANTILES, dtype=torch.float64))
+    q = torch.quantile(torch.cat(dbs), torch.tensor(RD_QUANTILES, dtype=torch.float64))
     cells = torch.cat(per_cell_db)  # (F, rx, range, doppler) dB
     keep = _guard_slice(M)
     off = cells[..., keep] if M > 4 else cells

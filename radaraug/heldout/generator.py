@@ -32,6 +32,7 @@ last and checked).
 
 from __future__ import annotations
 
+import itertools
 import json
 import math
 import os
@@ -157,15 +158,9 @@ def receiver_kwargs(config: RadarConfig) -> dict[str, Any]:
 
 def default_effects(config: RadarConfig) -> list[dict[str, Any]]:
     """The default undeclared effects for ``config``: :data:`UNDECLARED_EFFECTS` plus the desk fan."""
-    out = []
-    for e in UNDECLARED_EFFECTS:
-        e = dict(e)
-        for k, v in e.items():
-            if isinstance(v, tuple):
-                e[k] = _by_antenna(v, config)
-        out.append(e)
-    out += room_mod.fan_effects(config)
-    return out
+    out = [{k: _by_antenna(v, config) if isinstance(v, tuple) else v for k, v in e.items()}
+           for e in UNDECLARED_EFFECTS]
+    return out + room_mod.fan_effects(config)
 
 
 def resolve_effects(effects: str | Sequence[Mapping[str, Any]] | None, config: RadarConfig) -> list[dict[str, Any]]:
@@ -238,11 +233,8 @@ def _split_frames(rng: np.random.Generator, total: int) -> list[int]:
 def _too_close(people: list[walkers.Person], duration_s: float) -> bool:
     t = np.linspace(0.0, duration_s, 64)
     centres = [walkers.positions(p, t)[0, :, :2] for p in people]  # pelvis
-    for i in range(len(centres)):
-        for j in range(i):
-            if float(np.linalg.norm(centres[i] - centres[j], axis=-1).min()) < MIN_SEPARATION_M:
-                return True
-    return False
+    pairs = itertools.combinations(centres, 2)
+    return any(float(np.linalg.norm(a - b, axis=-1).min()) < MIN_SEPARATION_M for a, b in pairs)
 
 
 def plan_episodes(count: int, frames: int, seed: int, config: RadarConfig,

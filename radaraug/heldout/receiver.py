@@ -139,7 +139,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterable, Mapping, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
@@ -467,20 +467,10 @@ def generate(
     ghosts: list[_Path] = []
     for e in by_name("multipath"):
         ratio = 10.0 ** (e["level_dB"] / 20.0) * np.exp(1j * e["phase_rad"])
+        extra = float(e["extra_range_m"])
         for p in scene_paths:
-            ghosts.append(
-                _Path(
-                    p.coef * ratio,
-                    p.range_m + float(e["extra_range_m"]),
-                    speed_m_s=p.speed_m_s,
-                    displacement_m=p.displacement_m,
-                    vibration_Hz=p.vibration_Hz,
-                    vibration_phase_rad=p.vibration_phase_rad,
-                    track_range_m=None if p.track_range_m is None else p.track_range_m + float(e["extra_range_m"]),
-                    track_rate_m_s=p.track_rate_m_s,
-                    gain=p.gain,
-                )
-            )
+            ghost_track = None if p.track_range_m is None else p.track_range_m + extra
+            ghosts.append(replace(p, coef=p.coef * ratio, range_m=p.range_m + extra, track_range_m=ghost_track))
     paths += scene_paths + ghosts + clutter_paths
 
     # Complex gain per RX after the system gain: system gain x mismatch.
@@ -661,68 +651,55 @@ def random_effect(name: str, cfg: RadarConfig, rng: np.random.Generator) -> dict
     near = min(6.0, 0.3 * cfg.max_range_m)
     if name == "spur_tone":
         base = logu(2.0, 15.0)
-        return {
-            "name": name,
+        params: dict[str, Any] = {
             "freq_Hz": u(0.05 * fs, 0.45 * fs),
             "amplitude_counts": [base * u(0.7, 1.3) for _ in range(n_rx)],
             "phase_rad": u(0.0, two_pi),
         }
-    if name == "adc_noise":
-        return {"name": name, "rms_counts": logu(3.0, 10.0)}
-    if name == "rx_gain_phase_mismatch":
-        return {
-            "name": name,
+    elif name == "adc_noise":
+        params = {"rms_counts": logu(3.0, 10.0)}
+    elif name == "rx_gain_phase_mismatch":
+        params = {
             "gain_dB": [0.0] + [signed(1.0, 3.0) for _ in range(n_rx - 1)],
             "phase_rad": [0.0] + [signed(0.3, 1.5) for _ in range(n_rx - 1)],
         }
-    if name == "static_clutter":
-        return {
-            "name": name,
-            "range_m": u(1.0, far),
-            "level_dB": u(-95.0, -75.0),
-            "phase_rad": u(0.0, two_pi),
-        }
-    if name == "vibrating_clutter":
+    elif name == "static_clutter":
+        params = {"range_m": u(1.0, far), "level_dB": u(-95.0, -75.0), "phase_rad": u(0.0, two_pi)}
+    elif name == "vibrating_clutter":
         doppler_bin = 1.0 / (cfg.num_chirps_per_frame * cfg.chirp_repetition_time_s)
-        return {
-            "name": name,
+        params = {
             "range_m": u(1.0, near),
             "level_dB": u(-90.0, -75.0),
             "displacement_m": u(0.1e-3, 1.0e-3),
             "vibration_Hz": u(2.0, 0.25 * cfg.num_chirps_per_frame) * doppler_bin,
             "phase_rad": u(0.0, two_pi),
         }
-    if name == "multipath":
-        return {
-            "name": name,
-            "extra_range_m": u(0.3, 2.0),
-            "level_dB": u(-12.0, -4.0),
-            "phase_rad": u(0.0, two_pi),
-        }
-    if name == "interference":
-        return {
-            "name": name,
+    elif name == "multipath":
+        params = {"extra_range_m": u(0.3, 2.0), "level_dB": u(-12.0, -4.0), "phase_rad": u(0.0, two_pi)}
+    elif name == "interference":
+        params = {
             "probability": u(0.05, 0.3),
             "amplitude_counts": logu(50.0, 500.0),
             "duration_s": u(5e-6, 30e-6),
         }
-    if name == "frame_drift":
-        return {"name": name, "gain_rms_dB": u(0.2, 1.0), "dc_rms_counts": u(2.0, 10.0)}
-    if name == "phase_noise":
-        return {"name": name, "freq_noise_rms_Hz": logu(50e3, 500e3), "corner_Hz": logu(20e3, 200e3)}
-    if name == "chirp_nonlinearity":
-        return {
-            "name": name,
+    elif name == "frame_drift":
+        params = {"gain_rms_dB": u(0.2, 1.0), "dc_rms_counts": u(2.0, 10.0)}
+    elif name == "phase_noise":
+        params = {"freq_noise_rms_Hz": logu(50e3, 500e3), "corner_Hz": logu(20e3, 200e3)}
+    elif name == "chirp_nonlinearity":
+        params = {
             "deviation_Hz": logu(0.2e6, 2e6),
             "ripple_Hz": u(1.5, 10.0) * fs / cfg.num_samples_per_chirp,
             "phase_rad": u(0.0, two_pi),
         }
-    if name == "moving_target":
+    elif name == "moving_target":
         span = 100 * cfg.frame_repetition_time_s
         speed = signed(0.3, min(1.0, 0.3 * cfg.max_velocity_m_s, 0.4 * cfg.max_range_m / span))
         start = u(1.0, near) + (abs(speed) * span if speed < 0 else 0.0)
-        return {"name": name, "range_m": start, "speed_m_s": speed, "level_dB": u(-90.0, -75.0)}
-    raise ValueError(f"unknown effect {name!r}; known: {', '.join(EFFECT_NAMES)}")
+        params = {"range_m": start, "speed_m_s": speed, "level_dB": u(-90.0, -75.0)}
+    else:
+        raise ValueError(f"unknown effect {name!r}; known: {', '.join(EFFECT_NAMES)}")
+    return {"name": name, **params}
 
 
 __all__ = [

@@ -211,8 +211,7 @@ def room_scatterers() -> list[Scatterer]:
             sigma = DIFFUSE_MU[name] * cos_i**2 * DIFFUSE_STEP_M * DIFFUSE_STRIP_M
             rough = float(rng.uniform(-3.0, 3.0))
             pts.append((f"{name}_diffuse_{x:.1f}", where(float(x)), 10.0 * math.log10(sigma) + rough))
-    for name, pos, rcs in OBJECTS:
-        pts.append((name, pos, rcs))
+    pts += OBJECTS
     phases = rng.uniform(0.0, 2.0 * math.pi, len(pts))
     return [Scatterer(n, tuple(float(v) for v in p), float(s), float(ph))  # type: ignore[arg-type]
             for (n, p, s), ph in zip(pts, phases)]
@@ -233,18 +232,15 @@ def fan_effects(config: RadarConfig) -> list[dict[str, Any]]:
     """The desk fan as the receiver's ``vibrating_clutter`` effects: the housing, then each blade."""
     r, u = look(np.array(FAN["position_m"]))
 
-    def lev(rcs_dBsm: float) -> float:
-        return float(level_dB(10.0 ** (rcs_dBsm / 10.0), r, u, config.wavelength_m))
+    def part(rcs_dBsm: float, displacement_m: float, phase_rad: float, path_phase_rad: float) -> dict[str, Any]:
+        return {"name": "vibrating_clutter", "range_m": float(r),
+                "level_dB": float(level_dB(10.0 ** (rcs_dBsm / 10.0), r, u, config.wavelength_m)),
+                "displacement_m": float(displacement_m), "vibration_Hz": float(FAN["vibration_Hz"]),
+                "phase_rad": phase_rad, "path_phase_rad": path_phase_rad}
 
-    out = [{"name": "vibrating_clutter", "range_m": float(r), "level_dB": lev(FAN["rcs_dBsm"]),
-            "displacement_m": float(FAN["displacement_m"]), "vibration_Hz": float(FAN["vibration_Hz"]),
-            "phase_rad": 0.4, "path_phase_rad": 2.1}]
     n = int(FAN["blades"])
-    for k in range(n):
-        out.append({"name": "vibrating_clutter", "range_m": float(r), "level_dB": lev(FAN["blade_rcs_dBsm"]),
-                    "displacement_m": float(FAN["blade_radial_m"]), "vibration_Hz": float(FAN["vibration_Hz"]),
-                    "phase_rad": 2.0 * math.pi * k / n, "path_phase_rad": 0.9 + 1.7 * k})
-    return out
+    return [part(FAN["rcs_dBsm"], FAN["displacement_m"], 0.4, 2.1)] + [
+        part(FAN["blade_rcs_dBsm"], FAN["blade_radial_m"], 2.0 * math.pi * k / n, 0.9 + 1.7 * k) for k in range(n)]
 
 
 def describe() -> dict[str, Any]:

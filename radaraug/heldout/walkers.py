@@ -52,7 +52,7 @@ Everything random comes from ``numpy.random.Generator`` objects the caller seeds
 from __future__ import annotations
 
 import math
-from dataclasses import asdict, dataclass
+from dataclasses import asdict, dataclass, replace
 
 import numpy as np
 
@@ -208,14 +208,7 @@ def draw_person(
         sway_hz=0.0, sway_phase=0.0, arm_swing_rad=u(*ARM_SWING_SCALE) * (0.15 + 0.25 * speed),
         rcs_dBsm=rcs, fluctuation_dB=fluct, point_phase_rad=phases,
     )
-    return _with_start(person, u(0.0, person.perimeter_m))
-
-
-def _with_start(p: Person, start_m: float) -> Person:
-    d = asdict(p)
-    d["start_m"] = start_m
-    d["point_phase_rad"] = p.point_phase_rad
-    return Person(**d)
+    return replace(person, start_m=u(0.0, person.perimeter_m))
 
 
 def track_xy(p: Person, s: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
