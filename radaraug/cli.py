@@ -61,7 +61,7 @@ import json
 import math
 import os
 import sys
-from collections.abc import Iterator, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -235,9 +235,7 @@ def _cmd_bench(args: argparse.Namespace) -> int:
     if args.what == "transforms":
         from radaraug.bench.transforms import run_transforms_benchmark
 
-        result = run_transforms_benchmark(
-            batch=args.batch, repeats=args.repeats, device=device, out=args.out
-        )
+        result = run_transforms_benchmark(batch=args.batch, repeats=args.repeats, device=device, out=args.out)
     elif args.what == "diagnose":
         from radaraug.bench.diagnose import run_diagnose_benchmark
 
@@ -557,24 +555,20 @@ def _cmd_devices(args: argparse.Namespace) -> int:
     return 0
 
 
-def _print_record(result, as_json: bool) -> None:
-    if as_json:
-        record = result.to_dict()
-        print(json.dumps({"output": record["path"], **record}))  # "path": deprecated duplicate, one release
-        return
-    rate = result.frames / result.seconds if result.seconds > 0 else float("nan")
-    where = result.path if result.path is not None else "no file (no frame recorded)"
-    print(f"{where}: {result.frames} frames in {result.seconds:.1f} s ({rate:.1f} frames/s), "
-          f"{result.dropped} dropped{', interrupted' if result.interrupted else ''}")
-
-
 def _cmd_capture(args: argparse.Namespace) -> int:
     from radaraug.capture import record
 
     _check_output(args, args.output)
     result = record(_live_device(args), args.output, seconds=args.seconds, label=args.label,
                     overwrite=args.overwrite, progress=not args.no_progress)
-    _print_record(result, args.json)
+    if args.json:
+        data = result.to_dict()
+        print(json.dumps({"output": data["path"], **data}))  # "path": deprecated duplicate, one release
+    else:
+        rate = result.frames / result.seconds if result.seconds > 0 else float("nan")
+        where = result.path if result.path is not None else "no file (no frame recorded)"
+        print(f"{where}: {result.frames} frames in {result.seconds:.1f} s ({rate:.1f} frames/s), "
+              f"{result.dropped} dropped{', interrupted' if result.interrupted else ''}")
     if result.interrupted:
         print(f"interrupted: {result.path} is complete and closed" if result.path else "interrupted",
               file=sys.stderr)
@@ -610,14 +604,6 @@ class _DefaultsShown(argparse.ArgumentDefaultsHelpFormatter):
         return super()._get_help_string(action)
 
 
-class _SubcommandParser(argparse.ArgumentParser):
-    """A subcommand's parser: its --help shows the defaults."""
-
-    def __init__(self, *args: Any, **kwargs: Any) -> None:
-        kwargs.setdefault("formatter_class", _DefaultsShown)
-        super().__init__(*args, **kwargs)
-
-
 def build_parser() -> argparse.ArgumentParser:
     """The argument parser (exposed for docs and tests)."""
     from radaraug import __version__
@@ -625,15 +611,20 @@ def build_parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(prog="radaraug", description=__doc__.split("\n")[0])
     p.add_argument("--version", action="version", version=f"radaraug {__version__}")
     # Every subcommand's --help shows the defaults.
-    sub = p.add_subparsers(dest="command", required=True, parser_class=_SubcommandParser)
+    sub = p.add_subparsers(dest="command", required=True)
 
-    info = sub.add_parser("info", help="summarize a capture (radaraug .h5 or Infineon recording folder)")
+    def command(name: str, func: Callable[[argparse.Namespace], int], **kw: Any) -> argparse.ArgumentParser:
+        """A subcommand's parser (its --help shows the defaults), whose arguments ``main`` passes to ``func``."""
+        parser = sub.add_parser(name, formatter_class=_DefaultsShown, **kw)
+        parser.set_defaults(func=func)
+        return parser
+
+    info = command("info", _cmd_info, help="summarize a capture (radaraug .h5 or Infineon recording folder)")
     info.add_argument("path", help="radaraug .h5 capture or Infineon recording folder")
     info.add_argument("--json", action="store_true", help="print one JSON object")
     info.add_argument("--max-frames", type=int, default=256, help="frames used for the statistics")
-    info.set_defaults(func=_cmd_info)
 
-    fit = sub.add_parser("fit-cdr", help="fit CalibratedDR on an empty-room capture")
+    fit = command("fit-cdr", _cmd_fit_cdr, help="fit CalibratedDR on an empty-room capture")
     fit.add_argument("path", help="empty-room capture (radaraug .h5 or Infineon recording folder)")
     fit.add_argument("-o", "--output", required=True, help="calibration JSON to write")
     fit.add_argument("--max-frames", type=int, default=None, help="frames read (default: all)")
@@ -642,9 +633,8 @@ def build_parser() -> argparse.ArgumentParser:
                      "(the capture's measured one; its quantiles are recorded either way)")
     _output_args(fit)
     fit.add_argument("--json", action="store_true", help="print the calibration record (with the output path) as one JSON object")
-    fit.set_defaults(func=_cmd_fit_cdr)
 
-    bench = sub.add_parser("bench", help="benchmarks (figures as ratios against a same-process baseline)")
+    bench = command("bench", _cmd_bench, help="benchmarks (figures as ratios against a same-process baseline)")
     bench.add_argument("what", choices=["transforms", "twin", "training", "diagnose", "static-room",
                                         "micro-doppler"], help="which benchmark (docs/benchmarks.md)")
     bench.add_argument("--batch", type=int, default=32, help="transforms, training: frames per batch")
@@ -656,9 +646,8 @@ def build_parser() -> argparse.ArgumentParser:
     bench.add_argument("--json", action="store_true", help="print the figures as one JSON object")
     bench.add_argument("--out", default=None, help="also write the JSON figures to this file (micro-doppler: the PNG)")
     bench.add_argument("--figure", default=None, help="static-room: write the range-profile figure (PNG) here")
-    bench.set_defaults(func=_cmd_bench)
 
-    trace = sub.add_parser("trace", help="ray-trace one instant of a scene and print its paths")
+    trace = command("trace", _cmd_trace, help="ray-trace one instant of a scene and print its paths")
     trace.add_argument("scene", help="scene file (.yaml/.json) or built-in scene name")
     trace.add_argument("--time", type=float, default=0.0, help="instant in seconds")
     trace.add_argument("--method", choices=["image", "sbr"], default="image",
@@ -667,9 +656,8 @@ def build_parser() -> argparse.ArgumentParser:
     trace.add_argument("--bounces", type=int, default=None,
                        help="most specular reflections (image method, default 3) or bounces per SBR ray (default 2)")
     trace.add_argument("--json", action="store_true", help="print the paths as one JSON object")
-    trace.set_defaults(func=_cmd_trace)
 
-    sim = sub.add_parser("simulate", help="simulate a scene into a radaraug HDF5 capture")
+    sim = command("simulate", _cmd_simulate, help="simulate a scene into a radaraug HDF5 capture")
     sim.add_argument("scene", help="scene file (.yaml/.json) or built-in scene name")
     sim.add_argument("--frames", type=int, required=True, help="frames to simulate")
     sim.add_argument("--seed", type=int, default=0, help="seed of the receiver noise")
@@ -679,29 +667,26 @@ def build_parser() -> argparse.ArgumentParser:
     _accelerator_args(sim, "cpu")  # cpu: a file's frames depend on the device type (part of the job)
     sim.add_argument("--profile", default=None, help="twin profile JSON (from radaraug diagnose) for the receiver")
     sim.add_argument("--json", action="store_true", help="print the result (output, frame range, frames simulated, resume point) as one JSON object")
-    sim.set_defaults(func=_cmd_simulate)
 
     demo_text = ("capture walkthrough: the bundled recording through the paper's chain, a fitted CalibratedDR, RD "
                  "images and a noise-floor histogram (the main job, `make demo`, is `radaraug reproduce --quick`)")
-    demo = sub.add_parser("demo", help=demo_text, description=demo_text)
+    demo = command("demo", _cmd_demo, help=demo_text, description=demo_text)
     demo.add_argument("-o", "--output", default="demo_out", help="output folder")
     _output_args(demo)
     demo.add_argument("--json", action="store_true", help="print the demo's summary as one JSON object")
-    demo.set_defaults(func=_cmd_demo)
 
     # `train` is parsed by LightningCLI (radaraug.training.cli); listed here for --help only.
     sub.add_parser("train", help="LightningCLI recipes: radaraug train fit --config occupancy_randomdr "
                    "(an installed recipe's name, or a YAML file)", add_help=False)
 
-    rec = sub.add_parser("recipes", help="list the training recipes installed with radaraug, or print one "
-                         "(radaraug recipes NAME > my.yaml: a copy to edit)")
+    rec = command("recipes", _cmd_recipes, help="list the training recipes installed with radaraug, or print one "
+                  "(radaraug recipes NAME > my.yaml: a copy to edit)")
     rec.add_argument("name", nargs="?", default=None,
                      help="the recipe to print (e.g. occupancy_randomdr); without it: list them")
     rec.add_argument("--json", action="store_true",
                      help="print the list (name, path, task, method) or the recipe (name, path, text) as one JSON object")
-    rec.set_defaults(func=_cmd_recipes)
 
-    rep = sub.add_parser("reproduce", help="the paper's experiment: 2 tasks x 4 methods (the paper's 3 + cdr_profile) x N seeds, report + figures")
+    rep = command("reproduce", _cmd_reproduce, help="the paper's experiment: 2 tasks x 4 methods (the paper's 3 + cdr_profile) x N seeds, report + figures")
     rep.add_argument("--quick", action="store_true", help="minutes on a 2-core CPU (what `make demo` runs)")
     rep.add_argument("--seeds", type=int, default=3, help="training seeds per method")
     rep.add_argument("--calibration", default=None,
@@ -734,17 +719,15 @@ def build_parser() -> argparse.ArgumentParser:
     _output_args(rep, resume="run again in it, reusing its generated test sets and simulated sets (cached by "
                  "content, never stale)")
     rep.add_argument("--json", action="store_true", help="print the report (results per task and method, figures, settings) as one JSON object")
-    rep.set_defaults(func=_cmd_reproduce)
 
-    proxy = sub.add_parser("make-proxy", help="generate the held-out proxy test set (docs/proxy.md)")
+    proxy = command("make-proxy", _cmd_make_proxy, help="generate the held-out proxy test set (docs/proxy.md)")
     proxy.add_argument("-o", "--output", required=True, help="output folder")
     _output_args(proxy, resume="reuse the set it holds when made with the same arguments (else generate it again)")
     proxy.add_argument("--frames-per-count", type=int, default=120, help="frames per people count (0, 1, 2)")
     proxy.add_argument("--seed", type=int, default=1234, help="seed of the walks and the noise")
     proxy.add_argument("--json", action="store_true", help="print the calibration and test capture paths as one JSON object")
-    proxy.set_defaults(func=_cmd_make_proxy)
 
-    dia = sub.add_parser("diagnose", help="compare a capture with the twin, fit the missing effects (docs/calibration.md)")
+    dia = command("diagnose", _cmd_diagnose, help="compare a capture with the twin, fit the missing effects (docs/calibration.md)")
     dia.add_argument("capture", help="radaraug .h5 capture or Infineon recording folder")
     dia.add_argument("--scene", default=None, help="the capture's scene (file or built-in name); "
                      "default: estimate the static scene from the capture")
@@ -757,13 +740,11 @@ def build_parser() -> argparse.ArgumentParser:
     dia.add_argument("--no-signatures", action="store_true",
                      help="do not read the effects' signatures first: every candidate competes on the error alone")
     dia.add_argument("--json", action="store_true", help="print the held-out errors, effects added and output paths as one JSON object")
-    dia.set_defaults(func=_cmd_diagnose)
 
-    dev = sub.add_parser("devices", help="list Infineon radar boards on USB (docs/capture.md)")
+    dev = command("devices", _cmd_devices, help="list Infineon radar boards on USB (docs/capture.md)")
     dev.add_argument("--json", action="store_true", help="print one JSON object")
     dev.add_argument("--udev-rule", action="store_true",
                      help="print the udev rule that lets users open the boards (Linux) and exit")
-    dev.set_defaults(func=_cmd_devices)
 
     def live(parser: argparse.ArgumentParser, seconds: float) -> None:
         parser.add_argument("--device", default="auto",
@@ -788,20 +769,18 @@ def build_parser() -> argparse.ArgumentParser:
         parser.add_argument("--no-progress", action="store_true", help="no progress bar")
         parser.add_argument("--json", action="store_true", help="print the result as one JSON object")
 
-    cap = sub.add_parser("capture", help="record a board or the virtual sensor into a radaraug HDF5 capture")
+    cap = command("capture", _cmd_capture, help="record a board or the virtual sensor into a radaraug HDF5 capture")
     live(cap, 10.0)
     cap.add_argument("-o", "--output", required=True, help="radaraug HDF5 capture to write")
     cap.add_argument("--label", type=int, default=None,
                      help="people count of the whole recording (per-frame 'count' and 'occupancy' labels)")
-    cap.set_defaults(func=_cmd_capture)
 
-    cal = sub.add_parser("calibrate", help="record the empty room and fit CalibratedDR in one step")
+    cal = command("calibrate", _cmd_calibrate, help="record the empty room and fit CalibratedDR in one step")
     live(cal, 10.0)
     cal.add_argument("-o", "--output", required=True, help="calibration JSON to write")
     cal.add_argument("--keep-recording", default=None, metavar="PATH", help="also keep the recording here (.h5)")
     cal.add_argument("--floor", choices=("normal", "empirical"), default="normal",
                      help="the floor distribution the calibration draws from (as fit-cdr --floor)")
-    cal.set_defaults(func=_cmd_calibrate)
     return p
 
 
@@ -824,12 +803,9 @@ def _run(func, *args) -> int:
     except KeyboardInterrupt:
         print("interrupted", file=sys.stderr)
         return EXIT_INTERRUPTED
-    except DependencyNotFoundError as e:
+    except (DependencyNotFoundError, RadarAugError) as e:
         print(f"error: {e}", file=sys.stderr)
-        return EXIT_DEPENDENCY
-    except RadarAugError as e:
-        print(f"error: {e}", file=sys.stderr)
-        return EXIT_DATA
+        return EXIT_DEPENDENCY if isinstance(e, DependencyNotFoundError) else EXIT_DATA
     except OSError as e:
         # A file-system problem outside radaraug's own checks (an output folder that is read-only,
         # a full disk while writing a report): one line naming the file.

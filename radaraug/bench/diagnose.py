@@ -19,7 +19,7 @@ from typing import Any
 import numpy as np
 import torch
 
-from radaraug._files import atomic_write_json
+from radaraug.bench import write_figures
 from radaraug.config import SPEED_OF_LIGHT, RadarConfig
 from radaraug.sensor import FMCWReceiver, Paths
 from radaraug.sensor.effects import FrameDrift, SpurTone, insert_in_order
@@ -74,7 +74,5 @@ def run_diagnose_benchmark(*, frames: int = 100, out: str | Path | None = None) 
         "torch": torch.__version__,
         "machine": platform.machine(),
     }
-    if out is not None:
-        Path(out).parent.mkdir(parents=True, exist_ok=True)
-        atomic_write_json(out, result, indent=2)
+    write_figures(out, result)
     return result

@@ -22,13 +22,12 @@ def _random_scene(num_rays: int, num_triangles: int, device: torch.device, dtype
 
 def _time(fn, repeats: int, device: torch.device) -> float:
     best = float("inf")
+    sync = torch.cuda.synchronize if device.type == "cuda" else (lambda _: None)
     for _ in range(repeats):
-        if device.type == "cuda":
-            torch.cuda.synchronize(device)
+        sync(device)
         t0 = time.perf_counter()
         fn()
-        if device.type == "cuda":
-            torch.cuda.synchronize(device)
+        sync(device)
         best = min(best, time.perf_counter() - t0)
     return best
 

@@ -66,8 +66,7 @@ def micro_doppler_before_after(
             blocks.append(twin.receiver(twin.paths([walker], times[i:i + 16])))
             if mode == "auto" and twin.last_intervals is not None:
                 knots.extend(int(k) for k in twin.last_intervals)
-        frames = torch.cat(blocks)
-        spectra[label] = doppler_spectrogram(frames)
+        spectra[label] = doppler_spectrogram(torch.cat(blocks))
     v_bin = cfg.wavelength_m / (2 * timing.num_chirps * timing.prt)
     m = timing.num_chirps
     if out is not None:

@@ -12,6 +12,18 @@ from __future__ import annotations
 import numpy as np
 
 
+def numpy_rd_db(cube: np.ndarray) -> np.ndarray:
+    """Raw cube ``(B, rx, chirps, samples)`` -> per-RX RD dB maps ``(B, rx, range, doppler)``."""
+    _, _, m, n = cube.shape
+    x = cube - cube.mean(axis=-1, keepdims=True)
+    w_r = np.hanning(n)
+    w_d = np.hanning(m)
+    rng_fft = np.fft.fft(x * w_r, axis=-1)[..., : n // 2] / w_r.sum()
+    rng_fft = np.swapaxes(rng_fft, -1, -2)  # (B, rx, range, chirps)
+    rd = np.fft.fftshift(np.fft.fft(rng_fft * w_d, axis=-1), axes=-1) / w_d.sum()
+    return 20 * np.log10(np.abs(rd) + 1e-12)
+
+
 def numpy_rd_chain(
     cube: np.ndarray,
     *,
@@ -33,14 +45,7 @@ def numpy_rd_chain(
         lut: ``(256, 3)`` colormap table.
         rng: NumPy random generator for the CDR draw.
     """
-    _, _, m, n = cube.shape
-    x = cube - cube.mean(axis=-1, keepdims=True)
-    w_r = np.hanning(n)
-    w_d = np.hanning(m)
-    rng_fft = np.fft.fft(x * w_r, axis=-1)[..., : n // 2] / w_r.sum()
-    rng_fft = np.swapaxes(rng_fft, -1, -2)  # (B, rx, range, chirps)
-    rd = np.fft.fftshift(np.fft.fft(rng_fft * w_d, axis=-1), axes=-1) / w_d.sum()
-    db = 20 * np.log10(np.abs(rd) + 1e-12)
+    db = numpy_rd_db(cube)
     noise = rng.normal(mean_db, std_db, size=db.shape)
     db = np.maximum(db, noise)
     db = 10 * np.log10(np.mean(10 ** (db / 10), axis=1, keepdims=True))  # combine RX on power

@@ -42,14 +42,13 @@ def random_scene_paths(
 
 def _frames_per_s(receiver: FMCWReceiver, paths: Paths, num_frames: int, generator: torch.Generator) -> float:
     dev = paths.delay_s.device
+    sync = torch.cuda.synchronize if dev.type == "cuda" else (lambda _: None)
     receiver(paths, generator=generator)  # warm-up (allocator, kernels)
-    if dev.type == "cuda":
-        torch.cuda.synchronize(dev)
+    sync(dev)
     t0 = time.perf_counter()
     for i in range(num_frames):
         receiver(paths, generator=generator, frame_start_s=i * receiver.config.frame_repetition_time_s)
-    if dev.type == "cuda":
-        torch.cuda.synchronize(dev)
+    sync(dev)
     return num_frames / (time.perf_counter() - t0)
 
 

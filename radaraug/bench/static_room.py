@@ -22,7 +22,8 @@ from typing import Any
 
 import torch
 
-from radaraug._files import atomic_savefig, atomic_write_json
+from radaraug._files import atomic_savefig
+from radaraug.bench import write_figures
 
 SBR_RAYS = (128, 256, 512, 1024)
 
@@ -43,34 +44,33 @@ def furnished_room():
     return room, RadarPose.look_at((0.1, 0.0, 1.2), (15.0, 0.0, 1.2))
 
 
-def _timed_trace(**kw: Any) -> tuple[Any, float]:
+def _timed_trace(**kw: Any) -> tuple[Any, float, torch.Tensor, torch.Tensor]:
+    """A fresh trace of ``kw``: the tracer, its seconds, and its static range profile ``(r, profile)``."""
+    from radaraug.raytrace.convergence import static_range_profile
     from radaraug.raytrace.tracer import RayTracer
 
     t0 = time.perf_counter()
     tracer = RayTracer(cache=False, **kw)
     tracer.static_paths()
-    return tracer, time.perf_counter() - t0
+    t = time.perf_counter() - t0
+    return tracer, t, *static_range_profile(tracer.static_paths(), kw["config"])
 
 
 def run_static_room_benchmark(
     *, rays: tuple[int, ...] = SBR_RAYS, out: str | Path | None = None, figure: str | Path | None = None,
 ) -> dict[str, Any]:
     """Run the benchmark (module docstring); write JSON to ``out`` and a PNG to ``figure``."""
-    from radaraug.raytrace.convergence import compare_profiles, static_range_profile
+    from radaraug.raytrace.convergence import compare_profiles
     from radaraug.scene.scene import Scene
 
     scene = Scene.builtin("corridor")
     cfg = scene.config
     # The specular part (no diffuse clutter) is what SBR rays compute: compare like with like.
     base = {"room": scene.room, "radar": scene.radar, "config": cfg}
-    default, t_default = _timed_trace(**base, scattering=scene.scattering)
-    _, prof_default = static_range_profile(default.static_paths(), cfg)
-    default4, _ = _timed_trace(**base, scattering=scene.scattering, density=4.0)
-    _, prof_default4 = static_range_profile(default4.static_paths(), cfg)
-    image, t_image = _timed_trace(**base, diffuse=False)
-    r, ref = static_range_profile(image.static_paths(), cfg)
-    dense, t_dense = _timed_trace(**base, density=4.0, diffuse=False)
-    _, ref_dense = static_range_profile(dense.static_paths(), cfg)
+    default, t_default, _, prof_default = _timed_trace(**base, scattering=scene.scattering)
+    *_, prof_default4 = _timed_trace(**base, scattering=scene.scattering, density=4.0)
+    image, t_image, r, ref = _timed_trace(**base, diffuse=False)
+    _, t_dense, _, ref_dense = _timed_trace(**base, density=4.0, diffuse=False)
     interval = (2.0, min(19.5, cfg.max_range_m))
     res: dict[str, Any] = {
         "benchmark": "static-room",
@@ -87,24 +87,19 @@ def run_static_room_benchmark(
     }
     profiles = {"default (image method + diffuse clutter)": prof_default, "image method": ref}
     for n in rays:
-        sbr, t = _timed_trace(**base, method="sbr", rays=n, max_bounces=3)
-        _, prof = static_range_profile(sbr.static_paths(), cfg)
+        sbr, t, _, prof = _timed_trace(**base, method="sbr", rays=n, max_bounces=3)
         profiles[f"SBR {n}x{n} rays"] = prof
         res["sbr"].append({"rays": n, "trace_s": round(t, 2), "ratio_to_image": round(t / t_image, 1),
                            "paths": sbr.static_paths().num_paths,
                            "vs_image": _cmp(compare_profiles(r, prof, ref, interval_m=interval))})
     room, pose = furnished_room()
-    mesh, t_mesh = _timed_trace(room=room, radar=pose, config=cfg, diffuse=False)
-    mesh4, t_mesh4 = _timed_trace(room=room, radar=pose, config=cfg, density=4.0, diffuse=False)
-    _, p1 = static_range_profile(mesh.static_paths(), cfg)
-    _, p4 = static_range_profile(mesh4.static_paths(), cfg)
+    mesh, t_mesh, _, p1 = _timed_trace(room=room, radar=pose, config=cfg, diffuse=False)
+    _, t_mesh4, _, p4 = _timed_trace(room=room, radar=pose, config=cfg, density=4.0, diffuse=False)
     res["mesh_room"] = {"trace_s": round(t_mesh, 3), "density4_trace_s": round(t_mesh4, 3),
                         "static_paths": mesh.static_paths().num_paths,
                         "vs_density4": _cmp(compare_profiles(r, p1, p4, interval_m=interval))}
     res.update(torch_version=torch.__version__, cpu=platform.machine(), threads=torch.get_num_threads())
-    if out is not None:
-        Path(out).parent.mkdir(parents=True, exist_ok=True)
-        atomic_write_json(out, res, indent=2)
+    write_figures(out, res)
     if figure is not None:
         _plot(r, profiles, figure)
     return res

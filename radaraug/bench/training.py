@@ -17,7 +17,7 @@ import torch
 import torch.nn.functional as F
 import torchvision
 
-from radaraug._files import atomic_write_json
+from radaraug.bench import write_figures
 from radaraug.config import RadarConfig
 from radaraug.training.pipeline import image_chain
 from radaraug.transforms import CalibratedDR
@@ -80,7 +80,5 @@ def run_training_benchmark(
         "torch_version": torch.__version__,
         "cpu": platform.machine(),
     }
-    if out is not None:
-        Path(out).parent.mkdir(parents=True, exist_ok=True)
-        atomic_write_json(out, res, newline=False, indent=2)
+    write_figures(out, res, newline=False)
     return res

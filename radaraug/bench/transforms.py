@@ -15,8 +15,8 @@ from typing import Any
 import numpy as np
 import torch
 
-from radaraug._files import atomic_write_json
-from radaraug.bench.numpy_reference import numpy_rd_chain
+from radaraug.bench import write_figures
+from radaraug.bench.numpy_reference import numpy_rd_chain, numpy_rd_db
 from radaraug.config import RadarConfig
 
 
@@ -88,11 +88,7 @@ def run_transforms_benchmark(
     with torch.inference_mode():
         ref_chain = torch.nn.Sequential(RangeDoppler(), ToDecibels()).to(dev)
         torch_db = ref_chain(x[:2]).double().cpu().numpy()
-    w_r, w_d = np.hanning(shape[-1]), np.hanning(shape[-2])
-    xr = x_np[:2] - x_np[:2].mean(-1, keepdims=True)
-    r = np.swapaxes(np.fft.fft(xr * w_r, axis=-1)[..., : shape[-1] // 2] / w_r.sum(), -1, -2)
-    rd = np.fft.fftshift(np.fft.fft(r * w_d, axis=-1), axes=-1) / w_d.sum()
-    np_db = 20 * np.log10(np.abs(rd) + 1e-12)
+    np_db = numpy_rd_db(x_np[:2])
     max_diff_db = float(np.abs(np_db - torch_db)[np_db > -150].max())
 
     t_numpy = _best_time(run_numpy, repeats)
@@ -126,7 +122,5 @@ def run_transforms_benchmark(
     }
     if dev.type == "cuda":
         result["gpu"] = torch.cuda.get_device_name(dev)
-    if out is not None:
-        Path(out).parent.mkdir(parents=True, exist_ok=True)
-        atomic_write_json(out, result, indent=2)
+    write_figures(out, result)
     return result

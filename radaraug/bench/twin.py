@@ -20,13 +20,12 @@ from __future__ import annotations
 import os
 import platform
 import time
-from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 import torch
 from torch.utils.data import DataLoader, Dataset
 
-from radaraug._files import atomic_write_json
+from radaraug.bench import write_figures
 
 if TYPE_CHECKING:
     from radaraug.sim.twin import DigitalTwin
@@ -87,36 +86,8 @@ def run_twin_benchmark(
         room_s = time.perf_counter() - t0
         sync = torch.cuda.synchronize if torch.device(device).type == "cuda" else (lambda: None)
 
-        def run_block(i: int) -> torch.Tensor:
-            times = twin.frame_times(range(i * BLOCK, (i + 1) * BLOCK))
-            return twin.simulate(scene.people, times, generators=item_generator(0, i, device=device))
-
-        run_block(0)
-        sync()
-        t0 = time.perf_counter()
-        for i in range(blocks):
-            run_block(i)
-        sync()
-        fps_1 = blocks * BLOCK / (time.perf_counter() - t0)
-        assert twin.last_intervals is not None  # set by every paths() call, so by the blocks above
-        knots = float(twin.last_intervals.double().mean())
-
-        # The same blocks with one snapshot per frame (the cost of motion inside the frame).
-        one = DigitalTwin(scene, device=device, static_signal=static, intra_frame=0)
-        one.simulate(scene.people, twin.frame_times(range(BLOCK)), generators=item_generator(0, 0, device=device))
-        sync()
-        t0 = time.perf_counter()
-        for i in range(blocks):
-            times = one.frame_times(range(i * BLOCK, (i + 1) * BLOCK))
-            one.simulate(scene.people, times, generators=item_generator(0, i, device=device))
-        sync()
-        fps_one = blocks * BLOCK / (time.perf_counter() - t0)
-
-        # The cost of each of the twin's fidelity additions, added one at a time to the issue-7
-        # twin (one snapshot per frame, specular-only room, no shadowing), same blocks.
-        def fps_of(**options: Any) -> float:
-            tw = DigitalTwin(scene, device=device, **options)
-            tw.static_signal()
+        def frames_per_s(tw: DigitalTwin) -> float:
+            """Frames/s of ``tw`` on ``blocks`` blocks of 16 frames, after a warm-up block."""
             tw.simulate(scene.people, tw.frame_times(range(BLOCK)), generators=item_generator(0, 0, device=device))
             sync()
             t0 = time.perf_counter()
@@ -125,6 +96,19 @@ def run_twin_benchmark(
                             generators=item_generator(0, i, device=device))
             sync()
             return blocks * BLOCK / (time.perf_counter() - t0)
+
+        fps_1 = frames_per_s(twin)
+        assert twin.last_intervals is not None  # set by every paths() call, so by the blocks above
+        knots = float(twin.last_intervals.double().mean())
+        # The same blocks with one snapshot per frame (the cost of motion inside the frame).
+        fps_one = frames_per_s(DigitalTwin(scene, device=device, static_signal=static, intra_frame=0))
+
+        # The cost of each of the twin's fidelity additions, added one at a time to the issue-7
+        # twin (one snapshot per frame, specular-only room, no shadowing), same blocks.
+        def fps_of(**options: Any) -> float:
+            tw = DigitalTwin(scene, device=device, **options)
+            tw.static_signal()
+            return frames_per_s(tw)
 
         plain = {"intra_frame": 0, "shadowing": False, "tracer_options": {"diffuse": False}}
         ladder = {
@@ -206,7 +190,5 @@ def run_twin_benchmark(
         "cpu": platform.processor() or platform.machine(),
         "cpu_count": os.cpu_count(),
     }
-    if out is not None:
-        Path(out).parent.mkdir(parents=True, exist_ok=True)
-        atomic_write_json(out, result, indent=2)
+    write_figures(out, result)
     return result

@@ -62,7 +62,6 @@ def _jsonable(value: Any) -> Any:
 def cache_spec(dataset: SimulatedRadarDataset, indices: Sequence[int]) -> dict[str, Any]:
     """Everything the cached maps of ``dataset[indices]`` depend on (JSON types)."""
     idx = list(indices)
-    randomization = getattr(dataset, "randomization", None)
     receiver = dataset.twin_options.get("receiver")
     return {
         "format": CACHE_FORMAT,
@@ -73,7 +72,7 @@ def cache_spec(dataset: SimulatedRadarDataset, indices: Sequence[int]) -> dict[s
         "receiver": _jsonable(receiver.to_dict()) if receiver is not None else "default",
         "twin_options": _jsonable({k: v for k, v in dataset.twin_options.items() if k != "receiver"}),
         "sampler": _jsonable(dataset.sampler),
-        "randomization": _jsonable(randomization) if randomization is not None else None,
+        "randomization": _jsonable(getattr(dataset, "randomization", None)),
         "seed": dataset.seed,
         "frames_per_item": dataset.frames_per_item,
         # a hash, not the list: a 100k-item index list would bloat every file's attributes
@@ -144,6 +143,7 @@ def build_map_caches(
     loader = DataLoader(Subset(sim, [i for _, i in order]), batch_size=batch_size, num_workers=num_workers,
                         persistent_workers=False)
     chain = rd_db_chain()
+    tqdm = lazy_import("tqdm.auto", feature="progress bars").tqdm
     partials = {name: temporary_name(paths[name]) for name in todo}
     total = len(order)
     try:
@@ -151,14 +151,11 @@ def build_map_caches(
         try:
             for name, f in files.items():
                 spec = cache_spec(dataset, splits[name])
-                f.attrs["format"] = CACHE_FORMAT
-                f.attrs["version"] = CACHE_VERSION
-                f.attrs["key"] = cache_key(spec)
-                f.attrs["spec"] = json.dumps(spec)
-                f.attrs["db_convention"] = DB_CONVENTION
+                f.attrs.update({"format": CACHE_FORMAT, "version": CACHE_VERSION, "key": cache_key(spec),
+                                "spec": json.dumps(spec), "db_convention": DB_CONVENTION})
                 f.create_dataset("index", data=np.asarray(list(splits[name]), dtype=np.int64))
             done = 0  # position in ``order``
-            bar = _progress(total, f"simulating {total} items", progress)
+            bar = tqdm(total=total, desc=f"simulating {total} items", disable=not progress, leave=False)
             for x, count in loader:
                 db = chain(x).clamp(-300, 300).numpy().astype(np.float16)
                 for k in range(db.shape[0]):  # rows of the batch may belong to two splits
@@ -221,12 +218,6 @@ class _RawItems(Dataset):
         finally:
             ds.transform, ds.target = saved
         return x.float(), int(count)
-
-
-def _progress(total: int, desc: str, enabled: bool) -> Any:
-    tqdm = lazy_import("tqdm.auto", feature="progress bars").tqdm
-
-    return tqdm(total=total, desc=desc, disable=not enabled, leave=False)
 
 
 class CachedMaps(Dataset):

@@ -576,8 +576,7 @@ class RadarDataModule(L.LightningDataModule):
     def _loader(self, ds: Dataset | None, *, shuffle: bool) -> DataLoader:
         if ds is None:
             raise ConfigError("this split is empty or setup() has not run")
-        g = torch.Generator()
-        g.manual_seed(self.hparams["dr_seed"])
+        g = torch.Generator().manual_seed(self.hparams["dr_seed"])
         bs = self.hparams["batch_size"]
         # Training drops a last partial batch: one of a single item breaks BatchNorm (and a short
         # one skews its statistics), unless the whole split is smaller than a batch.

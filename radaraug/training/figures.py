@@ -28,10 +28,11 @@ def _plt() -> Any:
     return pyplot()
 
 
-def _save(fig: Any, path: str | os.PathLike) -> Path:
+def _save(fig: Any, path: str | os.PathLike, *, tight: bool = True) -> Path:
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
-    fig.tight_layout()
+    if tight:  # not for a figure laid out as "constrained"
+        fig.tight_layout()
     atomic_savefig(fig, path, dpi=110)
     _plt().close(fig)
     return path
@@ -83,11 +84,7 @@ def rd_triplets(rows: Mapping[str, Sequence[tuple[str, torch.Tensor]]], path: st
     if im is not None:
         fig.colorbar(im, ax=axes, shrink=0.8, label=f"dBFS, clipped to [{vmin:.0f}, {vmax:.0f}]")
     fig.suptitle("Range-Doppler maps: " + ", ".join(name for name, _ in next(iter(rows.values()))), fontsize=10)
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    atomic_savefig(fig, path, dpi=110)
-    plt.close(fig)
-    return path
+    return _save(fig, path, tight=False)
 
 
 def static_to_total(maps: torch.Tensor, low_doppler_bins: int = 1) -> torch.Tensor:

@@ -110,11 +110,8 @@ def make_dr(
     if method == "rt":
         return None
     if method == "randomdr":
-        kw: dict[str, Any] = {}
-        if randomdr_mean_db is not None:
-            kw["mean_db"] = tuple(randomdr_mean_db)
-        if randomdr_std_db is not None:
-            kw["std_db"] = tuple(randomdr_std_db)
+        ranges = {"mean_db": randomdr_mean_db, "std_db": randomdr_std_db}
+        kw: dict[str, Any] = {k: tuple(v) for k, v in ranges.items() if v is not None}
         return RandomDR(seed=seed, **kw)
     if calibration is None:
         raise ConfigError(f"method {method!r} needs a calibration: an empty-room capture or a CalibratedDR JSON")

@@ -112,6 +112,13 @@ def parse_test_arg(text: str) -> dict[str, Any]:
     return parse_test_entry(text, "--test")
 
 
+def _check_known(kind: str, names: Sequence[str], known: Sequence[str]) -> None:
+    """ConfigError for the first of ``names`` that is not in ``known`` (the message lists them)."""
+    for name in names:
+        if name not in known:
+            raise ConfigError(f"unknown {kind} {name!r}; choose from {known}")
+
+
 def _summary(values: Sequence[float]) -> dict[str, Any]:
     vals = [float(v) for v in values]
     return {"mean": statistics.fmean(vals), "std": statistics.pstdev(vals) if len(vals) > 1 else 0.0,
@@ -198,17 +205,12 @@ def _test_sets(out: Path, settings: ReproduceSettings, calibration: str | None,
             from radaraug.sim.proxy import make_proxy
 
             proxy: Any = make_proxy(out / "proxy", frames_per_count=settings.proxy_frames_per_count, progress=progress)
-        elif name == "independent":
+        elif name in ("independent", "standing"):
             from radaraug.heldout import make_independent_proxy
 
-            proxy = make_independent_proxy(out / "independent", frames_per_count=settings.proxy_frames_per_count,
-                                           progress=progress)
-        elif name == "standing":
-            from radaraug.heldout import make_independent_proxy
-
-            proxy = make_independent_proxy(out / "standing", frames_per_count=settings.proxy_frames_per_count,
-                                           progress=progress, seed=STANDING_SEED,
-                                           standing_probability=STANDING_PROBABILITY)
+            standing: dict[str, Any] = {"seed": STANDING_SEED, "standing_probability": STANDING_PROBABILITY}
+            proxy = make_independent_proxy(out / name, frames_per_count=settings.proxy_frames_per_count,
+                                           progress=progress, **(standing if name == "standing" else {}))
         else:
             raise ConfigError(f"unknown test set {name!r}; choose from {GENERATED_TEST_SETS}")
         sets.append(TestSet(name, str(proxy.calibration),
@@ -220,8 +222,6 @@ def _test_sets(out: Path, settings: ReproduceSettings, calibration: str | None,
 
 def _shared_across_test_sets(method: str, data_kw: dict[str, Any]) -> bool:
     """True when a run does not depend on the calibration capture (train once, test on every set)."""
-    from radaraug.training.pipeline import CDR_METHODS
-
     # the excision mask of floor_relative maps comes from the calibration capture too
     excises = data_kw.get("representation") == "floor_relative" and data_kw.get("excise_persistent_db") is not None
     return (method not in CDR_METHODS and not data_kw.get("calibrate_noise", True) and not data_kw.get("profile")
@@ -358,26 +358,20 @@ def reproduce(
     """
     if seeds < 1:
         raise ConfigError(f"seeds must be >= 1, got {seeds}")
-    for t in tasks:
-        if t not in TASKS:
-            raise ConfigError(f"unknown task {t!r}; choose from {sorted(TASKS)}")
+    _check_known("task", tasks, sorted(TASKS))
     mode = "custom" if settings is not None else "quick" if quick else "full"
     settings = settings or (ReproduceSettings.quick() if quick else ReproduceSettings.full())
     if cdr_floor is not None:
         settings = replace(settings, cdr_floor=cdr_floor)
     methods = tuple(settings.methods if methods is None else methods)
     test_sets = tuple(settings.test_sets if test_sets is None else test_sets)
-    for m in methods:
-        if m not in METHODS:
-            raise ConfigError(f"unknown method {m!r}; choose from {METHODS}")
+    _check_known("method", methods, METHODS)
     if calibration is not None and is_calibration_json(calibration) and any(m in PROFILE_METHODS for m in methods):
         raise ConfigError(f"method 'cdr_profile' fits a twin profile on an empty-room capture, but the calibration "
                           f"{calibration!r} is a CalibratedDR JSON: give the capture, or leave cdr_profile out")
 
     names = list(settings.ablations if ablations is None else ablations) if ablation else []
-    for n in names:
-        if n not in ABLATIONS:
-            raise ConfigError(f"unknown ablation {n!r}; choose from {sorted(ABLATIONS)}")
+    _check_known("ablation", names, sorted(ABLATIONS))
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     t_start = time.perf_counter()
@@ -393,7 +387,6 @@ def reproduce(
     variants += [(n, ABLATIONS[n][0], n) for n in names if ABLATIONS[n][0] in methods]
     results: dict[str, dict[str, dict[str, Any]]] = {ts.name: {} for ts in sets}
     runs: list[dict[str, Any]] = []
-    cms: dict[str, dict[str, dict[str, torch.Tensor]]] = {ts.name: {} for ts in sets}
     keep: dict[tuple[str, str, str], tuple[Any, Any]] = {}
     scores: dict[str, dict[str, dict[str, dict[str, tuple[torch.Tensor, torch.Tensor]]]]] = {ts.name: {} for ts in sets}
     tqdm = lazy_import("tqdm.auto", feature="progress bars").tqdm
@@ -407,10 +400,9 @@ def reproduce(
         data_kw = {"calibration": ts.calibration, "test": ts.tests, "cache_dir": str(out / "cache"),
                    "proxy_dir": str(out / "proxy"), "test_dr": test_dr}
         for task in tasks:
-            results[ts.name][task], cms[ts.name][task], scores[ts.name][task] = {}, {}, {}
+            results[ts.name][task], scores[ts.name][task] = {}, {}
             for name, method, ablation_name in variants:
-                per_seed: list[float] = []
-                cm_sum: torch.Tensor | None = None
+                seed_reps: list[dict[str, Any]] = []
                 recipe = run_recipe(task, method, settings, ablation_name)
                 kw = recipe.get("data", {}) | _size_kw(settings) | data_kw
                 is_shared = _shared_across_test_sets(method, kw)
@@ -442,9 +434,7 @@ def reproduce(
                     runs.append({k: rep[k] for k in ("task", "method", "seed", "balanced_accuracy", "accuracy",
                                                      "fit_seconds", "clip_range_db", "val_balanced_accuracy")}
                                 | {"variant": name, "test_set": ts.name, "shared_training": trained_on is not None})
-                    per_seed.append(rep["balanced_accuracy"])
-                    cm = torch.tensor(rep["confusion_matrix"])
-                    cm_sum = cm if cm_sum is None else cm_sum + cm
+                    seed_reps.append(rep)
                     if seed == 0:
                         keep[(ts.name, task, name)] = (model, dm)
                         if dm._val is not None or trained_on is not None:
@@ -452,22 +442,19 @@ def reproduce(
                             scores[ts.name][task][name] = {
                                 "simulated val": _scores(model, src, src.val_dataloader(), with_dr=True),
                                 "test": _scores(model, dm, dm.test_dataloader(), with_dr=test_dr)}
-                assert cm_sum is not None  # seeds >= 1 (checked above)
+                cm_sum = torch.tensor([r["confusion_matrix"] for r in seed_reps]).sum(dim=0)
                 results[ts.name][task][name] = {
-                    "balanced_accuracy": _summary(per_seed),
-                    "accuracy": _summary([r["accuracy"] for r in runs if r["task"] == task and r["variant"] == name
-                                          and r["test_set"] == ts.name]),
+                    "balanced_accuracy": _summary([r["balanced_accuracy"] for r in seed_reps]),
+                    "accuracy": _summary([r["accuracy"] for r in seed_reps]),
                     "confusion_matrix_sum_over_seeds": cm_sum.tolist(),
                 }
-                cms[ts.name][task][name] = cm_sum
     bar.close()
     figures: dict[str, Path] = {}
     floors: dict[str, dict[str, float]] = {}
     for ts in sets:
         floors[ts.name] = {}
         sub = {(t, n): v for (s, t, n), v in keep.items() if s == ts.name}
-        figs = _figures(out / "figures" / ts.name, sub, cms[ts.name], results[ts.name], ts.calibration, ts.tests,
-                        settings, floors[ts.name])
+        figs = _figures(out / "figures" / ts.name, sub, results[ts.name], ts.calibration, ts.tests, floors[ts.name])
         figs |= _score_figures(out / "figures" / ts.name, scores[ts.name])
         figures |= {f"{ts.name}/{k}": v for k, v in figs.items()}
     wall = time.perf_counter() - t_start
@@ -528,10 +515,7 @@ def _score_figures(fig_dir: Path, scores: dict[str, dict[str, Any]]) -> dict[str
 
 def _noise_fit_of(keep: dict) -> dict[str, Any] | None:
     """The twin's noise-figure fit of the runs (they share it), if any."""
-    for _model, dm in keep.values():
-        if getattr(dm, "noise_fit", None) is not None:
-            return dm.noise_fit
-    return None
+    return next((dm.noise_fit for _, dm in keep.values() if getattr(dm, "noise_fit", None) is not None), None)
 
 
 def _profile_of(keep: dict, out: Path) -> dict[str, Any] | None:
@@ -544,10 +528,8 @@ def _profile_of(keep: dict, out: Path) -> dict[str, Any] | None:
         info = getattr(dm, "profile_info", None)
         if info is not None:
             info = dict(info)
-            try:
+            with contextlib.suppress(KeyError, TypeError, ValueError):
                 info["path"] = str(Path(info["path"]).resolve().relative_to(out.resolve()))
-            except (KeyError, TypeError, ValueError):
-                pass
             return info
     return None
 
@@ -567,8 +549,8 @@ def _capture_maps(path: str, n: int) -> torch.Tensor:
     return rd_db_chain()(x)
 
 
-def _figures(fig_dir: Path, keep: dict, cms: dict, results: dict, calibration: str | None,
-             test: Sequence[dict[str, Any]], settings: ReproduceSettings, floors: dict[str, float]) -> dict[str, Path]:
+def _figures(fig_dir: Path, keep: dict, results: dict, calibration: str | None,
+             test: Sequence[dict[str, Any]], floors: dict[str, float]) -> dict[str, Path]:
     """Write the figures; fill ``floors`` with the median empty-room RD level (dB) of each source.
 
     The sources: simulation, simulation + CDR, the calibration capture and, with ``cdr_profile`` runs, the
@@ -577,16 +559,14 @@ def _figures(fig_dir: Path, keep: dict, cms: dict, results: dict, calibration: s
     from radaraug.training import figures as F
 
     figs: dict[str, Path] = {}
-    for task, by_method in cms.items():
-        names = TASKS[task]
+    for task, by_method in results.items():
+        cms = {m: r["confusion_matrix_sum_over_seeds"] for m, r in by_method.items()}
         n = "fig8" if task == "occupancy" else "fig9"
-        figs[f"{n}_confusion_{task}"] = F.confusion_grid(by_method, names, fig_dir / f"{n}_confusion_{task}.png",
+        figs[f"{n}_confusion_{task}"] = F.confusion_grid(cms, TASKS[task], fig_dir / f"{n}_confusion_{task}.png",
                                                           f"{task}: confusion matrices (summed over seeds)")
     figs["results"] = F.results_bars(results, fig_dir / "balanced_accuracy.png")
-    task = next(iter(cms))
-    cdr_run = keep.get((task, "cdr"))
-    rt_run = keep.get((task, "rt"))
-    prof_run = keep.get((task, "cdr_profile"))
+    task = next(iter(results))
+    cdr_run, rt_run, prof_run = (keep.get((task, m)) for m in ("cdr", "rt", "cdr_profile"))
     if cdr_run is None or calibration is None or is_calibration_json(calibration):
         return figs
     dm = cdr_run[1]
@@ -719,8 +699,7 @@ def _markdown(rep: dict[str, Any]) -> str:
             lines += [""]
     lines += ["Paper (real corridor): occupancy 97 % CDR, ~83 % RandomDR, ~50 % RT; counting 72 % / ~61 % / ~33 %.", ""]
     order: list[str] = []
-    rep_results = rep["results"]
-    for task, by in rep_results.items():
+    for task, by in rep["results"].items():
         m = {k: v["balanced_accuracy"]["mean"] for k, v in by.items()}
         if "cdr_profile" in m and "cdr" in m:
             order.append(f"- {task}: CDR on the profile twin {m['cdr_profile']:.3f} vs CDR on the noise-fitted twin "
