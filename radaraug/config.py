@@ -476,12 +476,8 @@ class RadarConfig:
         Fields Infineon does not store (RX positions, ADC delay/bits) are left out; optional
         filter cutoffs are written only when set.
         """
-        shape: dict[str, Any] = {}
-        for key in _INFINEON_KEYS:
-            value = getattr(self, key)
-            if value is None:
-                continue
-            shape[key] = list(value) if isinstance(value, tuple) else value
+        values = {key: getattr(self, key) for key in _INFINEON_KEYS}
+        shape = {k: list(v) if isinstance(v, tuple) else v for k, v in values.items() if v is not None}
         return {"device_config": {"fmcw_single_shape": shape}}
 
     @classmethod

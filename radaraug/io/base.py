@@ -103,17 +103,16 @@ class CaptureReader(abc.ABC):
                 f"0..{full} ({self.config.adc_bits}-bit ADC); the capture is corrupt or its "
                 "adc_bits is wrong"
             )
-        counts = np.ascontiguousarray(counts, dtype=np.int32)
-        if as_float:
-            return counts_to_float(torch.from_numpy(counts), self.config.adc_bits)
-        return torch.from_numpy(counts)
+        x = torch.from_numpy(np.ascontiguousarray(counts, dtype=np.int32))
+        return counts_to_float(x, self.config.adc_bits) if as_float else x
 
     def __getitem__(self, index: int | slice) -> torch.Tensor:
         """``capture[i]`` -> one frame ``(rx, chirps, samples)``; ``capture[a:b]`` -> frames (floats)."""
         if isinstance(index, slice):
             if index.step not in (None, 1):
                 raise CaptureError(f"{self.path}: frame slices must have step 1, got {index.step}")
-            return self.read(*self._slice_bounds(index))
+            start, stop, _ = index.indices(self.num_frames)
+            return self.read(start, max(start, stop))
         if isinstance(index, (int, np.integer)):
             i = int(index)
             if not -self.num_frames <= i < self.num_frames:
@@ -135,10 +134,6 @@ class CaptureReader(abc.ABC):
         return f"{type(self).__name__}({str(self.path)!r}, shape={self.shape})"
 
     # ------------------------------------------------------------------ helpers
-    def _slice_bounds(self, index: slice) -> tuple[int, int]:
-        start, stop, _ = index.indices(self.num_frames)
-        return start, max(start, stop)
-
     def _normalise_range(self, start: int, stop: int | None) -> tuple[int, int]:
         n = self.num_frames
         s = int(start) + n if start < 0 else int(start)
@@ -146,6 +141,21 @@ class CaptureReader(abc.ABC):
         if not 0 <= s < e <= n:
             raise CaptureError(f"{self.path}: cannot read frames {start}:{stop} of a capture with {n} frames")
         return s, e
+
+
+def axis_mismatch(shape: tuple[int, ...], config: RadarConfig) -> tuple[str, int, int] | None:
+    """The first of axes 1-3 of ``(F, rx, chirps, samples)`` frames that ``config`` does not match.
+
+    ``(axis name, size found, size the config says)``, or None when all three match.
+    """
+    for axis, name, want in (
+        (1, "rx", config.num_rx),
+        (2, "chirps", config.num_chirps_per_frame),
+        (3, "samples", config.num_samples_per_chirp),
+    ):
+        if shape[axis] != want:
+            return name, shape[axis], want
+    return None
 
 
 def timestamp_problem(ts: np.ndarray) -> str | None:

@@ -19,6 +19,7 @@ write"). So :func:`open_hdf5_readonly`
 from __future__ import annotations
 
 import ctypes
+import functools
 import os
 import re
 from pathlib import Path
@@ -32,26 +33,20 @@ SWMR_READ_ATTEMPTS = 20
 """Metadata read attempts of an SWMR reader (HDF5's default is 100, with a doubling sleep:
 20 attempts sleep about 2 ms in all; 100 would sleep for ages)."""
 
-_LIB: ctypes.CDLL | None | bool = False  # False: not looked up yet
-
-
+@functools.lru_cache(maxsize=1)
 def _hdf5_library() -> ctypes.CDLL | None:
     """The HDF5 C library h5py uses (already loaded in this process), or None if not found."""
-    global _LIB
-    if _LIB is False:
-        _LIB = None
-        try:
-            with open("/proc/self/maps") as fh:
-                paths = {line.split()[-1] for line in fh if ".so" in line}
-            for path in sorted(paths):
-                if re.search(r"/libhdf5(-[0-9a-f]+)?\.so", path):
-                    lib = ctypes.CDLL(path)
-                    if hasattr(lib, "H5Pset_metadata_read_attempts"):
-                        _LIB = lib
-                        break
-        except OSError:  # not Linux, or the library cannot be mapped: plain SWMR below
-            _LIB = None
-    return _LIB  # type: ignore[return-value]
+    try:
+        with open("/proc/self/maps") as fh:
+            paths = {line.split()[-1] for line in fh if ".so" in line}
+        for path in sorted(paths):
+            if re.search(r"/libhdf5(-[0-9a-f]+)?\.so", path):
+                lib = ctypes.CDLL(path)
+                if hasattr(lib, "H5Pset_metadata_read_attempts"):
+                    return lib
+    except OSError:  # not Linux, or the library cannot be mapped: plain SWMR below
+        pass
+    return None
 
 
 def _swmr_open(path: Path) -> h5py.File:

@@ -15,7 +15,7 @@ from radaraug._files import parse_json, regular_file_size
 from radaraug.config import RadarConfig
 from radaraug.errors import CaptureError, ConfigError, RadarAugError
 from radaraug.io import hdf5_format as fmt
-from radaraug.io.base import CaptureReader, CaptureWarning, broadcast_label, timestamp_problem
+from radaraug.io.base import CaptureReader, CaptureWarning, axis_mismatch, broadcast_label, timestamp_problem
 from radaraug.io.hdf5_open import open_hdf5_readonly
 
 # What h5py raises for damaged or unexpected HDF5 content (RadarAugError is a ValueError too,
@@ -218,18 +218,16 @@ class HDF5Capture(CaptureReader):
         gap_end = min(later)
         return w, min(n, max(w + 1, gap_end * chunks[0]))
 
-    def _written_frames(self, frames: h5py.Dataset, committed: int) -> int:
-        """Frames to serve: the first ``committed`` rows of ``frames``.
+    def _written_frames(self, frames: h5py.Dataset, n: int) -> int:
+        """Frames to serve: the first ``n`` (the committed count) rows of ``frames``.
 
         All of them must have stored data: a gap is a CaptureError; unwritten rows at the end are cut with
         a warning.
         """
-        n = committed
         w, gap_end = self._written_rows(frames)
         w = min(w, n)
-        if gap_end is not None and gap_end >= n:
-            gap_end = None  # the written rows after the gap lie past the committed count
-        if gap_end is not None:
+        # Written rows after the gap that lie past the committed count do not matter.
+        if gap_end is not None and gap_end < n:
             raise self._fail(
                 f"frames {w}..{gap_end - 1} of {n} were never written (no stored data: they would read "
                 "as fill values), but later frames were"
@@ -257,17 +255,10 @@ class HDF5Capture(CaptureReader):
             raise self._fail(
                 f"'{fmt.FRAMES}' has shape {frames.shape}, expected 4-D (frames, rx, chirps, samples)"
             )
-        c = self.config
-        for axis, name, want in (
-            (1, "rx", c.num_rx),
-            (2, "chirps", c.num_chirps_per_frame),
-            (3, "samples", c.num_samples_per_chirp),
-        ):
-            if frames.shape[axis] != want:
-                raise self._fail(
-                    f"'{fmt.FRAMES}' has {frames.shape[axis]} {name} (shape {frames.shape}) but "
-                    f"radar_config says {want}"
-                )
+        bad = axis_mismatch(frames.shape, self.config)
+        if bad is not None:
+            name, found, want = bad
+            raise self._fail(f"'{fmt.FRAMES}' has {found} {name} (shape {frames.shape}) but radar_config says {want}")
         if frames.shape[0] == 0:
             raise self._fail("empty capture: 'frames' holds 0 frames")
         return frames
@@ -280,33 +271,27 @@ class HDF5Capture(CaptureReader):
             return None
         # Timestamps are optional: unusable ones are dropped with a warning (the frames stay
         # readable), never returned as garbage (NaN durations, a 2-D array flattened).
+        n = self.num_frames
+        ts = None
         if not isinstance(ds, h5py.Dataset) or ds.ndim != 1 or ds.dtype.kind not in "iuf":
             what = "not a dataset" if not isinstance(ds, h5py.Dataset) else f"{ds.dtype} {ds.shape}"
-            self._drop_timestamps(f"'{fmt.TIMESTAMPS}' is {what}, expected float64 (frames,)")
-            return None
-        # The writer stores timestamps before the frame data of each append, so a writer killed
-        # mid-append can leave timestamps ahead of the frames, never behind.
-        if ds.shape[0] < self.num_frames:
-            self._drop_timestamps(f"{ds.shape[0]} timestamps for {self.num_frames} frames")
-            return None
-        written, _ = self._written_rows(ds)
-        if written < self.num_frames:
-            self._drop_timestamps(f"the timestamps of frames {written}.. were never written")
-            return None
-        try:
-            ts = np.asarray(ds[: self.num_frames], dtype=np.float64)  # only what the frames need
-        except H5_ERRORS as e:
-            self._drop_timestamps(f"cannot read '{fmt.TIMESTAMPS}' ({e})")
-            return None
-        problem = timestamp_problem(ts)
+            problem: str | None = f"'{fmt.TIMESTAMPS}' is {what}, expected float64 (frames,)"
+        elif ds.shape[0] < n:
+            # The writer stores timestamps before the frame data of each append, so a writer killed
+            # mid-append can leave timestamps ahead of the frames, never behind.
+            problem = f"{ds.shape[0]} timestamps for {n} frames"
+        elif (written := self._written_rows(ds)[0]) < n:
+            problem = f"the timestamps of frames {written}.. were never written"
+        else:
+            try:
+                ts = np.asarray(ds[:n], dtype=np.float64)  # only what the frames need
+                problem = timestamp_problem(ts)
+            except H5_ERRORS as e:
+                problem = f"cannot read '{fmt.TIMESTAMPS}' ({e})"
         if problem is not None:
-            self._drop_timestamps(problem)
+            warnings.warn(f"{self.path}: {problem}; timestamps ignored", CaptureWarning, stacklevel=4)
             return None
         return ts
-
-    def _drop_timestamps(self, problem: str) -> None:
-        """Warn that the timestamps are unusable (the caller then returns None)."""
-        warnings.warn(f"{self.path}: {problem}; timestamps ignored", CaptureWarning, stacklevel=5)
 
     def _load_labels(self) -> dict[str, np.ndarray]:
         f = self._file

@@ -111,16 +111,14 @@ def _reset_flags(fd: int, path: Path) -> bool:
     if sb.flags == 0:
         return False
     assert sb.checksum_offset is not None and sb.eof is not None
-    head = os.pread(fd, sb.checksum_offset, 0)
-    eof = sb.eof
-    fixed = bytearray(head)
+    fixed = bytearray(os.pread(fd, sb.checksum_offset, 0))
     fixed[_FLAGS_OFFSET] = 0
     try:
         # A writer stopped by a full disk may have recorded an end of file that its last (failed)
         # write never reached; HDF5 refuses such a file as truncated. Nothing committed lives
         # there (readers serve only frames_written), so the gap is filled with (sparse) zeros.
-        if os.fstat(fd).st_size < eof:
-            os.ftruncate(fd, eof)
+        if os.fstat(fd).st_size < sb.eof:
+            os.ftruncate(fd, sb.eof)
         os.pwrite(fd, bytes(fixed) + fmt.lookup3(bytes(fixed)).to_bytes(4, "little"), 0)
         os.fsync(fd)
     except OSError as e:
@@ -171,7 +169,7 @@ def clear_status_flags(path: str | os.PathLike) -> bool:
         os.close(fd)
 
 
-def hold_writer_lock(path: str | os.PathLike, *, create: bool = False, reset_flags: bool = False) -> int:
+def hold_writer_lock(path: str | os.PathLike, *, reset_flags: bool = False) -> int:
     """Take the writer lock of ``path``: a shared ``flock`` on the file itself, held until released.
 
     An exclusive lock is taken first, so a second writer (or a flag reset) is refused while the
@@ -183,7 +181,6 @@ def hold_writer_lock(path: str | os.PathLike, *, create: bool = False, reset_fla
 
     Args:
         path: the capture file.
-        create: create an empty file when there is none (a new capture).
         reset_flags: reset stale consistency flags (a resume).
 
     Returns:
@@ -194,7 +191,7 @@ def hold_writer_lock(path: str | os.PathLike, *, create: bool = False, reset_fla
             way), another process holds it, or its flags cannot be reset.
     """
     path = Path(path)
-    fd = _open_exclusive(path, os.O_RDWR | (os.O_CREAT if create else 0))
+    fd = _open_exclusive(path, os.O_RDWR)
     try:
         if reset_flags:
             _reset_flags(fd, path)

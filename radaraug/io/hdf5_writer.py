@@ -308,7 +308,11 @@ class CaptureWriter:
                 f.close()
             except Exception:  # noqa: BLE001 - a broken file (full disk) may fail to close; h5py drops the id
                 pass
-        if self._tmp is not None:  # never published: no frame, or (publish="close") not complete
+        self._release()
+
+    def _release(self) -> None:
+        """Remove a temporary never published (no frame, or ``publish="close"`` not complete); unlock."""
+        if self._tmp is not None:
             self._tmp.unlink(missing_ok=True)
             self._tmp = None
         release_writer_lock(self._lock_fd)
@@ -363,11 +367,10 @@ class CaptureWriter:
                 self._frames.resize((self._n, *self._frames.shape[1:]))
             self._has_timestamps = fmt.TIMESTAMPS in f
             group = f.get(fmt.LABELS_GROUP)
-            self._schema = {name: group[name].dtype for name in group} if group is not None else {}
+            labels = dict(group.items()) if group is not None else {}
+            self._schema = {name: ds.dtype for name, ds in labels.items()}
             started = self._has_timestamps or group is not None
-            for ds in ([f[fmt.TIMESTAMPS]] if self._has_timestamps else []) + (
-                [group[name] for name in group] if group is not None else []
-            ):
+            for ds in ([f[fmt.TIMESTAMPS]] if self._has_timestamps else []) + list(labels.values()):
                 if ds.shape[0] > self._n:
                     ds.resize((self._n,))
             if fmt.FRAMES_WRITTEN in f:  # files of format 1.0 get the count now (SWMR cannot add it later)
@@ -502,8 +505,7 @@ class CaptureWriter:
         """
         f = self._file
         if f is None:
-            release_writer_lock(self._lock_fd)
-            self._lock_fd = None
+            self._release()
             return
         try:
             f.flush()
@@ -518,11 +520,7 @@ class CaptureWriter:
         except OSError as e:
             raise CaptureError(f"{self.path}: cannot give the capture its name ({e.strerror or e})") from None
         finally:
-            if self._tmp is not None:
-                self._tmp.unlink(missing_ok=True)
-                self._tmp = None
-            release_writer_lock(self._lock_fd)
-            self._lock_fd = None
+            self._release()
 
     def discard(self) -> None:
         """Close a writer that never appended a frame without giving the file its name.
@@ -648,13 +646,9 @@ def write_capture(
     Returns:
         The path written.
     """
-    file_labels: dict[str, Any] = {}
-    frame_labels: dict[str, Any] = {}
-    for name, value in (labels or {}).items():
-        if np.ndim(value) == 0:
-            file_labels[f"{fmt.FILE_LABEL_PREFIX}{name}"] = value
-        else:
-            frame_labels[name] = value
+    labels = labels or {}
+    file_labels = {f"{fmt.FILE_LABEL_PREFIX}{k}": v for k, v in labels.items() if np.ndim(v) == 0}
+    frame_labels = {k: v for k, v in labels.items() if np.ndim(v) != 0}
     all_attrs = {**(attrs or {}), **file_labels}
     with CaptureWriter(path, config, compression=compression, attrs=all_attrs) as writer:
         writer.append(counts, timestamp=timestamps, labels=frame_labels or None)

@@ -12,11 +12,13 @@ Layout::
         radar_timestamp.csv        one Unix time per frame (optional)
         temperature.npy            float32 (n, 1) chip temperature, deg C (optional)
 
-``radar.npy`` is memory-mapped: opening a recording reads only its header.
+``radar.npy`` is memory-mapped: opening a recording reads only its header. Files are looked up with
+``os.path.lexists``: a dangling link is still "there" and gets a clear error instead of being skipped.
 """
 
 from __future__ import annotations
 
+import contextlib
 import json
 import os
 import warnings
@@ -31,7 +33,7 @@ import torch
 from radaraug._files import MAX_TEXT_BYTES, atomic_open, atomic_write_text, load_json, read_bytes
 from radaraug.config import DEFAULT_ADC_DELAY_S, RadarConfig
 from radaraug.errors import CaptureError, ConfigError
-from radaraug.io.base import CaptureReader, CaptureWarning, timestamp_problem
+from radaraug.io.base import CaptureReader, CaptureWarning, axis_mismatch, timestamp_problem
 from radaraug.io.counts import as_counts
 from radaraug.io.npy import open_npy
 
@@ -67,18 +69,13 @@ MAX_TEMPERATURE_BYTES = 64 * 1024 * 1024
 """Largest ``temperature.npy`` read (a reading per frame is a few kB)."""
 
 
-def _exists(path: Path) -> bool:
-    # lexists: a dangling link is still "there" and gets a clear error instead of being skipped.
-    return os.path.lexists(path)
-
-
 def _read_json(path: Path, *, required: bool) -> dict[str, Any]:
     """A JSON object file; an unreadable one raises when ``required``, else warns.
 
     Required ones raise :class:`CaptureError`; optional ones (``meta.json``) that are unreadable give a
     :class:`CaptureWarning` and ``{}``.
     """
-    if not _exists(path):
+    if not os.path.lexists(path):
         if required:
             raise CaptureError(f"{path.parent}: Infineon recording has no {path.name}")
         return {}
@@ -92,13 +89,6 @@ def _read_json(path: Path, *, required: bool) -> dict[str, Any]:
         warnings.warn(f"{e}; optional {path.name} ignored", CaptureWarning, stacklevel=4)
         return {}
     return data
-
-
-def _open_npy(path: Path) -> np.ndarray:
-    """Memory-map ``radar.npy`` after checking its header against the file size (see ``npy.py``)."""
-    if not _exists(path):
-        raise CaptureError(f"{path.parent}: Infineon recording has no radar.npy")
-    return open_npy(path, kinds="iufcbmMUSV")  # every plain kind: _load_radar names a wrong one
 
 
 class InfineonRecording(CaptureReader):
@@ -145,18 +135,18 @@ class InfineonRecording(CaptureReader):
         self.labels = {}
         version_file = dev / "format.version"
         version = None
-        if _exists(version_file):
+        if os.path.lexists(version_file):
             try:
                 raw = read_bytes(version_file, limit=MAX_VERSION_BYTES, error=CaptureError, what="format.version")
             except CaptureError as e:
                 raise CaptureError(f"{version_file}: cannot read ({str(e).removeprefix(f'{version_file}: ')})") from None
             version = raw.decode("utf-8", errors="replace").strip()
-        if version is not None and version.split(".")[0] != FORMAT_VERSION.split(".")[0]:
-            warnings.warn(
-                f"{version_file}: format.version {version!r} is not {FORMAT_VERSION}; reading it anyway",
-                CaptureWarning,
-                stacklevel=2,
-            )
+            if version.split(".")[0] != FORMAT_VERSION.split(".")[0]:
+                warnings.warn(
+                    f"{version_file}: format.version {version!r} is not {FORMAT_VERSION}; reading it anyway",
+                    CaptureWarning,
+                    stacklevel=2,
+                )
         recording_folder = dev.parent if dev.name == DEVICE_FOLDER else dev
         self.attrs = {
             "format": "infineon-ifxdaq",
@@ -166,27 +156,25 @@ class InfineonRecording(CaptureReader):
         }
 
     def _load_radar(self, path: Path) -> np.ndarray:
-        data = _open_npy(path)
+        if not os.path.lexists(path):
+            raise CaptureError(f"{path.parent}: Infineon recording has no radar.npy")
+        # Memory-mapped after open_npy checks the header against the file size; every plain kind
+        # is let through so that the check below names a wrong one.
+        data = open_npy(path, kinds="iufcbmMUSV")
         if data.dtype.kind not in "ui" or data.dtype.itemsize > 4:
             raise CaptureError(f"{path}: dtype {data.dtype}, expected uint16 raw ADC counts")
         if data.ndim != 4:
             raise CaptureError(f"{path}: shape {data.shape}, expected 4-D (frame, rx, chirp, sample)")
-        c = self.config
-        for axis, name, want in (
-            (1, "rx", c.num_rx),
-            (2, "chirps", c.num_chirps_per_frame),
-            (3, "samples", c.num_samples_per_chirp),
-        ):
-            if data.shape[axis] != want:
-                raise CaptureError(
-                    f"{path}: {data.shape[axis]} {name} (shape {data.shape}) but config.json says {want}"
-                )
+        bad = axis_mismatch(data.shape, self.config)
+        if bad is not None:
+            name, found, want = bad
+            raise CaptureError(f"{path}: {found} {name} (shape {data.shape}) but config.json says {want}")
         if data.shape[0] == 0:
             raise CaptureError(f"{path}: empty capture (0 frames)")
         return data
 
     def _load_timestamps(self, path: Path) -> np.ndarray | None:
-        if not _exists(path):
+        if not os.path.lexists(path):
             return None
         raw = read_bytes(path, limit=MAX_TEXT_BYTES, error=CaptureError, what="timestamp file")
         try:
@@ -194,11 +182,8 @@ class InfineonRecording(CaptureReader):
             ts = np.array([float(ln) for ln in lines if ln], dtype=np.float64)
         except (UnicodeDecodeError, ValueError, OverflowError) as e:
             raise CaptureError(f"{path}: cannot parse timestamps ({str(e)[:200]})") from None
-        problem = None
-        if len(ts) != self.num_frames:
-            problem = f"{len(ts)} timestamps for {self.num_frames} frames"
-        else:
-            problem = timestamp_problem(ts)
+        n = self.num_frames
+        problem = f"{len(ts)} timestamps for {n} frames" if len(ts) != n else timestamp_problem(ts)
         if problem is not None:
             warnings.warn(f"{path}: {problem}; timestamps ignored", CaptureWarning, stacklevel=3)
             return None
@@ -206,24 +191,16 @@ class InfineonRecording(CaptureReader):
 
     def _load_temperature(self, path: Path) -> np.ndarray | None:
         # Optional: anything wrong with it is a warning, and the recording still reads.
-        if not _exists(path):
+        if not os.path.lexists(path):
             return None
         try:
-            data = open_npy(path, kinds="iuf", mmap=False) if self._small(path) else None
-            if data is None:
-                raise CaptureError(f"{path}: larger than {MAX_TEMPERATURE_BYTES} bytes")
-            temps = np.asarray(data, dtype=np.float64).reshape(-1)
+            with contextlib.suppress(OSError):  # open_npy names the problem
+                if os.stat(path).st_size > MAX_TEMPERATURE_BYTES:
+                    raise CaptureError(f"{path}: larger than {MAX_TEMPERATURE_BYTES} bytes")
+            return np.asarray(open_npy(path, kinds="iuf", mmap=False), dtype=np.float64).reshape(-1)
         except CaptureError as e:
             warnings.warn(f"{e}; unreadable temperature file ignored", CaptureWarning, stacklevel=3)
             return None
-        return temps
-
-    @staticmethod
-    def _small(path: Path) -> bool:
-        try:
-            return os.stat(path).st_size <= MAX_TEMPERATURE_BYTES
-        except OSError:
-            return True  # open_npy names the problem
 
     def _read_counts(self, start: int, stop: int) -> np.ndarray:
         if self._data is None:
@@ -300,8 +277,8 @@ def write_infineon_recording(
         host_meta = {
             "date_captured": datetime.now(timezone.utc).isoformat(timespec="seconds"),
             "writer": "radaraug",
+            **(meta or {}),
         }
-        host_meta.update(meta or {})
         # Each file is written atomically (a crash or a full disk leaves the old file or none),
         # radar.npy last: its presence is what marks a folder as a recording.
         atomic_write_text(folder / "meta.json", json.dumps(host_meta, indent=4, sort_keys=True) + "\n")

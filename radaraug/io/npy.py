@@ -17,6 +17,7 @@ then memory-maps (or reads) exactly that.
 
 from __future__ import annotations
 
+import math
 import os
 from pathlib import Path
 from typing import Literal
@@ -60,10 +61,7 @@ def read_npy_header(path: Path) -> tuple[tuple[int, ...], bool, np.dtype, int, i
         raise CaptureError(f"{path}: .npy dtype {dtype} is not a plain numeric type")
     if not isinstance(shape, tuple) or any(isinstance(n, bool) or not isinstance(n, int) or n < 0 for n in shape):
         raise CaptureError(f"{path}: .npy header declares an invalid shape {str(shape)[:80]}")
-    count = 1
-    for n in shape:
-        count *= n  # Python ints: no overflow, whatever the header claims
-    need = offset + count * dtype.itemsize
+    need = offset + math.prod(shape) * dtype.itemsize  # Python ints: no overflow, whatever the header claims
     if need != size:
         what = "truncated .npy file" if size < need else ".npy file longer than its header says"
         raise CaptureError(

@@ -86,16 +86,6 @@ class RadarPose:
         y = torch.linalg.cross(x, z)
         return cls(position=p, rotation=torch.stack([x, y, z], dim=1))
 
-    def to_world(self, points_radar: torch.Tensor) -> torch.Tensor:
-        """Radar-frame points ``(..., 3)`` -> world frame."""
-        r = self.rotation.to(points_radar)
-        return points_radar @ r.T + self.position.to(points_radar)
-
-    def to_radar(self, points_world: torch.Tensor) -> torch.Tensor:
-        """World-frame points ``(..., 3)`` -> radar frame."""
-        r = self.rotation.to(points_world)
-        return (points_world - self.position.to(points_world)) @ r
-
 
 @dataclass
 class Ellipsoids:

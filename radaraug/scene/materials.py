@@ -125,13 +125,10 @@ class Material:
         self, cos_theta_i: torch.Tensor | float, frequency_Hz: float,
     ) -> tuple[torch.Tensor, torch.Tensor]:
         """``(Gamma_TE, Gamma_TM)`` of this material (half-space or slab) at the given incidence."""
-        cos = torch.as_tensor(cos_theta_i)
-        if not cos.is_floating_point():
-            cos = cos.to(torch.get_default_dtype())
-        eps = torch.tensor(self.permittivity(frequency_Hz), dtype=_complex_of(cos.dtype), device=cos.device)
+        eps = self.permittivity(frequency_Hz)
         if self.thickness_m is None:
-            return fresnel_coefficients(eps, cos)
-        return slab_reflection(eps, self.thickness_m, frequency_Hz, cos)
+            return fresnel_coefficients(eps, cos_theta_i)
+        return slab_reflection(eps, self.thickness_m, frequency_Hz, cos_theta_i)
 
 
 def _itu(name: str, a: float, b: float, c: float, d: float, lo: float, hi: float) -> Material:

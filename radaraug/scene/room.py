@@ -8,6 +8,7 @@ All builders return a :class:`~radaraug.scene.geometry.SceneGeometry` in the wor
 from __future__ import annotations
 
 import fnmatch
+import functools
 import math
 import os
 from collections.abc import Callable, Mapping, Sequence
@@ -57,6 +58,20 @@ def _material_key(value: str | Material, thickness: float | None, where: str) ->
     if thickness is not None:
         mat = mat.with_thickness(thickness)
     return mat.key
+
+
+def _geometry(
+    v: np.ndarray, f: np.ndarray, face_material: np.ndarray, keys: Sequence[str],
+    dtype: torch.dtype | None = None, device: torch.device | str | None = None,
+) -> SceneGeometry:
+    """A static geometry of ``object_id`` 0 from numpy arrays (vertices at ``dtype``, default torch's)."""
+    return SceneGeometry(
+        vertices=torch.as_tensor(v, dtype=dtype or torch.get_default_dtype(), device=device),
+        faces=torch.as_tensor(f, dtype=torch.long, device=device),
+        face_material=torch.as_tensor(face_material, dtype=torch.long, device=device),
+        materials=tuple(keys),
+        object_id=torch.zeros(len(f), dtype=torch.long, device=device),
+    )
 
 
 def _rectangle(
@@ -146,12 +161,10 @@ def corridor(
     keys: list[str] = []
     verts, faces, mats = [], [], []
     n_vert = 0
-    n_faces = 0
-    for s in surfaces:
-        cell = max_edge_m / math.sqrt(2.0)
-        n_faces += 2 * math.prod(max(1, math.ceil(np.linalg.norm(x) / cell)) for x in rects[s][1:])
-        if n_faces > MAX_FACES:
-            raise SceneError(f"corridor: max_edge_m={max_edge_m} would make more than {MAX_FACES} faces")
+    cell = max_edge_m / math.sqrt(2.0)
+    n_faces = sum(2 * math.prod(max(1, math.ceil(np.linalg.norm(x) / cell)) for x in rects[s][1:]) for s in surfaces)
+    if n_faces > MAX_FACES:
+        raise SceneError(f"corridor: max_edge_m={max_edge_m} would make more than {MAX_FACES} faces")
     for s in surfaces:
         key = _material_key(materials.get(s, PAPER_CORRIDOR_MATERIALS[s]), thickness_m.get(s),
                             f"corridor surface {s!r}")
@@ -162,16 +175,7 @@ def corridor(
         faces.append(f + n_vert)
         mats.append(np.full(len(f), keys.index(key)))
         n_vert += len(v)
-    dtype = dtype or torch.get_default_dtype()
-    n = sum(len(f) for f in faces)
-    return SceneGeometry(
-        vertices=torch.as_tensor(np.concatenate(verts), dtype=dtype, device=device),
-        faces=torch.as_tensor(np.concatenate(faces), dtype=torch.long, device=device),
-        face_material=torch.as_tensor(np.concatenate(mats), dtype=torch.long, device=device),
-        materials=tuple(keys),
-        vertex_velocity=None,
-        object_id=torch.zeros(n, dtype=torch.long, device=device),
-    )
+    return _geometry(np.concatenate(verts), np.concatenate(faces), np.concatenate(mats), keys, dtype, device)
 
 
 FaceMaterialFn = Callable[[torch.Tensor, torch.Tensor, Sequence[str]], "str | Sequence[str]"]
@@ -318,15 +322,7 @@ def load_mesh(
         face_material = np.asarray([keys.index(k) for k in part_keys], dtype=np.int64)[part_of_face]
     else:
         raise SceneError(f"{where}: face_materials must be a dict or a callable, got {type(face_materials).__name__}")
-    dtype = dtype or torch.get_default_dtype()
-    return SceneGeometry(
-        vertices=torch.as_tensor(v, dtype=dtype, device=device),
-        faces=torch.as_tensor(f, dtype=torch.long, device=device),
-        face_material=torch.as_tensor(face_material, dtype=torch.long, device=device),
-        materials=tuple(keys),
-        vertex_velocity=None,
-        object_id=torch.zeros(len(f), dtype=torch.long, device=device),
-    )
+    return _geometry(v, f, face_material, keys, dtype, device)
 
 
 def box(
@@ -349,17 +345,9 @@ def box(
         raise SceneError(f"box: corners must be 3 finite numbers each, got {list(lo)} and {list(hi)}")
     if not (hi_a > lo_a).all():
         raise SceneError(f"box: every coordinate of hi must exceed lo's, got {list(lo)} and {list(hi)}")
-    key = _material_key(material, None, "box")
     mesh = trimesh.creation.box(extents=hi_a - lo_a,
                                 transform=trimesh.transformations.translation_matrix((lo_a + hi_a) / 2))
-    v, f = trimesh.remesh.subdivide_to_size(mesh.vertices, mesh.faces, max_edge=max_edge_m)
-    return SceneGeometry(
-        vertices=torch.as_tensor(np.asarray(v), dtype=torch.get_default_dtype()),
-        faces=torch.as_tensor(np.asarray(f), dtype=torch.long),
-        face_material=torch.zeros(len(f), dtype=torch.long),
-        materials=(key,),
-        object_id=torch.zeros(len(f), dtype=torch.long),
-    )
+    return _from_trimesh(mesh.vertices, mesh.faces, material, "box", max_edge_m, None)
 
 
 def _placement(position: Sequence[float] | np.ndarray, yaw_deg: float) -> np.ndarray:
@@ -383,19 +371,16 @@ def _check_vec(value: Sequence[float], n: int, label: str, where: str, positive:
 
 
 def _from_trimesh(v: np.ndarray, f: np.ndarray, material: str | Material, where: str, max_edge_m: float,
-                  transform: np.ndarray) -> SceneGeometry:
+                  transform: np.ndarray | None) -> SceneGeometry:
+    """A one-material mesh split to ``max_edge_m``, then placed by ``transform`` (None: as it is)."""
     trimesh = lazy_import("trimesh", feature="meshes")
 
     key = _material_key(material, None, where)
     v, f = trimesh.remesh.subdivide_to_size(v, f, max_edge=max_edge_m)
-    v = np.asarray(v) @ transform[:3, :3].T + transform[:3, 3]
-    return SceneGeometry(
-        vertices=torch.as_tensor(v, dtype=torch.get_default_dtype()),
-        faces=torch.as_tensor(np.asarray(f), dtype=torch.long),
-        face_material=torch.zeros(len(f), dtype=torch.long),
-        materials=(key,),
-        object_id=torch.zeros(len(f), dtype=torch.long),
-    )
+    v = np.asarray(v)
+    if transform is not None:
+        v = v @ transform[:3, :3].T + transform[:3, 3]
+    return _geometry(v, np.asarray(f), np.zeros(len(f), dtype=np.int64), [key])
 
 
 def placed_box(
@@ -469,9 +454,7 @@ def merge(geoms: Sequence[SceneGeometry]) -> SceneGeometry:
     if not geoms:
         raise SceneError("merge: no geometries given")
     device = geoms[0].vertices.device
-    dtype = geoms[0].vertices.dtype
-    for g in geoms[1:]:
-        dtype = torch.promote_types(dtype, g.vertices.dtype)
+    dtype = functools.reduce(torch.promote_types, (g.vertices.dtype for g in geoms))
     keys: list[str] = []
     verts, faces, mats, ids, vels = [], [], [], [], []
     n_vert, next_id = 0, 0

@@ -9,12 +9,13 @@ error is a :class:`~radaraug.errors.SceneError` that names the file and the key.
 
 from __future__ import annotations
 
+import contextlib
 import glob
 import inspect
 import json
 import math
 import os
-from collections.abc import Mapping, Sequence
+from collections.abc import Iterator, Mapping, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -97,6 +98,27 @@ class _Reader:
                 raise self.fail(key, f"unknown key(s) {unknown}; allowed: {sorted(allowed)}")
         return value
 
+    def sequence(self, value: Any, key: str, what: str = "a list") -> Sequence[Any]:
+        if not isinstance(value, Sequence) or isinstance(value, str):
+            raise self.fail(key, f"must be {what}")
+        return value
+
+    def material(self, name: Any, key: str) -> None:
+        try:
+            get_material(name)
+        except SceneError as err:
+            raise self.fail(key, str(err)) from None
+
+    @contextlib.contextmanager
+    def naming(self, key: str) -> Iterator[None]:
+        """Re-raise a SceneError that does not name the file yet as one about ``key``."""
+        try:
+            yield
+        except SceneError as err:
+            if str(err).startswith(("scene file ", "scene description")):
+                raise  # already names the file and key
+            raise self.fail(key, str(err)) from None
+
     def number(self, value: Any, key: str, *, positive: bool = False) -> float:
         if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
             raise self.fail(key, f"must be a finite number, got {value!r}")
@@ -104,10 +126,10 @@ class _Reader:
             raise self.fail(key, f"must be positive, got {value!r}")
         return float(value)
 
-    def vector(self, value: Any, key: str, n: int) -> list[float]:
+    def vector(self, value: Any, key: str, n: int, *, positive: bool = False) -> list[float]:
         if not isinstance(value, Sequence) or isinstance(value, str) or len(value) != n:
             raise self.fail(key, f"must be a list of {n} numbers, got {value!r}")
-        return [self.number(v, f"{key}[{i}]") for i, v in enumerate(value)]
+        return [self.number(v, f"{key}[{i}]", positive=positive) for i, v in enumerate(value)]
 
     def matrix(self, value: Any, key: str, rows: Sequence[int], cols: int) -> list[list[float]]:
         if not isinstance(value, Sequence) or isinstance(value, str) or len(value) not in rows:
@@ -220,21 +242,16 @@ def _read_room(spec: Any, rd: _Reader) -> tuple[SceneGeometry, dict[str, Any]]:
         raise rd.fail("room.type", f"must be one of {sorted(_ROOM_KEYS)}, got {kind!r}")
     rd.mapping(spec, "room", _ROOM_KEYS[kind])
     norm: dict[str, Any] = {"type": kind}
-    try:
+    with rd.naming(f"room ({kind})"):
         if kind == "corridor":
-            dims = {}
-            for k, default in (("length", 20.0), ("width", 2.0), ("height", 2.7), ("max_edge", 0.5)):
-                dims[k] = rd.number(spec.get(k, default), f"room.{k}", positive=True)
-                norm[k] = dims[k]
+            dims = {k: rd.number(spec.get(k, default), f"room.{k}", positive=True)
+                    for k, default in (("length", 20.0), ("width", 2.0), ("height", 2.7), ("max_edge", 0.5))}
+            norm.update(dims)
             mats = dict(rd.mapping(spec.get("materials", {}), "room.materials", set(CORRIDOR_SURFACES)))
-            thick = dict(rd.mapping(spec.get("thickness", {}), "room.thickness", set(CORRIDOR_SURFACES)))
-            for s, t in thick.items():
-                thick[s] = None if t is None else rd.number(t, f"room.thickness.{s}", positive=True)
+            thick = {s: None if t is None else rd.number(t, f"room.thickness.{s}", positive=True)
+                     for s, t in rd.mapping(spec.get("thickness", {}), "room.thickness", set(CORRIDOR_SURFACES)).items()}
             for s, m in mats.items():
-                try:
-                    get_material(m)
-                except SceneError as err:
-                    raise rd.fail(f"room.materials.{s}", str(err)) from None
+                rd.material(m, f"room.materials.{s}")
             end_walls = spec.get("end_walls", True)
             if not isinstance(end_walls, bool):
                 raise rd.fail("room.end_walls", f"must be true or false, got {end_walls!r}")
@@ -259,10 +276,6 @@ def _read_room(spec: Any, rd: _Reader) -> tuple[SceneGeometry, dict[str, Any]]:
         else:
             geom = _inline_room(spec, rd)
             norm = _inline_dict(geom)
-    except SceneError as err:
-        if str(err).startswith(("scene file ", "scene description")):
-            raise  # already names the file and key
-        raise rd.fail(f"room ({kind})", str(err)) from None
     return geom, norm
 
 
@@ -281,9 +294,7 @@ def _inline_room(spec: Mapping[str, Any], rd: _Reader) -> SceneGeometry:
         # torch.tensor(..., dtype=long) truncates 1.5 to 1 silently: indices must be integers.
         if k in spec and not _all_integers(spec[k]):
             raise rd.fail(f"room.{k}", "must contain integers only")
-    materials = spec["materials"]
-    if not isinstance(materials, Sequence) or isinstance(materials, str):
-        raise rd.fail("room.materials", "must be a list of material names")
+    materials = rd.sequence(spec["materials"], "room.materials", "a list of material names")
     if vertices.ndim != 2 or vertices.shape[1] != 3 or faces.ndim != 2 or faces.shape[1] != 3:
         raise rd.fail("room", "vertices and faces must be lists of 3-element lists")
     if not bool(torch.isfinite(vertices).all()):
@@ -295,10 +306,7 @@ def _inline_room(spec: Mapping[str, Any], rd: _Reader) -> SceneGeometry:
     if face_material.numel() and (face_material.min() < 0 or face_material.max() >= len(materials)):
         raise rd.fail("room.face_material", "material index out of range")
     for i, m in enumerate(materials):
-        try:
-            get_material(m)
-        except SceneError as err:
-            raise rd.fail(f"room.materials[{i}]", str(err)) from None
+        rd.material(m, f"room.materials[{i}]")
     return SceneGeometry(vertices, faces, face_material, tuple(materials), None,
                          object_id if object_id is not None else torch.zeros(len(faces), dtype=torch.long))
 
@@ -335,10 +343,7 @@ def _read_object(spec: Any, i: int, rd: _Reader) -> tuple[SceneGeometry, dict[st
         if k not in spec:
             raise rd.fail(f"{key}.{k}", f"is required for a {kind} object")
     material = spec["material"]
-    try:
-        get_material(material)
-    except SceneError as err:
-        raise rd.fail(f"{key}.material", str(err)) from None
+    rd.material(material, f"{key}.material")
     norm: dict[str, Any] = {"type": kind}
     if "name" in spec:
         if not isinstance(spec["name"], str):
@@ -346,11 +351,9 @@ def _read_object(spec: Any, i: int, rd: _Reader) -> tuple[SceneGeometry, dict[st
         norm["name"] = spec["name"]
     position = rd.vector(spec["position"], f"{key}.position", 3)
     norm["position"] = position
-    try:
+    with rd.naming(key):
         if kind == "box":
-            size = rd.vector(spec["size"], f"{key}.size", 3)
-            for j, x in enumerate(size):
-                rd.number(x, f"{key}.size[{j}]", positive=True)
+            size = rd.vector(spec["size"], f"{key}.size", 3, positive=True)
             yaw = rd.number(spec.get("yaw_deg", 0.0), f"{key}.yaw_deg")
             edge = rd.number(spec.get("max_edge", 0.5), f"{key}.max_edge", positive=True)
             norm.update(size=size, yaw_deg=yaw, max_edge=edge)
@@ -372,10 +375,6 @@ def _read_object(spec: Any, i: int, rd: _Reader) -> tuple[SceneGeometry, dict[st
             yaw = rd.number(spec.get("yaw_deg", 0.0), f"{key}.yaw_deg")
             norm.update(file=str(path), scale=scale, yaw_deg=yaw)
             geom = placed_mesh(path, position, material, scale=scale, yaw_deg=yaw)
-    except SceneError as err:
-        if str(err).startswith(("scene file ", "scene description")):
-            raise
-        raise rd.fail(key, str(err)) from None
     norm["material"] = material
     return geom, norm
 
@@ -545,15 +544,9 @@ def parse_scene(data: Mapping[str, Any], *, source: str | os.PathLike | None = N
     materials_spec = _read_materials(data.get("materials", {}), rd, scattering)
     pose, config = _read_radar(data["radar"], rd)
     room, room_spec = _read_room(data["room"], rd)
-    object_list = data.get("objects") or []
-    if not isinstance(object_list, Sequence) or isinstance(object_list, str):
-        raise rd.fail("objects", "must be a list")
-    objs = [_read_object(o, i, rd) for i, o in enumerate(object_list)]
+    objs = [_read_object(o, i, rd) for i, o in enumerate(rd.sequence(data.get("objects") or [], "objects"))]
     room = _with_objects(room, [g for g, _ in objs])
-    people_list = data.get("people") or []
-    if not isinstance(people_list, Sequence) or isinstance(people_list, str):
-        raise rd.fail("people", "must be a list")
-    pairs = [_read_person(p, i, rd) for i, p in enumerate(people_list)]
+    pairs = [_read_person(p, i, rd) for i, p in enumerate(rd.sequence(data.get("people") or [], "people"))]
     return {"room": room, "radar": pose, "config": config, "people": [p for p, _ in pairs], "name": name,
             "source": rd.source, "room_spec": room_spec, "materials_spec": materials_spec,
             "objects_spec": [o for _, o in objs], "scattering": scattering, "_person_specs": pairs}

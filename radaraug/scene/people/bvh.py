@@ -121,14 +121,20 @@ class _Lines:
         return value
 
 
+def _add_joint(out: BVHSkeleton, name: str, parent: int, offset: list[float], n_channels: list[int]) -> int:
+    """Append a joint (its channels follow) and return its index; offsets are collected in ``_offsets``."""
+    out.names.append(name)
+    out.parents.append(parent)
+    out._channel_start.append(n_channels[0])
+    out.__dict__.setdefault("_offsets", []).append(offset)
+    return len(out.names) - 1
+
+
 def _parse_joint(s: _Lines, name: str, parent: int, out: BVHSkeleton, n_channels: list[int]) -> None:
     s.expect("{")
     s.expect("OFFSET")
     offset = [s.number(f"OFFSET of {name}") for _ in range(3)]
-    idx = len(out.names)
-    out.names.append(name)
-    out.parents.append(parent)
-    out._channel_start.append(n_channels[0])
+    idx = _add_joint(out, name, parent, offset, n_channels)
     tok, line = s.next("CHANNELS")
     if tok.upper() != "CHANNELS":
         raise s.error(f"joint {name!r}: expected CHANNELS, found {tok!r}", line)
@@ -143,9 +149,6 @@ def _parse_joint(s: _Lines, name: str, parent: int, out: BVHSkeleton, n_channels
         chans.append(ch)
     out.channels.append(chans)
     n_channels[0] += len(chans)
-    offsets = [offset]
-    out_offsets: list[list[float]] = out.__dict__.setdefault("_offsets", [])
-    out_offsets.extend(offsets)
     while True:
         tok, line = s.next("JOINT, End Site or '}'")
         key = tok.upper()
@@ -160,11 +163,8 @@ def _parse_joint(s: _Lines, name: str, parent: int, out: BVHSkeleton, n_channels
             s.expect("OFFSET")
             end_off = [s.number(f"End Site OFFSET of {name}") for _ in range(3)]
             s.expect("}")
-            out.names.append(f"{name}_end")
-            out.parents.append(idx)
-            out._channel_start.append(n_channels[0])
+            _add_joint(out, f"{name}_end", idx, end_off, n_channels)
             out.channels.append([])
-            out_offsets.append(end_off)
         else:
             raise s.error(f"joint {name!r}: unexpected {tok!r}", line)
 
@@ -211,22 +211,14 @@ def read_bvh(path: str | Path) -> BVHSkeleton:
         raise s.error(
             f"MOTION has {len(values)} values, expected {n_frames} frames x {n_channels[0]} channels = {need}", line
         )
-    try:
-        flat = [float(v) for v, _ in values]
-    except ValueError:
-        bad = next((v, n) for v, n in values if not _is_float(v))
-        raise s.error(f"non-numeric motion value {bad[0]!r}", bad[1]) from None
+    flat = []
+    for v, n in values:
+        try:
+            flat.append(float(v))
+        except ValueError:
+            raise s.error(f"non-numeric motion value {v!r}", n) from None
     bad_line = next((n for x, (_, n) in zip(flat, values) if not math.isfinite(x)), None)
     if bad_line is not None:
         raise s.error("motion values contain NaN/Inf", bad_line)
-    motion = torch.tensor(flat, dtype=torch.float64).reshape(n_frames, n_channels[0])
-    out.motion = motion
+    out.motion = torch.tensor(flat, dtype=torch.float64).reshape(n_frames, n_channels[0])
     return out
-
-
-def _is_float(v: str) -> bool:
-    try:
-        float(v)
-    except ValueError:
-        return False
-    return True

@@ -120,9 +120,7 @@ def write_bvh(
     lines, order = hierarchy_lines([(name, parent, off(*offset), None if end is None else off(*end))
                                     for name, parent, offset, _, end in spec])
     parent_of = {s[0]: s[1] for s in spec}
-    columns = []
-    root = pose["positions"][:, 0] @ p_mat / m_per_unit  # world -> bvh: P^T p
-    columns.append(root)
+    columns = [pose["positions"][:, 0] @ p_mat / m_per_unit]  # the root; world -> bvh: P^T p
     for name in order:
         r_w = world_rot[name]
         parent = parent_of[name]
