@@ -223,7 +223,22 @@ def synthesize_fast(
     # trig and one GEMM whose slow side stacks the channels) and the linear difference joins the
     # coupling's Taylor term (``theta w_m v_n + phi v_n`` has the same form). Shared only where the
     # neglected quadratic difference is below the Taylor tolerance.
-    theta_p, share = _coupling_phase(delay_s, delay_rate, timing, chirp_delay, rel, taylor_tol)
+    theta_p, shared = _coupling_phase(delay_s, delay_rate, timing, chirp_delay, rel, taylor_tol)
+    still = theta_p == 0
+    if shared is not None and bool(still.any()) and not bool(still.all()):
+        # Static paths need no Taylor term on their own channel; shared, the channels' linear
+        # difference would give them some, whose truncation errors add up over a room's thousands
+        # of paths: they are synthesized per channel (exact, one GEMM), the moving ones shared.
+        def part(idx: torch.Tensor) -> torch.Tensor:
+            return synthesize_fast(
+                coef.index_select(-1, idx), delay_s.index_select(-1, idx), delay_rate.index_select(-1, idx), timing,
+                dtype=dtype, taylor_tol=taylor_tol,
+                chirp_delay=None if chirp_delay is None else chirp_delay.index_select(-2, idx),
+                chirp_gain=None if chirp_gain is None else chirp_gain.index_select(-2, idx))
+        return part(still.nonzero()[:, 0]) + part((~still).nonzero()[:, 0])
+    share = shared is not None and not bool(still.all())
+    if share and shared is not None:
+        theta_p = shared
     # Taylor orders per path: term k of a path is at most theta^k / k! times its amplitude; it is
     # kept while that is at least ``taylor_tol`` times the strongest path of the call (so weak
     # multipath needs fewer orders than the torso for the same error bound on the frame). Paths
@@ -317,15 +332,16 @@ def _unravel(flat: torch.Tensor, shape: tuple[int, ...]) -> tuple[torch.Tensor, 
 def _coupling_phase(
     delay_s: torch.Tensor, delay_rate: torch.Tensor, timing: ChirpTiming, chirp_delay: torch.Tensor | None,
     rel_amplitude: torch.Tensor, tol: float,
-) -> tuple[torch.Tensor, bool]:
-    """Per path, the largest residual coupling phase (rad) over all rows; and whether the RX share.
+) -> tuple[torch.Tensor, torch.Tensor | None]:
+    """Per path, the largest residual coupling phase (rad) over all rows, alone and with the RX shared.
 
     ``theta`` of :func:`_phase_terms` without the rest: the coupling ``g_m = S (1 - r) e_m / fs``
     with ``e_m = r m T + d_m`` has the half range ``S (1 - r) (max e - min e) / (2 fs)`` over the
     chirps (``1 - r > 0``). Where the RX channels (the last batch dimension) share the fast-time
     factor, their linear rate difference from the channels' mean, ``2 pi nc |d rate|``, is added
-    (:func:`synthesize_fast`); they share it when each path's quadratic-term difference,
-    ``2 pi |d quad| (N - 1)^2`` rad, times its relative amplitude stays below ``tol``.
+    (:func:`synthesize_fast`); they can share it (the second value, else None) when each path's
+    quadratic-term difference, ``2 pi |d quad| (N - 1)^2`` rad, times its relative amplitude stays
+    below ``tol``.
     """
     r = delay_rate.double()
     nc = (timing.num_samples - 1) / 2
@@ -342,8 +358,9 @@ def _coupling_phase(
     k = timing.slope * (1 - r) / timing.fs
     theta = 2 * math.pi * (k * span / 2) * nc
     P = delay_s.shape[-1]
+    alone = theta.reshape(-1, P).amax(dim=0)
     if not _SHARE_RX or delay_s.dim() < 2 or delay_s.shape[-2] < 2:
-        return theta.reshape(-1, P).amax(dim=0), False
+        return alone, None
     # The fast-time rate of _phase_terms (beat + Doppler + the coupling's centre g_bar) and the quadratic term.
     tau = delay_s.double() + r * timing.adc_delay
     rate = (timing.f0 * r + timing.slope * tau * (1 - r)) / timing.fs + k * mid
@@ -352,8 +369,8 @@ def _coupling_phase(
     d_quad = (quad - quad.mean(dim=-2, keepdim=True)).abs()
     quad_err = (2 * math.pi * (timing.num_samples - 1) ** 2 * d_quad).reshape(-1, P).amax(dim=0)
     if bool((quad_err * rel_amplitude > tol).any()):
-        return theta.reshape(-1, P).amax(dim=0), False
-    return (theta + 2 * math.pi * nc * d_rate).reshape(-1, P).amax(dim=0), True
+        return alone, None
+    return alone, (theta + 2 * math.pi * nc * d_rate).reshape(-1, P).amax(dim=0)
 
 
 def _fast_rows(

@@ -195,21 +195,10 @@ def _mismatched_shadow(twin: DigitalTwin, people: list[Any], times: torch.Tensor
     one product (as the twin computes the shadow). A per-chirp frequency-domain turn would not do: the
     near-range paths' beat tones hold less than a cycle per chirp.
     """
-    from radaraug.raytrace.shadow import SHADOW_TOL
-
-    t = twin.shadow_transmission(people, times)  # (T, P)
-    if t is None:
+    pair = twin.shadow_signal(people, times, quadrature=True)
+    if pair is None:
         return None
-    d = (t - 1).to(twin.device)
-    hit = (d.abs() > SHADOW_TOL).any(0)
-    if not bool(hit.any()):
-        return None
-    d = d * hit
-    basis = twin.static_basis()  # (P, 2, RX, N)
-    both = torch.cat([d, -1j * d])  # (2T, P)
-    coef = torch.view_as_real(both).to(basis.dtype).reshape(both.shape[0], -1)
-    out = (coef @ basis.reshape(coef.shape[1], -1)).reshape(both.shape[0], *basis.shape[2:])[:, :, None, :]
-    shadow, quad = out[: d.shape[0]], out[d.shape[0]:]
+    shadow, quad = pair
     amp, phase = _rx_gain(mismatch, shadow)
     return amp * (torch.cos(phase) * shadow + torch.sin(phase) * quad)
 

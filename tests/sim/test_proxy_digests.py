@@ -27,14 +27,15 @@ FILES = {
 }
 # Generator version 5 (the twin's TWIN_MODEL_VERSION 2, issue 22): the people's echoes move with their
 # specular points' velocity; version 6 (TWIN_MODEL_VERSION 3): the RX channels share the fast-time
-# synthesis factor (6 to 35 of each file's 196,608 ADC codes move by one). The files above are checked
-# with both taken out (the old rules), so that these are all that changed; the files are these now.
+# synthesis factor (60 and 69 of the 196,608 ADC codes of the files with people move by one; the
+# empty room and the empty test file are unchanged). The files above are checked with both taken
+# out (the old rules), so that these are all that changed; the files are these now.
 # (Version 5, with only the turn in: test_count1 ea2f5c21, test_count2 fc13f0d0.)
 FILES_V6 = {
-    "calibration_empty": ("4fb54647639142c8430cf05b3a09523153d4ff3e284aadcff8696bed2f3c4c3f", "aa9effd2f9d38713"),
-    "test_count0": ("b8b44702aa2468458248de9c0378e1452949e5f81ced61c028b767ed6621e39e", "b501d6a99d770503"),
-    "test_count1": ("23cc9d78f75fa5e970a5c84e50a026c586ccca5f4ca5c836672370c9d23427e4", "1a039263566d9ce3"),
-    "test_count2": ("d0289a288385a0c7f4489c5a92cdec0e91ac49dd459b6ba3d21ef146c3244ef7", "dc63d789310165a5"),
+    "calibration_empty": ("2e17704063206bdc7144d00c8ea6c2aca399b1af4dc643a8aaa962bd33bff883", "aa9effd2f9d38713"),
+    "test_count0": ("9f757bcc10800827abc63e71043a09e051d89473d5307ff4916a95d446b5b4b3", "b501d6a99d770503"),
+    "test_count1": ("64f4090b60b5b97a0d310edc4c28049a2fc3a50d07a2e9fa57b3713ee6309c66", "1a039263566d9ce3"),
+    "test_count2": ("b6569e2594e657dbbbbaf7e9c8e6b56227746683617eaf5c5429c0ab4ee04a41", "dc63d789310165a5"),
 }
 
 

@@ -46,22 +46,22 @@ RANDOMIZED_ITEMS = {
 }
 
 # TWIN_MODEL_VERSION 2 (issue 22) moved a segment's echo with its specular point's material velocity,
-# rotation included; version 3 lets the RX channels share the fast-time synthesis factor (1 to 18 of
-# the 49,152 samples of an item move by one ADC code). The digests above are checked with both
-# changes taken out (``without_turn``, ``per_channel_synthesis``), so that these two are all that moved
+# rotation included; version 3 lets the RX channels share the fast-time synthesis factor (10 to 38
+# of the 49,152 samples of an item with people move by one ADC code; empty items are unchanged).
+# The digests above are checked with both changes taken out (``without_turn``, ``per_channel_synthesis``), so that these two are all that moved
 # them; the items are these now. (Between the two, with only the turn in, the items with people were
 # c4ebd837, 273d81dd, a4a3a38e and randomized f6f7bbcf, 4928ac7f, b4083351.)
 ITEMS_V3 = {
-    0: (2, "308cf232f4a463bea0506d675928847d8b55979da5e2152cd3f40d588e383897"),
-    1: (2, "478b666afeeabc1dfb8179418306ec8ee64a68568be9245f2224406c81278eef"),
-    2: (0, "ebecd62b8522c5bfa2176b004306038374a09081d7a1dea3f9cd921fac0d8f94"),
-    3: (1, "0706512382a70405be52aeabbe116168096a1994cc2d33032b800dcead89e994"),
+    0: (2, "8d9c7d0366219eda5ee14def5e1701fc2abd2fc82efe8eafa17a9a8657e63055"),
+    1: (2, "33123c896787f459ce25db5c74be9b9bc2da1d3c3db13b1472e936e782fb14ed"),
+    2: (0, "05ba94a5f1c184f875e8bee2a2fa9eccb49051395128e67ff41a8711bda8776d"),
+    3: (1, "56eaa01b0040d2b594b326cda463af3953d65d61e74fca7c78b05dd2204d7187"),
 }
 RANDOMIZED_ITEMS_V3 = {
-    0: (2, "03bf3a48a3e762c62a6541b7651dbbc8438fbf44cd7d85bb6f566a86a9ecb2e1"),
-    1: (2, "51bb9f3a06e6f76d961fd6149b8514b750e6c8e4f58117f809888fc0ca37cd5d"),
-    2: (0, "7f854310ded5ba55ba8c20b9d4796f296a60103b6f663d19e5d312ba5ccba1f1"),
-    3: (1, "0df9d2403f5ee61fa65a7413897b3dff45b545142262d739daaa83fc30384eec"),
+    0: (2, "44ba925d4d73e8d92026cdba2482fadd93f5994e087d7dda107234be367ba0b2"),
+    1: (2, "7658567124eb2b59d042b4b1f75a44975230abc9745e17d6071afd1b7a43fadb"),
+    2: (0, "9ae268fd9168f14b3758e7d7b6516f57ba3159bc5e9808179efc8472a69d0e58"),
+    3: (1, "a700eaf11b74d3654e4c8296c9697ca3a190d9f667ee4b22310b99364058ed70"),
 }
 
 
