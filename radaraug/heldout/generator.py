@@ -43,13 +43,20 @@ from typing import Any
 
 import numpy as np
 
-from radaraug._files import atomic_write_json, load_json
+from radaraug._files import atomic_write_json
 from radaraug.config import RadarConfig
 from radaraug.errors import ConfigError
 from radaraug.heldout import room as room_mod
 from radaraug.heldout import walkers
 from radaraug.heldout.receiver import _check_effects, generate
-from radaraug.io.generated_set import GeneratedTestSet, check_count_arg, test_file_name
+from radaraug.io.generated_set import (
+    GeneratedTestSet,
+    check_count_arg,
+    load_generated_set,
+    reusable_generated_set,
+    start_generated_set,
+    test_file_name,
+)
 
 GENERATOR_VERSION = 1
 """Bumped whenever the output changes; part of the reuse check."""
@@ -309,41 +316,7 @@ def load_independent_proxy(out_dir: str | os.PathLike) -> IndependentProxySet:
     Raises:
         ConfigError: no readable manifest, or a file it lists is missing.
     """
-    out = Path(out_dir)
-    path = out / MANIFEST_NAME
-    try:
-        data = load_json(path, error=ConfigError, what="manifest")
-    except ConfigError as err:
-        raise ConfigError(f"{path}: no readable manifest ({err})") from None
-    if not isinstance(data, dict) or data.get("format") != MANIFEST_FORMAT:
-        raise ConfigError(f"{path}: not a radaraug independent held-out manifest")
-    files = data["files"]
-    cal = out / files["calibration"]["path"]
-    tests = [(out / t["path"], int(t["count"])) for t in files["tests"]]
-    for p in [cal, *(p for p, _ in tests)]:
-        if not p.is_file():
-            raise ConfigError(f"{path}: lists {p.name}, which is missing")
-    return IndependentProxySet(cal, tests, RadarConfig.from_dict(data["config"]), manifest=path)
-
-
-def _reusable(out: Path, settings: dict[str, Any], config: RadarConfig) -> IndependentProxySet | None:
-    from radaraug.io import open_capture
-
-    try:
-        data = load_json(out / MANIFEST_NAME, error=ConfigError, what="manifest")
-        if data.get("format") != MANIFEST_FORMAT or data.get("settings") != settings:
-            return None
-        found = load_independent_proxy(out)
-        expected = [(found.calibration, settings["calibration_frames"])]
-        expected += [(p, settings["frames_per_count"]) for p, _ in found.tests]
-        for p, n in expected:
-            with open_capture(p) as cap:
-                if cap.num_frames != n or cap.config != config:
-                    return None
-    except Exception:  # noqa: BLE001 - anything unreadable means: generate again
-        return None
-    found.reused = True
-    return found
+    return load_generated_set(out_dir, MANIFEST_NAME, MANIFEST_FORMAT, "independent held-out manifest")[0]
 
 
 def make_independent_proxy(
@@ -403,9 +376,9 @@ def make_independent_proxy(
         "config": config.to_dict(), "effects": resolved, "standing_probability": float(standing_probability),
     }))
     out = Path(out_dir)
-    found = _reusable(out, settings, config)
-    if found is not None:
-        return found
+    reused = reusable_generated_set(out, MANIFEST_NAME, MANIFEST_FORMAT, settings, config)
+    if reused is not None:
+        return reused[0]
     return _generate(out, settings, config, resolved, progress)
 
 
@@ -414,10 +387,7 @@ def _generate(out: Path, settings: dict[str, Any], config: RadarConfig, effects:
     from radaraug._optional import lazy_import
 
     started = time.perf_counter()
-    out.mkdir(parents=True, exist_ok=True)
-    manifest_path = out / MANIFEST_NAME
-    if manifest_path.exists():
-        manifest_path.unlink()  # the set is incomplete until a new manifest is written
+    manifest_path = start_generated_set(out, MANIFEST_NAME)
     seed = settings["seed"]
     counts = settings["counts"]
     scene = room_mod.room_scene(config)

@@ -7,12 +7,14 @@ the recipes the same object.
 
 from __future__ import annotations
 
+import os
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
+from radaraug._files import load_json
 from radaraug.config import RadarConfig
 from radaraug.errors import ConfigError
 
@@ -61,3 +63,64 @@ def check_count_arg(who: str, name: str, value: Any, lo: int) -> int:
 def test_file_name(count: int) -> str:
     """The file name of a generated set's capture of ``count`` people."""
     return f"test_count{count}.h5"
+
+
+def load_generated_set(out_dir: str | os.PathLike, manifest_name: str, manifest_format: str,
+                       what: str) -> tuple[GeneratedTestSet, dict[str, Any]]:
+    """The set described by ``out_dir/manifest_name`` (files checked to exist), and the manifest.
+
+    ``what`` names the manifest in the errors (e.g. "proxy manifest").
+
+    Raises:
+        ConfigError: no readable manifest, another format, or a file it lists is missing.
+    """
+    out = Path(out_dir)
+    path = out / manifest_name
+    try:
+        data = load_json(path, error=ConfigError, what=what)
+    except ConfigError as err:
+        raise ConfigError(f"{path}: no readable {what} ({err})") from None
+    if not isinstance(data, dict) or data.get("format") != manifest_format:
+        raise ConfigError(f"{path}: not a radaraug {what}")
+    files = data["files"]
+    cal = out / files["calibration"]["path"]
+    tests = [(out / t["path"], int(t["count"])) for t in files["tests"]]
+    for p in [cal, *(p for p, _ in tests)]:
+        if not p.is_file():
+            raise ConfigError(f"{path}: lists {p.name}, which is missing")
+    return GeneratedTestSet(cal, tests, RadarConfig.from_dict(data["config"]), manifest=path), data
+
+
+def reusable_generated_set(out: Path, manifest_name: str, manifest_format: str, settings: dict[str, Any],
+                           config: RadarConfig) -> tuple[GeneratedTestSet, dict[str, Any]] | None:
+    """The set in ``out`` when it is complete and was made with ``settings`` (else None: generate again).
+
+    Complete: its manifest has ``settings``, and every file it lists exists with the frames the
+    settings ask for and ``config``. Returns the set (``reused`` set) and its manifest.
+    """
+    from radaraug.io import open_capture
+
+    try:
+        data = load_json(out / manifest_name, error=ConfigError, what="manifest")
+        if data.get("format") != manifest_format or data.get("settings") != settings:
+            return None
+        found, _ = load_generated_set(out, manifest_name, manifest_format, "manifest")
+        expected = [(found.calibration, settings["calibration_frames"])]
+        expected += [(p, settings["frames_per_count"]) for p, _ in found.tests]
+        for p, n in expected:
+            with open_capture(p) as cap:
+                if cap.num_frames != n or cap.config != config:
+                    return None
+    except Exception:  # noqa: BLE001 - anything unreadable means: generate again
+        return None
+    found.reused = True
+    return found, data
+
+
+def start_generated_set(out: Path, manifest_name: str) -> Path:
+    """Create ``out`` and remove its manifest (the set is incomplete until a new one is written); its path."""
+    out.mkdir(parents=True, exist_ok=True)
+    manifest = out / manifest_name
+    if manifest.exists():
+        manifest.unlink()
+    return manifest

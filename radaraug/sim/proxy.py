@@ -48,12 +48,19 @@ import numpy as np
 import torch
 import yaml
 
-from radaraug._files import atomic_write_json, load_json
+from radaraug._files import atomic_write_json
 from radaraug._optional import lazy_import
 from radaraug.config import RadarConfig
 from radaraug.errors import ConfigError
 from radaraug.io.blocks import BLOCK_FRAMES, BlockWriter, frame_times
-from radaraug.io.generated_set import GeneratedTestSet, check_count_arg, test_file_name
+from radaraug.io.generated_set import (
+    GeneratedTestSet,
+    check_count_arg,
+    load_generated_set,
+    reusable_generated_set,
+    start_generated_set,
+    test_file_name,
+)
 from radaraug.scene.geometry import RadarPose, SceneGeometry
 from radaraug.scene.materials import Material
 from radaraug.scene.room import box, merge
@@ -340,45 +347,17 @@ def load_proxy(out_dir: str | os.PathLike) -> ProxySet:
     Raises:
         ConfigError: no readable manifest, or a file it lists is missing.
     """
-    out = Path(out_dir)
-    path = out / MANIFEST_NAME
-    try:
-        data = load_json(path, error=ConfigError, what="proxy manifest")
-    except ConfigError as err:
-        raise ConfigError(f"{path}: no readable proxy manifest ({err})") from None
-    if not isinstance(data, dict) or data.get("format") != MANIFEST_FORMAT:
-        raise ConfigError(f"{path}: not a radaraug proxy manifest")
-    files = data["files"]
-    cal = out / files["calibration"]["path"]
-    tests = [(out / t["path"], int(t["count"])) for t in files["tests"]]
-    for p in [cal, *(p for p, _ in tests)]:
-        if not p.is_file():
-            raise ConfigError(f"{path}: lists {p.name}, which is missing")
-    return ProxySet(cal, tests, RadarConfig.from_dict(data["config"]), manifest=path)
+    return load_generated_set(out_dir, MANIFEST_NAME, MANIFEST_FORMAT, "proxy manifest")[0]
 
 
 def _reusable(out: Path, settings: dict[str, Any]) -> ProxySet | None:
-    """The existing set when ``out`` holds a complete one made with ``settings``."""
-    from radaraug.io import open_capture
-
-    try:
-        data = load_json(out / MANIFEST_NAME, error=ConfigError, what="proxy manifest")
-        if data.get("format") != MANIFEST_FORMAT or data.get("settings") != settings:
-            return None
-        found = load_proxy(out)
-        expected = [(found.calibration, settings["calibration_frames"])]
-        expected += [(p, settings["frames_per_count"]) for p, _ in found.tests]
-        for p, n in expected:
-            with open_capture(p) as cap:
-                if cap.num_frames != n or cap.config != RadarConfig.bgt60tr13c():
-                    return None
-        for name in data["files"].get("motion", []):
-            if not (out / MOTION_DIR / name).is_file():
-                return None
-    except Exception:  # noqa: BLE001 - anything unreadable means: generate again
+    """The existing set when ``out`` holds a complete one made with ``settings`` (its motion files too)."""
+    reused = reusable_generated_set(out, MANIFEST_NAME, MANIFEST_FORMAT, settings, RadarConfig.bgt60tr13c())
+    if reused is None:
         return None
-    found.reused = True
-    return found
+    found, data = reused
+    motion = data["files"].get("motion", [])
+    return found if isinstance(motion, list) and all((out / MOTION_DIR / str(n)).is_file() for n in motion) else None
 
 
 def _write_file(twin: DigitalTwin, path: Path, walks: list[dict[str, Any]], noise_base: int, attrs: dict[str, Any],
@@ -497,10 +476,7 @@ def make_proxy(
 def _generate(out: Path, settings: dict[str, Any], frames_per_count: int, calibration_frames: int, seed: int,
               counts: tuple[int, ...], progress: bool, device: str, tracer_options: dict[str, Any]) -> ProxySet:
     started = time.perf_counter()
-    out.mkdir(parents=True, exist_ok=True)
-    manifest_path = out / MANIFEST_NAME
-    if manifest_path.exists():
-        manifest_path.unlink()  # the set is incomplete until a new manifest is written
+    manifest_path = start_generated_set(out, MANIFEST_NAME)
     motion_dir = out / MOTION_DIR
     motion_dir.mkdir(exist_ok=True)
 
