@@ -52,7 +52,7 @@ from radaraug.training.pipeline import (
     make_dr,
     rd_db_chain,
 )
-from radaraug.training.testset import check_inputs, parse_test_entry
+from radaraug.training.testset import check_inputs, dataset_entries, parse_test_entry
 from radaraug.transforms import CalibratedDR
 
 PROFILE_FIT_FORMAT = "radaraug-profile-fit"
@@ -98,8 +98,11 @@ class RadarDataModule(L.LightningDataModule):
             its radar config is the one simulated. None with no ``test``: the held-out proxy's.
             ``cdr_profile`` fits its profile on it, so it must be a capture (or give ``profile``).
         test: test captures, each ``{"path": ..., "count": N}`` or ``"PATH:N"`` (whole file has N
-            people) or ``{"path": ...}`` / ``"PATH"`` (per-frame ``count`` labels in the file). None: the
-            held-out proxy.
+            people) or ``{"path": ...}`` / ``"PATH"`` (per-frame ``count`` labels in the file), or a
+            :class:`~radaraug.io.RadarCaptureDataset` whose label is the people count (in a recipe:
+            ``class_path: radaraug.io.RadarCaptureDataset`` with ``init_args``; no transform of its
+            own: the module applies its RD chain, see :func:`~radaraug.training.testset.dataset_entries`).
+            None: the held-out proxy.
         proxy_dir: where the held-out proxy is generated (and reused) when it is needed (None:
             ``cache_dir/proxy``).
         proxy_frames_per_count: test frames per people count of a generated proxy.
@@ -178,7 +181,7 @@ class RadarDataModule(L.LightningDataModule):
         method: str = "randomdr",
         scene: str = "corridor",
         calibration: str | None = None,
-        test: list[dict[str, Any] | str] | None = None,
+        test: list[RadarCaptureDataset | str | dict[str, Any]] | None = None,
         proxy_dir: str | None = None,
         proxy_frames_per_count: int = 120,
         train_items: int = 1200,
@@ -220,11 +223,21 @@ class RadarDataModule(L.LightningDataModule):
             raise ConfigError(f"cdr_floor must be one of {CDR_FLOORS} or null, got {cdr_floor!r}")
         check_representation(representation)
         # dr is an object: the saved config (LightningCLI's config.yaml) names it, hparams cannot
-        self.save_hyperparameters(ignore=["dr", "simulated"])
+        self.save_hyperparameters(ignore=["dr", "simulated", "test"])
         cache = Path(cache_dir) if cache_dir is not None else default_cache_dir()
         self.hparams["cache_dir"] = str(cache)
         self.hparams["proxy_dir"] = str(proxy_dir) if proxy_dir is not None else str(cache / "proxy")
-        self.hparams["test"] = None if test is None else [parse_test_entry(e, f"test[{i}]") for i, e in enumerate(test)]
+        # Test datasets given as objects are used as they are; hparams keeps their files (entries
+        # with the dataset's index), so the checks and the saved config see every test file.
+        self._given_tests = [e for e in test or [] if isinstance(e, RadarCaptureDataset)]
+        entries: list[dict[str, Any]] = []
+        for i, e in enumerate(test or []):
+            if isinstance(e, RadarCaptureDataset):
+                k = self._given_tests.index(e)
+                entries += [{**d, "dataset": k} for d in dataset_entries(e, f"test[{i}]")]
+            else:
+                entries.append(parse_test_entry(e, f"test[{i}]"))
+        self.hparams["test"] = None if test is None else entries
         self.task, self.method = task, method
         self._given_dr, self._given_simulated = dr, simulated
         if clip_range is not None and len(clip_range) != 2:
@@ -399,8 +412,13 @@ class RadarDataModule(L.LightningDataModule):
         tests: list[RadarCaptureDataset] = []
         for entry in test:
             count = entry.get("count")
-            tests.append(RadarCaptureDataset(entry["path"], label="count" if count is None else int(count),
-                                             transform=rd_db_chain()))
+            if "dataset" not in entry:
+                tests.append(RadarCaptureDataset(entry["path"], label="count" if count is None else int(count),
+                                                 transform=rd_db_chain()))
+            elif self._given_tests[entry["dataset"]] not in tests:
+                given = self._given_tests[entry["dataset"]]
+                given.transform = rd_db_chain()
+                tests.append(given)
         for t in tests:
             if t.config != self.config:
                 raise ConfigError(f"test capture {t.paths[0]} has another radar config ({t.config.describe()}) "

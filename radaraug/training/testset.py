@@ -27,6 +27,7 @@ import math
 import warnings
 from collections.abc import Mapping, Sequence
 from os import PathLike
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -66,6 +67,41 @@ def parse_test_entry(entry: Any, where: str = "test") -> dict[str, Any]:
         raise ConfigError(f"{where} must be PATH, PATH:COUNT or a mapping with a 'path' (and optionally 'count'), "
                           f"got {entry!r}")
     return dict(entry)
+
+
+def dataset_entries(dataset: Any, where: str = "test") -> list[dict[str, Any]]:
+    """The test entries ``{"path", "count"?}`` of a :class:`~radaraug.io.RadarCaptureDataset` given as a test set.
+
+    Its frames must carry people counts: the whole files' count (``label=N``), the files' per-frame
+    ``count`` labels (``label="count"``) or a count per file (``label={path: N}``). One frame per
+    item and no transform of its own: the data module applies its RD chain, as to the simulated
+    maps, so that both go through the same one.
+
+    Raises:
+        ConfigError: another kind of dataset or label, several frames per item, or a transform
+            (each message names ``where``).
+    """
+    from radaraug.io import RadarCaptureDataset
+
+    if not isinstance(dataset, RadarCaptureDataset):
+        raise ConfigError(f"{where} must be PATH, PATH:COUNT, a mapping or a RadarCaptureDataset, "
+                          f"got {type(dataset).__name__}")
+    if dataset.frames_per_item != 1 or dataset.transform is not None or dataset.target_transform is not None \
+            or dataset.as_counts:
+        raise ConfigError(f"{where}: a test RadarCaptureDataset gives one frame per item, in SDK floats, with no "
+                          "transform of its own (the data module applies its RD chain to it)")
+    label = dataset.label
+    if label == "count":
+        return [{"path": str(p)} for p in dataset.paths]
+    if isinstance(label, Mapping):
+        try:
+            return [{"path": str(p), "count": label[next(k for k in label if Path(k) == p)]} for p in dataset.paths]
+        except StopIteration:
+            raise ConfigError(f"{where}: its label mapping does not name every file ({dataset.paths})") from None
+    if isinstance(label, (int, np.integer)) and not isinstance(label, bool):
+        return [{"path": str(p), "count": int(label)} for p in dataset.paths]
+    raise ConfigError(f"{where}: a test RadarCaptureDataset's label must be the people count (an int, 'count' "
+                      f"for the files' per-frame labels, or a count per file), got {label!r}")
 
 
 def _whole_count(value: Any, where: str) -> int:

@@ -172,3 +172,31 @@ def test_a_simulated_dataset_given_as_an_object_is_used_as_given(tmp_path, captu
     with pytest.raises(ConfigError, match="at least"):
         RadarDataModule(task="counting", method="rt", calibration=str(cal), test=[f"{tests[0][0]}:0"],
                         simulated=short, cache_dir=str(tmp_path / "c"), **kw).setup("fit")
+
+
+def test_test_captures_as_dataset_objects(tmp_path):
+    """A RadarCaptureDataset labelled with people counts is a test set as it is (the module gives it its RD
+    chain); its files are checked like path entries; one that cannot be scored is refused up front."""
+    from radaraug.io import RadarCaptureDataset
+
+    cfg = small_config()
+    cal = write_capture(tmp_path / "empty.h5", point_scatterer_frames(cfg, 0, 6, 1), cfg)
+    one = write_capture(tmp_path / "one.h5", point_scatterer_frames(cfg, 1, 4, 2), cfg)
+    two = write_capture(tmp_path / "two.h5", point_scatterer_frames(cfg, 2, 5, 3), cfg)
+    given = RadarCaptureDataset([one, two], label={str(one): 1, str(two): 2})
+    dm = RadarDataModule(task="counting", method="rt", calibration=str(cal), test=[f"{cal}:0", given],
+                         cache_dir=str(tmp_path / "c"), **SMALL)
+    assert dm.hparams["test"] == [{"path": str(cal), "count": 0}, {"path": str(one), "count": 1, "dataset": 0},
+                                  {"path": str(two), "count": 2, "dataset": 0}]
+    dm.setup("fit")
+    assert given.transform is not None  # the module's RD chain
+    assert sorted(int(y) for _, y in dm._test) == [0] * 6 + [1] * 4 + [2] * 5
+    x, _ = dm._test[6]
+    assert x.shape == (cfg.num_rx, cfg.num_range_bins, cfg.num_chirps_per_frame)  # dB maps, as from a path entry
+    with pytest.raises(ConfigError, match="test\\[0\\]: a test RadarCaptureDataset gives one frame per item"):
+        RadarDataModule(test=[RadarCaptureDataset(one, label=1, frames_per_item=2)])
+    with pytest.raises(ConfigError, match="label must be the people count"):
+        RadarDataModule(test=[RadarCaptureDataset(one, label=1.5)])
+    with pytest.raises(ConfigError, match="outside the counting task"):
+        RadarDataModule(task="counting", method="rt", calibration=str(cal), test=[RadarCaptureDataset(two, label=3)],
+                        cache_dir=str(tmp_path / "c"), **SMALL).setup("fit")

@@ -85,12 +85,13 @@ def test_ddp_two_gloo_processes_each_simulate_their_own_shard(recipe, tmp_path, 
 
 def test_objects_and_override_files_through_the_cli(tmp_path, captures, monkeypatch):
     # a backbone and a DR as class_path objects, an ablation override as a second --config, test captures
-    # spelt PATH:COUNT as on reproduce's command line
+    # spelt PATH:COUNT as on reproduce's command line and as a RadarCaptureDataset object
     monkeypatch.chdir(tmp_path)
     cal, tests = captures
     args = _small_args(tmp_path, captures)
     i = args.index("--data.test")
-    args[i + 1] = f"[{tests[0][0]}:0, {tests[1][0]}]"
+    given = {"class_path": "radaraug.io.RadarCaptureDataset", "init_args": {"paths": str(tests[1][0]), "label": "count"}}
+    args[i + 1] = json.dumps([f"{tests[0][0]}:0", str(tests[1][0]), given])
     backbone = json.dumps({"class_path": "radaraug.training.TorchvisionClassifier", "init_args": {"arch": "resnet18"}})
     dr = json.dumps({"class_path": "radaraug.transforms.RandomDR", "init_args": {"mean_db": [-90.0, -80.0], "seed": 3}})
     rc = main(["train", "fit", "--config", "counting_rt", "--config", "ablation/rt_paper_image",
@@ -101,5 +102,6 @@ def test_objects_and_override_files_through_the_cli(tmp_path, captures, monkeypa
     assert saved["model"]["backbone"]["init_args"]["arch"] == "resnet18"
     assert saved["data"]["dr"]["class_path"] == "radaraug.transforms.RandomDR"
     assert saved["data"]["representation"] == "paper" and saved["data"]["method"] == "rt"
+    assert saved["data"]["test"][2]["class_path"] == "radaraug.io.RadarCaptureDataset"
     info = json.loads((tmp_path / "lightning_logs" / "version_0" / "clip_range.json").read_text())
     assert info["task"] == "counting"
