@@ -51,7 +51,7 @@ def plot_limb_doppler_check(path: str | os.PathLike, frames: int = 4) -> Path:
     The twin with the echo's velocity at the segment centre (before issue 22) and at the specular
     point (now). Paper corridor, walker only, ideal receiver, no multipath; one panel per frame.
     """
-    plt = lazy_import("matplotlib.pyplot", feature="figures")
+    lazy_import("matplotlib.pyplot", feature="figures")  # a missing matplotlib fails before the simulation
     from radaraug.scene.people import Walker
     from radaraug.scene.people.skeleton import without_turn
     from radaraug.scene.scene import Scene
@@ -74,13 +74,20 @@ def plot_limb_doppler_check(path: str | os.PathLike, frames: int = 4) -> Path:
     curves = {"a trace at every chirp (reference)": doppler_profiles_db(ref),
               "twin, echo at the centre's velocity (before)": doppler_profiles_db(before),
               "twin, echo at the specular point (now)": doppler_profiles_db(now)}
-    m = cfg.num_chirps_per_frame
-    bins = torch.arange(m) - m // 2
-    fig, axes = plt.subplots(1, frames, figsize=(3.2 * frames, 3.0), sharey=True)
+    return _plot_doppler_profiles(path, curves, times)
+
+
+def _plot_doppler_profiles(path: str | os.PathLike, curves: dict[str, torch.Tensor], times: torch.Tensor) -> Path:
+    """One panel per frame: the profiles ``(T, chirps)`` dB of ``curves`` (the first is the reference, black)."""
+    plt = lazy_import("matplotlib.pyplot", feature="figures")
+    ref = next(iter(curves.values()))
+    m = ref.shape[-1]
+    bins = torch.arange(m) - m // 2  # RangeDoppler centres zero Doppler
+    fig, axes = plt.subplots(1, ref.shape[0], figsize=(3.2 * ref.shape[0], 3.0), sharey=True)
     for k, ax in enumerate(axes):
-        top = float(curves["a trace at every chirp (reference)"][k].max())
+        top = float(ref[k].max())
         for (label, c), style in zip(curves.items(), ("k-", "C3--", "C0:")):
-            ax.plot(bins, c[k] - top, style, label=label, lw=1.4)  # RangeDoppler centres zero Doppler
+            ax.plot(bins, c[k] - top, style, label=label, lw=1.4)
         ax.set_title(f"t = {float(times[k]):.2f} s", fontsize=9)
         ax.set_xlabel("Doppler bin")
         ax.set_ylim(-45, 3)
@@ -143,25 +150,10 @@ def shadow_in_frame_profiles(frames: int = 6, intervals: tuple[int, ...] = (0, 2
 
 def plot_shadow_in_frame_check(path: str | os.PathLike, frames: int = 4) -> Path:
     """A turning rod's Doppler profiles: a trace at every chirp vs the twin with its shadow held or moving."""
-    plt = lazy_import("matplotlib.pyplot", feature="figures")
+    lazy_import("matplotlib.pyplot", feature="figures")  # a missing matplotlib fails before the simulation
     curves = shadow_in_frame_profiles(frames, intervals=(0, 2))
     labels = {"reference": "a trace at every chirp (reference)",
               "shadow_intervals=0": "twin, shadow held for the frame (default)",
               "shadow_intervals=2": "twin, shadow_intervals=2"}
-    m = curves["reference"].shape[-1]
-    bins = torch.arange(m) - m // 2
-    fig, axes = plt.subplots(1, frames, figsize=(3.2 * frames, 3.0), sharey=True)
-    for k, ax in enumerate(axes):
-        top = float(curves["reference"][k].max())
-        for (key, c), style in zip(curves.items(), ("k-", "C3--", "C0:")):
-            ax.plot(bins, c[k] - top, style, label=labels[key], lw=1.4)
-        ax.set_title(f"t = {0.14 * k:.2f} s", fontsize=9)
-        ax.set_xlabel("Doppler bin")
-        ax.set_ylim(-45, 3)
-        ax.grid(alpha=0.3)
-    axes[0].set_ylabel("power re reference peak (dB)")
-    axes[0].legend(fontsize=7, loc="lower left")
-    fig.tight_layout()
-    out = atomic_savefig(fig, path, dpi=110)
-    plt.close(fig)
-    return out
+    times = torch.arange(frames, dtype=torch.float64) * 0.14
+    return _plot_doppler_profiles(path, {labels[k]: c for k, c in curves.items()}, times)

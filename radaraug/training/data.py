@@ -529,9 +529,7 @@ class RadarDataModule(L.LightningDataModule):
         q = matched_floor_quantiles(dr.quantiles_db, twin)
         if self.trainer is not None and self.trainer.world_size > 1:
             q = self.trainer.strategy.broadcast(q, src=0)
-        return CalibratedDR(dr.mean_db, dr.std_db, chain=dr.chain, config=dr.config, map_shape=dr.map_shape,
-                            source=dr.source, num_frames=dr.num_frames, motion=dr.motion, floor="empirical",
-                            quantiles_db=q, seed=self.hparams["dr_seed"] + 1000 * _rank_world(self.trainer)[0])
+        return dr.replace(floor="empirical", quantiles_db=q, seed=self.hparams["dr_seed"] + 1000 * _rank_world(self.trainer)[0])
 
     def _estimate_clip(self, train: CachedMaps) -> tuple[float, float]:
         maps = train.maps(slice(0, 256))

@@ -121,10 +121,7 @@ def make_dr(
         fitted = CalibratedDR.load(calibration)
     else:
         fitted = CalibratedDR.fit(calibration, progress=False)
-    return CalibratedDR(fitted.mean_db, fitted.std_db, chain=fitted.chain, config=fitted.config,
-                        map_shape=fitted.map_shape, source=fitted.source, num_frames=fitted.num_frames,
-                        motion=fitted.motion, floor=("empirical" if cdr_floor == "matched" else cdr_floor) or fitted.floor, quantiles_db=fitted.quantiles_db,
-                        seed=seed)
+    return fitted.replace(floor=("empirical" if cdr_floor == "matched" else cdr_floor) or fitted.floor, seed=seed)
 
 
 def check_representation(representation: str) -> str:

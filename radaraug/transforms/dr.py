@@ -411,6 +411,22 @@ class CalibratedDR(_DRClamp):
 
         CalibrationRecord.from_cdr(self).save(path)
 
+    def replace(self, **changes: Any) -> CalibratedDR:
+        """A copy with ``changes`` to its constructor arguments (e.g. ``floor=``, ``quantiles_db=``, ``seed=``).
+
+        The fitted numbers, chain, config and map shape are kept unless changed, and so are the
+        provenance and the file it was loaded from (named by the errors raised when it is used).
+
+        Raises:
+            CalibrationError: a changed value the constructor refuses.
+        """
+        kept = {"mean_db": self.mean_db, "std_db": self.std_db, "chain": self.chain, "config": self.config,
+                "map_shape": self.map_shape, "source": self.source, "num_frames": self.num_frames,
+                "motion": self.motion, "floor": self.floor, "quantiles_db": self.quantiles_db}
+        made = type(self)(**(kept | changes))
+        made.file, made.provenance = self.file, dict(self.provenance)
+        return made
+
     @classmethod
     def load(cls, path: str | os.PathLike, **kwargs: Any) -> CalibratedDR:
         """Read a calibration record (or an older CalibratedDR JSON); ``kwargs`` go to the constructor.

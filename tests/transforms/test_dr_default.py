@@ -73,6 +73,14 @@ def test_load_is_the_explicit_path_to_a_saved_calibration(tmp_path, cfg, empty_r
         cdr(torch.zeros(2, 3, 64, 32))
     with pytest.raises(CalibrationError, match="if_gain_dB"):
         cdr.check_config(cfg.replace(if_gain_dB=40))
+    # replace(): the same calibration with another floor or seed, its numbers, provenance and file kept
+    other = cdr.replace(floor="empirical", seed=5)
+    assert (other.mean_db, other.std_db, other.map_shape, other.chain, other.config) == (
+        cdr.mean_db, cdr.std_db, cdr.map_shape, cdr.chain, cdr.config)
+    assert other.floor == "empirical" and torch.equal(other.quantiles_db, cdr.quantiles_db)
+    assert other.provenance == cdr.provenance and other.file == cdr.file and cdr.floor == "normal"
+    with pytest.raises(CalibrationError, match="floor must be one of"):
+        cdr.replace(floor="flat")
 
 
 def test_fit_is_the_explicit_path_from_a_capture(tmp_path, cfg, empty_room):
