@@ -10,6 +10,7 @@ Sub-commands::
     radaraug bench diagnose [--json]            diagnose a 100-frame paper-config capture vs simulating it
     radaraug bench static-room [--json]         room trace: image method vs SBR ray counts, convergence
     radaraug bench micro-doppler --out PNG      a walker's micro-Doppler: one snapshot vs motion in the frame
+    radaraug bench people-level --capture PATH  a moving person's level in captures vs the twin's walker
     radaraug trace SCENE [--time T] [--json]    the propagation paths of one instant
     radaraug simulate SCENE --frames N --seed S -o out.h5 [--shard i/n] [--profile P] [--accelerator A] [--resume|--overwrite] [--json]
     radaraug demo [-o DIR] [--overwrite] [--json]   capture walkthrough: the bundled recording, a fitted CalibratedDR
@@ -248,6 +249,10 @@ def _cmd_bench(args: argparse.Namespace) -> int:
         from radaraug.bench.micro_doppler import micro_doppler_before_after
 
         result = micro_doppler_before_after(args.out or "micro_doppler_before_after.png")
+    elif args.what == "people-level":
+        from radaraug.bench.people_level import run_people_level_benchmark
+
+        result = run_people_level_benchmark(args.capture or [], out=args.out)
     elif args.what == "training":
         from radaraug.bench.training import run_training_benchmark
 
@@ -636,7 +641,9 @@ def build_parser() -> argparse.ArgumentParser:
 
     bench = command("bench", _cmd_bench, help="benchmarks (figures as ratios against a same-process baseline)")
     bench.add_argument("what", choices=["transforms", "twin", "training", "diagnose", "static-room",
-                                        "micro-doppler"], help="which benchmark (docs/benchmarks.md)")
+                                        "micro-doppler", "people-level"], help="which benchmark (docs/benchmarks.md)")
+    bench.add_argument("--capture", action="append", default=None,
+                       help="people-level: a capture with a moving person (.h5 or Infineon folder); repeat for more")
     bench.add_argument("--batch", type=int, default=32, help="transforms, training: frames per batch")
     bench.add_argument("--repeats", type=int, default=5, help="transforms: timed repetitions; training: steps")
     bench.add_argument("--blocks", type=int, default=8, help="twin: 16-frame blocks per process")

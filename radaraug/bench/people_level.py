@@ -1,0 +1,51 @@
+"""`radaraug bench people-level`: a moving person's level in captures against the twin's walker.
+
+The signal side of the twin measured as its noise side was (issue 22, item 3): for each capture with a
+moving person, :func:`radaraug.calibration.people_level.fit_people_level` (capture-minus-twin MTI peak
+at matched range bin, in dBFS). The baseline is the twin itself, simulated in the same process at each
+capture's config and IF gain. ``benchmarks/people_level_cpu.json`` holds the public recordings' fits.
+"""
+
+from __future__ import annotations
+
+import os
+import platform
+from collections.abc import Sequence
+from pathlib import Path
+from typing import Any
+
+from radaraug.bench import write_figures
+
+
+def run_people_level_benchmark(
+    captures: Sequence[str | os.PathLike], *, out: str | os.PathLike | None = None,
+) -> dict[str, Any]:
+    """Fit every capture (radaraug .h5 or Infineon recording folder) and return the figures.
+
+    Each is keyed by its file or folder name. Also written as JSON to ``out``.
+
+    Raises:
+        ConfigError: no captures given.
+        CalibrationError: a capture without enough frames of a moving person (the message names it).
+    """
+    import torch
+
+    from radaraug.calibration.people_level import fit_people_level
+    from radaraug.errors import ConfigError
+    from radaraug.units import DB_CONVENTION
+
+    if not captures:
+        raise ConfigError("bench people-level: give the captures with a moving person (--capture PATH, repeated)")
+    fits = {Path(c).name: fit_people_level(c).to_dict() for c in captures}
+    figures: dict[str, Any] = {
+        "benchmark": "people-level",
+        "db_convention": DB_CONVENTION,
+        "what": "capture-minus-twin MTI range-Doppler peak (RX1, dBFS) of a moving person at matched range bin; "
+                "twin = DigitalTwin(corridor) at the capture's config and IF gain, single walkers crossing the "
+                "same ranges (radaraug.calibration.people_level.fit_people_level, defaults)",
+        "torch": torch.__version__,
+        "machine": platform.machine(),
+        "recordings": fits,
+    }
+    write_figures(out, figures)
+    return figures
