@@ -16,7 +16,7 @@ from __future__ import annotations
 import dataclasses
 import functools
 from collections.abc import Sequence
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Literal, overload
 
 import torch
 
@@ -312,7 +312,17 @@ class DigitalTwin:
                                   torch.zeros(0, 2, self.config.num_rx, n, device=self.device, dtype=self.dtype))
         return self._static_basis
 
-    def shadow_signal(self, people: Sequence[Any], times: torch.Tensor, *, quadrature: bool = False) -> Any:
+    @overload
+    def shadow_signal(self, people: Sequence[Any], times: torch.Tensor, *,
+                      quadrature: Literal[False] = False) -> torch.Tensor | None: ...
+
+    @overload
+    def shadow_signal(self, people: Sequence[Any], times: torch.Tensor, *,
+                      quadrature: Literal[True]) -> tuple[torch.Tensor, torch.Tensor] | None: ...
+
+    def shadow_signal(
+        self, people: Sequence[Any], times: torch.Tensor, *, quadrature: bool = False,
+    ) -> torch.Tensor | tuple[torch.Tensor, torch.Tensor] | None:
         """``(T, RX, chirps, N)`` what the people's shadow changes in the room's signal, or None.
 
         ``(T, RX, 1, N)``, broadcast over chirps, where the shadow is held for the frame
