@@ -101,10 +101,9 @@ def reusable_generated_set(out: Path, manifest_name: str, manifest_format: str, 
     from radaraug.io import open_capture
 
     try:
-        data = load_json(out / manifest_name, error=ConfigError, what="manifest")
-        if data.get("format") != manifest_format or data.get("settings") != settings:
+        found, data = load_generated_set(out, manifest_name, manifest_format, "manifest")
+        if data.get("settings") != settings:
             return None
-        found, _ = load_generated_set(out, manifest_name, manifest_format, "manifest")
         expected = [(found.calibration, settings["calibration_frames"])]
         expected += [(p, settings["frames_per_count"]) for p, _ in found.tests]
         for p, n in expected:

@@ -143,12 +143,23 @@ def _phase_terms(
     g_hi, g_lo = g.amax(dim=-1), g.amin(dim=-1)
     g_bar, half = (g_hi + g_lo) / 2, (g_hi - g_lo) / 2
     slow = tau_m * (timing.f0 - 0.5 * timing.slope * tau_m) + (g - g_bar[..., None]) * nc
-    lin = timing.f0 * r + timing.slope * (tau0 + r * timing.adc_delay) * (1 - r)
-    per_sample = lin / timing.fs + g_bar
+    per_sample, quad = _fast_time_rate(tau0, r, g_bar, timing)
     theta = 2 * math.pi * half * nc
     w = (g - g_bar[..., None]) / torch.where(half > 0, half, torch.ones_like(half))[..., None]
-    quad = timing.slope * r * (1 - r / 2) / timing.fs**2
     return _frac(slow), per_sample, theta, quad, w
+
+
+def _fast_time_rate(
+    tau0: torch.Tensor, r: torch.Tensor, g_bar: torch.Tensor, timing: ChirpTiming,
+) -> tuple[torch.Tensor, torch.Tensor]:
+    """A path's fast-time phase: its linear rate and its quadratic term, float64.
+
+    The rate in cycles per sample (beat + Doppler + the coupling's centre ``g_bar``), the quadratic
+    term ``S r (1 - r/2) t_n^2`` in cycles per sample^2. Both :func:`_phase_terms` and the RX-sharing
+    bound of :func:`_coupling_phase` use it.
+    """
+    lin = timing.f0 * r + timing.slope * (tau0 + r * timing.adc_delay) * (1 - r)
+    return lin / timing.fs + g_bar, timing.slope * r * (1 - r / 2) / timing.fs**2
 
 
 def _fast_time_cos_sin(
@@ -361,10 +372,7 @@ def _coupling_phase(
     alone = theta.reshape(-1, P).amax(dim=0)
     if not _SHARE_RX or delay_s.dim() < 2 or delay_s.shape[-2] < 2:
         return alone, None
-    # The fast-time rate of _phase_terms (beat + Doppler + the coupling's centre g_bar) and the quadratic term.
-    tau = delay_s.double() + r * timing.adc_delay
-    rate = (timing.f0 * r + timing.slope * tau * (1 - r)) / timing.fs + k * mid
-    quad = timing.slope * r * (1 - r / 2) / timing.fs**2
+    rate, quad = _fast_time_rate(delay_s.double(), r, k * mid, timing)  # as _phase_terms gives them
     d_rate = (rate - rate.mean(dim=-2, keepdim=True)).abs()
     d_quad = (quad - quad.mean(dim=-2, keepdim=True)).abs()
     quad_err = (2 * math.pi * (timing.num_samples - 1) ** 2 * d_quad).reshape(-1, P).amax(dim=0)

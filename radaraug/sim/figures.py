@@ -127,6 +127,11 @@ class TurningRod:
                           self.velocity.expand(n, 1, 3).clone(), "skin", spin.clone())
 
 
+def rod_frame_times(frames: int) -> torch.Tensor:
+    """Start times ``(frames,)`` of the turning-rod check's frames: 0.14 s apart (the rod turns 0.84 rad)."""
+    return torch.arange(frames, dtype=torch.float64) * 0.14
+
+
 def shadow_in_frame_profiles(frames: int = 6, intervals: tuple[int, ...] = (0, 2)) -> dict[str, torch.Tensor]:
     """Doppler profiles ``(T, chirps)`` dB of a :class:`TurningRod` in the paper corridor.
 
@@ -139,7 +144,7 @@ def shadow_in_frame_profiles(frames: int = 6, intervals: tuple[int, ...] = (0, 2
 
     scene = Scene.builtin("corridor")
     rod = TurningRod()
-    times = torch.arange(frames, dtype=torch.float64) * 0.14
+    times = rod_frame_times(frames)
     out = {"reference": doppler_profiles_db(traced_at_every_chirp("corridor", [rod], times))}
     for k in intervals:
         twin = DigitalTwin(scene, receiver=FMCWReceiver(scene.config, effects=[]), multipath=False,
@@ -155,5 +160,4 @@ def plot_shadow_in_frame_check(path: str | os.PathLike, frames: int = 4) -> Path
     labels = {"reference": "a trace at every chirp (reference)",
               "shadow_intervals=0": "twin, shadow held for the frame (default)",
               "shadow_intervals=2": "twin, shadow_intervals=2"}
-    times = torch.arange(frames, dtype=torch.float64) * 0.14
-    return _plot_doppler_profiles(path, {labels[k]: c for k, c in curves.items()}, times)
+    return _plot_doppler_profiles(path, {labels[k]: c for k, c in curves.items()}, rod_frame_times(frames))

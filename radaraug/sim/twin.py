@@ -276,10 +276,11 @@ class DigitalTwin:
         paths = correction_paths(self.tracer.static_paths(), t.reshape(-1, t.shape[-1]))
         if weights is not None:
             n_frames, n_knots = t.shape[:2]
-            parts = []
+
             def knot(x: torch.Tensor, j: int) -> torch.Tensor:
                 return x.reshape(n_frames, n_knots, *x.shape[1:])[:, j]
 
+            parts = []
             for j in range(n_knots):
                 p = paths.map(functools.partial(knot, j=j))
                 gain = weights[:, j].to(device=p.delay_s.device, dtype=p.delay_s.dtype)
