@@ -8,7 +8,7 @@ STAMP := $(VENV)/.installed
 
 RUNTIME_VENV := .venv-runtime
 
-.PHONY: demo test test-all test-runtime lint bench clean
+.PHONY: demo test test-all test-runtime lint bench clean gpu-wheels gpu-check
 
 $(STAMP): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -48,5 +48,21 @@ bench: $(STAMP)
 	$(VENV)/bin/radaraug bench diagnose --out benchmarks/diagnose_cpu.json
 	$(VENV)/bin/radaraug bench static-room --out benchmarks/static_room_cpu.json --figure docs/img/twin/static_profile_vs_density.png
 
+# GPU checks (docs/gpu.md). `make gpu-wheels` (a machine with internet) downloads the wheels a GPU
+# machine with Python 3.12, PyTorch, torchvision, Lightning, h5py, matplotlib, scipy and tqdm lacks;
+# `make gpu-check` (on the GPU machine, the repository and gpu_wheels/ copied there) installs them and
+# the package and runs the CUDA tests, benchmarks and a GPU reproduce, all output in gpu_check_out/.
+GPU_PYTHON ?= python3
+GPU_WHEELS := trimesh==5.2.0 pyusb==1.3.1 jsonargparse==4.53.0 docstring_parser==0.18.0 \
+	typeshed_client==2.15.0 setuptools==84.2.1
+
+gpu-wheels:
+	$(PYTHON) -m pip download --no-deps --only-binary=:all: --python-version 3.12 --implementation cp \
+		--platform manylinux_2_28_x86_64 --platform manylinux_2_17_x86_64 --platform manylinux2014_x86_64 \
+		-d gpu_wheels $(GPU_WHEELS)
+
+gpu-check:
+	$(GPU_PYTHON) scripts/gpu_check.py --out gpu_check_out $(GPU_CHECK_ARGS)
+
 clean:
-	rm -rf $(VENV) $(RUNTIME_VENV) demo_out build *.egg-info
+	rm -rf $(VENV) $(RUNTIME_VENV) demo_out build *.egg-info gpu_check_out

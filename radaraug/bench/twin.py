@@ -68,7 +68,13 @@ def run_twin_benchmark(
     *, blocks: int = 8, workers: int = 2, device: str = "cpu", compiled: bool = True,
     out: str | os.PathLike | None = None,
 ) -> dict[str, Any]:
-    """Measure and return the figures (also written as JSON to ``out``)."""
+    """Measure and return the figures (also written as JSON to ``out``).
+
+    On CUDA the figures are those of :func:`run_twin_benchmark_cuda` (batched frames per call,
+    with this run's one-process CPU figure beside them).
+    """
+    if torch.device(device).type == "cuda":
+        return run_twin_benchmark_cuda(device=device, compiled=compiled, out=out)
     from radaraug.bench.intersection import benchmark_intersection
     from radaraug.scene.scene import Scene
     from radaraug.sensor.receiver import FMCWReceiver
@@ -196,6 +202,114 @@ def run_twin_benchmark(
         "receiver_fast_vs_exact_rel_rms_error": float(err),
         "intersection": ix,
         "torch_version": torch.__version__,
+        "cpu": platform.processor() or platform.machine(),
+        "cpu_count": os.cpu_count(),
+    }
+    write_figures(out, result)
+    return result
+
+
+#: Frames per simulate() call on CUDA: the paper-config blocks of the CPU figure (16) up to batches
+#: that fill the GPU (the kernels' launch cost is paid once per call, not per frame).
+CUDA_FRAMES_PER_CALL = (16, 64, 256, 1024)
+CUDA_TARGET_FRAMES_PER_S = 2000.0
+"""Issue 23's target for one H100 (simulated frames/s of the paper's scene and config)."""
+
+
+def _frames_per_s(twin: DigitalTwin, per_call: int, calls: int, sync: Any) -> float:
+    """Frames/s of ``calls`` calls of ``per_call`` frames of the scene's people (after one warm-up call).
+
+    The frame indices wrap at 128 (12.8 s: the walkers are in the corridor), so larger batches
+    simulate the same kind of frames, not frames after the people left.
+    """
+    from radaraug.sim.seeding import item_generator
+
+    people = twin.scene.people
+    dev = twin.device
+
+    def call(i: int) -> None:
+        idx = (torch.arange(per_call) + i * per_call) % 128
+        twin.simulate(people, twin.frame_times(idx), generators=item_generator(0, i, device=dev))
+
+    call(0)
+    sync()
+    t0 = time.perf_counter()
+    for i in range(calls):
+        call(i + 1)
+    sync()
+    return calls * per_call / (time.perf_counter() - t0)
+
+
+def run_twin_benchmark_cuda(
+    *, device: str = "cuda", compiled: bool = True, cpu_blocks: int = 2, calls: int = 3,
+    out: str | os.PathLike | None = None,
+) -> dict[str, Any]:
+    """The twin's throughput on a GPU, against the CPU in the same process.
+
+    Figures: ``cpu_frames_per_s_1proc`` (one torch thread, blocks of 16: the CPU benchmark's
+    definition); ``frames_per_s_by_frames_per_call`` on the GPU for each of
+    :data:`CUDA_FRAMES_PER_CALL` (a batch that does not fit reads ``"out of memory"``);
+    ``speedup_vs_cpu_1proc`` of the best; the cost of ``shadow_intervals=2`` at 256 frames per
+    call; the intersection kernel on the GPU.
+    """
+    from radaraug.bench.intersection import benchmark_intersection
+    from radaraug.scene.scene import Scene
+    from radaraug.sim.twin import DigitalTwin
+
+    dev = torch.device(device)
+    scene = Scene.builtin("corridor_two_walkers")
+
+    def sync() -> None:
+        torch.cuda.synchronize(dev)
+
+    threads = torch.get_num_threads()
+    torch.set_num_threads(1)
+    try:
+        cpu_twin = DigitalTwin(scene, device="cpu")
+        cpu_twin.static_signal()
+        fps_cpu = _frames_per_s(cpu_twin, BLOCK, cpu_blocks, lambda: None)
+    finally:
+        torch.set_num_threads(threads)
+    t0 = time.perf_counter()
+    twin = DigitalTwin(scene, device=dev)
+    twin.static_signal()
+    sync()
+    room_s = time.perf_counter() - t0
+    by_size: dict[str, float | str] = {}
+    for n in CUDA_FRAMES_PER_CALL:
+        try:
+            by_size[str(n)] = round(_frames_per_s(twin, n, calls, sync), 1)
+        except torch.OutOfMemoryError:
+            by_size[str(n)] = "out of memory"
+            torch.cuda.empty_cache()
+    numbers = [v for v in by_size.values() if isinstance(v, float)]
+    best = max(numbers) if numbers else float("nan")
+    shadow = DigitalTwin(scene, device=dev, static_signal=twin.static_signal(), shadow_intervals=2)
+    fps_256 = by_size.get("256")
+    try:
+        fps_shadow = _frames_per_s(shadow, 256, calls, sync)
+    except torch.OutOfMemoryError:
+        fps_shadow = float("nan")
+    ix = benchmark_intersection(num_rays=1 << 18, num_triangles=1024, device=device, compiled=compiled)
+    cfg = twin.config
+    result: dict[str, Any] = {
+        "benchmark": "twin",
+        "scene": "corridor_two_walkers (2 walkers, 20 m corridor, people's multipath up to wall-person-wall)",
+        "frame_shape": [cfg.num_rx, cfg.num_chirps_per_frame, cfg.num_samples_per_chirp],
+        "device": str(dev),
+        "gpu": torch.cuda.get_device_name(dev),
+        "room_trace_and_synthesis_s": round(room_s, 2),
+        "cpu_frames_per_s_1proc": round(fps_cpu, 1),
+        "frames_per_s_by_frames_per_call": by_size,
+        "frames_per_s_best": round(best, 1),
+        "speedup_vs_cpu_1proc": round(best / fps_cpu, 1),
+        "target_frames_per_s": CUDA_TARGET_FRAMES_PER_S,
+        "target_met": bool(best >= CUDA_TARGET_FRAMES_PER_S),
+        "shadow_intervals_2_cost_ratio_at_256": (round(fps_256 / fps_shadow, 3)
+                                                 if isinstance(fps_256, float) and fps_shadow == fps_shadow else None),
+        "intersection": ix,
+        "torch_version": torch.__version__,
+        "cuda_version": torch.version.cuda,
         "cpu": platform.processor() or platform.machine(),
         "cpu_count": os.cpu_count(),
     }
