@@ -141,6 +141,7 @@ def _reproduce(out: Path, size: str, accelerator: str = "cuda") -> None:
 
 
 def main(argv: list[str] | None = None) -> int:
+    """Run the steps; exit 0 only when every one passed."""
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--out", default="gpu_check_out", help="folder for logs, benchmark JSON and summary.json")
     p.add_argument("--wheels", default=str(ROOT / "gpu_wheels"), help="folder of the wheels made by make gpu-wheels")

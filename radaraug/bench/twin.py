@@ -211,7 +211,7 @@ def run_twin_benchmark(
 
 #: Frames per simulate() call on CUDA: the paper-config blocks of the CPU figure (16) up to batches
 #: that fill the GPU (the kernels' launch cost is paid once per call, not per frame).
-CUDA_FRAMES_PER_CALL = (16, 64, 256, 1024)
+CUDA_FRAMES_PER_CALL = (16, 64, 256, 1024, 4096)
 CUDA_TARGET_FRAMES_PER_S = 2000.0
 """Issue 23's target for one H100 (simulated frames/s of the paper's scene and config)."""
 
