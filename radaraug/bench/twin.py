@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import os
 import platform
+import sys
 import time
 from typing import TYPE_CHECKING, Any
 
@@ -216,11 +217,12 @@ CUDA_TARGET_FRAMES_PER_S = 2000.0
 """Issue 23's target for one H100 (simulated frames/s of the paper's scene and config)."""
 
 
-def _frames_per_s(twin: DigitalTwin, per_call: int, calls: int, sync: Any) -> float:
+def _frames_per_s(twin: DigitalTwin, per_call: int, calls: int, sync: Any, budget_s: float | None = None) -> float:
     """Frames/s of ``calls`` calls of ``per_call`` frames of the scene's people (after one warm-up call).
 
     The frame indices wrap at 128 (12.8 s: the walkers are in the corridor), so larger batches
-    simulate the same kind of frames, not frames after the people left.
+    simulate the same kind of frames, not frames after the people left. With ``budget_s``, fewer
+    calls are timed when the warm-up call shows that ``calls`` would take longer (at least one).
     """
     from radaraug.sim.seeding import item_generator
 
@@ -231,8 +233,11 @@ def _frames_per_s(twin: DigitalTwin, per_call: int, calls: int, sync: Any) -> fl
         idx = (torch.arange(per_call) + i * per_call) % 128
         twin.simulate(people, twin.frame_times(idx), generators=item_generator(0, i, device=dev))
 
+    t0 = time.perf_counter()
     call(0)
     sync()
+    if budget_s is not None:
+        calls = max(1, min(calls, int(budget_s / (time.perf_counter() - t0))))
     t0 = time.perf_counter()
     for i in range(calls):
         call(i + 1)
@@ -270,24 +275,31 @@ def run_twin_benchmark_cuda(
         fps_cpu = _frames_per_s(cpu_twin, BLOCK, cpu_blocks, lambda: None)
     finally:
         torch.set_num_threads(threads)
+    print(f"bench twin: CPU (1 thread) {fps_cpu:.1f} frames/s", file=sys.stderr, flush=True)
     t0 = time.perf_counter()
     twin = DigitalTwin(scene, device=dev)
     twin.static_signal()
     sync()
     room_s = time.perf_counter() - t0
+    print(f"bench twin: CUDA room trace + static signal {room_s:.1f} s", file=sys.stderr, flush=True)
     by_size: dict[str, float | str] = {}
     for n in CUDA_FRAMES_PER_CALL:
+        t0 = time.perf_counter()
         try:
-            by_size[str(n)] = round(_frames_per_s(twin, n, calls, sync), 1)
+            by_size[str(n)] = round(_frames_per_s(twin, n, calls, sync, budget_s=8.0), 1)
         except torch.OutOfMemoryError:
             by_size[str(n)] = "out of memory"
             torch.cuda.empty_cache()
+        print(f"bench twin: {n} frames per call: {by_size[str(n)]} frames/s ({time.perf_counter() - t0:.1f} s)",
+              file=sys.stderr, flush=True)
+        if time.perf_counter() - t0 > 12.0:  # the next size would take 4x longer: it says no more
+            break
     numbers = [v for v in by_size.values() if isinstance(v, float)]
     best = max(numbers) if numbers else float("nan")
     shadow = DigitalTwin(scene, device=dev, static_signal=twin.static_signal(), shadow_intervals=2)
     fps_256 = by_size.get("256")
     try:
-        fps_shadow = _frames_per_s(shadow, 256, calls, sync)
+        fps_shadow = _frames_per_s(shadow, 256, calls, sync, budget_s=8.0)
     except torch.OutOfMemoryError:
         fps_shadow = float("nan")
     ix = benchmark_intersection(num_rays=1 << 18, num_triangles=1024, device=device, compiled=compiled)
