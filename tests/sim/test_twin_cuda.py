@@ -1,9 +1,9 @@
 """The twin on CUDA against the twin on the CPU (skipped without a GPU).
 
 Stated tolerance (docs/gpu.md): with the receiver's random stages off, a CUDA frame equals the
-CPU frame within 4 ADC codes on every sample, and at most 0.1 % of the samples are off by more
-than one code (float32 rounding differs between the devices: a code rounds the other way now and
-then, and the largest returns' phases are float32 numbers of ~1e3 rad). The
+CPU frame within one ADC code on every sample, and at most 1 % of the samples differ at all
+(float32 rounding differs between the devices, so a sample near a code boundary rounds the other
+way now and then; measured on an H200: 0.19 % of the samples, RMS 0.044 codes). The
 random stages (thermal, ADC-side and phase noise) draw from a generator on the item's device:
 the same seed gives another realisation on CUDA than on the CPU, with the same power.
 """
@@ -24,7 +24,7 @@ from radaraug.sim.twin import DigitalTwin
 pytestmark = [pytest.mark.cuda, pytest.mark.skipif(not torch.cuda.is_available(), reason="no CUDA device")]
 
 RANDOM_STAGES = ("thermal_noise", "adc_noise", "phase_noise")
-LSB = 1.0 / 4095  # one ADC code in SDK floats (12-bit ADC)
+CODE = 2.0 / 4095  # one ADC code in SDK floats (12-bit ADC, floats in [-1, 1])
 
 
 def _noiseless(scene: Scene) -> FMCWReceiver:
@@ -39,16 +39,16 @@ def _frames(device: str, receiver: FMCWReceiver | None = None, frames: int = 4) 
     return twin.simulate(scene.people, times, generators=gens)
 
 
-def test_cuda_twin_frames_match_the_cpu_within_a_few_adc_codes():
+def test_cuda_twin_frames_match_the_cpu_within_one_adc_code():
     scene = Scene.builtin("corridor_two_walkers")
     cpu = _frames("cpu", _noiseless(scene))
     gpu = _frames("cuda", _noiseless(scene))
     assert gpu.device.type == "cuda" and gpu.dtype == cpu.dtype and gpu.shape == cpu.shape
-    codes = (gpu.cpu() - cpu).abs() / LSB
-    assert float(codes.max()) <= 4.01
-    assert float((codes > 1.5).double().mean()) <= 1e-3
+    codes = (gpu.cpu() - cpu).abs() / CODE
+    assert float(codes.max()) <= 1.01
+    assert float((codes > 0.5).double().mean()) <= 0.01
     # the people are in it: the frames move between frames on both devices
-    assert float((gpu[1] - gpu[0]).abs().max()) > 10 * LSB
+    assert float((gpu[1] - gpu[0]).abs().max()) > 10 * CODE
 
 
 def test_cuda_twin_noise_has_the_cpu_power():
