@@ -92,6 +92,47 @@ def _run_step(name: str, limit: float, out: Path, args: argparse.Namespace, env:
     return {"status": status, "exit": rc, "wall_s": round(wall, 1), "limit_s": limit, "log_tail": tail}
 
 
+def projection(fits: list[float], wall: float, items: int, val_items: int, epochs: int, proxy_frames: int,
+               images_per_s: float | None) -> dict:
+    """Full mode's wall time projected from a reduced reproduce (3 methods, 1 seed, one test set).
+
+    The reduced run's runs share two simulated sets (RT/RandomDR's twin, CDR's quiet twin): the
+    median run's fit time is training alone, the rest of the runs' time above it is simulation.
+    Full mode simulates three sets (+ ``cdr_profile``'s) of 6,000 + 600 items, trains 66 runs
+    (2 tasks x (4 methods + 7 ablations) x 3 seeds) of 15 epochs and generates both test sets.
+    Upper bound: per-run training time linear in images (the run's fixed overhead scaled too).
+    Lower bound: the median run's time as fixed overhead plus the images at ``images_per_s`` (the
+    training benchmark's pipeline rate), when given.
+    """
+    from radaraug.training.reproduce import ReproduceSettings
+
+    full = ReproduceSettings.full()
+    train_s = fits[len(fits) // 2]
+    simulate_s = sum(fits) - train_s * len(fits)
+    other_s = wall - sum(fits)  # test-set generation, tests, figures
+    per_item = simulate_s / ((items + val_items) * 2)
+    per_image_epoch = train_s / ((items + val_items) * epochs)
+    full_items, full_images = (full.train_items + full.val_items) * 3, (full.train_items + full.val_items) * full.epochs
+    full_runs = 2 * (len(full.methods) + len(full.ablations)) * 3
+    other_full = other_s * full.proxy_frames_per_count / proxy_frames * 2  # both generated test sets
+    upper = per_item * full_items + per_image_epoch * full_images * full_runs + other_full
+    res = {"simulation_seconds_per_item": per_item, "training_seconds_per_image_epoch": per_image_epoch,
+           "other_seconds": round(other_s, 1), "full_mode_runs": full_runs,
+           "full_mode_projected_seconds_linear_upper_bound": round(upper)}
+    if images_per_s:
+        res["full_mode_projected_seconds_lower_bound"] = round(
+            per_item * full_items + full_runs * (train_s + full_images / images_per_s) + other_full)
+        medium = 1500 + 150
+        res["medium_projection"] = {
+            "size": "1500 train + 150 val items, 15 epochs, 128x64, 3 seeds, rt/randomdr/cdr, independent set, "
+                    "no ablations",
+            "projected_seconds": round(per_item * medium * 2 + 18 * (train_s + medium * 15 / images_per_s)
+                                       + other_s * 150 / proxy_frames),
+            "basis": "this run's simulation rate and per-run training overhead, the training benchmark's "
+                     "pipeline rate; not measured"}
+    return res
+
+
 def _reproduce(out: Path, size: str, accelerator: str = "cuda") -> None:
     """A reduced reproduce on the GPU and the full run's projected wall time from its rates."""
     import torch
@@ -109,32 +150,18 @@ def _reproduce(out: Path, size: str, accelerator: str = "cuda") -> None:
     t0 = time.perf_counter()
     rep = reproduce(out / "reproduce", seeds=1, settings=settings, accelerator=accelerator, progress=False)
     wall = time.perf_counter() - t0
-    runs = rep["runs"]
-    fits = sorted(r["fit_seconds"] for r in runs)
-    train_s = fits[len(fits) // 2]  # median: a run that trained on an already simulated set
-    simulate_s = sum(fits) - train_s * len(fits)  # what the first runs of each set spent simulating
-    other_s = wall - sum(fits)  # test sets, tests, figures
-    n_sets_sim = 2  # rt/randomdr's set and cdr's quiet-twin set
-    full_runs = 2 * (len(full.methods) + len(full.ablations)) * 3
-    full_items = (full.train_items + full.val_items) * (n_sets_sim + 1)  # + cdr_profile's set
-    per_item = simulate_s / ((items + settings.val_items) * n_sets_sim)
-    per_image_epoch = train_s / ((items + settings.val_items) * epochs)
-    projected = (per_item * full_items + per_image_epoch * (full.train_items + full.val_items) * full.epochs * full_runs
-                 + other_s * full.proxy_frames_per_count / settings.proxy_frames_per_count * 2)
+    fits = sorted(r["fit_seconds"] for r in rep["runs"])
+    rate_file = out / "training_cuda.json"  # bench_training's pipeline rate, when that step ran first
+    rate = json.loads(rate_file.read_text())["pipeline_images_per_s"] if rate_file.is_file() else None
+    proj = projection(fits, wall, items, settings.val_items, epochs, settings.proxy_frames_per_count, rate)
     res = {
         "benchmark": "reproduce_cuda", "gpu": torch.cuda.get_device_name(0) if torch.cuda.is_available() else None, "torch_version": torch.__version__,
         "size": {"train_items": items, "val_items": settings.val_items, "epochs": epochs,
                  "image_size": list(settings.image_size), "seeds": 1, "methods": list(settings.methods),
                  "test_sets": ["independent"], "sim_workers": workers},
         "wall_seconds": round(wall, 1), "fit_seconds_per_run": fits,
-        "simulation_seconds_per_item": per_item, "training_seconds_per_image_epoch": per_image_epoch,
-        "other_seconds": round(other_s, 1),
         "results": {t: {m: v["balanced_accuracy"]["mean"] for m, v in ms.items()} for t, ms in rep["results"].items()},
-        "full_mode_runs": full_runs,
-        "full_mode_projected_seconds": round(projected, 0),
-        "projection_note": "full mode = 6000+600 items on 3 simulated sets, 15 epochs, 128x64, 3 seeds, 4 methods + "
-                           "7 ablations, both generated test sets; projected from this run's median per-run fit "
-                           "(training) and its first runs' extra time (simulation), linear in items and epochs",
+        **proj,
     }
     (out / "reproduce_projection.json").write_text(json.dumps(res, indent=2))
     print(json.dumps(res, indent=2))
