@@ -16,6 +16,7 @@ Output: ``(..., RX, chirps, samples)`` in Infineon Radar SDK 3.6 floats
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from collections.abc import Mapping, Sequence
 from typing import Any
@@ -177,6 +178,24 @@ class FMCWReceiver(nn.Module):
             ``(..., RX, chirps, samples)`` in SDK floats, before DC offset and ADC.
         """
         return self.linear_state(paths).materialize()
+
+    @torch.no_grad()
+    def static_chirp(self, paths: Paths) -> torch.Tensor:
+        """One chirp ``(..., RX, samples)`` of :meth:`static_signal`, for paths that do not move.
+
+        A path with no delay rate (and no per-chirp terms) gives the same samples on every chirp, so
+        one chirp is synthesized instead of the frame's: ``static_signal(paths)[..., 0, :]`` at
+        1/chirps of the work, bit for bit for a batch of single paths (the twin's static basis) and
+        to float rounding otherwise (a GEMM of another shape sums several paths in another order).
+
+        Raises:
+            InputTensorError: a path moves (non-zero ``delay_rate``) or has per-chirp terms.
+        """
+        if paths.chirp_delay_s is not None or paths.chirp_gain is not None or bool((paths.delay_rate != 0).any()):
+            raise InputTensorError("static_chirp: the paths must not move (zero delay_rate, no per-chirp terms)")
+        state = self.linear_state(paths)
+        state.timing = dataclasses.replace(state.timing, num_chirps=1)
+        return state.materialize()[..., 0, :]
 
     @torch.no_grad()
     def linear_state(self, paths: Paths) -> ChainState:

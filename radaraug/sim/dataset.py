@@ -191,12 +191,13 @@ class SimulatedRadarDataset(Dataset):
         """Trace the room now (once), so DataLoader workers inherit it instead of each tracing it.
 
         With randomization, every room variant of the pool is traced (one room trace each, cached on disk).
+        The shadow's static basis is made here too: each worker made its own before.
         """
-        if self.randomized:
-            for k in range(len(self._rooms)):
-                self.variant_twin(k).static_signal()
-        else:
-            self.twin.static_signal()
+        twins = [self.variant_twin(k) for k in range(len(self._rooms))] if self.randomized else [self.twin]
+        for twin in twins:
+            twin.static_signal()
+            if twin.shadowing and twin.shadow_method == "signal":
+                twin.static_basis()
         return self
 
     def __len__(self) -> int:

@@ -59,3 +59,25 @@ def test_static_signal_of_another_shape_is_a_clear_error() -> None:
         rx(moving, static_signal=torch.zeros(3, 64, 128))  # computed for a 128-sample config
     with pytest.raises(InputTensorError, match="real floating-point"):
         rx(moving, static_signal=torch.zeros(3, 64, 256, dtype=torch.complex64))
+
+
+def test_static_chirp_is_the_static_signals_first_chirp() -> None:
+    import pytest
+
+    from radaraug.errors import InputTensorError
+
+    cfg = RadarConfig.bgt60tr13c()
+    rx = FMCWReceiver(cfg)
+    static = point_target_paths(cfg, positions_m=torch.tensor([[0.3, 0.0, 4.0], [-1.0, 0.2, 9.0], [0.0, 0.1, 0.4]]),
+                                rcs_m2=2.0)
+    full = rx.static_signal(static)
+    one = rx.static_chirp(static)
+    # several paths: one GEMM of another shape sums them in another order (float32 rounding)
+    assert one.shape == (3, 256) and torch.allclose(one, full[:, 0], rtol=0, atol=1e-6 * float(full.abs().max()))
+    # a batch of single paths (how the twin's static basis calls it): nothing to sum, bit for bit
+    single = static.select((slice(None), None))
+    assert torch.equal(rx.static_chirp(single), rx.static_signal(single)[:, :, 0])
+    moving = point_target_paths(cfg, positions_m=torch.tensor([[0.0, 0.0, 3.0]]),
+                                velocities_m_s=torch.tensor([[0.0, 0.0, 1.0]]))
+    with pytest.raises(InputTensorError, match="must not move"):
+        rx.static_chirp(moving)
