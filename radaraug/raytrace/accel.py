@@ -60,6 +60,7 @@ class TriangleBVH:
         padded = torch.cat([triangles, torch.zeros(1, 3, 3, dtype=dt, device=dev)])
         with torch.no_grad():
             self._planes = triangle_planes(padded)  # the padding row is NaN: never hit
+            self._planes_t = self._planes.t().contiguous()  # (12, F + 1): per-pair gathers stay contiguous
         leaf_tris = padded[self.leaf_faces]  # (L, S, 3, 3); padding rows are zeros: mask them out
         real = (self.leaf_faces < n)[..., None, None]
         big = torch.finfo(dt).max
@@ -89,7 +90,8 @@ class TriangleBVH:
         """Nearest ``t`` and face per candidate pair."""
         ray, leaf = pairs[:, 0], pairs[:, 1]
         f = self.leaf_faces[leaf]  # (P, S)
-        t = plane_distance(o[ray][:, None], d[ray][:, None], self._planes[f], lo[ray][:, None], hi[ray][:, None])
+        planes = self._planes_t.index_select(1, f.reshape(-1)).view(12, *f.shape)
+        t = plane_distance(o[ray][:, None], d[ray][:, None], planes, lo[ray][:, None], hi[ray][:, None], coef_dim=0)
         tmin, k = t.min(dim=1)
         return tmin, f.gather(1, k[:, None])[:, 0]
 

@@ -119,16 +119,17 @@ def triangle_planes(triangles: torch.Tensor) -> torch.Tensor:
 
 def plane_distance(
     o: torch.Tensor, d: torch.Tensor, planes: torch.Tensor, t_min: torch.Tensor | float,
-    t_max: torch.Tensor | float,
+    t_max: torch.Tensor | float, *, coef_dim: int = -1,
 ) -> torch.Tensor:
     """Hit distance (``inf`` on a miss) of rays ``o, d`` ``(..., 3)`` on triangles.
 
     The triangles are given by :func:`triangle_planes` rows ``(..., 12)``; all are broadcast against each
-    other.
+    other. ``coef_dim=0``: the 12 coefficients come first, ``(12, ...)`` (each a contiguous block:
+    the arithmetic then streams instead of striding over interleaved coefficients; same results).
     """
     ox, oy, oz = o.unbind(-1)
     dx, dy, dz = d.unbind(-1)
-    nx, ny, nz, nd, ux, uy, uz, u0, vx, vy, vz, v0 = planes.unbind(-1)
+    nx, ny, nz, nd, ux, uy, uz, u0, vx, vy, vz, v0 = planes.unbind(coef_dim)
     t = (nd - (nx * ox + ny * oy + nz * oz)) / (nx * dx + ny * dy + nz * dz)
     px, py, pz = ox + t * dx, oy + t * dy, oz + t * dz
     u = ux * px + uy * py + uz * pz + u0
