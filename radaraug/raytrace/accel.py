@@ -149,8 +149,29 @@ class TriangleBVH:
         *,
         t_min: torch.Tensor | float | None = None,
     ) -> torch.Tensor:
-        """``(R,)`` bool: something lies on the ray between ``t_min`` and ``t_max`` (shadow ray)."""
-        return self.intersect(origins, directions, t_min=t_min, t_max=t_max).face >= 0
+        """``(R,)`` bool: something lies on the ray between ``t_min`` and ``t_max`` (shadow ray).
+
+        The same answer as ``intersect(...).face >= 0`` without its nearest-hit bookkeeping (the
+        winning face, ties, barycentrics): a ray is blocked when any candidate pair is hit.
+        """
+        o, d = origins, directions
+        if o.ndim != 2 or o.shape[-1] != 3 or d.shape != o.shape or self.num_faces <= _BRUTE_FORCE_FACES:
+            return self.intersect(origins, directions, t_min=t_min, t_max=t_max).face >= 0
+        n = o.shape[0]
+        lo = torch.as_tensor(0.0 if t_min is None else t_min, dtype=o.dtype, device=o.device).expand(n)
+        hi = torch.as_tensor(t_max, dtype=o.dtype, device=o.device).expand(n)
+        blocked = torch.zeros(n, dtype=torch.bool, device=o.device)
+        ray_step = max(1, _PAIR_BUDGET // max(self.num_leaves, 1))
+        pair_step = max(1, _PAIR_BUDGET // self.leaf_faces.shape[1])
+        for s in range(0, n, ray_step):
+            sl = slice(s, min(n, s + ray_step))
+            pairs = self._candidates(o[sl], d[sl], lo[sl], hi[sl])
+            pairs[:, 0] += s
+            for p in range(0, pairs.shape[0], pair_step):
+                pp = pairs[p: p + pair_step]
+                t, _ = self._pair_t(o, d, lo, hi, pp)
+                blocked[pp[:, 0][torch.isfinite(t)]] = True
+        return blocked
 
 
 def _median_split(tri: np.ndarray, leaf_size: int) -> list[np.ndarray]:

@@ -32,6 +32,8 @@ def test_bvh_matches_brute_force(device, dtype, leaf_size):
     t_max = torch.where(torch.isfinite(ref.t), ref.t * 0.999, torch.full_like(ref.t, 100.0))
     shadow = bvh.any_hit(o, d, t_max)
     assert torch.equal(shadow, intersect(o, d, tri, t_max=t_max, compiled=False).valid)
+    # any_hit's own loop (no nearest-hit bookkeeping) answers as the nearest hit does, t_min too
+    assert torch.equal(bvh.any_hit(o, d, t_max, t_min=0.5), bvh.intersect(o, d, t_min=0.5, t_max=t_max).face >= 0)
 
 
 def test_axis_aligned_rays_and_flat_boxes(device):
