@@ -7,7 +7,8 @@ flat tensors: an axis-aligned box per leaf and a padded ``(L, S)`` table of tria
 Traversal (vectorized, any device): a slab test of every ray against every leaf box
 (``R x L``), then Möller–Trumbore on the triangles of the candidate (ray, leaf) pairs only, and
 a scatter-min per ray. Cost ~ ``R (L + k S)`` tests for ``k`` boxes crossed per ray, smallest
-for ``L ~ sqrt(k F)``: the default leaf size is ``~sqrt(F)``. A deeper tree would cut the box
+for ``L ~ sqrt(k F)``, i.e. ``S ~ sqrt(F / k)``: the default leaf size is ``~sqrt(F) / 2`` (``k ~ 4``,
+measured on the randomized rooms). A deeper tree would cut the box
 tests further but needs a per-ray stack (a data-dependent loop); with rooms of 10^2-10^5
 triangles the flat two-level form keeps the work in a few large tensor ops, which is what
 torch does well on both CPU and CUDA.
@@ -35,7 +36,7 @@ class TriangleBVH:
 
     Args:
         triangles: ``(F, 3, 3)`` vertices; the device and dtype of the traversal.
-        leaf_size: most triangles per leaf (default ``max(8, round(sqrt(F)))``).
+        leaf_size: most triangles per leaf (default ``max(8, round(sqrt(F) / 2))``).
 
     Attributes:
         triangles: ``(F, 3, 3)`` the input triangles.
@@ -49,7 +50,9 @@ class TriangleBVH:
         self.triangles = triangles
         n = triangles.shape[0]
         self.num_faces = n
-        size = leaf_size or max(8, int(round(math.sqrt(max(n, 1)))))
+        # sqrt(F) / 2: measured on the randomized rooms' ~5,500 faces (people's wall-bounce shadow rays),
+        # 10-20 % faster per simulated item than sqrt(F) in paired runs (the hits are the same for any size).
+        size = leaf_size or max(8, int(round(math.sqrt(max(n, 1)) / 2)))
         leaves = _median_split(triangles.detach().to("cpu", torch.float64).numpy(), size)
         width = max([len(x) for x in leaves] + [1])
         table = np.full((len(leaves), width), n, dtype=np.int64)
