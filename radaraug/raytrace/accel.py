@@ -81,11 +81,18 @@ class TriangleBVH:
     def _candidates(self, o: torch.Tensor, d: torch.Tensor, lo: torch.Tensor, hi: torch.Tensor) -> torch.Tensor:
         """``(P, 2)`` (ray, leaf) pairs whose box the ray segment ``[lo, hi]`` crosses."""
         inv = 1.0 / d  # inf for zero components: the slab test below stays correct
-        t0 = (self.boxes_lo[None] - o[:, None]) * inv[:, None]
-        t1 = (self.boxes_hi[None] - o[:, None]) * inv[:, None]
-        # 0 * inf = nan when a ray lies exactly in a slab plane: treat as inside that slab.
-        t_near = torch.minimum(t0, t1).nan_to_num(nan=-float("inf")).amax(dim=-1)
-        t_far = torch.maximum(t0, t1).nan_to_num(nan=float("inf")).amin(dim=-1)
+        # One axis at a time on (R, L) planes: contiguous passes instead of reductions over a
+        # trailing axis of 3 (the same values: min and max round nothing).
+        t_near = t_far = None
+        for k in range(3):
+            t0 = (self.boxes_lo[:, k][None] - o[:, k, None]) * inv[:, k, None]
+            t1 = (self.boxes_hi[:, k][None] - o[:, k, None]) * inv[:, k, None]
+            # 0 * inf = nan when a ray lies exactly in a slab plane: treat as inside that slab.
+            near = torch.minimum(t0, t1).nan_to_num_(nan=-float("inf"))
+            far = torch.maximum(t0, t1).nan_to_num_(nan=float("inf"))
+            t_near = near if t_near is None else torch.maximum(t_near, near)
+            t_far = far if t_far is None else torch.minimum(t_far, far)
+        assert t_near is not None and t_far is not None
         ok = (t_near <= t_far) & (t_far >= lo[:, None]) & (t_near <= hi[:, None])
         return ok.nonzero()
 
