@@ -17,6 +17,7 @@ torch does well on both CPU and CUDA.
 from __future__ import annotations
 
 import math
+from collections.abc import Iterator
 
 import numpy as np
 import torch
@@ -105,6 +106,22 @@ class TriangleBVH:
         tmin, k = t.min(dim=1)
         return tmin, f.gather(1, k[:, None])[:, 0]
 
+    def _pair_hits(
+        self, o: torch.Tensor, d: torch.Tensor, lo: torch.Tensor, hi: torch.Tensor,
+    ) -> Iterator[tuple[torch.Tensor, torch.Tensor, torch.Tensor]]:
+        """``(ray, t, face)`` per candidate pair, in chunks of at most :data:`_PAIR_BUDGET` tests."""
+        n = o.shape[0]
+        ray_step = max(1, _PAIR_BUDGET // max(self.num_leaves, 1))
+        pair_step = max(1, _PAIR_BUDGET // self.leaf_faces.shape[1])
+        for s in range(0, n, ray_step):
+            sl = slice(s, min(n, s + ray_step))
+            pairs = self._candidates(o[sl], d[sl], lo[sl], hi[sl])
+            pairs[:, 0] += s
+            for p in range(0, pairs.shape[0], pair_step):
+                pp = pairs[p: p + pair_step]
+                t, f = self._pair_t(o, d, lo, hi, pp)
+                yield pp[:, 0], t, f
+
     def intersect(
         self,
         origins: torch.Tensor,
@@ -127,26 +144,17 @@ class TriangleBVH:
             return Hit(best, face, torch.zeros_like(best), torch.zeros_like(best))
         if self.num_faces <= _BRUTE_FORCE_FACES:
             return intersect(o, d, self.triangles, t_min=lo, t_max=hi, compiled=False)
-        width = self.leaf_faces.shape[1]
-        ray_step = max(1, _PAIR_BUDGET // max(self.num_leaves, 1))
-        pair_step = max(1, _PAIR_BUDGET // width)
-        for s in range(0, n, ray_step):
-            sl = slice(s, min(n, s + ray_step))
-            pairs = self._candidates(o[sl], d[sl], lo[sl], hi[sl])
-            pairs[:, 0] += s
-            for p in range(0, pairs.shape[0], pair_step):
-                pp = pairs[p: p + pair_step]
-                t, f = self._pair_t(o, d, lo, hi, pp)
-                best.scatter_reduce_(0, pp[:, 0], t, reduce="amin")
-                # The winning face: among pairs reaching the ray's minimum, the smallest index
-                # (deterministic on ties, e.g. a ray through a shared edge).
-                win = torch.isfinite(t) & (t == best[pp[:, 0]])
-                cand = torch.where(win, f, torch.full_like(f, self.num_faces))
-                face_fill = torch.full_like(face, self.num_faces)
-                face_fill.scatter_reduce_(0, pp[:, 0], cand, reduce="amin")
-                # A later chunk may lower best: keep the face only where it matches the new min.
-                improved = face_fill < self.num_faces
-                face = torch.where(improved, face_fill, face)
+        for ray, t, f in self._pair_hits(o, d, lo, hi):
+            best.scatter_reduce_(0, ray, t, reduce="amin")
+            # The winning face: among pairs reaching the ray's minimum, the smallest index
+            # (deterministic on ties, e.g. a ray through a shared edge).
+            win = torch.isfinite(t) & (t == best[ray])
+            cand = torch.where(win, f, torch.full_like(f, self.num_faces))
+            face_fill = torch.full_like(face, self.num_faces)
+            face_fill.scatter_reduce_(0, ray, cand, reduce="amin")
+            # A later chunk may lower best: keep the face only where it matches the new min.
+            improved = face_fill < self.num_faces
+            face = torch.where(improved, face_fill, face)
         face = torch.where(torch.isfinite(best), face, torch.full_like(face, -1))
         u, v = barycentrics(o, d, self.triangles, face)
         return Hit(best, face, u, v)
@@ -171,16 +179,8 @@ class TriangleBVH:
         lo = torch.as_tensor(0.0 if t_min is None else t_min, dtype=o.dtype, device=o.device).expand(n)
         hi = torch.as_tensor(t_max, dtype=o.dtype, device=o.device).expand(n)
         blocked = torch.zeros(n, dtype=torch.bool, device=o.device)
-        ray_step = max(1, _PAIR_BUDGET // max(self.num_leaves, 1))
-        pair_step = max(1, _PAIR_BUDGET // self.leaf_faces.shape[1])
-        for s in range(0, n, ray_step):
-            sl = slice(s, min(n, s + ray_step))
-            pairs = self._candidates(o[sl], d[sl], lo[sl], hi[sl])
-            pairs[:, 0] += s
-            for p in range(0, pairs.shape[0], pair_step):
-                pp = pairs[p: p + pair_step]
-                t, _ = self._pair_t(o, d, lo, hi, pp)
-                blocked[pp[:, 0][torch.isfinite(t)]] = True
+        for ray, t, _ in self._pair_hits(o, d, lo, hi):
+            blocked[ray[torch.isfinite(t)]] = True
         return blocked
 
 
