@@ -98,7 +98,7 @@ def projection(fits: list[float], wall: float, items: int, val_items: int, epoch
 
     The reduced run's runs share two simulated sets (RT/RandomDR's twin, CDR's quiet twin): the
     median run's fit time is training alone, the rest of the runs' time above it is simulation.
-    Full mode simulates three sets (+ ``cdr_profile``'s) of 6,000 + 600 items, trains 66 runs
+    Full mode simulates three sets (RT/RandomDR's, CDR's, ``cdr_profile``'s) of 6,000 + 600 items, trains 66 runs
     (2 tasks x (4 methods + 7 ablations) x 3 seeds) of 15 epochs and generates both test sets.
     Upper bound: per-run training time linear in images (the run's fixed overhead scaled too).
     Lower bound: the median run's time as fixed overhead plus the images at ``images_per_s`` (the
@@ -126,7 +126,7 @@ def projection(fits: list[float], wall: float, items: int, val_items: int, epoch
         res["medium_projection"] = {
             "size": "1500 train + 150 val items, 15 epochs, 128x64, 3 seeds, rt/randomdr/cdr, independent set, "
                     "no ablations",
-            "projected_seconds": round(per_item * medium * 2 + 18 * (train_s + medium * 15 / images_per_s)
+            "projected_seconds": round(per_item * medium * 2 + 2 * 3 * 3 * (train_s + medium * 15 / images_per_s)
                                        + other_s * 150 / proxy_frames),
             "basis": "this run's simulation rate and per-run training overhead, the training benchmark's "
                      "pipeline rate; not measured"}

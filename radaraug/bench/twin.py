@@ -17,6 +17,7 @@ Figures (each against a baseline measured in the same process):
 
 from __future__ import annotations
 
+import math
 import os
 import platform
 import sys
@@ -80,7 +81,6 @@ def run_twin_benchmark(
     from radaraug.scene.scene import Scene
     from radaraug.sensor.receiver import FMCWReceiver
     from radaraug.sensor.synthesis import ChirpTiming, per_channel_synthesis, synthesize
-    from radaraug.sim.seeding import item_generator
     from radaraug.sim.twin import DigitalTwin
 
     threads = torch.get_num_threads()
@@ -95,14 +95,7 @@ def run_twin_benchmark(
 
         def frames_per_s(tw: DigitalTwin) -> float:
             """Frames/s of ``tw`` on ``blocks`` blocks of 16 frames, after a warm-up block."""
-            tw.simulate(scene.people, tw.frame_times(range(BLOCK)), generators=item_generator(0, 0, device=device))
-            sync()
-            t0 = time.perf_counter()
-            for i in range(blocks):
-                tw.simulate(scene.people, tw.frame_times(range(i * BLOCK, (i + 1) * BLOCK)),
-                            generators=item_generator(0, i, device=device))
-            sync()
-            return blocks * BLOCK / (time.perf_counter() - t0)
+            return _frames_per_s(tw, BLOCK, blocks, sync)
 
         fps_1 = frames_per_s(twin)
         assert twin.last_intervals is not None  # set by every paths() call, so by the blocks above
@@ -217,21 +210,22 @@ CUDA_TARGET_FRAMES_PER_S = 2000.0
 """Issue 23's target for one H100 (simulated frames/s of the paper's scene and config)."""
 
 
-def _frames_per_s(twin: DigitalTwin, per_call: int, calls: int, sync: Any, budget_s: float | None = None) -> float:
-    """Frames/s of ``calls`` calls of ``per_call`` frames of the scene's people (after one warm-up call).
+def _frames_per_s(twin: DigitalTwin, per_call: int, calls: int, sync: Any, *, wrap: int | None = None,
+                  budget_s: float | None = None) -> float:
+    """Frames/s of ``calls`` calls of ``per_call`` frames of the scene's people, after a warm-up call.
 
-    The frame indices wrap at 128 (12.8 s: the walkers are in the corridor), so larger batches
-    simulate the same kind of frames, not frames after the people left. With ``budget_s``, fewer
-    calls are timed when the warm-up call shows that ``calls`` would take longer (at least one).
+    Call ``i`` simulates frames ``i * per_call ...`` with the generator of item ``(0, i)``; the
+    warm-up is call 0. ``wrap``: frame indices modulo ``wrap`` (128 = 12.8 s, while the walkers are
+    in the corridor), so that large batches simulate the same kind of frames, not frames after the
+    people left. With ``budget_s``, fewer calls are timed when the warm-up call shows that
+    ``calls`` would take longer (at least one).
     """
     from radaraug.sim.seeding import item_generator
 
-    people = twin.scene.people
-    dev = twin.device
-
     def call(i: int) -> None:
-        idx = (torch.arange(per_call) + i * per_call) % 128
-        twin.simulate(people, twin.frame_times(idx), generators=item_generator(0, i, device=dev))
+        idx = torch.arange(i * per_call, (i + 1) * per_call)
+        idx = idx if wrap is None else idx % wrap
+        twin.simulate(twin.scene.people, twin.frame_times(idx), generators=item_generator(0, i, device=twin.device))
 
     t0 = time.perf_counter()
     call(0)
@@ -240,7 +234,7 @@ def _frames_per_s(twin: DigitalTwin, per_call: int, calls: int, sync: Any, budge
         calls = max(1, min(calls, int(budget_s / (time.perf_counter() - t0))))
     t0 = time.perf_counter()
     for i in range(calls):
-        call(i + 1)
+        call(i)
     sync()
     return calls * per_call / (time.perf_counter() - t0)
 
@@ -286,7 +280,7 @@ def run_twin_benchmark_cuda(
     for n in CUDA_FRAMES_PER_CALL:
         t0 = time.perf_counter()
         try:
-            by_size[str(n)] = round(_frames_per_s(twin, n, calls, sync, budget_s=8.0), 1)
+            by_size[str(n)] = round(_frames_per_s(twin, n, calls, sync, wrap=128, budget_s=8.0), 1)
         except torch.OutOfMemoryError:
             by_size[str(n)] = "out of memory"
             torch.cuda.empty_cache()
@@ -299,7 +293,7 @@ def run_twin_benchmark_cuda(
     shadow = DigitalTwin(scene, device=dev, static_signal=twin.static_signal(), shadow_intervals=2)
     fps_256 = by_size.get("256")
     try:
-        fps_shadow = _frames_per_s(shadow, 256, calls, sync, budget_s=8.0)
+        fps_shadow = _frames_per_s(shadow, 256, calls, sync, wrap=128, budget_s=8.0)
     except torch.OutOfMemoryError:
         fps_shadow = float("nan")
     ix = benchmark_intersection(num_rays=1 << 18, num_triangles=1024, device=device, compiled=compiled)
@@ -318,7 +312,7 @@ def run_twin_benchmark_cuda(
         "target_frames_per_s": CUDA_TARGET_FRAMES_PER_S,
         "target_met": bool(best >= CUDA_TARGET_FRAMES_PER_S),
         "shadow_intervals_2_cost_ratio_at_256": (round(fps_256 / fps_shadow, 3)
-                                                 if isinstance(fps_256, float) and fps_shadow == fps_shadow else None),
+                                                 if isinstance(fps_256, float) and not math.isnan(fps_shadow) else None),
         "intersection": ix,
         "torch_version": torch.__version__,
         "cuda_version": torch.version.cuda,

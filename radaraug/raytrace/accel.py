@@ -136,8 +136,7 @@ class TriangleBVH:
             raise InputTensorError(f"rays must be (R, 3) origins and directions, got {tuple(o.shape)}, "
                                    f"{tuple(d.shape)}")
         n = o.shape[0]
-        lo = torch.as_tensor(0.0 if t_min is None else t_min, dtype=o.dtype, device=o.device).expand(n)
-        hi = torch.as_tensor(float("inf") if t_max is None else t_max, dtype=o.dtype, device=o.device).expand(n)
+        lo, hi = _ray_bounds(o, t_min, t_max)
         best = torch.full((n,), float("inf"), dtype=o.dtype, device=o.device)
         face = torch.full((n,), -1, dtype=torch.long, device=o.device)
         if n == 0 or self.num_faces == 0:
@@ -175,13 +174,21 @@ class TriangleBVH:
         o, d = origins, directions
         if o.ndim != 2 or o.shape[-1] != 3 or d.shape != o.shape or self.num_faces <= _BRUTE_FORCE_FACES:
             return self.intersect(origins, directions, t_min=t_min, t_max=t_max).face >= 0
-        n = o.shape[0]
-        lo = torch.as_tensor(0.0 if t_min is None else t_min, dtype=o.dtype, device=o.device).expand(n)
-        hi = torch.as_tensor(t_max, dtype=o.dtype, device=o.device).expand(n)
-        blocked = torch.zeros(n, dtype=torch.bool, device=o.device)
+        lo, hi = _ray_bounds(o, t_min, t_max)
+        blocked = torch.zeros(o.shape[0], dtype=torch.bool, device=o.device)
         for ray, t, _ in self._pair_hits(o, d, lo, hi):
             blocked[ray[torch.isfinite(t)]] = True
         return blocked
+
+
+def _ray_bounds(
+    o: torch.Tensor, t_min: torch.Tensor | float | None, t_max: torch.Tensor | float | None,
+) -> tuple[torch.Tensor, torch.Tensor]:
+    """``(R,)`` each ray's ``t`` range (defaults 0 and inf) on the rays' device and dtype."""
+    n = o.shape[0]
+    lo = torch.as_tensor(0.0 if t_min is None else t_min, dtype=o.dtype, device=o.device).expand(n)
+    hi = torch.as_tensor(float("inf") if t_max is None else t_max, dtype=o.dtype, device=o.device).expand(n)
+    return lo, hi
 
 
 def _median_split(tri: np.ndarray, leaf_size: int) -> list[np.ndarray]:

@@ -31,8 +31,9 @@ def _noiseless(scene: Scene) -> FMCWReceiver:
     return FMCWReceiver(scene.config, effects=[e for e in default_effects(scene.config) if e.name not in RANDOM_STAGES])
 
 
-def _frames(device: str, receiver: FMCWReceiver | None = None, frames: int = 4) -> torch.Tensor:
-    scene = Scene.builtin("corridor_two_walkers")
+def _frames(device: str, receiver: FMCWReceiver | None = None, frames: int = 4,
+            scene_name: str = "corridor_two_walkers") -> torch.Tensor:
+    scene = Scene.builtin(scene_name)
     twin = DigitalTwin(scene, device=device, **({} if receiver is None else {"receiver": receiver}))
     times = twin.frame_times(range(8, 8 + frames))
     gens = [item_generator(0, k, device=device) for k in range(frames)]
@@ -52,14 +53,12 @@ def test_cuda_twin_frames_match_the_cpu_within_one_adc_code():
 
 
 def test_cuda_twin_noise_has_the_cpu_power():
-    scene = Scene.builtin("corridor")
-    cpu = _frames("cpu", frames=8)
-    gpu = _frames("cuda", frames=8).cpu()
+    cpu = _frames("cpu", frames=8, scene_name="corridor")
+    gpu = _frames("cuda", frames=8, scene_name="corridor").cpu()
     # the noise around each sample's mean over frames (an empty room: the signal is the same each frame)
     p_cpu = float((cpu - cpu.mean(0)).pow(2).mean())
     p_gpu = float((gpu - gpu.mean(0)).pow(2).mean())
     assert p_gpu == pytest.approx(p_cpu, rel=0.1)
-    del scene
 
 
 def test_cuda_simulated_dataset_items_stay_on_the_device():
