@@ -64,7 +64,7 @@ import os
 import sys
 from collections.abc import Callable, Iterator, Sequence
 from pathlib import Path
-from typing import Any
+from typing import Any, TypeAlias
 
 from radaraug.errors import ConfigError, DependencyNotFoundError, RadarAugError
 
@@ -79,6 +79,10 @@ EXIT_INTERRUPTED = 130
 """128 + SIGINT, what shells report for Ctrl-C."""
 EXIT_BROKEN_PIPE = 141
 """128 + SIGPIPE, what shells report for a writer whose reader went away."""
+
+
+Result: TypeAlias = dict[str, Any] | int
+"""What a command returns: its ``--json`` object (printed on stdout, status 0), or its exit status."""
 
 
 def _print_json(data: object) -> None:
@@ -109,8 +113,24 @@ def _exists(path: Path, folder: bool) -> bool:
     return path.exists() or path.is_symlink()
 
 
-def _check_output(args: argparse.Namespace, path: str | os.PathLike, *, folder: bool = False) -> bool:
+def _remove(folder: Path, names: Sequence[str]) -> None:
+    """Remove the entries ``names`` of ``folder`` that exist: the ones a command owns there."""
+    import shutil
+
+    for name in names:
+        path = folder / name
+        if path.is_dir() and not path.is_symlink():
+            shutil.rmtree(path)
+        elif path.exists() or path.is_symlink():
+            path.unlink()
+
+
+def _check_output(args: argparse.Namespace, path: str | os.PathLike, *, folder: bool = False,
+                  owned: Sequence[str] = ()) -> bool:
     """Refuse an existing output unless ``--overwrite`` (or ``--resume``, where the command has it).
+
+    With ``--overwrite``, the entries ``owned`` of the folder ``path`` (what the command writes
+    there) are removed first; other files stay.
 
     Returns:
         True when ``path`` exists and is to be replaced or continued (False: a new output).
@@ -121,7 +141,10 @@ def _check_output(args: argparse.Namespace, path: str | os.PathLike, *, folder: 
     path = Path(path)
     if not _exists(path, folder):
         return False
-    if args.overwrite or getattr(args, "resume", False):
+    if args.overwrite:
+        _remove(path, owned)
+        return True
+    if getattr(args, "resume", False):
         return True
     what = "a folder that is not empty" if path.is_dir() else "exists"
     how = "pass --overwrite to replace it"
@@ -130,8 +153,13 @@ def _check_output(args: argparse.Namespace, path: str | os.PathLike, *, folder: 
     raise ConfigError(f"{path}: {what}; choose another output, or {how}")
 
 
-def _output_args(parser: argparse.ArgumentParser, *, resume: str | None = None) -> None:
-    """``--overwrite`` (and ``--resume`` with what it does), the one rule for existing outputs."""
+def _output_args(parser: argparse.ArgumentParser, output_help: str, *, default: str | None = None,
+                 resume: str | None = None) -> None:
+    """``-o/--output`` (required unless it has a default) with the one rule for existing outputs.
+
+    ``--overwrite``, and ``--resume`` with what it does where the command can continue an output.
+    """
+    parser.add_argument("-o", "--output", required=default is None, default=default, help=output_help)
     if resume is None:
         parser.add_argument("--overwrite", action="store_true", help="replace an existing output (else it is refused)")
         return
@@ -142,7 +170,7 @@ def _output_args(parser: argparse.ArgumentParser, *, resume: str | None = None) 
     parser.set_defaults(resume_means=resume)
 
 
-def _cmd_info(args: argparse.Namespace) -> int:
+def _cmd_info(args: argparse.Namespace) -> Result:
     from radaraug.io import open_capture
     from radaraug.transforms.summary import summarize_capture
 
@@ -171,7 +199,7 @@ def _cmd_info(args: argparse.Namespace) -> int:
     return 0
 
 
-def _cmd_fit_cdr(args: argparse.Namespace) -> int:
+def _cmd_fit_cdr(args: argparse.Namespace) -> Result:
     from radaraug.calibration.record import fit_record
     from radaraug.transforms import CalibratedDR
 
@@ -182,8 +210,7 @@ def _cmd_fit_cdr(args: argparse.Namespace) -> int:
         record.save(args.output)
         cdr = CalibratedDR.from_record(record)
     if args.json:
-        _print_json({"output": str(args.output), **record.to_dict()})
-        return 0
+        return {"output": str(args.output), **record.to_dict()}
     print(f"CalibratedDR: m_t = {cdr.mean_db:.2f} dB, s_t = {cdr.std_db:.2f} dB, {cdr.floor} floor -> {args.output}")
     return 0
 
@@ -231,7 +258,7 @@ def _torch_device(args: argparse.Namespace) -> str:
     return _device_arg(args.accelerator, "--accelerator")
 
 
-def _cmd_bench(args: argparse.Namespace) -> int:
+def _cmd_bench(args: argparse.Namespace) -> Result:
     device = _torch_device(args)
     if args.what == "transforms":
         from radaraug.bench.transforms import run_transforms_benchmark
@@ -263,10 +290,9 @@ def _cmd_bench(args: argparse.Namespace) -> int:
         result = run_twin_benchmark(blocks=args.blocks, workers=args.workers, device=device,
                                     compiled=not args.no_compile, out=args.out)
     if args.json:
-        print(json.dumps(result))
-    else:
-        for key, value in result.items():
-            print(f"{key:28s} {value}")
+        return result
+    for key, value in result.items():
+        print(f"{key:28s} {value}")
     return 0
 
 
@@ -276,7 +302,7 @@ def _scene_arg(text: str):
     return Scene.load(text)
 
 
-def _cmd_trace(args: argparse.Namespace) -> int:
+def _cmd_trace(args: argparse.Namespace) -> Result:
     import torch
 
     from radaraug.raytrace.tracer import RayTracer, paths_to_json
@@ -296,8 +322,7 @@ def _cmd_trace(args: argparse.Namespace) -> int:
     data = {"scene": scene.name, "time_s": args.time, "convex_room": bool(tracer.convex_room),
             **paths_to_json(paths, scene.config)}
     if args.json:
-        print(json.dumps(data))
-        return 0
+        return data
     print(f"{scene.name} at t = {args.time} s: {data['num_paths']} paths ({data['convention']})")
     strongest = sorted(data["paths"], key=lambda p: -p["power_dB"])[:10]
     for p in sorted(strongest, key=lambda p: p["range_m"]):
@@ -305,7 +330,7 @@ def _cmd_trace(args: argparse.Namespace) -> int:
     return 0
 
 
-def _cmd_simulate(args: argparse.Namespace) -> int:
+def _cmd_simulate(args: argparse.Namespace) -> Result:
     from radaraug.sim.offline import parse_shard, shard_path, simulate_capture
 
     shard = parse_shard(args.shard)
@@ -323,8 +348,7 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
         result = simulate_capture(_scene_arg(args.scene), args.output, frames=args.frames, seed=args.seed,
                                   shard=shard, device=device, profile=args.profile)
     if args.json:
-        _print_json({"output": result["path"], **result})  # "path": deprecated duplicate, one release
-        return 0
+        return {"output": result["path"], **result}  # "path": deprecated duplicate, one release
     print(f"{result['path']}: frames [{result['frames'][0]}, {result['frames'][1]}), "
           f"{result['simulated']} simulated, resumed from frame {result['resumed_from']}")
     return 0
@@ -373,16 +397,15 @@ def _cmd_train(argv: Sequence[str]) -> int:
     return train_main(resolve_train_args(argv))
 
 
-def _cmd_recipes(args: argparse.Namespace) -> int:
+def _cmd_recipes(args: argparse.Namespace) -> Result:
     from radaraug import recipes
 
     if args.name is not None:
         files = [str(p) for p in recipes.recipe_files(args.name)]
         text = recipes.recipe_text(args.name)
         if args.json:
-            _print_json({"name": args.name, "files": files, "text": text})
-        else:
-            print(text, end="")
+            return {"name": args.name, "files": files, "text": text}
+        print(text, end="")
         return 0
     rows = []
     for name in recipes.recipe_names():
@@ -390,8 +413,7 @@ def _cmd_recipes(args: argparse.Namespace) -> int:
         rows.append({"name": name, "files": [str(p) for p in recipes.recipe_files(name)], "task": data["task"],
                      "method": data["method"]})
     if args.json:
-        _print_json({"folder": str(recipes.RECIPES_DIR), "recipes": rows, "ablations": recipes.ablations()})
-        return 0
+        return {"folder": str(recipes.RECIPES_DIR), "recipes": rows, "ablations": recipes.ablations()}
     for r in rows:
         print(f"{r['name']:24s} task {r['task']:10s} method {r['method']}")
     print(f"installed in {recipes.RECIPES_DIR} (base.yaml + task/ + method/; ablation/ overrides: "
@@ -400,34 +422,20 @@ def _cmd_recipes(args: argparse.Namespace) -> int:
     return 0
 
 
-def _cmd_demo(args: argparse.Namespace) -> int:
+def _cmd_demo(args: argparse.Namespace) -> Result:
     from radaraug.demo import run_demo
 
     _check_output(args, args.output, folder=True)
     with _stdout_for(args):
         summary = run_demo(Path(args.output))
-    if args.json:
-        _print_json({"output": str(args.output), **summary})
-    return 0
+    return {"output": str(args.output), **summary} if args.json else 0
 
 
 REPRODUCE_OUTPUTS = ("report.md", "report.json", "runs", "figures", "cache", "proxy", "independent", "standing")
 """What ``reproduce`` writes in its output folder (``--overwrite`` removes these first, nothing else)."""
 
 
-def _remove(folder: Path, names: Sequence[str]) -> None:
-    """Remove the entries ``names`` of ``folder`` that exist: the ones a command owns there."""
-    import shutil
-
-    for name in names:
-        path = folder / name
-        if path.is_dir() and not path.is_symlink():
-            shutil.rmtree(path)
-        elif path.exists() or path.is_symlink():
-            path.unlink()
-
-
-def _cmd_reproduce(args: argparse.Namespace) -> int:
+def _cmd_reproduce(args: argparse.Namespace) -> Result:
     from radaraug.training.reproduce import parse_test_arg, reproduce
 
     test = [parse_test_arg(t) for t in args.test] if args.test else None
@@ -435,8 +443,7 @@ def _cmd_reproduce(args: argparse.Namespace) -> int:
     if accelerator == "gpu":  # Lightning's other word for cuda, the old help's spelling
         _deprecated("reproduce", "--accelerator gpu", "--accelerator cuda")
         accelerator = "cuda"
-    if _check_output(args, args.output, folder=True) and args.overwrite:
-        _remove(Path(args.output), REPRODUCE_OUTPUTS)
+    _check_output(args, args.output, folder=True, owned=REPRODUCE_OUTPUTS)
     with _stdout_for(args):
         settings = None
         if args.representation is not None:
@@ -452,8 +459,7 @@ def _cmd_reproduce(args: argparse.Namespace) -> int:
                            test_sets=None if args.test_sets is None else tuple(args.test_sets.split(",")),
                            ablations=None if args.ablations is None else [a for a in args.ablations.split(",") if a])
     if args.json:
-        _print_json({"output": str(args.output), "report": str(Path(args.output) / "report.md"), **report})
-        return 0
+        return {"output": str(args.output), "report": str(Path(args.output) / "report.md"), **report}
     print(f"{Path(args.output) / 'report.md'} ({report['kind']}, {report['wall_seconds'] / 60:.1f} min)")
     for name, ts in report["test_sets"].items():
         for task, by in ts["results"].items():
@@ -463,24 +469,23 @@ def _cmd_reproduce(args: argparse.Namespace) -> int:
     return 0
 
 
-def _cmd_make_proxy(args: argparse.Namespace) -> int:
+def _cmd_make_proxy(args: argparse.Namespace) -> Result:
     from radaraug.sim.proxy import MANIFEST_NAME, make_proxy
 
-    if _check_output(args, args.output, folder=True) and args.overwrite:
-        _remove(Path(args.output), [MANIFEST_NAME])  # no manifest: the set is generated again, file by file
+    # No manifest after --overwrite: the set is generated again, file by file.
+    _check_output(args, args.output, folder=True, owned=[MANIFEST_NAME])
     with _stdout_for(args):
         proxy = make_proxy(args.output, frames_per_count=args.frames_per_count, seed=args.seed, progress=True)
     if args.json:
-        _print_json({"output": str(args.output), "calibration": str(proxy.calibration),
-                     "tests": [{"path": str(p), "people": int(c)} for p, c in proxy.tests]})
-        return 0
+        return {"output": str(args.output), "calibration": str(proxy.calibration),
+                "tests": [{"path": str(p), "people": int(c)} for p, c in proxy.tests]}
     print(f"calibration  {proxy.calibration}")
     for path, count in proxy.tests:
         print(f"test         {path} ({count} people)")
     return 0
 
 
-def _cmd_diagnose(args: argparse.Namespace) -> int:
+def _cmd_diagnose(args: argparse.Namespace) -> Result:
     from radaraug.calibration import SearchSettings, diagnose, write_report
     from radaraug.calibration.diagnose import verdicts
 
@@ -494,7 +499,7 @@ def _cmd_diagnose(args: argparse.Namespace) -> int:
         out = write_report(diag, args.output, figures=not args.no_figures)
     r = diag.result
     if args.json:
-        _print_json({
+        return {
             "output": str(out), "report": str(out / "report.json"), "profile": str(out / "profile.json"),
             "mode": diag.mode, "runtime_s": diag.runtime_s,
             "held_out_error_db": {"default": r.before.overall, "base_refit": r.base.overall,
@@ -504,8 +509,7 @@ def _cmd_diagnose(args: argparse.Namespace) -> int:
                                "error_after_db": st["error_after"], "verdict": st.get("verdict")} for st in r.steps],
             "verdict": [v["text"] for v in verdicts(diag)],
             "unexplained": len(diag.unexplained),
-        })
-        return 0
+        }
     print(f"{out / 'report.json'} ({diag.mode} mode, {diag.runtime_s:.1f} s)")
     print(f"  held-out error: default {r.before.overall:.2f} dB -> base refit {r.base.overall:.2f} dB -> "
           f"final {r.after.overall:.2f} dB")
@@ -536,7 +540,7 @@ def _live_device(args: argparse.Namespace):
                        realtime=args.realtime)
 
 
-def _cmd_devices(args: argparse.Namespace) -> int:
+def _cmd_devices(args: argparse.Namespace) -> Result:
     from radaraug.capture.devices import PERMISSION_DENIED, find_boards, permission_help, udev_rule_path
 
     if args.udev_rule:
@@ -545,8 +549,7 @@ def _cmd_devices(args: argparse.Namespace) -> int:
     boards = find_boards()
     denied = any(b.access == PERMISSION_DENIED for b in boards)
     if args.json:
-        print(json.dumps({"boards": [b.to_dict() for b in boards], "permission_denied": denied}))
-        return 0
+        return {"boards": [b.to_dict() for b in boards], "permission_denied": denied}
     if not boards:
         print("no Infineon radar board found on USB (vendor 0x058b: MCU7, V9, PSoC6 kit); "
               "check the cable, or record without one: radaraug capture --device virtual")
@@ -560,7 +563,7 @@ def _cmd_devices(args: argparse.Namespace) -> int:
     return 0
 
 
-def _cmd_capture(args: argparse.Namespace) -> int:
+def _cmd_capture(args: argparse.Namespace) -> Result:
     from radaraug.capture import record
 
     _check_output(args, args.output)
@@ -568,7 +571,7 @@ def _cmd_capture(args: argparse.Namespace) -> int:
                     overwrite=args.overwrite, progress=not args.no_progress)
     if args.json:
         data = result.to_dict()
-        print(json.dumps({"output": data["path"], **data}))  # "path": deprecated duplicate, one release
+        _print_json({"output": data["path"], **data})  # "path": deprecated duplicate, one release
     else:
         rate = result.frames / result.seconds if result.seconds > 0 else float("nan")
         where = result.path if result.path is not None else "no file (no frame recorded)"
@@ -581,7 +584,7 @@ def _cmd_capture(args: argparse.Namespace) -> int:
     return 0
 
 
-def _cmd_calibrate(args: argparse.Namespace) -> int:
+def _cmd_calibrate(args: argparse.Namespace) -> Result:
     from radaraug.capture import calibrate
 
     _check_output(args, args.output)
@@ -591,12 +594,11 @@ def _cmd_calibrate(args: argparse.Namespace) -> int:
                     overwrite=args.overwrite, progress=not args.no_progress, floor=args.floor)
     cdr = run.cdr
     if args.json:
-        print(json.dumps({"output": str(run.output), "mean_db": cdr.mean_db, "std_db": cdr.std_db, "floor": cdr.floor,
-                          "motion_fraction": cdr.motion, "recording": run.recording.to_dict()}))
-    else:
-        kept = f"; recording kept in {run.recording.path}" if args.keep_recording else ""
-        print(f"CalibratedDR: m_t = {cdr.mean_db:.2f} dB, s_t = {cdr.std_db:.2f} dB from {run.recording.frames} "
-              f"empty-room frames (motion {100 * (cdr.motion or 0.0):.3f} %) -> {run.output}{kept}")
+        return {"output": str(run.output), "mean_db": cdr.mean_db, "std_db": cdr.std_db, "floor": cdr.floor,
+                "motion_fraction": cdr.motion, "recording": run.recording.to_dict()}
+    kept = f"; recording kept in {run.recording.path}" if args.keep_recording else ""
+    print(f"CalibratedDR: m_t = {cdr.mean_db:.2f} dB, s_t = {cdr.std_db:.2f} dB from {run.recording.frames} "
+          f"empty-room frames (motion {100 * (cdr.motion or 0.0):.3f} %) -> {run.output}{kept}")
     return 0
 
 
@@ -618,7 +620,7 @@ def build_parser() -> argparse.ArgumentParser:
     # Every subcommand's --help shows the defaults.
     sub = p.add_subparsers(dest="command", required=True)
 
-    def command(name: str, func: Callable[[argparse.Namespace], int], **kw: Any) -> argparse.ArgumentParser:
+    def command(name: str, func: Callable[..., Result], **kw: Any) -> argparse.ArgumentParser:
         """A subcommand's parser (its --help shows the defaults), whose arguments ``main`` passes to ``func``."""
         parser = sub.add_parser(name, formatter_class=_DefaultsShown, **kw)
         parser.set_defaults(func=func)
@@ -631,12 +633,11 @@ def build_parser() -> argparse.ArgumentParser:
 
     fit = command("fit-cdr", _cmd_fit_cdr, help="fit CalibratedDR on an empty-room capture")
     fit.add_argument("path", help="empty-room capture (radaraug .h5 or Infineon recording folder)")
-    fit.add_argument("-o", "--output", required=True, help="calibration JSON to write")
+    _output_args(fit, "calibration JSON to write")
     fit.add_argument("--max-frames", type=int, default=None, help="frames read (default: all)")
     fit.add_argument("--floor", choices=("normal", "empirical"), default="normal",
                      help="the floor distribution the calibration draws from: normal (the paper's CDR) or empirical "
                      "(the capture's measured one; its quantiles are recorded either way)")
-    _output_args(fit)
     fit.add_argument("--json", action="store_true", help="print the calibration record (with the output path) as one JSON object")
 
     bench = command("bench", _cmd_bench, help="benchmarks (figures as ratios against a same-process baseline)")
@@ -668,8 +669,8 @@ def build_parser() -> argparse.ArgumentParser:
     sim.add_argument("scene", help="scene file (.yaml/.json) or built-in scene name")
     sim.add_argument("--frames", type=int, required=True, help="frames to simulate")
     sim.add_argument("--seed", type=int, default=0, help="seed of the receiver noise")
-    sim.add_argument("-o", "--output", required=True, help="radaraug HDF5 capture to write")
-    _output_args(sim, resume="continue it after its last complete frame (the same job only)")
+    _output_args(sim, "radaraug HDF5 capture to write",
+                 resume="continue it after its last complete frame (the same job only)")
     sim.add_argument("--shard", default=None, help="i/n: simulate the i-th of n pieces (0-based)")
     _accelerator_args(sim, "cpu")  # cpu: a file's frames depend on the device type (part of the job)
     sim.add_argument("--profile", default=None, help="twin profile JSON (from radaraug diagnose) for the receiver")
@@ -678,8 +679,7 @@ def build_parser() -> argparse.ArgumentParser:
     demo_text = ("capture walkthrough: the bundled recording through the paper's chain, a fitted CalibratedDR, RD "
                  "images and a noise-floor histogram (the main job, `make demo`, is `radaraug reproduce --quick`)")
     demo = command("demo", _cmd_demo, help=demo_text, description=demo_text)
-    demo.add_argument("-o", "--output", default="demo_out", help="output folder")
-    _output_args(demo)
+    _output_args(demo, "output folder", default="demo_out")
     demo.add_argument("--json", action="store_true", help="print the demo's summary as one JSON object")
 
     # `train` is parsed by LightningCLI (radaraug.training.cli); listed here for --help only.
@@ -722,14 +722,14 @@ def build_parser() -> argparse.ArgumentParser:
     rep.add_argument("--accelerator", choices=(*ACCELERATORS, "gpu"), default="auto",
                      help="Lightning accelerator: cpu, cuda, or auto (cuda where there is one); gpu: deprecated "
                      "alias of cuda")
-    rep.add_argument("-o", "--output", required=True, help="output folder (report, runs, figures, cache)")
-    _output_args(rep, resume="run again in it, reusing its generated test sets and simulated sets (cached by "
+    _output_args(rep, "output folder (report, runs, figures, cache)",
+                 resume="run again in it, reusing its generated test sets and simulated sets (cached by "
                  "content, never stale)")
     rep.add_argument("--json", action="store_true", help="print the report (results per task and method, figures, settings) as one JSON object")
 
     proxy = command("make-proxy", _cmd_make_proxy, help="generate the held-out proxy test set (docs/proxy.md)")
-    proxy.add_argument("-o", "--output", required=True, help="output folder")
-    _output_args(proxy, resume="reuse the set it holds when made with the same arguments (else generate it again)")
+    _output_args(proxy, "output folder",
+                 resume="reuse the set it holds when made with the same arguments (else generate it again)")
     proxy.add_argument("--frames-per-count", type=int, default=120, help="frames per people count (0, 1, 2)")
     proxy.add_argument("--seed", type=int, default=1234, help="seed of the walks and the noise")
     proxy.add_argument("--json", action="store_true", help="print the calibration and test capture paths as one JSON object")
@@ -738,8 +738,7 @@ def build_parser() -> argparse.ArgumentParser:
     dia.add_argument("capture", help="radaraug .h5 capture or Infineon recording folder")
     dia.add_argument("--scene", default=None, help="the capture's scene (file or built-in name); "
                      "default: estimate the static scene from the capture")
-    dia.add_argument("-o", "--output", required=True, help="report folder")
-    _output_args(dia)
+    _output_args(dia, "report folder")
     dia.add_argument("--max-frames", type=int, default=100, help="frames read (half fit, half held out)")
     dia.add_argument("--profile", default=None, help="start from this twin profile instead of the default chain")
     dia.add_argument("--seed", type=int, default=0, help="seed of the twin's noise")
@@ -753,7 +752,7 @@ def build_parser() -> argparse.ArgumentParser:
     dev.add_argument("--udev-rule", action="store_true",
                      help="print the udev rule that lets users open the boards (Linux) and exit")
 
-    def live(parser: argparse.ArgumentParser, seconds: float) -> None:
+    def live(parser: argparse.ArgumentParser, output: str) -> None:
         parser.add_argument("--device", default="auto",
                             help="'auto' (first board, through Infineon's ifxradarsdk), 'virtual' (the digital "
                             "twin) or a board's serial")
@@ -763,7 +762,7 @@ def build_parser() -> argparse.ArgumentParser:
         parser.add_argument("--config", dest="deprecated_config", default=None,
                             help="deprecated alias of --radar-config (--config is a recipe YAML, in train); "
                             "removed in the next release")
-        parser.add_argument("--seconds", type=float, default=seconds, help="how long to record")
+        parser.add_argument("--seconds", type=float, default=10.0, help="how long to record")
         parser.add_argument("--scene", default=None, help="virtual: scene file or built-in scene name "
                             "(default: corridor)")
         parser.add_argument("--profile", default=None, help="virtual: twin profile JSON (from radaraug diagnose)")
@@ -772,29 +771,31 @@ def build_parser() -> argparse.ArgumentParser:
         parser.add_argument("--realtime", action=argparse.BooleanOptionalAction, default=None,
                             help="virtual: hand frames out at the config's frame rate (--no-realtime: as fast "
                             "as the twin simulates; default: --realtime)")
-        _output_args(parser)
+        _output_args(parser, output)
         parser.add_argument("--no-progress", action="store_true", help="no progress bar")
         parser.add_argument("--json", action="store_true", help="print the result as one JSON object")
 
     cap = command("capture", _cmd_capture, help="record a board or the virtual sensor into a radaraug HDF5 capture")
-    live(cap, 10.0)
-    cap.add_argument("-o", "--output", required=True, help="radaraug HDF5 capture to write")
+    live(cap, "radaraug HDF5 capture to write")
     cap.add_argument("--label", type=int, default=None,
                      help="people count of the whole recording (per-frame 'count' and 'occupancy' labels)")
 
     cal = command("calibrate", _cmd_calibrate, help="record the empty room and fit CalibratedDR in one step")
-    live(cal, 10.0)
-    cal.add_argument("-o", "--output", required=True, help="calibration JSON to write")
+    live(cal, "calibration JSON to write")
     cal.add_argument("--keep-recording", default=None, metavar="PATH", help="also keep the recording here (.h5)")
     cal.add_argument("--floor", choices=("normal", "empirical"), default="normal",
                      help="the floor distribution the calibration draws from (as fit-cdr --floor)")
     return p
 
 
-def _run(func, *args) -> int:
+def _run(func: Callable[..., Result], *args: Any) -> int:
     """Call a command and map how it ends to the documented exit status (module docstring)."""
     try:
-        code = int(func(*args) or 0)
+        result = func(*args)
+        if isinstance(result, dict):
+            _print_json(result)
+            result = 0
+        code = int(result or 0)
         sys.stdout.flush()  # a closed pipe shows up here, not at interpreter exit
         return code
     except BrokenPipeError:

@@ -2,9 +2,15 @@
 
 from __future__ import annotations
 
+import contextlib
+import math
 import os
+import time
+from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import Any
+
+import torch
 
 from radaraug._files import atomic_write_json
 
@@ -14,3 +20,30 @@ def write_figures(out: str | os.PathLike | None, figures: dict[str, Any], *, new
     if out is not None:
         Path(out).parent.mkdir(parents=True, exist_ok=True)
         atomic_write_json(out, figures, newline=newline, indent=2)
+
+
+@contextlib.contextmanager
+def torch_threads(n: int) -> Iterator[None]:
+    """Run the block on ``n`` torch threads (intra-op); the number before is restored after."""
+    before = torch.get_num_threads()
+    torch.set_num_threads(n)
+    try:
+        yield
+    finally:
+        torch.set_num_threads(before)
+
+
+def best_seconds(fn: Callable[[], Any], repeats: int, device: torch.device | None = None) -> float:
+    """Seconds of the fastest of ``repeats`` calls of ``fn`` (warm-up calls are the caller's).
+
+    On a CUDA ``device`` each call is timed from an idle GPU to the end of its kernels.
+    """
+    sync = torch.cuda.synchronize if device is not None and device.type == "cuda" else (lambda _: None)
+    best = math.inf
+    for _ in range(repeats):
+        sync(device)
+        t0 = time.perf_counter()
+        fn()
+        sync(device)
+        best = min(best, time.perf_counter() - t0)
+    return best

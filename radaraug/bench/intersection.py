@@ -7,6 +7,7 @@ from typing import Any
 
 import torch
 
+from radaraug.bench import best_seconds
 from radaraug.raytrace.intersect import Hit, compile_failed, intersect
 
 
@@ -18,18 +19,6 @@ def _random_scene(num_rays: int, num_triangles: int, device: torch.device, dtype
     d = torch.randn(num_rays, 3, generator=g, dtype=dtype)
     d = d / d.norm(dim=1, keepdim=True)
     return o.to(device), d.to(device), tri.to(device)
-
-
-def _time(fn, repeats: int, device: torch.device) -> float:
-    best = float("inf")
-    sync = torch.cuda.synchronize if device.type == "cuda" else (lambda _: None)
-    for _ in range(repeats):
-        sync(device)
-        t0 = time.perf_counter()
-        fn()
-        sync(device)
-        best = min(best, time.perf_counter() - t0)
-    return best
 
 
 def benchmark_intersection(
@@ -70,7 +59,7 @@ def benchmark_intersection(
         return intersect(o, d, tri, compiled=flag)
 
     ref = run(False)
-    eager_s = _time(lambda: run(False), repeats, dev)
+    eager_s = best_seconds(lambda: run(False), repeats, dev)
     out: dict[str, Any] = {
         "num_rays": num_rays, "num_triangles": num_triangles, "device": str(dev),
         "threads": torch.get_num_threads(), "eager_tests_per_s": tests / eager_s,
@@ -81,7 +70,7 @@ def benchmark_intersection(
         hit = run(True)
         out["compile_warmup_s"] = time.perf_counter() - t0
         if not compile_failed():
-            comp_s = _time(lambda: run(True), repeats, dev)
+            comp_s = best_seconds(lambda: run(True), repeats, dev)
             out["compiled_tests_per_s"] = tests / comp_s
             out["speedup"] = eager_s / comp_s
             out["agree"] = bool(torch.equal(hit.face, ref.face))

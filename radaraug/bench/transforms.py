@@ -8,26 +8,15 @@ that matters is the ratio torch/NumPy frames per second (target >= 5 on CPU).
 from __future__ import annotations
 
 import platform
-import time
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 import torch
 
-from radaraug.bench import write_figures
+from radaraug.bench import best_seconds, torch_threads, write_figures
 from radaraug.bench.numpy_reference import numpy_rd_chain, numpy_rd_db
 from radaraug.config import RadarConfig
-
-
-def _best_time(fn, repeats: int) -> float:
-    fn()  # warm-up (plans, caches)
-    times = []
-    for _ in range(repeats):
-        t0 = time.perf_counter()
-        fn()
-        times.append(time.perf_counter() - t0)
-    return min(times)
 
 
 def run_transforms_benchmark(
@@ -41,14 +30,7 @@ def run_transforms_benchmark(
         device: torch device for the radaraug chain ("cpu", "cuda").
         out: optional JSON file to write.
     """
-    from radaraug.transforms import (
-        CalibratedDR,
-        ClipNormalize,
-        Colormap,
-        CombineRx,
-        RangeDoppler,
-        ToDecibels,
-    )
+    from radaraug.transforms import CalibratedDR, ClipNormalize, Colormap, CombineRx, RangeDoppler, ToDecibels
     from radaraug.transforms._viridis import VIRIDIS_RGB
 
     cfg = RadarConfig.bgt60tr13c()
@@ -91,17 +73,16 @@ def run_transforms_benchmark(
     np_db = numpy_rd_db(x_np[:2])
     max_diff_db = float(np.abs(np_db - torch_db)[np_db > -150].max())
 
-    t_numpy = _best_time(run_numpy, repeats)
+    run_numpy()  # warm-up (plans, caches), as for each torch run below
+    t_numpy = best_seconds(run_numpy, repeats)
     # Torch at its default thread count and single-threaded (NumPy's FFT is single-threaded, and on
     # a busy 2-core machine torch's intra-op threads contend with other processes).
     default_threads = torch.get_num_threads()
     per_threads = {}
     for n in sorted({1, default_threads}):
-        torch.set_num_threads(n)
-        try:
-            per_threads[n] = _best_time(run_torch, repeats)
-        finally:
-            torch.set_num_threads(default_threads)
+        with torch_threads(n):
+            run_torch()
+            per_threads[n] = best_seconds(run_torch, repeats)
     t_torch = per_threads[default_threads]
     result = {
         "benchmark": "transforms",

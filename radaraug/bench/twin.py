@@ -27,7 +27,7 @@ from typing import TYPE_CHECKING, Any
 import torch
 from torch.utils.data import DataLoader, Dataset
 
-from radaraug.bench import write_figures
+from radaraug.bench import torch_threads, write_figures
 
 if TYPE_CHECKING:
     from radaraug.sim.twin import DigitalTwin
@@ -83,19 +83,16 @@ def run_twin_benchmark(
     from radaraug.sensor.synthesis import ChirpTiming, per_channel_synthesis, synthesize
     from radaraug.sim.twin import DigitalTwin
 
-    threads = torch.get_num_threads()
-    torch.set_num_threads(1)
-    try:
+    with torch_threads(1):
         scene = Scene.builtin("corridor_two_walkers")
         t0 = time.perf_counter()
         twin = DigitalTwin(scene, device=device)
         static = twin.static_signal()
         room_s = time.perf_counter() - t0
-        sync = torch.cuda.synchronize if torch.device(device).type == "cuda" else (lambda: None)
 
         def frames_per_s(tw: DigitalTwin) -> float:
-            """Frames/s of ``tw`` on ``blocks`` blocks of 16 frames, after a warm-up block."""
-            return _frames_per_s(tw, BLOCK, blocks, sync)
+            """Frames/s of ``tw`` on ``blocks`` blocks of 16 frames, after a warm-up block (CPU: no sync)."""
+            return _frames_per_s(tw, BLOCK, blocks, lambda: None)
 
         fps_1 = frames_per_s(twin)
         assert twin.last_intervals is not None  # set by every paths() call, so by the blocks above
@@ -132,11 +129,9 @@ def run_twin_benchmark(
         args = (st.coef, st.delay_s, st.delay_rate)
 
         def synth(method: str) -> torch.Tensor:
-            out = synthesize(*args, timing=timing, dtype=torch.float64 if method == "exact" else st.dtype,
-                             method=method, taylor_tol=rx.taylor_tol, chirp_delay=st.chirp_delay,
-                             chirp_gain=st.chirp_gain)
-            sync()
-            return out
+            return synthesize(*args, timing=timing, dtype=torch.float64 if method == "exact" else st.dtype,
+                              method=method, taylor_tol=rx.taylor_tol, chirp_delay=st.chirp_delay,
+                              chirp_gain=st.chirp_gain)
 
         fast = synth("fast")
         t0 = time.perf_counter()
@@ -146,8 +141,6 @@ def run_twin_benchmark(
         exact = synth("exact")
         t_exact = time.perf_counter() - t0
         err = (fast.double() - exact).norm() / exact.norm()
-    finally:
-        torch.set_num_threads(threads)
 
     fps_w = None
     if workers > 0 and torch.device(device).type == "cpu":
@@ -261,14 +254,10 @@ def run_twin_benchmark_cuda(
     def sync() -> None:
         torch.cuda.synchronize(dev)
 
-    threads = torch.get_num_threads()
-    torch.set_num_threads(1)
-    try:
+    with torch_threads(1):
         cpu_twin = DigitalTwin(scene, device="cpu")
         cpu_twin.static_signal()
         fps_cpu = _frames_per_s(cpu_twin, BLOCK, cpu_blocks, lambda: None)
-    finally:
-        torch.set_num_threads(threads)
     print(f"bench twin: CPU (1 thread) {fps_cpu:.1f} frames/s", file=sys.stderr, flush=True)
     t0 = time.perf_counter()
     twin = DigitalTwin(scene, device=dev)

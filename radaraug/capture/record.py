@@ -173,25 +173,15 @@ def record(
                 device.stop()
                 if bar is not None:
                     bar.close()
+        elapsed = time.monotonic() - t_start
     except DeviceError as e:
-        _finish(writer, written)
         note = f"; {path} keeps the {written} frames recorded before" if written else "; no frame was recorded"
         raise DeviceError(f"{e}{note}") from None
-    except BaseException:
-        _finish(writer, written)
-        raise
-    elapsed = time.monotonic() - t_start
-    kept = _finish(writer, written)
-    return RecordResult(path if kept else None, written, dropped, n, elapsed, stop.requested, info)
-
-
-def _finish(writer: CaptureWriter, written: int) -> bool:
-    """Close the writer and say whether a file was kept (a run without a frame leaves none).
-
-    :meth:`CaptureWriter.discard` closes a writer that appended like :meth:`~CaptureWriter.close`.
-    """
-    writer.discard()
-    return written > 0
+    finally:
+        # Close the file, however the run ended: CaptureWriter.discard closes a writer that appended
+        # like close() (its frames are kept) and leaves no file for a run without a frame.
+        writer.discard()
+    return RecordResult(path if written else None, written, dropped, n, elapsed, stop.requested, info)
 
 
 class _StopFlag:

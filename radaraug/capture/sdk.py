@@ -142,7 +142,7 @@ class SdkDevice(RadarDevice):
             sequence = self._dev.create_simple_sequence(seq_config)
             self._dev.set_acquisition_sequence(sequence)
         except Exception as e:  # noqa: BLE001 - as above
-            self._release()
+            self._close()
             raise DeviceError(f"{self._where()}: the SDK refused the radar config ({e})") from None
         self._t0 = None
         self._last = -1
@@ -176,9 +176,6 @@ class SdkDevice(RadarDevice):
         return Frame(torch.from_numpy(data.copy()), index * period, index)
 
     def _close(self) -> None:
-        self._release()
-
-    def _release(self) -> None:
         dev, self._dev = self._dev, None
         if dev is None:
             return
@@ -190,20 +187,6 @@ class SdkDevice(RadarDevice):
                 fn(None, None, None) if step == "__exit__" else fn()
             except Exception:  # noqa: BLE001 - a board already unplugged cannot be stopped; nothing to do
                 pass
-
-
-def list_sdk_boards() -> list[str]:
-    """Serials/UUIDs of the boards the SDK sees (``DeviceFmcw.get_list()``).
-
-    Raises:
-        DeviceError: the SDK is not installed.
-    """
-    DeviceFmcw, _ = _import_sdk()
-    try:
-        found = DeviceFmcw.get_list()
-    except Exception as e:  # noqa: BLE001 - SDK error types are its own
-        raise DeviceError(f"{SDK_MODULE} cannot list the boards ({e})") from None
-    return [str(u.get("uuid", u)) if isinstance(u, dict) else str(u) for u in found]
 
 
 def _plain(v: Any) -> Any:
