@@ -6,9 +6,20 @@ World frame: metres, right-handed, ``z`` up. The radar's own frame (the antenna 
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass, field
+from typing import Any, TypeVar
 
 import torch
+
+_D = TypeVar("_D", "SceneGeometry", "Ellipsoids")
+
+
+def _moved(obj: _D, device: torch.device | str) -> _D:
+    """A copy of ``obj`` with every tensor field on ``device`` (fields that are None stay None)."""
+    values = {f.name: getattr(obj, f.name) for f in dataclasses.fields(obj)}
+    moved: dict[str, Any] = {k: v.to(device) for k, v in values.items() if isinstance(v, torch.Tensor)}
+    return dataclasses.replace(obj, **moved)
 
 
 @dataclass
@@ -44,13 +55,7 @@ class SceneGeometry:
 
     def to(self, device: torch.device | str) -> SceneGeometry:
         """Move every tensor to ``device``."""
-        def mv(t: torch.Tensor | None) -> torch.Tensor | None:
-            return None if t is None else t.to(device)
-
-        return SceneGeometry(
-            self.vertices.to(device), self.faces.to(device), self.face_material.to(device), self.materials,
-            mv(self.vertex_velocity), mv(self.object_id),
-        )
+        return _moved(self, device)
 
 
 @dataclass
@@ -120,11 +125,7 @@ class Ellipsoids:
 
     def to(self, device: torch.device | str) -> Ellipsoids:
         """Move every tensor to ``device``."""
-        return Ellipsoids(
-            self.centers.to(device), self.semi_axes.to(device), self.rotations.to(device),
-            self.velocities.to(device), self.material,
-            None if self.angular_velocities is None else self.angular_velocities.to(device),
-        )
+        return _moved(self, device)
 
     @staticmethod
     def cat(items: list[Ellipsoids]) -> Ellipsoids:

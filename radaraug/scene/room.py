@@ -158,24 +158,31 @@ def corridor(
         "far_wall": ((L, y0, 0), (0, 0, H), (0, W, 0)),
     }
     surfaces = [s for s in CORRIDOR_SURFACES if end_walls or s not in ("near_wall", "far_wall")]
-    keys: list[str] = []
-    verts, faces, mats = [], [], []
-    n_vert = 0
     cell = max_edge_m / math.sqrt(2.0)
     n_faces = sum(2 * math.prod(max(1, math.ceil(np.linalg.norm(x) / cell)) for x in rects[s][1:]) for s in surfaces)
     if n_faces > MAX_FACES:
         raise SceneError(f"corridor: max_edge_m={max_edge_m} would make more than {MAX_FACES} faces")
-    for s in surfaces:
-        key = _material_key(materials.get(s, PAPER_CORRIDOR_MATERIALS[s]), thickness_m.get(s),
-                            f"corridor surface {s!r}")
-        if key not in keys:
-            keys.append(key)
-        v, f = _rectangle(*rects[s], max_edge_m)
-        verts.append(v)
-        faces.append(f + n_vert)
-        mats.append(np.full(len(f), keys.index(key)))
-        n_vert += len(v)
-    return _geometry(np.concatenate(verts), np.concatenate(faces), np.concatenate(mats), keys, dtype, device)
+    surface_keys = [_material_key(materials.get(s, PAPER_CORRIDOR_MATERIALS[s]), thickness_m.get(s),
+                                  f"corridor surface {s!r}") for s in surfaces]
+    v, f, surface_of_face = _join([_rectangle(*rects[s], max_edge_m) for s in surfaces])
+    return _geometry(v, f, *_face_keys(surface_keys, surface_of_face), dtype, device)
+
+
+def _join(parts: Sequence[tuple[np.ndarray, np.ndarray]]) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """``(vertices, faces, part index per face)`` of several ``(vertices, faces)`` parts put together."""
+    offsets = np.cumsum([0] + [len(v) for v, _ in parts[:-1]])
+    faces = np.concatenate([f + o for (_, f), o in zip(parts, offsets)])
+    part_of_face = np.repeat(np.arange(len(parts)), [len(f) for _, f in parts])
+    return np.concatenate([v for v, _ in parts]), faces, part_of_face
+
+
+def _face_keys(part_keys: Sequence[str], part_of_face: np.ndarray) -> tuple[np.ndarray, list[str]]:
+    """Material index per face and the material table (duplicates merged, first-seen order).
+
+    ``part_keys`` holds one material key per part, ``part_of_face`` each face's part.
+    """
+    keys = list(dict.fromkeys(part_keys))
+    return np.asarray([keys.index(k) for k in part_keys], dtype=np.int64)[part_of_face], keys
 
 
 FaceMaterialFn = Callable[[torch.Tensor, torch.Tensor, Sequence[str]], "str | Sequence[str]"]
@@ -229,8 +236,8 @@ def _lookup(table: Mapping[str, str | Material], names: Sequence[str | None]) ->
 def _call_face_materials(
     fn: FaceMaterialFn, v: np.ndarray, f: np.ndarray, part_names: list[str], part_of_face: np.ndarray,
     where: str,
-) -> tuple[list[str], np.ndarray]:
-    """Run a user's per-face material callable once on all faces; ``(keys, index per face)``."""
+) -> tuple[np.ndarray, list[str]]:
+    """Run a user's per-face material callable once on all faces; ``(index per face, keys)``."""
     tri = v[f]
     normals = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
     normals = normals / np.maximum(np.linalg.norm(normals, axis=1, keepdims=True), 1e-30)
@@ -249,11 +256,8 @@ def _call_face_materials(
     if len(names) != len(f):
         raise SceneError(f"{where}: face_materials returned {len(names)} names for {len(f)} faces")
     uniq, inverse = np.unique(names.astype(str), return_inverse=True)
-    keys = [_material_key(str(u), None, where) for u in uniq]
     # Two spellings of one material (e.g. "wood@0.02" and "wood@0.020") collapse to one key.
-    merged = list(dict.fromkeys(keys))
-    remap = np.asarray([merged.index(k) for k in keys], dtype=np.int64)
-    return merged, remap[inverse.reshape(-1)]
+    return _face_keys([_material_key(str(u), None, where) for u in uniq], inverse.reshape(-1))
 
 
 def load_mesh(
@@ -294,11 +298,8 @@ def load_mesh(
     if not (isinstance(scale, (int, float)) and math.isfinite(scale) and scale > 0):
         raise SceneError(f"mesh file {path}: scale must be a positive number, got {scale!r}")
     parts = _read_mesh_parts(path)
-    verts = [v for _, _, v, _ in parts]
-    offsets = np.cumsum([0] + [len(v) for v in verts[:-1]])
-    f = np.concatenate([p[3] + o for p, o in zip(parts, offsets)])
-    part_of_face = np.repeat(np.arange(len(parts)), [len(p[3]) for p in parts])
-    v = np.concatenate(verts) * float(scale)
+    v, f, part_of_face = _join([(part_v, part_f) for _, _, part_v, part_f in parts])
+    v = v * float(scale)
     if transform is not None:
         m = np.asarray(transform.detach().cpu() if isinstance(transform, torch.Tensor) else transform,
                        dtype=np.float64)
@@ -309,17 +310,16 @@ def load_mesh(
     where = f"mesh file {path}"
     default_key = _material_key(material, None, where)
     if face_materials is None:
-        keys, face_material = [default_key], np.zeros(len(f), dtype=np.int64)
+        face_material, keys = np.zeros(len(f), dtype=np.int64), [default_key]
     elif callable(face_materials):
-        keys, face_material = _call_face_materials(face_materials, v, f, [p[0] for p in parts],
+        face_material, keys = _call_face_materials(face_materials, v, f, [p[0] for p in parts],
                                                    part_of_face, where)
     elif isinstance(face_materials, Mapping):
         part_keys = []
         for group, mat_name, _, _ in parts:
             hit = _lookup(face_materials, (group, mat_name))
             part_keys.append(default_key if hit is None else _material_key(hit, None, f"{where} part {group!r}"))
-        keys = list(dict.fromkeys(part_keys))
-        face_material = np.asarray([keys.index(k) for k in part_keys], dtype=np.int64)[part_of_face]
+        face_material, keys = _face_keys(part_keys, part_of_face)
     else:
         raise SceneError(f"{where}: face_materials must be a dict or a callable, got {type(face_materials).__name__}")
     return _geometry(v, f, face_material, keys, dtype, device)
@@ -350,15 +350,14 @@ def box(
     return _from_trimesh(mesh.vertices, mesh.faces, material, "box", max_edge_m, None)
 
 
-def _placement(position: Sequence[float] | np.ndarray, yaw_deg: float) -> np.ndarray:
-    """4x4 world-from-object matrix: a turn about +z, then a translation to ``position``.
+def _placement(position: Sequence[float], yaw_deg: float, where: str) -> np.ndarray:
+    """4x4 world-from-object matrix: a turn about +z, then a translation to ``position`` (checked).
 
     The turn is ``yaw_deg``, counter-clockwise seen from above.
     """
-    y = math.radians(float(yaw_deg))
     m = np.eye(4)
-    m[:3, :3] = axis_rotation("z", y).numpy()
-    m[:3, 3] = np.asarray(position, dtype=np.float64)
+    m[:3, :3] = axis_rotation("z", math.radians(float(yaw_deg))).numpy()
+    m[:3, 3] = _check_vec(position, 3, "position", where)
     return m
 
 
@@ -400,9 +399,8 @@ def placed_box(
 
     where = "box object"
     ext = _check_vec(size, 3, "size", where, positive=True)
-    pos = _check_vec(position, 3, "position", where)
     mesh = trimesh.creation.box(extents=ext, transform=trimesh.transformations.translation_matrix((0, 0, ext[2] / 2)))
-    return _from_trimesh(mesh.vertices, mesh.faces, material, where, max_edge_m, _placement(pos, yaw_deg))
+    return _from_trimesh(mesh.vertices, mesh.faces, material, where, max_edge_m, _placement(position, yaw_deg, where))
 
 
 def placed_cylinder(
@@ -421,12 +419,11 @@ def placed_cylinder(
 
     where = "cylinder object"
     r, h = _check_vec([radius, height], 2, "radius and height", where, positive=True)
-    pos = _check_vec(position, 3, "position", where)
     if isinstance(sections, bool) or not isinstance(sections, int) or sections < 3:
         raise SceneError(f"{where}: sections must be an integer >= 3, got {sections!r}")
     mesh = trimesh.creation.cylinder(radius=r, height=h, sections=sections,
                                      transform=trimesh.transformations.translation_matrix((0, 0, h / 2)))
-    return _from_trimesh(mesh.vertices, mesh.faces, material, where, max_edge_m, _placement(pos, 0.0))
+    return _from_trimesh(mesh.vertices, mesh.faces, material, where, max_edge_m, _placement(position, 0.0, where))
 
 
 def placed_mesh(
@@ -434,8 +431,7 @@ def placed_mesh(
     yaw_deg: float = 0.0,
 ) -> SceneGeometry:
     """A mesh file as an object: scaled, turned by ``yaw_deg`` about +z, its origin moved to ``position``."""
-    pos = _check_vec(position, 3, "position", f"mesh file {path}")
-    return load_mesh(path, material=material, scale=scale, transform=_placement(pos, yaw_deg))
+    return load_mesh(path, material=material, scale=scale, transform=_placement(position, yaw_deg, f"mesh file {path}"))
 
 
 def merge(geoms: Sequence[SceneGeometry]) -> SceneGeometry:
@@ -455,7 +451,7 @@ def merge(geoms: Sequence[SceneGeometry]) -> SceneGeometry:
         raise SceneError("merge: no geometries given")
     device = geoms[0].vertices.device
     dtype = functools.reduce(torch.promote_types, (g.vertices.dtype for g in geoms))
-    keys: list[str] = []
+    index: dict[str, int] = {}  # material key -> its index in the merged table
     verts, faces, mats, ids, vels = [], [], [], [], []
     n_vert, next_id = 0, 0
     any_vel = any(g.vertex_velocity is not None for g in geoms)
@@ -465,11 +461,7 @@ def merge(geoms: Sequence[SceneGeometry]) -> SceneGeometry:
             raise SceneError(f"merge: geometry {i} has inconsistent shapes (vertices "
                              f"{tuple(g.vertices.shape)}, faces {tuple(g.faces.shape)}, face_material "
                              f"{tuple(g.face_material.shape)})")
-        remap = []
-        for name in g.materials:
-            if name not in keys:
-                keys.append(name)
-            remap.append(keys.index(name))
+        remap = [index.setdefault(name, len(index)) for name in g.materials]
         remap_t = torch.tensor(remap, dtype=torch.long, device=device)
         verts.append(g.vertices.to(device=device, dtype=dtype))
         faces.append(g.faces.to(device) + n_vert)
@@ -487,7 +479,7 @@ def merge(geoms: Sequence[SceneGeometry]) -> SceneGeometry:
         vertices=torch.cat(verts),
         faces=torch.cat(faces),
         face_material=torch.cat(mats),
-        materials=tuple(keys),
+        materials=tuple(index),
         vertex_velocity=torch.cat(vels) if any_vel else None,
         object_id=torch.cat(ids),
     )

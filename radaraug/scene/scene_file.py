@@ -15,7 +15,7 @@ import inspect
 import json
 import math
 import os
-from collections.abc import Iterator, Mapping, Sequence
+from collections.abc import Iterable, Iterator, Mapping, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -98,16 +98,20 @@ class _Reader:
                 raise self.fail(key, f"unknown key(s) {unknown}; allowed: {sorted(allowed)}")
         return value
 
+    def require(self, spec: Mapping[str, Any], keys: Iterable[str], prefix: str = "", what: str = "") -> None:
+        """Fail on the first of ``keys`` that ``spec`` lacks (named ``prefix + key``; ``what`` ends the message)."""
+        for k in keys:
+            if k not in spec:
+                raise self.fail(prefix + k, f"is required{what}")
+
     def sequence(self, value: Any, key: str, what: str = "a list") -> Sequence[Any]:
         if not isinstance(value, Sequence) or isinstance(value, str):
             raise self.fail(key, f"must be {what}")
         return value
 
     def material(self, name: Any, key: str) -> None:
-        try:
+        with self.naming(key):
             get_material(name)
-        except SceneError as err:
-            raise self.fail(key, str(err)) from None
 
     @contextlib.contextmanager
     def naming(self, key: str) -> Iterator[None]:
@@ -141,6 +145,12 @@ class _Reader:
             raise self.fail(key, f"must be a file path, got {value!r}")
         p = Path(os.path.expanduser(str(value)))
         return Path(os.path.abspath(p if p.is_absolute() else self.folder / p))
+
+    def mesh_file(self, value: Any, key: str) -> Path:
+        path = self.path(value, key)
+        if not path.is_file():
+            raise self.fail(key, f"mesh file {path} not found")
+        return path
 
 
 def _relative(path: str | os.PathLike, folder: Path | None) -> str:
@@ -196,8 +206,7 @@ def _read_config(value: Any, rd: _Reader) -> RadarConfig:
 
 def _read_radar(spec: Any, rd: _Reader) -> tuple[RadarPose, RadarConfig]:
     spec = rd.mapping(spec, "radar", _RADAR_KEYS)
-    if "position" not in spec:
-        raise rd.fail("radar.position", "is required")
+    rd.require(spec, ("position",), "radar.")
     position = rd.vector(spec["position"], "radar.position", 3)
     given = [k for k in ("look_at", "rotation", "yaw_pitch_roll_deg") if k in spec]
     if len(given) > 1:
@@ -259,11 +268,8 @@ def _read_room(spec: Any, rd: _Reader) -> tuple[SceneGeometry, dict[str, Any]]:
             geom = corridor(dims["length"], dims["width"], dims["height"], materials=mats, thickness_m=thick,
                             end_walls=end_walls, max_edge_m=dims["max_edge"])
         elif kind == "mesh":
-            if "file" not in spec:
-                raise rd.fail("room.file", "is required for a mesh room")
-            path = rd.path(spec["file"], "room.file")
-            if not path.is_file():
-                raise rd.fail("room.file", f"mesh file {path} not found")
+            rd.require(spec, ("file",), "room.", " for a mesh room")
+            path = rd.mesh_file(spec["file"], "room.file")
             material = spec.get("material", "concrete")
             mats = dict(rd.mapping(spec.get("materials", {}), "room.materials"))
             scale = rd.number(spec.get("scale", 1.0), "room.scale", positive=True)
@@ -280,9 +286,7 @@ def _read_room(spec: Any, rd: _Reader) -> tuple[SceneGeometry, dict[str, Any]]:
 
 
 def _inline_room(spec: Mapping[str, Any], rd: _Reader) -> SceneGeometry:
-    for k in ("vertices", "faces", "materials", "face_material"):
-        if k not in spec:
-            raise rd.fail(f"room.{k}", "is required for an inline room")
+    rd.require(spec, ("vertices", "faces", "materials", "face_material"), "room.", " for an inline room")
     try:
         vertices = torch.tensor(spec["vertices"], dtype=torch.get_default_dtype())
         faces = torch.tensor(spec["faces"], dtype=torch.long)
@@ -339,9 +343,7 @@ def _read_object(spec: Any, i: int, rd: _Reader) -> tuple[SceneGeometry, dict[st
         raise rd.fail(f"{key}.type", f"must be one of {sorted(_OBJECT_KEYS)}, got {kind!r}")
     allowed, required = _OBJECT_KEYS[kind]
     rd.mapping(spec, key, allowed)
-    for k in sorted(required):
-        if k not in spec:
-            raise rd.fail(f"{key}.{k}", f"is required for a {kind} object")
+    rd.require(spec, sorted(required), f"{key}.", f" for a {kind} object")
     material = spec["material"]
     rd.material(material, f"{key}.material")
     norm: dict[str, Any] = {"type": kind}
@@ -368,9 +370,7 @@ def _read_object(spec: Any, i: int, rd: _Reader) -> tuple[SceneGeometry, dict[st
             norm.update(radius=radius, height=height, sections=sections, max_edge=edge)
             geom = placed_cylinder(radius, height, position, material, sections=sections, max_edge_m=edge)
         else:
-            path = rd.path(spec["file"], f"{key}.file")
-            if not path.is_file():
-                raise rd.fail(f"{key}.file", f"mesh file {path} not found")
+            path = rd.mesh_file(spec["file"], f"{key}.file")
             scale = rd.number(spec.get("scale", 1.0), f"{key}.scale", positive=True)
             yaw = rd.number(spec.get("yaw_deg", 0.0), f"{key}.yaw_deg")
             norm.update(file=str(path), scale=scale, yaw_deg=yaw)
@@ -475,12 +475,9 @@ def _read_materials(spec: Any, rd: _Reader, scattering: dict[str, DiffuseScatter
             kwargs: dict[str, Any] = {"a": re, "b": 0.0, "c": 0.0, "d": 0.0, "eps_complex_override": complex(re, im)}
         else:
             kwargs = {k: rd.number(m.get(k, 0.0), f"{key}.{k}") for k in "abcd"}
-            if "a" not in m:
-                raise rd.fail(f"{key}.a", "is required")
-        try:
+            rd.require(m, ("a",), f"{key}.")
+        with rd.naming(key):
             mat = Material(str(name), **kwargs)
-        except SceneError as err:
-            raise rd.fail(key, str(err)) from None
         existing = MATERIALS.get(str(name))
         if existing is not None and existing != mat:
             raise rd.fail(key, "redefines a different material with this name")
@@ -534,9 +531,7 @@ def parse_scene(data: Mapping[str, Any], *, source: str | os.PathLike | None = N
     """
     rd = _Reader(Path(source) if source is not None else None)
     data = rd.mapping(data, "(top level)", _TOP_KEYS)
-    for k in ("radar", "room"):
-        if k not in data:
-            raise rd.fail(k, "is required")
+    rd.require(data, ("radar", "room"))
     name = data.get("name", rd.source.stem if rd.source is not None else "scene")
     if not isinstance(name, str):
         raise rd.fail("name", f"must be a string, got {name!r}")
@@ -564,35 +559,34 @@ def scene_to_dict(scene: Scene, *, relative_to: str | os.PathLike | None = None)
         "position": scene.radar.position.detach().cpu().double().tolist(),
         "rotation": rot.tolist(),
     }
-    room = dict(scene.room_spec) if scene.room_spec is not None else _inline_dict(scene.room)
-    if room.get("type") == "mesh":
-        room["file"] = _relative(room["file"], folder)
-    out["room"] = room
+    room = scene.room_spec if scene.room_spec is not None else _inline_dict(scene.room)
+    out["room"] = _relative_paths(room, folder)
     if scene.objects_spec and scene.room_spec is not None:  # an inline room already holds them
-        objs = [dict(o) for o in scene.objects_spec]
-        for o in objs:
-            if o.get("type") == "mesh":
-                o["file"] = _relative(o["file"], folder)
-        out["objects"] = objs
+        out["objects"] = [_relative_paths(o, folder) for o in scene.objects_spec]
     specs = scene._person_specs
     out["people"] = [_person_dict(p, next((s for q, s in specs if q is p), None), folder) for p in scene.people]
     return out
 
 
+def _relative_paths(spec: Mapping[str, Any], folder: Path | None) -> dict[str, Any]:
+    """A copy of a room, object or person spec with its file paths made relative to ``folder``."""
+    out = dict(spec)
+    for k in ("file", "path"):
+        if k in out:
+            out[k] = _relative(out[k], folder)
+    for k in ("files", "files_or_meshes"):
+        if k in out:
+            out[k] = [_relative(f, folder) for f in out[k]]
+    return out
+
+
 def _person_dict(person: Person, spec: dict[str, Any] | None, folder: Path | None) -> dict[str, Any]:
     """A person as the file gave it (``spec``, paths made relative), else from ``person.to_dict()``."""
-    if spec is None:
-        spec = dict(person.to_dict())
-        if "type" not in spec:
-            spec["type"] = getattr(person, "type_name", "") or type(person).__name__
-        return spec
-    spec = dict(spec)
-    for k in ("file", "path"):
-        if k in spec:
-            spec[k] = _relative(spec[k], folder)
-    for k in ("files", "files_or_meshes"):
-        if k in spec:
-            spec[k] = [_relative(f, folder) for f in spec[k]]
+    if spec is not None:
+        return _relative_paths(spec, folder)
+    spec = dict(person.to_dict())
+    if "type" not in spec:
+        spec["type"] = getattr(person, "type_name", "") or type(person).__name__
     return spec
 
 

@@ -121,20 +121,21 @@ class _Lines:
         return value
 
 
-def _add_joint(out: BVHSkeleton, name: str, parent: int, offset: list[float], n_channels: list[int]) -> int:
-    """Append a joint (its channels follow) and return its index; offsets are collected in ``_offsets``."""
+def _add_joint(out: BVHSkeleton, offsets: list[list[float]], name: str, parent: int, offset: list[float],
+               channels: list[str]) -> int:
+    """Append a joint and return its index (``offsets`` collects the offsets until the file is read)."""
+    out._channel_start.append(sum(len(c) for c in out.channels))
     out.names.append(name)
     out.parents.append(parent)
-    out._channel_start.append(n_channels[0])
-    out.__dict__.setdefault("_offsets", []).append(offset)
+    out.channels.append(channels)
+    offsets.append(offset)
     return len(out.names) - 1
 
 
-def _parse_joint(s: _Lines, name: str, parent: int, out: BVHSkeleton, n_channels: list[int]) -> None:
+def _parse_joint(s: _Lines, name: str, parent: int, out: BVHSkeleton, offsets: list[list[float]]) -> None:
     s.expect("{")
     s.expect("OFFSET")
     offset = [s.number(f"OFFSET of {name}") for _ in range(3)]
-    idx = _add_joint(out, name, parent, offset, n_channels)
     tok, line = s.next("CHANNELS")
     if tok.upper() != "CHANNELS":
         raise s.error(f"joint {name!r}: expected CHANNELS, found {tok!r}", line)
@@ -147,8 +148,7 @@ def _parse_joint(s: _Lines, name: str, parent: int, out: BVHSkeleton, n_channels
         if ch not in _CHANNELS:
             raise s.error(f"joint {name!r}: unknown channel {ch!r} (expected one of {', '.join(_CHANNELS)})", line)
         chans.append(ch)
-    out.channels.append(chans)
-    n_channels[0] += len(chans)
+    idx = _add_joint(out, offsets, name, parent, offset, chans)
     while True:
         tok, line = s.next("JOINT, End Site or '}'")
         key = tok.upper()
@@ -156,15 +156,14 @@ def _parse_joint(s: _Lines, name: str, parent: int, out: BVHSkeleton, n_channels
             return
         if key == "JOINT":
             child, _ = s.next("joint name")
-            _parse_joint(s, child, idx, out, n_channels)
+            _parse_joint(s, child, idx, out, offsets)
         elif key == "END":
             s.expect("Site")
             s.expect("{")
             s.expect("OFFSET")
             end_off = [s.number(f"End Site OFFSET of {name}") for _ in range(3)]
             s.expect("}")
-            _add_joint(out, f"{name}_end", idx, end_off, n_channels)
-            out.channels.append([])
+            _add_joint(out, offsets, f"{name}_end", idx, end_off, [])
         else:
             raise s.error(f"joint {name!r}: unexpected {tok!r}", line)
 
@@ -186,9 +185,10 @@ def read_bvh(path: str | Path) -> BVHSkeleton:
     root, _ = s.next("root joint name")
     out = BVHSkeleton(names=[], parents=[], offsets=torch.empty(0), channels=[], motion=torch.empty(0),
                       frame_time_s=0.0, path=p)
-    n_channels = [0]
-    _parse_joint(s, root, -1, out, n_channels)
-    out.offsets = torch.tensor(out.__dict__.pop("_offsets"), dtype=torch.float64)
+    offsets: list[list[float]] = []
+    _parse_joint(s, root, -1, out, offsets)
+    out.offsets = torch.tensor(offsets, dtype=torch.float64)
+    n_channels = sum(len(c) for c in out.channels)
     tok, line = s.next("MOTION")
     if tok.upper() == "ROOT":
         raise s.error("several ROOT joints are not supported", line)
@@ -205,11 +205,11 @@ def read_bvh(path: str | Path) -> BVHSkeleton:
     if not out.frame_time_s > 0:
         raise s.error(f"frame time must be positive, got {out.frame_time_s}")
     values = s.tokens[s.i:]
-    need = n_frames * n_channels[0]
+    need = n_frames * n_channels
     if len(values) != need:
         line = values[-1][1] if values else s.tokens[-1][1]
         raise s.error(
-            f"MOTION has {len(values)} values, expected {n_frames} frames x {n_channels[0]} channels = {need}", line
+            f"MOTION has {len(values)} values, expected {n_frames} frames x {n_channels} channels = {need}", line
         )
     flat = []
     for v, n in values:
@@ -220,5 +220,5 @@ def read_bvh(path: str | Path) -> BVHSkeleton:
     bad_line = next((n for x, (_, n) in zip(flat, values) if not math.isfinite(x)), None)
     if bad_line is not None:
         raise s.error("motion values contain NaN/Inf", bad_line)
-    out.motion = torch.tensor(flat, dtype=torch.float64).reshape(n_frames, n_channels[0])
+    out.motion = torch.tensor(flat, dtype=torch.float64).reshape(n_frames, n_channels)
     return out

@@ -108,6 +108,7 @@ class BVHPerson(SkeletonPerson):
     """
 
     type_name = "bvh"
+    _FIELDS = ("path", "start", "heading_rad", "scale", "loop")
 
     def __init__(
         self,
@@ -176,18 +177,4 @@ class BVHPerson(SkeletonPerson):
 
     def to_dict(self) -> dict[str, Any]:
         """Parameters for scene files (``scale`` only when it was given)."""
-        return {
-            "type": "bvh", "path": self.path, "start": list(self.start), "heading_rad": self.heading_rad,
-            "scale": self.scale if self.scale_given else None, "loop": self.loop,
-        }
-
-    @classmethod
-    def from_dict(cls, d: dict[str, Any]) -> BVHPerson:
-        """Inverse of :meth:`to_dict`."""
-        if "path" not in d:
-            raise SceneError(f"bvh person: missing 'path' in {d!r}")
-        return cls(d["path"], start=tuple(d.get("start", (0.0, 0.0))), heading_rad=d.get("heading_rad", 0.0),
-                   scale=d.get("scale"), loop=d.get("loop", True))
-
-    def __repr__(self) -> str:
-        return f"BVHPerson({self.path!r}, start={self.start}, heading_rad={self.heading_rad}, scale={self.scale})"
+        return {**super().to_dict(), "scale": self.scale if self.scale_given else None}

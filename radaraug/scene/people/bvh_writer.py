@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from pathlib import Path
 
 import torch
@@ -12,6 +13,40 @@ from radaraug.scene.people import _rotations as rot
 from radaraug.scene.people.bvh_person import _BVH_TO_WORLD, UNIT_SCALES
 from radaraug.scene.people.skeleton import ANKLE_HEIGHT_FRACTION
 from radaraug.scene.people.walker import Walker
+
+Vec3 = tuple[float, float, float]
+CMUJoint = tuple[str, str | None, Vec3, Vec3 | None]
+"""``(name, parent or None for the root, offset, end-site offset or None)``."""
+
+
+def cmu_hierarchy(ln: Mapping[str, float]) -> list[CMUJoint]:
+    """The CMU-named joints of a figure in file order, offsets in metres along the BVH axes.
+
+    BVH axes: +x the figure's left, +y up, +z forward. ``ln`` holds the lengths in metres:
+    ``hip_width``, ``upper_leg``, ``lower_leg``, ``ankle`` (ankle height), ``foot`` (ankle to
+    toe, forward), ``torso``, ``head``, ``shoulder_width``, ``shoulder_drop`` (shoulder joints
+    below the neck joint), ``upper_arm``, ``forearm``, ``hand``.
+    """
+    hw, sw = ln["hip_width"] / 2, ln["shoulder_width"] / 2
+    spec: list[CMUJoint] = [("Hips", None, (0.0, 0.0, 0.0), None)]
+    for side, sgn in (("Left", 1.0), ("Right", -1.0)):
+        spec += [
+            (f"{side}UpLeg", "Hips", (sgn * hw, 0.0, 0.0), None),
+            (f"{side}Leg", f"{side}UpLeg", (0.0, -ln["upper_leg"], 0.0), None),
+            (f"{side}Foot", f"{side}Leg", (0.0, -ln["lower_leg"], 0.0), (0.0, -ln["ankle"], ln["foot"])),
+        ]
+    spec += [
+        ("Spine", "Hips", (0.0, 0.0, 0.0), None),
+        ("Neck", "Spine", (0.0, ln["torso"], 0.0), None),
+        ("Head", "Neck", (0.0, ln["head"] / 2, 0.0), (0.0, ln["head"] / 2, 0.0)),
+    ]
+    for side, sgn in (("Left", 1.0), ("Right", -1.0)):
+        spec += [
+            (f"{side}Arm", "Neck", (sgn * sw, -ln["shoulder_drop"], 0.0), None),
+            (f"{side}ForeArm", f"{side}Arm", (0.0, -ln["upper_arm"], 0.0), None),
+            (f"{side}Hand", f"{side}ForeArm", (0.0, -ln["forearm"], 0.0), (0.0, -ln["hand"], 0.0)),
+        ]
+    return spec
 
 
 def hierarchy_lines(joints: list[tuple[str, str | None, str, str | None]]) -> tuple[list[str], list[str]]:
@@ -50,6 +85,31 @@ def hierarchy_lines(joints: list[tuple[str, str | None, str, str | None]]) -> tu
     emit(0, 0)
     return lines, order
 
+
+def write_clip(
+    path: str | Path, joints: list[CMUJoint], root: torch.Tensor, euler_deg: Mapping[str, torch.Tensor],
+    frame_time_s: float, m_per_unit: float,
+) -> Path:
+    """Write a BVH clip of ``joints`` (:func:`cmu_hierarchy`); returns ``path``.
+
+    ``root``: ``(T, 3)`` root positions in metres (BVH axes); ``euler_deg``: per joint its
+    ``(T, 3)`` Euler angles in degrees, order ``(Z, X, Y)``; ``m_per_unit``: the file's unit.
+    """
+
+    def fmt(vec: Vec3) -> str:
+        # "+ 0.0" writes a zero offset as "0.000000", never "-0.000000".
+        return " ".join(f"{x / m_per_unit + 0.0:.6f}" for x in vec)
+
+    lines, order = hierarchy_lines([(name, parent, fmt(offset), None if end is None else fmt(end))
+                                    for name, parent, offset, end in joints])
+    motion = torch.cat([root / m_per_unit] + [euler_deg[name] for name in order], dim=1)
+    lines += ["MOTION", f"Frames: {motion.shape[0]}", f"Frame Time: {frame_time_s:.9f}"]
+    lines += [" ".join(f"{float(x):.6f}" for x in row) for row in motion]
+    out = Path(path)
+    atomic_write_text(out, "\n".join(lines) + "\n")
+    return out
+
+
 def write_bvh(
     person: Walker,
     path: str | Path,
@@ -83,55 +143,20 @@ def write_bvh(
     n = int(round(duration * fps)) + 1
     t = torch.arange(n, dtype=torch.float64) / fps
     pose = person.pose(t)
+    h, lens = person.height_m, person.segment_lengths_m
+    joints = cmu_hierarchy({**lens, "ankle": ANKLE_HEIGHT_FRACTION * h, "shoulder_drop": 0.0,
+                            "forearm": lens["lower_arm"], "hand": 0.05 * h})
+    # World rotation of each joint's segment (limbs: index 0 left, 1 right).
     rots = pose["rotations"]
-    h = person.height_m
-    lens = person.segment_lengths_m
-    m_per_unit = UNIT_SCALES[unit]
-    p_mat = _BVH_TO_WORLD
-
-    def off(x: float, y: float, z: float) -> str:
-        b = p_mat.T @ torch.tensor([x, y, z], dtype=torch.float64) / m_per_unit
-        return " ".join(f"{float(v):.6f}" for v in b)
-
-    # (name, parent, offset in the parent's body frame (m), world rotation, end-site offset)
-    hw, sw = lens["hip_width"] / 2, lens["shoulder_width"] / 2
-    spec: list[tuple[str, str | None, tuple[float, float, float], torch.Tensor, tuple[float, float, float] | None]]
-    spec = [("Hips", None, (0.0, 0.0, 0.0), rots["pelvis"], None)]
-    for side, k, sgn in (("Left", 0, 1.0), ("Right", 1, -1.0)):
-        spec += [
-            (f"{side}UpLeg", "Hips", (0.0, sgn * hw, 0.0), rots["thigh"][k], None),
-            (f"{side}Leg", f"{side}UpLeg", (0.0, 0.0, -lens["upper_leg"]), rots["shank"][k], None),
-            (f"{side}Foot", f"{side}Leg", (0.0, 0.0, -lens["lower_leg"]), rots["foot"][k],
-             (lens["foot"], 0.0, -ANKLE_HEIGHT_FRACTION * h)),
-        ]
-    spec += [
-        ("Spine", "Hips", (0.0, 0.0, 0.0), rots["upper"], None),
-        ("Neck", "Spine", (0.0, 0.0, lens["torso"]), rots["upper"], None),
-        ("Head", "Neck", (0.0, 0.0, lens["head"] / 2), rots["upper"], (0.0, 0.0, lens["head"] / 2)),
-    ]
-    for side, k, sgn in (("Left", 0, 1.0), ("Right", 1, -1.0)):
-        spec += [
-            (f"{side}Arm", "Neck", (0.0, sgn * sw, 0.0), rots["upper_arm"][k], None),
-            (f"{side}ForeArm", f"{side}Arm", (0.0, 0.0, -lens["upper_arm"]), rots["forearm"][k], None),
-            (f"{side}Hand", f"{side}ForeArm", (0.0, 0.0, -lens["lower_arm"]), rots["forearm"][k],
-             (0.0, 0.0, -0.05 * h)),
-        ]
-    world_rot = {name: r for name, _, _, r, _ in spec}
-    lines, order = hierarchy_lines([(name, parent, off(*offset), None if end is None else off(*end))
-                                    for name, parent, offset, _, end in spec])
-    parent_of = {s[0]: s[1] for s in spec}
-    columns = [pose["positions"][:, 0] @ p_mat / m_per_unit]  # the root; world -> bvh: P^T p
-    for name in order:
-        r_w = world_rot[name]
-        parent = parent_of[name]
-        local = r_w if parent is None else world_rot[parent].mT @ r_w
-        local_bvh = p_mat.T @ local @ p_mat
-        columns.append(torch.rad2deg(rot.euler_from_matrix(local_bvh, "zxy")))
-    motion = torch.cat(columns, dim=1)
-    lines += ["MOTION", f"Frames: {n}", f"Frame Time: {1.0 / fps:.9f}"]
-    lines += [" ".join(f"{float(v):.6f}" for v in row) for row in motion]
-    out = Path(path)
-    atomic_write_text(out, "\n".join(lines) + "\n")
-    return out
-
-
+    world_rot = {"Hips": rots["pelvis"], "Spine": rots["upper"], "Neck": rots["upper"], "Head": rots["upper"]}
+    for side, k in (("Left", 0), ("Right", 1)):
+        for joint, segment in (("UpLeg", "thigh"), ("Leg", "shank"), ("Foot", "foot"), ("Arm", "upper_arm"),
+                               ("ForeArm", "forearm"), ("Hand", "forearm")):
+            world_rot[side + joint] = rots[segment][k]
+    p_mat = _BVH_TO_WORLD  # world = P bvh
+    euler = {}
+    for name, parent, _, _ in joints:
+        local = world_rot[name] if parent is None else world_rot[parent].mT @ world_rot[name]
+        euler[name] = torch.rad2deg(rot.euler_from_matrix(p_mat.T @ local @ p_mat, "zxy"))
+    root = pose["positions"][:, 0] @ p_mat  # world -> bvh: P^T p
+    return write_clip(path, joints, root, euler, 1.0 / fps, UNIT_SCALES[unit])

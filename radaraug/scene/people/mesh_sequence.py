@@ -11,7 +11,7 @@ import torch
 
 from radaraug._optional import lazy_import, missing_dependency
 from radaraug.errors import SceneError
-from radaraug.scene.geometry import Ellipsoids, SceneGeometry
+from radaraug.scene.geometry import Ellipsoids
 from radaraug.scene.people import _rotations as rot
 from radaraug.scene.people._interp import FrameTrack
 from radaraug.scene.people.person import Person, as_times, register_person
@@ -119,6 +119,7 @@ class MeshSequencePerson(Person):
     """
 
     type_name = "mesh_sequence"
+    _FIELDS = ("files", "fps", "start", "heading_rad", "scale", "max_faces", "up_axis", "speed_m_s")
 
     def __init__(
         self,
@@ -191,24 +192,10 @@ class MeshSequencePerson(Person):
         d = self._direction.to(pos)
         return pos + t[:, None, None] * self.speed_m_s * d, vel + self.speed_m_s * d
 
-    def mesh(
-        self,
-        t: float,
-        *,
-        faces_per_segment: int = 320,
-        dtype: torch.dtype = torch.float32,
-        device: torch.device | str | None = None,
-    ) -> SceneGeometry:
-        """The animated mesh at ``t`` with exact per-vertex velocities (``faces_per_segment`` unused)."""
-        del faces_per_segment
-        pos, vel = self.vertices(torch.as_tensor([float(as_times(t)[0])], dtype=torch.float64))
-        dev = torch.device("cpu") if device is None else torch.device(device)
-        nf = self.faces.shape[0]
-        return SceneGeometry(
-            vertices=pos[0].to(device=dev, dtype=dtype), faces=self.faces.to(dev),
-            face_material=torch.zeros(nf, dtype=torch.long, device=dev), materials=(self.material,),
-            vertex_velocity=vel[0].to(device=dev, dtype=dtype), object_id=None,
-        )
+    def _surface(self, t0: float, faces_per_segment: int) -> tuple[torch.Tensor, torch.Tensor, torch.Tensor]:
+        """The animated mesh at ``t0`` with exact per-vertex velocities (``faces_per_segment`` unused)."""
+        pos, vel = self.vertices(torch.tensor([t0], dtype=torch.float64))
+        return pos[0], self.faces, vel[0]
 
     def ellipsoids(self, t: torch.Tensor) -> Ellipsoids:
         """A coarse 16-ellipsoid decomposition: one per vertex cluster (k-means on frame 0).
@@ -235,24 +222,12 @@ class MeshSequencePerson(Person):
         semi = (3.0 * evals.clamp_min(0.0)).sqrt().clamp_min(1e-3)
         return Ellipsoids(centers=mean, semi_axes=semi, rotations=evecs, velocities=mvel, material=self.material)
 
-    def to_dict(self) -> dict[str, Any]:
-        """Parameters for scene files (``files`` is None when meshes were given as objects)."""
-        return {
-            "type": "mesh_sequence", "files": self.files, "fps": self.fps, "start": list(self.start),
-            "heading_rad": self.heading_rad, "scale": self.scale, "max_faces": self.max_faces,
-            "up_axis": self.up_axis, "speed_m_s": self.speed_m_s,
-        }
-
     @classmethod
-    def from_dict(cls, d: dict[str, Any]) -> MeshSequencePerson:
+    def from_dict(cls, d: dict[str, Any]) -> Person:
         """Inverse of :meth:`to_dict` (needs ``files``)."""
         if not d.get("files"):
             raise SceneError("mesh_sequence person: 'files' is missing (meshes given as objects cannot be saved)")
-        if "fps" not in d:
-            raise SceneError("mesh_sequence person: 'fps' is missing")
-        return cls(d["files"], fps=d["fps"], start=tuple(d.get("start", (0.0, 0.0))),
-                   heading_rad=d.get("heading_rad", 0.0), scale=d.get("scale", 1.0), max_faces=d.get("max_faces"),
-                   up_axis=d.get("up_axis", "y"), speed_m_s=d.get("speed_m_s", 0.0))
+        return super().from_dict({"files_or_meshes" if k == "files" else k: v for k, v in d.items()})
 
     def __repr__(self) -> str:
         return f"MeshSequencePerson({self.num_frames} frames, {self.faces.shape[0]} faces, fps={self.fps})"

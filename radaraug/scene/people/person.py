@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import inspect
 import math
 from abc import ABC, abstractmethod
 from functools import lru_cache
@@ -85,27 +86,60 @@ class Person(ABC):
     material: str = "skin"
     type_name: str = ""
     """The ``type`` that names this kind of person in scene files and :meth:`to_dict`."""
+    _FIELDS: tuple[str, ...] = ()
+    """Constructor keywords that :meth:`to_dict` writes, each read from the attribute of that name."""
 
     @abstractmethod
     def ellipsoids(self, t: torch.Tensor) -> Ellipsoids:
         """Body segments at times ``t`` ``(T,)`` s: centres ``(T, S, 3)`` etc., velocities in m/s."""
 
-    @abstractmethod
     def to_dict(self) -> dict[str, Any]:
-        """The constructor parameters, JSON-serializable (for scene files)."""
+        """The constructor parameters, JSON-serializable (for scene files): ``type`` and :attr:`_FIELDS`."""
+        out: dict[str, Any] = {"type": self.type_name}
+        for k in self._FIELDS:
+            value = getattr(self, k)
+            out[k] = list(value) if isinstance(value, tuple) else value
+        return out
 
     @classmethod
     def from_dict(cls, d: dict[str, Any]) -> Person:
-        """Rebuild a person from :meth:`to_dict` output (each registered person type implements it).
+        """Rebuild a person from :meth:`to_dict` output (its keys are constructor keywords).
 
         Raises:
-            SceneError: this type cannot be rebuilt from a dict.
+            SceneError: this type cannot be rebuilt from a dict, unknown parameters, or values
+                the constructor refuses.
         """
-        raise SceneError(f"person type {cls.__name__} cannot be rebuilt from a scene file")
+        if not cls._FIELDS:
+            raise SceneError(f"person type {cls.__name__} cannot be rebuilt from a scene file")
+        unknown = sorted(set(d) - {"type"} - set(inspect.signature(cls).parameters))
+        if unknown:
+            raise SceneError(f"{cls.type_name}: unknown parameters {unknown} in {d!r}")
+        # JSON/YAML give lists; the constructors take (x, y) tuples.
+        kwargs = {k: tuple(v) if isinstance(v, list) else v for k, v in d.items() if k != "type"}
+        try:
+            return cls(**kwargs)
+        except SceneError:
+            raise
+        except (TypeError, ValueError) as exc:
+            raise SceneError(f"{cls.type_name}: bad parameters {d!r}: {exc}") from exc
+
+    def __repr__(self) -> str:
+        args = ", ".join(f"{k}={getattr(self, k)!r}" for k in self._FIELDS)
+        return f"{type(self).__name__}({args})"
 
     def _ellipsoids_for_mesh(self, t: torch.Tensor) -> Ellipsoids:
         """Ellipsoids at ``t`` ``(3,)`` with frames chosen consistently across the three instants."""
         return self.ellipsoids(t)
+
+    def _surface(self, t0: float, faces_per_segment: int) -> tuple[torch.Tensor, torch.Tensor, torch.Tensor]:
+        """Float64 vertices ``(V, 3)``, faces ``(F, 3)`` and vertex velocities ``(V, 3)`` at ``t0``.
+
+        The tessellated ellipsoids, velocities by central differences over ``t0 +- MESH_VELOCITY_DT_S``.
+        """
+        dt = MESH_VELOCITY_DT_S
+        times = torch.tensor([t0 - dt, t0, t0 + dt], dtype=torch.float64)
+        verts, faces = tessellate(self._ellipsoids_for_mesh(times), faces_per_segment)
+        return verts[1], faces, (verts[2] - verts[0]) / (2.0 * dt)
 
     def mesh(
         self,
@@ -131,15 +165,10 @@ class Person(ABC):
             :class:`SceneGeometry` with material ``"skin"`` on every face, ``object_id`` None
             (the scene assigns object ids).
         """
-        t0 = float(as_times(t).reshape(-1)[0])
-        dt = MESH_VELOCITY_DT_S
-        times = torch.tensor([t0 - dt, t0, t0 + dt], dtype=torch.float64)
-        ell = self._ellipsoids_for_mesh(times)
-        verts, faces = tessellate(ell, faces_per_segment)
-        vel = (verts[2] - verts[0]) / (2.0 * dt)
+        verts, faces, vel = self._surface(float(as_times(t)[0]), faces_per_segment)
         dev = torch.device("cpu") if device is None else torch.device(device)
         return SceneGeometry(
-            vertices=verts[1].to(device=dev, dtype=dtype),
+            vertices=verts.to(device=dev, dtype=dtype),
             faces=faces.to(dev),
             face_material=torch.zeros(faces.shape[0], dtype=torch.long, device=dev),
             materials=(self.material,),

@@ -43,11 +43,10 @@ from typing import Any
 
 import torch
 
-from radaraug._files import atomic_write_text
 from radaraug.errors import SceneError
 from radaraug.scene.people import _rotations as rot
 from radaraug.scene.people.bvh_person import UNIT_SCALES
-from radaraug.scene.people.bvh_writer import hierarchy_lines
+from radaraug.scene.people.bvh_writer import CMUJoint, cmu_hierarchy, write_clip
 from radaraug.scene.people.skeleton import ANKLE_HEIGHT_FRACTION, SEGMENT_LENGTH_FRACTIONS
 
 _TWO_PI = 2.0 * math.pi
@@ -55,12 +54,7 @@ _TWO_PI = 2.0 * math.pi
 # Body proportions (fractions of height). Legs, trunk, head, hip and shoulder widths as the
 # walker (Drillis-Contini); foot and arms differ.
 PROPORTIONS: dict[str, float] = {
-    "upper_leg": SEGMENT_LENGTH_FRACTIONS["upper_leg"],
-    "lower_leg": SEGMENT_LENGTH_FRACTIONS["lower_leg"],
-    "hip_width": SEGMENT_LENGTH_FRACTIONS["hip_width"],
-    "shoulder_width": SEGMENT_LENGTH_FRACTIONS["shoulder_width"],
-    "torso": SEGMENT_LENGTH_FRACTIONS["torso"],
-    "head": SEGMENT_LENGTH_FRACTIONS["head"],
+    **{k: SEGMENT_LENGTH_FRACTIONS[k] for k in ("upper_leg", "lower_leg", "hip_width", "shoulder_width", "torso", "head")},
     "foot_forward": 0.115,  # ankle to toe, horizontal
     "heel_back": 0.035,  # ankle to heel, horizontal
     "upper_arm": 0.186,
@@ -134,32 +128,10 @@ class SineGait:
     def _lengths(self) -> dict[str, float]:
         return {k: f * self.height_m for k, f in PROPORTIONS.items()}
 
-    def _hierarchy(self) -> list[tuple[str, str | None, tuple[float, float, float], tuple[float, float, float] | None]]:
+    def _hierarchy(self) -> list[CMUJoint]:
         """``(joint, parent, offset (BVH axes, m), end-site offset or None)`` in file order."""
         ln = self._lengths()
-        h = self.height_m
-        hw, sw = ln["hip_width"] / 2, ln["shoulder_width"] / 2
-        spec: list[tuple[str, str | None, tuple[float, float, float], tuple[float, float, float] | None]]
-        spec = [("Hips", None, (0.0, 0.0, 0.0), None)]
-        for side, sgn in (("Left", 1.0), ("Right", -1.0)):
-            spec += [
-                (f"{side}UpLeg", "Hips", (sgn * hw, 0.0, 0.0), None),
-                (f"{side}Leg", f"{side}UpLeg", (0.0, -ln["upper_leg"], 0.0), None),
-                (f"{side}Foot", f"{side}Leg", (0.0, -ln["lower_leg"], 0.0),
-                 (0.0, -ANKLE_HEIGHT_FRACTION * h, ln["foot_forward"])),
-            ]
-        spec += [
-            ("Spine", "Hips", (0.0, 0.0, 0.0), None),
-            ("Neck", "Spine", (0.0, ln["torso"], 0.0), None),
-            ("Head", "Neck", (0.0, ln["head"] / 2, 0.0), (0.0, ln["head"] / 2, 0.0)),
-        ]
-        for side, sgn in (("Left", 1.0), ("Right", -1.0)):
-            spec += [
-                (f"{side}Arm", "Neck", (sgn * sw, -ln["shoulder_drop"], 0.0), None),
-                (f"{side}ForeArm", f"{side}Arm", (0.0, -ln["upper_arm"], 0.0), None),
-                (f"{side}Hand", f"{side}ForeArm", (0.0, -ln["forearm"], 0.0), (0.0, -ln["hand"], 0.0)),
-            ]
-        return spec
+        return cmu_hierarchy({**ln, "ankle": ANKLE_HEIGHT_FRACTION * self.height_m, "foot": ln["foot_forward"]})
 
     def channels(self, t: torch.Tensor) -> tuple[torch.Tensor, dict[str, torch.Tensor]]:
         """Root position ``(T, 3)`` and per-joint Euler angles ``(T, 3)`` at times ``t``.
@@ -259,24 +231,10 @@ def write_sine_gait_bvh(gait: SineGait, path: str | Path, *, fps: float = 100.0,
     """
     if unit not in UNIT_SCALES:
         raise SceneError(f"write_sine_gait_bvh: unknown unit {unit!r}; one of {sorted(UNIT_SCALES)}")
-    m_per_unit = UNIT_SCALES[unit]
     t = gait.clip_times(fps)
     root, eul = gait.channels(t)
     root = root + torch.tensor([0.0, gait.pelvis_height_m(fps), 0.0], dtype=torch.float64)
-    spec = gait._hierarchy()
-
-    def fmt(vec: tuple[float, float, float]) -> str:
-        return " ".join(f"{x / m_per_unit:.6f}" for x in vec)
-
-    lines, order = hierarchy_lines([(name, parent, fmt(offset), None if end is None else fmt(end))
-                                    for name, parent, offset, end in spec])
-    motion = torch.cat([root / m_per_unit] + [eul[name] for name in order], dim=1)
-    frame_time = float(t[1] - t[0])
-    lines += ["MOTION", f"Frames: {motion.shape[0]}", f"Frame Time: {frame_time:.9f}"]
-    lines += [" ".join(f"{float(x):.6f}" for x in row) for row in motion]
-    out = Path(path)
-    atomic_write_text(out, "\n".join(lines) + "\n")
-    return out
+    return write_clip(path, gait._hierarchy(), root, eul, float(t[1] - t[0]), UNIT_SCALES[unit])
 
 
 __all__ = ["PROPORTIONS", "SineGait", "write_sine_gait_bvh"]

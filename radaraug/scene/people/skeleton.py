@@ -100,9 +100,6 @@ class Skeleton:
         if not (0.3 <= float(self.height_m) <= 3.0):
             raise SceneError(f"Skeleton: height_m={self.height_m} m is not a human height (0.3-3 m)")
 
-    joint_names = JOINT_NAMES
-    segment_names = SEGMENT_NAMES
-
     @property
     def num_segments(self) -> int:
         """``S`` = 16."""

@@ -22,7 +22,6 @@ Motion (all analytic, velocities exact):
 from __future__ import annotations
 
 import math
-from typing import Any
 
 import torch
 
@@ -60,6 +59,8 @@ class StandingPerson(SkeletonPerson):
     """
 
     type_name = "standing"
+    _FIELDS = ("height_m", "position", "facing_rad", "breathing_m", "breathing_Hz", "breathing_phase", "sway_rad",
+               "sway_Hz", "sway_phase", "sway_direction_rad")
 
     def __init__(
         self,
@@ -107,16 +108,14 @@ class StandingPerson(SkeletonPerson):
         neck = hip + f["torso"] * h
         hw, sw = f["hip_width"] * h / 2, f["shoulder_width"] * h / 2
         elbow = neck - f["upper_arm"] * h
-        pos = {
-            "pelvis": (0.0, 0.0, hip), "neck": (0.0, 0.0, neck), "head_top": (0.0, 0.0, neck + f["head"] * h),
-            "left_shoulder": (0.0, sw, neck), "right_shoulder": (0.0, -sw, neck),
-            "left_elbow": (0.0, sw, elbow), "right_elbow": (0.0, -sw, elbow),
-            "left_wrist": (0.0, sw, elbow - f["lower_arm"] * h), "right_wrist": (0.0, -sw, elbow - f["lower_arm"] * h),
-            "left_hip": (0.0, hw, hip), "right_hip": (0.0, -hw, hip),
-            "left_knee": (0.0, hw, knee), "right_knee": (0.0, -hw, knee),
-            "left_ankle": (0.0, hw, ankle), "right_ankle": (0.0, -hw, ankle),
-            "left_toe": (f["foot"] * h, hw, 0.0), "right_toe": (f["foot"] * h, -hw, 0.0),
-        }
+        pos = {"pelvis": (0.0, 0.0, hip), "neck": (0.0, 0.0, neck), "head_top": (0.0, 0.0, neck + f["head"] * h)}
+        for side, arm_y, leg_y in (("left", sw, hw), ("right", -sw, -hw)):
+            pos |= {
+                f"{side}_shoulder": (0.0, arm_y, neck), f"{side}_elbow": (0.0, arm_y, elbow),
+                f"{side}_wrist": (0.0, arm_y, elbow - f["lower_arm"] * h), f"{side}_hip": (0.0, leg_y, hip),
+                f"{side}_knee": (0.0, leg_y, knee), f"{side}_ankle": (0.0, leg_y, ankle),
+                f"{side}_toe": (f["foot"] * h, leg_y, 0.0),
+            }
         return torch.tensor([pos[n] for n in JOINT_NAMES], dtype=torch.float64)
 
     def joints(self, t: torch.Tensor) -> tuple[torch.Tensor, torch.Tensor]:
@@ -152,32 +151,3 @@ class StandingPerson(SkeletonPerson):
         """Upper bound of any joint's speed (breathing plus sway at the head), m/s."""
         lever = self.height_m * (1.0 - ANKLE_HEIGHT_FRACTION)
         return 2.0 * self.breathing_m * _TWO_PI * self.breathing_Hz + self.sway_rad * _TWO_PI * self.sway_Hz * lever
-
-    def to_dict(self) -> dict[str, Any]:
-        """Parameters for scene files."""
-        return {
-            "type": self.type_name, "height_m": self.height_m, "position": list(self.position),
-            "facing_rad": self.facing_rad, "breathing_m": self.breathing_m, "breathing_Hz": self.breathing_Hz,
-            "breathing_phase": self.breathing_phase, "sway_rad": self.sway_rad, "sway_Hz": self.sway_Hz,
-            "sway_phase": self.sway_phase, "sway_direction_rad": self.sway_direction_rad,
-        }
-
-    @classmethod
-    def from_dict(cls, d: dict[str, Any]) -> StandingPerson:
-        """Inverse of :meth:`to_dict`."""
-        keys = ("height_m", "facing_rad", "breathing_m", "breathing_Hz", "breathing_phase", "sway_rad", "sway_Hz",
-                "sway_phase", "sway_direction_rad")
-        unknown = set(d) - set(keys) - {"type", "position"}
-        if unknown:
-            raise SceneError(f"standing: unknown parameters {sorted(unknown)} in {d!r}")
-        try:
-            kwargs = {k: d[k] for k in keys if k in d}
-            if "position" in d:
-                kwargs["position"] = tuple(d["position"])
-            return cls(**kwargs)
-        except (TypeError, ValueError) as exc:
-            raise SceneError(f"standing: bad parameters {d!r}: {exc}") from exc
-
-    def __repr__(self) -> str:
-        return (f"StandingPerson(height_m={self.height_m}, position={self.position}, facing_rad={self.facing_rad}, "
-                f"breathing_m={self.breathing_m}, sway_rad={self.sway_rad})")

@@ -77,6 +77,7 @@ class Walker(SkeletonPerson):
     """
 
     type_name = "walker"
+    _FIELDS = ("height_m", "speed_m_s", "start", "heading_rad", "phase")
 
     def __init__(
         self,
@@ -304,32 +305,3 @@ class Walker(SkeletonPerson):
         # Lowest point of an ellipsoid: centre_z - sqrt(sum_i (R[z, i] a_i)^2).
         bottom = e.centers[..., 2] - ((e.rotations[..., 2, :] * e.semi_axes) ** 2).sum(-1).sqrt()
         return float(-bottom.min())
-
-    # ------------------------------------------------------------------ serialization
-    def to_dict(self) -> dict[str, Any]:
-        """Parameters for scene files."""
-        return {
-            "type": "walker", "height_m": self.height_m, "speed_m_s": self.speed_m_s,
-            "start": list(self.start), "heading_rad": self.heading_rad, "phase": self.phase,
-        }
-
-    @classmethod
-    def from_dict(cls, d: dict[str, Any]) -> Walker:
-        """Inverse of :meth:`to_dict`."""
-        try:
-            return cls(
-                height_m=d.get("height_m", 1.8), speed_m_s=d.get("speed_m_s", 1.4),
-                start=tuple(d.get("start", (0.0, 0.0))), heading_rad=d.get("heading_rad", 0.0),
-                phase=d.get("phase", 0.0),
-            )
-        except (TypeError, ValueError) as exc:
-            if isinstance(exc, SceneError):
-                raise
-            raise SceneError(f"walker: bad parameters {d!r}: {exc}") from exc
-
-    def __repr__(self) -> str:
-        return (
-            f"Walker(height_m={self.height_m}, speed_m_s={self.speed_m_s}, start={self.start}, "
-            f"heading_rad={self.heading_rad}, phase={self.phase})"
-        )
-
