@@ -72,6 +72,8 @@ EPISODE_GAP_S = 2.0
 FILE_TIME_ORIGIN_S = 1000.0
 MIN_SEPARATION_M = 0.5
 """Two people's body centres stay at least this far apart during an episode."""
+_LANE_RANGE_M = (room_mod.WALK_Y_M[0] + walkers.TURN_RADIUS_M, room_mod.WALK_Y_M[1] - walkers.TURN_RADIUS_M)
+"""Where the racetracks' centre lines may lie: their lanes stay on the walkable floor."""
 _STREAM_PEOPLE, _STREAM_RECEIVER = 1, 2
 
 RECEIVER: dict[str, Any] = {
@@ -258,7 +260,7 @@ def plan_episodes(count: int, frames: int, seed: int, config: RadarConfig,
         rng = np.random.default_rng(np.random.SeedSequence(seed, spawn_key=(_STREAM_PEOPLE, count, j)))
         duration = n * config.frame_repetition_time_s
         for _attempt in range(200):
-            people = [walkers.draw_person(rng, x_range_m=room_mod.WALK_X_M, lane_range_m=_lane_range(),
+            people = [walkers.draw_person(rng, x_range_m=room_mod.WALK_X_M, lane_range_m=_LANE_RANGE_M,
                                           standing=bool(rng.random() < standing_probability))
                       for _ in range(count)]
             if count < 2 or not _too_close(people, duration):
@@ -269,11 +271,6 @@ def plan_episodes(count: int, frames: int, seed: int, config: RadarConfig,
         episodes.append({"frames": n, "t0": t0, "people": people, "rcs": rcs})
         t0 += duration + EPISODE_GAP_S
     return episodes
-
-
-def _lane_range() -> tuple[float, float]:
-    lo, hi = room_mod.WALK_Y_M
-    return lo + walkers.TURN_RADIUS_M, hi - walkers.TURN_RADIUS_M
 
 
 # ---------------------------------------------------------------------------------- generation
@@ -404,7 +401,6 @@ def _generate(out: Path, settings: dict[str, Any], config: RadarConfig, effects:
                     {**common, "description": "independent held-out set: empty room, for CalibratedDR.fit",
                      "role": "calibration", "labels": {"count": 0}}, bar)
         files["calibration"] = {"path": CALIBRATION_NAME, "frames": settings["calibration_frames"], "count": 0}
-        tests: list[tuple[Path, int]] = []
         files["tests"] = []
         for c in counts:
             episodes = plan_episodes(c, settings["frames_per_count"], seed, config, settings["standing_probability"])
@@ -414,7 +410,6 @@ def _generate(out: Path, settings: dict[str, Any], config: RadarConfig, effects:
             _write_file(path, config, episodes, c, c + 1, seed, effects, scene,
                         {**common, "description": f"independent held-out set: {c} people in every frame",
                          "role": "test", "labels": {"count": c}, "episodes": desc}, bar)
-            tests.append((path, c))
             files["tests"].append({"path": path.name, "frames": settings["frames_per_count"], "count": c,
                                    "episodes": desc})
     elapsed = time.perf_counter() - started
@@ -453,6 +448,7 @@ def _generate(out: Path, settings: dict[str, Any], config: RadarConfig, effects:
         "generation_s": round(elapsed, 2),
     }
     atomic_write_json(manifest_path, manifest, indent=2)
+    tests = [(out / f["path"], f["count"]) for f in files["tests"]]
     return IndependentProxySet(cal_path, tests, config, manifest=manifest_path, reused=False, generation_s=elapsed)
 
 

@@ -187,7 +187,6 @@ class _Path:
     displacement_m: float = 0.0
     vibration_Hz: float = 0.0
     vibration_phase_rad: float = 0.0
-    leakage: bool = False
     # Tracks: range and rate at each chirp's first ADC sample, (F, 1, M, 1), and a complex gain
     # per chirp and RX, (F, RX, M, 1) or broadcastable, on top of ``coef``.
     track_range_m: np.ndarray | None = None
@@ -212,6 +211,15 @@ def _per_rx(value: Any, n_rx: int, what: str) -> np.ndarray:
     return arr
 
 
+def _check_keys(what: str, given: Iterable[str], required: Iterable[str], optional: Iterable[str]) -> None:
+    """Raise ValueError naming the ``required`` keys missing from ``given`` and the unknown ones."""
+    given, required = list(given), list(required)
+    missing = [k for k in required if k not in given]
+    unknown = [k for k in given if k not in required and k not in optional]
+    if missing or unknown:
+        raise ValueError(f"{what}: missing {missing}, unknown {unknown}")
+
+
 def _check_effects(effects: Iterable[Mapping[str, Any]]) -> list[dict[str, Any]]:
     out = []
     for e in effects:
@@ -220,17 +228,14 @@ def _check_effects(effects: Iterable[Mapping[str, Any]]) -> list[dict[str, Any]]
         if name not in EFFECT_PARAMS:
             raise ValueError(f"unknown effect {name!r}; known: {', '.join(EFFECT_NAMES)}")
         required, optional = EFFECT_PARAMS[name]
-        missing = [k for k in required if k not in e]
-        unknown = [k for k in e if k not in required and k not in optional]
-        if missing or unknown:
-            raise ValueError(f"effect {name!r}: missing {missing}, unknown {unknown}")
+        _check_keys(f"effect {name!r}", e, required, optional)
         out.append({"name": name, **optional, **e})
     return out
 
 
-def _amplitude(level_dB: float, tx_power_W: float, g_fe: float) -> float:
-    """Peak amplitude (float units, 0 dB IF gain) of a path received at ``level_dB`` re TX power."""
-    return math.sqrt(2.0 * tx_power_W * 10.0 ** (level_dB / 10.0)) * g_fe
+def _amplitude(level_dB: Any, tx_power_W: float, g_fe: float) -> Any:
+    """Peak amplitude (float units, 0 dB IF gain) of paths received at ``level_dB`` (array) re TX power."""
+    return np.sqrt(2.0 * tx_power_W * 10.0 ** (np.asarray(level_dB, dtype=np.float64) / 10.0)) * g_fe
 
 
 def _lo_frequency_noise(
@@ -262,32 +267,30 @@ def _nonlinearity_cycles(
 
 def _track_path(p: Mapping[str, Any], F: int, n_rx: int, M: int, p_tx: float, g_fe: float) -> _Path:
     """The :class:`_Path` of a track ``p`` (module docstring) over ``F`` frames of ``M`` chirps."""
-    unknown = set(p) - {"range_m", "rate_m_s", "level_dB", "phase_rad", "rx_phase_rad"}
-    missing = {"range_m", "rate_m_s", "level_dB"} - set(p)
-    if unknown or missing:
-        raise ValueError(f"track: unknown keys {sorted(unknown)}, missing {sorted(missing)}")
+    _check_keys("track", p, ("range_m", "rate_m_s", "level_dB"), ("phase_rad", "rx_phase_rad"))
     rng_m = np.asarray(p["range_m"], dtype=np.float64)
     rate = np.asarray(p["rate_m_s"], dtype=np.float64)
     if rng_m.shape != (F, M) or rate.shape != (F, M):
         raise ValueError(f"track: range_m and rate_m_s must be (frames, chirps) = {(F, M)}, got "
                          f"{rng_m.shape} and {rate.shape}")
-    level = np.asarray(p["level_dB"], dtype=np.float64)
-    if level.ndim == 1:
-        level = level[:, None]  # (F,) -> (F, 1): one level per frame
-    try:
-        level = np.broadcast_to(level, (F, M))
-    except ValueError:
-        raise ValueError(f"track: level_dB must be a scalar, (F,) or (F, M), got {level.shape}") from None
-    rx_phase = np.asarray(p.get("rx_phase_rad", 0.0), dtype=np.float64)
-    if rx_phase.ndim == 1:
-        rx_phase = _per_rx(rx_phase, n_rx, "rx_phase_rad")[None, :, None]
-    try:
-        rx_phase = np.broadcast_to(rx_phase, (F, n_rx, M))
-    except ValueError:
-        raise ValueError(f"track: rx_phase_rad must be a scalar, (RX,) or (F, RX, M), got {rx_phase.shape}") from None
+
+    def broadcast(key: str, allowed: str, shape: tuple[int, ...], from_1d: Any) -> np.ndarray:
+        """The track's ``key`` broadcast to ``shape``; a 1-D value is first expanded by ``from_1d``."""
+        a = np.asarray(p.get(key, 0.0), dtype=np.float64)
+        if a.ndim == 1:
+            a = from_1d(a)
+        try:
+            return np.broadcast_to(a, shape)
+        except ValueError:
+            raise ValueError(f"track: {key} must be {allowed}, got {a.shape}") from None
+
+    # (F,) -> (F, 1): one level per frame; (RX,) -> (1, RX, 1): one phase per RX
+    level = broadcast("level_dB", "a scalar, (F,) or (F, M)", (F, M), lambda a: a[:, None])
+    rx_phase = broadcast("rx_phase_rad", "a scalar, (RX,) or (F, RX, M)", (F, n_rx, M),
+                         lambda a: _per_rx(a, n_rx, "rx_phase_rad")[None, :, None])
     # Amplitude relative to the 0 dB reference of ``_Path.coef``: sqrt(2 P_tx 10^(L/10)) g_fe.
-    amp = np.sqrt(2.0 * p_tx * 10.0 ** (level / 10.0)) * g_fe  # (F, M)
-    gain = amp[:, None, :] * np.exp(1j * (rx_phase + float(p.get("phase_rad", 0.0))))
+    phase = rx_phase + float(p.get("phase_rad", 0.0))
+    gain = _amplitude(level, p_tx, g_fe)[:, None, :] * np.exp(1j * phase)
     return _Path(
         np.ones(n_rx, dtype=np.complex128),
         float(rng_m[0, 0]),
@@ -429,41 +432,30 @@ def generate(
         return [e for e in effs if e["name"] == name]
 
     # ---------------------------------------------------------------- 1. paths
+    def point(level_dB: float, phase_rad: float, range_m: float, rx_phase: Any = 0.0, **motion: Any) -> _Path:
+        """A point path received at ``level_dB`` re TX, with a per-RX phase and optional motion."""
+        a = _amplitude(float(level_dB), p_tx, g_fe) * np.exp(1j * float(phase_rad))
+        return _Path(a * np.exp(1j * _per_rx(rx_phase, n_rx, "rx_phase_rad")), float(range_m), **motion)
+
     paths: list[_Path] = []
-    coupling = _per_rx(leakage_coupling_dB, n_rx, "leakage_coupling_dB")
+    leak_amp = _amplitude(_per_rx(leakage_coupling_dB, n_rx, "leakage_coupling_dB"), p_tx, g_fe)
     leak_phase = _per_rx(leak_phase_rad, n_rx, "leak_phase_rad")
-    leak_amp = np.sqrt(2.0 * p_tx * 10.0 ** (coupling / 10.0)) * g_fe
     if np.any(leak_amp > 0):
-        paths.append(_Path(leak_amp * np.exp(1j * leak_phase), float(leak_range_m), leakage=True))
-    ones = np.ones(n_rx, dtype=np.complex128)
+        paths.append(_Path(leak_amp * np.exp(1j * leak_phase), float(leak_range_m)))
     scene_paths: list[_Path] = []
     for pt in scene:
-        unknown = set(pt) - {"range_m", "level_dB", "phase_rad", "rx_phase_rad"}
-        if unknown:
-            raise ValueError(f"scene point: unknown keys {sorted(unknown)}")
-        a = _amplitude(float(pt["level_dB"]), p_tx, g_fe) * np.exp(1j * float(pt.get("phase_rad", 0.0)))
-        rx_phase = _per_rx(pt.get("rx_phase_rad", 0.0), n_rx, "rx_phase_rad")
-        scene_paths.append(_Path(a * np.exp(1j * rx_phase), float(pt["range_m"])))
-    for tr in tracks:
-        scene_paths.append(_track_path(tr, F, n_rx, M, p_tx, g_fe))
-    for e in by_name("moving_target"):
-        a = _amplitude(e["level_dB"], p_tx, g_fe) * np.exp(1j * e["phase_rad"])
-        scene_paths.append(_Path(a * ones, float(e["range_m"]), speed_m_s=float(e["speed_m_s"])))
-    clutter_paths: list[_Path] = []
-    for e in by_name("static_clutter"):
-        a = _amplitude(e["level_dB"], p_tx, g_fe) * np.exp(1j * e["phase_rad"])
-        clutter_paths.append(_Path(a * ones, float(e["range_m"])))
-    for e in by_name("vibrating_clutter"):
-        a = _amplitude(e["level_dB"], p_tx, g_fe) * np.exp(1j * e["path_phase_rad"])
-        clutter_paths.append(
-            _Path(
-                a * ones,
-                float(e["range_m"]),
-                displacement_m=float(e["displacement_m"]),
-                vibration_Hz=float(e["vibration_Hz"]),
-                vibration_phase_rad=float(e["phase_rad"]),
-            )
-        )
+        _check_keys("scene point", pt, (), ("range_m", "level_dB", "phase_rad", "rx_phase_rad"))
+        phase, rx_phase = pt.get("phase_rad", 0.0), pt.get("rx_phase_rad", 0.0)
+        scene_paths.append(point(pt["level_dB"], phase, pt["range_m"], rx_phase))
+    scene_paths += [_track_path(tr, F, n_rx, M, p_tx, g_fe) for tr in tracks]
+    scene_paths += [point(e["level_dB"], e["phase_rad"], e["range_m"], speed_m_s=float(e["speed_m_s"]))
+                    for e in by_name("moving_target")]
+    clutter_paths = [point(e["level_dB"], e["phase_rad"], e["range_m"]) for e in by_name("static_clutter")]
+    clutter_paths += [
+        point(e["level_dB"], e["path_phase_rad"], e["range_m"], displacement_m=float(e["displacement_m"]),
+              vibration_Hz=float(e["vibration_Hz"]), vibration_phase_rad=float(e["phase_rad"]))
+        for e in by_name("vibrating_clutter")
+    ]
     ghosts: list[_Path] = []
     for e in by_name("multipath"):
         ratio = 10.0 ** (e["level_dB"] / 20.0) * np.exp(1j * e["phase_rad"])
@@ -481,14 +473,9 @@ def generate(
         )
 
     # Phase modulations of every path: LO frequency noise (F, 1, M, L) and ramp non-linearity.
-    nu: np.ndarray | None = None
-    for i, e in enumerate(by_name("phase_noise")):
-        v = _lo_frequency_noise(
-            _rng(seed, "phase_noise", i), (F, M), L, fs, e["freq_noise_rms_Hz"], e["corner_Hz"]
-        )
-        nu = v if nu is None else nu + v
-    if nu is not None:
-        nu = nu[:, None]
+    lo_noise = [_lo_frequency_noise(_rng(seed, "phase_noise", i), (F, M), L, fs, e["freq_noise_rms_Hz"],
+                                    e["corner_Hz"]) for i, e in enumerate(by_name("phase_noise"))]
+    nu = sum(lo_noise[1:], lo_noise[0])[:, None] if lo_noise else None
     nonlin = by_name("chirp_nonlinearity")
 
     x = np.zeros((F, n_rx, M, L))
@@ -496,9 +483,8 @@ def generate(
     # High-pass capacitor voltage at the ramp start that the steady state would have, (F, RX, M, 1).
     cap_v = np.zeros((F, n_rx, M, 1))
     t_ramp = np.array([-t_d])
-    nu_ramp: np.ndarray | None = None
-    if nu is not None:  # LO noise at the ramp start: the nearest grid sample (or the first one)
-        nu_ramp = nu[..., max(roll - int(round(t_d * fs)), 0)][..., None]
+    # LO noise at the ramp start: the nearest grid sample (or the first one)
+    nu_ramp = None if nu is None else nu[..., max(roll - int(round(t_d * fs)), 0)][..., None]
     amp_ref = math.sqrt(2.0 * p_tx) * g_fe  # amplitude of a path at 0 dB re TX
     for p in paths:
         pn = nu
@@ -507,23 +493,19 @@ def generate(
             if path_amp <= amp_ref * 10.0 ** (phase_noise_min_level_dB / 20.0):
                 pn = None
         coef: np.ndarray = p.coef * rx_gain
-        if p.gain is not None:
-            coef = coef[None, :, None, None] * p.gain  # (F, RX, M, 1)
+        c4 = coef[None, :, None, None] * (1.0 if p.gain is None else p.gain)  # (1 or F, RX, 1 or M, 1)
         cyc, _, _ = _path_cycles(p, t, t_chirp, f0, S, nonlin, pn)
         phi = 2.0 * math.pi * np.mod(cyc, 1.0)
         if np.ndim(phi) == 1:
             static_wave += coef.real[:, None] * np.cos(phi) - coef.imag[:, None] * np.sin(phi)
-        elif coef.ndim == 4:
-            x += coef.real * np.cos(phi) - coef.imag * np.sin(phi)
         else:
-            x += coef.real[None, :, None, None] * np.cos(phi) - coef.imag[None, :, None, None] * np.sin(phi)
+            x += c4.real * np.cos(phi) - c4.imag * np.sin(phi)
         if method == "analog":
             cyc_r, tau_r, rate_r = _path_cycles(
                 p, t_ramp, t_chirp, f0, S, nonlin, None if pn is None else nu_ramp
             )
             f_beat = S * tau_r + (f0 - S * t_d - S * tau_r) * rate_r  # instantaneous, at the ramp start
             ph_r = np.exp(2j * math.pi * np.mod(cyc_r, 1.0)) / (1.0 + 1j * f_beat / fh)
-            c4 = coef if coef.ndim == 4 else coef[None, :, None, None]
             cap_v += np.real(c4 * ph_r)  # ph_r: (1,) or (F, 1, M, 1)
     x += static_wave[None, :, None, :]
 

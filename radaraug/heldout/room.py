@@ -201,16 +201,15 @@ def room_scatterers() -> list[Scatterer]:
     for name, (foot, d) in planes.items():
         sigma = math.pi * d * d * 10.0 ** (WALL_REFLECTIVITY_DB[name] / 10.0)
         pts.append((f"{name}_specular", foot, 10.0 * math.log10(sigma)))
-    # Diffuse strips along the surfaces seen at grazing angles.
+    # Diffuse strips along the surfaces seen at grazing angles: the specular foot moved along x.
     xs = np.arange(0.6, length - 0.2, DIFFUSE_STEP_M)
-    strips = {"left_wall": (lambda x: (x, 0.0, rz), ry), "right_wall": (lambda x: (x, width, rz), width - ry),
-              "floor": (lambda x: (x, ry, 0.0), rz), "ceiling": (lambda x: (x, ry, height), height - rz)}
-    for name, (where, d) in strips.items():
+    for name, mu in DIFFUSE_MU.items():
+        (_, y, z), d = planes[name]
         for x in xs:
             cos_i = d / math.hypot(x - rx_, d)
-            sigma = DIFFUSE_MU[name] * cos_i**2 * DIFFUSE_STEP_M * DIFFUSE_STRIP_M
+            sigma = mu * cos_i**2 * DIFFUSE_STEP_M * DIFFUSE_STRIP_M
             rough = float(rng.uniform(-3.0, 3.0))
-            pts.append((f"{name}_diffuse_{x:.1f}", where(float(x)), 10.0 * math.log10(sigma) + rough))
+            pts.append((f"{name}_diffuse_{x:.1f}", (float(x), y, z), 10.0 * math.log10(sigma) + rough))
     pts += OBJECTS
     phases = rng.uniform(0.0, 2.0 * math.pi, len(pts))
     return [Scatterer(n, tuple(float(v) for v in p), float(s), float(ph))  # type: ignore[arg-type]

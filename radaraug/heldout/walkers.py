@@ -142,16 +142,8 @@ class Person:
         def r(v: float) -> float:
             return float(f"{v:.{digits}g}")
 
-        out: dict[str, object] = {}
-        for k, v in asdict(self).items():
-            if isinstance(v, bool):
-                out[k] = v
-            elif isinstance(v, float):
-                out[k] = r(v)
-            elif isinstance(v, (tuple, list)):
-                out[k] = [r(float(x)) for x in v]
-            else:  # pragma: no cover - every field is one of the above
-                out[k] = v
+        out: dict[str, object] = {k: r(v) if isinstance(v, float) else v for k, v in asdict(self).items()}
+        out["point_phase_rad"] = [r(float(x)) for x in self.point_phase_rad]  # the one tuple field
         return out
 
     @property
@@ -319,8 +311,7 @@ def _standing_positions(p: Person, t: np.ndarray) -> np.ndarray:
     for i, (fwd, lat, zf, w_sway, w_breath) in enumerate(layout):
         f = fwd * H + w_breath * breath
         side = lat * H + w_sway * sway
-        out[i, ..., 0] = base[0] + f * head[0] + side * left[0]
-        out[i, ..., 1] = base[1] + f * head[1] + side * left[1]
+        out[i, ..., :2] = base + np.multiply.outer(f, head) + np.multiply.outer(side, left)
         out[i, ..., 2] = zf * H if zf > 0 else STANCE_FOOT_HEIGHT_M
     return out
 

@@ -23,7 +23,7 @@ object itself; replaying explicit ``params`` still applies them. Deterministic D
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from typing import Any
 
 import torch
@@ -41,7 +41,8 @@ Params = dict[str, torch.Tensor]
 class RadarTransform(nn.Module):
     """A deterministic radar transform.
 
-    Subclasses implement :meth:`transform` and, when they have parameters, :meth:`extra_spec`.
+    Subclasses set :attr:`kernel` and :attr:`spec_fields` (the kernel then gets the parameters by
+    name), or implement :meth:`transform` and, when they have parameters, :meth:`extra_spec`.
     Inputs are never modified in place; dtype and device follow the input.
     """
 
@@ -53,6 +54,10 @@ class RadarTransform(nn.Module):
     accepts_complex: bool = False
     #: Takes whole samples (tuples, dicts) itself (read by ``_sample.is_sample_aware``).
     takes_samples: bool = True
+    #: The attributes :meth:`extra_spec` reports: the step's parameters, named as its kernel's arguments.
+    spec_fields: tuple[str, ...] = ()
+    #: The functional kernel (a ``staticmethod``) the default :meth:`transform` calls.
+    kernel: Callable[..., torch.Tensor] | None = None
 
     def check_input(self, x: Any) -> torch.Tensor:
         """Validate the input (rank, dtype, NaN/Inf) and return it."""
@@ -63,9 +68,11 @@ class RadarTransform(nn.Module):
             allow_complex=self.accepts_complex,
         )
 
-    def transform(self, x: torch.Tensor, params: Params) -> torch.Tensor:  # pragma: no cover - abstract
-        """Compute the output for a validated input."""
-        raise NotImplementedError
+    def transform(self, x: torch.Tensor, params: Params) -> torch.Tensor:
+        """Compute the output for a validated input: ``kernel(x, **extra_spec())`` unless overridden."""
+        if self.kernel is None:  # pragma: no cover - abstract
+            raise NotImplementedError
+        return self.kernel(x, **self.extra_spec())
 
     def is_radar_tensor(self, leaf: Any) -> bool:
         """Whether a leaf of a sample is one this transform works on (see :mod:`._sample`)."""
@@ -105,8 +112,8 @@ class RadarTransform(nn.Module):
         return flat[0] if spec is None else pytree.tree_unflatten(flat, spec)
 
     def extra_spec(self) -> dict[str, Any]:
-        """The transform's parameters as JSON types (for :meth:`chain_spec`)."""
-        return {}
+        """The transform's parameters as JSON types (for :meth:`chain_spec`): its :attr:`spec_fields`."""
+        return {k: getattr(self, k) for k in self.spec_fields}
 
     def chain_spec(self) -> dict[str, Any]:
         """``{"name": class name, **parameters}``: this step of a DSP chain, JSON-able."""
@@ -129,8 +136,11 @@ class RandomRadarTransform(RadarTransform):
             worker (and per epoch) so workers draw different numbers; ``False`` makes every
             worker replay the same stream. See :mod:`radaraug.transforms._rng`.
 
-    Subclasses implement :meth:`sample_params` and :meth:`transform`.
+    Subclasses implement :meth:`sample_params` and :meth:`transform`, and add their parameters to
+    :attr:`spec_fields` (``p`` and ``same_on_batch`` here).
     """
+
+    spec_fields: tuple[str, ...] = ("p", "same_on_batch")
 
     def __init__(
         self,
@@ -212,10 +222,6 @@ class RandomRadarTransform(RadarTransform):
             return y
         mask = apply.reshape(apply.shape + (1,) * self.event_ndim)
         return torch.where(mask, y, x)
-
-    def extra_spec(self) -> dict[str, Any]:
-        """``p`` and ``same_on_batch`` (subclasses add their own parameters)."""
-        return {"p": self.p, "same_on_batch": self.same_on_batch}
 
     def chain_spec(self) -> dict[str, Any]:
         """As :meth:`RadarTransform.chain_spec`, marked ``"random": True``."""

@@ -203,6 +203,7 @@ class CalibratedDR(_DRClamp):
             ``floor="empirical"`` without valid ``quantiles_db``.
     """
 
+    spec_fields = ("mean_db", "std_db", "floor", "p", "same_on_batch")
     provenance: dict[str, Any]
     """Where ``(mean_db, std_db)`` came from: ``{"from": "arguments" | "file" | "record", "path": ...,
     "source": capture name, "num_frames": ...}`` (``path`` for a loaded file only)."""
@@ -332,10 +333,6 @@ class CalibratedDR(_DRClamp):
                 f"{where}{loaded} was fitted on maps made by {describe_chain(self.chain)}, "
                 f"but here it follows {describe_chain(before)}"
             )
-
-    def extra_spec(self) -> dict[str, Any]:
-        """The fitted statistics, the floor distribution, ``p`` and ``same_on_batch``."""
-        return {"mean_db": self.mean_db, "std_db": self.std_db, "floor": self.floor, **super().extra_spec()}
 
     # ------------------------------------------------------------------ fitting
     @classmethod

@@ -9,6 +9,7 @@ are in :mod:`radaraug.transforms.functional`.
 
 from __future__ import annotations
 
+import itertools
 from collections.abc import Iterable, Sequence
 from typing import Any
 
@@ -33,18 +34,12 @@ class ClipNormalize(RadarTransform):
 
     event_ndim = 2
     input_layout = "a dB map (..., H, W)"
+    kernel = staticmethod(F.clip_normalize)
+    spec_fields = ("vmin", "vmax")
 
     def __init__(self, vmin: float, vmax: float) -> None:
         super().__init__()
         self.vmin, self.vmax = check_clip_range(vmin, vmax)
-
-    def transform(self, x: torch.Tensor, params: Params) -> torch.Tensor:
-        """Clip to ``[vmin, vmax]`` and scale to [0, 1]."""
-        return F.clip_normalize(x, self.vmin, self.vmax)
-
-    def extra_spec(self) -> dict[str, Any]:
-        """``vmin`` and ``vmax``."""
-        return {"vmin": self.vmin, "vmax": self.vmax}
 
     @classmethod
     def estimate(
@@ -98,10 +93,7 @@ def _iterate(data: Any, max_items: int | None) -> Iterable[Any]:
     if hasattr(data, "__getitem__") and hasattr(data, "__len__") and not isinstance(data, (list, tuple)):
         n = len(data) if max_items is None else min(max_items, len(data))
         return (data[i] for i in range(n))
-    it = iter(data)
-    if max_items is None:
-        return it
-    return (item for _, item in zip(range(max_items), it))
+    return itertools.islice(data, None if max_items is None else max(max_items, 0))
 
 
 class Colormap(RadarTransform):
@@ -153,15 +145,12 @@ class Resize(RadarTransform):
 
     event_ndim = 2
     input_layout = "an image or map (..., H, W)"
+    kernel = staticmethod(F.resize)
 
     def __init__(self, size: Sequence[int], antialias: bool = True) -> None:
         super().__init__()
         self.size = check_size(size)
         self.antialias = bool(antialias)
-
-    def transform(self, x: torch.Tensor, params: Params) -> torch.Tensor:
-        """Resample the last two dims to ``size``."""
-        return F.resize(x, self.size, self.antialias)
 
     def extra_spec(self) -> dict[str, Any]:
         """``size`` and ``antialias``."""

@@ -23,7 +23,7 @@ import torch
 
 from radaraug.errors import InputTensorError
 from radaraug.transforms import functional as F
-from radaraug.transforms.base import Params, RadarTransform
+from radaraug.transforms.base import RadarTransform
 from radaraug.transforms.functional._spectral import (
     COMBINE_MODES,
     PROFILE_LAYOUT,
@@ -46,13 +46,11 @@ class _FFTTransform(RadarTransform):
 class _WindowedFFT(_FFTTransform):
     """An FFT along one axis with a named window (:class:`RangeFFT`, :class:`DopplerFFT`)."""
 
+    spec_fields = ("window",)
+
     def __init__(self, window: str = "hann") -> None:
         super().__init__()
         self.window = check_window_name(window)
-
-    def extra_spec(self) -> dict[str, Any]:
-        """The window's name."""
-        return {"window": self.window}
 
 
 class RemoveMean(RadarTransform):
@@ -62,10 +60,7 @@ class RemoveMean(RadarTransform):
     """
 
     input_layout = RAW_LAYOUT
-
-    def transform(self, x: torch.Tensor, params: Params) -> torch.Tensor:
-        """Subtract each chirp's mean over fast time."""
-        return F.remove_mean(x)
+    kernel = staticmethod(F.remove_mean)
 
 
 class StaticClutterRemoval(RadarTransform):
@@ -79,10 +74,7 @@ class StaticClutterRemoval(RadarTransform):
 
     input_layout = "(..., rx, chirps, samples or range)"
     accepts_complex = True
-
-    def transform(self, x: torch.Tensor, params: Params) -> torch.Tensor:
-        """Subtract the mean over chirps of each sample."""
-        return F.static_clutter_removal(x)
+    kernel = staticmethod(F.static_clutter_removal)
 
 
 class RangeFFT(_WindowedFFT):
@@ -97,10 +89,7 @@ class RangeFFT(_WindowedFFT):
     """
 
     input_layout = RAW_LAYOUT
-
-    def transform(self, x: torch.Tensor, params: Params) -> torch.Tensor:
-        """The range FFT of the last dim (samples)."""
-        return F.range_fft(x, self.window)
+    kernel = staticmethod(F.range_fft)
 
 
 class DopplerFFT(_WindowedFFT):
@@ -116,10 +105,7 @@ class DopplerFFT(_WindowedFFT):
 
     input_layout = PROFILE_LAYOUT
     accepts_complex = True
-
-    def transform(self, x: torch.Tensor, params: Params) -> torch.Tensor:
-        """The centred Doppler FFT of the chirp dim."""
-        return F.doppler_fft(x, self.window)
+    kernel = staticmethod(F.doppler_fft)
 
 
 class RangeDoppler(_FFTTransform):
@@ -137,6 +123,8 @@ class RangeDoppler(_FFTTransform):
     """
 
     input_layout = RAW_LAYOUT
+    kernel = staticmethod(F.range_doppler)
+    spec_fields = ("range_window", "doppler_window", "remove_mean", "static_clutter")
 
     def __init__(
         self,
@@ -151,19 +139,6 @@ class RangeDoppler(_FFTTransform):
         self.remove_mean = bool(remove_mean)
         self.static_clutter = bool(static_clutter)
 
-    def transform(self, x: torch.Tensor, params: Params) -> torch.Tensor:
-        """The complex RD map of a raw cube."""
-        return F.range_doppler(x, self.range_window, self.doppler_window, self.remove_mean, self.static_clutter)
-
-    def extra_spec(self) -> dict[str, Any]:
-        """The two windows and the two pre-FFT steps' switches."""
-        return {
-            "range_window": self.range_window,
-            "doppler_window": self.doppler_window,
-            "remove_mean": self.remove_mean,
-            "static_clutter": self.static_clutter,
-        }
-
 
 class ToDecibels(RadarTransform):
     """``20 * log10(max(|X|, floor))``: complex or magnitude map -> dB (dBFS with this chain).
@@ -177,20 +152,14 @@ class ToDecibels(RadarTransform):
 
     accepts_complex = True
     input_layout = "a complex or magnitude map (..., rx, range, doppler)"
+    kernel = staticmethod(F.to_decibels)
+    spec_fields = ("floor",)
 
     def __init__(self, floor: float = 1e-12) -> None:
         super().__init__()
         if not floor > 0:
             raise InputTensorError(f"ToDecibels floor must be > 0, got {floor}")
         self.floor = float(floor)
-
-    def transform(self, x: torch.Tensor, params: Params) -> torch.Tensor:
-        """The map in dB."""
-        return F.to_decibels(x, self.floor)
-
-    def extra_spec(self) -> dict[str, Any]:
-        """The magnitude floor."""
-        return {"floor": self.floor}
 
 
 class CombineRx(RadarTransform):
@@ -215,15 +184,12 @@ class CombineRx(RadarTransform):
 
     accepts_complex = True
     MODES = COMBINE_MODES
+    kernel = staticmethod(F.combine_rx)
 
     def __init__(self, mode: str = "mean_power", index: int | None = None, db: bool = False) -> None:
         super().__init__()
         check_combine_args(mode, index, db)
         self.mode, self.index, self.db = mode, index, bool(db)
-
-    def transform(self, x: torch.Tensor, params: Params) -> torch.Tensor:
-        """The RX channels combined into one."""
-        return F.combine_rx(x, self.mode, self.index, self.db)
 
     def extra_spec(self) -> dict[str, Any]:
         """``mode`` and ``db`` (and ``index`` when set)."""
