@@ -417,13 +417,7 @@ class RadarConfig:
     # ------------------------------------------------------------------ serialisation
     def to_dict(self) -> dict[str, Any]:
         """All fields as plain JSON types."""
-        d = dataclasses.asdict(self)
-        d["rx_antennas"] = list(self.rx_antennas)
-        d["tx_antennas"] = list(self.tx_antennas)
-        d["tx_position_m"] = list(self.tx_position_m)
-        if self.rx_positions_m is not None:
-            d["rx_positions_m"] = [list(p) for p in self.rx_positions_m]
-        return d
+        return json.loads(json.dumps(dataclasses.asdict(self)))  # tuples -> lists; floats round-trip exactly
 
     @classmethod
     def from_dict(cls, data: Mapping[str, Any], *, source: str | None = None) -> RadarConfig:
@@ -438,8 +432,13 @@ class RadarConfig:
         missing = [n for n in _REQUIRED_INFINEON_KEYS[:7] if n not in data]
         if missing:
             raise ConfigError(f"radar config{where} lacks required keys {missing}")
+        return cls._build(dict(data), where)
+
+    @classmethod
+    def _build(cls, kwargs: dict[str, Any], where: str) -> RadarConfig:
+        """``cls(**kwargs)``, any error raised as a ConfigError that ends with ``where`` (the source)."""
         try:
-            return cls(**dict(data))
+            return cls(**kwargs)
         except ConfigError as e:
             raise ConfigError(f"{e}{where}") from None
         except (TypeError, ValueError, OverflowError) as e:
@@ -519,12 +518,7 @@ class RadarConfig:
             if isinstance(v, float) and v.is_integer():
                 kwargs[k] = int(v)
         kwargs.update(extra)
-        try:
-            return cls(**kwargs)
-        except ConfigError as e:
-            raise ConfigError(f"{e} (in {where})") from None
-        except (TypeError, ValueError, OverflowError) as e:
-            raise ConfigError(f"invalid radar config (in {where}): {e}") from None
+        return cls._build(kwargs, f" (in {where})")
 
     def describe(self) -> str:
         """A short human-readable summary with the derived values."""

@@ -171,9 +171,12 @@ class SimulatedRadarDataset(Dataset):
     def twin(self) -> DigitalTwin:
         """The process-local digital twin (built on first use)."""
         if self._twin is None:
-            self._twin = DigitalTwin(self.scene, config=self.config, device=self.device,
-                                     static_signal=self._static_signal, **self.twin_options)
+            self._twin = self._make_twin(self.scene, self._static_signal)
         return self._twin
+
+    def _make_twin(self, scene: Scene, static_signal: torch.Tensor | None) -> DigitalTwin:
+        return DigitalTwin(scene, config=self.config, device=self.device, static_signal=static_signal,
+                           **self.twin_options)
 
     def variant_twin(self, k: int) -> DigitalTwin:
         """The process-local twin of room variant ``k`` (built on first use; randomization only)."""
@@ -181,9 +184,7 @@ class SimulatedRadarDataset(Dataset):
             raise ConfigError("room variants exist only with twin randomization enabled")
         twin = self._variant_twins.get(k)
         if twin is None:
-            scene = self._rooms[k].scene(self.scene, self.config)
-            twin = DigitalTwin(scene, config=self.config, device=self.device,
-                               static_signal=self._variant_static.get(k), **self.twin_options)
+            twin = self._make_twin(self._rooms[k].scene(self.scene, self.config), self._variant_static.get(k))
             self._variant_twins[k] = twin
         return twin
 
@@ -206,18 +207,17 @@ class SimulatedRadarDataset(Dataset):
     def scenario(self, index: int) -> Scenario:
         """The scenario of item ``index`` (people and labels), without simulating it."""
         rz = self._drawn_randomization
+        g = item_generator(self.seed, index, stream=Stream.SCENARIO)
         if rz is not None:
             # People walk along the drawn corridor (+x), whatever the radar's drawn yaw.
             room = self._rooms[rz.variant_of(self.seed, index)]
             x = float(self.scene.radar.position[0])
-            sampler = rz.sampler(self.sampler, room, x)
-            return sampler.sample(item_generator(self.seed, index, stream=Stream.SCENARIO), radar_xy=(x, 0.0), axis_deg=0.0)
+            return rz.sampler(self.sampler, room, x).sample(g, radar_xy=(x, 0.0), axis_deg=0.0)
         radar = self.scene.radar
         pos = radar.position.tolist()
         boresight = radar.rotation[:, 2].tolist()
         axis_deg = math.degrees(math.atan2(boresight[1], boresight[0]))
-        return self.sampler.sample(item_generator(self.seed, index, stream=Stream.SCENARIO), radar_xy=(pos[0], pos[1]),
-                                   axis_deg=axis_deg)
+        return self.sampler.sample(g, radar_xy=(pos[0], pos[1]), axis_deg=axis_deg)
 
     def item_params(self, index: int) -> dict[str, Any]:
         """What item ``index`` is made of, without simulating it (JSON-able).
@@ -290,13 +290,8 @@ class SimulatedRadarDataset(Dataset):
                                epoch=self.epoch, device=self.device)
         if self.target == "none":
             return x
-        label: Any
-        if self.target == "count":
-            label = scenario.count
-        elif self.target == "occupancy":
-            label = scenario.occupancy
-        else:
-            label = {"count": scenario.count, "occupancy": scenario.occupancy}
+        labels = {"count": scenario.count, "occupancy": scenario.occupancy}
+        label: Any = labels if self.target == "both" else labels[self.target]
         if self.target_transform is not None:
             label = self.target_transform(label)
         return x, label

@@ -4,12 +4,19 @@ from __future__ import annotations
 
 import os
 from pathlib import Path
+from typing import Any
 
 import torch
 
 from radaraug._files import atomic_savefig
 from radaraug._optional import lazy_import
 from radaraug.scene.geometry import Ellipsoids
+from radaraug.scene.people import Walker
+from radaraug.scene.people.skeleton import without_turn
+from radaraug.scene.scene import Scene
+from radaraug.sensor.receiver import FMCWReceiver
+from radaraug.sim.twin import DigitalTwin
+from radaraug.transforms import RangeDoppler
 
 
 def doppler_profiles_db(x: torch.Tensor) -> torch.Tensor:
@@ -17,8 +24,6 @@ def doppler_profiles_db(x: torch.Tensor) -> torch.Tensor:
 
     RD power summed over range, mean over RX (zero Doppler centred).
     """
-    from radaraug.transforms import RangeDoppler
-
     p = RangeDoppler()(x).abs().square().mean(dim=1).sum(dim=1)
     return 10 * torch.log10(p.clamp_min(1e-30))
 
@@ -29,19 +34,12 @@ def traced_at_every_chirp(scene_name: str, people: list, times: torch.Tensor) ->
     One-chirp frames, each traced at its own chirp's time, stacked (ideal receiver, no multipath,
     float64): the reference the twin's motion inside a frame is checked against.
     """
-    from radaraug.scene.scene import Scene
-    from radaraug.sensor.receiver import FMCWReceiver
-    from radaraug.sim.twin import DigitalTwin
-
     single = Scene.builtin(scene_name)
     cfg = single.config
-    one = cfg.replace(num_chirps_per_frame=1)
-    single.config = one
-    chirp = DigitalTwin(single, config=one, receiver=FMCWReceiver(one, effects=[]), multipath=False, intra_frame=0,
-                        dtype=torch.float64)
+    single.config = cfg.replace(num_chirps_per_frame=1)
     m = cfg.num_chirps_per_frame
     tc = (times[:, None] + torch.arange(m, dtype=torch.float64) * cfg.chirp_repetition_time_s).reshape(-1)
-    stacked = chirp.simulate(people, tc) - chirp.simulate([], tc)  # (T M, RX, 1, samples)
+    stacked = _people_only(_ideal_twin(single, intra_frame=0), people, tc)  # (T M, RX, 1, samples)
     return stacked.reshape(len(times), m, *stacked.shape[1:]).squeeze(3).transpose(1, 2)
 
 
@@ -52,29 +50,28 @@ def plot_limb_doppler_check(path: str | os.PathLike, frames: int = 4) -> Path:
     point (now). Paper corridor, walker only, ideal receiver, no multipath; one panel per frame.
     """
     lazy_import("matplotlib.pyplot", feature="figures")  # a missing matplotlib fails before the simulation
-    from radaraug.scene.people import Walker
-    from radaraug.scene.people.skeleton import without_turn
-    from radaraug.scene.scene import Scene
-    from radaraug.sensor.receiver import FMCWReceiver
-    from radaraug.sim.twin import DigitalTwin
-
     scene = Scene.builtin("corridor")
-    cfg = scene.config
     walker = Walker(start=(2.0, 0.3), heading_rad=0.0)
     times = torch.arange(frames, dtype=torch.float64) * (1.1 / frames)
-
-    def twin_frames() -> torch.Tensor:
-        twin = DigitalTwin(scene, receiver=FMCWReceiver(cfg, effects=[]), multipath=False, dtype=torch.float64)
-        return twin.simulate([walker], times) - twin.simulate([], times)
-
-    now = twin_frames()
+    now = _people_only(_ideal_twin(scene), [walker], times)
     with without_turn():
-        before = twin_frames()
+        before = _people_only(_ideal_twin(scene), [walker], times)
     ref = traced_at_every_chirp("corridor", [walker], times)
     curves = {"a trace at every chirp (reference)": doppler_profiles_db(ref),
               "twin, echo at the centre's velocity (before)": doppler_profiles_db(before),
               "twin, echo at the specular point (now)": doppler_profiles_db(now)}
     return _plot_doppler_profiles(path, curves, times)
+
+
+def _ideal_twin(scene: Scene, **options: Any) -> DigitalTwin:
+    """A float64 twin of ``scene`` with an ideal receiver (no effects) and no multipath."""
+    return DigitalTwin(scene, receiver=FMCWReceiver(scene.config, effects=[]), multipath=False, dtype=torch.float64,
+                       **options)
+
+
+def _people_only(twin: DigitalTwin, people: list, times: torch.Tensor) -> torch.Tensor:
+    """The people's frames: ``twin``'s frames with them less those of the empty room."""
+    return twin.simulate(people, times) - twin.simulate([], times)
 
 
 def _plot_doppler_profiles(path: str | os.PathLike, curves: dict[str, torch.Tensor], times: torch.Tensor) -> Path:
@@ -138,18 +135,13 @@ def shadow_in_frame_profiles(frames: int = 6, intervals: tuple[int, ...] = (0, 2
     The reference (a trace at every chirp, the shadow evaluated there too) and the twin with
     ``shadow_intervals`` each of ``intervals`` (ideal receiver, no multipath, the empty room subtracted).
     """
-    from radaraug.scene.scene import Scene
-    from radaraug.sensor.receiver import FMCWReceiver
-    from radaraug.sim.twin import DigitalTwin
-
     scene = Scene.builtin("corridor")
     rod = TurningRod()
     times = rod_frame_times(frames)
     out = {"reference": doppler_profiles_db(traced_at_every_chirp("corridor", [rod], times))}
     for k in intervals:
-        twin = DigitalTwin(scene, receiver=FMCWReceiver(scene.config, effects=[]), multipath=False,
-                           dtype=torch.float64, shadow_intervals=k)
-        out[f"shadow_intervals={k}"] = doppler_profiles_db(twin.simulate([rod], times) - twin.simulate([], times))
+        twin = _ideal_twin(scene, shadow_intervals=k)
+        out[f"shadow_intervals={k}"] = doppler_profiles_db(_people_only(twin, [rod], times))
     return out
 
 

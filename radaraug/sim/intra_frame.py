@@ -80,8 +80,7 @@ def _hermite(y: torch.Tensor, x: torch.Tensor) -> torch.Tensor:
     if k == 1:
         return y[..., :1] + (y[..., 1:] - y[..., :1]) * x
     s = _slopes(y)
-    i = x.floor().clamp(0, k - 1).long()
-    u = x - i
+    i, u = _cell(x, k)
     u2, u3 = u * u, u * u * u
     h00, h10, h01, h11 = 2 * u3 - 3 * u2 + 1, u3 - 2 * u2 + u, -2 * u3 + 3 * u2, u3 - u2
     return (h00 * y[..., i] + h10 * s[..., i] + h01 * y[..., i + 1] + h11 * s[..., i + 1])
@@ -99,8 +98,7 @@ def _hermite_integral(y: torch.Tensor, x: torch.Tensor) -> torch.Tensor:
     # Whole intervals: (y_i + y_i+1) / 2 + (s_i - s_i+1) / 12, accumulated.
     whole = (y[..., :-1] + y[..., 1:]) / 2 + (s[..., :-1] - s[..., 1:]) / 12
     before = torch.cat([torch.zeros_like(whole[..., :1]), torch.cumsum(whole, dim=-1)], dim=-1)
-    i = x.floor().clamp(0, k - 1).long()
-    u = x - i
+    i, u = _cell(x, k)
     u2, u3, u4 = u * u, u * u * u, u * u * u * u
     a00, a10, a01, a11 = u4 / 2 - u3 + u, u4 / 4 - 2 * u3 / 3 + u2 / 2, -u4 / 2 + u3, u4 / 4 - u3 / 3
     return before[..., i] + a00 * y[..., i] + a10 * s[..., i] + a01 * y[..., i + 1] + a11 * s[..., i + 1]
@@ -115,10 +113,14 @@ def _slopes(y: torch.Tensor) -> torch.Tensor:
     return s
 
 
-def _linear(y: torch.Tensor, x: torch.Tensor) -> torch.Tensor:
-    k = y.shape[-1] - 1
+def _cell(x: torch.Tensor, k: int) -> tuple[torch.Tensor, torch.Tensor]:
+    """The interval ``i`` (of ``k`` between knots 0..k) holding each ``x`` and the position ``u`` in it."""
     i = x.floor().clamp(0, k - 1).long()
-    u = x - i
+    return i, x - i
+
+
+def _linear(y: torch.Tensor, x: torch.Tensor) -> torch.Tensor:
+    i, u = _cell(x, y.shape[-1] - 1)
     return y[..., i] * (1 - u) + y[..., i + 1] * u
 
 

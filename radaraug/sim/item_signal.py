@@ -13,8 +13,8 @@ from __future__ import annotations
 import dataclasses
 import threading
 import weakref
-from collections.abc import Sequence
-from typing import TYPE_CHECKING, Any
+from collections.abc import Callable, Sequence
+from typing import TYPE_CHECKING, Any, TypeVar
 
 import torch
 
@@ -34,6 +34,8 @@ from radaraug.sensor.receiver import FMCWReceiver
 if TYPE_CHECKING:
     from radaraug.sim.randomization import ItemDraw
     from radaraug.sim.twin import DigitalTwin
+
+_E = TypeVar("_E", bound=Effect)
 
 SCATTERER_ANTENNA_GAIN_DBI = 6.0
 """Antenna gain (TX and RX) applied to the static scatterers: the patch antenna's peak (their
@@ -97,26 +99,22 @@ def item_receiver(receiver: FMCWReceiver, system_gain_offset_dB: float, noise_fi
     shared, not copied), so nothing leaks from one item to the next, even across threads.
     """
     effects = list(receiver.effects)
+
+    def replace_first(kind: type[_E], make: Callable[[_E], Effect]) -> None:
+        """The first stage of type ``kind``, ``e``, becomes ``make(e)``."""
+        for i, e in enumerate(effects):
+            if isinstance(e, kind):
+                effects[i] = make(e)
+                return
+
     if phase_noise is not None:
-        for i, e in enumerate(effects):
-            if isinstance(e, PhaseNoise):
-                effects[i] = PhaseNoise(freq_noise_rms_Hz=phase_noise[0], corner_Hz=e.corner_Hz,
-                                        num_paths=phase_noise[1])
-                break
-    for i, e in enumerate(effects):
-        if isinstance(e, SystemGain):
-            effects[i] = SystemGain(gain_dB=e.gain_dB + system_gain_offset_dB)
-            break
-    for i, e in enumerate(effects):
-        if isinstance(e, ThermalNoise):
-            effects[i] = ThermalNoise(noise_figure_dB=e.noise_figure_dB + noise_figure_offset_dB,
-                                      temperature_K=e.temperature_K)
-            break
+        replace_first(PhaseNoise, lambda e: PhaseNoise(freq_noise_rms_Hz=phase_noise[0], corner_Hz=e.corner_Hz,
+                                                       num_paths=phase_noise[1]))
+    replace_first(SystemGain, lambda e: SystemGain(gain_dB=e.gain_dB + system_gain_offset_dB))
+    replace_first(ThermalNoise, lambda e: ThermalNoise(noise_figure_dB=e.noise_figure_dB + noise_figure_offset_dB,
+                                                       temperature_K=e.temperature_K))
     if adc_noise_offset_dB != 0.0:
-        for i, e in enumerate(effects):
-            if isinstance(e, ADCNoise):
-                effects[i] = ADCNoise(rms_counts=e.rms_counts * 10 ** (adc_noise_offset_dB / 20))
-                break
+        replace_first(ADCNoise, lambda e: ADCNoise(rms_counts=e.rms_counts * 10 ** (adc_noise_offset_dB / 20)))
     for new in extra_effects:
         effects.insert(hardware_position([e.name for e in effects], new.name), new)
     return FMCWReceiver(receiver.config, effects=effects, tx_power_dBm=receiver.tx_power_dBm,
@@ -211,16 +209,11 @@ def static_scatterer_paths(config: RadarConfig, scatterers: Sequence[tuple[float
     """
     from radaraug.sensor.point_target import point_target_paths
 
-    dt, dev = like.delay_s.dtype, like.delay_s.device
     sc = torch.tensor(scatterers, dtype=torch.float64)
     r, az, el = sc[:, 0], torch.deg2rad(sc[:, 1]), torch.deg2rad(sc[:, 2])
     pos = torch.stack([r * torch.sin(az) * torch.cos(el), r * torch.sin(el), r * torch.cos(az) * torch.cos(el)], -1)
     p = point_target_paths(config, pos, rcs_m2=10 ** (sc[:, 3] / 10), antenna_gain_dBi=SCATTERER_ANTENNA_GAIN_DBI)
-    batch = tuple(like.delay_s.shape[:-2])
-    cdt = like.amplitude.dtype if like.amplitude.is_complex() else None
-    p = Paths(p.delay_s.to(dev, dt), p.delay_rate.to(dev, dt),
-              p.amplitude.to(dev, cdt) if cdt is not None else p.amplitude.to(dev, dt))
-    return p.map(lambda t: t.expand(*batch, *t.shape))
+    return _like(p, like)
 
 
 

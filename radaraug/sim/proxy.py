@@ -69,6 +69,7 @@ from radaraug.sensor.effects import Effect, effect_from_dict
 from radaraug.sensor.receiver import FMCWReceiver
 from radaraug.sim.offline import people_inside
 from radaraug.sim.randomization import ItemDraw
+from radaraug.sim.scenarios import ScenarioSampler, _uniform
 from radaraug.sim.seeding import Stream, item_generator, item_seed
 from radaraug.sim.twin import DigitalTwin
 from radaraug.units import DB_CONVENTION, FLOAT_CONVENTION
@@ -194,10 +195,6 @@ def people_in_view(twin: DigitalTwin, people: list[Any], times: torch.Tensor,
 
 
 # ---------------------------------------------------------------------------------------- walks
-def _u(g: torch.Generator, lo: float, hi: float) -> float:
-    return lo + (hi - lo) * float(torch.rand((), generator=g, dtype=torch.float64))
-
-
 def _split_frames(g: torch.Generator, total: int) -> list[int]:
     """Walk lengths (frames) adding up to ``total``."""
     out, left = [], total
@@ -214,18 +211,18 @@ def _draw_person(g: torch.Generator, duration_s: float, x_lo: float, x_hi: float
     """One walker's parameters; its straight path stays in ``[x_lo, x_hi]`` and ``|y| <= lateral_limit_m``."""
     p = _PEOPLE
     for _ in range(200):
-        speed = _u(g, *p["speed_m_s"])
+        speed = _uniform(p["speed_m_s"], g)
         toward = bool(torch.rand((), generator=g) < 0.5)
-        jitter = math.radians(_u(g, -p["heading_jitter_deg"], p["heading_jitter_deg"]))
+        jitter = math.radians(_uniform((-p["heading_jitter_deg"], p["heading_jitter_deg"]), g))
         heading = (math.pi if toward else 0.0) + jitter
-        lateral = _u(g, *p["lateral_m"])
+        lateral = _uniform(p["lateral_m"], g)
         dx, dy = speed * duration_s * math.cos(heading), speed * duration_s * math.sin(heading)
         lo, hi = max(x_lo, x_lo - dx), min(x_hi, x_hi - dx)
-        x0 = _u(g, lo, hi) if hi > lo else float("nan")
+        x0 = _uniform((lo, hi), g) if hi > lo else float("nan")
         params = {
             "speed_m_s": speed, "toward_radar": float(toward), "heading_rad": heading, "start_x_m": x0,
-            "start_y_m": lateral, "height_m": _u(g, *p["height_m"]), "phase": _u(g, 0.0, 1.0),
-            "arm_swing": _u(g, *p["arm_swing"]),
+            "start_y_m": lateral, "height_m": _uniform(p["height_m"], g), "phase": _uniform((0.0, 1.0), g),
+            "arm_swing": _uniform(p["arm_swing"], g),
         }
         if hi > lo and abs(lateral + dy) <= p["lateral_limit_m"]:
             return params
@@ -264,8 +261,6 @@ ProxySet = GeneratedTestSet
 
 
 def _training_twin_summary() -> dict[str, Any]:
-    from radaraug.sim.scenarios import ScenarioSampler
-
     s = ScenarioSampler()
     return {
         "scene": "built-in 'corridor' (radaraug/data/scenes/corridor.yaml)",

@@ -40,9 +40,10 @@ every seed.
 from __future__ import annotations
 
 import dataclasses
+import json
 import math
 import warnings
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -113,28 +114,15 @@ CLUTTER_HEIGHT_M = (0.4, 2.0)
 CLUTTER_START_M = 1.0
 """Clutter stands at least this far along the corridor from its near end (the radar's side)."""
 
-_RANGE_FIELDS = (
-    "rcs_scale_dB", "length_m", "width_m", "height_m", "radar_height_m", "radar_pitch_deg", "radar_yaw_deg",
-    "person_height_m", "speed_m_s", "range_m", "system_gain_offset_dB", "noise_figure_offset_dB",
-    "static_scatterer_range_m", "static_scatterer_rcs_dBsm", "static_scatterer_azimuth_deg", "phase_noise_rms_Hz",
-    # the effect catalog
-    "spur_tone_freq_nyquist", "spur_tone_amplitude_counts", "interference_chirp_probability",
-    "interference_amplitude_counts", "interference_duration_s", "vibrating_clutter_range_m",
-    "vibrating_clutter_rcs_dBsm", "vibrating_clutter_displacement_m", "vibrating_clutter_Hz", "rx_mismatch_gain_dB",
-    "rx_mismatch_phase_deg", "frame_drift_gain_rms_dB", "frame_drift_dc_rms_counts", "wide_system_gain_offset_dB",
-    "wide_noise_figure_offset_dB", "adc_noise_offset_dB",
-)
+# Every field is checked by its annotation (:data:`_FIELD_CHECKS`); these add the bounds of some.
 _POSITIVE_RANGES = ("length_m", "width_m", "height_m", "radar_height_m", "person_height_m", "speed_m_s", "range_m",
                     "static_scatterer_range_m", "vibrating_clutter_range_m",
                     # drawn log-uniformly
                     "spur_tone_amplitude_counts", "interference_amplitude_counts", "interference_duration_s",
                     "vibrating_clutter_displacement_m", "vibrating_clutter_Hz")
-_PROBABILITIES = ("standing_probability", "effects_probability", "spur_tone_probability", "interference_probability",
-                  "vibrating_clutter_probability", "rx_mismatch_probability", "frame_drift_probability",
-                  "wide_levels_probability", "static_phase_noise_probability")
 _BOUNDED_RANGES = {"spur_tone_freq_nyquist": (0.0, 1.0), "interference_chirp_probability": (0.0, 1.0),
                    "rx_mismatch_phase_deg": (-180.0, 180.0), "frame_drift_gain_rms_dB": (0.0, math.inf),
-                   "frame_drift_dc_rms_counts": (0.0, math.inf)}
+                   "frame_drift_dc_rms_counts": (0.0, math.inf), "phase_noise_rms_Hz": (0.0, math.inf)}
 
 
 def _materials_default() -> dict[str, tuple[str, ...]]:
@@ -344,33 +332,8 @@ class TwinRandomization:
 
     def __post_init__(self) -> None:
         # Normalise YAML-ish input (lists, ints) and fail early, naming the field.
-        if not isinstance(self.enabled, bool):
-            raise ConfigError(f"twin randomization: enabled must be true or false, got {self.enabled!r}")
-        for name in _RANGE_FIELDS:
-            setattr(self, name, _pair(getattr(self, name), name, positive=name in _POSITIVE_RANGES))
-        for name in ("phase_noise_paths", "static_phase_noise_paths"):
-            value = getattr(self, name)
-            if isinstance(value, bool) or not isinstance(value, int) or value < 1:
-                raise ConfigError(f"twin randomization: {name} must be an integer >= 1, got {value!r}")
-        for name in _PROBABILITIES:
-            value = _number(getattr(self, name), name, minimum=0.0)
-            if value > 1.0:
-                raise ConfigError(f"twin randomization: {name} must be a probability in [0, 1], got {value!r}")
-            setattr(self, name, value)
-        for name, (lo, hi) in _BOUNDED_RANGES.items():
-            pair = getattr(self, name)
-            if pair[0] < lo or pair[1] > hi:
-                raise ConfigError(f"twin randomization: {name} must lie in [{lo}, {hi}], got {list(pair)}")
-        if self.phase_noise_rms_Hz[0] < 0:
-            raise ConfigError(f"twin randomization: phase_noise_rms_Hz must be >= 0, got {list(self.phase_noise_rms_Hz)}")
-        if isinstance(self.room_variants, bool) or not isinstance(self.room_variants, int) or self.room_variants < 1:
-            raise ConfigError(f"twin randomization: room_variants must be an integer >= 1, got {self.room_variants!r}")
-        for name in ("heading_jitter_deg", "wall_margin_m"):
-            setattr(self, name, _number(getattr(self, name), name, minimum=0.0))
-        self.materials = _materials(self.materials)
-        self.clutter_objects = _count_pair(self.clutter_objects, "clutter_objects")
-        self.static_scatterers = _count_pair(self.static_scatterers, "static_scatterers")
-        self.clutter_materials = _material_list(self.clutter_materials, "clutter_materials")
+        for f in dataclasses.fields(self):
+            setattr(self, f.name, _FIELD_CHECKS[str(f.type)](getattr(self, f.name), f.name))
 
     @classmethod
     def off(cls) -> TwinRandomization:
@@ -379,15 +342,7 @@ class TwinRandomization:
 
     def to_dict(self) -> dict[str, Any]:
         """Plain JSON/YAML types (pairs and material choices as lists)."""
-        out: dict[str, Any] = {}
-        for f in dataclasses.fields(self):
-            v = getattr(self, f.name)
-            if f.name == "materials":
-                v = {k: list(c) for k, c in v.items()}
-            elif isinstance(v, tuple):
-                v = list(v)
-            out[f.name] = v
-        return out
+        return json.loads(json.dumps(dataclasses.asdict(self)))  # tuples -> lists; floats round-trip exactly
 
     @classmethod
     def from_dict(cls, data: Mapping[str, Any]) -> TwinRandomization:
@@ -669,24 +624,20 @@ class ItemDraw:
 
     def catalog_effects(self, config: RadarConfig) -> list[Effect]:
         """The receiver stages of the catalog effects this item carries (to insert at their place)."""
+        drawn = self.effects_dict(config)
         effects: list[Effect] = []
-        if self.vibrating_clutter is not None:
-            r, rcs, disp, hz, phase = self.vibrating_clutter
-            effects.append(VibratingClutter(range_m=r, level_dB=_radar_equation_dB(config, r, rcs),
-                                            displacement_m=disp, vibration_Hz=hz, phase_rad=phase))
-        if self.rx_mismatch is not None:
-            gains, phases = self.rx_mismatch
-            effects.append(RxGainPhaseMismatch(gain_dB=[gains[a - 1] for a in config.rx_antennas],
-                                               phase_rad=[math.radians(phases[a - 1]) for a in config.rx_antennas]))
-        if self.interference is not None:
-            p, amp, dur = self.interference
-            effects.append(Interference(probability=p, amplitude_counts=amp, duration_s=dur))
-        if self.frame_drift is not None:
-            effects.append(FrameDrift(gain_rms_dB=self.frame_drift[0], dc_rms_counts=self.frame_drift[1]))
-        if self.spur_tone is not None:
-            frac, amp, phase = self.spur_tone
-            effects.append(SpurTone(freq_Hz=frac * float(config.sample_rate_Hz) / 2, amplitude_counts=amp,
-                                    phase_rad=phase))
+        if "vibrating_clutter" in drawn:
+            vib = dict(drawn["vibrating_clutter"])
+            level = _radar_equation_dB(config, vib["range_m"], vib.pop("rcs_dBsm"))
+            effects.append(VibratingClutter(level_dB=level, **vib))
+        if "rx_gain_phase_mismatch" in drawn:
+            mismatch = drawn["rx_gain_phase_mismatch"]
+            effects.append(RxGainPhaseMismatch(gain_dB=mismatch["gain_dB"],
+                                               phase_rad=[math.radians(p) for p in mismatch["phase_deg"]]))
+        # The others take the parameters effects_dict names.
+        for name, stage in (("interference", Interference), ("frame_drift", FrameDrift), ("spur_tone", SpurTone)):
+            if name in drawn:
+                effects.append(stage(**drawn[name]))
         return effects
 
 
@@ -747,6 +698,12 @@ def simulate_item(twin: DigitalTwin, people: Sequence[Any], times: torch.Tensor,
 
 
 # ---------------------------------------------------------------------------- validation
+def _flag(value: Any, name: str) -> bool:
+    if not isinstance(value, bool):
+        raise ConfigError(f"twin randomization: {name} must be true or false, got {value!r}")
+    return value
+
+
 def _number(value: Any, name: str, *, minimum: float | None = None) -> float:
     if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
         raise ConfigError(f"twin randomization: {name} must be a finite number, got {value!r}")
@@ -755,14 +712,32 @@ def _number(value: Any, name: str, *, minimum: float | None = None) -> float:
     return float(value)
 
 
-def _pair(value: Any, name: str, *, positive: bool = False) -> tuple[float, float]:
+def _nonnegative(value: Any, name: str) -> float:
+    """A float field: a number >= 0, and a probability in [0, 1] where the name says so."""
+    value = _number(value, name, minimum=0.0)
+    if name.endswith("_probability") and value > 1.0:
+        raise ConfigError(f"twin randomization: {name} must be a probability in [0, 1], got {value!r}")
+    return value
+
+
+def _count(value: Any, name: str) -> int:
+    if isinstance(value, bool) or not isinstance(value, int) or value < 1:
+        raise ConfigError(f"twin randomization: {name} must be an integer >= 1, got {value!r}")
+    return value
+
+
+def _pair(value: Any, name: str) -> tuple[float, float]:
+    """A range ``(lo, hi)``, positive where :data:`_POSITIVE_RANGES` and inside :data:`_BOUNDED_RANGES`."""
     if isinstance(value, (str, bytes)) or not isinstance(value, Sequence) or len(value) != 2:
         raise ConfigError(f"twin randomization: {name} must be a pair [lo, hi], got {value!r}")
     lo, hi = (_number(v, name) for v in value)
     if lo > hi:
         raise ConfigError(f"twin randomization: {name} must have lo <= hi, got {[lo, hi]}")
-    if positive and lo <= 0:
+    if name in _POSITIVE_RANGES and lo <= 0:
         raise ConfigError(f"twin randomization: {name} must be positive, got {[lo, hi]}")
+    bound_lo, bound_hi = _BOUNDED_RANGES.get(name, (-math.inf, math.inf))
+    if lo < bound_lo or hi > bound_hi:
+        raise ConfigError(f"twin randomization: {name} must lie in [{bound_lo}, {bound_hi}], got {[lo, hi]}")
     return (lo, hi)
 
 
@@ -795,17 +770,29 @@ def _material_list(value: Any, name: str) -> tuple[str, ...]:
     return tuple(str(n) for n in value)
 
 
-def _materials(value: Any) -> dict[str, tuple[str, ...]]:
+def _materials(value: Any, name: str) -> dict[str, tuple[str, ...]]:
     if not isinstance(value, Mapping):
-        raise ConfigError(f"twin randomization: materials must be a mapping surface -> list of names, got {value!r}")
+        raise ConfigError(f"twin randomization: {name} must be a mapping surface -> list of names, got {value!r}")
     unknown = sorted(str(k) for k in value if k not in CORRIDOR_SURFACES)
     if unknown:
-        raise ConfigError(f"twin randomization: materials: unknown surface(s) {unknown}; "
+        raise ConfigError(f"twin randomization: {name}: unknown surface(s) {unknown}; "
                           f"surfaces are {list(CORRIDOR_SURFACES)}")
     out = dict(DEFAULT_MATERIALS)
     for surface, names in value.items():
-        out[surface] = _material_list(names, f"materials.{surface}")
+        out[surface] = _material_list(names, f"{name}.{surface}")
     return out
+
+
+# The check (and normalisation) of a TwinRandomization field, by its annotation.
+_FIELD_CHECKS: dict[str, Callable[[Any, str], Any]] = {
+    "bool": _flag,
+    "int": _count,
+    "float": _nonnegative,
+    "tuple[float, float]": _pair,
+    "tuple[int, int]": _count_pair,
+    "tuple[str, ...]": _material_list,
+    "dict[str, tuple[str, ...]]": _materials,
+}
 
 
 __all__ = [

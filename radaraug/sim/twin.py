@@ -399,10 +399,8 @@ class DigitalTwin:
                 scenes (e.g. the held-out proxy's walks) can be played into one long recording.
         """
         people = list(people or [])
-        if draw is None:
-            paths = negligible_paths_off(self.paths(people, times))
-        else:
-            paths = negligible_paths_off(people_paths(self, people, times, draw.rcs_scale_dB))
+        traced = self.paths(people, times) if draw is None else people_paths(self, people, times, draw.rcs_scale_dB)
+        paths = negligible_paths_off(traced)
         as_paths = self.shadow_paths(people, times) if self.shadow_method == "paths" else None
         if as_paths is not None:
             paths = Paths.cat([paths, as_paths])
