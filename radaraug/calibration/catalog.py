@@ -169,9 +169,15 @@ def _plain_specs(name: str, *pnames: str) -> Callable[[Context, dict[str, Any]],
 
 
 # --------------------------------------------------------------------------- residual reading
-def _peaks(excess: torch.Tensor, mask: torch.Tensor, k: int, min_db: float) -> list[tuple[int, int, float]]:
-    """Up to ``k`` (row, col, dB) local maxima of ``excess`` where ``mask``, at least ``min_db``."""
-    e = excess.masked_fill(~mask, -math.inf)
+def _line_peaks(excess: torch.Tensor, k: int, min_db: float) -> list[tuple[int, int, float]]:
+    """Up to ``k`` (row, col, dB) local maxima of ``excess`` off zero Doppler and range bin 0, at least ``min_db``.
+
+    Lines a few Doppler bins from zero count: the static scene is matched in the excess map, so what is
+    left there is not static.
+    """
+    e = excess.clone()
+    e[:, e.shape[1] // 2] = -math.inf
+    e[:1] = -math.inf
     out: list[tuple[int, int, float]] = []
     flat = e.flatten()
     order = torch.argsort(flat, descending=True)
@@ -188,19 +194,6 @@ def _peaks(excess: torch.Tensor, mask: torch.Tensor, k: int, min_db: float) -> l
     return out
 
 
-def _off_zero_mask(shape: tuple[int, int]) -> torch.Tensor:
-    """Cells off zero Doppler and off range bin 0.
-
-    Lines a few Doppler bins from zero count: the static scene is matched in the excess map, so what is
-    left there is not static.
-    """
-    nr, M = shape
-    m = torch.ones(nr, M, dtype=torch.bool)
-    m[:, M // 2] = False
-    m[:1] = False
-    return m
-
-
 def _sub_bin(power: torch.Tensor, r: int, d: int) -> float:
     """Fractional range bin of a peak at row ``r`` (column ``d``), clipped to +-0.5.
 
@@ -213,12 +206,12 @@ def _sub_bin(power: torch.Tensor, r: int, d: int) -> float:
     return r + (max(min(0.5 * (a - c) / den, 0.5), -0.5) if den < 0 else 0.0)
 
 
-def _level_probe(ctx: Context, name: str, params: dict[str, Any], r: int, col: int, target_db: float,
-                 level_key: str) -> float | None:
-    """Level that puts the effect's RD power at cell (r, col) ``target_db`` above the twin.
+def _level_probe(ctx: Context, name: str, params: dict[str, Any], r: int, col: int,
+                 target_db: float) -> dict[str, Any] | None:
+    """``params`` with the level that puts the effect's RD power at cell (r, col) ``target_db`` above the twin.
 
-    The level is in dB, the effect's ``level_key``: one simulation at the current level, then linear
-    scaling.
+    The level is in dB, the effect's ``level_dB``: one simulation at the current level, then linear
+    scaling. None when the effect adds nothing there, or the capture is not above the twin.
     """
     p_with = float(ctx.probe(with_effect(ctx.chain, name, params)).stats.power.mean(dim=0)[r, col])
     p_without = float(ctx.twin.stats.power.mean(dim=0)[r, col])
@@ -226,7 +219,7 @@ def _level_probe(ctx: Context, name: str, params: dict[str, Any], r: int, col: i
     want = p_without * (10 ** (target_db / 10) - 1)
     if gain <= 0 or want <= 0:
         return None
-    return float(params[level_key]) + 10 * math.log10(want / gain)
+    return {**params, "level_dB": float(params["level_dB"]) + 10 * math.log10(want / gain)}
 
 
 # --------------------------------------------------------------------------- candidates
@@ -243,13 +236,15 @@ def _range_level_specs(name: str, range_key: str) -> Callable[[Context, dict[str
     return specs
 
 
-def _noise_like(name: str, pname: str, grid: Sequence[float], joint: tuple[tuple[str, str], ...] = ()) -> Candidate:
+def _noise_like(name: str, pname: str, grid: Sequence[float], factors: Sequence[float] = (1.0, 0.3, 3.0),
+                joint: tuple[tuple[str, str], ...] = ()) -> Candidate:
+    """A one-parameter level: starts at ``factors`` times its value in the chain, else on ``grid``."""
+
     def starts(ctx: Context) -> list[dict[str, Any]]:
         cur = find(ctx.chain, name)
         if cur is not None:
-            v = cur["params"][pname]
-            v = float(v[0] if isinstance(v, list) else v)
-            return [{pname: v}] + [{pname: v * f} for f in (0.3, 3.0)]
+            v = _as_list(cur["params"][pname], 1)[0]
+            return [{pname: v * f} for f in factors]
         return [{pname: g} for g in grid]
 
     return Candidate(name, _plain_specs(name, pname), starts, joint=joint)
@@ -264,7 +259,7 @@ def _spur() -> Candidate:
         cap = ctx.capture.stats.power.mean(dim=0)
         bin_hz = cfg.sample_rate_Hz / cfg.num_samples_per_chirp
         T = cfg.chirp_repetition_time_s
-        for r, d, _v in _peaks(ex, _off_zero_mask((ex.shape[0], ex.shape[1])), 2, 6.0):
+        for r, d, _v in _line_peaks(ex, 2, 6.0):
             # Sub-bin frequency from the Hann peak's neighbours (parabola on log power), then the
             # Doppler bin picks among the aliases 1/T apart; the neighbouring aliases are starts too.
             f_est = _sub_bin(cap, r, d) * bin_hz
@@ -297,11 +292,8 @@ def _static_clutter() -> Candidate:
             return []
         rr = ctx.range_m(_sub_bin(ctx.capture.stats.power.mean(dim=0), r, M // 2))
         params = {"range_m": rr, "level_dB": -90.0, "phase_rad": 0.0}
-        lvl = _level_probe(ctx, "static_clutter", params, r, M // 2, float(prof[r]), "level_dB")
-        if lvl is None:
-            return []
-        params["level_dB"] = lvl
-        return [params]
+        probed = _level_probe(ctx, "static_clutter", params, r, M // 2, float(prof[r]))
+        return [] if probed is None else [probed]
 
     return Candidate("static_clutter", _range_level_specs("static_clutter", "range_m"), starts, modes=("scene",))
 
@@ -312,7 +304,7 @@ def _vibrating() -> Candidate:
         ex = ctx.excess_db()
         M = ex.shape[1]
         out = []
-        for r, d, v in _peaks(ex, _off_zero_mask((ex.shape[0], ex.shape[1])), 1, 6.0):
+        for r, d, v in _line_peaks(ex, 1, 6.0):
             vib = abs(d - M // 2) / (M * cfg.chirp_repetition_time_s)
             for beta in (0.5, 1.5):
                 # An estimated static scene already holds the object's mean return: add only
@@ -320,10 +312,9 @@ def _vibrating() -> Candidate:
                 params = {"range_m": ctx.range_m(_sub_bin(ctx.capture.stats.power.mean(dim=0), r, d)),
                           "level_dB": -90.0, "displacement_m": beta * cfg.wavelength_m / (4 * math.pi),
                           "vibration_Hz": vib, "phase_rad": 0.0, "carrier": 0.0 if ctx.mode == "estimated" else 1.0}
-                lvl = _level_probe(ctx, "vibrating_clutter", params, r, d, v, "level_dB")
-                if lvl is not None:
-                    params["level_dB"] = lvl
-                    out.append(params)
+                probed = _level_probe(ctx, "vibrating_clutter", params, r, d, v)
+                if probed is not None:
+                    out.append(probed)
         return out
 
     def specs(ctx: Context, start: dict[str, Any]) -> list[ParamSpec]:
@@ -477,15 +468,6 @@ def _leakage() -> Candidate:
     return Candidate("tx_rx_leakage", specs, starts, modes=("scene",))
 
 
-def _phase_noise() -> Candidate:
-    def starts(ctx: Context) -> list[dict[str, Any]]:
-        cur = find(ctx.chain, "phase_noise")
-        v = float(cur["params"]["freq_noise_rms_Hz"]) if cur is not None else 100e3
-        return [{"freq_noise_rms_Hz": v * f} for f in (0.3, 3.0, 10.0)]
-
-    return Candidate("phase_noise", _plain_specs("phase_noise", "freq_noise_rms_Hz"), starts)
-
-
 def catalog() -> list[Candidate]:
     """Every candidate the loop tries after the base refit, in a fixed order (ties go to the first)."""
     return [
@@ -499,14 +481,12 @@ def catalog() -> list[Candidate]:
         _multipath(),
         _chirp_nonlinearity(),
         _leakage(),
-        _phase_noise(),
+        # Without a phase-noise stage, the starts are those of the default 100 kHz RMS.
+        _noise_like("phase_noise", "freq_noise_rms_Hz", [100e3 * f for f in (0.3, 3.0, 10.0)], (0.3, 3.0, 10.0)),
     ]
 
 
-CATALOG_NAMES = (
-    "system_gain", "thermal_noise", "if_highpass", "anti_alias_lowpass", "dc_offset", "adc_quantization",
-    "adc_clipping", "adc_noise", "frame_drift", "spur_tone", "rx_gain_phase_mismatch", "interference",
-    "vibrating_clutter", "static_clutter", "multipath", "chirp_nonlinearity", "tx_rx_leakage", "phase_noise",
-)
+CATALOG_NAMES = ("system_gain", "thermal_noise", "if_highpass", "anti_alias_lowpass", "dc_offset", "adc_quantization",
+                 "adc_clipping", *(c.name for c in catalog()))
 """Every effect the loop fits: the base stages (refitted first; quantization and clipping are
 always present and have nothing to fit) and the catalog candidates."""

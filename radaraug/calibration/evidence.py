@@ -77,18 +77,16 @@ def _sig_dict(s: Signature) -> dict[str, Any]:
     return d
 
 
-def _relative(name: str, cap: Signature, twin: Signature, num_rx: int) -> tuple[bool, str]:
-    """Is the capture's relative signature beyond the declared chain's? ``(undeclared, reason)``."""
-    if name == "if_highpass":
-        if "cutoff_Hz" not in cap.params or "cutoff_Hz" not in twin.params:
-            return False, "noise floor too flat to fit a high-pass"
-        ratio = float(cap.params["cutoff_Hz"]) / max(float(twin.params["cutoff_Hz"]), 1.0)
-        other_order = round(float(cap.params["order"])) != round(float(twin.params["order"]))
-        off = ratio > CUTOFF_FACTOR or ratio < 1 / CUTOFF_FACTOR or other_order
-        return off and cap.present, (
-            f"capture's floor: order {cap.params['order']:g} at {cap.params['cutoff_Hz'] / 1e3:.1f} kHz; "
-            f"declared chain's: order {twin.params['order']:g} at {twin.params['cutoff_Hz'] / 1e3:.1f} kHz")
-    raise ValueError(f"{name!r} is not a relative signature")
+def _highpass_relative(cap: Signature, twin: Signature) -> tuple[bool, str]:
+    """Is the capture's high-pass beyond the declared chain's (the one :data:`RELATIVE` effect)? ``(undeclared, reason)``."""
+    if "cutoff_Hz" not in cap.params or "cutoff_Hz" not in twin.params:
+        return False, "noise floor too flat to fit a high-pass"
+    ratio = float(cap.params["cutoff_Hz"]) / max(float(twin.params["cutoff_Hz"]), 1.0)
+    other_order = round(float(cap.params["order"])) != round(float(twin.params["order"]))
+    off = ratio > CUTOFF_FACTOR or ratio < 1 / CUTOFF_FACTOR or other_order
+    return off and cap.present, (
+        f"capture's floor: order {cap.params['order']:g} at {cap.params['cutoff_Hz'] / 1e3:.1f} kHz; "
+        f"declared chain's: order {twin.params['order']:g} at {twin.params['cutoff_Hz'] / 1e3:.1f} kHz")
 
 
 def assess(capture: Sequence[Signature], declared: Sequence[Signature] | None, num_rx: int) -> dict[str, Evidence]:
@@ -104,17 +102,15 @@ def assess(capture: Sequence[Signature], declared: Sequence[Signature] | None, n
     dec = {s.effect: s for s in declared or ()}
     out: dict[str, Evidence] = {}
     for name in SIGNATURE_EFFECTS:
-        s = cap[name]
+        s, ref = cap[name], None if name in INTRINSIC else dec.get(name)
         if name in INTRINSIC:
-            out[name] = Evidence(name, bool(s.present), "intrinsic", float(s.score), s.detail, s)
-            continue
-        ref = dec.get(name)
-        if ref is None:
-            out[name] = Evidence(name, False, "relative", float(s.score), "no declared-chain frames to compare with",
-                                 s)
-            continue
-        present, reason = _relative(name, s, ref, num_rx)
-        out[name] = Evidence(name, present, "relative", float(s.score), reason, s, ref)
+            present, reason = bool(s.present), s.detail
+        elif ref is None:
+            present, reason = False, "no declared-chain frames to compare with"
+        else:
+            present, reason = _highpass_relative(s, ref)
+        kind = "intrinsic" if name in INTRINSIC else "relative"
+        out[name] = Evidence(name, present, kind, float(s.score), reason, s, ref)
     return out
 
 

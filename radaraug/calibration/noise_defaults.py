@@ -22,14 +22,12 @@ from typing import Any
 
 import torch
 
+from radaraug.calibration.views import rd_noise_floor_db
 from radaraug.config import RadarConfig
-from radaraug.errors import CalibrationError
-from radaraug.io.summary import noise_floor_db
 from radaraug.sensor.defaults import ADC_NOISE_RMS_COUNTS, FRONT_END_GAIN_DB, default_effects
 from radaraug.sensor.effects import TxRxLeakage
 from radaraug.sensor.paths import Paths
 from radaraug.sensor.receiver import FMCWReceiver
-from radaraug.transforms import RangeDoppler, ToDecibels
 
 
 def capture_floor_db(path: str | os.PathLike, max_frames: int = 64) -> tuple[RadarConfig, float]:
@@ -55,10 +53,7 @@ def twin_floor_db(config: RadarConfig, front_end_gain_dB: float = FRONT_END_GAIN
     rx = FMCWReceiver(config, effects=effects, front_end_gain_dB=front_end_gain_dB)
     z = torch.zeros(frames, 0, config.num_rx, dtype=torch.float64)
     x = rx(Paths(z, z.clone(), z.to(torch.complex128)), generator=torch.Generator().manual_seed(seed))
-    floor = noise_floor_db(ToDecibels()(RangeDoppler()(x)))
-    if floor is None:
-        raise CalibrationError(f"too few chirps per frame ({config.num_chirps_per_frame}) to measure a noise floor")
-    return floor
+    return rd_noise_floor_db(x)
 
 
 def check_defaults(paths: Sequence[str | os.PathLike], **twin_kw: Any) -> list[dict[str, Any]]:

@@ -25,15 +25,14 @@ from typing import Any
 
 import torch
 
+from radaraug.calibration.views import rd_noise_floor_db
 from radaraug.config import RadarConfig
 from radaraug.errors import CalibrationError
-from radaraug.io.summary import noise_floor_db
 from radaraug.scene.scene import Scene
 from radaraug.sensor.defaults import ADC_NOISE_RMS_COUNTS, DEFAULT_NOISE_FIGURE_DB
 from radaraug.sensor.receiver import FMCWReceiver
 from radaraug.sim.seeding import Stream, item_generator
 from radaraug.sim.twin import DigitalTwin
-from radaraug.transforms.spectral import RangeDoppler, ToDecibels
 
 NOISE_FIGURE_LIMITS_DB = (0.0, 45.0)
 """Fitted noise figures are kept in this range (a floor beyond it is not thermal noise)."""
@@ -47,10 +46,7 @@ def capture_noise_floor_db(capture: Any, max_frames: int = 64) -> float:
         with open_capture(capture) as reader:
             return capture_noise_floor_db(reader, max_frames)
     n = min(capture.num_frames, max_frames)
-    floor = noise_floor_db(ToDecibels()(RangeDoppler()(capture.read(0, n))))
-    if floor is None:
-        raise CalibrationError(f"{capture.path}: too few chirps per frame to measure a noise floor")
-    return floor
+    return rd_noise_floor_db(capture.read(0, n), f"{capture.path}: ")
 
 
 @torch.no_grad()
@@ -101,9 +97,7 @@ def fit_noise_figure(
         paths = twin.paths([], times)
         x = torch.stack([rx(paths.select(k), generator=g, frame_start_s=float(times[k]),
                             static_signal=static) for k, g in enumerate(gens)])
-        floor = noise_floor_db(ToDecibels()(RangeDoppler()(x)))
-        if floor is None:
-            raise CalibrationError("too few chirps per frame to measure a noise floor")
+        floor = rd_noise_floor_db(x)
         history.append((nf, floor))
         diff = target_floor_db - floor
         if abs(diff) <= tol_db:

@@ -35,9 +35,9 @@ from typing import Any
 import numpy as np
 import torch
 
+from radaraug.calibration.views import rd_noise_floor_db
 from radaraug.config import RadarConfig
 from radaraug.errors import CalibrationError
-from radaraug.io.summary import noise_floor_db
 from radaraug.transforms import RangeDoppler, ToDecibels
 from radaraug.units import DB_CONVENTION
 
@@ -102,11 +102,8 @@ def mti_peaks(frames: torch.Tensor, min_range_bin: int = 2) -> tuple[np.ndarray,
     """
     if frames.ndim != 4:
         raise CalibrationError(f"people level: need frames (F, rx, chirps, samples), got shape {tuple(frames.shape)}")
-    to_db = ToDecibels()
-    mti = to_db(RangeDoppler(static_clutter=True)(frames))[:, 0, min_range_bin:]  # (F, range, doppler)
-    floor = noise_floor_db(to_db(RangeDoppler()(frames)))
-    if floor is None:
-        raise CalibrationError(f"people level: too few chirps ({frames.shape[-2]}) to measure a noise floor")
+    mti = ToDecibels()(RangeDoppler(static_clutter=True)(frames))[:, 0, min_range_bin:]  # (F, range, doppler)
+    floor = rd_noise_floor_db(frames, "people level: ")
     flat = mti.flatten(1).max(dim=1)
     bins = flat.indices.div(mti.shape[-1], rounding_mode="floor") + min_range_bin
     return flat.values.double().numpy(), bins.numpy(), float(floor)

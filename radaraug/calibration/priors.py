@@ -40,6 +40,12 @@ def _factor_band(value: float, factor: float, lo: float, hi: float) -> tuple[flo
     return (a, b) if b > a else (max(lo, b * 0.99), b)
 
 
+def _fit_band(p: Mapping[str, Any], key: str, default: float, lo: float, hi: float,
+              factor: float = 2.0) -> tuple[float, float]:
+    """:func:`_factor_band` around the fitted ``p[key]`` (``default`` when it was not fitted)."""
+    return _factor_band(_first(p.get(key, default)), factor, lo, hi)
+
+
 def _band(value: float, half: float, lo: float, hi: float) -> tuple[float, float]:
     a, b = max(value - half, lo), min(value + half, hi)
     return (a, b) if b > a else (min(a, b), max(a, b) + 1e-9)
@@ -93,26 +99,21 @@ def calibration_priors(profile: TwinProfile, base: TwinRandomization, config: Ra
             frac = _first(p["freq_Hz"]) / fs2
             changes[name] = {"spur_tone_probability": prob("spur_tone_probability"),
                              "spur_tone_freq_nyquist": _band(frac, 0.02, 0.0, 1.0),
-                             "spur_tone_amplitude_counts": _factor_band(_first(p.get("amplitude_counts", 1.0)), 2.0,
-                                                                        0.05, 200.0)}
+                             "spur_tone_amplitude_counts": _fit_band(p, "amplitude_counts", 1.0, 0.05, 200.0)}
         elif name == "interference":
             changes[name] = {"interference_probability": prob("interference_probability"),
-                             "interference_chirp_probability": _factor_band(_first(p.get("probability", 0.05)), 2.0,
-                                                                            1e-3, 1.0),
-                             "interference_amplitude_counts": _factor_band(_first(p.get("amplitude_counts", 100.0)),
-                                                                           2.0, 1.0, 2000.0),
-                             "interference_duration_s": _factor_band(_first(p.get("duration_s", 5e-6)), 2.0,
-                                                                     0.2e-6, 30e-6)}
+                             "interference_chirp_probability": _fit_band(p, "probability", 0.05, 1e-3, 1.0),
+                             "interference_amplitude_counts": _fit_band(p, "amplitude_counts", 100.0, 1.0, 2000.0),
+                             "interference_duration_s": _fit_band(p, "duration_s", 5e-6, 0.2e-6, 30e-6)}
         elif name == "vibrating_clutter" and "range_m" in p:
             r = _first(p["range_m"])
             rcs = _rcs_dBsm(config, r, _first(p.get("level_dB", -80.0)))
             changes[name] = {"vibrating_clutter_probability": prob("vibrating_clutter_probability"),
                              "vibrating_clutter_range_m": _band(r, 1.0, 0.3, 30.0),
                              "vibrating_clutter_rcs_dBsm": _band(rcs, 6.0, -40.0, 20.0),
-                             "vibrating_clutter_displacement_m": _factor_band(
-                                 _first(p.get("displacement_m", 1e-3)), 2.0, 1e-5, 5e-3),
-                             "vibrating_clutter_Hz": _factor_band(_first(p.get("vibration_Hz", 20.0)), 1.5, 0.5,
-                                                                  1 / (2 * float(config.chirp_repetition_time_s)))}
+                             "vibrating_clutter_displacement_m": _fit_band(p, "displacement_m", 1e-3, 1e-5, 5e-3),
+                             "vibrating_clutter_Hz": _fit_band(p, "vibration_Hz", 20.0, 0.5,
+                                                               1 / (2 * float(config.chirp_repetition_time_s)), 1.5)}
         elif name == "rx_gain_phase_mismatch":
             g_raw, ph_raw = p.get("gain_dB"), p.get("phase_rad")
             gains = [float(v) for v in (g_raw if isinstance(g_raw, list) else [0.0 if g_raw is None else g_raw])]
@@ -125,9 +126,8 @@ def calibration_priors(profile: TwinProfile, base: TwinRandomization, config: Ra
                              "rx_mismatch_phase_deg": (ph_lo, ph_hi)}
         elif name == "frame_drift":
             changes[name] = {"frame_drift_probability": prob("frame_drift_probability"),
-                             "frame_drift_gain_rms_dB": _factor_band(_first(p.get("gain_rms_dB", 0.1)), 2.0, 0.0, 3.0),
-                             "frame_drift_dc_rms_counts": _factor_band(_first(p.get("dc_rms_counts", 0.5)), 2.0, 0.0,
-                                                                       20.0)}
+                             "frame_drift_gain_rms_dB": _fit_band(p, "gain_rms_dB", 0.1, 0.0, 3.0),
+                             "frame_drift_dc_rms_counts": _fit_band(p, "dc_rms_counts", 0.5, 0.0, 20.0)}
         elif name == "phase_noise" and "freq_noise_rms_Hz" in p:
             # Phase noise is drawn for every item (not a catalog effect): centre its range.
             changes[name] = {"phase_noise_rms_Hz": _factor_band(_first(p["freq_noise_rms_Hz"]), 2.0, 1e3, 3e6)}

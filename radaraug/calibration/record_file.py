@@ -23,7 +23,7 @@ from __future__ import annotations
 
 import math
 import os
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -205,31 +205,25 @@ def _check_convention(data: Mapping[str, Any], where: str) -> None:
 def _parse_current(data: Mapping[str, Any], where: str) -> CalibrationRecord:
     _check_version(data.get("version"), (RECORD_VERSION,), f"{where}: {RECORD_FORMAT} version", where)
     _check_convention(data, where)
-    sections = {k: data.get(k) for k in ("capture", "cdr", "profile", "noise_fit", "persistent_cells")}
+    sections = {k: data.get(k) for k in _SECTIONS}
     for name, value in sections.items():
         if value is not None and not isinstance(value, Mapping):
             raise CalibrationError(f"{where}: '{name}' must be an object or null, got {safe_repr(value)}")
-    capture = sections["capture"]
-    if capture is not None:
-        ok = (isinstance(capture.get("name"), (str, type(None))) and isinstance(capture.get("sha256"), (str, type(None)))
-              and _count(capture.get("frames")))
-        if not ok:
-            raise CalibrationError(f"{where}: malformed 'capture' {safe_repr(capture)}")
-        capture = dict(capture)
-    profile = sections["profile"]
-    return CalibrationRecord(
-        cdr=None if sections["cdr"] is None else _cdr_section(sections["cdr"], where),
-        config=_config(data.get("config"), where),
-        capture=capture,
-        profile=None if profile is None else TwinProfile.from_dict(profile, source=f"{where}, profile"),
-        noise_fit=None if sections["noise_fit"] is None else _noise_fit(sections["noise_fit"], where),
-        persistent_cells=None if sections["persistent_cells"] is None else _persistent(sections["persistent_cells"],
-                                                                                        where),
-    )
+    parsed: dict[str, Any] = {k: None if v is None else _SECTIONS[k](v, where) for k, v in sections.items()}
+    return CalibrationRecord(config=_config(data.get("config"), where), **parsed)
 
 
-def _count(value: Any) -> bool:
-    return value is None or (isinstance(value, int) and not isinstance(value, bool) and value >= 0)
+def _capture(data: Mapping[str, Any], where: str) -> dict[str, Any]:
+    frames = data.get("frames")
+    ok = (isinstance(data.get("name"), (str, type(None))) and isinstance(data.get("sha256"), (str, type(None)))
+          and (frames is None or (isinstance(frames, int) and not isinstance(frames, bool) and frames >= 0)))
+    if not ok:
+        raise CalibrationError(f"{where}: malformed 'capture' {safe_repr(data)}")
+    return dict(data)
+
+
+def _profile(data: Mapping[str, Any], where: str) -> TwinProfile:
+    return TwinProfile.from_dict(data, source=f"{where}, profile")
 
 
 def _cdr_section(data: Mapping[str, Any], where: str) -> dict[str, Any]:
@@ -287,6 +281,11 @@ def _persistent(data: Mapping[str, Any], where: str) -> dict[str, Any]:
                                "cells [[r, d], ...] inside it)")
     return {"threshold_db": float(threshold), "shape": list(shape), "cells": [list(c) for c in cells]}
 
+
+#: The record's sections, each with its reader ``(section, where)``: checked, then made.
+_SECTIONS: dict[str, Callable[[Mapping[str, Any], str], Any]] = {
+    "capture": _capture, "cdr": _cdr_section, "profile": _profile, "noise_fit": _noise_fit,
+    "persistent_cells": _persistent}
 
 __all__ = ["CDR_FORMAT", "CDR_VERSIONS", "NOISE_FIT_FORMAT", "NOISE_FIT_VERSIONS", "RECORD_FORMAT", "RECORD_VERSION",
            "CalibrationRecord", "content_digest", "load_record", "parse_record"]

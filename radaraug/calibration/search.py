@@ -193,28 +193,18 @@ class Search:
         R = self.config.num_rx
         room = self.source.check_room(room)
 
-        def to_u(v: float, sp: ParamSpec) -> float:
-            v = min(max(v, sp.prior.lo), sp.prior.hi)
-            return math.log10(v) if sp.prior.scale == "log" else v
-
-        def from_u(u: float, sp: ParamSpec) -> float:
-            return 10**u if sp.prior.scale == "log" else u
-
-        def bounds(sp: ParamSpec) -> tuple[float, float]:
-            return (math.log10(sp.prior.lo), math.log10(sp.prior.hi)) if sp.prior.scale == "log" else (sp.prior.lo, sp.prior.hi)
-
         def build(us: list[float]) -> tuple[Chain, Room]:
             ch, rm = chain, dict(room)
             for (eff, sp), u in zip(specs, us):
                 if eff == ROOM_STAGE:
-                    rm[sp.name] = from_u(u, sp)
+                    rm[sp.name] = _from_unit(u, sp.prior)
                 else:
-                    ch = set_params(ch, eff, [sp], [from_u(u, sp)], R)
+                    ch = set_params(ch, eff, [sp], [_from_unit(u, sp.prior)], R)
             return ch, rm
 
-        us = [to_u(room[sp.name] if eff == ROOM_STAGE else get_param(chain, eff, sp), sp) for eff, sp in specs]
-        lo = [bounds(sp)[0] for _, sp in specs]
-        hi = [bounds(sp)[1] for _, sp in specs]
+        us = [_to_unit(room[sp.name] if eff == ROOM_STAGE else get_param(chain, eff, sp), sp.prior) for eff, sp in specs]
+        lo = [_to_unit(sp.prior.lo, sp.prior) for _, sp in specs]
+        hi = [_to_unit(sp.prior.hi, sp.prior) for _, sp in specs]
         cache: dict[tuple[float, ...], tuple[Score, Chain, Room]] = {}
 
         def f(u: list[float]) -> float:
@@ -302,14 +292,13 @@ class Search:
         delta = max(float(noise_db), 0.01)
         out: dict[str, list[float] | None] = {}
         for eff, sp in specs:
-            log = sp.prior.scale == "log"
-            lo, hi = (math.log10(sp.prior.lo), math.log10(sp.prior.hi)) if log else (sp.prior.lo, sp.prior.hi)
-            v = get_param(chain, eff, sp)
-            u = math.log10(max(v, sp.prior.lo)) if log else v
+            lo, hi = _to_unit(sp.prior.lo, sp.prior), _to_unit(sp.prior.hi, sp.prior)
+            # The fitted value lies inside the prior (the optimizer keeps it there).
+            u = _to_unit(get_param(chain, eff, sp), sp.prior)
             h = 0.02 * (hi - lo)
 
-            def at(uu: float, eff: str = eff, sp: ParamSpec = sp, log: bool = log) -> float:
-                return self.fit_score(set_params(chain, eff, [sp], [10**uu if log else uu], R), room).overall
+            def at(uu: float, eff: str = eff, sp: ParamSpec = sp) -> float:
+                return self.fit_score(set_params(chain, eff, [sp], [_from_unit(uu, sp.prior)], R), room).overall
 
             curv = (at(u + h) + at(u - h) - 2 * f0) / h**2
             label = sp.name if sp.index is None else f"{sp.name}[{sp.index}]"
@@ -318,7 +307,7 @@ class Search:
                 continue
             sig = math.sqrt(2 * delta / curv)
             a, b = max(u - sig, lo), min(u + sig, hi)
-            out[label] = [10**a, 10**b] if log else [a, b]
+            out[label] = [_from_unit(a, sp.prior), _from_unit(b, sp.prior)]
         return out
 
     # ------------------------------------------------------------------ signature-led steps
@@ -346,9 +335,9 @@ class Search:
             fitted, fitted_room, _ = self.refit_base(cand, extra, room=room)
             new_held = self.held_score(fitted, fitted_room)
             keep = new_held.overall <= held.overall + self.settings.min_gain_db
-            steps.append(_signature_step("if_highpass", held, new_held if keep else held,
-                                         require(fitted if keep else chain, "if_highpass")["params"], hp.reason,
-                                         "clear" if keep else "signature only", refit=True))
+            steps.append(_step("if_highpass", True, require(fitted if keep else chain, "if_highpass")["params"], held,
+                               new_held if keep else held, "clear" if keep else "signature only", hp.reason,
+                               source="signature"))
             self.progress(f"refit if_highpass from its signature ({hp.reason}): held-out {held.overall:.3f} -> "
                           f"{new_held.overall:.3f} dB{'' if keep else ' (not kept)'}")
             added.add("if_highpass")
@@ -362,8 +351,8 @@ class Search:
                 continue
             if name == "tx_rx_leakage" and self.source.mode != "estimated":
                 continue  # scene mode: the catalog's leakage candidate fits it
-            steps.append(_signature_step(name, held, held, dict(e.capture.params), e.reason, "signature only",
-                                         refit=True, note=why))
+            steps.append(_step(name, True, dict(e.capture.params), held, held, "signature only", e.reason,
+                               source="signature", note=why))
             self.progress(f"{name}: {e.reason} ({why})")
             added.add(name)
         return chain, room, held
@@ -440,19 +429,20 @@ class Search:
                 fitted, _, fit_sc = self.optimize(ch, specs, cur_room)
                 fitted = self.dc_closed_form(fitted, iterations=1, room=cur_room)
                 held = self.held_score(fitted, cur_room)
-                results.append((held, cand, fitted, fit_sc, specs))
+                # The candidate's own parameters (the joint base ones are refitted anyway).
+                results.append((held, cand, fitted, fit_sc, [(e, sp) for e, sp in specs if e == cand.name]))
                 tried.append({"step": len(steps) + 1, "effect": cand.name, "fit_error": round(fit_sc.overall, 4),
                               "held_out_error": round(held.overall, 4)})
             if not results:
                 break
 
             def penalized(r: tuple[Score, Candidate, Chain, Score, list[tuple[str, ParamSpec]]]) -> float:
-                return r[0].overall + st.per_param_db * _own_params(r[1].name, r[4])
+                return r[0].overall + st.per_param_db * len(r[4])
 
             results.sort(key=penalized)
-            held, cand, fitted, fit_sc, cand_specs = results[0]
+            held, cand, fitted, fit_sc, own = results[0]
             gain = cur_held.overall - held.overall
-            k = _own_params(cand.name, cand_specs)
+            k = len(own)
             backed = bool(signature(cand.name))
             need = (st.min_gain_db if backed else max(st.min_gain_db, st.min_gain_rel * cur_held.overall)) \
                 + st.per_param_db * k
@@ -461,31 +451,20 @@ class Search:
                 break
             band = max(st.ambiguity_db, st.ambiguity_rel * gain)
             alternatives = [{"effect": r[1].name, "held_out_error": round(r[0].overall, 4),
-                             "penalized_error": round(penalized(r), 4), "params_fitted": _own_params(r[1].name, r[4]),
+                             "penalized_error": round(penalized(r), 4), "params_fitted": len(r[4]),
                              "signature": signature(r[1].name)}
                             for r in results[1:]]
             best_pen = penalized(results[0])
             close = [r[1].name for r in results[1:] if penalized(r) - best_pen <= band]
             refit = find(current, cand.name) is not None
-            steps.append({
-                "effect": cand.name,
-                "refit": refit,
-                "params": require(fitted, cand.name)["params"],
-                "uncertainty": self.uncertainty(fitted, [(e, sp) for e, sp in cand_specs if e == cand.name], cur_room,
-                                                abs(held.overall - fit_sc.overall)),
-                "params_fitted": k,
-                "signature": None if cand.name not in ev else ev[cand.name].reason,
+            steps.append(_step(
+                cand.name, refit, require(fitted, cand.name)["params"], cur_held, held,
+                "ambiguous" if close else "clear", None if cand.name not in ev else ev[cand.name].reason,
+                ambiguous_with=close, alternatives=alternatives, params_fitted=k,
+                uncertainty=self.uncertainty(fitted, own, cur_room, abs(held.overall - fit_sc.overall)),
                 # The detector's own estimate beside the fit: two independent readings of one effect.
-                "signature_params": None if cand.name not in ev else {
-                    k: round(float(v), 6) for k, v in ev[cand.name].capture.params.items()},
-                "verdict": "ambiguous" if close else "clear",
-                "ambiguous_with": close,
-                "alternatives": alternatives,
-                "error_before": round(cur_held.overall, 4),
-                "error_after": round(held.overall, 4),
-                "views_before": _rounded(cur_held.views),
-                "views_after": _rounded(held.views),
-            })
+                signature_params=None if cand.name not in ev else {
+                    k: round(float(v), 6) for k, v in ev[cand.name].capture.params.items()}))
             self.progress(f"{'refit' if refit else 'add'} {cand.name}: held-out {cur_held.overall:.3f} -> "
                           f"{held.overall:.3f} dB")
             added.add(cand.name)
@@ -493,8 +472,7 @@ class Search:
             # The base was bent to imitate the new stage before it existed (a higher floor, a lower
             # anti-alias cutoff...): refit the base together with the new stage's parameters,
             # kept only when the held-out error does not get worse.
-            rebased, rebased_room, _ = self.refit_base(current, [(e, sp) for e, sp in cand_specs if e == cand.name],
-                                                       room=cur_room)
+            rebased, rebased_room, _ = self.refit_base(current, own, room=cur_room)
             rebased_held = self.held_score(rebased, rebased_room)
             if rebased_held.overall <= cur_held.overall:
                 current, cur_room, cur_held = rebased, rebased_room, rebased_held
@@ -505,34 +483,40 @@ class Search:
         for name, e in ev.items():
             if e.present and name not in added:
                 # Named by its signature even though no fit beat the margin: the report says both.
-                steps.append(_signature_step(
-                    name, cur_held, cur_held, dict(e.capture.params), e.reason, "signature only",
-                    refit=find(current, name) is not None,
+                steps.append(_step(
+                    name, find(current, name) is not None, dict(e.capture.params), cur_held, cur_held,
+                    "signature only", e.reason, source="signature",
                     note="its signature is present, but fitting it did not lower the held-out error by the margin"))
                 self.progress(f"{name}: signature present ({e.reason}); no fit beat the margin")
         return SearchResult(chain, base_chain, current, before, base, cur_held, steps, tried, self.evaluations,
                             room_before, base_room, cur_room)
 
 
+def _to_unit(v: float, prior: Prior) -> float:
+    """``v``, clipped to ``prior``, on the scale the search moves it on (log10 for a log prior)."""
+    v = min(max(v, prior.lo), prior.hi)
+    return math.log10(v) if prior.scale == "log" else v
+
+
+def _from_unit(u: float, prior: Prior) -> float:
+    """The inverse of :func:`_to_unit`."""
+    return 10**u if prior.scale == "log" else u
+
+
 def _rounded(views: dict[str, float]) -> dict[str, float]:
     return {k: round(v, 4) for k, v in views.items()}
 
 
-def _signature_step(name: str, before: Score, after: Score, params: dict[str, Any], reason: str, verdict: str,
-                    refit: bool, note: str | None = None) -> dict[str, Any]:
-    """A step of an effect named from its signature (no alternatives competed for it)."""
-    step = {"effect": name, "refit": refit, "source": "signature", "params": params, "signature": reason,
-            "verdict": verdict, "ambiguous_with": [], "alternatives": [],
+def _step(name: str, refit: bool, params: dict[str, Any], before: Score, after: Score, verdict: str,
+          signature: str | None, **extra: Any) -> dict[str, Any]:
+    """One step of the report: an effect added, refitted or named (``extra``: the keys only some steps have).
+
+    An effect named from its signature has ``source="signature"`` and no alternatives.
+    """
+    return {"effect": name, "refit": refit, "params": params, "signature": signature, "verdict": verdict,
+            "ambiguous_with": [], "alternatives": [], **extra,
             "error_before": round(before.overall, 4), "error_after": round(after.overall, 4),
             "views_before": _rounded(before.views), "views_after": _rounded(after.views)}
-    if note is not None:
-        step["note"] = note
-    return step
-
-
-def _own_params(name: str, specs: Sequence[tuple[str, ParamSpec]]) -> int:
-    """Parameters of effect ``name`` itself among ``specs`` (the joint base parameters are refitted anyway)."""
-    return sum(1 for e, _ in specs if e == name)
 
 
 def nelder_mead(f: Callable[[list[float]], float], x0: Sequence[float], step: Sequence[float],

@@ -51,7 +51,7 @@ from __future__ import annotations
 
 import itertools
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from functools import cached_property, lru_cache
 
@@ -60,20 +60,6 @@ import torch
 from radaraug.config import RadarConfig
 
 _TINY = 1e-30
-
-SIGNATURE_EFFECTS = (
-    "adc_clipping",
-    "phase_noise",
-    "spur_tone",
-    "if_highpass",
-    "rx_gain_phase_mismatch",
-    "tx_rx_leakage",
-    "interference",
-    "vibrating_clutter",
-    "frame_drift",
-)
-"""The catalog effects that have a detector, in the order :func:`detect_all` reports them."""
-
 
 @dataclass(frozen=True)
 class Signature:
@@ -195,6 +181,18 @@ class Prepared:
         return _rspec(_remove_dc(self.static, self.bh4), self.bh4)
 
     @cached_property
+    def doppler(self) -> tuple[torch.Tensor, torch.Tensor, torch.Tensor]:
+        """Range-Doppler spectra of :attr:`moving_hann`, their mean power and its Doppler floor.
+
+        The spectra ``(F, R, M, K)`` (Hann over chirps, zero Doppler at ``M // 2``), their power
+        averaged over frames and RX ``(K, M)``, and its median per range bin ``(K, 1)``.
+        """
+        wd = _window("hann", self.shape[2], self.device)
+        X = torch.fft.fftshift(torch.fft.fft(self.moving_hann * wd[:, None], dim=2), dim=2) / wd.sum()
+        Pm = X.abs().square().mean(dim=(0, 1)).T
+        return X, Pm, Pm.median(dim=1, keepdim=True).values.clamp_min(_TINY)
+
+    @cached_property
     def chirp_power(self) -> torch.Tensor:
         """Power of each chirp's moving part, all RX and samples, ``(F, M)`` (counts^2)."""
         return self.moving.square().mean(dim=(1, 3))
@@ -252,6 +250,11 @@ def _burst_flags(r: torch.Tensor, min_db: float = 3.0, n_sigma: float = 8.0) -> 
     mad = float((ratio_db - ratio_db.median()).abs().median()) * 1.4826
     thr = max(min_db, n_sigma * mad)
     return ratio_db > thr, ratio_db, mad
+
+
+def _per_rx(name: str, values: Sequence[float] | torch.Tensor) -> dict[str, float]:
+    """A per-RX value as signature parameters, ``{name_rx1: ..., name_rx2: ...}``."""
+    return {f"{name}_rx{i + 1}": float(v) for i, v in enumerate(values)}
 
 
 def _peaks_1d(v: torch.Tensor, lo: int = 0) -> list[int]:
@@ -397,13 +400,13 @@ def detect_phase_noise(frames: torch.Tensor | Prepared, config: RadarConfig, gua
     dop = torch.fft.fftfreq(M, device=p.device)
     outer[dop.abs() >= 0.25] = 1.0
     offs = torch.arange(K, device=p.device) - k0
-    band = (offs.abs() >= guard) & (offs.abs() <= width) & (torch.arange(K, device=p.device) >= 2)
-    n_band = int(band.sum())
+    band0 = (offs.abs() >= guard) & (offs.abs() <= width) & (torch.arange(K, device=p.device) >= 2)
+    n_band = int(band0.sum())
     # Range bins with a strong line (and the window's main lobe around them) are left out: zeroing
     # the burst chirps spreads a line over the whole Doppler band there.
     strong = (Pd > 100 * Pd.median(dim=0, keepdim=True).values).any(dim=0).double()
     strong = torch.nn.functional.max_pool1d(strong[None, None], 9, stride=1, padding=4)[0, 0] > 0
-    band = band & ~strong
+    band = band0 & ~strong
     band_scale = n_band / max(int(band.sum()), 1)
     core = offs.abs() <= 4
     num = torch.zeros((), dtype=torch.float64, device=p.device)
@@ -433,7 +436,6 @@ def detect_phase_noise(frames: torch.Tensor | Prepared, config: RadarConfig, gua
     present = z >= min_z and 0.6 < whiteness < 1.5 and alignment >= min_alignment
     # The declared skirt over the same band (before the strong-line bins were left out: the sum
     # was scaled back to the band's full width).
-    band0 = (offs.abs() >= guard) & (offs.abs() <= width) & (torch.arange(K, device=p.device) >= 2)
     decl = declared_skirt_dBc(config, tau, offs[band0].abs().double().cpu())
     excess = _db(ratio) - decl
     params = {"skirt_dBc": _db(ratio), "range_bin": float(k0), "range_m": k0 * config.range_resolution_m,
@@ -505,12 +507,8 @@ def detect_spur_tone(frames: torch.Tensor | Prepared, config: RadarConfig, min_d
     F, R, M, N = p.shape
     if M < 4:
         return Signature("spur_tone", 0.0, False, {}, "needs at least 4 chirps")
-    wd = _window("hann", M, p.device)
-    X = torch.fft.fftshift(torch.fft.fft(p.moving_hann * wd[:, None], dim=2), dim=2) / wd.sum()  # (F,R,M,K)
-    P = X.abs().square()
-    Pm = P.mean(dim=(0, 1)).T  # (K, M)
+    X, Pm, floor = p.doppler
     c = M // 2
-    floor = Pm.median(dim=1, keepdim=True).values.clamp_min(_TINY)
     E = Pm / floor
     E[:, max(c - 1, 0): c + 2] = 0  # zero Doppler: static returns' residue, not a spur
     E[:1] = 0
@@ -529,7 +527,7 @@ def detect_spur_tone(frames: torch.Tensor | Prepared, config: RadarConfig, min_d
             break
         dm = 2 * c - d
         mir = max((_db(E[k, j]) for j in range(dm - 1, dm + 2) if 0 <= j < M), default=-300.0)
-        ok = float((P[:, :, d, k].mean(dim=1) / floor[k, 0] > 10 ** 0.6).double().mean())
+        ok = float((X[:, :, d, k].abs().square().mean(dim=1) / floor[k, 0] > 10 ** 0.6).double().mean())
         pre = mir < h - mirror_db and ok >= min_frames and 2 <= k < K - 1
         if first is not None and not pre:
             continue
@@ -723,11 +721,10 @@ def detect_rx_gain_phase_mismatch(frames: torch.Tensor | Prepared, config: Radar
     fl = floor.mean(dim=0)
     peaks = [k for k in _peaks_1d(pcm, lo=3) if float(pcm[k] / fl[k]) > 10 ** (min_snr_db / 10)]
     peaks = [k for k in peaks if float(pcm[k]) > float(pcm[peaks[0]]) * 1e-3][:12] if peaks else []
-    params: dict[str, float] = {"num_returns": float(len(peaks))}
-    params.update({f"noise_gain_dB_rx{i + 1}": float(g_noise[i]) for i in range(R)})
+    params = {"num_returns": float(len(peaks)), **_per_rx("noise_gain_dB", g_noise)}
     if not peaks:
-        params.update({f"gain_dB_rx{i + 1}": float(g_noise[i]) for i in range(R)})
-        return Signature("rx_gain_phase_mismatch", 0.0, False, params, "no static return to compare")
+        return Signature("rx_gain_phase_mismatch", 0.0, False, {**params, **_per_rx("gain_dB", g_noise)},
+                         "no static return to compare")
     ks = torch.tensor(peaks, device=p.device)
     g_k = 10 * torch.log10(pc[:, ks] / pc[:1, ks])  # (R, P)
     g_static = g_k.median(dim=1).values
@@ -737,16 +734,12 @@ def detect_rx_gain_phase_mismatch(frames: torch.Tensor | Prepared, config: Radar
     worst, agree = 0.0, True
     for i in range(1, R):
         gs, gn = float(g_static[i]), float(g_noise[i])
-        params[f"static_gain_dB_rx{i + 1}"] = gs
         if abs(gs) >= min_gain_db:
-            ok = gs * gn > 0 and abs(gn) >= min_noise_share * abs(gs) and abs(gn) <= abs(gs) + 0.5
-            agree = agree and ok
+            agree = agree and gs * gn > 0 and abs(gn) >= min_noise_share * abs(gs) and abs(gn) <= abs(gs) + 0.5
             worst = max(worst, abs(gs))
-    params["static_gain_dB_rx1"] = 0.0
-    for i in range(R):
-        params[f"gain_dB_rx{i + 1}"] = float(g_static[i])
-        params[f"phase_rad_rx{i + 1}"] = float(ph[i])
-    params["spread_dB"] = spread
+    # RX1's static gain is 0 (the reference).
+    params |= {**_per_rx("static_gain_dB", g_static), **_per_rx("gain_dB", g_static), **_per_rx("phase_rad", ph),
+               "spread_dB": spread}
     present = worst >= min_gain_db and agree and spread <= max_spread_db
     gains = ", ".join(f"{float(g_static[i]):+.2f}/{float(g_noise[i]):+.2f}" for i in range(1, R))
     return Signature(
@@ -833,7 +826,7 @@ def detect_tx_rx_leakage(frames: torch.Tensor | Prepared, config: RadarConfig, b
     coh = dot.sum(dim=0).abs() / dot.abs().sum(dim=0).clamp_min(_TINY)
     i = int(snr.argmax())
     params = {"chirp_snr_dB": float(snr[i]), "coherence": float(coh[i])}
-    params.update({f"level_dBFS_rx{r + 1}": _db(pl[r] * (2 / p.full) ** 2) for r in range(R)})
+    params.update(_per_rx("level_dBFS", [_db(pl[r] * (2 / p.full) ** 2) for r in range(R)]))
     params["clipped_fraction"] = p.clipped_fraction
     present = float(snr[i]) >= min_chirp_snr_db and float(coh[i]) >= min_coherence
     declared_note = ""
@@ -841,7 +834,7 @@ def detect_tx_rx_leakage(frames: torch.Tensor | Prepared, config: RadarConfig, b
         decl = declared_leakage_dBFS(config, bins)
         dev = [params[f"level_dBFS_rx{r + 1}"] - decl[r] for r in range(R) if float(snr[r]) >= min_chirp_snr_db]
         excess = max(dev, key=abs) if dev else 0.0
-        params.update({f"declared_dBFS_rx{r + 1}": decl[r] for r in range(R)})
+        params.update(_per_rx("declared_dBFS", decl))
         params["excess_dB"] = excess
         if present and abs(excess) <= max_declared_db:
             return Signature("tx_rx_leakage", 0.0, False, params,
@@ -958,12 +951,9 @@ def detect_vibrating_clutter(frames: torch.Tensor | Prepared, config: RadarConfi
     F, R, M, N = p.shape
     if M < 8:
         return Signature("vibrating_clutter", 0.0, False, {}, "needs at least 8 chirps")
-    wd = _window("hann", M, p.device)
-    X = torch.fft.fftshift(torch.fft.fft(p.moving_hann * wd[:, None], dim=2), dim=2) / wd.sum()
-    Pm = X.abs().square().mean(dim=(0, 1)).T  # (K, M)
+    X, Pm, floor = p.doppler
     K = Pm.shape[0]
     c = M // 2
-    floor = Pm.median(dim=1, keepdim=True).values.clamp_min(_TINY)
     E = Pm / floor
     pc = p.static_hann.abs().square().mean(dim=(0, 1))  # (K,)
     # The noise level over all range bins: the vibrating bin's own floor holds the modulation.
@@ -1121,6 +1111,9 @@ DETECTORS: dict[str, Callable[..., Signature]] = {
     "frame_drift": detect_frame_drift,
 }
 """Effect name -> detector ``(frames, config) -> Signature``."""
+
+SIGNATURE_EFFECTS = tuple(DETECTORS)
+"""The catalog effects that have a detector, in the order :func:`detect_all` reports them."""
 
 
 @torch.no_grad()

@@ -48,6 +48,11 @@ def chain_receiver(config: RadarConfig, chain: Sequence[Mapping[str, Any]], tx_p
     return FMCWReceiver(config, effects=[effect_from_dict(e) for e in chain], **kw)
 
 
+def _linear_key(rx: FMCWReceiver, chain: Sequence[Mapping[str, Any]]) -> str:
+    """The linear stages of ``chain`` (``rx``'s modules) as a cache key: what a static signal depends on."""
+    return json.dumps([e for e, m in zip(chain, rx.effects) if m.kind == "linear"], sort_keys=True)
+
+
 class TwinSource:
     """Simulates frames of one capture's scene for any effect chain.
 
@@ -143,8 +148,7 @@ class TwinSource:
         phase ``f0 tau - S tau^2 / 2``: through the chain it gives back the measured chirp, and being
         a path, the phase-noise stage can put its skirt on it (the leakage's and the clutter's).
         """
-        linear = [e for e, m in zip(chain, rx.effects) if m.kind == "linear"]
-        key = "estimated:" + json.dumps(linear, sort_keys=True)
+        key = "estimated:" + _linear_key(rx, chain)
         if key not in self._tone_paths:
             cfg = self.config
             N, R = cfg.num_samples_per_chirp, cfg.num_rx
@@ -176,8 +180,7 @@ class TwinSource:
     def _static(self, rx: FMCWReceiver, chain: Sequence[Mapping[str, Any]], room: Room) -> torch.Tensor | None:
         if self.static_paths is None:  # estimated mode (the constructor takes exactly one of the two)
             return None
-        linear = [e for e, m in zip(chain, rx.effects) if m.kind == "linear"]
-        key = json.dumps(linear, sort_keys=True)
+        key = _linear_key(rx, chain)
         spec = self._synth(rx, key, self.static_paths)
         if self.diffuse_paths is None:
             return spec

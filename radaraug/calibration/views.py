@@ -39,7 +39,9 @@ from dataclasses import dataclass
 import torch
 
 from radaraug.config import RadarConfig
-from radaraug.transforms import RangeDoppler
+from radaraug.errors import CalibrationError
+from radaraug.io.summary import noise_floor_db
+from radaraug.transforms import RangeDoppler, ToDecibels
 
 VIEW_NAMES = (
     "rd_histogram", "noise_floor", "range_profile", "doppler_profile", "lines", "rx_balance",
@@ -53,6 +55,20 @@ _TINY = 1e-30
 
 def _db(p: torch.Tensor) -> torch.Tensor:
     return 10 * torch.log10(p.clamp_min(_TINY))
+
+
+def rd_noise_floor_db(frames: torch.Tensor, where: str = "") -> float:
+    """The RD noise floor (dBFS) of raw frames: :func:`radaraug.io.summary.noise_floor_db` of their dB maps.
+
+    The statistic ``radaraug info`` prints, for captures and twin frames alike.
+
+    Raises:
+        CalibrationError: too few chirps (<= 4) to leave zero Doppler out; ``where`` starts the message.
+    """
+    floor = noise_floor_db(ToDecibels()(RangeDoppler()(frames)))
+    if floor is None:
+        raise CalibrationError(f"{where}too few chirps per frame ({frames.shape[-2]}) to measure a noise floor")
+    return floor
 
 
 @dataclass
@@ -168,18 +184,12 @@ def compute_views(frames: torch.Tensor | FrameStats, config: RadarConfig) -> Vie
     """All views of raw frames ``(F, rx, chirps, samples)`` (or of precomputed stats)."""
     st = frames if isinstance(frames, FrameStats) else frame_stats(frames, config)
     R, nr, M = st.power.shape
-    floor_r = _db(st.floor_rx_range.mean(dim=0))
     zero_p = st.power[..., M // 2]  # (rx, range)
-    range_profile = _db(zero_p.mean(dim=0))
     body = st.power[:, 2:] if nr > 4 else st.power
-    doppler_profile = _db(body.mean(dim=(0, 1)))
     floor_rx = _db(st.floor_rx_range.mean(dim=1))
     # Static level per RX beyond range bin 1, so that the TX->RX leakage (its own per-RX stage)
     # does not dominate the balance of the scene's returns.
     static_rx = _db((zero_p[:, 2:] if nr > 4 else zero_p).mean(dim=1))
-    rx_bal = torch.cat([floor_rx - floor_rx.mean(), static_rx - static_rx.mean()])
-    ph = torch.angle(st.static_cplx)  # (rx, range)
-    static_ratio = _db(zero_p.mean(dim=0) / st.power.mean(dim=0).sum(dim=-1).clamp_min(_TINY) * M)
     fp = st.frame_power_db
     frame_power = torch.stack([
         fp.median(),
@@ -189,18 +199,17 @@ def compute_views(frames: torch.Tensor | FrameStats, config: RadarConfig) -> Vie
                          dtype=torch.float64)),
         *(st.chirp_power_q[1:] - st.chirp_power_q[0]),
     ])
-    adc = torch.cat([st.code_quantiles, st.clipped[:, None]], dim=1)
     values = {
         "rd_histogram": st.db_quantiles,
-        "noise_floor": floor_r,
-        "range_profile": range_profile,
-        "doppler_profile": doppler_profile,
+        "noise_floor": _db(st.floor_rx_range.mean(dim=0)),
+        "range_profile": _db(zero_p.mean(dim=0)),
+        "doppler_profile": _db(body.mean(dim=(0, 1))),
         "lines": _lines(st.power),
-        "rx_balance": rx_bal,
-        "rx_phase": ph,
-        "adc_histogram": adc,
+        "rx_balance": torch.cat([floor_rx - floor_rx.mean(), static_rx - static_rx.mean()]),
+        "rx_phase": torch.angle(st.static_cplx),  # (rx, range)
+        "adc_histogram": torch.cat([st.code_quantiles, st.clipped[:, None]], dim=1),
         "frame_power": frame_power,
-        "static_ratio": static_ratio,
+        "static_ratio": _db(zero_p.mean(dim=0) / st.power.mean(dim=0).sum(dim=-1).clamp_min(_TINY) * M),
     }
     return Views(values, st)
 
