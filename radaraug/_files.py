@@ -56,7 +56,7 @@ import os
 import secrets
 import stat
 import time
-from collections.abc import Callable, Iterable, Iterator
+from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from pathlib import Path
 from typing import IO, Any
@@ -107,7 +107,8 @@ def remove_stale_temporaries(
     return removed
 
 
-def _fsync_folder(folder: Path) -> None:
+def fsync_folder(folder: str | os.PathLike) -> None:
+    """Make the renames in ``folder`` durable, where the filesystem can (errors are ignored)."""
     try:
         fd = os.open(folder, os.O_RDONLY)
     except OSError:
@@ -150,7 +151,7 @@ def atomic_open(path: str | os.PathLike, mode: str = "w", *, encoding: str | Non
     except BaseException:
         tmp.unlink(missing_ok=True)
         raise
-    _fsync_folder(target.parent)
+    fsync_folder(target.parent)
 
 
 def atomic_write_text(path: str | os.PathLike, text: str, *, encoding: str = "utf-8") -> Path:
@@ -162,9 +163,7 @@ def atomic_write_text(path: str | os.PathLike, text: str, *, encoding: str = "ut
 
 def atomic_write_bytes(path: str | os.PathLike, data: bytes) -> Path:
     """Write ``data`` to ``path`` atomically; returns the path."""
-    with atomic_open(path, "wb") as fh:
-        fh.write(data)
-    return Path(path)
+    return atomic_save(path, lambda fh: fh.write(data))
 
 
 def atomic_write_json(path: str | os.PathLike, obj: Any, *, newline: bool = True, **dumps: Any) -> Path:
@@ -307,16 +306,11 @@ def _depth_exceeds(value: Any, limit: int) -> bool:
     stack = [(value, 1)]
     while stack:
         node, depth = stack.pop()
-        children: Iterable[Any]
-        if isinstance(node, dict):
-            children = node.values()
-        elif isinstance(node, list):
-            children = node
-        else:
+        if not isinstance(node, (dict, list)):
             continue
         if depth > limit:
             return True
-        stack.extend((child, depth + 1) for child in children)
+        stack.extend((child, depth + 1) for child in (node.values() if isinstance(node, dict) else node))
     return False
 
 

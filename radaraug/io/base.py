@@ -143,19 +143,21 @@ class CaptureReader(abc.ABC):
         return s, e
 
 
-def axis_mismatch(shape: tuple[int, ...], config: RadarConfig) -> tuple[str, int, int] | None:
-    """The first of axes 1-3 of ``(F, rx, chirps, samples)`` frames that ``config`` does not match.
+def frames_problem(shape: tuple[int, ...], config: RadarConfig, config_name: str) -> str | None:
+    """Why frames of ``shape`` cannot be a capture's ``(F, rx, chirps, samples)`` in ``config``, or None.
 
-    ``(axis name, size found, size the config says)``, or None when all three match.
+    Not 4-D, an axis ``config`` (named ``config_name`` in the message) does not match, or no frame.
     """
+    if len(shape) != 4:
+        return f"shape {shape}, expected 4-D (frames, rx, chirps, samples)"
     for axis, name, want in (
         (1, "rx", config.num_rx),
         (2, "chirps", config.num_chirps_per_frame),
         (3, "samples", config.num_samples_per_chirp),
     ):
         if shape[axis] != want:
-            return name, shape[axis], want
-    return None
+            return f"{shape[axis]} {name} (shape {shape}) but {config_name} says {want}"
+    return "no frames (empty capture)" if shape[0] == 0 else None
 
 
 def timestamp_problem(ts: np.ndarray) -> str | None:

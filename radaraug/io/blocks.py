@@ -94,8 +94,6 @@ class BlockWriter:
             timestamps: ``(k,)`` frame times, seconds.
             count: ``(k,)`` people counts; ``occupancy`` is ``count > 0``.
         """
-        if isinstance(counts, torch.Tensor):
-            counts = counts.detach().cpu().numpy()
         ts = timestamps.detach().cpu().numpy() if isinstance(timestamps, torch.Tensor) else np.asarray(timestamps)
         c = count.detach().cpu().numpy() if isinstance(count, torch.Tensor) else np.asarray(count)
         c = c.astype(np.int64)

@@ -1,4 +1,4 @@
-"""Validation of raw ADC counts handed to the capture writers."""
+"""Validation of raw ADC counts and timestamps handed to the capture writers."""
 
 from __future__ import annotations
 
@@ -7,8 +7,9 @@ from typing import Any
 import numpy as np
 import torch
 
+from radaraug._files import safe_repr
 from radaraug.config import RadarConfig
-from radaraug.errors import InputTensorError
+from radaraug.errors import CaptureError, InputTensorError
 
 
 def as_counts(data: Any, config: RadarConfig, where: str) -> np.ndarray:
@@ -53,3 +54,17 @@ def as_counts(data: Any, config: RadarConfig, where: str) -> np.ndarray:
             f"{where}: ADC counts span {lo}..{hi}, outside the {config.adc_bits}-bit code range 0..{full}"
         )
     return arr.astype(np.uint16, copy=False)
+
+
+def as_timestamps(value: Any, frames: int, where: str) -> np.ndarray:
+    """``frames`` finite Unix times in seconds (a number for one frame) as float64 ``(frames,)``.
+
+    Raises:
+        CaptureError: another number of values, or a NaN or Inf among them (``where`` starts the message).
+    """
+    ts = np.asarray(value, dtype=np.float64).reshape(-1)
+    if ts.shape != (frames,) or not np.all(np.isfinite(ts)):
+        raise CaptureError(
+            f"{where}: need {frames} finite timestamps (one per frame), got {safe_repr(value)}"
+        )
+    return ts

@@ -15,7 +15,7 @@ from radaraug._files import parse_json, regular_file_size
 from radaraug.config import RadarConfig
 from radaraug.errors import CaptureError, ConfigError, RadarAugError
 from radaraug.io import hdf5_format as fmt
-from radaraug.io.base import CaptureReader, CaptureWarning, axis_mismatch, broadcast_label, timestamp_problem
+from radaraug.io.base import CaptureReader, CaptureWarning, broadcast_label, frames_problem, timestamp_problem
 from radaraug.io.hdf5_open import open_hdf5_readonly
 
 # What h5py raises for damaged or unexpected HDF5 content (RadarAugError is a ValueError too,
@@ -251,16 +251,9 @@ class HDF5Capture(CaptureReader):
             raise self._fail(f"has no '{fmt.FRAMES}' dataset")
         if frames.dtype != np.uint16:
             raise self._fail(f"'{fmt.FRAMES}' has dtype {frames.dtype}, expected uint16 ADC counts")
-        if frames.ndim != 4:
-            raise self._fail(
-                f"'{fmt.FRAMES}' has shape {frames.shape}, expected 4-D (frames, rx, chirps, samples)"
-            )
-        bad = axis_mismatch(frames.shape, self.config)
-        if bad is not None:
-            name, found, want = bad
-            raise self._fail(f"'{fmt.FRAMES}' has {found} {name} (shape {frames.shape}) but radar_config says {want}")
-        if frames.shape[0] == 0:
-            raise self._fail("empty capture: 'frames' holds 0 frames")
+        problem = frames_problem(frames.shape, self.config, "radar_config")
+        if problem is not None:
+            raise self._fail(f"'{fmt.FRAMES}' has {problem}")
         return frames
 
     def _load_timestamps(self) -> np.ndarray | None:
@@ -297,19 +290,17 @@ class HDF5Capture(CaptureReader):
         f = self._file
         assert f is not None
         n = self.num_frames
-        labels: dict[str, np.ndarray] = {}
-        # File-level labels first; per-frame datasets of the same name override them.
+        # File-level labels first (the JSON ``labels``, then ``label_<name>`` attributes); per-frame
+        # datasets of the same name override them.
         text = self.attrs.get(fmt.FILE_LABELS_JSON)
-        if text is not None:
-            file_labels = parse_json(text, source=self.path, error=CaptureError, what="attribute 'labels'")
-            if not isinstance(file_labels, dict):
-                raise self._fail("attribute 'labels' must be a JSON object of name -> value")
-            for key, value in file_labels.items():
-                labels[key] = broadcast_label(key, value, n, self.path)
-        for key, value in self.attrs.items():
-            if key.startswith(fmt.FILE_LABEL_PREFIX) and len(key) > len(fmt.FILE_LABEL_PREFIX):
-                name = key[len(fmt.FILE_LABEL_PREFIX) :]
-                labels[name] = broadcast_label(name, value, n, self.path)
+        file_labels = {} if text is None else parse_json(text, source=self.path, error=CaptureError,
+                                                         what="attribute 'labels'")
+        if not isinstance(file_labels, dict):
+            raise self._fail("attribute 'labels' must be a JSON object of name -> value")
+        prefix = fmt.FILE_LABEL_PREFIX
+        file_labels |= {key[len(prefix):]: value for key, value in self.attrs.items()
+                        if key.startswith(prefix) and key != prefix}
+        labels = {name: broadcast_label(name, value, n, self.path) for name, value in file_labels.items()}
         group = self._dataset(f, fmt.LABELS_GROUP, fmt.LABELS_GROUP)
         if group is None:
             return labels

@@ -42,6 +42,7 @@ import torch
 
 from radaraug._files import (
     PARTIAL_SUFFIX,
+    fsync_folder,
     parse_json,
     remove_stale_temporaries,
     temporaries_of,
@@ -50,7 +51,7 @@ from radaraug._files import (
 from radaraug.config import RadarConfig
 from radaraug.errors import CaptureError, ConfigError
 from radaraug.io import hdf5_format as fmt
-from radaraug.io.counts import as_counts
+from radaraug.io.counts import as_counts, as_timestamps
 from radaraug.io.hdf5_reader import committed_frame_count
 from radaraug.io.hdf5_recovery import BUSY, hold_writer_lock, release_writer_lock, writer_is_alive
 from radaraug.units import DB_CONVENTION, FLOAT_CONVENTION
@@ -139,12 +140,15 @@ class CaptureWriter:
             (see :func:`radaraug.io.counts.as_counts`).
     """
 
-    # State set by _init_state (declared here: __init__ assigns some before the types are known).
-    _file: h5py.File | None
-    _lock_fd: int | None
-    _tmp: Path | None  # the file's name until it is published under self.path
-    _failed: str | None
-    _publish_on_close: bool
+    # The state of a writer with no file yet (__init__ and resume set what they open).
+    _file: h5py.File | None = None
+    _n = 0
+    _started = False
+    _has_timestamps = False
+    _lock_fd: int | None = None
+    _tmp: Path | None = None  # the file's name until it is published under self.path
+    _failed: str | None = None
+    _publish_on_close = False
 
     def __init__(
         self,
@@ -165,7 +169,6 @@ class CaptureWriter:
         if compression not in _COMPRESSION:
             raise CaptureError(f"{self.path}: compression must be 'gzip', 'lzf' or None, got {compression!r}")
         self.config = config
-        self._init_state()
         self._publish_on_close = publish == "close"
         self._schema = self._check_schema(labels_schema) if labels_schema is not None else None
         file_attrs = self._file_attrs(attrs or {})
@@ -211,16 +214,6 @@ class CaptureWriter:
             if isinstance(e, (OSError, RuntimeError)):
                 raise CaptureError(f"{self.path}: cannot create capture file ({self._failed})") from None
             raise
-
-    def _init_state(self) -> None:
-        self._file = None
-        self._n = 0
-        self._started = False
-        self._has_timestamps = False
-        self._lock_fd = None
-        self._tmp = None
-        self._failed = None
-        self._publish_on_close = False
 
     def _check_space(self, frames: int | None, existing: int = 0) -> None:
         if frames is not None:
@@ -289,14 +282,7 @@ class CaptureWriter:
             return
         os.replace(self._tmp, self.path)
         self._tmp = None
-        try:  # make the rename itself durable
-            dfd = os.open(self.path.parent, os.O_RDONLY)
-            try:
-                os.fsync(dfd)
-            finally:
-                os.close(dfd)
-        except OSError:
-            pass
+        fsync_folder(self.path.parent)  # make the rename itself durable
 
     def _abort(self) -> None:
         """Close after a failure without raising: the file keeps what was flushed before."""
@@ -344,7 +330,6 @@ class CaptureWriter:
         self = cls.__new__(cls)
         self.path = Path(path)
         self.config = config
-        self._init_state()
         if not self.path.is_file():
             raise CaptureError(f"{self.path}: no capture file to resume")
         self._lock_fd = hold_writer_lock(self.path, reset_flags=True)
@@ -466,12 +451,7 @@ class CaptureWriter:
             return None
         if timestamp is None:
             raise CaptureError(f"{self.path}: this capture stores timestamps; append() needs one per frame")
-        ts = np.asarray(timestamp, dtype=np.float64).reshape(-1)
-        if ts.shape != (k,) or not np.all(np.isfinite(ts)):
-            raise CaptureError(
-                f"{self.path}: need {k} finite timestamp(s) for {k} frame(s), got {timestamp!r}"
-            )
-        return ts
+        return as_timestamps(timestamp, k, str(self.path))
 
     def _check_labels(self, labels: Mapping[str, Any] | None, k: int) -> dict[str, np.ndarray]:
         schema = self._schema or {}

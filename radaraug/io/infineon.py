@@ -33,8 +33,8 @@ import torch
 from radaraug._files import MAX_TEXT_BYTES, atomic_open, atomic_write_text, load_json, read_bytes
 from radaraug.config import DEFAULT_ADC_DELAY_S, RadarConfig
 from radaraug.errors import CaptureError, ConfigError
-from radaraug.io.base import CaptureReader, CaptureWarning, axis_mismatch, timestamp_problem
-from radaraug.io.counts import as_counts
+from radaraug.io.base import CaptureReader, CaptureWarning, frames_problem, timestamp_problem
+from radaraug.io.counts import as_counts, as_timestamps
 from radaraug.io.npy import open_npy
 
 DEVICE_FOLDER = "RadarIfxAvian_00"
@@ -163,14 +163,9 @@ class InfineonRecording(CaptureReader):
         data = open_npy(path, kinds="iufcbmMUSV")
         if data.dtype.kind not in "ui" or data.dtype.itemsize > 4:
             raise CaptureError(f"{path}: dtype {data.dtype}, expected uint16 raw ADC counts")
-        if data.ndim != 4:
-            raise CaptureError(f"{path}: shape {data.shape}, expected 4-D (frame, rx, chirp, sample)")
-        bad = axis_mismatch(data.shape, self.config)
-        if bad is not None:
-            name, found, want = bad
-            raise CaptureError(f"{path}: {found} {name} (shape {data.shape}) but config.json says {want}")
-        if data.shape[0] == 0:
-            raise CaptureError(f"{path}: empty capture (0 frames)")
+        problem = frames_problem(data.shape, self.config, "config.json")
+        if problem is not None:
+            raise CaptureError(f"{path}: {problem}")
         return data
 
     def _load_timestamps(self, path: Path) -> np.ndarray | None:
@@ -252,39 +247,33 @@ def write_infineon_recording(
     data = as_counts(counts, config, str(folder))
     if (dev / "radar.npy").exists() and not overwrite:
         raise CaptureError(f"{folder}: already holds an Infineon recording (pass overwrite=True)")
-    ts = None
-    if timestamps is not None:
-        ts = np.asarray(timestamps, dtype=np.float64).reshape(-1)
-        if len(ts) != len(data) or not np.all(np.isfinite(ts)):
-            raise CaptureError(f"{folder}: need {len(data)} finite timestamps, got {np.shape(timestamps)}")
-    lost = [
-        name
-        for name, default in (
-            ("adc_delay_s", DEFAULT_ADC_DELAY_S),
-            ("adc_bits", 12),
-            ("rx_positions_m", None),
-        )
-        if getattr(config, name) != default
-    ]
+    ts = None if timestamps is None else as_timestamps(timestamps, len(data), str(folder))
+    # the config fields the format has no place for -> the value they read back as
+    not_stored = {
+        "adc_delay_s": DEFAULT_ADC_DELAY_S,
+        "adc_bits": 12,
+        "rx_positions_m": None,
+    }
+    lost = [name for name, default in not_stored.items() if getattr(config, name) != default]
     if lost:
         warnings.warn(
             f"{folder}: the Infineon format cannot store {lost}; they will read back as defaults",
             CaptureWarning,
             stacklevel=2,
         )
+    host_meta = {
+        "date_captured": datetime.now(timezone.utc).isoformat(timespec="seconds"),
+        "writer": "radaraug",
+        **(meta or {}),
+    }
+    device_meta = {"adc_resolution": config.adc_bits, "description": "BGT60TR13C FMCW Radar Sensor"}
     try:
         dev.mkdir(parents=True, exist_ok=True)
-        host_meta = {
-            "date_captured": datetime.now(timezone.utc).isoformat(timespec="seconds"),
-            "writer": "radaraug",
-            **(meta or {}),
-        }
         # Each file is written atomically (a crash or a full disk leaves the old file or none),
         # radar.npy last: its presence is what marks a folder as a recording.
-        atomic_write_text(folder / "meta.json", json.dumps(host_meta, indent=4, sort_keys=True) + "\n")
-        atomic_write_text(dev / "config.json", json.dumps(config.to_infineon(), indent=4, sort_keys=True) + "\n")
-        device_meta = {"adc_resolution": config.adc_bits, "description": "BGT60TR13C FMCW Radar Sensor"}
-        atomic_write_text(dev / "meta.json", json.dumps(device_meta, indent=4, sort_keys=True) + "\n")
+        for path, doc in ((folder / "meta.json", host_meta), (dev / "config.json", config.to_infineon()),
+                          (dev / "meta.json", device_meta)):
+            atomic_write_text(path, json.dumps(doc, indent=4, sort_keys=True) + "\n")
         atomic_write_text(dev / "format.version", FORMAT_VERSION + "\n")
         stamp_file = dev / "radar_timestamp.csv"
         if ts is not None:

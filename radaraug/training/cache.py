@@ -139,8 +139,9 @@ def build_map_caches(
     sim = _RawItems(dataset)
     if num_workers > 0:
         dataset.prepare()
-    order = [(name, i) for name in todo for i in splits[name]]
-    loader = DataLoader(Subset(sim, [i for _, i in order]), batch_size=batch_size, num_workers=num_workers,
+    # (split, row in the split's file, item) of every item to simulate, in loader order
+    order = [(name, row, i) for name in todo for row, i in enumerate(splits[name])]
+    loader = DataLoader(Subset(sim, [i for _, _, i in order]), batch_size=batch_size, num_workers=num_workers,
                         persistent_workers=False)
     chain = rd_db_chain()
     tqdm = lazy_import("tqdm.auto", feature="progress bars").tqdm
@@ -159,9 +160,8 @@ def build_map_caches(
             for x, count in loader:
                 db = chain(x).clamp(-300, 300).numpy().astype(np.float16)
                 for k in range(db.shape[0]):  # rows of the batch may belong to two splits
-                    name, _ = order[done]
+                    name, row, _ = order[done]
                     f = files[name]
-                    row = done - sum(len(splits[n]) for n in todo[: todo.index(name)])
                     if "maps" not in f:
                         n = len(splits[name])
                         f.create_dataset("maps", (n, *db.shape[1:]), dtype="float16", chunks=(1, *db.shape[1:]))

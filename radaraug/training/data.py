@@ -377,31 +377,30 @@ class RadarDataModule(L.LightningDataModule):
         n_train, n_val = self.hparams["train_items"], self.hparams["val_items"]
         needs_sim = stage in (None, "fit", "validate") or self.clip is None
         if needs_sim and self._given_simulated is None:  # a given dataset brings its own receiver
-            self._resolve_receiver(calibration, has_capture, rank, world)
+            self._resolve_receiver(calibration, has_capture, rank)
             if self.hparams["catalog_priors"] == "calibration" and self.hparams["randomization"]:
                 if not has_capture or calibration is None:
                     raise ConfigError("catalog_priors: calibration fits the effect catalog's priors on the empty-room "
                                       f"capture in data.calibration, but {calibration!r} is not a capture")
-                self._calibration_profile = self._shared_profile_fit(calibration, rank, world)[0]
+                self._calibration_profile = self._shared_profile_fit(calibration, rank)[0]
             if self.twin_profile is None and self.hparams["calibrate_noise"] and has_capture and calibration is not None:
                 self.noise_fit = self._fit_noise(calibration)
         if needs_sim:
             sim = self.simulated_dataset()
-            common = {"cache_dir": self.hparams["cache_dir"], "num_workers": self.hparams["sim_workers"],
-                      "progress": self.hparams["progress"] and rank == 0}
             # Equal shards: DDP all-reduces gradients every step, so a rank with one batch more than
             # the others would wait forever. The last n_train % world items are left out.
             # train and val simulated in one pass (the workers set each room variant up once)
             splits = {"train": range(rank, n_train - n_train % world, world),
                       "val": range(n_train + rank, n_train + n_val, world)}
-            built = build_map_caches(sim, splits, **common)
+            built = build_map_caches(sim, splits, self.hparams["cache_dir"],
+                                     num_workers=self.hparams["sim_workers"],
+                                     progress=self.hparams["progress"] and rank == 0)
             train = CachedMaps(built["train"])
             self.train_class_counts = torch.bincount(label_of(train.counts, self.task),
                                                      minlength=len(self.class_names))
             self._train = _Labelled(train, self.task)
             if n_val > 0:
-                val = CachedMaps(built["val"])
-                self._val = _Labelled(val, self.task)
+                self._val = _Labelled(CachedMaps(built["val"]), self.task)
             if self.hparams["cdr_floor"] == "matched" and isinstance(self.dr, CalibratedDR):
                 self.dr = self._matched_dr(self.dr, train)
             if self.clip is None:
@@ -427,7 +426,7 @@ class RadarDataModule(L.LightningDataModule):
         self._test = _Labelled(Subset(full, range(rank, len(full), world)), self.task)
         self._write_run_files()
 
-    def _resolve_receiver(self, calibration: str | None, has_capture: bool, rank: int, world: int) -> None:
+    def _resolve_receiver(self, calibration: str | None, has_capture: bool, rank: int) -> None:
         """Set :attr:`twin_profile` (and :attr:`profile_info`).
 
         ``data.profile``, or for ``cdr_profile`` the profile fitted on the calibration capture; None
@@ -444,7 +443,7 @@ class RadarDataModule(L.LightningDataModule):
                     f"method {self.method!r} fits a twin profile on the empty-room capture in data.calibration, but "
                     f"{calibration!r} is a CalibratedDR JSON: give the capture itself, or a fitted profile as "
                     "data.profile (radaraug diagnose CAPTURE -o DIR writes DIR/profile.json)")
-            prof, path = self._shared_profile_fit(calibration, rank, world)
+            prof, path = self._shared_profile_fit(calibration, rank)
             info = {"source": "fitted on data.calibration", "path": path, "calibration": str(calibration),
                     "max_frames": int(self.hparams["profile_max_frames"])}
         else:
@@ -471,16 +470,14 @@ class RadarDataModule(L.LightningDataModule):
             info["calibrate_noise"] = NOISE_FIT_SKIPPED
         self.twin_profile, self.profile_info = prof, info
 
-    def _shared_profile_fit(self, calibration: str, rank: int, world: int) -> tuple[TwinProfile, str]:
+    def _shared_profile_fit(self, calibration: str, rank: int) -> tuple[TwinProfile, str]:
         """The profile fitted on ``calibration`` (cached), fitted on rank 0 and broadcast to the others."""
         data: dict[str, Any] | None = None
         path_fitted: str | None = None
         if rank == 0:  # one diagnose per run; the other DDP ranks get its result
             fitted, cached = self._fit_profile(calibration)
             data, path_fitted = fitted.to_dict(), str(cached)
-        trainer = self.trainer
-        if world > 1 and trainer is not None:
-            data, path_fitted = trainer.strategy.broadcast((data, path_fitted), src=0)
+        data, path_fitted = self._from_rank0((data, path_fitted))
         if data is None or path_fitted is None:
             raise CalibrationError(f"rank {rank} did not receive the twin profile fitted on rank 0")
         return TwinProfile.from_dict(data, source=path_fitted), path_fitted
@@ -527,17 +524,21 @@ class RadarDataModule(L.LightningDataModule):
                               "recorded floor quantiles (fit it from the capture, not from an old JSON)")
         twin = floor_values(train.maps(empty).float(), doppler_window_of(dr.chain) or "hann")
         q = matched_floor_quantiles(dr.quantiles_db, twin)
-        if self.trainer is not None and self.trainer.world_size > 1:
-            q = self.trainer.strategy.broadcast(q, src=0)
-        return dr.replace(floor="empirical", quantiles_db=q, seed=self.hparams["dr_seed"] + 1000 * _rank_world(self.trainer)[0])
+        return dr.replace(floor="empirical", quantiles_db=self._from_rank0(q),
+                          seed=self.hparams["dr_seed"] + 1000 * _rank_world(self.trainer)[0])
 
     def _estimate_clip(self, train: CachedMaps) -> tuple[float, float]:
         maps = train.maps(slice(0, 256))
         vmin, vmax = estimate_clip_range(maps, self.dr, percentiles=tuple(self.hparams["clip_percentiles"]),
                                          representation=self.hparams["representation"], excise=self.excise)
-        if self.trainer is not None and self.trainer.world_size > 1:
-            vmin, vmax = self.trainer.strategy.broadcast((vmin, vmax), src=0)
+        vmin, vmax = self._from_rank0((vmin, vmax))
         return float(vmin), float(vmax)
+
+    def _from_rank0(self, value: Any) -> Any:
+        """Under DDP, rank 0's ``value`` on every rank (``value`` itself on one process)."""
+        if self.trainer is not None and self.trainer.world_size > 1:
+            return self.trainer.strategy.broadcast(value, src=0)
+        return value
 
     def _write_run_files(self) -> None:
         out = self.hparams["out_dir"]

@@ -15,17 +15,12 @@ from typing import TYPE_CHECKING, Any
 import torch
 
 from radaraug._files import atomic_savefig
-from radaraug.training.metrics import balanced_accuracy
+from radaraug._optional import pyplot  # imports matplotlib when called
+from radaraug.training.metrics import balanced_accuracy, draw_confusion
 from radaraug.transforms import CombineRx
 
 if TYPE_CHECKING:
     from torchvision.models import ResNet
-
-
-def _plt() -> Any:
-    from radaraug._optional import pyplot
-
-    return pyplot()
 
 
 def _save(fig: Any, path: str | os.PathLike, *, tight: bool = True) -> Path:
@@ -34,7 +29,7 @@ def _save(fig: Any, path: str | os.PathLike, *, tight: bool = True) -> Path:
     if tight:  # not for a figure laid out as "constrained"
         fig.tight_layout()
     atomic_savefig(fig, path, dpi=110)
-    _plt().close(fig)
+    pyplot().close(fig)
     return path
 
 
@@ -45,7 +40,7 @@ def combined_db(maps: torch.Tensor) -> torch.Tensor:
 
 def noise_floor_histograms(groups: Mapping[str, torch.Tensor], path: str | os.PathLike) -> Path:
     """Fig. 4: histograms of all RD dB cell values of empty-room maps, one curve per group."""
-    plt = _plt()
+    plt = pyplot()
     fig, ax = plt.subplots(figsize=(6.4, 3.6))
     for name, maps in groups.items():
         v = maps.float().flatten()
@@ -66,7 +61,7 @@ def rd_triplets(rows: Mapping[str, Sequence[tuple[str, torch.Tensor]]], path: st
     Situations e.g. empty / one person; sources e.g. simulation, simulation + CDR, the profile twin + CDR,
     capture.
     """
-    plt = _plt()
+    plt = pyplot()
     n_rows = len(rows)
     n_cols = max(len(r) for r in rows.values())
     fig, axes = plt.subplots(n_rows, n_cols, figsize=(3.2 * n_cols + 1, 3.3 * n_rows), squeeze=False,
@@ -97,7 +92,7 @@ def static_to_total(maps: torch.Tensor, low_doppler_bins: int = 1) -> torch.Tens
 
 def static_energy_plot(groups: Mapping[str, torch.Tensor], path: str | os.PathLike, low_doppler_bins: int = 1) -> Path:
     """Fig. 6: static-to-total (low-Doppler) energy ratio per frame, one series per group."""
-    plt = _plt()
+    plt = pyplot()
     fig, ax = plt.subplots(figsize=(6.4, 3.4))
     for name, maps in groups.items():
         ratio = static_to_total(maps, low_doppler_bins).double()
@@ -127,7 +122,7 @@ def first_block_features(net: ResNet, image: torch.Tensor) -> torch.Tensor:
 
 def feature_maps(models: Mapping[str, torch.nn.Module], inputs: Mapping[str, torch.Tensor], path: str | os.PathLike) -> Path:
     """Fig. 7: first-residual-block feature maps, a row per model, a column per input image."""
-    plt = _plt()
+    plt = pyplot()
     fig, axes = plt.subplots(len(models), len(inputs), figsize=(3.0 * len(inputs), 2.8 * len(models)),
                              squeeze=False)
     for i, (mname, net) in enumerate(models.items()):
@@ -143,22 +138,10 @@ def feature_maps(models: Mapping[str, torch.nn.Module], inputs: Mapping[str, tor
 
 def confusion_grid(cms: Mapping[str, torch.Tensor], class_names: Sequence[str], path: str | os.PathLike, title: str) -> Path:
     """Fig. 8/9: confusion matrices side by side (one per method; counts summed over seeds)."""
-    plt = _plt()
+    plt = pyplot()
     fig, axes = plt.subplots(1, len(cms), figsize=(3.0 * len(cms), 3.0), squeeze=False)
     for ax, (name, cm) in zip(axes[0], cms.items()):
-        cm = torch.as_tensor(cm, dtype=torch.float64)
-        rows = cm.sum(dim=1, keepdim=True)
-        frac = torch.where(rows > 0, cm / rows.clamp_min(1), torch.zeros_like(cm))
-        ax.imshow(frac.numpy(), cmap="Blues", vmin=0, vmax=1)
-        k = cm.shape[0]
-        for a in range(k):
-            for b in range(k):
-                ax.text(b, a, f"{frac[a, b]:.2f}", ha="center", va="center", fontsize=8,
-                        color="white" if frac[a, b] > 0.5 else "black")
-        ax.set_xticks(range(k), class_names, fontsize=8)
-        ax.set_yticks(range(k), class_names, fontsize=8)
-        ax.set_xlabel("predicted", fontsize=8)
-        ax.set_ylabel("true", fontsize=8)
+        draw_confusion(ax, cm, class_names)
         ax.set_title(f"{name}: bal. acc. {balanced_accuracy(cm):.2f}", fontsize=9)
     fig.suptitle(title, fontsize=10)
     return _save(fig, path)
@@ -166,7 +149,7 @@ def confusion_grid(cms: Mapping[str, torch.Tensor], class_names: Sequence[str], 
 
 def results_bars(results: Mapping[str, Mapping[str, Mapping[str, Any]]], path: str | os.PathLike) -> Path:
     """Balanced accuracy (mean +- std over seeds) per task and method, with the ablation if present."""
-    plt = _plt()
+    plt = pyplot()
     tasks = list(results)
     bars = max((len(results[t]) for t in tasks), default=1)
     fig, axes = plt.subplots(1, len(tasks), figsize=(max(4.2, 0.8 * bars + 1.4) * len(tasks), 3.4), squeeze=False)
@@ -203,7 +186,7 @@ def score_histograms(scores: Mapping[str, Mapping[str, tuple[torch.Tensor, torch
     and ``"test"``. A network that collapses to one class shows every test class piled at one
     end while the simulated classes stay apart.
     """
-    plt = _plt()
+    plt = pyplot()
     k = len(class_names)
     fig, axes = plt.subplots(1, len(scores), figsize=(3.4 * max(len(scores), 1), 3.0), squeeze=False)
     top = 1.0 if k == 2 else float(k - 1)

@@ -76,6 +76,28 @@ def classification_report(cm: torch.Tensor, class_names: Sequence[str] | None = 
     }
 
 
+def draw_confusion(ax: Any, cm: torch.Tensor, class_names: Sequence[str], *, with_counts: bool = False,
+                   text_size: float = 8, label_size: float | None = 8) -> None:
+    """Draw ``cm`` on the matplotlib axes ``ax``: row-normalised recall as colour and text (+ the counts).
+
+    ``label_size`` None: matplotlib's default size for the ticks and axis labels.
+    """
+    cm = torch.as_tensor(cm, dtype=torch.float64)
+    rows = cm.sum(dim=1, keepdim=True)
+    frac = torch.where(rows > 0, cm / rows.clamp_min(1), torch.zeros_like(cm))
+    ax.imshow(frac.numpy(), cmap="Blues", vmin=0, vmax=1)
+    k = cm.shape[0]
+    for i in range(k):
+        for j in range(k):
+            text = f"{int(cm[i, j])}\n{frac[i, j]:.2f}" if with_counts else f"{frac[i, j]:.2f}"
+            ax.text(j, i, text, ha="center", va="center", fontsize=text_size,
+                    color="white" if frac[i, j] > 0.5 else "black")
+    ax.set_xticks(range(k), class_names, fontsize=label_size)
+    ax.set_yticks(range(k), class_names, fontsize=label_size)
+    ax.set_xlabel("predicted", fontsize=label_size)
+    ax.set_ylabel("true", fontsize=label_size)
+
+
 def plot_confusion_matrix(
     cm: torch.Tensor, class_names: Sequence[str], path: str | os.PathLike, *, title: str = ""
 ) -> Path:
@@ -83,21 +105,9 @@ def plot_confusion_matrix(
     from radaraug._optional import pyplot
 
     plt = pyplot()
-
-    cm = torch.as_tensor(cm, dtype=torch.float64)
-    rows = cm.sum(dim=1, keepdim=True)
-    frac = torch.where(rows > 0, cm / rows.clamp_min(1), torch.zeros_like(cm))
-    k = cm.shape[0]
+    k = torch.as_tensor(cm).shape[0]
     fig, ax = plt.subplots(figsize=(1.2 * k + 1.8, 1.2 * k + 1.2))
-    ax.imshow(frac.numpy(), cmap="Blues", vmin=0, vmax=1)
-    for i in range(k):
-        for j in range(k):
-            ax.text(j, i, f"{int(cm[i, j])}\n{frac[i, j]:.2f}", ha="center", va="center",
-                    color="white" if frac[i, j] > 0.5 else "black", fontsize=9)
-    ax.set_xticks(range(k), class_names)
-    ax.set_yticks(range(k), class_names)
-    ax.set_xlabel("predicted")
-    ax.set_ylabel("true")
+    draw_confusion(ax, cm, class_names, with_counts=True, text_size=9, label_size=None)
     ax.set_title(title or f"balanced accuracy {balanced_accuracy(cm):.3f}", fontsize=9)
     fig.tight_layout()
     path = Path(path)

@@ -22,8 +22,8 @@ import platform
 import statistics
 import time
 import warnings
-from collections.abc import Iterator, Sequence
-from dataclasses import asdict, dataclass, replace
+from collections.abc import Iterable, Iterator, Sequence
+from dataclasses import asdict, dataclass, fields, replace
 from pathlib import Path
 from typing import Any
 
@@ -39,12 +39,6 @@ from radaraug.units import DB_CONVENTION
 #: A :class:`ReproduceSettings` field left to the recipes (``radaraug.recipes``): the run takes the value
 #: of its recipe (base + task + method [+ ablation]).
 RECIPE = "recipe"
-#: The settings fields that override a recipe key when set: field -> (section, key).
-RECIPE_KEYS = {"randomization": ("data", "randomization"), "representation": ("data", "representation"),
-               "excise_persistent_db": ("data", "excise_persistent_db"),
-               "calibrate_noise": ("data", "calibrate_noise"),
-               "cdr_twin_noise_offset_db": ("data", "cdr_twin_noise_offset_db"),
-               "cdr_floor": ("data", "cdr_floor"), "lr": ("model", "lr")}
 
 
 @dataclass(frozen=True)
@@ -103,6 +97,12 @@ class ReproduceSettings:
         return cls(train_items=800, val_items=90, epochs=4, image_size=(64, 32), batch_size=32,
                    proxy_frames_per_count=60, num_workers=0, sim_workers=2, profile_max_frames=40,
                    methods=("rt", "randomdr", "cdr"), ablations=(), test_sets=("independent",))
+
+
+#: The settings fields that override a recipe key when set (those whose default is ``"recipe"``):
+#: field -> (section, key); every one is a ``data`` key of the same name but ``lr``, the model's.
+RECIPE_KEYS = {f.name: ("model" if f.name == "lr" else "data", f.name)
+               for f in fields(ReproduceSettings) if f.default == RECIPE}
 
 
 def parse_test_arg(text: str) -> dict[str, Any]:
@@ -199,24 +199,23 @@ def _test_sets(out: Path, settings: ReproduceSettings, calibration: str | None,
     if calibration is not None:
         raise ConfigError("reproduce --calibration without --test: the generated test sets bring their own "
                           "empty-room captures; give the test captures recorded with your calibration")
+    _check_known("test set", names, GENERATED_TEST_SETS)
+    if not names:
+        raise ConfigError(f"no test set: name at least one of {GENERATED_TEST_SETS}, or give --test captures")
     sets = []
     for name in names:
         if name == "proxy":
             from radaraug.sim.proxy import make_proxy
 
             proxy: Any = make_proxy(out / "proxy", frames_per_count=settings.proxy_frames_per_count, progress=progress)
-        elif name in ("independent", "standing"):
+        else:  # "independent" or "standing"
             from radaraug.heldout import make_independent_proxy
 
             standing: dict[str, Any] = {"seed": STANDING_SEED, "standing_probability": STANDING_PROBABILITY}
             proxy = make_independent_proxy(out / name, frames_per_count=settings.proxy_frames_per_count,
                                            progress=progress, **(standing if name == "standing" else {}))
-        else:
-            raise ConfigError(f"unknown test set {name!r}; choose from {GENERATED_TEST_SETS}")
         sets.append(TestSet(name, str(proxy.calibration),
                             [{"path": str(p), "count": int(c)} for p, c in proxy.tests], proxy.to_dict()))
-    if not sets:
-        raise ConfigError(f"no test set: name at least one of {GENERATED_TEST_SETS}, or give --test captures")
     return sets
 
 
@@ -268,12 +267,13 @@ def _fit(task: str, method: str, seed: int, *, settings: ReproduceSettings, data
 
 
 def _size_kw(settings: ReproduceSettings) -> dict[str, Any]:
-    """The data keys ``reproduce`` sets from its settings (sizes and workers), whatever the recipe says."""
-    return {"train_items": settings.train_items, "val_items": settings.val_items,
-            "image_size": list(settings.image_size), "batch_size": settings.batch_size,
-            "num_workers": settings.num_workers, "sim_workers": settings.sim_workers,
-            "tracer_rays": settings.tracer_rays, "proxy_frames_per_count": settings.proxy_frames_per_count,
-            "profile_max_frames": settings.profile_max_frames}
+    """The data keys ``reproduce`` sets from its settings (sizes and workers), whatever the recipe says.
+
+    Each is the settings field of the same name (``image_size`` as a list, as in a recipe).
+    """
+    keys = ("train_items", "val_items", "image_size", "batch_size", "num_workers", "sim_workers",
+            "tracer_rays", "proxy_frames_per_count", "profile_max_frames")
+    return {k: getattr(settings, k) for k in keys} | {"image_size": list(settings.image_size)}
 
 
 def _trainer(settings: ReproduceSettings, accelerator: str, run_dir: Path) -> Any:
@@ -443,19 +443,24 @@ def reproduce(
                                 "simulated val": _scores(model, src, src.val_dataloader(), with_dr=True),
                                 "test": _scores(model, dm, dm.test_dataloader(), with_dr=test_dr)}
                 cm_sum = torch.tensor([r["confusion_matrix"] for r in seed_reps]).sum(dim=0)
-                results[ts.name][task][name] = {
-                    "balanced_accuracy": _summary([r["balanced_accuracy"] for r in seed_reps]),
-                    "accuracy": _summary([r["accuracy"] for r in seed_reps]),
-                    "confusion_matrix_sum_over_seeds": cm_sum.tolist(),
-                }
+                results[ts.name][task][name] = {k: _summary([r[k] for r in seed_reps])
+                                                for k in ("balanced_accuracy", "accuracy")}
+                results[ts.name][task][name]["confusion_matrix_sum_over_seeds"] = cm_sum.tolist()
     bar.close()
+    from radaraug.training import figures as F
+
     figures: dict[str, Path] = {}
     floors: dict[str, dict[str, float]] = {}
     for ts in sets:
         floors[ts.name] = {}
+        fig_dir = out / "figures" / ts.name
         sub = {(t, n): v for (s, t, n), v in keep.items() if s == ts.name}
-        figs = _figures(out / "figures" / ts.name, sub, results[ts.name], ts.calibration, ts.tests, floors[ts.name])
-        figs |= _score_figures(out / "figures" / ts.name, scores[ts.name])
+        figs = _figures(fig_dir, sub, results[ts.name], ts.calibration, ts.tests, floors[ts.name])
+        for task, by in scores[ts.name].items():
+            if by:
+                figs[f"scores_{task}"] = F.score_histograms(
+                    by, TASKS[task], fig_dir / f"scores_{task}.png",
+                    f"{task}: score per true class, simulated validation (filled) vs test (lines), seed 0")
         figures |= {f"{ts.name}/{k}": v for k, v in figs.items()}
     wall = time.perf_counter() - t_start
     primary = sets[0]
@@ -501,18 +506,6 @@ def _ablation_table(results: dict[str, dict[str, Any]]) -> list[dict[str, Any]]:
     return rows
 
 
-def _score_figures(fig_dir: Path, scores: dict[str, dict[str, Any]]) -> dict[str, Path]:
-    from radaraug.training import figures as F
-
-    figs = {}
-    for task, by in scores.items():
-        if by:
-            figs[f"scores_{task}"] = F.score_histograms(
-                by, TASKS[task], fig_dir / f"scores_{task}.png",
-                f"{task}: score per true class, simulated validation (filled) vs test (lines), seed 0")
-    return figs
-
-
 def _noise_fit_of(keep: dict) -> dict[str, Any] | None:
     """The twin's noise-figure fit of the runs (they share it), if any."""
     return next((dm.noise_fit for _, dm in keep.values() if getattr(dm, "noise_fit", None) is not None), None)
@@ -538,6 +531,13 @@ def _maps_of(cache_dm: Any, count: int, n: int) -> torch.Tensor:
     ds = cache_dm._train.base  # CachedMaps of the run
     idx = (ds.counts == count).nonzero().flatten()[:n]
     return ds.maps(idx.tolist()) if len(idx) else torch.empty(0, *ds.map_shape)
+
+
+def _with_dr(dm: Any) -> tuple[torch.Tensor, torch.Tensor, torch.Tensor, torch.Tensor]:
+    """Up to 64 empty-room and one-person maps of a run's simulated set, then both through its DR."""
+    empty, one = _maps_of(dm, 0, 64), _maps_of(dm, 1, 64)
+    with torch.no_grad():
+        return empty, one, dm.dr.train()(empty), dm.dr.train()(one)
 
 
 def _capture_maps(path: str, n: int) -> torch.Tensor:
@@ -570,39 +570,32 @@ def _figures(fig_dir: Path, keep: dict, results: dict, calibration: str | None,
     if cdr_run is None or calibration is None or is_calibration_json(calibration):
         return figs
     dm = cdr_run[1]
-    sim_empty = _maps_of(dm, 0, 64)
-    sim_one = _maps_of(dm, 1, 64)
+    sim_empty, sim_one, cdr_empty, cdr_one = _with_dr(dm)
     real_empty = _capture_maps(calibration, 64)
     one = [e for e in test if e.get("count") == 1]
     real_one = _capture_maps(one[0]["path"], 64) if one else None
-    with torch.no_grad():
-        cdr_empty, cdr_one = dm.dr.train()(sim_empty), dm.dr.train()(sim_one)
-    groups = {"simulation": sim_empty, "simulation + CDR": cdr_empty}
-    median_of = {"simulation": sim_empty, "simulation_cdr": cdr_empty}
-    prof_empty = prof_one = None
+    # Fig. 4's sources (legend, key in ``floors``, maps) and Fig. 5's simulated columns, in their order
+    sources = [("simulation", "simulation", sim_empty), ("simulation + CDR", "simulation_cdr", cdr_empty)]
+    empty_row = [("sim", sim_empty), ("sim + CDR", cdr_empty)]
+    one_row = [("sim", sim_one), ("sim + CDR", cdr_one)]
     if prof_run is not None:
-        pdm = prof_run[1]
-        prof_empty, prof_one = _maps_of(pdm, 0, 64), _maps_of(pdm, 1, 64)
-        with torch.no_grad():
-            prof_cdr_empty = pdm.dr.train()(prof_empty)
-            prof_one = pdm.dr.train()(prof_one)
-        groups |= {"profile twin": prof_empty, "profile twin + CDR": prof_cdr_empty}
-        median_of |= {"simulation_profile": prof_empty, "simulation_profile_cdr": prof_cdr_empty}
-        prof_empty = prof_cdr_empty
-    groups["empty-room capture"] = real_empty
-    median_of["capture"] = real_empty
-    for key, maps in median_of.items():
+        prof_empty, _, prof_cdr_empty, prof_cdr_one = _with_dr(prof_run[1])
+        sources += [("profile twin", "simulation_profile", prof_empty),
+                    ("profile twin + CDR", "simulation_profile_cdr", prof_cdr_empty)]
+        empty_row.append(("profile sim + CDR", prof_cdr_empty))
+        one_row.append(("profile sim + CDR", prof_cdr_one))
+    sources.append(("empty-room capture", "capture", real_empty))
+    for _, key, maps in sources:
         v = maps.float().flatten()
         floors[key] = round(float(v[torch.isfinite(v) & (v > -250)].median()), 2)
-    figs["fig4_noise_floor"] = F.noise_floor_histograms(groups, fig_dir / "fig4_noise_floor_histograms.png")
+    figs["fig4_noise_floor"] = F.noise_floor_histograms({name: maps for name, _, maps in sources},
+                                                        fig_dir / "fig4_noise_floor_histograms.png")
     vmin, vmax = dm.clip
     cfg = dm.config
-    rows = {"empty": [("sim", sim_empty[0]), ("sim + CDR", cdr_empty[0])]
-            + ([("profile sim + CDR", prof_empty[0])] if prof_empty is not None and len(prof_empty) else [])
-            + [("capture", real_empty[0])]}
+    rows = {"empty": ([(name, maps[0]) for name, maps in empty_row if len(maps)]
+                      + [("capture", real_empty[0])])}
     if real_one is not None and len(sim_one):
-        rows["one person"] = ([("sim", sim_one[0]), ("sim + CDR", cdr_one[0])]
-                              + ([("profile sim + CDR", prof_one[0])] if prof_one is not None and len(prof_one) else [])
+        rows["one person"] = ([(name, maps[0]) for name, maps in one_row if len(maps)]
                               + [("capture", real_one[len(real_one) // 2])])
     figs["fig5_rd_triplets"] = F.rd_triplets(rows, fig_dir / "fig5_rd_triplets.png", vmin=vmin, vmax=vmax,
                                              range_max_m=float(cfg.max_range_m), v_max_m_s=float(cfg.max_velocity_m_s))
@@ -639,13 +632,16 @@ QUICK_TRADES = ("Quick mode trades, against full mode (6000 items, 15 epochs, 12
                 "network is still the paper's ResNet18. Full mode is for a GPU.")
 
 
+def _md_table(header: Sequence[str], rows: Iterable[Sequence[Any]]) -> list[str]:
+    """A Markdown table: the header line, the separator and one line per row (cells as ``str``)."""
+    return ["| " + " | ".join(header) + " |", "|" + "---|" * len(header),
+            *("| " + " | ".join(map(str, row)) + " |" for row in rows)]
+
+
 def _results_table(results: dict[str, dict[str, Any]]) -> list[str]:
     cols = list(next(iter(results.values())).keys())
-    lines = ["| task | " + " | ".join(cols) + " |", "|---|" + "---|" * len(cols)]
-    for task, by in results.items():
-        lines.append(f"| {task} | " + " | ".join(_fmt(by[c]["balanced_accuracy"]) if c in by else "" for c in cols)
-                     + " |")
-    return lines
+    cell = {task: {c: _fmt(by[c]["balanced_accuracy"]) for c in by} for task, by in results.items()}
+    return _md_table(["task", *cols], ([task, *(cell[task].get(c, "") for c in cols)] for task in results))
 
 
 def _orderings(results: dict[str, dict[str, Any]]) -> list[str]:
@@ -665,16 +661,16 @@ def _markdown(rep: dict[str, Any]) -> str:
     lines = ["# radaraug reproduce: train on the twin, test on captures", ""]
     st = rep["settings"]
     sets_text = ("; `cdr_profile` trains on its own set of that size, simulated with the twin profile's receiver"
-                 if "cdr_profile" in st.get("methods", []) else "")
+                 if "cdr_profile" in st["methods"] else "")
     lines += [f"Seeds: {st['seeds']} (network init, DR draws, batch order; simulated sets of {st['train_items']} "
               f"training + {st['val_items']} validation items{sets_text}). Epochs {st['epochs']}, image "
-              f"{st['image_size'][0]}x{st['image_size'][1]}, representation `{st.get('representation', 'paper')}`, "
-              f"{st.get('mode', 'quick' if st['quick'] else 'full')} mode. Wall time {rep['wall_seconds'] / 60:.1f} min on "
+              f"{st['image_size'][0]}x{st['image_size'][1]}, representation `{st['representation']}`, "
+              f"{st['mode']} mode. Wall time {rep['wall_seconds'] / 60:.1f} min on "
               f"{rep['machine']['device']}."
               + (f" CalibratedDR floor of the CDR methods: `{st['cdr_floor']}`." if st.get("cdr_floor") else "")
               + (" **Test captures went through each run's DR too (`test_dr`), not the paper's protocol.**"
                  if st.get("test_dr") else ""), ""]
-    if st.get("mode", "quick" if st["quick"] else "full") == "quick":
+    if st["mode"] == "quick":
         lines += [QUICK_TRADES, ""]
     if rep["kind"] == "sim-to-generated":
         lines += ["**These are sim-to-generated numbers, not sim-to-real.** The test captures come from generators "
@@ -690,13 +686,12 @@ def _markdown(rep: dict[str, Any]) -> str:
                 for e in ts["test"]) + f"; calibration `{ts['calibration']}`.", ""]
         lines += [*_results_table(ts["results"]), "", *_orderings(ts["results"]), ""]
         if ts["ablation_table"]:
-            lines += ["| task | ablation | changes | main run | with | without (ablation) | delta |",
-                      "|---|---|---|---|---|---|---|"]
-            for r in ts["ablation_table"]:
-                lines.append(f"| {r['task']} | {r['ablation']} | `{json.dumps(r['changes'])}` | {r['main']} | "
-                             f"{r['main_mean']:.3f} ± {r['main_std']:.3f} | {r['ablation_mean']:.3f} ± "
-                             f"{r['ablation_std']:.3f} | {r['delta']:+.3f} |")
-            lines += [""]
+            header = ["task", "ablation", "changes", "main run", "with", "without (ablation)", "delta"]
+            rows = [[r["task"], r["ablation"], f"`{json.dumps(r['changes'])}`", r["main"],
+                     f"{r['main_mean']:.3f} ± {r['main_std']:.3f}",
+                     f"{r['ablation_mean']:.3f} ± {r['ablation_std']:.3f}", f"{r['delta']:+.3f}"]
+                    for r in ts["ablation_table"]]
+            lines += [*_md_table(header, rows), ""]
     lines += ["Paper (real corridor): occupancy 97 % CDR, ~83 % RandomDR, ~50 % RT; counting 72 % / ~61 % / ~33 %.", ""]
     order: list[str] = []
     for task, by in rep["results"].items():
@@ -744,13 +739,14 @@ def _markdown(rep: dict[str, Any]) -> str:
               "class piled at one end.", ""]
     for key, rel in rep["figures"].items():
         lines.append(f"![{key}]({rel})")
-    lines += ["", "## Runs", "", "| test set | task | variant | seed | balanced acc. | accuracy | val bal. acc. (sim) | "
-              "clip range dB | fit s |", "|---|---|---|---|---|---|---|---|---|"]
-    for r in rep["runs"]:
-        val = "n/a" if r["val_balanced_accuracy"] is None else f"{r['val_balanced_accuracy']:.3f}"
-        lines.append(f"| {r['test_set']} | {r['task']} | {r['variant']} | {r['seed']} | {r['balanced_accuracy']:.3f} | "
-                     f"{r['accuracy']:.3f} | {val} | {r['clip_range_db'][0]:.1f} .. {r['clip_range_db'][1]:.1f} | "
-                     f"{r['fit_seconds']:.0f} |")
+    header = ["test set", "task", "variant", "seed", "balanced acc.", "accuracy", "val bal. acc. (sim)",
+              "clip range dB", "fit s"]
+    rows = [[r["test_set"], r["task"], r["variant"], r["seed"], f"{r['balanced_accuracy']:.3f}",
+             f"{r['accuracy']:.3f}",
+             "n/a" if r["val_balanced_accuracy"] is None else f"{r['val_balanced_accuracy']:.3f}",
+             f"{r['clip_range_db'][0]:.1f} .. {r['clip_range_db'][1]:.1f}", f"{r['fit_seconds']:.0f}"]
+            for r in rep["runs"]]
+    lines += ["", "## Runs", "", *_md_table(header, rows)]
     lines += ["", f"dB convention: {rep['db_convention']}.", ""]
     return "\n".join(lines)
 
