@@ -80,7 +80,7 @@ class ReproduceSettings:
     cdr_floor: str | None = RECIPE
     #: ablation variants (``radaraug/recipes/ablation/NAME.yaml``) run unless ``reproduce(ablation=False)``
     ablations: tuple[str, ...] = ("rt_paper_image", "randomdr_paper_image", "cdr_paper_image", "cdr_normal_floor",
-                                  "cdr_empirical_floor", "rt_no_twin_randomization", "rt_no_noise_fit")
+                                  "cdr_empirical_floor", "rt_no_twin_randomization", "rt_noise_fit")
 
     @classmethod
     def full(cls) -> ReproduceSettings:

@@ -148,6 +148,15 @@ def test_cli_reproduce_and_bad_arguments(tmp_path, captures, capsys, monkeypatch
     assert frames == [TINY.profile_max_frames]  # quick settings reach the diagnose; one fit for both tasks
 
 
+def test_default_ablations_name_recipes():
+    # Full mode once named an ablation recipe that had been renamed, and failed only when run.
+    from radaraug import recipes
+    from radaraug.training.reproduce import ReproduceSettings
+
+    for mode in (ReproduceSettings.full(), ReproduceSettings.quick()):
+        assert set(mode.ablations) <= set(recipes.ablations()), set(mode.ablations) - set(recipes.ablations())
+
+
 def test_the_runs_take_their_hyperparameters_from_the_recipes():
     # the values the experiment's reports were measured with, now written once, in the recipes
     eff = R.effective_settings(R.ReproduceSettings.quick())
