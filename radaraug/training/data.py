@@ -23,6 +23,7 @@
 
 from __future__ import annotations
 
+import copy
 import warnings
 from collections.abc import Sized
 from pathlib import Path
@@ -409,13 +410,17 @@ class RadarDataModule(L.LightningDataModule):
         self.image = image_chain(*self.clip, self.hparams["image_size"], self.hparams["representation"], self.excise)
 
         tests: list[RadarCaptureDataset] = []
+        given_used: set[int] = set()
         for entry in test:
             count = entry.get("count")
             if "dataset" not in entry:
                 tests.append(RadarCaptureDataset(entry["path"], label="count" if count is None else int(count),
                                                  transform=rd_db_chain()))
-            elif self._given_tests[entry["dataset"]] not in tests:
-                given = self._given_tests[entry["dataset"]]
+            elif entry["dataset"] not in given_used:
+                given_used.add(entry["dataset"])
+                # A copy with the module's RD chain: the user's dataset object keeps its own (no)
+                # transform (the copy opens its own file handles: RadarCaptureDataset.__getstate__).
+                given = copy.copy(self._given_tests[entry["dataset"]])
                 given.transform = rd_db_chain()
                 tests.append(given)
         for t in tests:

@@ -189,7 +189,7 @@ def test_test_captures_as_dataset_objects(tmp_path):
     assert dm.hparams["test"] == [{"path": str(cal), "count": 0}, {"path": str(one), "count": 1, "dataset": 0},
                                   {"path": str(two), "count": 2, "dataset": 0}]
     dm.setup("fit")
-    assert given.transform is not None  # the module's RD chain
+    assert given.transform is None  # the module applies its RD chain to a copy, not to the user's object
     assert sorted(int(y) for _, y in dm._test) == [0] * 6 + [1] * 4 + [2] * 5
     x, _ = dm._test[6]
     assert x.shape == (cfg.num_rx, cfg.num_range_bins, cfg.num_chirps_per_frame)  # dB maps, as from a path entry
