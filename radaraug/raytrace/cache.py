@@ -29,6 +29,10 @@ from radaraug._files import TMP_SUFFIX, atomic_save, remove_stale_temporaries
 TRACER_VERSION = 2
 """Bump when a change to the tracer changes the static paths of an unchanged scene."""
 
+STALE_TEMPORARY_S = 3600.0
+"""A temporary file of an entry older than this was left by a killed writer (a live write takes
+seconds): the next write of that entry removes it."""
+
 _warned_dirs: set[str] = set()
 
 
@@ -75,7 +79,8 @@ def store(folder: Path, key: str, data: dict[str, Any]) -> None:
     """Write an entry atomically; warn once per folder when it cannot be written."""
     try:
         folder.mkdir(parents=True, exist_ok=True)
-        _remove_stale_temporaries(folder, key)
+        # Any temporary of this key's entry (radaraug._files' convention), however old its writer.
+        remove_stale_temporaries(folder, f".static-{key}.*.{TMP_SUFFIX}", older_than_s=STALE_TEMPORARY_S)
         # Temporary name .static-<key>.pt.<pid>.<random>.tmp (radaraug._files).
         atomic_save(folder / f"static-{key}.pt", lambda f: torch.save({**data, "version": TRACER_VERSION}, f))
     except OSError as err:
@@ -85,12 +90,3 @@ def store(folder: Path, key: str, data: dict[str, Any]) -> None:
                           "again by every process (set RADARAUG_CACHE_DIR to a writable folder)",
                           RuntimeWarning, stacklevel=3)
 
-
-STALE_TEMPORARY_S = 3600.0
-"""A temporary file of an entry older than this was left by a killed writer (a live write takes
-seconds): the next write of that entry removes it."""
-
-
-def _remove_stale_temporaries(folder: Path, key: str) -> None:
-    # Any temporary of this key's entry (radaraug._files' convention), however old its writer.
-    remove_stale_temporaries(folder, f".static-{key}.*.{TMP_SUFFIX}", older_than_s=STALE_TEMPORARY_S)

@@ -60,6 +60,7 @@ from radaraug.errors import SceneError
 from radaraug.raytrace.accel import TriangleBVH
 from radaraug.raytrace.antenna import Antenna
 from radaraug.raytrace.merge import coherent_sum, weighted_mean
+from radaraug.raytrace.po import facet_normals
 from radaraug.raytrace.radar import RadarGeometry, radar_amplitude
 from radaraug.raytrace.reflect import FaceReflectivity
 from radaraug.raytrace.sbr import surface_offset
@@ -188,9 +189,7 @@ def diffuse_paths(
 
     p = points.to(device=device, dtype=dtype)
     tri = room.triangles.detach().to(device=device, dtype=dtype)
-    nrm = torch.linalg.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0], dim=-1)
-    nrm = nrm / nrm.norm(dim=-1, keepdim=True).clamp_min(1e-30)
-    n = nrm[face.to(device)]
+    n = facet_normals(tri)[face.to(device)]
     to_c = radar.centre - p
     r_c = to_c.norm(dim=-1).clamp_min(1e-9)
     k_s = to_c / r_c[:, None]
@@ -259,8 +258,7 @@ def occluder_faces(tri: torch.Tensor, centre: torch.Tensor, *, budget: int = 400
     verts = torch.unique(tri.reshape(-1, 3), dim=0)
     if f * verts.shape[0] > budget:
         return None
-    nrm = torch.linalg.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0], dim=-1)
-    nrm = nrm / nrm.norm(dim=-1, keepdim=True).clamp_min(1e-30)
+    nrm = facet_normals(tri)
     off = (nrm * tri[:, 0]).sum(-1)
     scale = float(verts.abs().max()) + 1.0
     tol = 1e-5 * scale if tri.dtype == torch.float32 else 1e-9 * scale

@@ -125,9 +125,7 @@ def facet_paths(
     n_rx = radar.rx.shape[0]
     cdt = torch.complex128 if dt == torch.float64 else torch.complex64
     if face.numel() == 0:
-        z = torch.zeros(0, n_rx, dtype=dt, device=dev)
-        return (Paths(z, z.clone(), z.to(cdt), torch.zeros(0, dtype=torch.int8, device=dev)),
-                torch.zeros(0, 3, 3, dtype=dt, device=dev))
+        return Paths.empty(n_rx, dtype=dt, device=dev), torch.zeros(0, 3, 3, dtype=dt, device=dev)
     tri, src = subdivide(triangles[face], face, radar.centre, radar.wavelength, density)
     cen, r, u, root = monostatic_facet_rcs(tri, face_material[src], radar, reflectivity, specular_factor)
     eps = surface_offset(cen)

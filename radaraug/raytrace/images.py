@@ -187,10 +187,7 @@ def image_paths(
 
 
 def _empty(n_rx: int, v_count: int, dev: torch.device, dt: torch.dtype) -> tuple[Paths, torch.Tensor]:
-    cdt = torch.complex128 if dt == torch.float64 else torch.complex64
-    z = torch.zeros(0, n_rx, dtype=dt, device=dev)
-    return (Paths(z, z.clone(), z.to(cdt), torch.zeros(0, dtype=torch.int8, device=dev)),
-            torch.zeros(0, v_count, 3, dtype=dt, device=dev))
+    return Paths.empty(n_rx, dtype=dt, device=dev), torch.zeros(0, v_count, 3, dtype=dt, device=dev)
 
 
 def _plane_faces(face_plane: torch.Tensor, k_planes: int) -> torch.Tensor:

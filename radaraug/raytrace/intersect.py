@@ -146,15 +146,8 @@ def _nearest_kernel(
     Planes come transposed so that each of the 12 coefficients is a contiguous ``(F,)`` row: the
     compiled loop over faces then vectorizes with plain (unit-stride) loads.
     """
-    ox, oy, oz = (x[:, None] for x in o.unbind(-1))
-    dx, dy, dz = (x[:, None] for x in d.unbind(-1))
-    nx, ny, nz, nd, ux, uy, uz, u0, vx, vy, vz, v0 = (x[None] for x in planes.unbind(0))
-    t = (nd - (nx * ox + ny * oy + nz * oz)) / (nx * dx + ny * dy + nz * dz)
-    px, py, pz = ox + t * dx, oy + t * dy, oz + t * dz
-    u = ux * px + uy * py + uz * pz + u0
-    v = vx * px + vy * py + vz * pz + v0
-    ok = (u >= 0) & (v >= 0) & (u + v <= 1) & (t > t_min[:, None]) & (t < t_max[:, None])
-    return torch.where(ok, t, torch.full_like(t, float("inf"))).min(dim=1)
+    t = plane_distance(o[:, None], d[:, None], planes, t_min[:, None], t_max[:, None], coef_dim=0)
+    return t.min(dim=1)
 
 
 _compiled_kernel = None

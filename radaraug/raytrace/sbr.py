@@ -117,8 +117,7 @@ def shoot_and_bounce(
         # --- specular reflection of the ray and its tube
         coef = coef * gamma
         d = d - 2 * dn[:, None] * n
-        g1 = g1 - 2 * (g1 * n).sum(-1, keepdim=True) * n
-        g2 = g2 - 2 * (g2 * n).sum(-1, keepdim=True) * n
+        g1, g2 = (g - 2 * (g * n).sum(-1, keepdim=True) * n for g in (g1, g2))
         o = start
         t_min = eps
     return _collect(out_delay, out_amp, out_kind, radar, o)
@@ -130,10 +129,7 @@ def _project_on_plane(e: torch.Tensor, d: torch.Tensor, n_f: torch.Tensor, cos_i
 
 
 def _collect(delays, amps, kinds, radar: RadarGeometry, like: torch.Tensor) -> Paths:
-    n_rx = radar.rx.shape[0]
     if not delays:
-        cdt = torch.complex128 if like.dtype == torch.float64 else torch.complex64
-        z = torch.zeros(0, n_rx, dtype=like.dtype, device=like.device)
-        return Paths(z, z.clone(), z.to(cdt), torch.zeros(0, dtype=torch.int8, device=like.device))
+        return Paths.empty(radar.rx.shape[0], dtype=like.dtype, device=like.device)
     delay = torch.cat(delays)
     return Paths(delay, torch.zeros_like(delay), torch.cat(amps), torch.cat(kinds))

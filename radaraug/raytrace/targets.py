@@ -67,7 +67,7 @@ def ellipsoid_rcs(semi_axes: torch.Tensor, local_dir: torch.Tensor) -> tuple[tor
 
 def ray_hits_ellipsoids(
     origins: torch.Tensor, dirs: torch.Tensor, t_max: torch.Tensor, centers: torch.Tensor,
-    semi_axes: torch.Tensor, rotations: torch.Tensor, exclude_self: bool = True,
+    semi_axes: torch.Tensor, rotations: torch.Tensor,
 ) -> torch.Tensor:
     """``(N, S)`` bool: the ray from segment slot ``i`` meets another ellipsoid of its snapshot.
 
@@ -86,10 +86,8 @@ def ray_hits_ellipsoids(
     root = disc.clamp_min(0).sqrt()
     t1, t2 = (-b - root) / a, (-b + root) / a
     hit = (disc > 0) & (t2 > 0) & (t1 < t_max[..., None])
-    if exclude_self:
-        eye = torch.eye(centers.shape[1], dtype=torch.bool, device=centers.device)
-        hit = hit & ~eye
-    return hit.any(-1)
+    eye = torch.eye(centers.shape[1], dtype=torch.bool, device=centers.device)
+    return (hit & ~eye).any(-1)
 
 
 class MirrorPlanes:
@@ -207,10 +205,7 @@ def ellipsoid_paths(
     s_count = ell.centers.shape[-2]
     n_rx = radar.rx.shape[0]
     if s_count == 0:  # no segments (a scene without people): no paths, but the leading dims stay
-        z = torch.zeros(*lead, 0, n_rx, dtype=dt, device=dev)
-        cdt = torch.complex128 if dt == torch.float64 else torch.complex64
-        return Paths(z, z.clone(), z.to(cdt), torch.zeros(*lead, 0, dtype=torch.int8, device=dev),
-                     torch.zeros(*lead, 0, dtype=torch.bool, device=dev))
+        return Paths.empty(n_rx, dtype=dt, device=dev, lead=tuple(lead), mask=True)
     c = ell.centers.to(device=dev, dtype=dt).reshape(-1, s_count, 3)
     ax = ell.semi_axes.to(device=dev, dtype=dt).reshape(-1, s_count, 3)
     rot = ell.rotations.to(device=dev, dtype=dt).reshape(-1, s_count, 3, 3)
@@ -250,18 +245,11 @@ def ellipsoid_paths(
     eps_skin = get_material(ell.material).permittivity(frequency_Hz)
     gamma_skin = (1 - complex(eps_skin) ** 0.5) / (1 + complex(eps_skin) ** 0.5)  # Gamma_TE at normal
 
-    def scatter(u_in: torch.Tensor, u_out: torch.Tensor):
-        """Specular point and root RCS for incidence ``u_in`` and scattering ``u_out`` (unit)."""
-        bis = u_in - u_out
-        bis = bis / bis.norm(dim=-1, keepdim=True).clamp_min(1e-12)
-        local = (rot.transpose(-1, -2) @ bis[..., None])[..., 0]
-        sigma, h = ellipsoid_rcs(ax, local)
-        return c - h[..., None] * bis, gamma_skin * sigma.sqrt()
-
     # --- direct (monostatic) paths
     to_t = c - radar.centre
     u = to_t / to_t.norm(dim=-1, keepdim=True)
-    p, root = scatter(u, -u)
+    p, sigma = _specular(c, ax, rot, _bisector(u, -u))
+    root = gamma_skin * sigma.sqrt()
     los = p - radar.centre
     r_los = los.norm(dim=-1)
     u_los = los / r_los[..., None]
@@ -285,28 +273,13 @@ def ellipsoid_paths(
         cc = c[:, :, None]  # (N, S, 1, 3)
         to_img = img - cc
         u_seg_in = -to_img / to_img.norm(dim=-1, keepdim=True)  # wall -> segment (from the centre)
-        u_back = radar.centre - cc
-        u_back = u_back / u_back.norm(dim=-1, keepdim=True)
         c_k = c[:, :, None].expand(-1, -1, k, -1)
         rot_k = rot[:, :, None].expand(-1, -1, k, -1, -1)
         ax_k = ax[:, :, None].expand(-1, -1, k, -1)
-        bis = u_seg_in - u_back
-        bis = bis / bis.norm(dim=-1, keepdim=True).clamp_min(1e-12)
-        sigma, h = ellipsoid_rcs(ax_k, (rot_k.transpose(-1, -2) @ bis[..., None])[..., 0])
-        pk = c_k - h[..., None] * bis
-        # Bounce point q: where the specular point -> image-radar line crosses the plane, so that
-        # |TX -> q -> p| is exactly the image distance |p - image|.
-        u_img = img - pk
-        u_img = u_img / u_img.norm(dim=-1, keepdim=True)
-        denom = (u_img * nrm).sum(-1)
-        t_q = (off - (pk * nrm).sum(-1)) / torch.where(denom.abs() < 1e-12, torch.ones_like(denom), denom)
-        q = pk + t_q[..., None] * u_img
-        u_wall_in = (q - radar.centre) / (q - radar.centre).norm(dim=-1, keepdim=True)  # radar -> wall
-        same_side = ((pk * nrm).sum(-1) - off) * ((nrm @ radar.centre) - off) > 0
-        ok, wall_material = _wall_bounce(pk, u_img, q, u_wall_in, same_side, nrm, off, mirrors, radar,
-                                         convex_room, room_bvh, room_face_material)
-        cos_w = (u_wall_in * nrm).sum(-1).abs()
-        g_wall = room_reflectivity(wall_material, cos_w, u_wall_in, nrm.expand_as(u_wall_in), radar.polarization)
+        bis = _bisector(u_seg_in, _unit(radar.centre - cc))
+        pk, sigma = _specular(c_k, ax_k, rot_k, bis)
+        q, ok, g_wall = _wall_bounce(pk, img, nrm, off, mirrors, radar, convex_room, room_bvh,
+                                     room_face_material, room_reflectivity)
         root_k = gamma_skin * sigma.sqrt() * g_wall
         # Path A: TX -> wall -> segment -> RX ; path B: TX -> segment -> wall -> RX.
         vel_k = point_velocity(bis, rot_k, ax_k)
@@ -319,13 +292,22 @@ def ellipsoid_paths(
         for part in (a, b, c2):
             parts.append(tuple(x.reshape(x.shape[0], -1, *x.shape[3:]) for x in part)
                          + (torch.ones(ok.shape[0], ok.shape[1] * k, dtype=torch.int8, device=dev),))
-    delay = torch.cat([x[0] for x in parts], dim=1)
-    rate = torch.cat([x[1] for x in parts], dim=1)
-    amp = torch.cat([x[2] for x in parts], dim=1)
-    mask = torch.cat([x[3] for x in parts], dim=1)
-    kind = torch.cat([x[4] for x in parts], dim=1)
+    delay, rate, amp, mask, kind = (torch.cat(list(x), dim=1) for x in zip(*parts))
     return Paths(delay.reshape(*lead, -1, n_rx), rate.reshape(*lead, -1, n_rx), amp.reshape(*lead, -1, n_rx),
                  kind.reshape(*lead, -1), mask.reshape(*lead, -1))
+
+
+def _bisector(u_in: torch.Tensor, u_out: torch.Tensor) -> torch.Tensor:
+    """Unit bisector ``u_in - u_out`` of an incidence and a scattering direction (unit)."""
+    bis = u_in - u_out
+    return bis / bis.norm(dim=-1, keepdim=True).clamp_min(1e-12)
+
+
+def _specular(c: torch.Tensor, ax: torch.Tensor, rot: torch.Tensor,
+              bis: torch.Tensor) -> tuple[torch.Tensor, torch.Tensor]:
+    """Specular point ``c - h bis`` and RCS of ellipsoids whose outward normal there is ``-bis`` (unit)."""
+    sigma, h = ellipsoid_rcs(ax, (rot.transpose(-1, -2) @ bis[..., None])[..., 0])
+    return c - h[..., None] * bis, sigma
 
 
 def _second_order(c, ax, rot, point_velocity, radar: RadarGeometry, antenna, nrm, off, img, gamma_skin, mirrors: MirrorPlanes,
@@ -347,26 +329,12 @@ def _second_order(c, ax, rot, point_velocity, radar: RadarGeometry, antenna, nrm
         return x[..., None, :] - 2 * ((x[..., None, :] * nrm).sum(-1) - off)[..., None] * nrm
 
     cc = c[:, :, None]  # (N, S, 1, 3)
-    u = cc - img  # image radar -> centre, (N, S, K, 3)
-    u = u / u.norm(dim=-1, keepdim=True)
+    u = _unit(cc - img)  # image radar -> centre, (N, S, K, 3)
     ax_k = ax[:, :, None].expand(-1, -1, k, -1)
     rot_k = rot[:, :, None].expand(-1, -1, k, -1, -1)
-    sigma, h = ellipsoid_rcs(ax_k, (rot_k.transpose(-1, -2) @ u[..., None])[..., 0])
-    p = cc - h[..., None] * u  # specular point facing the image radar
-    to_img = img - p
-    r_img = to_img.norm(dim=-1)
-    u_img = to_img / r_img[..., None]
-    denom = (u_img * nrm).sum(-1)
-    t_q = (off - (p * nrm).sum(-1)) / torch.where(denom.abs() < 1e-12, torch.ones_like(denom), denom)
-    q = p + t_q[..., None] * u_img
-    radar_side = (nrm @ radar.centre) - off  # (K,)
-    same_side = ((p * nrm).sum(-1) - off) * radar_side > 0
-    u_wall_in = q - radar.centre
-    u_wall_in = u_wall_in / u_wall_in.norm(dim=-1, keepdim=True)  # radar -> wall
-    ok, wall_material = _wall_bounce(p, u_img, q, u_wall_in, same_side, nrm, off, mirrors, radar, convex_room,
-                                     room_bvh, room_face_material)
-    cos_w = (u_wall_in * nrm).sum(-1).abs()
-    g_wall = room_reflectivity(wall_material, cos_w, u_wall_in, nrm.expand_as(u_wall_in), radar.polarization)
+    p, sigma = _specular(cc, ax_k, rot_k, u)  # specular point facing the image radar
+    q, ok, g_wall = _wall_bounce(p, img, nrm, off, mirrors, radar, convex_room, room_bvh, room_face_material,
+                                 room_reflectivity)
     root = gamma_skin * sigma.sqrt() * g_wall * g_wall
     tx_img = mirror(radar.tx)  # (K, 3)
     rx_img = mirror(radar.rx).transpose(0, 1)  # (K, RX, 3)
@@ -392,34 +360,47 @@ def _unit(v: torch.Tensor) -> torch.Tensor:
     return v / v.norm(dim=-1, keepdim=True)
 
 
+def _wall_bounce(p, img, nrm, off, mirrors: MirrorPlanes, radar: RadarGeometry, convex_room: bool,
+                 room_bvh: TriangleBVH, room_face_material, room_reflectivity: FaceReflectivity):
+    """``(q, ok, gamma)``: bounce points ``(N, S, K, 3)`` of scatterers ``p`` on the mirror planes.
 
-def _wall_bounce(p, u_img, q, u_wall_in, same_side, nrm, off, mirrors: MirrorPlanes, radar: RadarGeometry,
-                 convex_room: bool, room_bvh: TriangleBVH, room_face_material):
-    """``(ok, wall_material)`` of bounce points ``q`` ``(N, S, K, 3)`` on the mirror planes.
-
-    A bounce is valid when the scatterer ``p`` is on the radar's side of plane ``k``
-    (``same_side``), ``q`` lies on that plane's faces and the ``q`` -> radar leg is clear. In a
-    convex room ``q`` is on its wall iff it is on the radar's side of every other plane and no leg
-    can be blocked; otherwise the ``p`` -> image ray (``u_img``) must first meet a face of plane
-    ``k`` and a shadow ray checks the ``q`` -> radar leg.
+    ``q`` is where the line from ``p`` to the radar's image ``img`` in plane ``k`` crosses the
+    plane, so that ``|TX -> q -> p|`` is exactly the image distance ``|p - img|``; ``gamma`` is the
+    wall's reflection coefficient for the radar -> ``q`` leg. A bounce is valid (``ok``) when ``p``
+    is on the radar's side of plane ``k``, ``q`` lies on that plane's faces and the ``q`` -> radar
+    leg is clear. In a convex room ``q`` is on its wall iff it is on the radar's side of every
+    other plane and no leg can be blocked; otherwise the ``p`` -> image ray must first meet a face
+    of plane ``k`` and a shadow ray checks the ``q`` -> radar leg.
     """
+    u_img = _unit(img - p)
+    denom = (u_img * nrm).sum(-1)
+    t_q = (off - (p * nrm).sum(-1)) / torch.where(denom.abs() < 1e-12, torch.ones_like(denom), denom)
+    q = p + t_q[..., None] * u_img
+    u_wall_in = _unit(q - radar.centre)  # radar -> wall
+    radar_side = (nrm @ radar.centre) - off  # (K,)
+    same_side = ((p * nrm).sum(-1) - off) * radar_side > 0
     k = nrm.shape[0]
     dev = q.device
     if convex_room:
         if mirrors.plane_material is None:
             raise SceneError("convex_room needs mirror planes of one material each (see MirrorPlanes.convex_enclosure)")
-        radar_side = torch.sign((nrm @ radar.centre) - off)  # (K,)
-        side = ((q[..., None, :] * nrm).sum(-1) - off) * radar_side  # (N, S, K, K)
+        side = ((q[..., None, :] * nrm).sum(-1) - off) * torch.sign(radar_side)  # (N, S, K, K)
         tol = 1e-5 * (1 + off.abs().max())
-        return same_side & (side >= -tol).all(-1), mirrors.plane_material.to(dev).expand(q.shape[:-1])
-    hit = room_bvh.intersect(p.reshape(-1, 3), u_img.reshape(-1, 3), t_min=0.0)
-    plane_id = torch.arange(k, device=dev).expand(q.shape[:-1]).reshape(-1)
-    face = hit.face
-    ok = (face >= 0) & (mirrors.face_plane.to(dev)[face.clamp_min(0)] == plane_id) & same_side.reshape(-1)
-    r_wr = (radar.centre - q).norm(dim=-1).reshape(-1)
-    eps_q = surface_offset(q).reshape(-1)
-    clear = ~room_bvh.any_hit(q.reshape(-1, 3), -u_wall_in.reshape(-1, 3), r_wr - eps_q, t_min=eps_q)
-    return (ok & clear).reshape(q.shape[:-1]), room_face_material[face.clamp_min(0)].reshape(q.shape[:-1])
+        ok = same_side & (side >= -tol).all(-1)
+        material = mirrors.plane_material.to(dev).expand(q.shape[:-1])
+    else:
+        hit = room_bvh.intersect(p.reshape(-1, 3), u_img.reshape(-1, 3), t_min=0.0)
+        plane_id = torch.arange(k, device=dev).expand(q.shape[:-1]).reshape(-1)
+        face = hit.face
+        on_plane = (face >= 0) & (mirrors.face_plane.to(dev)[face.clamp_min(0)] == plane_id)
+        r_wr = (radar.centre - q).norm(dim=-1).reshape(-1)
+        eps_q = surface_offset(q).reshape(-1)
+        clear = ~room_bvh.any_hit(q.reshape(-1, 3), -u_wall_in.reshape(-1, 3), r_wr - eps_q, t_min=eps_q)
+        ok = (on_plane & same_side.reshape(-1) & clear).reshape(q.shape[:-1])
+        material = room_face_material[face.clamp_min(0)].reshape(q.shape[:-1])
+    cos_w = (u_wall_in * nrm).sum(-1).abs()
+    return q, ok, room_reflectivity(material, cos_w, u_wall_in, nrm.expand_as(u_wall_in), radar.polarization)
+
 
 def _bistatic(p, root, tx, rx, q, vel, radar: RadarGeometry, antenna, valid, first_leg_via: bool | None = None):
     """Delay, rate, amplitude ``(..., RX)`` and mask of scatterer ``p`` (optionally via wall point ``q``).

@@ -257,10 +257,8 @@ class RayTracer:
 
     def _trace_static_uncached(self) -> tuple[Paths, torch.Tensor | None, torch.Tensor]:
         """``(paths, vertices, diffuse mask)`` of the static room."""
-        n_rx = self.radar.rx.shape[0]
         if self.bvh is None:
-            z = torch.zeros(0, n_rx, dtype=self.dtype, device=self.device)
-            empty = Paths(z, z.clone(), z.to(_complex(self.dtype)), torch.zeros(0, dtype=torch.int8, device=self.device))
+            empty = Paths.empty(self.radar.rx.shape[0], dtype=self.dtype, device=self.device)
             return (empty, torch.zeros(0, self.max_bounces + 2, 3, dtype=self.dtype, device=self.device),
                     torch.zeros(0, dtype=torch.bool, device=self.device))
         if self.method == "sbr":
@@ -337,10 +335,8 @@ class RayTracer:
             refl = FaceReflectivity(mesh.materials, self.frequency_Hz, self.device, self.dtype)
             parts.append(mesh_po_paths(mesh, self.radar, self.antenna, refl, room_bvh=self.bvh))
         if not parts:
-            z = torch.zeros(*lead, 0, self.radar.rx.shape[0], dtype=self.dtype, device=self.device)
-            return Paths(z, z.clone(), z.to(_complex(self.dtype)),
-                         torch.zeros(*lead, 0, dtype=torch.int8, device=self.device),
-                         torch.zeros(*lead, 0, dtype=torch.bool, device=self.device))
+            n_rx = self.radar.rx.shape[0]
+            return Paths.empty(n_rx, dtype=self.dtype, device=self.device, lead=lead, mask=True)
         return Paths.cat(parts) if len(parts) > 1 else parts[0]
 
     def trace(
@@ -361,10 +357,6 @@ def _pad_vertices(v: torch.Tensor, count: int) -> torch.Tensor:
     if v.shape[1] >= count:
         return v
     return torch.cat([v, v[:, -1:].expand(-1, count - v.shape[1], -1)], dim=1)
-
-
-def _complex(dtype: torch.dtype) -> torch.dtype:
-    return torch.complex128 if dtype == torch.float64 else torch.complex64
 
 
 def _check_scene(scene: SceneGeometry, name: str) -> None:

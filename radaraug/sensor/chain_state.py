@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import KW_ONLY, dataclass, field
 
 import torch
 
@@ -45,6 +45,7 @@ class ModulatedPaths:
     chirp_gain: torch.Tensor | None = None
 
 
+@dataclass(eq=False)
 class ChainState:
     """Working state of one receiver call (not user-facing; effects mutate it in order).
 
@@ -68,42 +69,30 @@ class ChainState:
     transition bands (tens of kHz wide), so that is not evaluated per chirp.
     """
 
-    def __init__(
-        self,
-        config: RadarConfig,
-        coef: torch.Tensor,
-        delay_s: torch.Tensor,
-        delay_rate: torch.Tensor,
-        *,
-        dtype: torch.dtype,
-        generator: torch.Generator | None,
-        frame_start_s: float | torch.Tensor,
-        tx_power_W: float,
-        front_end_gain: float,
-        method: str,
-        taylor_tol: float,
-        chirp_delay: torch.Tensor | None = None,
-        chirp_gain: torch.Tensor | None = None,
-    ) -> None:
-        self.config = config
-        self.timing = ChirpTiming.from_config(config)
-        self.dtype = dtype
-        self.device = coef.device
-        self.generator = generator
-        self.frame_start_s = frame_start_s if isinstance(frame_start_s, torch.Tensor) else float(frame_start_s)
-        self.tx_power_W = tx_power_W
-        self.front_end_gain = front_end_gain
-        self.method = method
-        self.taylor_tol = taylor_tol
-        self.batch_shape = tuple(coef.shape[:-2])
-        self.coef = coef
-        self.delay_s = delay_s
-        self.delay_rate = delay_rate
-        self.chirp_delay = chirp_delay
-        self.chirp_gain = chirp_gain
-        self.modulated: list[ModulatedPaths] = []
-        self.spectrum: torch.Tensor | None = None
-        self.samples: torch.Tensor | None = None
+    config: RadarConfig
+    coef: torch.Tensor
+    delay_s: torch.Tensor
+    delay_rate: torch.Tensor
+    _: KW_ONLY
+    dtype: torch.dtype
+    generator: torch.Generator | None
+    frame_start_s: float | torch.Tensor
+    tx_power_W: float
+    front_end_gain: float
+    method: str
+    taylor_tol: float
+    chirp_delay: torch.Tensor | None = None
+    chirp_gain: torch.Tensor | None = None
+    modulated: list[ModulatedPaths] = field(default_factory=list, init=False)
+    spectrum: torch.Tensor | None = field(default=None, init=False)
+    samples: torch.Tensor | None = field(default=None, init=False)
+
+    def __post_init__(self) -> None:
+        self.timing = ChirpTiming.from_config(self.config)
+        self.device = self.coef.device
+        self.batch_shape = tuple(self.coef.shape[:-2])
+        if not isinstance(self.frame_start_s, torch.Tensor):
+            self.frame_start_s = float(self.frame_start_s)
 
     # ------------------------------------------------------------------ helpers
     @property

@@ -57,6 +57,21 @@ class Paths:
     chirp_delay_s: torch.Tensor | None = None
     chirp_gain: torch.Tensor | None = None
 
+    @classmethod
+    def empty(
+        cls, num_rx: int, *, dtype: torch.dtype, device: torch.device | str | None = None,
+        lead: tuple[int, ...] = (), mask: bool = False,
+    ) -> Paths:
+        """No paths: ``(*lead, 0, RX)`` tensors of ``dtype`` (the amplitude of its complex match).
+
+        ``kind`` is an empty int8 tensor; ``mask`` an empty bool one with ``mask=True``, else None.
+        """
+        z = torch.zeros(*lead, 0, num_rx, dtype=dtype, device=device)
+        cdt = torch.complex128 if dtype == torch.float64 else torch.complex64
+        kind = torch.zeros(*lead, 0, dtype=torch.int8, device=device)
+        valid = torch.zeros(*lead, 0, dtype=torch.bool, device=device) if mask else None
+        return cls(z, z.clone(), z.to(cdt), kind, valid)
+
     @property
     def num_paths(self) -> int:
         """Number of path slots ``P``."""
@@ -85,34 +100,26 @@ class Paths:
     @staticmethod
     def cat(items: list[Paths]) -> Paths:
         """Concatenate path sets along the path axis (same batch shape)."""
-        def opt_cat(ts: list[torch.Tensor | None], fill: float, ref: list[torch.Tensor]) -> torch.Tensor | None:
-            if all(t is None for t in ts):
-                return None
-            full = [
-                t if t is not None else torch.full(r.shape[:-1], fill, device=r.device)
-                for t, r in zip(ts, ref)
-            ]
-            return torch.cat(full, dim=-1)
-
         d = [p.delay_s for p in items]
 
-        def per_chirp(ts: list[torch.Tensor | None], fill: float) -> torch.Tensor | None:
+        def cat_optional(ts: list[torch.Tensor | None], fill: float, per_chirp: bool) -> torch.Tensor | None:
+            """Absent tensors filled with ``fill`` (``(..., P)``; ``(..., P, M)`` per chirp), concatenated."""
             present = [t for t in ts if t is not None]
             if not present:
                 return None
-            m = present[0].shape[-1]
+            tail, dtype = ((present[0].shape[-1],), present[0].dtype) if per_chirp else ((), None)
             full = [
-                t if t is not None else torch.full((*r.shape[:-1], m), fill, dtype=present[0].dtype, device=r.device)
+                t if t is not None else torch.full((*r.shape[:-1], *tail), fill, dtype=dtype, device=r.device)
                 for t, r in zip(ts, d)
             ]
-            return torch.cat(full, dim=-2)
+            return torch.cat(full, dim=-2 if per_chirp else -1)
 
         return Paths(
             delay_s=torch.cat(d, dim=-2),
             delay_rate=torch.cat([p.delay_rate for p in items], dim=-2),
             amplitude=torch.cat([p.amplitude for p in items], dim=-2),
-            kind=opt_cat([p.kind for p in items], 0, d),
-            mask=opt_cat([p.mask for p in items], True, d),
-            chirp_delay_s=per_chirp([p.chirp_delay_s for p in items], 0.0),
-            chirp_gain=per_chirp([p.chirp_gain for p in items], 1.0),
+            kind=cat_optional([p.kind for p in items], 0, per_chirp=False),
+            mask=cat_optional([p.mask for p in items], True, per_chirp=False),
+            chirp_delay_s=cat_optional([p.chirp_delay_s for p in items], 0.0, per_chirp=True),
+            chirp_gain=cat_optional([p.chirp_gain for p in items], 1.0, per_chirp=True),
         )

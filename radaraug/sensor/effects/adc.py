@@ -8,7 +8,6 @@ from __future__ import annotations
 
 import torch
 
-from radaraug.config import RadarConfig
 from radaraug.sensor.chain_state import ChainState
 from radaraug.sensor.effects.base import Effect, Prior, per_rx, register
 
@@ -28,15 +27,10 @@ class DCOffset(Effect):
     name = "dc_offset"
     param_names = ("level_counts",)
     level_counts: torch.Tensor
-
-    @classmethod
-    def priors(cls, config: RadarConfig) -> dict[str, Prior]:
-        """``level_counts`` anywhere in the ADC's code range."""
-        return {"level_counts": Prior(0.0, float(config.adc_full_scale_counts))}
+    PRIORS = {"level_counts": lambda config: Prior(0.0, float(config.adc_full_scale_counts))}  # any ADC code
 
     def __init__(self, level_counts: float | list | torch.Tensor = 2047.5) -> None:
-        super().__init__()
-        self._set(level_counts=level_counts)
+        super().__init__(level_counts=level_counts)
 
     def forward(self, state: ChainState) -> None:
         """Add each RX's DC level, converted from ADC code to SDK floats in [-1, 1]."""
@@ -60,8 +54,7 @@ class ADCQuantization(Effect):
     bits: torch.Tensor | None
 
     def __init__(self, bits: int | None = None) -> None:
-        super().__init__()
-        self._set(bits=bits)
+        super().__init__(bits=bits)
 
     def forward(self, state: ChainState) -> None:
         """Round the samples to the nearest ADC code (gradient passed straight through)."""

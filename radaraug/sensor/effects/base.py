@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import math
 import warnings
-from collections.abc import Iterator, Mapping, Sequence
+from collections.abc import Callable, Iterator, Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any, ClassVar, cast
 
@@ -125,7 +125,8 @@ def as_param(value: Any, name: str, effect: str) -> torch.Tensor:
 class Effect(nn.Module):
     """Base class of receiver effects.
 
-    Subclasses set ``name``, ``param_names`` and ``kind`` and implement :meth:`forward`, which acts
+    Subclasses set ``name``, ``param_names`` and ``kind``, pass their parameters to
+    ``super().__init__(**params)`` (which registers them) and implement :meth:`forward`, which acts
     on the receiver's chain state in place (``effect(state)``, as for any ``nn.Module``). Parameters
     whose value is ``None`` are taken from the :class:`~radaraug.RadarConfig` at call time (e.g. the
     IF gain) and are not stored.
@@ -158,15 +159,16 @@ class Effect(nn.Module):
     # "nonlinear" (acts on samples: quantization, clipping).
     kind: ClassVar[str] = "additive"
     # Search ranges of the parameters a calibration search may move (see `priors`); parameters
-    # absent here (orders, bit depths, path counts) are not searched.
-    PRIORS: ClassVar[dict[str, Prior]] = {}
+    # absent here (orders, bit depths, path counts) are not searched. A range that depends on the
+    # radar (a frequency up to Nyquist, a range up to `config.max_range_m`) is given as a function
+    # of the RadarConfig.
+    PRIORS: ClassVar[Mapping[str, Prior | Callable[[RadarConfig], Prior]]] = {}
 
     @classmethod
     def priors(cls, config: RadarConfig) -> dict[str, Prior]:
         """Search range of each searchable parameter, in physical units.
 
-        The default returns :attr:`PRIORS`; effects whose ranges depend on the radar (a frequency
-        up to Nyquist, a range up to ``config.max_range_m``) override this.
+        The default evaluates :attr:`PRIORS` for ``config``; an effect may override this.
 
         Args:
             config: the radar configuration the effect will run with.
@@ -174,7 +176,12 @@ class Effect(nn.Module):
         Returns:
             ``{parameter name: Prior}`` (a fresh dict the caller may modify).
         """
-        return dict(cls.PRIORS)
+        return {k: p if isinstance(p, Prior) else p(config) for k, p in cls.PRIORS.items()}
+
+    def __init__(self, **values: Any) -> None:
+        """Register ``values`` as the effect's parameters (:meth:`_set`)."""
+        super().__init__()
+        self._set(**values)
 
     def _set(self, **values: Any) -> None:
         for key, value in values.items():
@@ -289,22 +296,25 @@ def tone_amplitude(state: ChainState, level_dB: torch.Tensor) -> torch.Tensor:
     return math.sqrt(2 * state.tx_power_W) * state.front_end_gain * torch.pow(10.0, level_dB / 20)
 
 
-def check_nonnegative(effect: Effect, **values: torch.Tensor | None) -> None:
-    """Raise :class:`ConfigError` when a parameter holds a negative value."""
-    for key, v in values.items():
-        if v is not None and bool((v < 0).any()):
-            raise ConfigError(f"effect {effect.name}: {key} must be >= 0, got {v.tolist()}")
+def check_params(
+    effect: Effect, *, single: Sequence[str] = (), nonnegative: Sequence[str] = (),
+    positive: Sequence[str] = (),
+) -> None:
+    """Raise :class:`ConfigError` unless the named parameters are single numbers, ``>= 0``, ``> 0``."""
+    for key in single:
+        if getattr(effect, key).ndim != 0:
+            raise ConfigError(f"effect {effect.name}: {key} must be a single number")
+    # Each rule with the comparison that finds the values breaking it.
+    for keys, breaks, rule in ((nonnegative, torch.lt, ">= 0"), (positive, torch.le, "> 0")):
+        for key in keys:
+            v = getattr(effect, key)
+            if v is not None and bool(breaks(v, 0).any()):
+                raise ConfigError(f"effect {effect.name}: {key} must be {rule}, got {v.tolist()}")
 
 
-def check_positive(effect: Effect, **values: torch.Tensor | None) -> None:
-    """Raise :class:`ConfigError` when a parameter holds a value <= 0."""
-    for key, v in values.items():
-        if v is not None and bool((v <= 0).any()):
-            raise ConfigError(f"effect {effect.name}: {key} must be > 0, got {v.tolist()}")
-
-
-def scatterer_count(effect: Effect, **values: torch.Tensor) -> int:
-    """Common length K of per-scatterer parameters (each a scalar or a 1-D tensor of length K or 1)."""
+def scatterer_count(effect: Effect, *names: str) -> int:
+    """Common length K of the per-scatterer parameters ``names`` (scalars or 1-D, of length K or 1)."""
+    values: dict[str, torch.Tensor] = {k: getattr(effect, k) for k in names}
     for key, v in values.items():
         if v.ndim > 1:
             raise ConfigError(f"effect {effect.name}: {key} must be a number or a list, got shape {tuple(v.shape)}")

@@ -19,8 +19,7 @@ from radaraug.sensor.chain_state import ChainState, ModulatedPaths
 from radaraug.sensor.effects.base import (
     Effect,
     Prior,
-    check_nonnegative,
-    check_positive,
+    check_params,
     register,
     scatterer_count,
     tone_amplitude,
@@ -32,12 +31,12 @@ def _per_scatterer(state: ChainState, value: torch.Tensor, k: int) -> torch.Tens
     return state.param(value).reshape(-1).expand(k)
 
 
-def _clutter_priors(config: RadarConfig) -> dict[str, Prior]:
-    return {
-        "range_m": Prior(0.05, max(float(config.max_range_m), 0.1)),
-        "level_dB": Prior(-140.0, -30.0),
-        "phase_rad": Prior(-math.pi, math.pi),
-    }
+def _range_prior(config: RadarConfig) -> Prior:
+    """A scatterer's range: up to the unambiguous range."""
+    return Prior(0.05, max(float(config.max_range_m), 0.1))
+
+
+_LEVEL_PRIOR = Prior(-140.0, -30.0)
 
 
 @register
@@ -65,6 +64,7 @@ class StaticClutter(Effect):
     range_m: torch.Tensor
     level_dB: torch.Tensor
     phase_rad: torch.Tensor
+    PRIORS = {"range_m": _range_prior, "level_dB": _LEVEL_PRIOR, "phase_rad": Prior(-math.pi, math.pi)}
 
     def __init__(
         self,
@@ -72,16 +72,9 @@ class StaticClutter(Effect):
         level_dB: float | list | torch.Tensor = -80.0,
         phase_rad: float | list | torch.Tensor = 0.0,
     ) -> None:
-        super().__init__()
-        self._set(range_m=range_m, level_dB=level_dB, phase_rad=phase_rad)
-        self.num_scatterers = scatterer_count(self, range_m=self.range_m, level_dB=self.level_dB,
-                                              phase_rad=self.phase_rad)
-        check_nonnegative(self, range_m=self.range_m)
-
-    @classmethod
-    def priors(cls, config: RadarConfig) -> dict[str, Prior]:
-        """Range up to the unambiguous range; level and phase fixed ranges."""
-        return _clutter_priors(config)
+        super().__init__(range_m=range_m, level_dB=level_dB, phase_rad=phase_rad)
+        self.num_scatterers = scatterer_count(self, "range_m", "level_dB", "phase_rad")
+        check_params(self, nonnegative=("range_m",))
 
     def forward(self, state: ChainState) -> None:
         """Add the ``K`` scatterers as static paths, the same on every RX."""
@@ -144,6 +137,14 @@ class VibratingClutter(Effect):
     vibration_Hz: torch.Tensor
     phase_rad: torch.Tensor
     carrier: torch.Tensor
+    PRIORS = {
+        "range_m": _range_prior,
+        "level_dB": _LEVEL_PRIOR,
+        "displacement_m": Prior(1e-5, 5e-3, "log"),
+        # Up to the Doppler Nyquist 1 / (2 PRT).
+        "vibration_Hz": lambda cfg: Prior(0.5, max(0.5 / float(cfg.chirp_repetition_time_s), 1.0), "log"),
+        "phase_rad": Prior(-math.pi, math.pi),
+    }
 
     def __init__(
         self,
@@ -154,29 +155,13 @@ class VibratingClutter(Effect):
         phase_rad: float | list | torch.Tensor = 0.0,
         carrier: float = 1.0,
     ) -> None:
-        super().__init__()
         if float(carrier) not in (0.0, 1.0):
             raise ConfigError(f"effect {self.name}: carrier must be 0 or 1, got {carrier!r}")
-        self._set(range_m=range_m, level_dB=level_dB, displacement_m=displacement_m, vibration_Hz=vibration_Hz,
-                  phase_rad=phase_rad, carrier=float(carrier))
-        self.num_scatterers = scatterer_count(
-            self, range_m=self.range_m, level_dB=self.level_dB, displacement_m=self.displacement_m,
-            vibration_Hz=self.vibration_Hz, phase_rad=self.phase_rad,
-        )
-        check_nonnegative(self, range_m=self.range_m, displacement_m=self.displacement_m)
-        check_positive(self, vibration_Hz=self.vibration_Hz)
-
-    @classmethod
-    def priors(cls, config: RadarConfig) -> dict[str, Prior]:
-        """Range up to the unambiguous range, vibration up to the Doppler Nyquist."""
-        p = _clutter_priors(config)
-        return {
-            "range_m": p["range_m"],
-            "level_dB": p["level_dB"],
-            "displacement_m": Prior(1e-5, 5e-3, "log"),
-            "vibration_Hz": Prior(0.5, max(0.5 / float(config.chirp_repetition_time_s), 1.0), "log"),
-            "phase_rad": p["phase_rad"],
-        }
+        super().__init__(range_m=range_m, level_dB=level_dB, displacement_m=displacement_m,
+                         vibration_Hz=vibration_Hz, phase_rad=phase_rad, carrier=float(carrier))
+        self.num_scatterers = scatterer_count(self, "range_m", "level_dB", "displacement_m", "vibration_Hz",
+                                              "phase_rad")
+        check_params(self, nonnegative=("range_m", "displacement_m"), positive=("vibration_Hz",))
 
     def modulation_rad(self, state: ChainState) -> torch.Tensor:
         """``psi = beta sin(w t + phi)`` at every sample, ``(…, K, 1, M, N)`` (``…``: per-frame starts)."""
@@ -257,11 +242,9 @@ class Multipath(Effect):
         level_dB: float | list | torch.Tensor = -10.0,
         phase_rad: float | list | torch.Tensor = 0.0,
     ) -> None:
-        super().__init__()
-        self._set(extra_range_m=extra_range_m, level_dB=level_dB, phase_rad=phase_rad)
-        self.num_ghosts = scatterer_count(self, extra_range_m=self.extra_range_m, level_dB=self.level_dB,
-                                          phase_rad=self.phase_rad)
-        check_nonnegative(self, extra_range_m=self.extra_range_m)
+        super().__init__(extra_range_m=extra_range_m, level_dB=level_dB, phase_rad=phase_rad)
+        self.num_ghosts = scatterer_count(self, "extra_range_m", "level_dB", "phase_rad")
+        check_params(self, nonnegative=("extra_range_m",))
 
     def forward(self, state: ChainState) -> None:
         """Add a ghost of every path present, ``extra_range_m`` farther and scaled by ``level_dB``."""

@@ -13,7 +13,7 @@ import math
 import torch
 
 from radaraug.sensor.chain_state import ChainState
-from radaraug.sensor.effects.base import Effect, Prior, check_nonnegative, per_rx, register
+from radaraug.sensor.effects.base import Effect, Prior, check_params, per_rx, register
 
 
 @register
@@ -48,9 +48,8 @@ class FrameDrift(Effect):
         gain_rms_dB: float | torch.Tensor = 0.1,
         dc_rms_counts: float | list | torch.Tensor = 0.5,
     ) -> None:
-        super().__init__()
-        self._set(gain_rms_dB=gain_rms_dB, dc_rms_counts=dc_rms_counts)
-        check_nonnegative(self, gain_rms_dB=self.gain_rms_dB, dc_rms_counts=self.dc_rms_counts)
+        super().__init__(gain_rms_dB=gain_rms_dB, dc_rms_counts=dc_rms_counts)
+        check_params(self, nonnegative=("gain_rms_dB", "dc_rms_counts"))
 
     def forward(self, state: ChainState) -> None:
         """Scale by a random gain per frame and add a random DC shift per frame and RX."""

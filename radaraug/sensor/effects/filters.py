@@ -14,7 +14,6 @@ from typing import ClassVar
 
 import torch
 
-from radaraug.config import RadarConfig
 from radaraug.errors import ConfigError
 from radaraug.sensor.chain_state import ChainState
 from radaraug.sensor.effects.base import Effect, Prior, register
@@ -39,10 +38,9 @@ class _FirstOrderFilter(Effect):
     order: torch.Tensor
 
     def __init__(self, cutoff_Hz: float | torch.Tensor | None = None, order: int = 1) -> None:
-        super().__init__()
         if int(order) != order or order < 1:
             raise ConfigError(f"effect {self.name}: order must be a positive integer, got {order!r}")
-        self._set(cutoff_Hz=cutoff_Hz, order=int(order))
+        super().__init__(cutoff_Hz=cutoff_Hz, order=int(order))
         if self.cutoff_Hz is not None and not bool((self.cutoff_Hz > 0).all()):
             raise ConfigError(f"effect {self.name}: cutoff_Hz must be positive, got {cutoff_Hz!r}")
 
@@ -97,11 +95,7 @@ class AntiAliasLowPass(_FirstOrderFilter):
     """
 
     name = "anti_alias_lowpass"
-
-    @classmethod
-    def priors(cls, config: RadarConfig) -> dict[str, Prior]:
-        """``cutoff_Hz`` from 50 kHz up to the sample rate (a cutoff above it no longer matters)."""
-        return {"cutoff_Hz": Prior(50e3, max(float(config.sample_rate_Hz), 100e3), "log")}
-
+    # From 50 kHz up to the sample rate (a cutoff above it no longer matters).
+    PRIORS = {"cutoff_Hz": lambda config: Prior(50e3, max(float(config.sample_rate_Hz), 100e3), "log")}
     _response = staticmethod(lowpass_response)
     _config_cutoff = "effective_aaf_cutoff_Hz"

@@ -36,8 +36,7 @@ class SystemGain(Effect):
     PRIORS = {"gain_dB": Prior(-30.0, 30.0)}
 
     def __init__(self, gain_dB: float | torch.Tensor = 0.0) -> None:
-        super().__init__()
-        self._set(gain_dB=gain_dB)
+        super().__init__(gain_dB=gain_dB)
 
     def forward(self, state: ChainState) -> None:
         """Scale everything present by ``gain_dB``."""
@@ -62,8 +61,7 @@ class IFGain(Effect):
     gain_dB: torch.Tensor | None
 
     def __init__(self, gain_dB: float | torch.Tensor | None = None) -> None:
-        super().__init__()
-        self._set(gain_dB=gain_dB)
+        super().__init__(gain_dB=gain_dB)
 
     def forward(self, state: ChainState) -> None:
         """Scale everything present by ``gain_dB`` (the radar config's IF gain when None)."""
@@ -97,8 +95,7 @@ class RxGainPhaseMismatch(Effect):
     PRIORS = {"gain_dB": Prior(-6.0, 6.0), "phase_rad": Prior(-math.pi, math.pi)}
 
     def __init__(self, gain_dB: float | list | torch.Tensor = 0.0, phase_rad: float | list | torch.Tensor = 0.0) -> None:
-        super().__init__()
-        self._set(gain_dB=gain_dB, phase_rad=phase_rad)
+        super().__init__(gain_dB=gain_dB, phase_rad=phase_rad)
 
     def forward(self, state: ChainState) -> None:
         """Multiply each RX by its complex gain."""

@@ -13,7 +13,7 @@ import torch
 
 from radaraug.errors import ConfigError
 from radaraug.sensor.chain_state import ChainState
-from radaraug.sensor.effects.base import Effect, Prior, check_nonnegative, check_positive, register
+from radaraug.sensor.effects.base import Effect, Prior, check_params, register
 
 
 @register
@@ -64,15 +64,11 @@ class Interference(Effect):
         amplitude_counts: float | torch.Tensor = 100.0,
         duration_s: float | torch.Tensor = 5e-6,
     ) -> None:
-        super().__init__()
-        self._set(probability=probability, amplitude_counts=amplitude_counts, duration_s=duration_s)
-        for key in self.param_names:
-            if getattr(self, key).ndim != 0:
-                raise ConfigError(f"effect {self.name}: {key} must be a single number")
+        super().__init__(probability=probability, amplitude_counts=amplitude_counts, duration_s=duration_s)
+        check_params(self, single=self.param_names, nonnegative=("amplitude_counts",),
+                     positive=("duration_s",))
         if not 0.0 <= float(self.probability) <= 1.0:
             raise ConfigError(f"effect {self.name}: probability must be in [0, 1], got {probability!r}")
-        check_nonnegative(self, amplitude_counts=self.amplitude_counts)
-        check_positive(self, duration_s=self.duration_s)
 
     def forward(self, state: ChainState) -> None:
         """Add a burst to each chirp with probability ``probability``, at a random time and phase."""

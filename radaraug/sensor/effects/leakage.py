@@ -44,8 +44,7 @@ class TxRxLeakage(Effect):
         range_m: float | torch.Tensor = 0.04,
         phase_rad: float | list | torch.Tensor = 0.0,
     ) -> None:
-        super().__init__()
-        self._set(coupling_dB=coupling_dB, range_m=range_m, phase_rad=phase_rad)
+        super().__init__(coupling_dB=coupling_dB, range_m=range_m, phase_rad=phase_rad)
 
     def forward(self, state: ChainState) -> None:
         """Add the leakage as a static path at ``range_m`` on every RX."""

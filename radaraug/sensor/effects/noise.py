@@ -15,7 +15,7 @@ from __future__ import annotations
 import torch
 
 from radaraug.sensor.chain_state import ChainState
-from radaraug.sensor.effects.base import Effect, Prior, check_nonnegative, per_rx, register
+from radaraug.sensor.effects.base import Effect, Prior, check_params, per_rx, register
 
 BOLTZMANN = 1.380649e-23
 """Boltzmann constant, J/K."""
@@ -47,8 +47,7 @@ class ThermalNoise(Effect):
     PRIORS = {"noise_figure_dB": Prior(0.0, 45.0)}
 
     def __init__(self, noise_figure_dB: float | torch.Tensor = 12.0, temperature_K: float | torch.Tensor = T0_KELVIN) -> None:
-        super().__init__()
-        self._set(noise_figure_dB=noise_figure_dB, temperature_K=temperature_K)
+        super().__init__(noise_figure_dB=noise_figure_dB, temperature_K=temperature_K)
 
     def forward(self, state: ChainState) -> None:
         """Add noise of power ``k T F fs/2`` per RX, scaled by the front-end gain."""
@@ -83,9 +82,8 @@ class ADCNoise(Effect):
     PRIORS = {"rms_counts": Prior(0.01, 50.0, "log")}
 
     def __init__(self, rms_counts: float | list | torch.Tensor = 0.5) -> None:
-        super().__init__()
-        self._set(rms_counts=rms_counts)
-        check_nonnegative(self, rms_counts=self.rms_counts)
+        super().__init__(rms_counts=rms_counts)
+        check_params(self, nonnegative=("rms_counts",))
 
     def forward(self, state: ChainState) -> None:
         """Add white noise of ``rms_counts`` ADC codes (RMS) per RX."""

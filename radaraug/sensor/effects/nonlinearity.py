@@ -15,17 +15,9 @@ import math
 
 import torch
 
-from radaraug.config import RadarConfig
 from radaraug.errors import ConfigError
 from radaraug.sensor.chain_state import ChainState
-from radaraug.sensor.effects.base import (
-    Effect,
-    Prior,
-    check_nonnegative,
-    check_positive,
-    modulate_strongest_paths,
-    register,
-)
+from radaraug.sensor.effects.base import Effect, Prior, check_params, modulate_strongest_paths, register
 
 
 @register
@@ -58,6 +50,11 @@ class ChirpNonlinearity(Effect):
     ripple_Hz: torch.Tensor
     phase_rad: torch.Tensor
     num_paths: torch.Tensor
+    PRIORS = {
+        "deviation_Hz": Prior(1e3, 5e6, "log"),
+        "ripple_Hz": lambda config: Prior(1e3, max(float(config.sample_rate_Hz) / 2, 2e3), "log"),
+        "phase_rad": Prior(-math.pi, math.pi),
+    }
 
     def __init__(
         self,
@@ -66,24 +63,12 @@ class ChirpNonlinearity(Effect):
         phase_rad: float | torch.Tensor = 0.0,
         num_paths: int = 16,
     ) -> None:
-        super().__init__()
         if int(num_paths) != num_paths or num_paths < 0:
             raise ConfigError(f"effect {self.name}: num_paths must be an integer >= 0, got {num_paths!r}")
-        self._set(deviation_Hz=deviation_Hz, ripple_Hz=ripple_Hz, phase_rad=phase_rad, num_paths=int(num_paths))
-        for key in ("deviation_Hz", "ripple_Hz", "phase_rad"):
-            if getattr(self, key).ndim != 0:
-                raise ConfigError(f"effect {self.name}: {key} must be a single number")
-        check_nonnegative(self, deviation_Hz=self.deviation_Hz)
-        check_positive(self, ripple_Hz=self.ripple_Hz)
-
-    @classmethod
-    def priors(cls, config: RadarConfig) -> dict[str, Prior]:
-        """Deviation 1 kHz..5 MHz, ripple 1 kHz..Nyquist (both log), any phase."""
-        return {
-            "deviation_Hz": Prior(1e3, 5e6, "log"),
-            "ripple_Hz": Prior(1e3, max(float(config.sample_rate_Hz) / 2, 2e3), "log"),
-            "phase_rad": Prior(-math.pi, math.pi),
-        }
+        super().__init__(deviation_Hz=deviation_Hz, ripple_Hz=ripple_Hz, phase_rad=phase_rad,
+                         num_paths=int(num_paths))
+        check_params(self, single=("deviation_Hz", "ripple_Hz", "phase_rad"), nonnegative=("deviation_Hz",),
+                     positive=("ripple_Hz",))
 
     def frequency_error_Hz(self, state: ChainState) -> torch.Tensor:
         """``dF`` at the ADC samples of a chirp, ``(N,)`` in the call's dtype."""

@@ -47,8 +47,7 @@ class PhaseNoise(Effect):
         corner_Hz: float | torch.Tensor = 200e3,
         num_paths: int = 4,
     ) -> None:
-        super().__init__()
-        self._set(freq_noise_rms_Hz=freq_noise_rms_Hz, corner_Hz=corner_Hz, num_paths=int(num_paths))
+        super().__init__(freq_noise_rms_Hz=freq_noise_rms_Hz, corner_Hz=corner_Hz, num_paths=int(num_paths))
 
     def forward(self, state: ChainState) -> None:
         """Add the phase noise's frequency-modulated copies of the ``num_paths`` strongest paths."""

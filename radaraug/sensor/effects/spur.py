@@ -6,7 +6,6 @@ import math
 
 import torch
 
-from radaraug.config import RadarConfig
 from radaraug.sensor.chain_state import ChainState
 from radaraug.sensor.effects.base import Effect, Prior, per_rx, register
 
@@ -34,15 +33,11 @@ class SpurTone(Effect):
     freq_Hz: torch.Tensor
     amplitude_counts: torch.Tensor
     phase_rad: torch.Tensor
-
-    @classmethod
-    def priors(cls, config: RadarConfig) -> dict[str, Prior]:
-        """Frequency up to Nyquist; amplitude and phase fixed ranges."""
-        return {
-            "freq_Hz": Prior(0.0, float(config.sample_rate_Hz) / 2),
-            "amplitude_counts": Prior(0.05, 200.0, "log"),
-            "phase_rad": Prior(-math.pi, math.pi),
-        }
+    PRIORS = {
+        "freq_Hz": lambda config: Prior(0.0, float(config.sample_rate_Hz) / 2),  # up to Nyquist
+        "amplitude_counts": Prior(0.05, 200.0, "log"),
+        "phase_rad": Prior(-math.pi, math.pi),
+    }
 
     def __init__(
         self,
@@ -50,8 +45,7 @@ class SpurTone(Effect):
         amplitude_counts: float | list | torch.Tensor = 1.0,
         phase_rad: float | torch.Tensor = 0.0,
     ) -> None:
-        super().__init__()
-        self._set(freq_Hz=freq_Hz, amplitude_counts=amplitude_counts, phase_rad=phase_rad)
+        super().__init__(freq_Hz=freq_Hz, amplitude_counts=amplitude_counts, phase_rad=phase_rad)
 
     def forward(self, state: ChainState) -> None:
         """Add the tone at the absolute time of every sample of the frame(s)."""
