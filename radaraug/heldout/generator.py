@@ -48,7 +48,7 @@ from radaraug.config import RadarConfig
 from radaraug.errors import ConfigError
 from radaraug.heldout import room as room_mod
 from radaraug.heldout import walkers
-from radaraug.heldout.receiver import _check_effects, generate
+from radaraug.heldout.receiver import _check_effects, _chirp_times, generate
 from radaraug.io.generated_set import (
     GeneratedTestSet,
     check_count_arg,
@@ -202,12 +202,6 @@ def resolve_effects(effects: str | Sequence[Mapping[str, Any]] | None, config: R
 
 
 # -------------------------------------------------------------------------------------- people
-def _chirp_times(config: RadarConfig, frames: np.ndarray) -> np.ndarray:
-    """Times ``(F, M)`` of each chirp's first ADC sample for frame times ``frames`` ``(F,)`` (frame starts)."""
-    m = np.arange(config.num_chirps_per_frame, dtype=np.float64)
-    return frames[:, None] + m[None, :] * config.chirp_repetition_time_s + config.adc_delay_s
-
-
 def person_tracks(person: walkers.Person, rcs_m2: np.ndarray, t: np.ndarray, config: RadarConfig) -> list[dict[str, Any]]:
     """The receiver's ``tracks`` of ``person``'s scatterers at chirp times ``t`` ``(F, M)``.
 

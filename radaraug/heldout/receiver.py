@@ -300,6 +300,12 @@ def _track_path(p: Mapping[str, Any], F: int, n_rx: int, M: int, p_tx: float, g_
     )
 
 
+def _chirp_times(cfg: RadarConfig, frame_starts: np.ndarray) -> np.ndarray:
+    """Times ``(F, M)`` of each chirp's first ADC sample for frame start times ``frame_starts`` ``(F,)``."""
+    m = np.arange(cfg.num_chirps_per_frame, dtype=np.float64)
+    return frame_starts[:, None] + m[None, :] * cfg.chirp_repetition_time_s + cfg.adc_delay_s
+
+
 def _even_extension(x: np.ndarray) -> np.ndarray:
     """``x`` followed by itself reversed along the last axis: a periodic signal with no jump."""
     return np.concatenate([x, x[..., ::-1]], axis=-1)
@@ -421,15 +427,9 @@ def generate(
     L = roll + N + roll
     t = (np.arange(L, dtype=np.float64) - roll) / fs  # fast time, 0 at the first ADC sample
     # Time of each chirp's first ADC sample, (F, 1, M, 1).
-    t_chirp = (
-        float(start_time_s)
-        + np.arange(F, dtype=np.float64)[:, None, None, None] * cfg.frame_repetition_time_s
-        + np.arange(M, dtype=np.float64)[None, None, :, None] * cfg.chirp_repetition_time_s
-        + t_d
-    )
-
-    def by_name(name: str) -> list[dict[str, Any]]:
-        return [e for e in effs if e["name"] == name]
+    frame_starts = float(start_time_s) + np.arange(F, dtype=np.float64) * cfg.frame_repetition_time_s
+    t_chirp = _chirp_times(cfg, frame_starts)[:, None, :, None]
+    by_name = {name: [e for e in effs if e["name"] == name] for name in EFFECT_NAMES}
 
     # ---------------------------------------------------------------- 1. paths
     def point(level_dB: float, phase_rad: float, range_m: float, rx_phase: Any = 0.0, **motion: Any) -> _Path:
@@ -449,15 +449,15 @@ def generate(
         scene_paths.append(point(pt["level_dB"], phase, pt["range_m"], rx_phase))
     scene_paths += [_track_path(tr, F, n_rx, M, p_tx, g_fe) for tr in tracks]
     scene_paths += [point(e["level_dB"], e["phase_rad"], e["range_m"], speed_m_s=float(e["speed_m_s"]))
-                    for e in by_name("moving_target")]
-    clutter_paths = [point(e["level_dB"], e["phase_rad"], e["range_m"]) for e in by_name("static_clutter")]
+                    for e in by_name["moving_target"]]
+    clutter_paths = [point(e["level_dB"], e["phase_rad"], e["range_m"]) for e in by_name["static_clutter"]]
     clutter_paths += [
         point(e["level_dB"], e["path_phase_rad"], e["range_m"], displacement_m=float(e["displacement_m"]),
               vibration_Hz=float(e["vibration_Hz"]), vibration_phase_rad=float(e["phase_rad"]))
-        for e in by_name("vibrating_clutter")
+        for e in by_name["vibrating_clutter"]
     ]
     ghosts: list[_Path] = []
-    for e in by_name("multipath"):
+    for e in by_name["multipath"]:
         ratio = 10.0 ** (e["level_dB"] / 20.0) * np.exp(1j * e["phase_rad"])
         extra = float(e["extra_range_m"])
         for p in scene_paths:
@@ -467,16 +467,16 @@ def generate(
 
     # Complex gain per RX after the system gain: system gain x mismatch.
     rx_gain = np.full(n_rx, 10.0 ** (system_gain_dB / 20.0), dtype=np.complex128)
-    for e in by_name("rx_gain_phase_mismatch"):
+    for e in by_name["rx_gain_phase_mismatch"]:
         rx_gain *= 10.0 ** (_per_rx(e["gain_dB"], n_rx, "gain_dB") / 20.0) * np.exp(
             1j * _per_rx(e["phase_rad"], n_rx, "phase_rad")
         )
 
     # Phase modulations of every path: LO frequency noise (F, 1, M, L) and ramp non-linearity.
     lo_noise = [_lo_frequency_noise(_rng(seed, "phase_noise", i), (F, M), L, fs, e["freq_noise_rms_Hz"],
-                                    e["corner_Hz"]) for i, e in enumerate(by_name("phase_noise"))]
+                                    e["corner_Hz"]) for i, e in enumerate(by_name["phase_noise"])]
     nu = sum(lo_noise[1:], lo_noise[0])[:, None] if lo_noise else None
-    nonlin = by_name("chirp_nonlinearity")
+    nonlin = by_name["chirp_nonlinearity"]
 
     x = np.zeros((F, n_rx, M, L))
     static_wave = np.zeros((n_rx, L))
@@ -485,13 +485,12 @@ def generate(
     t_ramp = np.array([-t_d])
     # LO noise at the ramp start: the nearest grid sample (or the first one)
     nu_ramp = None if nu is None else nu[..., max(roll - int(round(t_d * fs)), 0)][..., None]
-    amp_ref = math.sqrt(2.0 * p_tx) * g_fe  # amplitude of a path at 0 dB re TX
+    # Peak amplitude at or below which a path carries no LO noise (0 by default: a zero path has no
+    # wave to modulate, so every path effectively carries it).
+    pn_floor = math.sqrt(2.0 * p_tx) * g_fe * 10.0 ** (phase_noise_min_level_dB / 20.0)
     for p in paths:
-        pn = nu
-        if nu is not None and phase_noise_min_level_dB > -math.inf:
-            path_amp = float(np.max(np.abs(p.coef))) * (1.0 if p.gain is None else float(np.max(np.abs(p.gain))))
-            if path_amp <= amp_ref * 10.0 ** (phase_noise_min_level_dB / 20.0):
-                pn = None
+        path_amp = float(np.max(np.abs(p.coef))) * (1.0 if p.gain is None else float(np.max(np.abs(p.gain))))
+        pn = nu if path_amp > pn_floor else None
         coef: np.ndarray = p.coef * rx_gain
         c4 = coef[None, :, None, None] * (1.0 if p.gain is None else p.gain)  # (1 or F, RX, 1 or M, 1)
         cyc, _, _ = _path_cycles(p, t, t_chirp, f0, S, nonlin, pn)
@@ -516,26 +515,24 @@ def generate(
         x += _rng(seed, "thermal").standard_normal(x.shape) * sigma[None, :, None, None]
 
     # ---------------------------------------------------------------- 5. signals after the IF gain
-    after = np.zeros_like(x) if by_name("adc_noise") or by_name("interference") else None
-    for i, e in enumerate(by_name("adc_noise")):
+    after = np.zeros_like(x) if by_name["adc_noise"] or by_name["interference"] else None
+    for i, e in enumerate(by_name["adc_noise"]):
         after += _rng(seed, "adc_noise", i).standard_normal(x.shape) * (e["rms_counts"] * to_float)
-    t_adc = N / fs
-    for i, e in enumerate(by_name("interference")):
+    for i, e in enumerate(by_name["interference"]):
         rng = _rng(seed, "interference", i)
         hit = rng.random((F, M)) < e["probability"]
-        start = rng.uniform(0.0, max(t_adc - e["duration_s"], 0.0), size=(F, M))
+        start = rng.uniform(0.0, max(N / fs - e["duration_s"], 0.0), size=(F, M))
         phase = rng.uniform(0.0, 2.0 * math.pi, size=(F, M))
-        fi, mi = np.nonzero(hit)
-        if fi.size:
-            dur = float(e["duration_s"])
-            u = t[None, :] - start[fi, mi][:, None]  # (bursts, L)
-            inside = (u >= 0.0) & (u <= dur)
-            window = np.sin(math.pi * u / dur) ** 2
-            # instantaneous beat frequency (fs/2)(2u/dur - 1): zero where the ramps cross
-            sweep = 2.0 * math.pi * (fs / 2.0) * (u * u / dur - u) + phase[fi, mi][:, None]
-            burst = np.where(inside, window * np.cos(sweep), 0.0) * (e["amplitude_counts"] * to_float)
-            assert after is not None  # allocated above whenever there is interference
-            after[fi, :, mi, :] += burst[:, None, :]
+        fi, mi = np.nonzero(hit)  # the chirps with a burst (none: every array below is empty)
+        dur = float(e["duration_s"])
+        u = t[None, :] - start[fi, mi][:, None]  # (bursts, L)
+        inside = (u >= 0.0) & (u <= dur)
+        window = np.sin(math.pi * u / dur) ** 2
+        # instantaneous beat frequency (fs/2)(2u/dur - 1): zero where the ramps cross
+        sweep = 2.0 * math.pi * (fs / 2.0) * (u * u / dur - u) + phase[fi, mi][:, None]
+        burst = np.where(inside, window * np.cos(sweep), 0.0) * (e["amplitude_counts"] * to_float)
+        assert after is not None  # allocated above whenever there is interference
+        after[fi, :, mi, :] += burst[:, None, :]
 
     # ---------------------------------------------------------------- 4-6. high-pass, IF gain, AAF
     n_fft = L if method == "circular" else 2 * L
@@ -563,13 +560,13 @@ def generate(
 
     # ---------------------------------------------------------------- 7. drift, spur, DC offset
     dc = np.broadcast_to(_per_rx(dc_counts, n_rx, "dc_counts")[None, :, None, None], (F, n_rx, 1, 1)).copy()
-    for i, e in enumerate(by_name("frame_drift")):
+    for i, e in enumerate(by_name["frame_drift"]):
         rng = _rng(seed, "frame_drift", i)
         gain_dB = rng.normal(0.0, e["gain_rms_dB"], size=F)
         out *= (10.0 ** (gain_dB / 20.0))[:, None, None, None]
         dc += rng.normal(0.0, e["dc_rms_counts"], size=(F, n_rx))[:, :, None, None]
     counts = out * (full / 2.0) + dc
-    for e in by_name("spur_tone"):
+    for e in by_name["spur_tone"]:
         amp = _per_rx(e["amplitude_counts"], n_rx, "amplitude_counts")
         spur = np.cos(2.0 * math.pi * e["freq_Hz"] * (t_chirp + t) + e["phase_rad"])  # (F, 1, M, N)
         counts += amp[None, :, None, None] * spur
