@@ -118,18 +118,20 @@ def surface_cells(
     return points, face, cell_area
 
 
+_UP_CORNERS = torch.tensor([[0, 0], [1, 0], [0, 1]])
+"""Grid offsets of the corners of the upward sub-triangle at grid point ``(i, j)``."""
+
+_DOWN_CORNERS = torch.tensor([[1, 0], [1, 1], [0, 1]])
+"""Grid offsets of the corners of the downward sub-triangle at grid point ``(i, j)``."""
+
+
 def _sub_triangles(n: int) -> torch.Tensor:
     """``(n^2, 3, 2)`` barycentric corners of the ``n^2`` congruent sub-triangles of a triangle."""
-    i, j = torch.meshgrid(torch.arange(n), torch.arange(n), indexing="ij")
-    i, j = i.flatten(), j.flatten()
-    up = (i + j) <= n - 1
-    iu, ju = i[up], j[up]
-    down = (i + j) <= n - 2
-    idn, jd = i[down], j[down]
-    up_c = torch.stack([torch.stack([iu, ju], -1), torch.stack([iu + 1, ju], -1), torch.stack([iu, ju + 1], -1)], 1)
-    dn_c = torch.stack([torch.stack([idn + 1, jd], -1), torch.stack([idn + 1, jd + 1], -1),
-                        torch.stack([idn, jd + 1], -1)], 1)
-    return torch.cat([up_c, dn_c]).to(torch.float64) / n
+    ij = torch.stack(torch.meshgrid(torch.arange(n), torch.arange(n), indexing="ij"), -1).reshape(-1, 2)
+    up = ij[ij.sum(-1) <= n - 1]
+    down = ij[ij.sum(-1) <= n - 2]
+    corners = torch.cat([up[:, None] + _UP_CORNERS, down[:, None] + _DOWN_CORNERS])
+    return corners.to(torch.float64) / n
 
 
 def diffuse_paths(
@@ -175,21 +177,20 @@ def diffuse_paths(
     device, dtype = radar.tx.device, radar.tx.dtype
     gen = torch.Generator().manual_seed(int(seed))
     points, face, area = surface_cells(room, cell_m, gen)
-    c = points.shape[0]
     # Complex Gaussian factor of unit mean power, drawn for every cell (visible or not) so that a
     # cell's draw does not depend on what else is in the scene.
-    z = torch.randn(c, 2, generator=gen, dtype=torch.float64)
+    z = torch.randn(points.shape[0], 2, generator=gen, dtype=torch.float64)
     z = torch.complex(z[:, 0], z[:, 1]) / math.sqrt(2)
 
     mats = room.face_material.detach().to("cpu")[face]
     params = [get_scattering(m, scattering) for m in room.materials]
     s_mat = torch.tensor([p.S for p in params], dtype=torch.float64)
     live = (s_mat[mats] > 0).nonzero()[:, 0]
-    points, face, area, z, mats = (x[live] for x in (points, face, area, z, mats))
+    points, face, area, z, mats = (x[live].to(device) for x in (points, face, area, z, mats))
 
-    p = points.to(device=device, dtype=dtype)
+    p = points.to(dtype)
     tri = room.triangles.detach().to(device=device, dtype=dtype)
-    n = facet_normals(tri)[face.to(device)]
+    n = facet_normals(tri)[face]
     to_c = radar.centre - p
     r_c = to_c.norm(dim=-1).clamp_min(1e-9)
     k_s = to_c / r_c[:, None]
@@ -198,15 +199,13 @@ def diffuse_paths(
     cos_t = cos_s.abs()
     ok = cos_t > 1e-6
     if occlusion and bool(ok.any()):
-        shadow: TriangleBVH | None
         occ = occluder_faces(tri, radar.centre)
+        # Only faces that can block a leg between the radar and the room's surface need
+        # tracing against: a BVH of those alone (a corridor has none; a furnished room its
+        # objects), or the caller's full BVH when the reduction was not attempted.
+        shadow = bvh if occ is None else None
         if occ is not None and bool(occ.any()):
-            # Only faces that can block a leg between the radar and the room's surface need
-            # tracing against: a BVH of those alone (a corridor has none; a furnished room its
-            # objects), or the caller's full BVH when the reduction was not attempted.
             shadow = TriangleBVH(tri[occ]) if int(occ.sum()) < tri.shape[0] or bvh is None else bvh
-        else:
-            shadow = bvh if occ is None else None
         if shadow is not None:
             idx = ok.nonzero()[:, 0]
             eps = surface_offset(p[idx])
@@ -214,21 +213,19 @@ def diffuse_paths(
             blocked = shadow.any_hit(start, k_s[idx], t_max=r_c[idx] - eps, t_min=eps)
             ok[idx[blocked]] = False
     keep = ok.nonzero()[:, 0]
-    p, k_s, n, cos_t, r_c = (x[keep] for x in (p, k_s, n, cos_t, r_c))
-    keep_cpu = keep.cpu()
-    mats_d, area_d, z_d = (x[keep_cpu].to(device) for x in (mats, area, z))
+    p, k_s, n, cos_t, r_c, mats, area, z = (x[keep] for x in (p, k_s, n, cos_t, r_c, mats, area, z))
 
     refl = FaceReflectivity(room.materials, frequency_Hz, device, dtype)
-    gamma = refl(mats_d, cos_t, -k_s, n, radar.polarization)
+    gamma = refl(mats, cos_t, -k_s, n, radar.polarization)
     gamma2 = gamma.abs() ** 2
     sigma0 = torch.zeros_like(cos_t)
     for m, prm in enumerate(params):
-        sel = mats_d == m
+        sel = mats == m
         if prm.S > 0 and bool(sel.any()):
             sigma0[sel] = prm.sigma0(gamma2[sel], cos_t[sel])
-    rcs = sigma0 * area_d.to(dtype) * 10 ** (gain_dB / 10)
+    rcs = sigma0 * area.to(dtype) * 10 ** (gain_dB / 10)
     cdt = torch.complex128 if dtype == torch.float64 else torch.complex64
-    root = rcs.sqrt().to(cdt) * z_d.to(cdt)
+    root = rcs.sqrt().to(cdt) * z.to(cdt)
 
     r_t = (p - radar.tx).norm(dim=-1)
     r_r = (p[:, None, :] - radar.rx[None]).norm(dim=-1)  # (P, RX)

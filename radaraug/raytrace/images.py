@@ -61,8 +61,6 @@ def mirror(points: torch.Tensor, normal: torch.Tensor, offset: torch.Tensor) -> 
 
 def plane_sequences(num_planes: int, order: int, device: torch.device) -> torch.Tensor:
     """``(N, order)`` long: every sequence of plane indices with no plane twice in a row."""
-    if order == 1:
-        return torch.arange(num_planes, device=device)[:, None]
     seqs = [s for s in itertools.product(range(num_planes), repeat=order)
             if all(a != b for a, b in itertools.pairwise(s))]
     return torch.tensor(seqs, dtype=torch.long, device=device).reshape(-1, order)
@@ -105,19 +103,16 @@ def image_paths(
     tri = room.triangles.to(device=dev, dtype=f64)
     nrm = mirrors.normals.to(device=dev, dtype=f64)
     off = mirrors.offsets.to(device=dev, dtype=f64)
-    face_plane = mirrors.face_plane.to(dev)
     face_material = room.face_material.to(dev)
     centre = radar.centre.to(f64)
     tx = radar.tx.to(f64)
     rx = radar.rx.to(f64)
-    plane_faces = _plane_faces(face_plane, k_planes)
+    plane_faces = _plane_faces(mirrors.face_plane.to(dev), k_planes)
     scale = float(tri.abs().max()) + 1.0
 
-    delays, amps, kinds, verts, image_keys = [], [], [], [], []
+    found: list[tuple[torch.Tensor, ...]] = []  # (delay, amplitude, kind, vertices, image) per order
     for order in range(1, max_order + 1):
-        seq = plane_sequences(k_planes, order, dev)  # (N, n)
-        if seq.numel() == 0:
-            continue
+        seq = plane_sequences(k_planes, order, dev)  # (N, n), empty for one plane and n > 1
         # Images of the radar centre (for the geometry) and of the TX (for the exact delays).
         img_c = [centre.expand(seq.shape[0], 3)]
         img_t = [tx.expand(seq.shape[0], 3)]
@@ -126,21 +121,17 @@ def image_paths(
             img_t.append(mirror(img_t[-1], nrm[seq[:, i]], off[seq[:, i]]))
         # Trace back from the radar: q_n on the segment radar -> I_n, q_{i} on q_{i+1} -> I_i.
         ok = torch.ones(seq.shape[0], dtype=torch.bool, device=dev)
-        q_back: list[torch.Tensor] = []  # q_{order-1}, ..., q_0
+        q: list[torch.Tensor] = []  # filled from the last reflection point to the first
         start = centre.expand(seq.shape[0], 3)
         for i in range(order - 1, -1, -1):
             n_i, o_i = nrm[seq[:, i]], off[seq[:, i]]
-            target = img_c[i + 1]
-            seg = target - start
+            seg = img_c[i + 1] - start
             den = (seg * n_i).sum(-1)
             t = (o_i - (start * n_i).sum(-1)) / torch.where(den.abs() < 1e-12, torch.ones_like(den), den)
             ok &= (den.abs() >= 1e-12) & (t > -1e-9) & (t < 1 + 1e-9)
             start = start + t[:, None] * seg
-            q_back.append(start)
-        q = q_back[::-1]
-        face = torch.full((seq.shape[0], order), -1, dtype=torch.long, device=dev)
-        for i in range(order):
-            face[:, i] = _face_at(q[i], seq[:, i], plane_faces, tri)
+            q.insert(0, start)
+        face = torch.stack([_face_at(q[i], seq[:, i], plane_faces, tri) for i in range(order)], dim=1)
         ok &= (face >= 0).all(-1)
         pts = torch.stack([centre.expand(seq.shape[0], 3), *q, centre.expand(seq.shape[0], 3)], dim=1)
         ok &= ~_legs_blocked(pts, ok, tri, scale)
@@ -169,17 +160,13 @@ def image_paths(
         g_t = antenna.gain(radar.to_radar_dirs(u_launch.to(dt))).to(f64)
         g_r = antenna.gain(radar.to_radar_dirs((-d).to(dt))).to(f64)
         length = (rx[None] - image_t[:, None]).norm(dim=-1)  # (P, RX)
-        lam = radar.wavelength
-        amp = (torch.sqrt(g_t * g_r)[:, None] * lam / (4 * math.pi * length)) * gamma[:, None]
-        delays.append(length / SPEED_OF_LIGHT)
-        amps.append(amp)
-        kinds.append(torch.full((idx.numel(),), min(order - 1, 1), dtype=torch.int8, device=dev))
+        amp = (torch.sqrt(g_t * g_r)[:, None] * radar.wavelength / (4 * math.pi * length)) * gamma[:, None]
+        kind = torch.full((idx.numel(),), min(order - 1, 1), dtype=torch.int8, device=dev)
         pad = centre.expand(idx.numel(), v_count - pts.shape[1], 3)
-        verts.append(torch.cat([pts, pad], dim=1))
-        image_keys.append(img_c[-1][idx])
-    if not delays:
+        found.append((length / SPEED_OF_LIGHT, amp, kind, torch.cat([pts, pad], dim=1), img_c[-1][idx]))
+    if not found:
         return _empty(n_rx, v_count, dev, dt)
-    delay, amp, kind, vert, key = (torch.cat(x) for x in (delays, amps, kinds, verts, image_keys))
+    delay, amp, kind, vert, key = (torch.cat(x) for x in zip(*found))
     keep = _first_of_each_image(key)
     cdt = torch.complex128 if dt == torch.float64 else torch.complex64
     paths = Paths(delay[keep].to(dt), torch.zeros_like(delay[keep]).to(dt), amp[keep].to(cdt), kind[keep])
@@ -228,8 +215,6 @@ def _legs_blocked(pts: torch.Tensor, ok: torch.Tensor, tri: torch.Tensor, scale:
     """``(N,)`` bool: some leg of a candidate path crosses the room between its end points."""
     blocked = torch.zeros(pts.shape[0], dtype=torch.bool, device=pts.device)
     idx = ok.nonzero()[:, 0]
-    if idx.numel() == 0:
-        return blocked
     a, b = pts[idx, :-1], pts[idx, 1:]
     seg = (b - a).reshape(-1, 3)
     length = seg.norm(dim=-1)
@@ -242,7 +227,7 @@ def _legs_blocked(pts: torch.Tensor, ok: torch.Tensor, tri: torch.Tensor, scale:
     if li.numel():
         o = a.reshape(-1, 3)[li]
         hit[li] = any_hit(o, d[li], tri, (length[li] - eps), t_min=eps, compiled=False)
-    blocked[idx] = hit.reshape(idx.numel(), -1).any(-1)
+    blocked[idx] = hit.reshape(idx.numel(), pts.shape[1] - 1).any(-1)
     return blocked
 
 

@@ -63,8 +63,7 @@ def shoot_and_bounce(
     Returns:
         Unmerged :class:`Paths` ``(P, RX)`` with ``kind`` 0 for first hits, 1 for later ones.
     """
-    tri = bvh.triangles
-    normals_all = facet_normals(tri)
+    normals_all = facet_normals(bvh.triangles)
     lam = radar.wavelength
     k = 2 * math.pi / lam
     o, d, g1, g2 = tubes.origins, tubes.directions, tubes.g1, tubes.g2
@@ -73,7 +72,7 @@ def shoot_and_bounce(
     cdt = torch.complex128 if o.dtype == torch.float64 else torch.complex64
     coef = torch.ones(o.shape[0], dtype=cdt, device=o.device)
     t_min = torch.zeros_like(s)
-    out_delay, out_amp, out_kind = [], [], []
+    out: list[Paths] = []
     for bounce in range(max_bounces):
         hit = bvh.intersect(o, d, t_min=t_min)
         keep = hit.valid.nonzero()[:, 0]
@@ -110,9 +109,9 @@ def shoot_and_bounce(
             gain_r = antenna.gain(radar.to_radar_dirs(-k_s[ok]))
             amp = radar_amplitude(root_rcs[ok, None], s[ok, None], r_rx, gain_t[ok, None],
                                   gain_r[:, None], lam)
-            out_delay.append((s[ok, None] + r_rx) / SPEED_OF_LIGHT)
-            out_amp.append(amp)
-            out_kind.append(torch.full((ok.numel(),), min(bounce, 1), dtype=torch.int8, device=o.device))
+            delay = (s[ok, None] + r_rx) / SPEED_OF_LIGHT
+            kind = torch.full((ok.numel(),), min(bounce, 1), dtype=torch.int8, device=o.device)
+            out.append(Paths(delay, torch.zeros_like(delay), amp, kind))
 
         # --- specular reflection of the ray and its tube
         coef = coef * gamma
@@ -120,16 +119,11 @@ def shoot_and_bounce(
         g1, g2 = (g - 2 * (g * n).sum(-1, keepdim=True) * n for g in (g1, g2))
         o = start
         t_min = eps
-    return _collect(out_delay, out_amp, out_kind, radar, o)
+    if not out:
+        return Paths.empty(radar.rx.shape[0], dtype=o.dtype, device=o.device)
+    return Paths.cat(out)
 
 
 def _project_on_plane(e: torch.Tensor, d: torch.Tensor, n_f: torch.Tensor, cos_i: torch.Tensor) -> torch.Tensor:
     """Project tube edge ``e`` along the ray direction ``d`` onto the plane with normal ``n_f``."""
     return e + ((e * n_f).sum(-1) / cos_i.clamp_min(1e-6))[:, None] * d
-
-
-def _collect(delays, amps, kinds, radar: RadarGeometry, like: torch.Tensor) -> Paths:
-    if not delays:
-        return Paths.empty(radar.rx.shape[0], dtype=like.dtype, device=like.device)
-    delay = torch.cat(delays)
-    return Paths(delay, torch.zeros_like(delay), torch.cat(amps), torch.cat(kinds))

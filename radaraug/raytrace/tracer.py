@@ -50,6 +50,8 @@ FACET_MERGE_BIN_M = 0.002
 """Path-length bin of the coherent merge of small-face PO paths (see the tracer's comment)."""
 FACET_MERGE_VOXEL_M = 0.2
 """Voxel of that merge: a merged path's vertex stays within it (shadowing acts on the right place)."""
+_CACHED_PATH_FIELDS = ("delay_s", "delay_rate", "amplitude", "kind")
+"""The :class:`Paths` fields of a static cache entry, in the constructor's order."""
 
 
 class RayTracer:
@@ -158,9 +160,7 @@ class RayTracer:
             self.cache_dir = None
         else:
             self.cache_dir = Path(cache)
-        self._static: Paths | None = None
-        self._static_vertices: torch.Tensor | None = None
-        self._static_diffuse: torch.Tensor | None = None
+        self._static: tuple[Paths, torch.Tensor | None, torch.Tensor] | None = None
 
     def static_paths(self, part: str = "all") -> Paths:
         """The room's paths ``(P, RX)`` (traced on the first call, then kept in memory and on disk).
@@ -175,21 +175,15 @@ class RayTracer:
         """
         if part not in STATIC_PARTS:
             raise SceneError(f"static_paths: part must be one of {STATIC_PARTS}, got {part!r}")
-        if self._static is None:
-            self._trace_static()
-        assert self._static is not None
+        paths, _, mask = self._traced_static()
         if part == "all":
-            return self._static
-        mask = self.static_diffuse_mask()
+            return paths
         keep = mask if part == "diffuse" else ~mask
-        return self._static.map(lambda x: x[keep])
+        return paths.map(lambda x: x[keep])
 
     def static_diffuse_mask(self) -> torch.Tensor:
         """``(P,)`` bool over :meth:`static_paths`: True for the diffuse scattering paths."""
-        if self._static is None:
-            self._trace_static()
-        assert self._static_diffuse is not None
-        return self._static_diffuse
+        return self._traced_static()[2]
 
     def static_vertices(self) -> torch.Tensor | None:
         """``(P, V, 3)`` vertices of :meth:`static_paths`, or None for ``method="sbr"``.
@@ -197,9 +191,7 @@ class RayTracer:
         ``[radar centre, interaction points..., radar centre]``, padded by repeating the radar centre.
         SBR's merged tube paths have no single geometry.
         """
-        if self._static is None:
-            self._trace_static()
-        return self._static_vertices
+        return self._traced_static()[1]
 
     def cache_key(self) -> str:
         """SHA-256 key of the static room (see :mod:`radaraug.raytrace.cache`)."""
@@ -229,7 +221,13 @@ class RayTracer:
         room = self.room
         return [room.vertices.to(torch.float64), room.faces.long(), room.face_material.long()]
 
-    def _trace_static(self) -> None:
+    def _traced_static(self) -> tuple[Paths, torch.Tensor | None, torch.Tensor]:
+        """``(paths, vertices, diffuse mask)`` of the static room: traced or loaded on the first call."""
+        if self._static is None:
+            self._static = self._load_or_trace_static()
+        return self._static
+
+    def _load_or_trace_static(self) -> tuple[Paths, torch.Tensor | None, torch.Tensor]:
         key = self.cache_key() if self.cache_dir is not None else ""
         if self.cache_dir is not None:
             hit = static_cache.load(self.cache_dir, key)
@@ -237,23 +235,21 @@ class RayTracer:
             # diffuse: traced again (and replaced) when the room has any.
             if hit is not None and ("diffuse" in hit or not self.diffuse):
                 dev = self.device
-                self._static = Paths(hit["delay_s"].to(dev), hit["delay_rate"].to(dev), hit["amplitude"].to(dev),
-                                     hit["kind"].to(dev))
+                paths = Paths(*(hit[name].to(dev) for name in _CACHED_PATH_FIELDS))
                 v = hit.get("vertices")
-                self._static_vertices = None if v is None else v.to(dev)
                 d = hit.get("diffuse")
-                self._static_diffuse = (d.to(device=self.device, dtype=torch.bool) if d is not None else
-                                        torch.zeros(self._static.num_paths, dtype=torch.bool, device=self.device))
-                return
+                diffuse = (d.to(device=dev, dtype=torch.bool) if d is not None else
+                           torch.zeros(paths.num_paths, dtype=torch.bool, device=dev))
+                return paths, None if v is None else v.to(dev), diffuse
         paths, vertices, diffuse = self._trace_static_uncached()
-        self._static, self._static_vertices, self._static_diffuse = paths, vertices, diffuse
         if self.cache_dir is not None:
             assert paths.kind is not None  # every static tracer (images, facets, diffuse, SBR) sets it
-            data = {"delay_s": paths.delay_s.cpu(), "delay_rate": paths.delay_rate.cpu(),
-                    "amplitude": paths.amplitude.cpu(), "kind": paths.kind.cpu(), "diffuse": diffuse.cpu()}
+            data = {name: getattr(paths, name).cpu() for name in _CACHED_PATH_FIELDS}
+            data["diffuse"] = diffuse.cpu()
             if vertices is not None:
                 data["vertices"] = vertices.cpu()
             static_cache.store(self.cache_dir, key, data)
+        return paths, vertices, diffuse
 
     def _trace_static_uncached(self) -> tuple[Paths, torch.Tensor | None, torch.Tensor]:
         """``(paths, vertices, diffuse mask)`` of the static room."""
@@ -335,8 +331,7 @@ class RayTracer:
             refl = FaceReflectivity(mesh.materials, self.frequency_Hz, self.device, self.dtype)
             parts.append(mesh_po_paths(mesh, self.radar, self.antenna, refl, room_bvh=self.bvh))
         if not parts:
-            n_rx = self.radar.rx.shape[0]
-            return Paths.empty(n_rx, dtype=self.dtype, device=self.device, lead=lead, mask=True)
+            return Paths.empty(self.radar.rx.shape[0], dtype=self.dtype, device=self.device, lead=lead, mask=True)
         return Paths.cat(parts) if len(parts) > 1 else parts[0]
 
     def trace(
