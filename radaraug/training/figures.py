@@ -23,7 +23,10 @@ if TYPE_CHECKING:
     from torchvision.models import ResNet
 
 
-def _save(fig: Any, path: str | os.PathLike, *, tight: bool = True) -> Path:
+def _save(fig: Any, path: str | os.PathLike, *, tight: bool = True, title: str | None = None) -> Path:
+    """Write ``fig`` (with its ``title`` above every panel) as a PNG to ``path`` and close it."""
+    if title is not None:
+        fig.suptitle(title, fontsize=10)
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     if tight:  # not for a figure laid out as "constrained"
@@ -40,8 +43,7 @@ def combined_db(maps: torch.Tensor) -> torch.Tensor:
 
 def noise_floor_histograms(groups: Mapping[str, torch.Tensor], path: str | os.PathLike) -> Path:
     """Fig. 4: histograms of all RD dB cell values of empty-room maps, one curve per group."""
-    plt = pyplot()
-    fig, ax = plt.subplots(figsize=(6.4, 3.6))
+    fig, ax = pyplot().subplots(figsize=(6.4, 3.6))
     for name, maps in groups.items():
         v = maps.float().flatten()
         v = v[torch.isfinite(v) & (v > -250)]
@@ -61,11 +63,10 @@ def rd_triplets(rows: Mapping[str, Sequence[tuple[str, torch.Tensor]]], path: st
     Situations e.g. empty / one person; sources e.g. simulation, simulation + CDR, the profile twin + CDR,
     capture.
     """
-    plt = pyplot()
     n_rows = len(rows)
     n_cols = max(len(r) for r in rows.values())
-    fig, axes = plt.subplots(n_rows, n_cols, figsize=(3.2 * n_cols + 1, 3.3 * n_rows), squeeze=False,
-                             layout="constrained")
+    fig, axes = pyplot().subplots(n_rows, n_cols, figsize=(3.2 * n_cols + 1, 3.3 * n_rows), squeeze=False,
+                                  layout="constrained")
     im = None
     for i, (row_name, items) in enumerate(rows.items()):
         for j, (col_name, m) in enumerate(items):
@@ -78,8 +79,8 @@ def rd_triplets(rows: Mapping[str, Sequence[tuple[str, torch.Tensor]]], path: st
                 ax.set_ylabel("range (m)", fontsize=8)
     if im is not None:
         fig.colorbar(im, ax=axes, shrink=0.8, label=f"dBFS, clipped to [{vmin:.0f}, {vmax:.0f}]")
-    fig.suptitle("Range-Doppler maps: " + ", ".join(name for name, _ in next(iter(rows.values()))), fontsize=10)
-    return _save(fig, path, tight=False)
+    return _save(fig, path, tight=False,
+                 title="Range-Doppler maps: " + ", ".join(name for name, _ in next(iter(rows.values()))))
 
 
 def static_to_total(maps: torch.Tensor, low_doppler_bins: int = 1) -> torch.Tensor:
@@ -92,8 +93,7 @@ def static_to_total(maps: torch.Tensor, low_doppler_bins: int = 1) -> torch.Tens
 
 def static_energy_plot(groups: Mapping[str, torch.Tensor], path: str | os.PathLike, low_doppler_bins: int = 1) -> Path:
     """Fig. 6: static-to-total (low-Doppler) energy ratio per frame, one series per group."""
-    plt = pyplot()
-    fig, ax = plt.subplots(figsize=(6.4, 3.4))
+    fig, ax = pyplot().subplots(figsize=(6.4, 3.4))
     for name, maps in groups.items():
         ratio = static_to_total(maps, low_doppler_bins).double()
         # static/total sits within 0.1 dB of 1 in every frame: its remainder 1 - static/total (the
@@ -122,9 +122,8 @@ def first_block_features(net: ResNet, image: torch.Tensor) -> torch.Tensor:
 
 def feature_maps(models: Mapping[str, torch.nn.Module], inputs: Mapping[str, torch.Tensor], path: str | os.PathLike) -> Path:
     """Fig. 7: first-residual-block feature maps, a row per model, a column per input image."""
-    plt = pyplot()
-    fig, axes = plt.subplots(len(models), len(inputs), figsize=(3.0 * len(inputs), 2.8 * len(models)),
-                             squeeze=False)
+    fig, axes = pyplot().subplots(len(models), len(inputs), figsize=(3.0 * len(inputs), 2.8 * len(models)),
+                                  squeeze=False)
     for i, (mname, net) in enumerate(models.items()):
         for j, (iname, img) in enumerate(inputs.items()):
             f = first_block_features(net, img)
@@ -132,27 +131,24 @@ def feature_maps(models: Mapping[str, torch.nn.Module], inputs: Mapping[str, tor
             axes[i][j].set_title(f"{mname} model, {iname} input", fontsize=9)
             axes[i][j].set_xticks([])
             axes[i][j].set_yticks([])
-    fig.suptitle("ResNet18 layer1 activations (channel mean)", fontsize=10)
-    return _save(fig, path)
+    return _save(fig, path, title="ResNet18 layer1 activations (channel mean)")
 
 
 def confusion_grid(cms: Mapping[str, torch.Tensor], class_names: Sequence[str], path: str | os.PathLike, title: str) -> Path:
     """Fig. 8/9: confusion matrices side by side (one per method; counts summed over seeds)."""
-    plt = pyplot()
-    fig, axes = plt.subplots(1, len(cms), figsize=(3.0 * len(cms), 3.0), squeeze=False)
+    fig, axes = pyplot().subplots(1, len(cms), figsize=(3.0 * len(cms), 3.0), squeeze=False)
     for ax, (name, cm) in zip(axes[0], cms.items()):
         draw_confusion(ax, cm, class_names)
         ax.set_title(f"{name}: bal. acc. {balanced_accuracy(cm):.2f}", fontsize=9)
-    fig.suptitle(title, fontsize=10)
-    return _save(fig, path)
+    return _save(fig, path, title=title)
 
 
 def results_bars(results: Mapping[str, Mapping[str, Mapping[str, Any]]], path: str | os.PathLike) -> Path:
     """Balanced accuracy (mean +- std over seeds) per task and method, with the ablation if present."""
-    plt = pyplot()
     tasks = list(results)
     bars = max((len(results[t]) for t in tasks), default=1)
-    fig, axes = plt.subplots(1, len(tasks), figsize=(max(4.2, 0.8 * bars + 1.4) * len(tasks), 3.4), squeeze=False)
+    fig, axes = pyplot().subplots(1, len(tasks), figsize=(max(4.2, 0.8 * bars + 1.4) * len(tasks), 3.4),
+                                  squeeze=False)
     for ax, task in zip(axes[0], tasks):
         names = list(results[task])
         means = [results[task][n]["balanced_accuracy"]["mean"] for n in names]
@@ -186,9 +182,8 @@ def score_histograms(scores: Mapping[str, Mapping[str, tuple[torch.Tensor, torch
     and ``"test"``. A network that collapses to one class shows every test class piled at one
     end while the simulated classes stay apart.
     """
-    plt = pyplot()
     k = len(class_names)
-    fig, axes = plt.subplots(1, len(scores), figsize=(3.4 * max(len(scores), 1), 3.0), squeeze=False)
+    fig, axes = pyplot().subplots(1, len(scores), figsize=(3.4 * max(len(scores), 1), 3.0), squeeze=False)
     top = 1.0 if k == 2 else float(k - 1)
     bins = torch.linspace(0.0, top, 26).numpy()
     colors = ["tab:blue", "tab:orange", "tab:green", "tab:red"]
@@ -206,5 +201,4 @@ def score_histograms(scores: Mapping[str, Mapping[str, tuple[torch.Tensor, torch
         ax.set_title(name, fontsize=9)
         ax.tick_params(labelsize=7)
     axes[0][-1].legend(fontsize=6, loc="upper center")
-    fig.suptitle(title, fontsize=10)
-    return _save(fig, path)
+    return _save(fig, path, title=title)

@@ -121,8 +121,7 @@ def _check_known(kind: str, names: Sequence[str], known: Sequence[str]) -> None:
 
 def _summary(values: Sequence[float]) -> dict[str, Any]:
     vals = [float(v) for v in values]
-    return {"mean": statistics.fmean(vals), "std": statistics.pstdev(vals) if len(vals) > 1 else 0.0,
-            "per_seed": vals}
+    return {"mean": statistics.fmean(vals), "std": statistics.pstdev(vals), "per_seed": vals}
 
 
 def _cdr_floor_of(keep: dict[tuple[str, str, str], tuple[Any, Any]], settings: ReproduceSettings) -> str | None:
@@ -171,10 +170,8 @@ def effective_settings(settings: ReproduceSettings) -> dict[str, Any]:
     ``cdr`` method's recipe; the others from the base recipe.
     """
     cfg = run_recipe("occupancy", "cdr", settings)
-    out = asdict(settings)
-    for field, (section, key) in RECIPE_KEYS.items():
-        out[field] = cfg.get(section, {}).get(key)
-    return out
+    return asdict(settings) | {field: cfg.get(section, {}).get(key)
+                               for field, (section, key) in RECIPE_KEYS.items()}
 
 
 @dataclass
@@ -232,15 +229,13 @@ def _scores(model: Any, dm: Any, loader: Any, *, with_dr: bool, limit: int = 512
     """Class probabilities and labels of up to ``limit`` items of ``loader`` (simulated splits with the DR)."""
     model.eval()
     probs, labels = [], []
-    n = 0
     for x, y in loader:
         x = x.to(model.device)
         if with_dr and dm.dr is not None:
             x = dm.dr.to(x.device).train()(x)
         probs.append(torch.softmax(model(dm.image.to(x.device)(x)).float(), dim=1).cpu())
         labels.append(torch.as_tensor(y).cpu())
-        n += len(y)
-        if n >= limit:
+        if sum(map(len, labels)) >= limit:
             break
     return torch.cat(probs)[:limit], torch.cat(labels)[:limit]
 
@@ -450,9 +445,8 @@ def reproduce(
     from radaraug.training import figures as F
 
     figures: dict[str, Path] = {}
-    floors: dict[str, dict[str, float]] = {}
+    floors: dict[str, dict[str, float]] = {ts.name: {} for ts in sets}
     for ts in sets:
-        floors[ts.name] = {}
         fig_dir = out / "figures" / ts.name
         sub = {(t, n): v for (s, t, n), v in keep.items() if s == ts.name}
         figs = _figures(fig_dir, sub, results[ts.name], ts.calibration, ts.tests, floors[ts.name])
@@ -479,7 +473,7 @@ def reproduce(
         "proxy": primary.info,
         "figures": {k: str(Path(v).relative_to(out)) for k, v in figures.items()},
         "empty_room_median_db": floors[primary.name],
-        "twin_noise_fit": _noise_fit_of(keep),
+        "twin_noise_fit": _shared_info(keep, "noise_fit"),
         "twin_profile": _profile_of(keep, out),
         "wall_seconds": wall,
         "machine": {"platform": platform.platform(), "torch": torch.__version__,
@@ -506,9 +500,9 @@ def _ablation_table(results: dict[str, dict[str, Any]]) -> list[dict[str, Any]]:
     return rows
 
 
-def _noise_fit_of(keep: dict) -> dict[str, Any] | None:
-    """The twin's noise-figure fit of the runs (they share it), if any."""
-    return next((dm.noise_fit for _, dm in keep.values() if getattr(dm, "noise_fit", None) is not None), None)
+def _shared_info(keep: dict, attr: str) -> dict[str, Any] | None:
+    """The data modules' ``attr`` (``noise_fit``, ``profile_info``: the runs share it), if any run has one."""
+    return next((getattr(dm, attr) for _, dm in keep.values() if getattr(dm, attr, None) is not None), None)
 
 
 def _profile_of(keep: dict, out: Path) -> dict[str, Any] | None:
@@ -517,14 +511,13 @@ def _profile_of(keep: dict, out: Path) -> dict[str, Any] | None:
     Where it came from, the effects the fit added and the diagnose error before / after
     (``profile.fitted_on``).
     """
-    for _model, dm in keep.values():
-        info = getattr(dm, "profile_info", None)
-        if info is not None:
-            info = dict(info)
-            with contextlib.suppress(KeyError, TypeError, ValueError):
-                info["path"] = str(Path(info["path"]).resolve().relative_to(out.resolve()))
-            return info
-    return None
+    info = _shared_info(keep, "profile_info")
+    if info is None:
+        return None
+    info = dict(info)
+    with contextlib.suppress(KeyError, TypeError, ValueError):
+        info["path"] = str(Path(info["path"]).resolve().relative_to(out.resolve()))
+    return info
 
 
 def _maps_of(cache_dm: Any, count: int, n: int) -> torch.Tensor:
@@ -574,16 +567,15 @@ def _figures(fig_dir: Path, keep: dict, results: dict, calibration: str | None,
     real_empty = _capture_maps(calibration, 64)
     one = [e for e in test if e.get("count") == 1]
     real_one = _capture_maps(one[0]["path"], 64) if one else None
-    # Fig. 4's sources (legend, key in ``floors``, maps) and Fig. 5's simulated columns, in their order
+    # Fig. 4's sources (legend, key in ``floors``, maps) and Fig. 5's simulated columns (title,
+    # empty-room maps, one-person maps), in their order
     sources = [("simulation", "simulation", sim_empty), ("simulation + CDR", "simulation_cdr", cdr_empty)]
-    empty_row = [("sim", sim_empty), ("sim + CDR", cdr_empty)]
-    one_row = [("sim", sim_one), ("sim + CDR", cdr_one)]
+    columns = [("sim", sim_empty, sim_one), ("sim + CDR", cdr_empty, cdr_one)]
     if prof_run is not None:
         prof_empty, _, prof_cdr_empty, prof_cdr_one = _with_dr(prof_run[1])
         sources += [("profile twin", "simulation_profile", prof_empty),
                     ("profile twin + CDR", "simulation_profile_cdr", prof_cdr_empty)]
-        empty_row.append(("profile sim + CDR", prof_cdr_empty))
-        one_row.append(("profile sim + CDR", prof_cdr_one))
+        columns.append(("profile sim + CDR", prof_cdr_empty, prof_cdr_one))
     sources.append(("empty-room capture", "capture", real_empty))
     for _, key, maps in sources:
         v = maps.float().flatten()
@@ -592,10 +584,10 @@ def _figures(fig_dir: Path, keep: dict, results: dict, calibration: str | None,
                                                         fig_dir / "fig4_noise_floor_histograms.png")
     vmin, vmax = dm.clip
     cfg = dm.config
-    rows = {"empty": ([(name, maps[0]) for name, maps in empty_row if len(maps)]
+    rows = {"empty": ([(name, empty[0]) for name, empty, _ in columns if len(empty)]
                       + [("capture", real_empty[0])])}
     if real_one is not None and len(sim_one):
-        rows["one person"] = ([(name, maps[0]) for name, maps in one_row if len(maps)]
+        rows["one person"] = ([(name, person[0]) for name, _, person in columns if len(person)]
                               + [("capture", real_one[len(real_one) // 2])])
     figs["fig5_rd_triplets"] = F.rd_triplets(rows, fig_dir / "fig5_rd_triplets.png", vmin=vmin, vmax=vmax,
                                              range_max_m=float(cfg.max_range_m), v_max_m_s=float(cfg.max_velocity_m_s))
@@ -613,8 +605,9 @@ def _figures(fig_dir: Path, keep: dict, results: dict, calibration: str | None,
     return figs
 
 
-def _fmt(s: dict[str, Any]) -> str:
-    return f"{s['mean']:.3f} ± {s['std']:.3f}"
+def _fmt(s: dict[str, Any], prefix: str = "") -> str:
+    """``mean ± std`` of a summary, or of its ``PREFIXmean`` / ``PREFIXstd`` keys (an ablation-table row)."""
+    return f"{s[prefix + 'mean']:.3f} ± {s[prefix + 'std']:.3f}"
 
 
 TEST_SET_TEXT = {
@@ -630,6 +623,12 @@ TEST_SET_TEXT = {
 QUICK_TRADES = ("Quick mode trades, against full mode (6000 items, 15 epochs, 128 x 64, every ablation): fewer "
                 "simulated items and epochs, 64 x 32 images, and only the ablations listed in its settings; the "
                 "network is still the paper's ResNet18. Full mode is for a GPU.")
+
+
+#: Notes on the first test set that compare a row with ``cdr``'s: row -> text ({row}, {cdr}: their means)
+CDR_NOTES = {"cdr_profile": "CDR on the profile twin {row:.3f} vs CDR on the noise-fitted twin {cdr:.3f}.",
+             "cdr_no_twin_randomization": ("twin randomization ablation: CDR {cdr:.3f} with vs {row:.3f} "
+                                           "without.")}
 
 
 def _md_table(header: Sequence[str], rows: Iterable[Sequence[Any]]) -> list[str]:
@@ -687,21 +686,15 @@ def _markdown(rep: dict[str, Any]) -> str:
         lines += [*_results_table(ts["results"]), "", *_orderings(ts["results"]), ""]
         if ts["ablation_table"]:
             header = ["task", "ablation", "changes", "main run", "with", "without (ablation)", "delta"]
-            rows = [[r["task"], r["ablation"], f"`{json.dumps(r['changes'])}`", r["main"],
-                     f"{r['main_mean']:.3f} ± {r['main_std']:.3f}",
-                     f"{r['ablation_mean']:.3f} ± {r['ablation_std']:.3f}", f"{r['delta']:+.3f}"]
-                    for r in ts["ablation_table"]]
+            rows = [[r["task"], r["ablation"], f"`{json.dumps(r['changes'])}`", r["main"], _fmt(r, "main_"),
+                     _fmt(r, "ablation_"), f"{r['delta']:+.3f}"] for r in ts["ablation_table"]]
             lines += [*_md_table(header, rows), ""]
     lines += ["Paper (real corridor): occupancy 97 % CDR, ~83 % RandomDR, ~50 % RT; counting 72 % / ~61 % / ~33 %.", ""]
     order: list[str] = []
     for task, by in rep["results"].items():
         m = {k: v["balanced_accuracy"]["mean"] for k, v in by.items()}
-        if "cdr_profile" in m and "cdr" in m:
-            order.append(f"- {task}: CDR on the profile twin {m['cdr_profile']:.3f} vs CDR on the noise-fitted twin "
-                         f"{m['cdr']:.3f}.")
-        if "cdr_no_twin_randomization" in m and "cdr" in m:
-            order.append(f"- {task}: twin randomization ablation: CDR {m['cdr']:.3f} with vs "
-                         f"{m['cdr_no_twin_randomization']:.3f} without.")
+        order += [f"- {task}: " + note.format(row=m[row], cdr=m["cdr"]) for row, note in CDR_NOTES.items()
+                  if row in m and "cdr" in m]
     floors = rep.get("empty_room_median_db") or {}
     if floors and "simulation_cdr" in floors and floors["simulation_cdr"] > floors["capture"] + 1.0:
         fit = rep.get("twin_noise_fit")
@@ -737,8 +730,7 @@ def _markdown(rep: dict[str, Any]) -> str:
     lines += ["## Figures", "", "Score histograms (`scores_*`): the network's score per true class on simulated "
               "validation (filled) and on the test captures (lines), seed 0; a collapse to one class shows every test "
               "class piled at one end.", ""]
-    for key, rel in rep["figures"].items():
-        lines.append(f"![{key}]({rel})")
+    lines += [f"![{key}]({rel})" for key, rel in rep["figures"].items()]
     header = ["test set", "task", "variant", "seed", "balanced acc.", "accuracy", "val bal. acc. (sim)",
               "clip range dB", "fit s"]
     rows = [[r["test_set"], r["task"], r["variant"], r["seed"], f"{r['balanced_accuracy']:.3f}",
