@@ -59,9 +59,8 @@ def floor_statistics(
     """
     if input not in ("raw", "db"):
         raise CalibrationError(f"CalibratedDR.fit: input must be 'raw' or 'db', got {input!r}")
-    for name, value in (("max_frames", max_frames), ("batch_size", batch_size)):
-        if value is None and name == "max_frames":
-            continue
+    # max_frames=None (no limit) is checked as a valid stand-in.
+    for name, value in (("max_frames", 1 if max_frames is None else max_frames), ("batch_size", batch_size)):
         if isinstance(value, bool) or not isinstance(value, numbers.Integral) or value < 1:
             raise CalibrationError(f"CalibratedDR.fit: {name} must be a positive integer, got {value!r}")
     if pipeline is None:
@@ -111,8 +110,8 @@ def floor_statistics(
     # receiver's floor; drawn i.i.d. into every cell, its high values would be spikes no floor has.
     off = off_zero_doppler(all_maps, MAIN_LOBE_HALF_WIDTH_BINS.get(window, 1) + 1)
     motion = cells_motion_fraction(off, motion_threshold_db)
-    floor_values = (off.double() if off.numel() else values).flatten()
-    quantiles = torch.from_numpy(np.quantile(floor_values.cpu().numpy(), np.linspace(0.0, 1.0, QUANTILES)))
+    floor = floor_values(all_maps, window)
+    quantiles = torch.from_numpy(np.quantile(floor.cpu().numpy(), np.linspace(0.0, 1.0, QUANTILES)))
     if motion is not None and motion > WARN_FRACTION:
         warnings.warn(
             f"CalibratedDR.fit: {where} should be an empty scene but shows motion: {100 * motion:.2f} % of the cells "

@@ -49,11 +49,13 @@ not tested; the phase-noise and mismatch tests need at least two RX channels.
 
 from __future__ import annotations
 
+import inspect
 import itertools
 import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
-from functools import cached_property, lru_cache
+from functools import cached_property, lru_cache, wraps
+from typing import Concatenate, ParamSpec
 
 import torch
 
@@ -233,8 +235,43 @@ class Prepared:
         return p.permute(1, 3, 0, 2).reshape(R, K, F * M).median(dim=-1).values / math.log(2) * M / max(M - 1, 1)
 
 
-def _prep(frames: torch.Tensor | Prepared, config: RadarConfig) -> Prepared:
-    return frames if isinstance(frames, Prepared) else Prepared(frames, config)
+DETECTORS: dict[str, Callable[..., Signature]] = {}
+"""Effect name -> detector ``(frames, config) -> Signature``, in the order they are defined here."""
+
+_P = ParamSpec("_P")
+
+
+def _detector(effect: str, min_rx: int = 1, min_chirps: int = 1, min_frames: int = 1) -> Callable[
+    [Callable[Concatenate[Prepared, RadarConfig, _P], Signature]],
+    Callable[Concatenate[torch.Tensor | Prepared, RadarConfig, _P], Signature],
+]:
+    """Make ``measure(p, config, ...)`` the detector of ``effect`` and register it in :data:`DETECTORS`.
+
+    The detector takes raw frames (SDK floats) or a :class:`Prepared` of them; on a capture with
+    fewer RX, chirps or frames than ``measure`` needs it reports the effect absent, unmeasured.
+    """
+    mins = ((min_rx, "RX"), (min_chirps, "chirps"), (min_frames, "frames"))
+    needs = "needs at least " + " and ".join(f"{n} {what}" for n, what in mins if n > 1)
+
+    def register(measure: Callable[Concatenate[Prepared, RadarConfig, _P], Signature]
+                 ) -> Callable[Concatenate[torch.Tensor | Prepared, RadarConfig, _P], Signature]:
+        @wraps(measure)
+        def detect(frames: torch.Tensor | Prepared, config: RadarConfig, *args: _P.args,
+                   **kwargs: _P.kwargs) -> Signature:
+            p = frames if isinstance(frames, Prepared) else Prepared(frames, config)
+            F, R, M, N = p.shape
+            if R < min_rx or M < min_chirps or F < min_frames:
+                return Signature(effect, 0.0, False, {}, needs)
+            return measure(p, config, *args, **kwargs)
+
+        # help() and inspect show what callers pass: ``frames`` (raw frames or a Prepared), not ``p``.
+        first, *rest = inspect.signature(measure).parameters.values()
+        frames = first.replace(name="frames", annotation="torch.Tensor | Prepared")
+        detect.__signature__ = inspect.signature(measure).replace(parameters=[frames, *rest])  # type: ignore[attr-defined]
+        DETECTORS[effect] = detect
+        return detect
+
+    return register
 
 
 def _burst_flags(r: torch.Tensor, min_db: float = 3.0, n_sigma: float = 8.0) -> tuple[torch.Tensor, torch.Tensor, float]:
@@ -257,19 +294,22 @@ def _per_rx(name: str, values: Sequence[float] | torch.Tensor) -> dict[str, floa
     return {f"{name}_rx{i + 1}": float(v) for i, v in enumerate(values)}
 
 
-def _peaks_1d(v: torch.Tensor, lo: int = 0) -> list[int]:
-    """Indices of local maxima of ``v`` from ``lo`` on, strongest first."""
-    k = torch.arange(v.numel(), device=v.device)
-    left = torch.cat([v[:1] - 1, v[:-1]])
-    right = torch.cat([v[1:], v[-1:] - 1])
-    is_pk = (v >= left) & (v >= right) & (k >= lo)
-    idx = k[is_pk]
-    order = torch.argsort(v[idx], descending=True)
-    return [int(i) for i in idx[order]]
+def _peaks(v: torch.Tensor, lo: int = 0, above: float = -math.inf) -> list[int]:
+    """Flat indices of the local maxima of a 1-D or 2-D ``v``, strongest first.
+
+    A local maximum is at least its 2 (1-D) or 8 (2-D) neighbours; only those over ``above`` and
+    from row ``lo`` on count.
+    """
+    v2 = v.reshape(v.shape[0], -1)  # a 1-D v as one column
+    pool = torch.nn.functional.max_pool2d(v2[None, None], 3, stride=1, padding=1)[0, 0]
+    rows = torch.arange(v2.shape[0], device=v.device)[:, None]
+    idx = torch.nonzero(((v2 >= pool) & (v2 > above) & (rows >= lo)).flatten()).flatten()
+    return [int(i) for i in idx[torch.argsort(v2.flatten()[idx], descending=True)]]
 
 
 # --------------------------------------------------------------------------- ADC clipping
-def detect_adc_clipping(frames: torch.Tensor | Prepared, config: RadarConfig,
+@_detector("adc_clipping")
+def detect_adc_clipping(p: Prepared, config: RadarConfig,
                         min_fraction: float = 1e-4, min_pileup: float = 4.0) -> Signature:
     """Samples piled up on the ADC rails.
 
@@ -280,7 +320,7 @@ def detect_adc_clipping(frames: torch.Tensor | Prepared, config: RadarConfig,
     what Gaussian noise clipped at the rails gives.
 
     Args:
-        frames: raw frames (SDK floats) or a :class:`Prepared`.
+        p: ``frames`` as called: the capture's raw frames (SDK floats) or a :class:`Prepared` of them.
         config: the capture's config.
         min_fraction: smallest clipped fraction reported as present.
         min_pileup: smallest ratio of rail-code count to the mean count of the 4 codes inside it.
@@ -290,7 +330,6 @@ def detect_adc_clipping(frames: torch.Tensor | Prepared, config: RadarConfig,
         ``fraction``, ``fraction_low``, ``fraction_high``, ``gaussian_fraction`` (the Gaussian's
         prediction), ``pileup`` (rail code over neighbour codes, the larger rail).
     """
-    p = _prep(frames, config)
     c = torch.round(p.counts).clamp(0, p.full).transpose(0, 1).reshape(p.shape[1], -1)  # (R, n)
     n = c.shape[1]
     lo = (c <= 0).double().sum(dim=1)
@@ -315,7 +354,8 @@ def detect_adc_clipping(frames: torch.Tensor | Prepared, config: RadarConfig,
 
 
 # --------------------------------------------------------------------------- phase noise
-def detect_phase_noise(frames: torch.Tensor | Prepared, config: RadarConfig, guard: int = 5,
+@_detector("phase_noise", min_rx=2, min_chirps=8)
+def detect_phase_noise(p: Prepared, config: RadarConfig, guard: int = 5,
                        width: int = 40, min_z: float = 8.0, min_snr_db: float = 30.0,
                        line_db: float = 10.0, min_alignment: float = 0.9,
                        min_excess_db: float | None = 3.0) -> Signature:
@@ -335,7 +375,7 @@ def detect_phase_noise(frames: torch.Tensor | Prepared, config: RadarConfig, gua
     scaled back to the band's width.
 
     Args:
-        frames: raw frames or a :class:`Prepared`.
+        p: ``frames`` as called: the capture's raw frames (SDK floats) or a :class:`Prepared` of them.
         config: the capture's config.
         guard: nearest range-bin offset from the carrier counted in the skirt.
         width: farthest range-bin offset counted.
@@ -360,10 +400,7 @@ def detect_phase_noise(frames: torch.Tensor | Prepared, config: RadarConfig, gua
         the skirt's core and far tail), ``declared_skirt_dBc``, ``excess_dB`` (skirt over the
         declared one).
     """
-    p = _prep(frames, config)
     F, R, M, N = p.shape
-    if R < 2 or M < 8:
-        return Signature("phase_noise", 0.0, False, {}, "needs at least 2 RX and 8 chirps")
     keep = (~p.burst_mask).to(torch.float64)  # (F, M)
     n_keep = float(keep.sum())
     C = p.static_bh4.mean(dim=0)  # (R, K) coherent static spectrum
@@ -378,10 +415,9 @@ def detect_phase_noise(frames: torch.Tensor | Prepared, config: RadarConfig, gua
         Dm = _rspec(p.counts - clean, p.bh4)
     floor = (Dm.abs().square() * keep[:, None, :, None]).sum(dim=(0, 2)) / max(n_keep, 1.0)  # (R, K)
     # Strongest static return past the near-DC bins (leakage, DC) with room for the skirt band.
-    cand = [k for k in _peaks_1d(pc, lo=3) if k + guard < K]
-    if not cand:
+    k0 = next((k for k in _peaks(pc, lo=3) if k + guard < K), None)
+    if k0 is None:
         return Signature("phase_noise", 0.0, False, {}, "no static return")
-    k0 = cand[0]
     snr = _db(pc[k0] / floor.mean(dim=0).median().clamp_min(_TINY))
     if snr < min_snr_db:
         return Signature("phase_noise", 0.0, False, {"carrier_snr_dB": snr},
@@ -396,9 +432,7 @@ def detect_phase_noise(frames: torch.Tensor | Prepared, config: RadarConfig, gua
     line = torch.nn.functional.max_pool1d(line.double().T[:, None], 5, stride=1, padding=2)[:, 0].T > 0
     use = (~line).double()
     scale = M / use.sum(dim=0).clamp_min(1.0)  # (K,) back to the full Doppler band
-    outer = torch.zeros(M, dtype=torch.float64, device=p.device)
-    dop = torch.fft.fftfreq(M, device=p.device)
-    outer[dop.abs() >= 0.25] = 1.0
+    outer = (torch.fft.fftfreq(M, device=p.device).abs() >= 0.25).double()  # outer half of the Doppler band
     offs = torch.arange(K, device=p.device) - k0
     band0 = (offs.abs() >= guard) & (offs.abs() <= width) & (torch.arange(K, device=p.device) >= 2)
     n_band = int(band0.sum())
@@ -409,23 +443,18 @@ def detect_phase_noise(frames: torch.Tensor | Prepared, config: RadarConfig, gua
     band = band0 & ~strong
     band_scale = n_band / max(int(band.sum()), 1)
     core = offs.abs() <= 4
-    num = torch.zeros((), dtype=torch.float64, device=p.device)
-    num_o = torch.zeros_like(num)
-    mag = torch.zeros_like(num)
-    den = torch.zeros_like(num)
-    var = torch.zeros_like(num)
-    for i in range(R):
-        for j in range(i + 1, R):
-            # Carrier's inter-RX phase: the skirt of a common LO carries it too.
-            cij = (C[i, core] * C[j, core].conj()).sum()
-            u = cij / cij.abs().clamp_min(_TINY)
-            xij = (X[:, i] * X[:, j].conj()).mean(dim=0) * use  # (M, K) complex
-            zij = (xij.sum(dim=0) * scale)[band].sum() / enbw_d
-            num = num + (zij * u.conj()).real
-            num_o = num_o + (((xij * outer[:, None]).sum(dim=0) * scale)[band].sum() / enbw_d * u.conj()).real
-            mag = mag + zij.abs()
-            den = den + cij.abs()
-            var = var + (floor[i, band] * floor[j, band]).sum() / (2 * max(n_keep, 1.0))
+    i, j = torch.triu_indices(R, R, 1, device=p.device)  # every RX pair (P of them), summed below
+    # Carrier's inter-RX phase: the skirt of a common LO carries it too.
+    cij = (C[i][:, core] * C[j][:, core].conj()).sum(dim=-1)  # (P,)
+    u = cij / cij.abs().clamp_min(_TINY)
+    xij = (X[:, i] * X[:, j].conj()).mean(dim=0) * use  # (P, M, K) complex
+    zij = (xij.sum(dim=1) * scale)[:, band].sum(dim=-1) / enbw_d
+    zij_outer = ((xij * outer[:, None]).sum(dim=1) * scale)[:, band].sum(dim=-1) / enbw_d
+    num = (zij * u.conj()).real.sum()
+    num_o = (zij_outer * u.conj()).real.sum()
+    mag = zij.abs().sum()
+    den = cij.abs().sum()
+    var = ((floor[i][:, band] * floor[j][:, band]).sum(dim=-1) / (2 * max(n_keep, 1.0))).sum()
     # Something common to the RX but arriving from elsewhere (an interferer) has another phase.
     alignment = float(num / mag.clamp_min(_TINY))
     z = float(num / var.sqrt().clamp_min(_TINY))
@@ -474,7 +503,8 @@ def declared_skirt_dBc(config: RadarConfig, tau_s: float, offsets: torch.Tensor)
 
 
 # --------------------------------------------------------------------------- spur tone
-def detect_spur_tone(frames: torch.Tensor | Prepared, config: RadarConfig, min_db: float = 15.0,
+@_detector("spur_tone", min_chirps=4)
+def detect_spur_tone(p: Prepared, config: RadarConfig, min_db: float = 15.0,
                      min_frames: float = 0.9, max_cv: float = 0.25, mirror_db: float = 10.0,
                      max_migration_bins: float = 0.3) -> Signature:
     """A single persistent line off zero Doppler with a constant amplitude.
@@ -487,7 +517,7 @@ def detect_spur_tone(frames: torch.Tensor | Prepared, config: RadarConfig, min_d
     (1/40 bin), the aliasing fixed by the Doppler bin; the amplitude from the same DFT.
 
     Args:
-        frames: raw frames or a :class:`Prepared`.
+        p: ``frames`` as called: the capture's raw frames (SDK floats) or a :class:`Prepared` of them.
         config: the capture's config.
         min_db: smallest line height over its range bin's median Doppler power (frame average).
         min_frames: share of frames in which the line must stand 6 dB over the floor.
@@ -503,24 +533,18 @@ def detect_spur_tone(frames: torch.Tensor | Prepared, config: RadarConfig, min_d
         convention), ``range_bin``, ``doppler_bin`` (centred), ``frames_fraction``, ``cv``,
         ``mirror_dB`` (mirror line height), ``rx_spread_dB``, ``migration_bins``.
     """
-    p = _prep(frames, config)
     F, R, M, N = p.shape
-    if M < 4:
-        return Signature("spur_tone", 0.0, False, {}, "needs at least 4 chirps")
     X, Pm, floor = p.doppler
     c = M // 2
     E = Pm / floor
     E[:, max(c - 1, 0): c + 2] = 0  # zero Doppler: static returns' residue, not a spur
     E[:1] = 0
     # Candidates: 2-D local maxima (a strong line fills its neighbour cells too).
-    pool = torch.nn.functional.max_pool2d(E[None, None], 3, stride=1, padding=1)[0, 0]
-    is_pk = (E >= pool) & (E > 0)
-    flat = torch.nonzero(is_pk.flatten()).flatten()
-    flat = flat[torch.argsort(E.flatten()[flat], descending=True)][:8]
+    flat = _peaks(E, above=0.0)[:8]
     K = E.shape[0]
     n = torch.arange(N, dtype=torch.float64, device=p.device)
     first: Signature | None = None
-    for idx in flat.tolist():
+    for idx in flat:
         k, d = divmod(idx, M)
         h = _db(E[k, d])
         if h < min_db:
@@ -566,9 +590,7 @@ def detect_spur_tone(frames: torch.Tensor | Prepared, config: RadarConfig, min_d
         if present:
             return sig
         first = first or sig
-    if first is not None:
-        return first
-    return Signature("spur_tone", 0.0, False, {}, "no line off zero Doppler")
+    return first or Signature("spur_tone", 0.0, False, {}, "no line off zero Doppler")
 
 
 # --------------------------------------------------------------------------- IF high-pass
@@ -600,7 +622,8 @@ def _hp_fit(f: torch.Tensor, psd: torch.Tensor, fcs: torch.Tensor, orders: torch
     return err.square().mean(dim=-1).sqrt(), coef
 
 
-def detect_if_highpass(frames: torch.Tensor | Prepared, config: RadarConfig, min_gain_db: float = 0.3,
+@_detector("if_highpass", min_chirps=2)
+def detect_if_highpass(p: Prepared, config: RadarConfig, min_gain_db: float = 0.3,
                        max_fit_Hz: float | None = None) -> Signature:
     """The IF high-pass's cutoff and order, from the shape of the noise floor.
 
@@ -614,7 +637,7 @@ def detect_if_highpass(frames: torch.Tensor | Prepared, config: RadarConfig, min
     cutoff or order differs.
 
     Args:
-        frames: raw frames or a :class:`Prepared`.
+        p: ``frames`` as called: the capture's raw frames (SDK floats) or a :class:`Prepared` of them.
         config: the capture's config.
         min_gain_db: smallest RMS improvement of the free fit over the nominal one.
         max_fit_Hz: top of the fitted band (default ``min(0.3 fs, 6 x nominal cutoff)``).
@@ -624,22 +647,16 @@ def detect_if_highpass(frames: torch.Tensor | Prepared, config: RadarConfig, min
         ``order``, ``misfit_dB``, ``nominal_misfit_dB``, ``hp_over_floor_dB`` (high-passed noise
         over the flat floor at the top of the band: the high-pass is only visible when > 0).
     """
-    p = _prep(frames, config)
     F, R, M, N = p.shape
-    if M < 2:
-        return Signature("if_highpass", 0.0, False, {}, "needs at least 2 chirps")
-    x = p.counts
-    keep = (~p.burst_mask)
-    pair_ok = (keep[:, 1:] & keep[:, :-1])  # (F, M-1)
-    dd = _rspec(x[:, :, 1:] - x[:, :, :-1], p.bh4)  # (F, R, M-1, K)
+    keep = ~p.burst_mask
+    sel = (keep[:, 1:] & keep[:, :-1]).flatten()  # chirp pairs without a burst, (F (M-1),)
+    dd = _rspec(p.counts.diff(dim=2), p.bh4)  # (F, R, M-1, K)
     K = dd.shape[-1]
-    pw = dd.abs().square()
-    sel = pair_ok.flatten()
-    pw_sel = pw.permute(1, 3, 0, 2).reshape(R, K, -1)[:, :, sel]
+    ddk = dd.permute(1, 3, 0, 2).reshape(R, K, -1)[:, :, sel]  # (R, K, kept pairs)
+    pw_sel = ddk.abs().square()
     psd = pw_sel.median(dim=-1).values.mean(dim=0) / math.log(2)  # (K,)
     if R > 1:
         # Remove what is common to the RX (the thermal floor is independent between them).
-        ddk = dd.permute(1, 3, 0, 2).reshape(R, K, -1)[:, :, sel]
         pairs = list(itertools.combinations(range(R), 2))
         coh = sum((ddk[i] * ddk[j].conj()).mean(dim=-1).abs() for i, j in pairs)
         # The mean power (not the median) is what the cross spectrum compares with.
@@ -681,7 +698,8 @@ def detect_if_highpass(frames: torch.Tensor | Prepared, config: RadarConfig, min
 
 
 # --------------------------------------------------------------------------- RX mismatch
-def detect_rx_gain_phase_mismatch(frames: torch.Tensor | Prepared, config: RadarConfig,
+@_detector("rx_gain_phase_mismatch", min_rx=2)
+def detect_rx_gain_phase_mismatch(p: Prepared, config: RadarConfig,
                                   min_gain_db: float = 0.5, max_spread_db: float = 1.0,
                                   min_noise_share: float = 0.4, min_snr_db: float = 20.0) -> Signature:
     """A per-RX gain that scales the static returns and the noise alike.
@@ -694,7 +712,7 @@ def detect_rx_gain_phase_mismatch(frames: torch.Tensor | Prepared, config: Radar
     tested: without a scene they cannot be told from the angle of arrival.
 
     Args:
-        frames: raw frames or a :class:`Prepared`.
+        p: ``frames`` as called: the capture's raw frames (SDK floats) or a :class:`Prepared` of them.
         config: the capture's config.
         min_gain_db: smallest |gain| (static returns) reported as a mismatch.
         max_spread_db: largest spread of the ratio over the static returns (MAD x 1.48).
@@ -707,10 +725,7 @@ def detect_rx_gain_phase_mismatch(frames: torch.Tensor | Prepared, config: Radar
         ``static_gain_dB_rx{i}``, ``noise_gain_dB_rx{i}``, ``phase_rad_rx{i}``, ``spread_dB``,
         ``num_returns``.
     """
-    p = _prep(frames, config)
     F, R, M, N = p.shape
-    if R < 2:
-        return Signature("rx_gain_phase_mismatch", 0.0, False, {}, "needs at least 2 RX")
     floor = p.floor_hann  # (R, K)
     K = floor.shape[1]
     mid = slice(max(K // 4, 2), max(3 * K // 4, 3))
@@ -719,7 +734,7 @@ def detect_rx_gain_phase_mismatch(frames: torch.Tensor | Prepared, config: Radar
     pc = C.abs().square()
     pcm = pc.mean(dim=0)
     fl = floor.mean(dim=0)
-    peaks = [k for k in _peaks_1d(pcm, lo=3) if float(pcm[k] / fl[k]) > 10 ** (min_snr_db / 10)]
+    peaks = [k for k in _peaks(pcm, lo=3) if float(pcm[k] / fl[k]) > 10 ** (min_snr_db / 10)]
     peaks = [k for k in peaks if float(pcm[k]) > float(pcm[peaks[0]]) * 1e-3][:12] if peaks else []
     params = {"num_returns": float(len(peaks)), **_per_rx("noise_gain_dB", g_noise)}
     if not peaks:
@@ -777,7 +792,8 @@ def declared_leakage_dBFS(config: RadarConfig, bins: int = 3) -> tuple[float, ..
     return tuple(_db(v) for v in pw)
 
 
-def detect_tx_rx_leakage(frames: torch.Tensor | Prepared, config: RadarConfig, bins: int = 3,
+@_detector("tx_rx_leakage")
+def detect_tx_rx_leakage(p: Prepared, config: RadarConfig, bins: int = 3,
                          min_chirp_snr_db: float = 0.0, min_coherence: float = 0.9,
                          max_clipped: float = 1e-3, max_declared_db: float | None = 15.0) -> Signature:
     """A coherent return at near-zero beat frequency: the on-chip/in-package TX->RX coupling.
@@ -794,7 +810,7 @@ def detect_tx_rx_leakage(frames: torch.Tensor | Prepared, config: RadarConfig, b
     not matter).
 
     Args:
-        frames: raw frames or a :class:`Prepared`.
+        p: ``frames`` as called: the capture's raw frames (SDK floats) or a :class:`Prepared` of them.
         config: the capture's config.
         bins: near-DC range bins counted.
         min_chirp_snr_db: smallest near-DC power over the per-chirp noise in those bins (dB).
@@ -814,7 +830,6 @@ def detect_tx_rx_leakage(frames: torch.Tensor | Prepared, config: RadarConfig, b
         ``excess_dB`` (largest |level - declared| over the RX where it is visible),
         ``chirp_snr_dB``, ``coherence``, ``clipped_fraction``.
     """
-    p = _prep(frames, config)
     F, R, M, N = p.shape
     S = p.static_bh4[..., 1:bins]  # (F, R, bins - 1); bin 0 is the DC, removed
     mean_s = S.mean(dim=0)  # (R, bins)
@@ -834,8 +849,7 @@ def detect_tx_rx_leakage(frames: torch.Tensor | Prepared, config: RadarConfig, b
         decl = declared_leakage_dBFS(config, bins)
         dev = [params[f"level_dBFS_rx{r + 1}"] - decl[r] for r in range(R) if float(snr[r]) >= min_chirp_snr_db]
         excess = max(dev, key=abs) if dev else 0.0
-        params.update(_per_rx("declared_dBFS", decl))
-        params["excess_dB"] = excess
+        params |= {**_per_rx("declared_dBFS", decl), "excess_dB": excess}
         if present and abs(excess) <= max_declared_db:
             return Signature("tx_rx_leakage", 0.0, False, params,
                              f"near-DC coherent return {float(snr[i]):.1f} dB over the per-chirp noise, "
@@ -855,7 +869,8 @@ def detect_tx_rx_leakage(frames: torch.Tensor | Prepared, config: RadarConfig, b
 
 
 # --------------------------------------------------------------------------- interference
-def detect_interference(frames: torch.Tensor | Prepared, config: RadarConfig, min_bursts: int = 2,
+@_detector("interference")
+def detect_interference(p: Prepared, config: RadarConfig, min_bursts: int = 2,
                         min_wideband: float = 0.2) -> Signature:
     """Bursts: a few chirps whose power (static part removed) stands far above their frame's other chirps.
 
@@ -869,7 +884,7 @@ def detect_interference(frames: torch.Tensor | Prepared, config: RadarConfig, mi
     the share of range bins a flagged chirp raises by 3 dB is reported (``min_wideband``).
 
     Args:
-        frames: raw frames or a :class:`Prepared`.
+        p: ``frames`` as called: the capture's raw frames (SDK floats) or a :class:`Prepared` of them.
         config: the capture's config.
         min_bursts: fewest flagged chirps to report the effect.
         min_wideband: smallest median share of range bins raised by 3 dB in flagged chirps.
@@ -880,7 +895,6 @@ def detect_interference(frames: torch.Tensor | Prepared, config: RadarConfig, mi
         ``wideband`` (share of range bins raised), ``amplitude_counts`` and ``duration_s``
         (Hann-burst equivalents: energy ``A^2 / 2 * 3/8 * duration * fs``).
     """
-    p = _prep(frames, config)
     F, R, M, N = p.shape
     flags, ex_db, mad = _burst_flags(p.chirp_wideband)
     nb = int(flags.sum())
@@ -920,7 +934,8 @@ def _beta_from_ratio(r: float) -> float:
     return float(_BETA[i])
 
 
-def detect_vibrating_clutter(frames: torch.Tensor | Prepared, config: RadarConfig, min_db: float = 10.0,
+@_detector("vibrating_clutter", min_chirps=8)
+def detect_vibrating_clutter(p: Prepared, config: RadarConfig, min_db: float = 10.0,
                              max_asym_db: float = 3.0, min_carrier_db: float = 20.0,
                              min_lock: float = 0.5) -> Signature:
     """A symmetric pair of Doppler lines around a static return: a vibrating object.
@@ -934,7 +949,7 @@ def detect_vibrating_clutter(frames: torch.Tensor | Prepared, config: RadarConfi
     +-2 range bins), both with Hann windows, gives ``(J1/J0)^2`` and hence ``beta``.
 
     Args:
-        frames: raw frames or a :class:`Prepared`.
+        p: ``frames`` as called: the capture's raw frames (SDK floats) or a :class:`Prepared` of them.
         config: the capture's config.
         min_db: both lines this far over their range bin's median Doppler power.
         max_asym_db: largest level difference of the two lines.
@@ -947,10 +962,7 @@ def detect_vibrating_clutter(frames: torch.Tensor | Prepared, config: RadarConfi
         ``vibration_Hz``, ``displacement_m``, ``beta``, ``sideband_dBc`` (one line over the carrier),
         ``range_m``, ``range_bin``, ``doppler_bin``, ``asymmetry_dB``, ``phase_lock``.
     """
-    p = _prep(frames, config)
     F, R, M, N = p.shape
-    if M < 8:
-        return Signature("vibrating_clutter", 0.0, False, {}, "needs at least 8 chirps")
     X, Pm, floor = p.doppler
     K = Pm.shape[0]
     c = M // 2
@@ -958,9 +970,7 @@ def detect_vibrating_clutter(frames: torch.Tensor | Prepared, config: RadarConfi
     pc = p.static_hann.abs().square().mean(dim=(0, 1))  # (K,)
     # The noise level over all range bins: the vibrating bin's own floor holds the modulation.
     fl = p.floor_hann.mean(dim=0).median()
-    j = torch.arange(2, c - 1, device=p.device)
-    if j.numel() == 0:
-        return Signature("vibrating_clutter", 0.0, False, {}, "too few chirps")
+    j = torch.arange(2, c - 1, device=p.device)  # not empty: M >= 8
     up, dn = E[:, c + j], E[:, c - j]  # (K, J)
     weak = torch.minimum(up, dn)
     asym = (10 * torch.log10(up / dn)).abs()
@@ -1010,7 +1020,8 @@ def detect_vibrating_clutter(frames: torch.Tensor | Prepared, config: RadarConfi
 
 
 # --------------------------------------------------------------------------- frame drift
-def detect_frame_drift(frames: torch.Tensor | Prepared, config: RadarConfig, min_dc_counts: float = 0.5,
+@_detector("frame_drift", min_frames=4)
+def detect_frame_drift(p: Prepared, config: RadarConfig, min_dc_counts: float = 0.5,
                        min_gain_db: float = 0.15, min_f: float = 4.0, min_snr_db: float = 20.0,
                        max_returns: int = 4, min_gain_z: float = 3.0) -> Signature:
     """The DC level (per RX) or the gain (common to the RX) wandering from frame to frame.
@@ -1024,7 +1035,7 @@ def detect_frame_drift(frames: torch.Tensor | Prepared, config: RadarConfig, min
     front of the radar moves only their own return; noise is independent between returns).
 
     Args:
-        frames: raw frames or a :class:`Prepared`.
+        p: ``frames`` as called: the capture's raw frames (SDK floats) or a :class:`Prepared` of them.
         config: the capture's config.
         min_dc_counts: smallest DC drift RMS (counts) reported.
         min_gain_db: smallest gain drift RMS (dB) reported.
@@ -1039,10 +1050,7 @@ def detect_frame_drift(frames: torch.Tensor | Prepared, config: RadarConfig, min
         A :class:`Signature`; ``score`` is the larger variance ratio; ``params``: ``dc_rms_counts``,
         ``gain_rms_dB``, ``dc_f``, ``gain_f``, ``gain_z``, ``num_returns``.
     """
-    p = _prep(frames, config)
     F, R, M, N = p.shape
-    if F < 4:
-        return Signature("frame_drift", 0.0, False, {}, "needs at least 4 frames")
     # Chirp DC: Blackman-Harris-weighted mean, blind to every return beyond ~4 range bins (a
     # plain mean picks up each return that is not a whole number of cycles: a breathing chest at
     # 0.3 m moved the plain frame means by 1.9 counts RMS on a BGT60 recording, 0.06 here).
@@ -1059,26 +1067,24 @@ def detect_frame_drift(frames: torch.Tensor | Prepared, config: RadarConfig, min
     pcf = p.static_hann.abs().square()  # (F, R, K)
     pm = pcf.mean(dim=(0, 1))
     fl = p.floor_hann.mean(dim=0)
-    ks = [k for k in _peaks_1d(pm, lo=1) if float(pm[k] / fl[k].clamp_min(_TINY)) > 10 ** (min_snr_db / 10)]
+    ks = [k for k in _peaks(pm, lo=1) if float(pm[k] / fl[k].clamp_min(_TINY)) > 10 ** (min_snr_db / 10)]
     ks = ks[:max_returns]
     g_rms, g_f, g_z = 0.0, 0.0, 0.0
-    levels, var_exp = [], []
-    for k in ks:
-        a = 10 * torch.log10(pcf[:, :, k].clamp_min(_TINY))  # (F, R) dB
-        # Noise-explained spread of a return's level: sigma_dB ~ 4.34 * sqrt(2 noise / P) (small noise).
-        noise = p.floor_hann[:, k] / M  # per-frame mean's noise power
-        sig_n = 4.343 * torch.sqrt(2 * noise / pcf[:, :, k].mean(dim=0).clamp_min(_TINY))
-        levels.append(a.mean(dim=1))
-        var_exp.append(float(sig_n.square().mean()) / R)
+    # Each return's level per frame, dB, RX mean: one row per return.
+    levels = (10 * torch.log10(pcf[:, :, ks].clamp_min(_TINY))).mean(dim=1).T.contiguous()  # (returns, F)
+    # Noise-explained spread of a return's level: sigma_dB ~ 4.34 * sqrt(2 noise / P) (small noise),
+    # noise = the per-frame mean's noise power.
+    sig_n = 4.343 * torch.sqrt(2 * (p.floor_hann[:, ks] / M) / pcf[:, :, ks].mean(dim=0).clamp_min(_TINY))
+    var_exp = [float(v) / R for v in sig_n.square().mean(dim=0)]  # per return
     if len(levels) == 1:
         var_obs = float(levels[0].var())
         g_f = var_obs / max(var_exp[0], 1e-12)
         g_rms = math.sqrt(max(var_obs - var_exp[0], 0.0))  # 10 log10 |S|^2 is the amplitude in dB
         g_z = math.inf
-    elif levels:
+    elif len(levels) > 1:
         # The common gain's variance is the returns' mutual covariance (their noise is independent,
         # and so is the motion of one return); its standard error sqrt(var_i var_j / (F - 1)).
-        cov = torch.cov(torch.stack(levels))
+        cov = torch.cov(levels)
         n_ret = len(levels)
         off = ~torch.eye(n_ret, dtype=torch.bool, device=cov.device)
         g_var = float(cov[off].mean())
@@ -1099,19 +1105,6 @@ def detect_frame_drift(frames: torch.Tensor | Prepared, config: RadarConfig, min
 
 
 # --------------------------------------------------------------------------- all
-DETECTORS: dict[str, Callable[..., Signature]] = {
-    "adc_clipping": detect_adc_clipping,
-    "phase_noise": detect_phase_noise,
-    "spur_tone": detect_spur_tone,
-    "if_highpass": detect_if_highpass,
-    "rx_gain_phase_mismatch": detect_rx_gain_phase_mismatch,
-    "tx_rx_leakage": detect_tx_rx_leakage,
-    "interference": detect_interference,
-    "vibrating_clutter": detect_vibrating_clutter,
-    "frame_drift": detect_frame_drift,
-}
-"""Effect name -> detector ``(frames, config) -> Signature``."""
-
 SIGNATURE_EFFECTS = tuple(DETECTORS)
 """The catalog effects that have a detector, in the order :func:`detect_all` reports them."""
 
