@@ -84,29 +84,24 @@ class HDF5Capture(CaptureReader):
         regular_file_size(self.path, error=CaptureError, what="capture file")
         self._file = open_hdf5_readonly(self.path)
         try:
-            try:
-                self._load_metadata()
-                # Decompress the first and last frame now, so a damaged file fails at open time
-                # with a clear message rather than deep inside a DataLoader worker later.
-                self._read_counts(0, 1)
-                self._read_counts(self.num_frames - 1, self.num_frames)
-            except RadarAugError:
-                raise
-            except H5_ERRORS as e:
+            self._load_metadata(self._file)
+            # Decompress the first and last frame now, so a damaged file fails at open time
+            # with a clear message rather than deep inside a DataLoader worker later.
+            self._read_counts(0, 1)
+            self._read_counts(self.num_frames - 1, self.num_frames)
+        except BaseException as e:
+            self.close()
+            if isinstance(e, H5_ERRORS) and not isinstance(e, RadarAugError):
                 raise self._fail(
                     f"cannot read the HDF5 metadata ({type(e).__name__}: {e}); the file is damaged"
                 ) from None
-        except BaseException:
-            self.close()
             raise
 
     # ------------------------------------------------------------------ metadata
     def _fail(self, problem: str) -> CaptureError:
         return CaptureError(f"{self.path}: {problem}")
 
-    def _load_metadata(self) -> None:
-        f = self._file
-        assert f is not None
+    def _load_metadata(self, f: h5py.File) -> None:
         self.attrs = {}
         for key in list(f.attrs):
             try:
@@ -126,7 +121,7 @@ class HDF5Capture(CaptureReader):
                 f"unsupported format_version {version!r}; this radaraug reads {fmt.FORMAT_VERSION.split('.')[0]}.x"
             )
         self.config = self._load_config()
-        self._frames = self._load_frames()
+        self._frames = self._load_frames(f)
         # Frames past the writer's committed count may have no data on disk (a full disk or a
         # kill mid-append); they are never served. Within that count, a frame without stored data
         # (a file from another writer) is refused or cut off too (:meth:`_written_frames`).
@@ -143,8 +138,8 @@ class HDF5Capture(CaptureReader):
                 stacklevel=3,
             )
         self.num_frames = self._written_frames(self._frames, committed)
-        self.timestamps = self._load_timestamps()
-        self.labels = self._load_labels()
+        self.timestamps = self._load_timestamps(f)
+        self.labels = self._load_labels(f)
 
     def _load_config(self) -> RadarConfig:
         text = self.attrs.get("radar_config")
@@ -243,9 +238,7 @@ class HDF5Capture(CaptureReader):
             )
         return w
 
-    def _load_frames(self) -> h5py.Dataset:
-        f = self._file
-        assert f is not None
+    def _load_frames(self, f: h5py.File) -> h5py.Dataset:
         frames = self._dataset(f, fmt.FRAMES, fmt.FRAMES)
         if not isinstance(frames, h5py.Dataset):
             raise self._fail(f"has no '{fmt.FRAMES}' dataset")
@@ -256,9 +249,7 @@ class HDF5Capture(CaptureReader):
             raise self._fail(f"'{fmt.FRAMES}' has {problem}")
         return frames
 
-    def _load_timestamps(self) -> np.ndarray | None:
-        f = self._file
-        assert f is not None
+    def _load_timestamps(self, f: h5py.File) -> np.ndarray | None:
         ds = self._dataset(f, fmt.TIMESTAMPS, fmt.TIMESTAMPS)
         if ds is None:
             return None
@@ -286,9 +277,7 @@ class HDF5Capture(CaptureReader):
             return None
         return ts
 
-    def _load_labels(self) -> dict[str, np.ndarray]:
-        f = self._file
-        assert f is not None
+    def _load_labels(self, f: h5py.File) -> dict[str, np.ndarray]:
         n = self.num_frames
         # File-level labels first (the JSON ``labels``, then ``label_<name>`` attributes); per-frame
         # datasets of the same name override them.

@@ -172,7 +172,8 @@ class CaptureWriter:
         self._publish_on_close = publish == "close"
         self._schema = self._check_schema(labels_schema) if labels_schema is not None else None
         file_attrs = self._file_attrs(attrs or {})
-        self._check_space(expected_frames)
+        if expected_frames is not None:
+            check_free_space(self.path, config, expected_frames)
         if self.path.is_dir():
             raise CaptureError(f"{self.path}: is a folder; cannot create a capture file there")
         # With publish="close", an existing file is only ever replaced whole, by a rename.
@@ -208,16 +209,19 @@ class CaptureWriter:
             self._written = self._file.create_dataset(fmt.FRAMES_WRITTEN, data=np.zeros(1, np.int64))
             self._file.flush()
         except BaseException as e:
-            if isinstance(e, (OSError, RuntimeError)):
-                self._failed = _short_reason(e)  # a full disk already: drop what HDF5 cannot write
-            self._abort()
-            if isinstance(e, (OSError, RuntimeError)):
-                raise CaptureError(f"{self.path}: cannot create capture file ({self._failed})") from None
+            self._setup_failed(e, "create capture file", (OSError, RuntimeError))
             raise
 
-    def _check_space(self, frames: int | None, existing: int = 0) -> None:
-        if frames is not None:
-            check_free_space(self.path, self.config, frames, existing=existing)
+    def _setup_failed(self, err: BaseException, doing: str, wrapped: tuple[type[Exception], ...]) -> None:
+        """Close after ``__init__`` or :meth:`resume` failed; raise errors of the ``wrapped`` kinds as CaptureError.
+
+        The caller re-raises any other error itself.
+        """
+        if isinstance(err, (OSError, RuntimeError)):
+            self._failed = _short_reason(err)  # e.g. a full disk: drop what HDF5 cannot write
+        self._abort()
+        if isinstance(err, wrapped) and not isinstance(err, CaptureError):
+            raise CaptureError(f"{self.path}: cannot {doing} ({_short_reason(err)})") from None
 
     # ------------------------------------------------------------------ setup
     def _check_schema(self, schema: Mapping[str, Any]) -> dict[str, np.dtype]:
@@ -334,7 +338,8 @@ class CaptureWriter:
             raise CaptureError(f"{self.path}: no capture file to resume")
         self._lock_fd = hold_writer_lock(self.path, reset_flags=True)
         try:
-            self._check_space(expected_frames, existing=self.path.stat().st_size)
+            if expected_frames is not None:
+                check_free_space(self.path, config, expected_frames, existing=self.path.stat().st_size)
             try:
                 f = h5py.File(self.path, "a", libver="latest", locking=False)
             except (OSError, RuntimeError) as e:
@@ -348,31 +353,25 @@ class CaptureWriter:
                 raise CaptureError(f"{self.path}: was recorded with another radar config; cannot resume it")
             self._frames = f[fmt.FRAMES]
             self._n = committed_frame_count(f, int(self._frames.shape[0]))
-            if self._frames.shape[0] > self._n:
-                self._frames.resize((self._n, *self._frames.shape[1:]))
             self._has_timestamps = fmt.TIMESTAMPS in f
             group = f.get(fmt.LABELS_GROUP)
             labels = dict(group.items()) if group is not None else {}
             self._schema = {name: ds.dtype for name, ds in labels.items()}
-            started = self._has_timestamps or group is not None
-            for ds in ([f[fmt.TIMESTAMPS]] if self._has_timestamps else []) + list(labels.values()):
+            # Frames first: a kill in between leaves timestamps and labels ahead of them (the reader trims).
+            timestamps = [f[fmt.TIMESTAMPS]] if self._has_timestamps else []
+            for ds in [self._frames, *timestamps, *labels.values()]:
                 if ds.shape[0] > self._n:
-                    ds.resize((self._n,))
-            if fmt.FRAMES_WRITTEN in f:  # files of format 1.0 get the count now (SWMR cannot add it later)
-                self._written = f[fmt.FRAMES_WRITTEN]
-                self._written[0] = self._n
-            else:
-                self._written = f.create_dataset(fmt.FRAMES_WRITTEN, data=np.array([self._n], np.int64))
-            if started:
+                    ds.resize(self._n, axis=0)
+            if fmt.FRAMES_WRITTEN not in f:  # files of format 1.0 get the count now (SWMR cannot add it later)
+                f.create_dataset(fmt.FRAMES_WRITTEN, data=np.zeros(1, np.int64))
+            self._written = f[fmt.FRAMES_WRITTEN]
+            self._written[0] = self._n
+            if self._has_timestamps or group is not None:
                 f.swmr_mode = True
-            self._started = started
+                self._started = True
             f.flush()
         except BaseException as e:
-            if isinstance(e, (OSError, RuntimeError)):
-                self._failed = _short_reason(e)  # e.g. a full disk: drop what HDF5 cannot write
-            self._abort()
-            if isinstance(e, (OSError, RuntimeError, KeyError, ValueError)) and not isinstance(e, CaptureError):
-                raise CaptureError(f"{self.path}: cannot resume this capture ({e})") from None
+            self._setup_failed(e, "resume this capture", (OSError, RuntimeError, KeyError, ValueError))
             raise
         return self
 
