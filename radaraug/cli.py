@@ -62,7 +62,7 @@ import json
 import math
 import os
 import sys
-from collections.abc import Callable, Iterator, Sequence
+from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any, TypeAlias
 
@@ -90,14 +90,11 @@ def _print_json(data: object) -> None:
     print(json.dumps(data, default=str))
 
 
-@contextlib.contextmanager
-def _stdout_for(args: argparse.Namespace) -> Iterator[None]:
+def _stdout_for(args: argparse.Namespace) -> contextlib.AbstractContextManager[Any]:
     """With ``--json``, everything the work prints goes to stderr, so stdout holds only the JSON."""
     if getattr(args, "json", False):
-        with contextlib.redirect_stdout(sys.stderr):
-            yield
-    else:
-        yield
+        return contextlib.redirect_stdout(sys.stderr)
+    return contextlib.nullcontext()
 
 
 def _deprecated(command: str, old: str, new: str) -> None:
@@ -436,7 +433,9 @@ REPRODUCE_OUTPUTS = ("report.md", "report.json", "runs", "figures", "cache", "pr
 
 
 def _cmd_reproduce(args: argparse.Namespace) -> Result:
-    from radaraug.training.reproduce import parse_test_arg, reproduce
+    from dataclasses import replace
+
+    from radaraug.training.reproduce import ReproduceSettings, parse_test_arg, reproduce
 
     test = [parse_test_arg(t) for t in args.test] if args.test else None
     accelerator = args.accelerator
@@ -447,10 +446,6 @@ def _cmd_reproduce(args: argparse.Namespace) -> Result:
     with _stdout_for(args):
         settings = None
         if args.representation is not None:
-            from dataclasses import replace
-
-            from radaraug.training.reproduce import ReproduceSettings
-
             base = ReproduceSettings.quick() if args.quick else ReproduceSettings.full()
             settings = replace(base, representation=args.representation)
         report = reproduce(args.output, quick=args.quick, seeds=args.seeds, calibration=args.calibration,
@@ -794,19 +789,16 @@ def _run(func: Callable[..., Result], *args: Any) -> int:
         result = func(*args)
         if isinstance(result, dict):
             _print_json(result)
-            result = 0
-        code = int(result or 0)
+            result = EXIT_OK
         sys.stdout.flush()  # a closed pipe shows up here, not at interpreter exit
-        return code
+        return int(result or 0)
     except BrokenPipeError:
         # The reader of our stdout went away (`| head`): stop quietly. Point stdout at /dev/null so
         # the interpreter's final flush does not raise again (Python's documented recipe).
-        try:
+        with contextlib.suppress(OSError, ValueError):
             devnull = os.open(os.devnull, os.O_WRONLY)
             os.dup2(devnull, sys.stdout.fileno())
             os.close(devnull)
-        except (OSError, ValueError):
-            pass
         return EXIT_BROKEN_PIPE
     except KeyboardInterrupt:
         print("interrupted", file=sys.stderr)
