@@ -25,9 +25,8 @@ import torch
 
 from radaraug.capture.base import Frame, RadarDevice
 from radaraug.config import RadarConfig
-from radaraug.io.blocks import BLOCK_FRAMES, block_of, frame_times
+from radaraug.io.blocks import BLOCK_FRAMES, block_of
 from radaraug.scene.scene import Scene
-from radaraug.sim.seeding import Stream, item_generator
 
 if TYPE_CHECKING:
     from radaraug.sim.twin import DigitalTwin
@@ -95,10 +94,9 @@ class VirtualSensor(RadarDevice):
     @property
     def info(self) -> dict[str, Any]:
         """``kind`` ``"virtual"``, ``name`` and the settings a frame depends on (scene, seed, profile...)."""
-        if self.profile is None or isinstance(self.profile, (str, os.PathLike)):
-            profile = None if self.profile is None else str(self.profile)
-        else:
-            profile = "given as an object"
+        profile = self.profile
+        if profile is not None:
+            profile = str(profile) if isinstance(profile, (str, os.PathLike)) else "given as an object"
         return {"kind": "virtual", "name": f"virtual sensor ({self.scene.name})", "scene": self.scene.name,
                 "seed": self.seed, "realtime": self.realtime, "block_frames": BLOCK_FRAMES, "profile": profile}
 
@@ -158,13 +156,14 @@ class VirtualSensor(RadarDevice):
         return self._block[1][k - block * BLOCK_FRAMES]
 
     def _simulate_block(self, block: int) -> torch.Tensor:
+        from radaraug.sim.offline import simulate_frames
+
         twin = self._twin
         assert twin is not None
         first = block * BLOCK_FRAMES
-        times = frame_times(first, first + BLOCK_FRAMES, self.config.frame_repetition_time_s)
-        gen = item_generator(self.seed, block, stream=Stream.BLOCK_NOISE, device=self.device)
         with torch.no_grad():
-            x = twin.simulate(self.scene.people, times, generators=gen)
+            _, x = simulate_frames(twin, self.scene.people, first, first + BLOCK_FRAMES, self.seed, block,
+                                   self.device)
         return x.detach().to("cpu", torch.float32).contiguous()
 
     def __repr__(self) -> str:

@@ -52,6 +52,7 @@ from radaraug.heldout.receiver import _check_effects, _chirp_times, generate
 from radaraug.io.generated_set import (
     GeneratedTestSet,
     check_count_arg,
+    check_people_counts,
     load_generated_set,
     reusable_generated_set,
     start_generated_set,
@@ -352,11 +353,7 @@ def make_independent_proxy(
     frames_per_count = check_count_arg("make_independent_proxy", "frames_per_count", frames_per_count, 1)
     calibration_frames = check_count_arg("make_independent_proxy", "calibration_frames", calibration_frames, 1)
     seed = check_count_arg("make_independent_proxy", "seed", seed, 0)
-    counts = tuple(counts)
-    if not counts or len(set(counts)) != len(counts) or any(
-            isinstance(c, bool) or not isinstance(c, (int, np.integer)) or c not in (0, 1, 2) for c in counts):
-        raise ConfigError(f"make_independent_proxy: counts must be distinct values among 0, 1, 2, got {counts!r}")
-    counts = tuple(int(c) for c in counts)
+    counts = check_people_counts("make_independent_proxy", counts)
     if isinstance(standing_probability, bool) or not isinstance(standing_probability, (int, float)) \
             or not 0.0 <= float(standing_probability) <= 1.0:
         raise ConfigError(f"make_independent_proxy: standing_probability must be in [0, 1], got {standing_probability!r}")

@@ -60,6 +60,15 @@ def check_count_arg(who: str, name: str, value: Any, lo: int) -> int:
     return int(value)
 
 
+def check_people_counts(who: str, counts: Any) -> tuple[int, ...]:
+    """``counts`` as distinct ints among 0, 1, 2 (one test file each), else ConfigError naming ``who``."""
+    got = tuple(counts)
+    if not got or len(set(got)) != len(got) or any(
+            isinstance(c, bool) or not isinstance(c, (int, np.integer)) or c not in (0, 1, 2) for c in got):
+        raise ConfigError(f"{who}: counts must be distinct values among 0, 1, 2, got {got!r}")
+    return tuple(int(c) for c in got)
+
+
 def test_file_name(count: int) -> str:
     """The file name of a generated set's capture of ``count`` people."""
     return f"test_count{count}.h5"
@@ -120,6 +129,5 @@ def start_generated_set(out: Path, manifest_name: str) -> Path:
     """Create ``out`` and remove its manifest (the set is incomplete until a new one is written); its path."""
     out.mkdir(parents=True, exist_ok=True)
     manifest = out / manifest_name
-    if manifest.exists():
-        manifest.unlink()
+    manifest.unlink(missing_ok=True)
     return manifest

@@ -56,6 +56,18 @@ def parse_shard(text: str | None) -> tuple[int, int]:
     return i, n
 
 
+def torch_device_type(device: Any, who: str = "") -> str:
+    """The type (``cpu``, ``cuda``...) of torch device ``device``; ``who`` prefixes the error.
+
+    Raises:
+        ConfigError: ``device`` is not a torch device.
+    """
+    try:
+        return torch.device(device).type
+    except (RuntimeError, TypeError):
+        raise ConfigError(f"{who}device {device!r}: not a torch device (use cpu, cuda or cuda:N)") from None
+
+
 def shard_range(num_frames: int, shard: tuple[int, int], block: int = BLOCK_FRAMES) -> tuple[int, int]:
     """Frames ``[start, stop)`` of ``shard`` (block-aligned so blocks never straddle shards)."""
     i, n = shard
@@ -72,18 +84,40 @@ def shard_path(out: str | os.PathLike, shard: tuple[int, int]) -> Path:
     return out.with_name(f"{out.stem}.shard-{shard[0]}-of-{shard[1]}{out.suffix or '.h5'}")
 
 
-def people_inside(twin: DigitalTwin, people: list[Any], times: torch.Tensor) -> np.ndarray:
-    """Per frame, how many people have their pelvis inside the room's bounding box."""
-    if not people:
-        return np.zeros(len(times), dtype=np.int64)
+def people_inside(twin: DigitalTwin, people: list[Any], times: torch.Tensor, *,
+                  min_range_m: float | None = None) -> np.ndarray:
+    """Per frame, how many people have their pelvis inside the room's bounding box.
+
+    With ``min_range_m``, only those also at least that far in front of the radar along its
+    horizontal boresight count (the proxy's label rule, :func:`radaraug.sim.proxy.people_in_view`).
+    """
+    counts = np.zeros(len(times), dtype=np.int64)
     verts = twin.scene.room.vertices.to(torch.float64)
     lo, hi = verts.min(0).values, verts.max(0).values
-    counts = torch.zeros(len(times), dtype=torch.int64)
+    pose = twin.scene.radar
+    axis = pose.rotation[:, 2].to(torch.float64).clone()
+    axis[2] = 0.0
+    axis = axis / axis.norm()
     for p in people:
         c = p.ellipsoids(times.to(torch.float64)).centers.mean(dim=-2)  # (T, 3) body centre
-        inside = ((c[:, :2] >= lo[:2]) & (c[:, :2] <= hi[:2])).all(-1)
-        counts += inside.long()
-    return counts.numpy()
+        inside = ((c[:, :2] >= lo[:2]) & (c[:, :2] <= hi[:2])).all(-1).numpy()
+        if min_range_m is not None:
+            inside &= ((c - pose.position.to(torch.float64))[:, :2] @ axis[:2]).numpy() >= min_range_m
+        counts += inside
+    return counts
+
+
+def simulate_frames(twin: DigitalTwin, people: list[Any], start: int, stop: int, seed: int, block: int,
+                    device: str | torch.device, **options: Any) -> tuple[torch.Tensor, torch.Tensor]:
+    """``(times, frames)``: frames ``[start, stop)`` of ``people`` simulated by ``twin``.
+
+    Their receiver noise comes from ``(seed, block)`` (``Stream.BLOCK_NOISE``): the one stream
+    ``radaraug simulate``, :class:`~radaraug.capture.virtual.VirtualSensor` and the proxy use.
+    ``options`` go to :meth:`DigitalTwin.simulate`.
+    """
+    times = frame_times(start, stop, twin.config.frame_repetition_time_s)
+    gen = item_generator(seed, block, stream=Stream.BLOCK_NOISE, device=device)
+    return times, twin.simulate(people, times, generators=gen, **options)
 
 
 def simulate_capture(
@@ -127,10 +161,7 @@ def simulate_capture(
         raise ConfigError(f"--frames must be an integer >= 1, got {frames!r}")
     if parse_shard(f"{shard[0]}/{shard[1]}") != tuple(shard):  # validates (i, n) given from Python
         raise ConfigError(f"shard must be (i, n) with 0 <= i < n, got {shard!r}")
-    try:
-        device_type = torch.device(device).type
-    except (RuntimeError, TypeError):
-        raise ConfigError(f"device {device!r}: not a torch device (use cpu, cuda or cuda:N)") from None
+    device_type = torch_device_type(device)
     start, stop = shard_range(frames, shard)
     path = shard_path(out, shard)
     job = {"scene": _jsonable(scene.to_dict()), "seed": seed, "frames_total": frames, "shard": list(shard),
@@ -160,7 +191,6 @@ def simulate_capture(
     config = (twin_options or {}).get("config") or scene.config
     check_free_space(path, config, todo, existing=path.stat().st_size if done else 0)
     twin = DigitalTwin(scene, device=device, **(twin_options or {}))
-    period = twin.config.frame_repetition_time_s
     if done:
         writer = BlockWriter.resume(path, twin.config, expected_frames=todo)
     else:
@@ -175,12 +205,11 @@ def simulate_capture(
         for block_id in blocks:
             # The whole block is simulated even where only part of it is written (a shard edge or
             # a resume point), so a frame is the same whichever run produced it.
-            b_start = block_id * BLOCK_FRAMES
-            times = frame_times(b_start, b_start + BLOCK_FRAMES, period)
-            gen = item_generator(seed, block_id, stream=Stream.BLOCK_NOISE, device=device)
-            counts = twin.receiver.to_counts(twin.simulate(scene.people, times, generators=gen)).cpu()
+            b0 = block_id * BLOCK_FRAMES
+            times, x = simulate_frames(twin, scene.people, b0, b0 + BLOCK_FRAMES, seed, block_id, device)
+            counts = twin.receiver.to_counts(x).cpu()
             inside = people_inside(twin, scene.people, times)
-            lo, hi = max(b_start, first) - b_start, min(b_start + BLOCK_FRAMES, stop) - b_start
+            lo, hi = max(b0, first) - b0, min(b0 + BLOCK_FRAMES, stop) - b0
             writer.write(counts[lo:hi], times[lo:hi], inside[lo:hi])
     return {"path": str(path), "frames": [start, stop], "resumed_from": start + done,
             "simulated": stop - start - done}
@@ -221,9 +250,7 @@ def _existing_frames(path: Path, job: dict[str, Any]) -> int:
         sim, done = _raw_simulation_attr(path), 0
         if sim is _BROKEN_HDF5:
             raise refuse from None
-    if isinstance(sim, bytes):
-        sim = sim.decode()
-    if isinstance(sim, str):
+    if isinstance(sim, (str, bytes)):
         try:
             sim = parse_json(sim, source=path, error=CaptureError, what="attribute 'simulation'")
         except CaptureError:

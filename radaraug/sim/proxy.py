@@ -52,10 +52,11 @@ from radaraug._files import atomic_write_json
 from radaraug._optional import lazy_import
 from radaraug.config import RadarConfig
 from radaraug.errors import ConfigError
-from radaraug.io.blocks import BLOCK_FRAMES, BlockWriter, frame_times
+from radaraug.io.blocks import BLOCK_FRAMES, BlockWriter
 from radaraug.io.generated_set import (
     GeneratedTestSet,
     check_count_arg,
+    check_people_counts,
     load_generated_set,
     reusable_generated_set,
     start_generated_set,
@@ -67,10 +68,10 @@ from radaraug.scene.room import box, merge
 from radaraug.scene.scene import Scene
 from radaraug.sensor.effects import Effect, effect_from_dict
 from radaraug.sensor.receiver import FMCWReceiver
-from radaraug.sim.offline import people_inside
+from radaraug.sim.offline import people_inside, simulate_frames, torch_device_type
 from radaraug.sim.randomization import ItemDraw
 from radaraug.sim.scenarios import ScenarioSampler, _uniform
-from radaraug.sim.seeding import Stream, item_generator, item_seed
+from radaraug.sim.seeding import Stream, item_seed
 from radaraug.sim.twin import DigitalTwin
 from radaraug.units import DB_CONVENTION, FLOAT_CONVENTION
 
@@ -180,18 +181,7 @@ def people_in_view(twin: DigitalTwin, people: list[Any], times: torch.Tensor,
 
     Inside: the body centre, :func:`people_inside`; in front: along the radar's horizontal boresight.
     """
-    counts = np.zeros(len(times), dtype=np.int64)
-    pose = twin.scene.radar
-    axis = pose.rotation[:, 2].to(torch.float64).clone()
-    axis[2] = 0.0
-    axis = axis / axis.norm()
-    origin = pose.position.to(torch.float64)
-    for p in people:
-        inside = people_inside(twin, [p], times).astype(bool)
-        centre = p.ellipsoids(times.to(torch.float64)).centers.mean(dim=-2)
-        ahead = ((centre - origin)[:, :2] @ axis[:2]).numpy() >= min_range_m
-        counts += (inside & ahead).astype(np.int64)
-    return counts
+    return people_inside(twin, people, times, min_range_m=min_range_m)
 
 
 # ---------------------------------------------------------------------------------------- walks
@@ -291,12 +281,8 @@ def _effect_differences(config: RadarConfig) -> list[dict[str, Any]]:
 
     train = {e.name: _rounded(e.to_dict()["params"]) for e in default_effects(config)}
     proxy = {e.name: _rounded(e.to_dict()["params"]) for e in proxy_effects(config)}
-    out = []
-    for name in dict.fromkeys([*proxy, *train]):
-        a, b = train.get(name), proxy.get(name)
-        if a != b:
-            out.append({"effect": name, "training": a, "proxy": b})
-    return out
+    return [{"effect": name, "training": train.get(name), "proxy": proxy.get(name)}
+            for name in dict.fromkeys([*proxy, *train]) if train.get(name) != proxy.get(name)]
 
 
 def differences(config: RadarConfig | None = None) -> dict[str, Any]:
@@ -327,15 +313,6 @@ def differences(config: RadarConfig | None = None) -> dict[str, Any]:
 
 
 # --------------------------------------------------------------------------------- generation
-def _settings(frames_per_count: int, calibration_frames: int, seed: int, counts: tuple[int, ...],
-              device_type: str, tracer_options: dict[str, Any]) -> dict[str, Any]:
-    return json.loads(json.dumps({
-        "generator_version": GENERATOR_VERSION, "frames_per_count": frames_per_count,
-        "calibration_frames": calibration_frames, "seed": seed, "counts": list(counts),
-        "device_type": device_type, "tracer_options": tracer_options,
-    }))
-
-
 def load_proxy(out_dir: str | os.PathLike) -> ProxySet:
     """The :class:`ProxySet` described by ``out_dir/proxy.json`` (files checked to exist).
 
@@ -366,14 +343,13 @@ def _write_file(twin: DigitalTwin, path: Path, walks: list[dict[str, Any]], nois
     already at ``path`` (an earlier run's) stays until the new one replaces it.
     """
     path.with_name(path.stem + ".partial.h5").unlink(missing_ok=True)  # the temporary name of older versions
-    draw, period, block = proxy_draw(), twin.config.frame_repetition_time_s, 0
+    draw, block = proxy_draw(), 0
     with BlockWriter.create(path, twin.config, attrs=attrs, publish="close") as writer:
         for walk in walks:
             for a in range(0, walk["frames"], BLOCK_FRAMES):
                 b = min(a + BLOCK_FRAMES, walk["frames"])
-                local = frame_times(a, b, period)
-                gen = item_generator(noise_base, block, stream=Stream.BLOCK_NOISE, device=device)
-                x = twin.simulate(walk["people"], local, generators=gen, draw=draw, t0=walk["t0"])
+                local, x = simulate_frames(twin, walk["people"], a, b, noise_base, block, device, draw=draw,
+                                           t0=walk["t0"])
                 writer.write(twin.receiver.to_counts(x).cpu().numpy(), walk["t0"] + local, walk["labels"][a:b])
                 block += 1
                 bar.update(b - a)
@@ -441,17 +417,14 @@ def make_proxy(
     frames_per_count = check_count_arg("make_proxy", "frames_per_count", frames_per_count, 1)
     calibration_frames = check_count_arg("make_proxy", "calibration_frames", calibration_frames, 1)
     seed = check_count_arg("make_proxy", "seed", seed, 0)
-    counts = tuple(counts)
-    if not counts or len(set(counts)) != len(counts) or any(
-            isinstance(c, bool) or not isinstance(c, (int, np.integer)) or c not in (0, 1, 2) for c in counts):
-        raise ConfigError(f"make_proxy: counts must be distinct values among 0, 1, 2, got {counts!r}")
-    counts = tuple(int(c) for c in counts)
-    try:
-        device_type = torch.device(device).type
-    except (RuntimeError, TypeError):
-        raise ConfigError(f"make_proxy: device {device!r} is not a torch device") from None
+    counts = check_people_counts("make_proxy", counts)
+    device_type = torch_device_type(device, "make_proxy: ")
     tracer_options = dict(tracer_options or {})
-    settings = _settings(frames_per_count, calibration_frames, seed, counts, device_type, tracer_options)
+    settings = json.loads(json.dumps({
+        "generator_version": GENERATOR_VERSION, "frames_per_count": frames_per_count,
+        "calibration_frames": calibration_frames, "seed": seed, "counts": list(counts),
+        "device_type": device_type, "tracer_options": tracer_options,
+    }))
     out = Path(out_dir)
     found = _reusable(out, settings)
     if found is not None:
@@ -498,7 +471,6 @@ def _generate(out: Path, settings: dict[str, Any], frames_per_count: int, calibr
                     {**common, "description": "held-out proxy: empty room, for CalibratedDR.fit", "role": "calibration",
                      "labels": {"count": 0}}, device, bar)
         files["calibration"] = {"path": CALIBRATION_NAME, "frames": calibration_frames, "count": 0}
-        tests: list[tuple[Path, int]] = []
         files["tests"] = []
         for c in counts:
             walks = _plan_walks(twin, c, frames_per_count, seed, motion_dir)
@@ -508,7 +480,6 @@ def _generate(out: Path, settings: dict[str, Any], frames_per_count: int, calibr
             _write_file(twin, path, walks, item_seed(seed, c + 1, stream=Stream.PROXY_NOISE),
                         {**common, "description": f"held-out proxy: {c} walking people in every frame",
                          "role": "test", "labels": {"count": c}, "walks": desc}, device, bar)
-            tests.append((path, c))
             files["tests"].append({"path": path.name, "frames": frames_per_count, "count": c, "walks": desc})
             files["motion"] += [m for w in walks for m in w["motion"]]
     elapsed = time.perf_counter() - started
@@ -533,6 +504,7 @@ def _generate(out: Path, settings: dict[str, Any], frames_per_count: int, calibr
         "generation_s": round(elapsed, 2),
     }
     atomic_write_json(manifest_path, manifest, indent=2)
+    tests = [(out / t["path"], t["count"]) for t in files["tests"]]
     return ProxySet(cal_path, tests, config, manifest=manifest_path, generation_s=elapsed)
 
 
