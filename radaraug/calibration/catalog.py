@@ -222,6 +222,22 @@ def _level_probe(ctx: Context, name: str, params: dict[str, Any], r: int, col: i
     return {**params, "level_dB": float(params["level_dB"]) + 10 * math.log10(want / gain)}
 
 
+def _static_excess(ctx: Context, *masked: slice) -> tuple[int, float, float] | None:
+    """The zero-Doppler range bin where the capture most exceeds the twin, outside the ``masked`` bins.
+
+    Returns the bin, the excess (dB) and the capture's frame-averaged power there; None when the
+    excess is under 3 dB.
+    """
+    ex = ctx.excess_db()
+    prof = ex[:, ex.shape[1] // 2].clone()
+    for bins in masked:
+        prof[bins] = -math.inf
+    r = int(prof.argmax())
+    if float(prof[r]) < 3.0:
+        return None
+    return r, float(prof[r]), float(ctx.capture.stats.power.mean(dim=0)[r, ex.shape[1] // 2])
+
+
 # --------------------------------------------------------------------------- candidates
 def _range_level_specs(name: str, range_key: str) -> Callable[[Context, dict[str, Any]], list[ParamSpec]]:
     """Specs of a scatterer-like effect: a range and a level.
@@ -283,16 +299,14 @@ def _spur() -> Candidate:
 
 def _static_clutter() -> Candidate:
     def starts(ctx: Context) -> list[dict[str, Any]]:
-        ex = ctx.excess_db()
-        M = ex.shape[1]
-        prof = ex[:, M // 2].clone()
-        prof[:1] = -math.inf
-        r = int(prof.argmax())
-        if float(prof[r]) < 3.0:
+        peak = _static_excess(ctx, slice(0, 1))
+        if peak is None:
             return []
+        r, excess, _ = peak
+        M = ctx.capture.stats.power.shape[-1]
         rr = ctx.range_m(_sub_bin(ctx.capture.stats.power.mean(dim=0), r, M // 2))
         params = {"range_m": rr, "level_dB": -90.0, "phase_rad": 0.0}
-        probed = _level_probe(ctx, "static_clutter", params, r, M // 2, float(prof[r]))
+        probed = _level_probe(ctx, "static_clutter", params, r, M // 2, excess)
         return [] if probed is None else [probed]
 
     return Candidate("static_clutter", _range_level_specs("static_clutter", "range_m"), starts, modes=("scene",))
@@ -337,15 +351,11 @@ def _strongest_static(ctx: Context, first: int = 1) -> tuple[int, float]:
 
 def _multipath() -> Candidate:
     def starts(ctx: Context) -> list[dict[str, Any]]:
-        ex = ctx.excess_db()
-        M = ex.shape[1]
         k, pk = _strongest_static(ctx)
-        prof = ex[:, M // 2].clone()
-        prof[: k + 1] = -math.inf
-        r = int(prof.argmax())
-        if float(prof[r]) < 3.0:
+        peak = _static_excess(ctx, slice(0, k + 1))
+        if peak is None:
             return []
-        p_r = float(ctx.capture.stats.power.mean(dim=0)[r, M // 2])
+        r, _, p_r = peak
         lvl = 10 * math.log10(max(p_r, 1e-30) / max(pk, 1e-30))
         return [{"extra_range_m": ctx.range_m(r) - ctx.range_m(k), "level_dB": min(lvl, -0.5), "phase_rad": 0.0}]
 
@@ -355,16 +365,11 @@ def _multipath() -> Candidate:
 def _chirp_nonlinearity() -> Candidate:
     def starts(ctx: Context) -> list[dict[str, Any]]:
         cfg = ctx.config
-        ex = ctx.excess_db()
-        M = ex.shape[1]
         k, pk = _strongest_static(ctx)
-        prof = ex[:, M // 2].clone()
-        prof[:1] = -math.inf
-        prof[max(k - 1, 0): k + 2] = -math.inf
-        r = int(prof.argmax())
-        if float(prof[r]) < 3.0:
+        peak = _static_excess(ctx, slice(0, 1), slice(max(k - 1, 0), k + 2))
+        if peak is None:
             return []
-        p_r = float(ctx.capture.stats.power.mean(dim=0)[r, M // 2])
+        r, _, p_r = peak
         ratio = math.sqrt(max(p_r, 1e-30) / max(pk, 1e-30))
         tau = 2 * ctx.range_m(k) / SPEED_OF_LIGHT
         ripple = abs(r - k) * cfg.sample_rate_Hz / cfg.num_samples_per_chirp

@@ -160,26 +160,22 @@ class Search:
         self.evaluations = 0
 
     # ------------------------------------------------------------------ scoring
-    def _score(self, chain: Chain, held: bool, room: Room | None) -> Score:
+    def _score(self, twin_frames: torch.Tensor, cap: Views) -> Score:
         self.evaluations += 1
-        s = self.settings.seed
-        if held:
-            x = self.source.frames(chain, self.n_held, seed=s * 7919 + 2, first_frame=self.first_held, room=room)
-            cap = self.cap_held
-        else:
-            x = self.source.frames(chain, self.n_fit, seed=s * 7919 + 1, room=room)
-            cap = self.cap_fit
-        tv = compute_views(x, self.config)
+        tv = compute_views(twin_frames, self.config)
         errs = view_errors(tv, cap)
         return Score(overall_error(errs), errs, tv)
 
     def fit_score(self, chain: Chain, room: Room | None = None) -> Score:
         """Error of ``chain`` (with room parameters ``room``, default: as traced) against the fitting half."""
-        return self._score(chain, False, room)
+        x = self.source.frames(chain, self.n_fit, seed=self.settings.seed * 7919 + 1, room=room)
+        return self._score(x, self.cap_fit)
 
     def held_score(self, chain: Chain, room: Room | None = None) -> Score:
         """Error of ``chain`` (with room parameters ``room``) against the held-out half."""
-        return self._score(chain, True, room)
+        x = self.source.frames(chain, self.n_held, seed=self.settings.seed * 7919 + 2, first_frame=self.first_held,
+                               room=room)
+        return self._score(x, self.cap_held)
 
     # ------------------------------------------------------------------ optimizer
     def optimize(self, chain: Chain, specs: Sequence[tuple[str, ParamSpec]],
@@ -232,8 +228,7 @@ class Search:
             d = (self.cap_fit["adc_histogram"][:, mid] - tv["adc_histogram"][:, mid]).tolist()
             cur = _as_list(require(chain, "dc_offset")["params"]["level_counts"], R)
             new = [min(max(c + di, 0.0), float(self.config.adc_full_scale_counts)) for c, di in zip(cur, d)]
-            chain = set_params(chain, "dc_offset", [ParamSpec("level_counts", EFFECTS["dc_offset"].priors(
-                self.config)["level_counts"], i) for i in range(R)], new, R)
+            chain = with_effect(chain, "dc_offset", {"level_counts": new})
         return chain
 
     def base_specs(self, chain: Chain) -> list[tuple[str, ParamSpec]]:
@@ -362,17 +357,6 @@ class Search:
         return Context(self.config, self.source.mode, chain, self.cap_fit, twin_views,
                        probe=lambda ch: self.fit_score(ch, room).twin)
 
-    def try_candidate(self, chain: Chain, cand: Candidate, ctx: Context,
-                      room: Room | None = None) -> tuple[Chain, Score] | None:
-        """Screen a candidate's starts (room parameters fixed at ``room``); ``None`` when it has none."""
-        best: tuple[Chain, Score] | None = None
-        for start in cand.starts(ctx):
-            ch = with_effect(chain, cand.name, start)
-            sc = self.fit_score(ch, room)
-            if best is None or sc.overall < best[1].overall:
-                best = (ch, sc)
-        return best
-
     def run(self, chain: Chain, room: Room | None = None, evidence: Mapping[str, Any] | None = None) -> SearchResult:
         """Refit the base, then add effects while they improve the held-out error.
 
@@ -412,9 +396,12 @@ class Search:
                 if ev and cand.name in BASE_STAGES and find(current, cand.name) is not None:
                     # A base stage the chain holds is refitted with the base, not named as an effect.
                     continue
-                res = self.try_candidate(current, cand, ctx, cur_room)
-                if res is not None and res[1].overall < fit_now.overall:
-                    screened.append((res[1].overall, cand, res[0]))
+                # Screen the candidate's starts with the room fixed; the first of equal scores wins.
+                starts = [with_effect(current, cand.name, start) for start in cand.starts(ctx)]
+                best = min(((self.fit_score(ch, cur_room).overall, ch) for ch in starts), key=lambda t: t[0],
+                           default=None)
+                if best is not None and best[0] < fit_now.overall:
+                    screened.append((best[0], cand, best[1]))
             screened.sort(key=lambda t: t[0])
             results = []
             for _, cand, ch in screened[: st.screen_top]:
