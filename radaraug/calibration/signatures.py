@@ -265,9 +265,10 @@ def _detector(effect: str, min_rx: int = 1, min_chirps: int = 1, min_frames: int
             return measure(p, config, *args, **kwargs)
 
         # help() and inspect show what callers pass: ``frames`` (raw frames or a Prepared), not ``p``.
-        first, *rest = inspect.signature(measure).parameters.values()
+        signature = inspect.signature(measure)
+        first, *rest = signature.parameters.values()
         frames = first.replace(name="frames", annotation="torch.Tensor | Prepared")
-        detect.__signature__ = inspect.signature(measure).replace(parameters=[frames, *rest])  # type: ignore[attr-defined]
+        detect.__signature__ = signature.replace(parameters=[frames, *rest])  # type: ignore[attr-defined]
         DETECTORS[effect] = detect
         return detect
 
