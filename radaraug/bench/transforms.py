@@ -31,7 +31,7 @@ def run_transforms_benchmark(
         out: optional JSON file to write.
     """
     from radaraug.transforms import CalibratedDR, ClipNormalize, Colormap, CombineRx, RangeDoppler, ToDecibels
-    from radaraug.transforms._viridis import VIRIDIS_RGB
+    from radaraug.transforms._viridis import viridis_rgb
 
     cfg = RadarConfig.bgt60tr13c()
     gen = torch.Generator().manual_seed(0)
@@ -60,7 +60,7 @@ def run_transforms_benchmark(
             torch.cuda.synchronize()
 
     x_np = cube.numpy().astype(np.float64)
-    lut = np.asarray(VIRIDIS_RGB, dtype=np.float64)
+    lut = np.asarray(viridis_rgb(), dtype=np.float64)
     rng = np.random.default_rng(1)
 
     def run_numpy() -> None:

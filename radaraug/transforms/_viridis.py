@@ -6,12 +6,16 @@ Nathaniel Smith and Eric Firing, released under CC0. Shipped with the package so
 matplotlib at run time; the tests compare it with matplotlib.
 """
 
+import functools
 import io
 from importlib import resources
 
 import numpy as np
 
-_TABLE = resources.files("radaraug") / "data" / "viridis_rgb.txt"
-VIRIDIS_RGB: tuple[tuple[float, float, float], ...] = tuple(
-    (float(r), float(g), float(b)) for r, g, b in np.loadtxt(io.StringIO(_TABLE.read_text()), dtype=np.float64, ndmin=2)
-)
+
+@functools.lru_cache(maxsize=1)
+def viridis_rgb() -> tuple[tuple[float, float, float], ...]:
+    """The table as 256 ``(r, g, b)`` tuples, read on first use (not at import: it costs ~25 ms)."""
+    text = (resources.files("radaraug") / "data" / "viridis_rgb.txt").read_text()
+    rows = np.loadtxt(io.StringIO(text), dtype=np.float64, ndmin=2)
+    return tuple((float(r), float(g), float(b)) for r, g, b in rows)

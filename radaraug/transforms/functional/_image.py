@@ -13,7 +13,7 @@ import torch.nn.functional as nnf
 from radaraug._optional import lazy_import
 from radaraug.errors import ConfigError, InputTensorError, RadarAugError
 from radaraug.transforms._checks import check_tensor
-from radaraug.transforms._viridis import VIRIDIS_RGB
+from radaraug.transforms._viridis import viridis_rgb
 
 
 def clip_normalize(x: torch.Tensor, vmin: float, vmax: float) -> torch.Tensor:
@@ -46,7 +46,7 @@ def check_clip_range(vmin: float, vmax: float) -> tuple[float, float]:
 @functools.lru_cache(maxsize=16)
 def _lut_f64(name: str) -> torch.Tensor:
     if name == "viridis":
-        return torch.tensor(VIRIDIS_RGB, dtype=torch.float64)
+        return torch.tensor(viridis_rgb(), dtype=torch.float64)
     matplotlib = lazy_import("matplotlib", feature=f"the {name!r} colormap (viridis needs no matplotlib)")
     try:
         cmap = matplotlib.colormaps[name]
