@@ -229,13 +229,15 @@ def _scores(model: Any, dm: Any, loader: Any, *, with_dr: bool, limit: int = 512
     """Class probabilities and labels of up to ``limit`` items of ``loader`` (simulated splits with the DR)."""
     model.eval()
     probs, labels = [], []
+    n = 0
     for x, y in loader:
         x = x.to(model.device)
         if with_dr and dm.dr is not None:
             x = dm.dr.to(x.device).train()(x)
         probs.append(torch.softmax(model(dm.image.to(x.device)(x)).float(), dim=1).cpu())
         labels.append(torch.as_tensor(y).cpu())
-        if sum(map(len, labels)) >= limit:
+        n += len(y)
+        if n >= limit:
             break
     return torch.cat(probs)[:limit], torch.cat(labels)[:limit]
 
