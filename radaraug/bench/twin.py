@@ -80,7 +80,7 @@ def run_twin_benchmark(
     from radaraug.bench.intersection import benchmark_intersection
     from radaraug.scene.scene import Scene
     from radaraug.sensor.receiver import FMCWReceiver
-    from radaraug.sensor.synthesis import ChirpTiming, per_channel_synthesis, synthesize
+    from radaraug.sensor.synthesis import ChirpTiming, per_channel_synthesis, synthesize, taylor_coupling
     from radaraug.sim.twin import DigitalTwin
 
     with torch_threads(1):
@@ -103,6 +103,10 @@ def run_twin_benchmark(
         # and with the people's shadow moving inside the frame (shadow_intervals=2).
         with per_channel_synthesis():
             fps_per_channel = frames_per_s(DigitalTwin(scene, device=device, static_signal=static))
+        # The same twin with the coupling's Taylor series and one set of orders per block (before the
+        # Chebyshev series with orders per frame).
+        with taylor_coupling():
+            fps_taylor = frames_per_s(DigitalTwin(scene, device=device, static_signal=static))
         fps_shadow_moving = frames_per_s(DigitalTwin(scene, device=device, static_signal=static, shadow_intervals=2))
 
         # The cost of each of the twin's fidelity additions, added one at a time to the issue-7
@@ -177,6 +181,8 @@ def run_twin_benchmark(
         "intra_frame_cost_ratio": round(fps_one / fps_1, 3),
         "frames_per_s_1proc_per_channel_synthesis": round(fps_per_channel, 1),
         "rx_shared_synthesis_speedup": round(fps_1 / fps_per_channel, 3),
+        "frames_per_s_1proc_taylor_coupling": round(fps_taylor, 1),
+        "coupling_speedup": round(fps_1 / fps_taylor, 3),
         "frames_per_s_1proc_shadow_intervals_2": round(fps_shadow_moving, 1),
         "shadow_intervals_2_cost_ratio": round(fps_1 / fps_shadow_moving, 3),
         "intra_frame_knot_intervals_mean": round(knots, 2),

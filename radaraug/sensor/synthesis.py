@@ -23,13 +23,16 @@ phase of the real tone). Expanding ``Phi / 2 pi`` with ``tau_m = tau0 + r (m T +
 Every term is kept (none is negligible for a walker: at 5 m/s the coupling reaches 4.5 rad
 over a frame and the in-chirp quadratic term 0.05 rad). Only the coupling term is not separable
 in (m, n); ``fast`` synthesis centres it and expands ``exp(j theta u v)`` (``u, v`` in [-1, 1],
-``|theta|`` <= 1.1 rad at 5 m/s for the BGT60 chirp) in a Taylor series whose truncation error
-is bounded by ``|C| theta^K / K!`` per path; a path keeps the orders whose bound is at least
-``taylor_tol`` times the amplitude of the strongest path of the call (weak multipath then needs
-fewer orders than the torso, for the same error relative to the frame), so the product of slow
-and fast factors becomes a few real GEMMs over (path, re/im), and static clutter costs one GEMM. ``exact`` evaluates ``Phi`` for every (m, n, path) directly in
-float64 (memory-chunked): the reference. Measured agreement (float64, 0.5-20 m, |v| <= 5 m/s):
-relative RMS error ~4e-7, max abs error ~2e-6 of the peak; float32 ~1e-6 RMS.
+``|theta|`` <= 1.1 rad at 5 m/s for the BGT60 chirp) in the Jacobi-Anger (Chebyshev) series
+``sum_k eps_k j^k J_k(theta u) T_k(v)``, whose order-``k`` term is bounded by ``|C| 2 (theta/2)^k / k!``
+(the Taylor series' by ``|C| theta^k / k!``: about two orders more for the same bound). A path
+keeps the orders whose bound is at least half of ``taylor_tol`` times the amplitude of the
+strongest path of the call, chosen per chunk of rows (a frame on the CPU): weak multipath needs
+fewer orders than the torso, and a limb needs its orders only in the frames where it glints or
+swings fast. The product of slow and fast factors becomes a few real GEMMs over (path, re/im),
+and static clutter costs one GEMM. ``exact`` evaluates ``Phi`` for every (m, n, path) directly in
+float64 (memory-chunked): the reference. Measured agreement (60 paths at 0.5-20 m, |v| <= 5 m/s,
+3 RX): relative RMS error 5.4e-7 in float64 and 1.3e-6 in float32, max abs error 1.6e-6 of the peak.
 
 Phases are accumulated in float64 cycles and reduced modulo 1 before the trig functions, so
 float32 outputs do not lose the ~1e4 cycles of carrier phase to rounding.
@@ -48,8 +51,9 @@ from radaraug.config import RadarConfig
 
 SYNTHESIS_METHODS = ("fast", "exact")
 DEFAULT_TAYLOR_TOL = 1e-5
-"""Largest neglected Taylor term ``theta^K / K!`` of the coupling expansion times the path's amplitude,
-relative to the amplitude of the strongest path of the call."""
+"""Largest neglected term of the coupling's expansion (its bound ``2 (theta/2)^K / K!``) times the
+path's amplitude, relative to the amplitude of the strongest path of the call (the name is from
+when the expansion was a Taylor series)."""
 
 _EXACT_CHUNK_ELEMENTS = 1 << 22
 _FAST_CHUNK_ELEMENTS = 1 << 19  # fast-time factors per chunk of rows (2 MiB in float32)
@@ -59,6 +63,8 @@ _FAST_CHUNK_ELEMENTS = 1 << 19  # fast-time factors per chunk of rows (2 MiB in 
 # per launch and keeps the chunk's temporaries within a few GiB.
 _FAST_CHUNK_ELEMENTS_GPU = 1 << 26
 _MAX_TAYLOR_ORDERS = 60
+_PER_FRAME_TOL = 0.5  # the share of ``taylor_tol`` each path's orders are chosen for, per frame (see synthesize_fast)
+_COUPLING = "chebyshev"  # the coupling's expansion (:func:`taylor_coupling` restores "taylor")
 _SHARE_RX = True  # the RX channels share the fast-time factor where exact (:func:`per_channel_synthesis`)
 
 
@@ -215,7 +221,7 @@ def synthesize_fast(
         delay_rate: ``(…, RX, P)`` delay rates, s/s.
         timing: chirp constants.
         dtype: real output dtype.
-        taylor_tol: bound on the largest neglected Taylor term of the coupling.
+        taylor_tol: bound on the largest neglected term of the coupling's expansion (:data:`DEFAULT_TAYLOR_TOL`).
         chirp_delay: optional ``(…, 1 or RX, P, M)`` extra delay ``d_m`` of each path at chirp
             ``m`` (intra-frame motion beyond the linear ``tau0 + r t``), s.
         chirp_gain: optional ``(…, 1 or RX, P, M)`` real amplitude factor ``g_pm`` per chirp.
@@ -237,12 +243,14 @@ def synthesize_fast(
     # rates differ by a few mHz (a phase linear in the sample index: ~0.04 rad over a chirp) and
     # their in-chirp quadratic terms by ~1e-5 rad: the channels share one fast-time factor (its
     # trig and one GEMM whose slow side stacks the channels) and the linear difference joins the
-    # coupling's Taylor term (``theta w_m v_n + phi v_n`` has the same form). Shared only where the
-    # neglected quadratic difference is below the Taylor tolerance.
-    theta_p, shared = _coupling_phase(delay_s, delay_rate, timing, chirp_delay, rel, taylor_tol)
+    # coupling's expansion (``theta w_m v_n + phi v_n`` has the same form). Shared only where the
+    # neglected quadratic difference is below the tolerance.
+    theta_rows, shared_rows = _coupling_phase(delay_s, delay_rate, timing, chirp_delay, rel, taylor_tol, reduce=False)
+    theta_p = theta_rows.reshape(-1, P).amax(dim=0)
+    shared = None if shared_rows is None else shared_rows.reshape(-1, P).amax(dim=0)
     still = theta_p == 0
     if shared is not None and bool(still.any()) and not bool(still.all()):
-        # Static paths need no Taylor term on their own channel; shared, the channels' linear
+        # Static paths need no expansion term on their own channel; shared, the channels' linear
         # difference would give them some, whose truncation errors add up over a room's thousands
         # of paths: they are synthesized per channel (exact, one GEMM), the moving ones shared.
         def part(idx: torch.Tensor) -> torch.Tensor:
@@ -255,22 +263,36 @@ def synthesize_fast(
     share = shared is not None and not bool(still.all())
     if share and shared is not None:
         theta_p = shared
-    # Taylor orders per path: term k of a path is at most theta^k / k! times its amplitude; it is
-    # kept while that is at least ``taylor_tol`` times the strongest path of the call (so weak
-    # multipath needs fewer orders than the torso for the same error bound on the frame). Paths
-    # are sorted by the orders they need, so those that need order k form a prefix: each order is
-    # one GEMM on a view, and static clutter (theta = 0) costs one GEMM in all.
-    need = taylor_orders_needed(theta_p, rel, taylor_tol)
-    order = torch.argsort(need, descending=True, stable=True)
-    coef, delay_s, delay_rate = (t.index_select(-1, order) for t in (coef, delay_s, delay_rate))
-    chirp_delay, chirp_gain = (None if t is None else t.index_select(-2, order) for t in (chirp_delay, chirp_gain))
-    K = int(need.max()) + 1
-    counts = [int(c) for c in (need[None, :] >= torch.arange(1, K, device=dev)[:, None]).sum(dim=1).cpu()]
-    v = torch.linspace(-1, 1, N, dtype=dtype, device=dev)
-    v_pow = [v.pow(k) for k in range(1, K)]
+    # Orders per path: term k of a path is at most its bound (:func:`chebyshev_orders_needed`) times
+    # its amplitude; it is kept while that is at least ``taylor_tol`` times the strongest path of
+    # the call (so weak multipath needs fewer orders than the torso for the same error bound on the
+    # frame). The orders are chosen per chunk of rows (a frame on the CPU: a limb that glints or
+    # swings fast in one frame of the batch does not cost its orders in the others), and the
+    # chunk's paths sorted by them, so those that need order k form a prefix: each order is one
+    # pair of GEMMs on a view, and static clutter (theta = 0) costs one pair in all.
+    top = mag.max().clamp_min(1e-300)
+    if _COUPLING == "taylor":  # the rule before TWIN_MODEL_VERSION 4: Taylor orders for the whole call
+        need = taylor_orders_needed(theta_p, rel, taylor_tol)
+        order = torch.argsort(need, descending=True, stable=True)
+        coef, delay_s, delay_rate = (t.index_select(-1, order) for t in (coef, delay_s, delay_rate))
+        chirp_delay, chirp_gain = (None if t is None else t.index_select(-2, order) for t in (chirp_delay, chirp_gain))
+        K = int(need.max()) + 1
+        counts = [int(c) for c in (need[None, :] >= torch.arange(1, K, device=dev)[:, None]).sum(dim=1).cpu()]
+        v = torch.linspace(-1, 1, N, dtype=dtype, device=dev)
+        v_pow = [v.pow(k) for k in range(1, K)]
+    else:
+        cheb = _chebyshev_polynomials(N, dtype, dev)
+        if share and shared_rows is not None:
+            theta_rows = shared_rows
+        amp_rows = coef.abs() if chirp_gain is None else coef.abs() * chirp_gain.abs().amax(dim=-1)
+        # Every row's own orders, for half the tolerance: per frame, more paths sit near the bound than
+        # with one set of orders per batch, and their errors add up (measured on walkers with motion
+        # inside the frame: relative RMS error 1.2e-5 at the full tolerance, 6.2e-6 at half, against
+        # 6.1e-6 for the Taylor series at the full one); half keeps a frame's error where it was.
+        need_rows = chebyshev_orders_needed(theta_rows, amp_rows / top, taylor_tol * _PER_FRAME_TOL)
     # Rows are the frames when the RX channels share the fast-time factor, else (frame, RX) pairs.
     # They are done in chunks whose per-path work (phases, slow factors P x M, fast-time factors
-    # 2P x N per row) stays in the CPU's cache: the trig, the GEMMs and the Taylor updates then run
+    # 2P x N per row) stays in the CPU's cache: the trig, the GEMMs and the expansion's updates then run
     # at cache speed instead of streaming (frames x RX x P x M) and (frames x RX x 2P x N) tensors
     # through memory many times (measured ~2x faster for a 16-frame corridor batch on a 2-core CPU).
     group = (1, *batch) if share else (1, *batch, 1)  # a leading 1: a batch of one row has a row index
@@ -287,20 +309,23 @@ def synthesize_fast(
             full = t.expand(*batch, *t.shape[t.dim() - tail:])
             return full.reshape(*group, *full.shape[len(batch):])[idx]
 
-        slow, per_sample, theta, quad, w = _phase_terms(pick(delay_s, 1), pick(delay_rate, 1), timing,
-                                                        None if chirp_delay is None else pick(chirp_delay, 2))
-        # The coupling theta w_m (c, R, P, M), rad, on the slow side of the Taylor terms.
+        d, r = pick(delay_s, 1), pick(delay_rate, 1)
+        cd, g = (None if t is None else pick(t, 2) for t in (chirp_delay, chirp_gain))
+        c = pick(coef, 1)
+        if _COUPLING != "taylor":
+            c, d, r, cd, g, counts = _sorted_by_orders(c, d, r, cd, g, pick(need_rows, 1).reshape(-1, P).amax(dim=0))
+            K = len(counts) + 1
+        slow, per_sample, theta, quad, w = _phase_terms(d, r, timing, cd)
+        # The coupling theta w_m (c, R, P, M), rad, on the slow side of the expansion's terms.
         tw = theta.to(dtype)[..., None] * w.to(dtype) if K > 1 else None
         if R > 1:
             shared = per_sample.mean(dim=1, keepdim=True)
             dev_rate = per_sample - shared  # cycles per sample: 2 pi dev (n - nc) = 2 pi dev nc v_n
             slow = _frac(slow + (dev_rate * nc)[..., None])
-            if K > 1:
+            if tw is not None:
                 tw = (theta[..., None] * w + (2 * math.pi * nc * dev_rate)[..., None]).to(dtype)
             per_sample, quad = shared, quad.mean(dim=1, keepdim=True)
-        c = pick(coef, 1)
         cr, ci = c.real.to(dtype)[..., None], c.imag.to(dtype)[..., None]
-        g = None if chirp_gain is None else pick(chirp_gain, 2)
         if g is not None:
             g = g.to(dtype)
             cr, ci = cr * g, ci * g
@@ -312,9 +337,11 @@ def synthesize_fast(
             return t.transpose(1, 2).reshape(t.shape[0], P, R * M)
 
         # Slow side: Re, Im of C e^{j slow} (c, P, R M); fast side: cos, sin (:func:`_fast_rows`).
-        out[r0:r0 + step] = _fast_rows(stack(cr * cs - ci * ss), stack(cr * ss + ci * cs), per_sample[:, 0],
-                                       quad[:, 0], None if tw is None else stack(tw), counts, v_pow, N,
-                                       dtype)
+        ar, ai, z = stack(cr * cs - ci * ss), stack(cr * ss + ci * cs), None if tw is None else stack(tw)
+        if _COUPLING == "taylor":
+            out[r0:r0 + step] = _fast_rows(ar, ai, per_sample[:, 0], quad[:, 0], z, counts, v_pow, N, dtype)
+        else:
+            out[r0:r0 + step] = _fast_rows_chebyshev(ar, ai, per_sample[:, 0], quad[:, 0], z, counts, cheb, dtype)
     return out.reshape(*batch, M, N)
 
 
@@ -323,7 +350,7 @@ def per_channel_synthesis() -> Iterator[None]:
     """Synthesize every RX channel with its own fast-time factor (the rule before the channels shared it).
 
     The items recorded before then are reproduced bit for bit inside this context (their pinned
-    digests are checked so); the shared factor agrees with the exact sum to the Taylor tolerance.
+    digests are checked so); the shared factor agrees with the exact sum to the tolerance.
     """
     global _SHARE_RX
     before, _SHARE_RX = _SHARE_RX, False
@@ -331,6 +358,21 @@ def per_channel_synthesis() -> Iterator[None]:
         yield
     finally:
         _SHARE_RX = before
+
+
+@contextlib.contextmanager
+def taylor_coupling() -> Iterator[None]:
+    """Expand the coupling in a Taylor series with one set of orders per call (before ``TWIN_MODEL_VERSION`` 4).
+
+    The items recorded before then are reproduced bit for bit inside this context (their pinned
+    digests are checked so); the bench measures the Chebyshev series with per-chunk orders against it.
+    """
+    global _COUPLING
+    before, _COUPLING = _COUPLING, "taylor"
+    try:
+        yield
+    finally:
+        _COUPLING = before
 
 
 def _unravel(flat: torch.Tensor, shape: tuple[int, ...]) -> tuple[torch.Tensor, ...]:
@@ -347,9 +389,11 @@ def _unravel(flat: torch.Tensor, shape: tuple[int, ...]) -> tuple[torch.Tensor, 
 
 def _coupling_phase(
     delay_s: torch.Tensor, delay_rate: torch.Tensor, timing: ChirpTiming, chirp_delay: torch.Tensor | None,
-    rel_amplitude: torch.Tensor, tol: float,
+    rel_amplitude: torch.Tensor, tol: float, *, reduce: bool = True,
 ) -> tuple[torch.Tensor, torch.Tensor | None]:
     """Per path, the largest residual coupling phase (rad) over all rows, alone and with the RX shared.
+
+    ``reduce=False``: the phases of every row ``(…, RX, P)`` instead of their largest per path.
 
     ``theta`` of :func:`_phase_terms` without the rest: the coupling ``g_m = S (1 - r) e_m / fs``
     with ``e_m = r m T + d_m`` has the half range ``S (1 - r) (max e - min e) / (2 fs)`` over the
@@ -365,7 +409,7 @@ def _coupling_phase(
         span = r.abs() * ((timing.num_chirps - 1) * timing.prt)
         mid = r * ((timing.num_chirps - 1) * timing.prt / 2)
     else:
-        # float32 (relative error ~1e-7) is plenty for choosing Taylor orders and the sharing; the
+        # float32 (relative error ~1e-7) is plenty for choosing the orders and the sharing; the
         # phases themselves are computed in float64 by _phase_terms.
         m = torch.arange(timing.num_chirps, device=r.device, dtype=torch.float32) * timing.prt
         e = delay_rate.float()[..., None] * m + chirp_delay.float()
@@ -374,7 +418,7 @@ def _coupling_phase(
     k = timing.slope * (1 - r) / timing.fs
     theta = 2 * math.pi * (k * span / 2) * nc
     P = delay_s.shape[-1]
-    alone = theta.reshape(-1, P).amax(dim=0)
+    alone = theta.reshape(-1, P).amax(dim=0) if reduce else theta
     if not _SHARE_RX or delay_s.dim() < 2 or delay_s.shape[-2] < 2:
         return alone, None
     rate, quad = _fast_time_rate(delay_s.double(), r, k * mid, timing)  # as _phase_terms gives them
@@ -383,7 +427,8 @@ def _coupling_phase(
     quad_err = (2 * math.pi * (timing.num_samples - 1) ** 2 * d_quad).reshape(-1, P).amax(dim=0)
     if bool((quad_err * rel_amplitude > tol).any()):
         return alone, None
-    return alone, (theta + 2 * math.pi * nc * d_rate).reshape(-1, P).amax(dim=0)
+    both = theta + 2 * math.pi * nc * d_rate
+    return alone, both.reshape(-1, P).amax(dim=0) if reduce else both
 
 
 def _fast_rows(
@@ -415,6 +460,132 @@ def _fast_rows(
         term = torch.bmm(tr.transpose(-1, -2), cos[:, :pk]).baddbmm_(ti.transpose(-1, -2), sin[:, :pk], alpha=-1)
         out.addcmul_(term, v_pow[k - 1])
     return out
+
+
+def _chebyshev_polynomials(num_samples: int, dtype: torch.dtype, device: torch.device):
+    """``k -> T_k(v_n)`` over the centred fast time ``v_n`` in [-1, 1] (computed on first use)."""
+    v = torch.linspace(-1, 1, num_samples, dtype=torch.float64, device=device)
+    cheb = [torch.ones_like(v), v]
+    cast: dict[int, torch.Tensor] = {}
+
+    def poly(k: int) -> torch.Tensor:
+        while len(cheb) <= k:
+            cheb.append(2 * v * cheb[-1] - cheb[-2])
+        if k not in cast:
+            cast[k] = cheb[k].to(dtype)
+        return cast[k]
+    return poly
+
+
+def _sorted_by_orders(
+    coef: torch.Tensor, delay_s: torch.Tensor, delay_rate: torch.Tensor, chirp_delay: torch.Tensor | None,
+    chirp_gain: torch.Tensor | None, need: torch.Tensor,
+) -> tuple:
+    """A chunk's paths sorted by the orders they ``need`` ``(P,)``, descending, and the order counts.
+
+    ``(coef, delay_s, delay_rate, chirp_delay, chirp_gain, counts)``: the inputs (``(c, R, P)``,
+    ``(c, 1 or R, P, M)``) with their paths sorted, and ``counts[k - 1]`` the number that need order ``k``.
+    """
+    order = torch.argsort(need, descending=True, stable=True)
+    K = int(need.max()) + 1
+    counts = [int(c) for c in (need[None, :] >= torch.arange(1, K, device=need.device)[:, None]).sum(dim=1).cpu()]
+    return (*(t.index_select(-1, order) for t in (coef, delay_s, delay_rate)),
+            *(None if t is None else t.index_select(-2, order) for t in (chirp_delay, chirp_gain)), counts)
+
+
+def _bessel_ratios(x: torch.Tensor, orders: int, tol: float) -> list[torch.Tensor]:
+    """``F_k(x) = J_k(x) k! / (x/2)^k`` for ``k = 0..orders`` (same shape as ``x``).
+
+    ``F_k = 0F1(; k + 1; -x^2/4)``: the two highest orders by their power series (Horner, as many
+    terms as bring the first neglected one under ``tol``), the rest by the backward recurrence
+    ``F_{k-1} = F_k - (x^2/4) F_{k+1} / (k (k + 1))`` (the form of ``J_{k-1} = (2k/x) J_k - J_{k+1}``
+    without a division by ``x``; stable downwards).
+    """
+    y = (x * 0.5).square()
+    y_max = float(y.amax()) if y.numel() else 0.0
+
+    def series(k: int) -> torch.Tensor:
+        terms, bound = 0, 1.0
+        while bound >= tol:
+            terms += 1
+            bound *= y_max / (terms * (terms + k))
+        total = torch.ones_like(y)
+        for s in range(terms - 1, 0, -1):  # F = 1 - y/(1 (1+k)) (1 - y/(2 (2+k)) (1 - ...))
+            total = torch.addcmul(torch.ones_like(y), y, total, value=-1.0 / (s * (s + k)))
+        return total
+
+    f = [series(orders + 1), series(orders)]  # f[-1] is the lowest order so far
+    for k in range(orders, 0, -1):
+        f.append(torch.addcmul(f[-1], y, f[-2], value=-1.0 / (k * (k + 1))))
+    return f[:0:-1]
+
+
+def _fast_rows_chebyshev(
+    ar: torch.Tensor, ai: torch.Tensor, per_sample: torch.Tensor, quad: torch.Tensor, z: torch.Tensor | None,
+    counts: list[int], cheb, dtype: torch.dtype,
+) -> torch.Tensor:
+    """:func:`synthesize_fast` of a chunk of rows ``(c, R M, N)``.
+
+    Slow factors ``ar, ai`` ``(c, P, R M)`` (Re and Im of ``A = C e^{j slow}``), paths sorted by the
+    orders they need (``counts[k - 1]`` of them need order ``k``), ``z`` ``(c, P, R M)`` the coupling
+    phase ``theta w_m`` (rad; None when no path needs an order). The coupling ``e^{j z v}`` is the
+    Jacobi-Anger series ``sum_k eps_k j^k J_k(z) T_k(v)`` (``eps_0 = 1``, else 2; ``cheb(k)`` =
+    ``T_k(v_n)``): ``Re{A e^{j z v} (cos + j sin)}`` is, per order, a pair of real GEMMs (slow side
+    a transposed view, no copies) on the prefix of paths that need it, weighted by ``T_k`` on the
+    fast side. The series' terms fall as ``(z/2)^k / k!``, the Taylor series' as ``z^k / k!``: ~2
+    orders fewer per path for the same bound.
+    """
+    num_samples = cheb(0).shape[-1]
+    cos_sin = _fast_time_cos_sin(per_sample, quad, num_samples, dtype)  # (c, 2, P, N)
+    cos, sin = cos_sin[:, 0], cos_sin[:, 1]
+    if z is None or not counts:
+        return torch.bmm(ar.transpose(-1, -2), cos).baddbmm_(ai.transpose(-1, -2), sin, alpha=-1)
+    p1 = counts[0]
+    x = z[:, :p1]
+    f = _bessel_ratios(x, len(counts), 1e-3 * DEFAULT_TAYLOR_TOL)
+    # J_0 on the paths that keep any order (the others' 1 - J_0 is below the tolerance).
+    out = torch.bmm((ar[:, :p1] * f[0]).transpose(-1, -2), cos[:, :p1]).baddbmm_(
+        (ai[:, :p1] * f[0]).transpose(-1, -2), sin[:, :p1], alpha=-1)
+    if p1 < ar.shape[1]:
+        out.baddbmm_(ar[:, p1:].transpose(-1, -2), cos[:, p1:]).baddbmm_(
+            ai[:, p1:].transpose(-1, -2), sin[:, p1:], alpha=-1)
+    power = None  # (x/2)^k / k!
+    for k, pk in enumerate(counts, start=1):
+        step = x[:, :pk] * (0.5 / k)
+        power = step if power is None else power[:, :pk] * step
+        coef = power.mul(f[k][:, :pk]).mul_(2)  # eps_k J_k
+        re, im = ar[:, :pk] * coef, ai[:, :pk] * coef
+        # j^k (re + j im) -> (Re, Im); Re cos - Im sin, the sign of j^k folded into T_k.
+        if k % 2:
+            term = torch.bmm(im.transpose(-1, -2), cos[:, :pk]).baddbmm_(re.transpose(-1, -2), sin[:, :pk])
+        else:
+            term = torch.bmm(re.transpose(-1, -2), cos[:, :pk]).baddbmm_(im.transpose(-1, -2), sin[:, :pk], alpha=-1)
+        out.addcmul_(term, cheb(k), value=-1.0 if k % 4 in (1, 2) else 1.0)
+    return out
+
+
+def chebyshev_orders_needed(theta: torch.Tensor, rel_amplitude: torch.Tensor, tol: float) -> torch.Tensor:
+    """Highest order ``k`` (0 = none) with ``rel_amplitude * 2 (theta/2)^k / k! >= tol``, elementwise.
+
+    ``2 (theta/2)^k / k!`` bounds the order-``k`` term ``eps_k |J_k(theta)| |T_k|`` of the
+    Jacobi-Anger series of ``e^{j theta w v}`` (``|w|, |v| <= 1``). ``theta`` and ``rel_amplitude``
+    broadcast (any shape); the orders are tried upwards past the largest term (``k > theta/2``)
+    until none is kept.
+    """
+    log_half = torch.log((theta.double() / 2).clamp_min(1e-300))
+    excess = torch.log((2 * rel_amplitude.double()).clamp_min(1e-300)) - math.log(tol)
+    active = (theta > 0) & (rel_amplitude > 0)
+    need = torch.zeros(torch.broadcast_shapes(theta.shape, rel_amplitude.shape), dtype=torch.long,
+                       device=theta.device)
+    half_max = float(theta.amax()) / 2 if theta.numel() else 0.0
+    log_fact = 0.0
+    for k in range(1, _MAX_TAYLOR_ORDERS):
+        log_fact += math.log(k)
+        kept = active & (excess + k * log_half - log_fact >= 0)
+        if k > half_max and not bool(kept.any()):
+            break
+        need = torch.where(kept, k, need)
+    return need
 
 
 def taylor_orders_needed(theta: torch.Tensor, rel_amplitude: torch.Tensor, tol: float) -> torch.Tensor:

@@ -39,7 +39,9 @@ from radaraug.sim.item_signal import drawn_signal, people_paths
 #: material velocity of its specular point (rotation included), not with the segment's centre.
 #: 3: the RX channels share the fast-time synthesis factor of moving paths
 #: (:mod:`radaraug.sensor.synthesis`; one ADC code moves in ~5e-4 of the samples of an item with people).
-TWIN_MODEL_VERSION = 3
+#: 4: the coupling of moving paths is a Chebyshev (Jacobi-Anger) series with orders chosen per frame
+#: instead of a Taylor series with one set of orders per batch (:func:`~radaraug.sensor.synthesis.taylor_coupling`).
+TWIN_MODEL_VERSION = 4
 
 if TYPE_CHECKING:
     from radaraug.sim.randomization import ItemDraw

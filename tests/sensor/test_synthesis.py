@@ -9,7 +9,14 @@ import pytest
 import torch
 
 from radaraug.config import SPEED_OF_LIGHT
-from radaraug.sensor.synthesis import ChirpTiming, synthesize_exact, synthesize_fast, taylor_orders_needed
+from radaraug.sensor.synthesis import (
+    ChirpTiming,
+    chebyshev_orders_needed,
+    synthesize_exact,
+    synthesize_fast,
+    taylor_coupling,
+    taylor_orders_needed,
+)
 
 
 def closed_form_beat(config, coef, tau0, rate):
@@ -86,6 +93,62 @@ def test_taylor_order_bound():
         if k > 0:
             assert r * t**k / math.factorial(k) >= 1e-6
     assert need[0] == 0 and need[3] < need[2]
+
+
+def test_chebyshev_order_bound():
+    """A path keeps order k while |C| 2 (theta/2)^k / k! >= tol * (strongest |C|), elementwise over any shape;
+    past theta = 2 the terms first grow, and the orders run past the largest one."""
+    theta = torch.tensor([[0.0, 0.3, 1.1], [1.1, 1.9, 6.0]], dtype=torch.float64)
+    rel = torch.tensor([[1.0, 1.0, 1.0], [1e-3, 1.0, 1e-2]], dtype=torch.float64)
+    need = chebyshev_orders_needed(theta, rel, 1e-6)
+    assert need.shape == theta.shape
+    for t, r, k in zip(theta.flatten().tolist(), rel.flatten().tolist(), need.flatten().tolist()):
+        bound = [r * 2 * (t / 2) ** j / math.factorial(j) for j in range(60)]
+        assert all(b < 1e-6 for b in bound[k + 1:])
+        if k > 0:
+            assert bound[k] >= 1e-6
+    assert need[0, 0] == 0 and need[1, 0] < need[0, 2]
+    # about two orders fewer than the Taylor series' bound for the same tolerance
+    taylor = taylor_orders_needed(theta[0, 1:], rel[0, 1:], 1e-6)
+    assert ((taylor - need[0, 1:]) >= 1).all()
+
+
+def test_bessel_ratios_against_the_power_series():
+    """F_k = J_k k! / (x/2)^k from the backward recurrence agrees with J_k's power series, written here
+    in plain Python (x up to 3: beyond the walker's ~1.4 rad)."""
+    from radaraug.sensor.synthesis import _bessel_ratios
+
+    x = torch.tensor([0.0, 0.2, 0.9, 1.4, 3.0], dtype=torch.float64)
+    f = _bessel_ratios(x, 7, 1e-12)
+    for k in range(8):
+        for xi, fk in zip(x.tolist(), f[k].tolist()):
+            j_k = sum((-1) ** s * (xi / 2) ** (2 * s + k) / (math.factorial(s) * math.factorial(s + k)) for s in range(40))
+            assert abs((xi / 2) ** k / math.factorial(k) * fk - j_k) < 1e-11
+
+
+def test_frames_keep_their_own_orders(cfg):
+    """Orders are chosen per frame: a frame of slow, weak paths next to a frame with a fast, strong one
+    agrees with the exact sum to the documented tolerance, as under the Taylor rule of one set of orders per batch."""
+    timing = ChirpTiming.from_config(cfg)
+    g = torch.Generator().manual_seed(7)
+    T, RX, P = 2, 3, 12
+    tau = (2 * (1 + 9 * torch.rand(T, 1, P, generator=g, dtype=torch.float64)) / SPEED_OF_LIGHT
+           + 1e-12 * torch.arange(RX, dtype=torch.float64)[:, None]).expand(T, RX, P)
+    speed = torch.rand(T, 1, P, generator=g, dtype=torch.float64) * 0.5
+    speed[1, 0, 0] = 6.0  # one fast path in the second frame only
+    rate = (2 * speed / SPEED_OF_LIGHT).expand(T, RX, P)
+    amp = torch.full((T, RX, P), 1e-2, dtype=torch.float64)
+    amp[1, :, 0] = 1.0
+    coef = torch.polar(amp, 2 * math.pi * torch.rand(T, RX, P, generator=g, dtype=torch.float64))
+    exact = synthesize_exact(coef, tau, rate, timing, dtype=torch.float64)
+    fast = synthesize_fast(coef, tau, rate, timing, dtype=torch.float64)
+    with taylor_coupling():
+        taylor = synthesize_fast(coef, tau, rate, timing, dtype=torch.float64)
+    peak = exact.abs().max()
+    for f in range(T):  # the documented tolerance: max abs error < 1e-4 of the peak, RMS < 1e-5
+        for x in (fast, taylor):
+            assert (x[f] - exact[f]).abs().max() < 1e-4 * peak
+            assert (x[f] - exact[f]).pow(2).mean().sqrt() < 1e-5 * exact.pow(2).mean().sqrt()
 
 
 @pytest.mark.parametrize("chunk", [1, 3, 1 << 30])
