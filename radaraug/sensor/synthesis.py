@@ -26,13 +26,13 @@ in (m, n); ``fast`` synthesis centres it and expands ``exp(j theta u v)`` (``u, 
 ``|theta|`` <= 1.1 rad at 5 m/s for the BGT60 chirp) in the Jacobi-Anger (Chebyshev) series
 ``sum_k eps_k j^k J_k(theta u) T_k(v)``, whose order-``k`` term is bounded by ``|C| 2 (theta/2)^k / k!``
 (the Taylor series' by ``|C| theta^k / k!``: about two orders more for the same bound). A path
-keeps the orders whose bound is at least half of ``taylor_tol`` times the amplitude of the
+keeps the orders whose bound is at least a quarter of ``taylor_tol`` times the amplitude of the
 strongest path of the call, chosen per chunk of rows (a frame on the CPU): weak multipath needs
 fewer orders than the torso, and a limb needs its orders only in the frames where it glints or
 swings fast. The product of slow and fast factors becomes a few real GEMMs over (path, re/im),
 and static clutter costs one GEMM. ``exact`` evaluates ``Phi`` for every (m, n, path) directly in
 float64 (memory-chunked): the reference. Measured agreement (60 paths at 0.5-20 m, |v| <= 5 m/s,
-3 RX): relative RMS error 5.4e-7 in float64 and 1.3e-6 in float32, max abs error 1.6e-6 of the peak.
+3 RX): relative RMS error 2.4e-7 in float64 and 1.2e-6 in float32, max abs error 1.5e-6 of the peak.
 
 Phases are accumulated in float64 cycles and reduced modulo 1 before the trig functions, so
 float32 outputs do not lose the ~1e4 cycles of carrier phase to rounding.
@@ -63,7 +63,7 @@ _FAST_CHUNK_ELEMENTS = 1 << 19  # fast-time factors per chunk of rows (2 MiB in 
 # per launch and keeps the chunk's temporaries within a few GiB.
 _FAST_CHUNK_ELEMENTS_GPU = 1 << 26
 _MAX_TAYLOR_ORDERS = 60
-_PER_FRAME_TOL = 0.5  # the share of ``taylor_tol`` each path's orders are chosen for, per frame (see synthesize_fast)
+_PER_FRAME_TOL = 0.25  # the share of ``taylor_tol`` each path's orders are chosen for, per frame (see synthesize_fast)
 _COUPLING = "chebyshev"  # the coupling's expansion (:func:`taylor_coupling` restores "taylor")
 _SHARE_RX = True  # the RX channels share the fast-time factor where exact (:func:`per_channel_synthesis`)
 
@@ -285,10 +285,11 @@ def synthesize_fast(
         if share and shared_rows is not None:
             theta_rows = shared_rows
         amp_rows = coef.abs() if chirp_gain is None else coef.abs() * chirp_gain.abs().amax(dim=-1)
-        # Every row's own orders, for half the tolerance: per frame, more paths sit near the bound than
-        # with one set of orders per batch, and their errors add up (measured on walkers with motion
-        # inside the frame: relative RMS error 1.2e-5 at the full tolerance, 6.2e-6 at half, against
-        # 6.1e-6 for the Taylor series at the full one); half keeps a frame's error where it was.
+        # Every row's own orders, for a quarter of the tolerance: per frame, more paths sit near the
+        # bound than with one set of orders per batch, and their errors add up (fast float32 vs exact
+        # on the bench's first two-walker block: relative RMS error 9.5e-6 at half the tolerance,
+        # 4.7e-6 at a quarter, 5.1e-6 for the Taylor series at the full one; walkers with motion
+        # inside the frame: 1.2e-5 / 2.9e-6 / 6.1e-6). A quarter keeps a frame's error where it was.
         need_rows = chebyshev_orders_needed(theta_rows, amp_rows / top, taylor_tol * _PER_FRAME_TOL)
     # Rows are the frames when the RX channels share the fast-time factor, else (frame, RX) pairs.
     # They are done in chunks whose per-path work (phases, slow factors P x M, fast-time factors
@@ -317,14 +318,14 @@ def synthesize_fast(
             K = len(counts) + 1
         slow, per_sample, theta, quad, w = _phase_terms(d, r, timing, cd)
         # The coupling theta w_m (c, R, P, M), rad, on the slow side of the expansion's terms.
-        tw = theta.to(dtype)[..., None] * w.to(dtype) if K > 1 else None
         if R > 1:
             shared = per_sample.mean(dim=1, keepdim=True)
             dev_rate = per_sample - shared  # cycles per sample: 2 pi dev (n - nc) = 2 pi dev nc v_n
             slow = _frac(slow + (dev_rate * nc)[..., None])
-            if tw is not None:
-                tw = (theta[..., None] * w + (2 * math.pi * nc * dev_rate)[..., None]).to(dtype)
+            tw = (theta[..., None] * w + (2 * math.pi * nc * dev_rate)[..., None]).to(dtype) if K > 1 else None
             per_sample, quad = shared, quad.mean(dim=1, keepdim=True)
+        else:
+            tw = theta.to(dtype)[..., None] * w.to(dtype) if K > 1 else None
         cr, ci = c.real.to(dtype)[..., None], c.imag.to(dtype)[..., None]
         if g is not None:
             g = g.to(dtype)
