@@ -291,6 +291,11 @@ class RadarConfig:
 
     # ------------------------------------------------------------------ derived values
     @property
+    def frame_shape(self) -> tuple[int, int, int]:
+        """One frame's raw shape ``(num_rx, num_chirps_per_frame, num_samples_per_chirp)``."""
+        return (self.num_rx, self.num_chirps_per_frame, self.num_samples_per_chirp)
+
+    @property
     def bandwidth_Hz(self) -> float:
         """Nominal RF bandwidth ``end - start`` (TX on)."""
         return self.end_frequency_Hz - self.start_frequency_Hz

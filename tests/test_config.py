@@ -26,6 +26,7 @@ def test_paper_preset_nominal_values() -> None:
     assert ideal.slope_Hz_per_s == pytest.approx(3.4467e12, rel=1e-4)
     assert ideal.max_range_m == pytest.approx(21.75, abs=0.02)
     assert ideal.range_resolution_m == pytest.approx(C / (2 * 882.35e6))
+    assert cfg.frame_shape == (3, 64, 256)  # 3 RX x 64 chirps x 256 samples per frame
 
 
 def test_adc_delay_shrinks_sampled_bandwidth() -> None:

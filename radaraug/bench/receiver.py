@@ -102,7 +102,7 @@ def benchmark_receiver(
         "threads": torch.get_num_threads(),
         "num_paths": num_paths,
         "num_frames": num_frames,
-        "shape": [config.num_rx, config.num_chirps_per_frame, config.num_samples_per_chirp],
+        "shape": list(config.frame_shape),
         "fast_frames_per_s": fps_fast,
         "exact_frames_per_s": fps_exact,
         "speedup": fps_fast / fps_exact,

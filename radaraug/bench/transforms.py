@@ -35,7 +35,7 @@ def run_transforms_benchmark(
 
     cfg = RadarConfig.bgt60tr13c()
     gen = torch.Generator().manual_seed(0)
-    shape = (batch, cfg.num_rx, cfg.num_chirps_per_frame, cfg.num_samples_per_chirp)
+    shape = (batch, *cfg.frame_shape)
     # A plausible raw frame: DC offset + noise at ~1.4 counts RMS + a tone, in SDK floats.
     cube = 0.2 * torch.rand(shape, generator=gen) + 1.4 * 2 / 4095 * torch.randn(shape, generator=gen)
     t = torch.arange(cfg.num_samples_per_chirp) / cfg.sample_rate_Hz

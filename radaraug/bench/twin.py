@@ -168,7 +168,7 @@ def run_twin_benchmark(
     result: dict[str, Any] = {
         "benchmark": "twin",
         "scene": "corridor_two_walkers (2 walkers, 20 m corridor, people's multipath up to wall-person-wall)",
-        "frame_shape": [cfg.num_rx, cfg.num_chirps_per_frame, cfg.num_samples_per_chirp],
+        "frame_shape": list(cfg.frame_shape),
         "device": device,
         "room_trace_and_synthesis_s": round(room_s, 2),
         "room_static_paths": int(twin.tracer.static_paths().delay_s.shape[0]),
@@ -296,7 +296,7 @@ def run_twin_benchmark_cuda(
     result: dict[str, Any] = {
         "benchmark": "twin",
         "scene": "corridor_two_walkers (2 walkers, 20 m corridor, people's multipath up to wall-person-wall)",
-        "frame_shape": [cfg.num_rx, cfg.num_chirps_per_frame, cfg.num_samples_per_chirp],
+        "frame_shape": list(cfg.frame_shape),
         "device": str(dev),
         "gpu": torch.cuda.get_device_name(dev),
         "room_trace_and_synthesis_s": round(room_s, 2),

@@ -50,7 +50,6 @@ class Diagnosis:
     frames: dict[str, int]
     runtime_s: float
     capture_views: Views
-    extra: dict[str, Any] = field(default_factory=dict)
     evidence: dict[str, Any] = field(default_factory=dict)
     """Per effect with a detector, its :class:`~radaraug.calibration.evidence.Evidence` (empty when
     the signatures were not read)."""
@@ -300,8 +299,7 @@ def diagnose(
     }, room=fitted_room)
     return Diagnosis(path, scene_name, source.mode, config, result, unexplained, profile,
                      {"read": int(frames.shape[0]), "fit": int(half), "held_out": int(frames.shape[0] - half),
-                      "simulated_per_evaluation": search.n_fit}, runtime, search.cap_held,
-                     extra={"evaluations": search.evaluations}, evidence=evidence)
+                      "simulated_per_evaluation": search.n_fit}, runtime, search.cap_held, evidence=evidence)
 
 
 def _measured_leakage(chain: Chain, ev: Any, num_rx: int) -> Chain:

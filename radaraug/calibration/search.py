@@ -259,7 +259,7 @@ class Search:
         return specs
 
     def refit_base(self, chain: Chain, extra: Sequence[tuple[str, ParamSpec]] = (),
-                   room: Room | None = None) -> tuple[Chain, Room, Score]:
+                   room: Room | None = None) -> tuple[Chain, Room]:
         """Refit the base stages present in ``chain``, the room and the DC offsets, with ``extra``.
 
         The base stages are the noise figure, anti-alias cutoff and ADC-side noise (high-pass cutoff and
@@ -269,7 +269,7 @@ class Search:
         chain = self.dc_closed_form(chain, room=room)
         chain, room, _ = self.optimize(chain, self.base_specs(chain) + list(extra), room)
         chain = self.dc_closed_form(chain, iterations=1, room=room)
-        return chain, room, self.fit_score(chain, room)
+        return chain, room
 
     def uncertainty(self, chain: Chain, specs: Sequence[tuple[str, ParamSpec]], room: Room | None,
                     noise_db: float) -> dict[str, list[float] | None]:
@@ -327,7 +327,7 @@ class Search:
             prior = EFFECTS["if_highpass"].priors(self.config)["cutoff_Hz"]
             lo, hi = max(prior.lo, start["cutoff_Hz"] / 2), min(prior.hi, start["cutoff_Hz"] * 2)
             extra = [("if_highpass", ParamSpec("cutoff_Hz", Prior(min(lo, hi * 0.99), hi, "log")))]
-            fitted, fitted_room, _ = self.refit_base(cand, extra, room=room)
+            fitted, fitted_room = self.refit_base(cand, extra, room=room)
             new_held = self.held_score(fitted, fitted_room)
             keep = new_held.overall <= held.overall + self.settings.min_gain_db
             steps.append(_step("if_highpass", True, require(fitted if keep else chain, "if_highpass")["params"], held,
@@ -370,7 +370,7 @@ class Search:
         room_before = self.source.check_room(room)
         before = self.held_score(chain, room_before)
         self.progress(f"twin as given: held-out error {before.overall:.3f} dB")
-        base_chain, base_room, _ = self.refit_base(chain, room=room_before)
+        base_chain, base_room = self.refit_base(chain, room=room_before)
         base = self.held_score(base_chain, base_room)
         fitted_room = "".join(f", {k} {v:.2f}" for k, v in base_room.items())
         self.progress(f"base chain refitted: held-out error {base.overall:.3f} dB{fitted_room}")
@@ -459,7 +459,7 @@ class Search:
             # The base was bent to imitate the new stage before it existed (a higher floor, a lower
             # anti-alias cutoff...): refit the base together with the new stage's parameters,
             # kept only when the held-out error does not get worse.
-            rebased, rebased_room, _ = self.refit_base(current, own, room=cur_room)
+            rebased, rebased_room = self.refit_base(current, own, room=cur_room)
             rebased_held = self.held_score(rebased, rebased_room)
             if rebased_held.overall <= cur_held.overall:
                 current, cur_room, cur_held = rebased, rebased_room, rebased_held

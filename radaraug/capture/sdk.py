@@ -164,7 +164,7 @@ class SdkDevice(RadarDevice):
         now = time.monotonic()
         data = np.asarray(frames[0] if isinstance(frames, (list, tuple)) else frames, dtype=np.float32)
         c = self._config
-        want = (c.num_rx, c.num_chirps_per_frame, c.num_samples_per_chirp)
+        want = c.frame_shape
         if data.shape != want:
             raise DeviceError(f"{self._where()}: the SDK returned a frame of shape {data.shape}, the config "
                               f"asks for {want} (rx, chirps, samples)")

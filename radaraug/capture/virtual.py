@@ -138,7 +138,7 @@ class VirtualSensor(RadarDevice):
     # ------------------------------------------------------------------ simulation
     def _shape(self) -> tuple[int, int, int]:
         c = self.config
-        return (c.num_rx, c.num_chirps_per_frame, c.num_samples_per_chirp)
+        return c.frame_shape
 
     def _ensure_twin(self) -> None:
         if self._twin is None:

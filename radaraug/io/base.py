@@ -62,7 +62,7 @@ class CaptureReader(abc.ABC):
     def shape(self) -> tuple[int, int, int, int]:
         """``(frames, rx, chirps, samples)``."""
         c = self.config
-        return (self.num_frames, c.num_rx, c.num_chirps_per_frame, c.num_samples_per_chirp)
+        return (self.num_frames, *c.frame_shape)
 
     @property
     def duration_s(self) -> float:

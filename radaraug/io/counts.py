@@ -39,7 +39,7 @@ def as_counts(data: Any, config: RadarConfig, where: str) -> np.ndarray:
         )
     if arr.ndim == 3:
         arr = arr[None]
-    frame_shape = (config.num_rx, config.num_chirps_per_frame, config.num_samples_per_chirp)
+    frame_shape = config.frame_shape
     if arr.ndim != 4 or arr.shape[1:] != frame_shape:
         raise InputTensorError(
             f"{where}: frames have shape {tuple(np.shape(data))}, expected (rx, chirps, samples) = "

@@ -197,7 +197,7 @@ class CaptureWriter:
                 raise CaptureError(f"{self.path}: cannot create capture file ({e})") from None
             self._file.attrs.update(file_attrs)
             c = config
-            shape = (c.num_rx, c.num_chirps_per_frame, c.num_samples_per_chirp)
+            shape = c.frame_shape
             self._frames = self._file.create_dataset(
                 fmt.FRAMES,
                 shape=(0, *shape),
