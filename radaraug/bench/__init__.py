@@ -2,17 +2,17 @@
 
 from __future__ import annotations
 
-import contextlib
 import math
 import os
 import time
-from collections.abc import Callable, Iterator
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
 import torch
 
 from radaraug._files import atomic_write_json
+from radaraug._threads import torch_threads as torch_threads  # re-exported: the benchmarks run on set threads
 
 
 def write_figures(out: str | os.PathLike | None, figures: dict[str, Any], *, newline: bool = True) -> None:
@@ -20,17 +20,6 @@ def write_figures(out: str | os.PathLike | None, figures: dict[str, Any], *, new
     if out is not None:
         Path(out).parent.mkdir(parents=True, exist_ok=True)
         atomic_write_json(out, figures, newline=newline, indent=2)
-
-
-@contextlib.contextmanager
-def torch_threads(n: int) -> Iterator[None]:
-    """Run the block on ``n`` torch threads (intra-op); the number before is restored after."""
-    before = torch.get_num_threads()
-    torch.set_num_threads(n)
-    try:
-        yield
-    finally:
-        torch.set_num_threads(before)
 
 
 def best_seconds(fn: Callable[[], Any], repeats: int, device: torch.device | None = None) -> float:

@@ -50,6 +50,7 @@ import yaml
 
 from radaraug._files import atomic_write_json
 from radaraug._optional import lazy_import
+from radaraug._threads import torch_threads
 from radaraug.config import RadarConfig
 from radaraug.errors import ConfigError
 from radaraug.io.blocks import BLOCK_FRAMES, BlockWriter
@@ -432,13 +433,9 @@ def make_proxy(
 
     # One intra-op thread: the per-frame kernels are small, and several threads contend (measured
     # several times slower on a loaded 2-core machine). Restored on return.
-    threads = torch.get_num_threads()
-    torch.set_num_threads(1)
-    try:
+    with torch_threads(1):
         return _generate(out, settings, frames_per_count, calibration_frames, seed, counts, progress, str(device),
                          tracer_options)
-    finally:
-        torch.set_num_threads(threads)
 
 
 def _generate(out: Path, settings: dict[str, Any], frames_per_count: int, calibration_frames: int, seed: int,
