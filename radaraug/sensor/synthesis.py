@@ -42,7 +42,7 @@ from __future__ import annotations
 
 import contextlib
 import math
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 
 import torch
@@ -463,7 +463,7 @@ def _fast_rows(
     return out
 
 
-def _chebyshev_polynomials(num_samples: int, dtype: torch.dtype, device: torch.device):
+def _chebyshev_polynomials(num_samples: int, dtype: torch.dtype, device: torch.device) -> Callable[[int], torch.Tensor]:
     """``k -> T_k(v_n)`` over the centred fast time ``v_n`` in [-1, 1] (computed on first use)."""
     v = torch.linspace(-1, 1, num_samples, dtype=torch.float64, device=device)
     cheb = [torch.ones_like(v), v]
@@ -523,7 +523,7 @@ def _bessel_ratios(x: torch.Tensor, orders: int, tol: float) -> list[torch.Tenso
 
 def _fast_rows_chebyshev(
     ar: torch.Tensor, ai: torch.Tensor, per_sample: torch.Tensor, quad: torch.Tensor, z: torch.Tensor | None,
-    counts: list[int], cheb, dtype: torch.dtype,
+    counts: list[int], cheb: Callable[[int], torch.Tensor], dtype: torch.dtype,
 ) -> torch.Tensor:
     """:func:`synthesize_fast` of a chunk of rows ``(c, R M, N)``.
 
@@ -543,7 +543,7 @@ def _fast_rows_chebyshev(
         return torch.bmm(ar.transpose(-1, -2), cos).baddbmm_(ai.transpose(-1, -2), sin, alpha=-1)
     p1 = counts[0]
     x = z[:, :p1]
-    f = _bessel_ratios(x, len(counts), 1e-3 * DEFAULT_TAYLOR_TOL)
+    f = _bessel_ratios(x, len(counts), 1e-8)  # F_k to 1e-8 relative: far under any order's bound
     # J_0 on the paths that keep any order (the others' 1 - J_0 is below the tolerance).
     out = torch.bmm((ar[:, :p1] * f[0]).transpose(-1, -2), cos[:, :p1]).baddbmm_(
         (ai[:, :p1] * f[0]).transpose(-1, -2), sin[:, :p1], alpha=-1)
