@@ -67,12 +67,13 @@ def ellipsoid_rcs(semi_axes: torch.Tensor, local_dir: torch.Tensor) -> tuple[tor
 
 def ray_hits_ellipsoids(
     origins: torch.Tensor, dirs: torch.Tensor, t_max: torch.Tensor, centers: torch.Tensor,
-    semi_axes: torch.Tensor, rotations: torch.Tensor,
+    semi_axes: torch.Tensor, rotations: torch.Tensor, own: torch.Tensor | None = None,
 ) -> torch.Tensor:
-    """``(N, S)`` bool: the ray from segment slot ``i`` meets another ellipsoid of its snapshot.
+    """``(N, S_i)`` bool: the ray from segment slot ``i`` meets another ellipsoid of its snapshot.
 
-    The rays are ``(N, S, 3)``; a hit is on an ellipsoid ``j != i`` of the same snapshot (``(N, S, ...)``)
-    at ``0 < t < t_max``.
+    The rays are ``(N, S_i, 3)``; a hit is on an ellipsoid ``j != own[i]`` of the same snapshot
+    (``(N, S_j, ...)``) at ``0 < t < t_max``. ``own``: each ray's own ellipsoid ``(S_i,)`` (default:
+    ray ``i`` belongs to ellipsoid ``i``).
     """
     # Into each ellipsoid's unit-sphere frame: x' = R^T (x - c) / axes.  Shapes (N, S_i, S_j, 3).
     rot_t = rotations.transpose(-1, -2)[:, None]  # (N, 1, Sj, 3, 3)
@@ -86,7 +87,8 @@ def ray_hits_ellipsoids(
     root = disc.clamp_min(0).sqrt()
     t1, t2 = (-b - root) / a, (-b + root) / a
     hit = (disc > 0) & (t2 > 0) & (t1 < t_max[..., None])
-    eye = torch.eye(centers.shape[1], dtype=torch.bool, device=centers.device)
+    j = torch.arange(centers.shape[1], device=centers.device)
+    eye = (j if own is None else own.to(centers.device))[:, None] == j[None, :]
     return (hit & ~eye).any(-1)
 
 
@@ -186,6 +188,7 @@ def ellipsoid_paths(
     mirrors: MirrorPlanes | None = None,
     frequency_Hz: float,
     convex_room: bool = False,
+    targets: torch.Tensor | None = None,
 ) -> Paths:
     """Paths of ellipsoid segments ``(..., S)`` -> :class:`Paths` ``(..., P, RX)`` with a mask.
 
@@ -194,6 +197,8 @@ def ellipsoid_paths(
     segment -> same wall -> radar, each block segment-major.
     With ``convex_room`` (see :meth:`MirrorPlanes.convex_enclosure`) the room cannot block any
     leg and bounce points are checked against the planes instead of cast against the room.
+    ``targets`` (segment indices, ascending): the paths of just those segments (``S`` = their count
+    above; :func:`ellipsoid_slots` places them among all slots), every segment still occluding.
 
     Raises:
         SceneError: semi-axes not finite and positive; multipath (``mirrors`` and ``room_bvh``)
@@ -242,6 +247,11 @@ def ellipsoid_paths(
         return out
     if (ax <= 0).any() or not torch.isfinite(ax).all():
         raise SceneError("ellipsoid semi_axes must be finite and positive")
+    occluders = (c, ax, rot)
+    if targets is not None:  # point_velocity reads vel and omega: they are the targets' from here on
+        targets = targets.to(dev)
+        c, ax, rot, vel = (t.index_select(1, targets) for t in (c, ax, rot, vel))
+        omega = None if omega is None else omega.index_select(1, targets)
     eps_skin = get_material(ell.material).permittivity(frequency_Hz)
     gamma_skin = (1 - complex(eps_skin) ** 0.5) / (1 + complex(eps_skin) ** 0.5)  # Gamma_TE at normal
 
@@ -254,7 +264,7 @@ def ellipsoid_paths(
     r_los = los.norm(dim=-1)
     u_los = los / r_los[..., None]
     eps = surface_offset(p)
-    blocked = ray_hits_ellipsoids(radar.centre.expand_as(p), u_los, r_los - eps, c, ax, rot)
+    blocked = ray_hits_ellipsoids(radar.centre.expand_as(p), u_los, r_los - eps, *occluders, own=targets)
     if room_bvh is not None and not convex_room:
         blocked = blocked | room_bvh.any_hit(radar.centre.expand_as(p).reshape(-1, 3), u_los.reshape(-1, 3),
                                               (r_los - eps).reshape(-1)).reshape(blocked.shape)
@@ -295,6 +305,25 @@ def ellipsoid_paths(
     delay, rate, amp, mask, kind = (torch.cat(list(x), dim=1) for x in zip(*parts))
     return Paths(delay.reshape(*lead, -1, n_rx), rate.reshape(*lead, -1, n_rx), amp.reshape(*lead, -1, n_rx),
                  kind.reshape(*lead, -1), mask.reshape(*lead, -1))
+
+
+def ellipsoid_slots(targets: torch.Tensor, s_count: int, num_slots: int) -> torch.Tensor:
+    """Where the slots of :func:`ellipsoid_paths` with ``targets`` sit among all ``num_slots`` slots.
+
+    All slots are ``S`` direct paths then three blocks of ``S K`` multipath slots, segment-major
+    (``num_slots = S (1 + 3 K)``); the result ``(len(targets) (1 + 3 K),)`` indexes them.
+    """
+    k = (num_slots // s_count - 1) // 3
+    t = targets.long()
+    block = (t[:, None] * k + torch.arange(k, device=t.device)).reshape(-1)
+    return torch.cat([t, *(s_count + b * s_count * k + block for b in range(3))])
+
+
+def slot_segments(s_count: int, num_slots: int, device: torch.device | None = None) -> torch.Tensor:
+    """The segment of each of the ``num_slots`` slots of :func:`ellipsoid_paths` ``(num_slots,)``."""
+    k = (num_slots // s_count - 1) // 3
+    seg = torch.arange(s_count, device=device)
+    return torch.cat([seg, *(seg.repeat_interleave(k),) * 3])
 
 
 def _bisector(u_in: torch.Tensor, u_out: torch.Tensor) -> torch.Tensor:

@@ -300,6 +300,7 @@ class RayTracer:
         ellipsoids: Ellipsoids | None = None,
         meshes: list[SceneGeometry] | None = None,
         multipath: bool = True,
+        targets: torch.Tensor | None = None,
     ) -> Paths:
         """Paths of moving targets.
 
@@ -309,6 +310,8 @@ class RayTracer:
             meshes: meshes at one instant (PO on every facet); only without leading dims on
                 ``ellipsoids``.
             multipath: add first-order multipath of the ellipsoids via the room's mirror planes.
+            targets: only these segments' paths (indices, ascending; all segments still occlude),
+                see :func:`~radaraug.raytrace.targets.ellipsoid_paths`.
 
         Returns:
             :class:`Paths` with ``kind`` and ``mask`` (masked slots are occluded segments or
@@ -321,7 +324,7 @@ class RayTracer:
             parts.append(ellipsoid_paths(
                 ellipsoids, self.radar, self.antenna, room_bvh=self.bvh, room_face_material=self.face_material,
                 room_reflectivity=self.reflectivity, mirrors=self.mirrors if multipath else None,
-                frequency_Hz=self.frequency_Hz, convex_room=self.convex_room,
+                frequency_Hz=self.frequency_Hz, convex_room=self.convex_room, targets=targets,
             ))
         for i, mesh in enumerate(meshes or []):
             _check_scene(mesh, f"meshes[{i}]")

@@ -183,6 +183,7 @@ def intra_frame_paths(
     *,
     intervals: int | str = "auto",
     tol_cycles: float = DEFAULT_TOL_CYCLES,
+    trace_slots: Callable[[torch.Tensor, torch.Tensor], Paths] | None = None,
 ) -> tuple[Paths, torch.Tensor]:
     """Paths of moving targets over each frame, with per-chirp delays and gains.
 
@@ -194,6 +195,10 @@ def intra_frame_paths(
         intervals: ``"auto"`` (refine per frame until converged, see the module docstring), or a
             fixed number of knot intervals per frame (``0``: one snapshot, linear model).
         tol_cycles: the automatic refinement's tolerance, carrier cycles.
+        trace_slots: optional ``trace`` of some slots: ``(times, slots)`` with ``slots`` ``(P,)``
+            bool -> :class:`Paths` ``(n, P, RX)`` whose other slots may hold anything finite. The
+            automatic refinement traces its finer knots with it for just the slots that still
+            need them (after the first level a frame's refinement is for ~1 of 32 segments).
 
     Returns:
         ``(paths, intervals_used)``: ``paths`` ``(T, P, RX)`` with ``chirp_delay_s`` and
@@ -218,8 +223,9 @@ def intra_frame_paths(
         j = torch.arange(1, k, 2) if odd_only else torch.arange(k + 1)
         return (t64[t_idx][:, None] + span * j.to(torch.float64)[None, :] / k).reshape(-1)
 
-    def traced(t_idx: torch.Tensor, k: int, odd_only: bool = False):
-        p = trace(knots_of(t_idx, k, odd_only))
+    def traced(t_idx: torch.Tensor, k: int, odd_only: bool = False, slots: torch.Tensor | None = None):
+        t = knots_of(t_idx, k, odd_only)
+        p = trace(t) if slots is None or trace_slots is None or bool(slots.all()) else trace_slots(t, slots)
         knots = k // 2 if odd_only else k + 1
         return (*_knot_tensors(p, int(t_idx.shape[0]), knots), p)
 
@@ -240,7 +246,9 @@ def intra_frame_paths(
         level = torch.zeros(d.shape[:2], dtype=torch.long)  # 0: not converged yet
         while True:
             if k > first:
-                dm, rm, am, _ = traced(idx, 2 * k, odd_only=True)
+                # Only the slots some of these frames still refine need the new knots: a slot that
+                # converged uses every (2k / its level)-th knot, none of these.
+                dm, rm, am, _ = traced(idx, 2 * k, odd_only=True, slots=(level == 0).any(dim=0))
             fine = [_interleave(c, m) for c, m in ((d, dm), (r, rm), (a, am))]
             if 2 * k >= max_k:
                 level = torch.where(level == 0, torch.full_like(level, 2 * k), level)

@@ -23,6 +23,7 @@ import torch
 from radaraug.config import RadarConfig
 from radaraug.errors import ConfigError, InputTensorError
 from radaraug.raytrace.shadow import SHADOW_TOL, correction_paths, shadow_transmission
+from radaraug.raytrace.targets import ellipsoid_slots, slot_segments
 from radaraug.raytrace.tracer import RayTracer
 from radaraug.scene.geometry import Ellipsoids
 from radaraug.scene.scene import Scene
@@ -219,9 +220,25 @@ class DigitalTwin:
         def trace(t: torch.Tensor) -> Paths:
             return self.tracer.target_paths(ellipsoids=self.ellipsoids(people, t), multipath=self.multipath)
 
+        def trace_slots(t: torch.Tensor, slots: torch.Tensor) -> Paths:
+            """The slots ``slots`` ``(P,)`` of :func:`trace` (the others zero): their segments' paths only."""
+            ell = self.ellipsoids(people, t)
+            assert ell is not None  # people is not empty
+            s_count, n_slots = ell.centers.shape[-2], slots.shape[0]
+            targets = slot_segments(s_count, n_slots, slots.device)[slots].unique()
+            part = self.tracer.target_paths(ellipsoids=ell, multipath=self.multipath, targets=targets)
+            where = ellipsoid_slots(targets, s_count, n_slots).to(part.delay_s.device)
+
+            def full(x: torch.Tensor, rx: bool) -> torch.Tensor:
+                out = x.new_zeros(*x.shape[:-2], n_slots, x.shape[-1]) if rx else x.new_zeros(*x.shape[:-1], n_slots)
+                return out.index_copy_(-2 if rx else -1, where, x)
+            return Paths(full(part.delay_s, True), full(part.delay_rate, True), full(part.amplitude, True),
+                         None if part.kind is None else full(part.kind, False),
+                         None if part.mask is None else full(part.mask, False))
+
         paths, self.last_intervals = intra_frame_paths(
             trace, times, ChirpTiming.from_config(self.config), intervals=self.intra_frame,
-            tol_cycles=self.intra_frame_tol_cycles,
+            tol_cycles=self.intra_frame_tol_cycles, trace_slots=trace_slots,
         )
         return paths
 

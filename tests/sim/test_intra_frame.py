@@ -145,6 +145,40 @@ def test_fast_and_exact_synthesis_agree_with_per_chirp_terms(scene) -> None:
     assert err < 1e-5, err
 
 
+def test_refinement_traces_only_the_slots_that_still_refine(monkeypatch) -> None:
+    """The finer knots are traced for just the segments whose slots have not converged: the paths and
+    the chosen intervals equal those of tracing every segment there (two walkers, wall ghosts)."""
+    import radaraug.sim.intra_frame as intra
+    import radaraug.sim.twin as twin_module
+
+    two = Scene.builtin("corridor_two_walkers")
+    twin = DigitalTwin(two, **FAST)
+    times = twin.frame_times(range(16, 24))
+    traced: list[int] = []
+    target_paths = twin.tracer.target_paths
+
+    def counting(*args, **kwargs):
+        out = target_paths(*args, **kwargs)
+        traced.append(int(out.delay_s.shape[-2]))
+        return out
+
+    monkeypatch.setattr(twin.tracer, "target_paths", counting)
+    some = twin.paths(two.people, times)
+    used = twin.last_intervals.clone()
+    assert len(traced) >= 2 and max(traced[1:]) < traced[0]  # the refinements traced fewer slots
+
+    def every_slot(*args, **kwargs):
+        return intra.intra_frame_paths(*args, **{**kwargs, "trace_slots": None})
+
+    monkeypatch.setattr(twin_module, "intra_frame_paths", every_slot)
+    full = twin.paths(two.people, times)
+    assert torch.equal(twin.last_intervals, used)
+    for name in ("kind", "mask"):
+        assert torch.equal(getattr(some, name), getattr(full, name))
+    for name in ("delay_s", "delay_rate", "amplitude", "chirp_delay_s", "chirp_gain"):
+        torch.testing.assert_close(getattr(some, name), getattr(full, name), rtol=1e-6, atol=0)
+
+
 def test_intra_frame_choice_is_per_frame_and_validated(scene) -> None:
     walker = Walker(start=(4.0, 0.0), heading_rad=math.pi)
     twin = _twin(scene)
