@@ -198,7 +198,8 @@ def ellipsoid_paths(
     With ``convex_room`` (see :meth:`MirrorPlanes.convex_enclosure`) the room cannot block any
     leg and bounce points are checked against the planes instead of cast against the room.
     ``targets`` (segment indices, ascending): the paths of just those segments (``S`` = their count
-    above; :func:`ellipsoid_slots` places them among all slots), every segment still occluding.
+    above), every segment still occluding; they are the slots of all segments whose segment
+    (:func:`slot_segments`) is a target, in the same order.
 
     Raises:
         SceneError: semi-axes not finite and positive; multipath (``mirrors`` and ``room_bvh``)
@@ -307,20 +308,12 @@ def ellipsoid_paths(
                  kind.reshape(*lead, -1), mask.reshape(*lead, -1))
 
 
-def ellipsoid_slots(targets: torch.Tensor, s_count: int, num_slots: int) -> torch.Tensor:
-    """Where the slots of :func:`ellipsoid_paths` with ``targets`` sit among all ``num_slots`` slots.
-
-    All slots are ``S`` direct paths then three blocks of ``S K`` multipath slots, segment-major
-    (``num_slots = S (1 + 3 K)``); the result ``(len(targets) (1 + 3 K),)`` indexes them.
-    """
-    k = (num_slots // s_count - 1) // 3
-    t = targets.long()
-    block = (t[:, None] * k + torch.arange(k, device=t.device)).reshape(-1)
-    return torch.cat([t, *(s_count + b * s_count * k + block for b in range(3))])
-
-
 def slot_segments(s_count: int, num_slots: int, device: torch.device | None = None) -> torch.Tensor:
-    """The segment of each of the ``num_slots`` slots of :func:`ellipsoid_paths` ``(num_slots,)``."""
+    """The segment of each of the ``num_slots`` slots of :func:`ellipsoid_paths` ``(num_slots,)``.
+
+    The slots are ``S`` direct paths then three blocks of ``S K`` multipath slots, segment-major
+    (``num_slots = S (1 + 3 K)``).
+    """
     k = (num_slots // s_count - 1) // 3
     seg = torch.arange(s_count, device=device)
     return torch.cat([seg, *(seg.repeat_interleave(k),) * 3])

@@ -238,7 +238,8 @@ def synthesize_fast(
     mag = coef.abs().reshape(-1, P).amax(dim=0).double()
     if chirp_gain is not None:
         mag = mag * chirp_gain.abs().reshape(-1, P, chirp_gain.shape[-1]).amax(dim=(0, 2)).double()
-    rel = mag / mag.max().clamp_min(1e-300)
+    top = mag.max().clamp_min(1e-300)
+    rel = mag / top
     # The RX channels of a frame see each path at delays a few picoseconds apart. Their fast-time
     # rates differ by a few mHz (a phase linear in the sample index: ~0.04 rad over a chirp) and
     # their in-chirp quadratic terms by ~1e-5 rad: the channels share one fast-time factor (its
@@ -270,14 +271,10 @@ def synthesize_fast(
     # swings fast in one frame of the batch does not cost its orders in the others), and the
     # chunk's paths sorted by them, so those that need order k form a prefix: each order is one
     # pair of GEMMs on a view, and static clutter (theta = 0) costs one pair in all.
-    top = mag.max().clamp_min(1e-300)
     if _COUPLING == "taylor":  # the rule before TWIN_MODEL_VERSION 4: Taylor orders for the whole call
-        need = taylor_orders_needed(theta_p, rel, taylor_tol)
-        order = torch.argsort(need, descending=True, stable=True)
-        coef, delay_s, delay_rate = (t.index_select(-1, order) for t in (coef, delay_s, delay_rate))
-        chirp_delay, chirp_gain = (None if t is None else t.index_select(-2, order) for t in (chirp_delay, chirp_gain))
-        K = int(need.max()) + 1
-        counts = [int(c) for c in (need[None, :] >= torch.arange(1, K, device=dev)[:, None]).sum(dim=1).cpu()]
+        coef, delay_s, delay_rate, chirp_delay, chirp_gain, counts = _sorted_by_orders(
+            coef, delay_s, delay_rate, chirp_delay, chirp_gain, taylor_orders_needed(theta_p, rel, taylor_tol))
+        K = len(counts) + 1
         v = torch.linspace(-1, 1, N, dtype=dtype, device=dev)
         v_pow = [v.pow(k) for k in range(1, K)]
     else:
@@ -482,10 +479,10 @@ def _sorted_by_orders(
     coef: torch.Tensor, delay_s: torch.Tensor, delay_rate: torch.Tensor, chirp_delay: torch.Tensor | None,
     chirp_gain: torch.Tensor | None, need: torch.Tensor,
 ) -> tuple:
-    """A chunk's paths sorted by the orders they ``need`` ``(P,)``, descending, and the order counts.
+    """Paths sorted by the orders they ``need`` ``(P,)``, descending, and the order counts.
 
-    ``(coef, delay_s, delay_rate, chirp_delay, chirp_gain, counts)``: the inputs (``(c, R, P)``,
-    ``(c, 1 or R, P, M)``) with their paths sorted, and ``counts[k - 1]`` the number that need order ``k``.
+    ``(coef, delay_s, delay_rate, chirp_delay, chirp_gain, counts)``: the inputs (``(…, P)``,
+    ``(…, P, M)``) with their paths sorted, and ``counts[k - 1]`` the number that need order ``k``.
     """
     order = torch.argsort(need, descending=True, stable=True)
     K = int(need.max()) + 1

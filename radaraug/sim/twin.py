@@ -23,7 +23,7 @@ import torch
 from radaraug.config import RadarConfig
 from radaraug.errors import ConfigError, InputTensorError
 from radaraug.raytrace.shadow import SHADOW_TOL, correction_paths, shadow_transmission
-from radaraug.raytrace.targets import ellipsoid_slots, slot_segments
+from radaraug.raytrace.targets import slot_segments
 from radaraug.raytrace.tracer import RayTracer
 from radaraug.scene.geometry import Ellipsoids
 from radaraug.scene.scene import Scene
@@ -225,9 +225,10 @@ class DigitalTwin:
             ell = self.ellipsoids(people, t)
             assert ell is not None  # people is not empty
             s_count, n_slots = ell.centers.shape[-2], slots.shape[0]
-            targets = slot_segments(s_count, n_slots, slots.device)[slots].unique()
+            segment = slot_segments(s_count, n_slots, slots.device)
+            targets = segment[slots].unique()
             part = self.tracer.target_paths(ellipsoids=ell, multipath=self.multipath, targets=targets)
-            where = ellipsoid_slots(targets, s_count, n_slots).to(part.delay_s.device)
+            where = torch.isin(segment, targets).nonzero()[:, 0].to(part.delay_s.device)  # the targets' slots, in order
 
             def full(x: torch.Tensor, rx: bool) -> torch.Tensor:
                 out = x.new_zeros(*x.shape[:-2], n_slots, x.shape[-1]) if rx else x.new_zeros(*x.shape[:-1], n_slots)
