@@ -220,10 +220,9 @@ def _device_arg(text: str, option: str = "--device") -> str:
     """Check a torch device that must exist on this machine (``cpu``, ``cuda``, ``cuda:N``)."""
     import torch
 
-    try:
-        dev = torch.device(text)
-    except (RuntimeError, TypeError):
-        raise ConfigError(f"{option} {text!r}: not a torch device (use cpu, cuda or cuda:N)") from None
+    from radaraug._torch import parse_device
+
+    dev = parse_device(text, option)
     if dev.type == "cuda" and not torch.cuda.is_available():
         raise ConfigError(f"{option} {text!r}: CUDA is not available on this machine")
     if dev.type == "cuda" and dev.index is not None and dev.index >= torch.cuda.device_count():

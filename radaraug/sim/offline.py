@@ -29,6 +29,7 @@ import numpy as np
 import torch
 
 from radaraug._optional import lazy_import
+from radaraug._torch import parse_device
 from radaraug.errors import CaptureError, ConfigError
 from radaraug.io import hdf5_format as fmt
 from radaraug.io import open_capture
@@ -54,18 +55,6 @@ def parse_shard(text: str | None) -> tuple[int, int]:
     if n < 1 or not 0 <= i < n:
         raise ConfigError(f"--shard {text}: need n >= 1 and 0 <= i < n")
     return i, n
-
-
-def torch_device_type(device: Any, who: str = "") -> str:
-    """The type (``cpu``, ``cuda``...) of torch device ``device``; ``who`` prefixes the error.
-
-    Raises:
-        ConfigError: ``device`` is not a torch device.
-    """
-    try:
-        return torch.device(device).type
-    except (RuntimeError, TypeError):
-        raise ConfigError(f"{who}device {device!r}: not a torch device (use cpu, cuda or cuda:N)") from None
 
 
 def shard_range(num_frames: int, shard: tuple[int, int], block: int = BLOCK_FRAMES) -> tuple[int, int]:
@@ -161,7 +150,7 @@ def simulate_capture(
         raise ConfigError(f"--frames must be an integer >= 1, got {frames!r}")
     if parse_shard(f"{shard[0]}/{shard[1]}") != tuple(shard):  # validates (i, n) given from Python
         raise ConfigError(f"shard must be (i, n) with 0 <= i < n, got {shard!r}")
-    device_type = torch_device_type(device)
+    device_type = parse_device(device).type
     start, stop = shard_range(frames, shard)
     path = shard_path(out, shard)
     job = {"scene": _jsonable(scene.to_dict()), "seed": seed, "frames_total": frames, "shard": list(shard),

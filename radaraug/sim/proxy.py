@@ -50,7 +50,7 @@ import yaml
 
 from radaraug._files import atomic_write_json
 from radaraug._optional import lazy_import
-from radaraug._threads import torch_threads
+from radaraug._torch import parse_device, torch_threads
 from radaraug.config import RadarConfig
 from radaraug.errors import ConfigError
 from radaraug.io.blocks import BLOCK_FRAMES, BlockWriter
@@ -69,7 +69,7 @@ from radaraug.scene.room import box, merge
 from radaraug.scene.scene import Scene
 from radaraug.sensor.effects import Effect, effect_from_dict
 from radaraug.sensor.receiver import FMCWReceiver
-from radaraug.sim.offline import people_inside, simulate_frames, torch_device_type
+from radaraug.sim.offline import people_inside, simulate_frames
 from radaraug.sim.randomization import ItemDraw
 from radaraug.sim.scenarios import ScenarioSampler, _uniform
 from radaraug.sim.seeding import Stream, item_seed
@@ -419,7 +419,7 @@ def make_proxy(
     calibration_frames = check_count_arg("make_proxy", "calibration_frames", calibration_frames, 1)
     seed = check_count_arg("make_proxy", "seed", seed, 0)
     counts = check_people_counts("make_proxy", counts)
-    device_type = torch_device_type(device, "make_proxy: ")
+    device_type = parse_device(device, "make_proxy: device").type
     tracer_options = dict(tracer_options or {})
     settings = json.loads(json.dumps({
         "generator_version": GENERATOR_VERSION, "frames_per_count": frames_per_count,
