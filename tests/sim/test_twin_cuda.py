@@ -52,6 +52,25 @@ def test_cuda_twin_frames_match_the_cpu_within_one_adc_code():
     assert float((gpu[1] - gpu[0]).abs().max()) > 10 * CODE
 
 
+def test_cuda_batched_call_and_shadow_match_the_cpu():
+    """One 96-frame call (one generator): the GPU's large synthesis and shadow-cull chunks against
+    the CPU's cache-sized ones (the shadow cull takes ~80 chunks on the CPU here, one on the GPU)."""
+    scene = Scene.builtin("corridor_two_walkers")
+    cpu_twin = DigitalTwin(scene, device="cpu", receiver=_noiseless(scene))
+    gpu_twin = DigitalTwin(scene, device="cuda", receiver=_noiseless(scene))
+    times = cpu_twin.frame_times(range(96))
+    t_cpu = cpu_twin.shadow_transmission(scene.people, times)
+    t_gpu = gpu_twin.shadow_transmission(scene.people, times)
+    assert t_cpu is not None and t_gpu is not None and t_gpu.device.type == "cuda"
+    assert float((t_cpu - 1).abs().max()) > 0.1  # the walkers do shadow the room
+    assert float((t_gpu.cpu() - t_cpu).abs().max()) < 1e-3  # SHADOW_TOL: below what is corrected at all
+    cpu = cpu_twin.simulate(scene.people, times, generators=item_generator(0, 0))
+    gpu = gpu_twin.simulate(scene.people, times, generators=item_generator(0, 0, device="cuda"))
+    codes = (gpu.cpu() - cpu).abs() / CODE
+    assert float(codes.max()) <= 1.01
+    assert float((codes > 0.5).double().mean()) <= 0.01
+
+
 def test_cuda_twin_noise_has_the_cpu_power():
     cpu = _frames("cpu", frames=8, scene_name="corridor")
     gpu = _frames("cuda", frames=8, scene_name="corridor").cpu()
