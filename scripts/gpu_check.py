@@ -133,6 +133,14 @@ def projection(fits: list[float], wall: float, items: int, val_items: int, epoch
     return res
 
 
+def proxy_frames(items: int) -> int:
+    """The reduced run's proxy frames per count: full mode's, scaled to ``items``, at least 40."""
+    from radaraug.training.reproduce import ReproduceSettings
+
+    full = ReproduceSettings.full()
+    return max(full.proxy_frames_per_count * items // full.train_items, 40)
+
+
 def _reproduce(out: Path, size: str, accelerator: str = "cuda") -> None:
     """A reduced reproduce on the GPU and the full run's projected wall time from its rates."""
     import torch
@@ -144,7 +152,7 @@ def _reproduce(out: Path, size: str, accelerator: str = "cuda") -> None:
     workers = max(2, (os.cpu_count() or 2) - 2)
     settings = ReproduceSettings(train_items=items, val_items=max(items // 10, 30), epochs=epochs,
                                  image_size=full.image_size, batch_size=full.batch_size,
-                                 proxy_frames_per_count=max(full.proxy_frames_per_count * items // full.train_items, 40),
+                                 proxy_frames_per_count=proxy_frames(items),
                                  num_workers=2, sim_workers=workers, methods=("rt", "randomdr", "cdr"),
                                  ablations=(), test_sets=("independent",))
     t0 = time.perf_counter()

@@ -27,12 +27,9 @@ def test_recorded_reproduce_projection_is_the_drivers_formula():
     rec = json.loads((ROOT / "benchmarks" / "reproduce_cuda.json").read_text())
     rate = json.loads((ROOT / "benchmarks" / "training_cuda.json").read_text())["pipeline_images_per_s"]
     size = rec["size"]
-    from radaraug.training.reproduce import ReproduceSettings
-
-    full = ReproduceSettings.full()  # the driver's proxy size: full mode's, scaled to the items, at least 40
-    proxy_frames = max(full.proxy_frames_per_count * size["train_items"] // full.train_items, 40)
-    got = _driver().projection(rec["fit_seconds_per_run"], rec["wall_seconds"], size["train_items"],
-                               size["val_items"], size["epochs"], proxy_frames, rate)
+    driver = _driver()
+    got = driver.projection(rec["fit_seconds_per_run"], rec["wall_seconds"], size["train_items"],
+                            size["val_items"], size["epochs"], driver.proxy_frames(size["train_items"]), rate)
     assert got["full_mode_projected_seconds_linear_upper_bound"] == pytest.approx(
         rec["full_mode_projected_seconds_linear_upper_bound"], rel=2e-3)
     assert got["full_mode_projected_seconds_lower_bound"] == pytest.approx(
