@@ -246,7 +246,7 @@ def synthesize_fast(
     # trig and one GEMM whose slow side stacks the channels) and the linear difference joins the
     # coupling's expansion (``theta w_m v_n + phi v_n`` has the same form). Shared only where the
     # neglected quadratic difference is below the tolerance.
-    theta_rows, shared_rows = _coupling_phase(delay_s, delay_rate, timing, chirp_delay, rel, taylor_tol, reduce=False)
+    theta_rows, shared_rows = _coupling_phase(delay_s, delay_rate, timing, chirp_delay, rel, taylor_tol)
     theta_p = theta_rows.reshape(-1, P).amax(dim=0)
     shared = None if shared_rows is None else shared_rows.reshape(-1, P).amax(dim=0)
     still = theta_p == 0
@@ -387,11 +387,9 @@ def _unravel(flat: torch.Tensor, shape: tuple[int, ...]) -> tuple[torch.Tensor, 
 
 def _coupling_phase(
     delay_s: torch.Tensor, delay_rate: torch.Tensor, timing: ChirpTiming, chirp_delay: torch.Tensor | None,
-    rel_amplitude: torch.Tensor, tol: float, *, reduce: bool = True,
+    rel_amplitude: torch.Tensor, tol: float,
 ) -> tuple[torch.Tensor, torch.Tensor | None]:
-    """Per path, the largest residual coupling phase (rad) over all rows, alone and with the RX shared.
-
-    ``reduce=False``: the phases of every row ``(…, RX, P)`` instead of their largest per path.
+    """Every row's largest residual coupling phase (rad) of each path ``(…, RX, P)``, alone and with the RX shared.
 
     ``theta`` of :func:`_phase_terms` without the rest: the coupling ``g_m = S (1 - r) e_m / fs``
     with ``e_m = r m T + d_m`` has the half range ``S (1 - r) (max e - min e) / (2 fs)`` over the
@@ -416,17 +414,15 @@ def _coupling_phase(
     k = timing.slope * (1 - r) / timing.fs
     theta = 2 * math.pi * (k * span / 2) * nc
     P = delay_s.shape[-1]
-    alone = theta.reshape(-1, P).amax(dim=0) if reduce else theta
     if not _SHARE_RX or delay_s.dim() < 2 or delay_s.shape[-2] < 2:
-        return alone, None
+        return theta, None
     rate, quad = _fast_time_rate(delay_s.double(), r, k * mid, timing)  # as _phase_terms gives them
     d_rate = (rate - rate.mean(dim=-2, keepdim=True)).abs()
     d_quad = (quad - quad.mean(dim=-2, keepdim=True)).abs()
     quad_err = (2 * math.pi * (timing.num_samples - 1) ** 2 * d_quad).reshape(-1, P).amax(dim=0)
     if bool((quad_err * rel_amplitude > tol).any()):
-        return alone, None
-    both = theta + 2 * math.pi * nc * d_rate
-    return alone, both.reshape(-1, P).amax(dim=0) if reduce else both
+        return theta, None
+    return theta, theta + 2 * math.pi * nc * d_rate
 
 
 def _fast_rows(
