@@ -8,7 +8,10 @@ writes a second test set from a simulation written separately, in NumPy:
 * :mod:`radaraug.heldout.walkers`: people as 14 point scatterers on a sinusoidal gait;
 * :mod:`radaraug.heldout.room`: an office as static point scatterers levelled by the radar equation;
 * :mod:`radaraug.heldout.receiver`: the FMCW receiver chain with undeclared effects;
-* :mod:`radaraug.heldout.generator`: :func:`make_independent_proxy`, the labelled captures.
+* :mod:`radaraug.heldout.generator`: :func:`make_independent_proxy`, the labelled captures;
+* :mod:`radaraug.heldout.worlds`: whole test worlds (room, mounting, radar config, people,
+  disturbances) drawn from wide priors, in a ``design`` suite to look at and a ``report`` suite
+  run only to report (:func:`make_suite`).
 
 It imports none of the twin's packages (a test checks it); it uses only
 :class:`~radaraug.config.RadarConfig`, :mod:`radaraug.io` (the capture writer) and
@@ -21,5 +24,7 @@ from radaraug.heldout.generator import (
     load_independent_proxy,
     make_independent_proxy,
 )
+from radaraug.heldout.worlds import SUITES, World, draw_world, load_world, make_suite, make_world
 
-__all__ = ["GENERATOR_VERSION", "IndependentProxySet", "load_independent_proxy", "make_independent_proxy"]
+__all__ = ["GENERATOR_VERSION", "SUITES", "IndependentProxySet", "World", "draw_world", "load_world",
+           "load_independent_proxy", "make_independent_proxy", "make_suite", "make_world"]

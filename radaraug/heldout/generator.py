@@ -38,6 +38,7 @@ import math
 import os
 import time
 from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
@@ -73,8 +74,6 @@ EPISODE_GAP_S = 2.0
 FILE_TIME_ORIGIN_S = 1000.0
 MIN_SEPARATION_M = 0.5
 """Two people's body centres stay at least this far apart during an episode."""
-_LANE_RANGE_M = (room_mod.WALK_Y_M[0] + walkers.TURN_RADIUS_M, room_mod.WALK_Y_M[1] - walkers.TURN_RADIUS_M)
-"""Where the racetracks' centre lines may lie: their lanes stay on the walkable floor."""
 _STREAM_PEOPLE, _STREAM_RECEIVER = 1, 2
 
 RECEIVER: dict[str, Any] = {
@@ -203,7 +202,8 @@ def resolve_effects(effects: str | Sequence[Mapping[str, Any]] | None, config: R
 
 
 # -------------------------------------------------------------------------------------- people
-def person_tracks(person: walkers.Person, rcs_m2: np.ndarray, t: np.ndarray, config: RadarConfig) -> list[dict[str, Any]]:
+def person_tracks(person: walkers.Person, rcs_m2: np.ndarray, t: np.ndarray, config: RadarConfig,
+                  mount: room_mod.Mount = room_mod.OFFICE.mount) -> list[dict[str, Any]]:
     """The receiver's ``tracks`` of ``person``'s scatterers at chirp times ``t`` ``(F, M)``.
 
     Args:
@@ -211,11 +211,12 @@ def person_tracks(person: walkers.Person, rcs_m2: np.ndarray, t: np.ndarray, con
         rcs_m2: ``(NUM_POINTS, F)`` linear RCS per point and frame (:func:`walkers.rcs_per_frame`).
         t: the person's time (s) of each chirp's first ADC sample.
         config: the radar configuration.
+        mount: where the radar hangs and looks.
     """
     dt = walkers.DERIVATIVE_STEP_S
-    r, u = room_mod.look(walkers.positions(person, t))  # (P, F, M), (P, F, M, 3)
-    r_plus, _ = room_mod.look(walkers.positions(person, t + dt))
-    r_minus, _ = room_mod.look(walkers.positions(person, t - dt))
+    r, u = room_mod.look(walkers.positions(person, t), mount)  # (P, F, M), (P, F, M, 3)
+    r_plus, _ = room_mod.look(walkers.positions(person, t + dt), mount)
+    r_minus, _ = room_mod.look(walkers.positions(person, t - dt), mount)
     rate = (r_plus - r_minus) / (2.0 * dt)
     level = room_mod.level_dB(rcs_m2[:, :, None], r, u, config.wavelength_m)
     rx_phase = np.moveaxis(room_mod.rx_phase_rad(u, config), -1, -2)  # (P, F, RX, M)
@@ -241,13 +242,57 @@ def _too_close(people: list[walkers.Person], duration_s: float) -> bool:
     return any(float(np.linalg.norm(a - b, axis=-1).min()) < MIN_SEPARATION_M for a, b in pairs)
 
 
+@dataclass(frozen=True)
+class PeoplePriors:
+    """What the people of a set are drawn from (the defaults: the ``independent`` set's).
+
+    Attributes:
+        rcs_dBsm: range of a person's mean whole-body RCS (uniform).
+        speed_m_s: range of a walker's speed (uniform).
+        standing_probability: chance that a drawn person stands (breathing, swaying) instead of walking.
+        crossing_probability: chance that a walker's racetrack runs across the radar's beam (along
+            ``y``) instead of toward and away from it.
+    """
+
+    rcs_dBsm: tuple[float, float] = walkers.RCS_DBSM
+    speed_m_s: tuple[float, float] = walkers.SPEED_M_S
+    standing_probability: float = 0.0
+    crossing_probability: float = 0.0
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-friendly description."""
+        return {"rcs_dBsm": list(self.rcs_dBsm), "speed_m_s": list(self.speed_m_s),
+                "standing_probability": self.standing_probability,
+                "crossing_probability": self.crossing_probability}
+
+
+def _draw_person(rng: np.random.Generator, room: room_mod.Room, people: PeoplePriors) -> walkers.Person:
+    """One person on ``room``'s walkable floor (a crossing walker's racetrack runs along ``y``)."""
+    tr = walkers.TURN_RADIUS_M
+    (x0, x1), (y0, y1) = room.walk_x_m, room.walk_y_m
+    standing = bool(rng.random() < people.standing_probability)
+    # Drawn only when crossing walkers are possible, so the other sets' streams are unchanged.
+    crossing = not standing and people.crossing_probability > 0 and bool(rng.random() < people.crossing_probability)
+    if crossing:
+        # The racetrack's frame turned +90 degrees: its x runs along the room's y, its lane centre
+        # is minus the room's x.
+        return walkers.draw_person(rng, x_range_m=(y0, y1), lane_range_m=(-(x1 - tr), -(x0 + tr)),
+                                   standing=False, rcs_dBsm=people.rcs_dBsm, speed_m_s=people.speed_m_s,
+                                   track_yaw_rad=math.pi / 2, min_straight_m=0.5 * (y1 - y0 - 2 * tr))
+    return walkers.draw_person(rng, x_range_m=(x0, x1), lane_range_m=(y0 + tr, y1 - tr), standing=standing,
+                               rcs_dBsm=people.rcs_dBsm, speed_m_s=people.speed_m_s)
+
+
 def plan_episodes(count: int, frames: int, seed: int, config: RadarConfig,
-                  standing_probability: float = 0.0) -> list[dict[str, Any]]:
+                  standing_probability: float = 0.0, *, room: room_mod.Room = room_mod.OFFICE,
+                  people: PeoplePriors | None = None) -> list[dict[str, Any]]:
     """The episodes of the file of ``count`` people: frames, start time, people.
 
-    Each episode draws new people (:func:`walkers.draw_person`); two people are redrawn until
-    their body centres stay :data:`MIN_SEPARATION_M` apart for the whole episode.
+    Each episode draws new people (:func:`walkers.draw_person`) on ``room``'s walkable floor from
+    ``people`` (default: :class:`PeoplePriors` with ``standing_probability``); two people are
+    redrawn until their body centres stay :data:`MIN_SEPARATION_M` apart for the whole episode.
     """
+    people = PeoplePriors(standing_probability=standing_probability) if people is None else people
     split_rng = np.random.default_rng(np.random.SeedSequence(seed, spawn_key=(_STREAM_PEOPLE, count, 10_000)))
     episodes = []
     t0 = FILE_TIME_ORIGIN_S * (count + 1)
@@ -255,15 +300,13 @@ def plan_episodes(count: int, frames: int, seed: int, config: RadarConfig,
         rng = np.random.default_rng(np.random.SeedSequence(seed, spawn_key=(_STREAM_PEOPLE, count, j)))
         duration = n * config.frame_repetition_time_s
         for _attempt in range(200):
-            people = [walkers.draw_person(rng, x_range_m=room_mod.WALK_X_M, lane_range_m=_LANE_RANGE_M,
-                                          standing=bool(rng.random() < standing_probability))
-                      for _ in range(count)]
-            if count < 2 or not _too_close(people, duration):
+            drawn = [_draw_person(rng, room, people) for _ in range(count)]
+            if count < 2 or not _too_close(drawn, duration):
                 break
         else:  # pragma: no cover - the lanes leave room for two people
             raise RuntimeError(f"heldout: could not place {count} people apart")
-        rcs = [walkers.rcs_per_frame(p, rng, n) for p in people]
-        episodes.append({"frames": n, "t0": t0, "people": people, "rcs": rcs})
+        rcs = [walkers.rcs_per_frame(p, rng, n) for p in drawn]
+        episodes.append({"frames": n, "t0": t0, "people": drawn, "rcs": rcs})
         t0 += duration + EPISODE_GAP_S
     return episodes
 
@@ -276,10 +319,9 @@ def _block_seed(seed: int, file_key: int, block: int) -> int:
 
 def _write_file(path: Path, config: RadarConfig, episodes: list[dict[str, Any]], count: int, file_key: int,
                 seed: int, effects: list[dict[str, Any]], scene: list[dict[str, Any]], attrs: dict[str, Any],
-                bar: Any) -> None:
+                bar: Any, kwargs: dict[str, Any], mount: room_mod.Mount) -> None:
     from radaraug.io import CaptureWriter
 
-    kwargs = receiver_kwargs(config)
     total = sum(e["frames"] for e in episodes)
     block = 0
     period = config.frame_repetition_time_s
@@ -292,7 +334,7 @@ def _write_file(path: Path, config: RadarConfig, episodes: list[dict[str, Any]],
                 t_chirp = _chirp_times(config, local)
                 tracks: list[dict[str, Any]] = []
                 for person, rcs in zip(ep["people"], ep["rcs"]):
-                    tracks += person_tracks(person, rcs[:, a:b], t_chirp, config)
+                    tracks += person_tracks(person, rcs[:, a:b], t_chirp, config, mount)
                 counts = generate(config, b - a, seed=_block_seed(seed, file_key, block), effects=effects,
                                   scene=scene, tracks=tracks, start_time_s=ep["t0"] + local[0], **kwargs)
                 labels = np.full(b - a, count, dtype=np.int64)
@@ -370,39 +412,70 @@ def make_independent_proxy(
     return _generate(out, settings, config, resolved, progress)
 
 
-def _generate(out: Path, settings: dict[str, Any], config: RadarConfig, effects: list[dict[str, Any]],
-              progress: bool) -> IndependentProxySet:
+def write_set_files(out: Path, config: RadarConfig, *, seed: int, counts: Sequence[int], frames_per_count: int,
+                    calibration_frames: int, effects: list[dict[str, Any]], common: dict[str, Any],
+                    room: room_mod.Room = room_mod.OFFICE, people: PeoplePriors | None = None,
+                    receiver: dict[str, Any] | None = None, progress: bool = True,
+                    desc: str = "heldout") -> dict[str, Any]:
+    """Write the calibration capture and one test capture per count of a room; the manifest's ``files``.
+
+    Args:
+        out: the set's folder.
+        config: the radar configuration.
+        seed: seed of the people and of the receiver noise.
+        counts: people counts, one test file each.
+        frames_per_count: frames of each test file.
+        calibration_frames: frames of the calibration file.
+        effects: every receiver effect (:func:`resolve_effects`).
+        common: attributes written into every file.
+        room: the room, its fixtures and the radar's mount.
+        people: what the people are drawn from.
+        receiver: :func:`radaraug.heldout.receiver.generate` keyword arguments (default
+            :func:`receiver_kwargs`).
+        progress: show a tqdm progress bar (frames).
+        desc: the progress bar's label.
+    """
     from radaraug._optional import lazy_import
 
+    scene = room_mod.room_scene(config, room=room)
+    kwargs = receiver_kwargs(config) if receiver is None else receiver
+    tqdm = lazy_import("tqdm.auto", feature="progress bars").tqdm
+    total = calibration_frames + frames_per_count * len(counts)
+    files: dict[str, Any] = {}
+    with tqdm(total=total, desc=desc, unit="frame", disable=not progress) as bar:
+        cal = [{"frames": calibration_frames, "t0": 0.0, "people": [], "rcs": []}]
+        _write_file(out / CALIBRATION_NAME, config, cal, 0, 0, seed, effects, scene,
+                    {**common, "description": "empty room, for CalibratedDR.fit",
+                     "role": "calibration", "labels": {"count": 0}}, bar, kwargs, room.mount)
+        files["calibration"] = {"path": CALIBRATION_NAME, "frames": calibration_frames, "count": 0}
+        files["tests"] = []
+        for c in counts:
+            episodes = plan_episodes(c, frames_per_count, seed, config, room=room, people=people)
+            described = [{"frames": e["frames"], "t0_s": round(e["t0"], 6),
+                          "people": [p.to_dict() for p in e["people"]]} for e in episodes]
+            path = out / test_file_name(c)
+            _write_file(path, config, episodes, c, c + 1, seed, effects, scene,
+                        {**common, "description": f"{c} people in every frame",
+                         "role": "test", "labels": {"count": c}, "episodes": described}, bar, kwargs, room.mount)
+            files["tests"].append({"path": path.name, "frames": frames_per_count, "count": c,
+                                   "episodes": described})
+    return files
+
+
+def _generate(out: Path, settings: dict[str, Any], config: RadarConfig, effects: list[dict[str, Any]],
+              progress: bool) -> IndependentProxySet:
     started = time.perf_counter()
     manifest_path = start_generated_set(out, MANIFEST_NAME)
     seed = settings["seed"]
-    counts = settings["counts"]
-    scene = room_mod.room_scene(config)
-    tqdm = lazy_import("tqdm.auto", feature="progress bars").tqdm
     common = {"source": "radaraug independent held-out generator (radaraug.heldout)",
               "generator_version": GENERATOR_VERSION, "seed": seed,
               "note": "simulated without the training twin's code: numbers on it are sim-to-sim, not sim-to-real"}
-    total = settings["calibration_frames"] + settings["frames_per_count"] * len(counts)
-    files: dict[str, Any] = {}
-    with tqdm(total=total, desc="heldout", unit="frame", disable=not progress) as bar:
-        cal_path = out / CALIBRATION_NAME
-        cal = [{"frames": settings["calibration_frames"], "t0": 0.0, "people": [], "rcs": []}]
-        _write_file(cal_path, config, cal, 0, 0, seed, effects, scene,
-                    {**common, "description": "independent held-out set: empty room, for CalibratedDR.fit",
-                     "role": "calibration", "labels": {"count": 0}}, bar)
-        files["calibration"] = {"path": CALIBRATION_NAME, "frames": settings["calibration_frames"], "count": 0}
-        files["tests"] = []
-        for c in counts:
-            episodes = plan_episodes(c, settings["frames_per_count"], seed, config, settings["standing_probability"])
-            desc = [{"frames": e["frames"], "t0_s": round(e["t0"], 6),
-                     "people": [p.to_dict() for p in e["people"]]} for e in episodes]
-            path = out / test_file_name(c)
-            _write_file(path, config, episodes, c, c + 1, seed, effects, scene,
-                        {**common, "description": f"independent held-out set: {c} people in every frame",
-                         "role": "test", "labels": {"count": c}, "episodes": desc}, bar)
-            files["tests"].append({"path": path.name, "frames": settings["frames_per_count"], "count": c,
-                                   "episodes": desc})
+    files = write_set_files(out, config, seed=seed, counts=settings["counts"],
+                            frames_per_count=settings["frames_per_count"],
+                            calibration_frames=settings["calibration_frames"], effects=effects, common=common,
+                            people=PeoplePriors(standing_probability=settings["standing_probability"]),
+                            progress=progress)
+    cal_path = out / CALIBRATION_NAME
     elapsed = time.perf_counter() - started
     manifest = {
         "format": MANIFEST_FORMAT,
@@ -444,7 +517,7 @@ def _generate(out: Path, settings: dict[str, Any], config: RadarConfig, effects:
 
 
 __all__ = [
-    "GENERATOR_VERSION", "IndependentProxySet", "RECEIVER", "UNDECLARED_EFFECTS", "default_effects",
+    "GENERATOR_VERSION", "IndependentProxySet", "PeoplePriors", "RECEIVER", "UNDECLARED_EFFECTS", "default_effects",
     "load_independent_proxy", "make_independent_proxy", "person_tracks", "plan_episodes", "receiver_kwargs",
-    "resolve_effects",
+    "resolve_effects", "write_set_files",
 ]

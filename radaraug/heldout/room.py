@@ -50,7 +50,8 @@ the room is the same for every capture and every seed.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from collections.abc import Mapping
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
@@ -121,6 +122,56 @@ FAN: dict[str, Any] = {
 
 
 @dataclass(frozen=True)
+class Mount:
+    """Where the radar hangs and where it looks.
+
+    Attributes:
+        position_m: room-frame position of the antenna (m).
+        tilt_down_deg: boresight elevation below the horizontal (a radar high on a wall looks down).
+        yaw_deg: boresight azimuth from ``+x`` toward ``+y``.
+    """
+
+    position_m: tuple[float, float, float] = RADAR_POSITION_M
+    tilt_down_deg: float = RADAR_TILT_DOWN_DEG
+    yaw_deg: float = 0.0
+
+
+@dataclass(frozen=True)
+class Room:
+    """A room of point scatterers: its box, surfaces, fixtures, the radar's mount and the walkable floor.
+
+    The defaults are the office described in the module docstring (the ``independent`` set's room);
+    :mod:`radaraug.heldout.worlds` draws others.
+
+    Attributes:
+        size_m: length (x), width (y), height (z).
+        wall_reflectivity_dB: ``|Gamma|^2`` at normal incidence of ``far_wall``, ``left_wall``,
+            ``right_wall``, ``floor``, ``ceiling``.
+        diffuse_mu: backscatter coefficient of the surfaces seen at grazing angles (any of the
+            side walls, floor and ceiling).
+        objects: fixtures ``(name, position_m, rcs_dBsm)``.
+        walk_x_m, walk_y_m: the walkable floor, clear of the fixtures.
+        fan: a running fan (:data:`FAN`'s keys) or None.
+        mount: the radar's :class:`Mount`.
+        seed: seed of the fixed scattering phases and roughness.
+    """
+
+    size_m: tuple[float, float, float] = ROOM_SIZE_M
+    wall_reflectivity_dB: Mapping[str, float] = field(default_factory=lambda: dict(WALL_REFLECTIVITY_DB))
+    diffuse_mu: Mapping[str, float] = field(default_factory=lambda: dict(DIFFUSE_MU))
+    objects: tuple[tuple[str, tuple[float, float, float], float], ...] = OBJECTS
+    walk_x_m: tuple[float, float] = WALK_X_M
+    walk_y_m: tuple[float, float] = WALK_Y_M
+    fan: Mapping[str, Any] | None = field(default_factory=lambda: dict(FAN))
+    mount: Mount = Mount()
+    seed: int = ROOM_SEED
+
+
+OFFICE = Room()
+"""The fixed office of the ``independent`` held-out set."""
+
+
+@dataclass(frozen=True)
 class Scatterer:
     """A static point scatterer of the room.
 
@@ -143,11 +194,13 @@ class Scatterer:
 
 
 # ------------------------------------------------------------------------------- radar geometry
-def radar_axes() -> np.ndarray:
+def radar_axes(mount: Mount = OFFICE.mount) -> np.ndarray:
     """Rows: the antenna frame's x (sensor right), y (sensor up) and z (boresight) in the room frame."""
-    tilt = math.radians(RADAR_TILT_DOWN_DEG)
-    bore = np.array([math.cos(tilt), 0.0, -math.sin(tilt)])
-    up = np.array([math.sin(tilt), 0.0, math.cos(tilt)])
+    tilt = math.radians(mount.tilt_down_deg)
+    yaw = math.radians(mount.yaw_deg)
+    cy, sy = math.cos(yaw), math.sin(yaw)
+    bore = np.array([math.cos(tilt) * cy, math.cos(tilt) * sy, -math.sin(tilt)])
+    up = np.array([math.sin(tilt) * cy, math.sin(tilt) * sy, math.cos(tilt)])
     right = np.cross(bore, up)  # looking along +x with z up, the right hand is -y
     return np.stack([right, up, bore])
 
@@ -163,11 +216,11 @@ def antenna_gain(cos_theta: np.ndarray) -> np.ndarray:
     return 10.0 ** (ANTENNA_GAIN_DBI / 10.0) * np.maximum(shape, 10.0 ** (PATTERN_FLOOR_DB / 10.0))
 
 
-def look(points_m: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def look(points_m: np.ndarray, mount: Mount = OFFICE.mount) -> tuple[np.ndarray, np.ndarray]:
     """Range ``(...)`` and unit direction in the antenna frame ``(..., 3)`` of room points ``(..., 3)``."""
-    d = np.asarray(points_m, dtype=np.float64) - np.asarray(RADAR_POSITION_M)
+    d = np.asarray(points_m, dtype=np.float64) - np.asarray(mount.position_m)
     r = np.linalg.norm(d, axis=-1)
-    return r, (d / r[..., None]) @ radar_axes().T
+    return r, (d / r[..., None]) @ radar_axes(mount).T
 
 
 def level_dB(rcs_m2: np.ndarray, range_m: np.ndarray, u_ant: np.ndarray, wavelength_m: float) -> np.ndarray:
@@ -188,80 +241,87 @@ def rx_phase_rad(u_ant: np.ndarray, config: RadarConfig) -> np.ndarray:
 
 
 # ------------------------------------------------------------------------------------ the room
-def room_scatterers() -> list[Scatterer]:
-    """Every static point of the room (walls, corners, objects), with fixed phases."""
-    rng = np.random.default_rng(np.random.SeedSequence(ROOM_SEED))
-    length, width, height = ROOM_SIZE_M
-    rx_, ry, rz = RADAR_POSITION_M
+def room_scatterers(room: Room = OFFICE) -> list[Scatterer]:
+    """Every static point of ``room`` (walls, corners, objects), with fixed phases."""
+    rng = np.random.default_rng(np.random.SeedSequence(room.seed))
+    length, width, height = room.size_m
+    rx_, ry, rz = room.mount.position_m
     pts: list[tuple[str, tuple[float, float, float], float]] = []
     # Specular points: the foot of the perpendicular from the radar on each plane, RCS pi d^2 |Gamma|^2.
     planes = {"far_wall": ((length, ry, rz), length - rx_), "left_wall": ((rx_, 0.0, rz), ry),
               "right_wall": ((rx_, width, rz), width - ry), "floor": ((rx_, ry, 0.0), rz),
               "ceiling": ((rx_, ry, height), height - rz)}
     for name, (foot, d) in planes.items():
-        sigma = math.pi * d * d * 10.0 ** (WALL_REFLECTIVITY_DB[name] / 10.0)
+        sigma = math.pi * d * d * 10.0 ** (room.wall_reflectivity_dB[name] / 10.0)
         pts.append((f"{name}_specular", foot, 10.0 * math.log10(sigma)))
     # Diffuse strips along the surfaces seen at grazing angles: the specular foot moved along x.
     xs = np.arange(0.6, length - 0.2, DIFFUSE_STEP_M)
-    for name, mu in DIFFUSE_MU.items():
+    for name, mu in room.diffuse_mu.items():
         (_, y, z), d = planes[name]
         for x in xs:
             cos_i = d / math.hypot(x - rx_, d)
             sigma = mu * cos_i**2 * DIFFUSE_STEP_M * DIFFUSE_STRIP_M
             rough = float(rng.uniform(-3.0, 3.0))
             pts.append((f"{name}_diffuse_{x:.1f}", (float(x), y, z), 10.0 * math.log10(sigma) + rough))
-    pts += OBJECTS
+    pts += room.objects
     phases = rng.uniform(0.0, 2.0 * math.pi, len(pts))
     return [Scatterer(n, tuple(float(v) for v in p), float(s), float(ph))  # type: ignore[arg-type]
             for (n, p, s), ph in zip(pts, phases)]
 
 
-def room_scene(config: RadarConfig, scatterers: list[Scatterer] | None = None) -> list[dict[str, Any]]:
+def room_scene(config: RadarConfig, scatterers: list[Scatterer] | None = None,
+               room: Room = OFFICE) -> list[dict[str, Any]]:
     """The room as the receiver's ``scene`` points ``{"range_m", "level_dB", "phase_rad", "rx_phase_rad"}``."""
-    scatterers = room_scatterers() if scatterers is None else scatterers
+    scatterers = room_scatterers(room) if scatterers is None else scatterers
     pos = np.array([s.position_m for s in scatterers])
-    r, u = look(pos)
+    r, u = look(pos, room.mount)
     lev = level_dB(10.0 ** (np.array([s.rcs_dBsm for s in scatterers]) / 10.0), r, u, config.wavelength_m)
     ph = rx_phase_rad(u, config)
     return [{"range_m": float(r[i]), "level_dB": float(lev[i]), "phase_rad": s.phase_rad,
              "rx_phase_rad": [float(v) for v in ph[i]]} for i, s in enumerate(scatterers)]
 
 
-def fan_effects(config: RadarConfig) -> list[dict[str, Any]]:
-    """The desk fan as the receiver's ``vibrating_clutter`` effects: the housing, then each blade."""
-    r, u = look(np.array(FAN["position_m"]))
+def fan_effects(config: RadarConfig, room: Room = OFFICE) -> list[dict[str, Any]]:
+    """The room's fan as the receiver's ``vibrating_clutter`` effects: the housing, then each blade (none without a fan)."""
+    fan = room.fan
+    if fan is None:
+        return []
+    r, u = look(np.array(fan["position_m"]), room.mount)
 
     def part(rcs_dBsm: float, displacement_m: float, phase_rad: float, path_phase_rad: float) -> dict[str, Any]:
         return {"name": "vibrating_clutter", "range_m": float(r),
                 "level_dB": float(level_dB(10.0 ** (rcs_dBsm / 10.0), r, u, config.wavelength_m)),
-                "displacement_m": float(displacement_m), "vibration_Hz": float(FAN["vibration_Hz"]),
+                "displacement_m": float(displacement_m), "vibration_Hz": float(fan["vibration_Hz"]),
                 "phase_rad": phase_rad, "path_phase_rad": path_phase_rad}
 
-    n = int(FAN["blades"])
-    return [part(FAN["rcs_dBsm"], FAN["displacement_m"], 0.4, 2.1)] + [
-        part(FAN["blade_rcs_dBsm"], FAN["blade_radial_m"], 2.0 * math.pi * k / n, 0.9 + 1.7 * k) for k in range(n)]
+    n = int(fan["blades"])
+    return [part(fan["rcs_dBsm"], fan["displacement_m"], 0.4, 2.1)] + [
+        part(fan["blade_rcs_dBsm"], fan["blade_radial_m"], 2.0 * math.pi * k / n, 0.9 + 1.7 * k) for k in range(n)]
 
 
-def describe() -> dict[str, Any]:
+def describe(room: Room = OFFICE) -> dict[str, Any]:
     """The room, radar mount and antenna model (for the manifest)."""
+    fan = room.fan
     return {
-        "size_m": list(ROOM_SIZE_M),
-        "radar_position_m": list(RADAR_POSITION_M),
-        "radar_tilt_down_deg": RADAR_TILT_DOWN_DEG,
+        "size_m": list(room.size_m),
+        "radar_position_m": list(room.mount.position_m),
+        "radar_tilt_down_deg": room.mount.tilt_down_deg,
+        **({"radar_yaw_deg": room.mount.yaw_deg} if room.mount.yaw_deg else {}),
         "antenna": {"gain_dBi": ANTENNA_GAIN_DBI, "half_power_beamwidth_deg": HALF_POWER_BEAMWIDTH_DEG,
                     "pattern": "G0 max(cos(theta)^q, floor)", "q": round(pattern_exponent(), 4),
                     "floor_dB": PATTERN_FLOOR_DB},
         "level_law": "P_r/P_t = G(theta)^2 lambda^2 sigma / ((4 pi)^3 R^4)",
-        "wall_reflectivity_dB": WALL_REFLECTIVITY_DB,
-        "diffuse": {"mu": DIFFUSE_MU, "step_m": DIFFUSE_STEP_M, "strip_m": DIFFUSE_STRIP_M,
+        "wall_reflectivity_dB": dict(room.wall_reflectivity_dB),
+        "diffuse": {"mu": dict(room.diffuse_mu), "step_m": DIFFUSE_STEP_M, "strip_m": DIFFUSE_STRIP_M,
                     "law": "sigma = mu cos^2(i) A, x U(-3, 3) dB roughness"},
-        "scatterers": [s.to_dict() for s in room_scatterers()],
-        "fan": {**FAN, "position_m": list(FAN["position_m"])},
-        "room_seed": ROOM_SEED,
+        "scatterers": [s.to_dict() for s in room_scatterers(room)],
+        "walkable_m": {"x": list(room.walk_x_m), "y": list(room.walk_y_m)},
+        "fan": None if fan is None else {**fan, "position_m": list(fan["position_m"])},
+        "room_seed": room.seed,
     }
 
 
 __all__ = [
-    "FAN", "OBJECTS", "RADAR_POSITION_M", "ROOM_SIZE_M", "Scatterer", "antenna_gain", "describe", "fan_effects",
+    "FAN", "OBJECTS", "OFFICE", "RADAR_POSITION_M", "ROOM_SIZE_M", "Mount", "Room", "Scatterer", "antenna_gain", "describe", "fan_effects",
     "level_dB", "look", "room_scatterers", "room_scene", "rx_phase_rad",
 ]

@@ -114,6 +114,10 @@ class Person:
         rcs_dBsm: mean whole-body RCS.
         fluctuation_dB: standard deviation of each point's per-frame RCS fluctuation.
         point_phase_rad: constant scattering phase of each point (``NUM_POINTS`` values).
+        track_yaw_rad: walker: rotation of the racetrack about the room's origin (0: the
+            straight lanes run along ``x``, toward and away from a radar looking along ``+x``;
+            ``pi / 2``: they run along ``y``, across its beam). The racetrack's ``x``, lane and
+            start are then given in the rotated frame.
     """
 
     standing: bool
@@ -136,6 +140,7 @@ class Person:
     rcs_dBsm: float
     fluctuation_dB: float
     point_phase_rad: tuple[float, ...]
+    track_yaw_rad: float = 0.0
 
     def to_dict(self, digits: int = 5) -> dict[str, object]:
         """JSON-friendly parameters, floats rounded to ``digits`` significant digits."""
@@ -158,16 +163,25 @@ def draw_person(
     x_range_m: tuple[float, float],
     lane_range_m: tuple[float, float],
     standing: bool = False,
+    rcs_dBsm: tuple[float, float] = RCS_DBSM,
+    speed_m_s: tuple[float, float] = SPEED_M_S,
+    track_yaw_rad: float = 0.0,
+    min_straight_m: float = 3.0,
 ) -> Person:
     """Draw one person.
 
     Args:
         rng: the random generator (seeded by the caller).
         x_range_m: ``(near, far)`` limits of the walkable floor along ``x``; the racetrack's
-            turns (or a standing person) stay inside it.
+            turns (or a standing person) stay inside it. For a rotated racetrack
+            (``track_yaw_rad``) both ranges are in the rotated frame.
         lane_range_m: ``(low, high)`` limits of the racetrack's centre line (or a standing
             person's ``y``); the lanes lie ``TURN_RADIUS_M`` on either side.
         standing: draw a standing person instead of a walker.
+        rcs_dBsm: range of the mean whole-body RCS (uniform, dBsm).
+        speed_m_s: range of the walking speed (uniform).
+        track_yaw_rad: the walker's racetrack rotation (:class:`Person`).
+        min_straight_m: shortest straight part of the racetrack (the walkable floor permitting).
 
     Returns:
         The :class:`Person`.
@@ -175,7 +189,7 @@ def draw_person(
     u = rng.uniform
     near, far = x_range_m
     height = u(*HEIGHT_M)
-    rcs = u(*RCS_DBSM)
+    rcs = u(*rcs_dBsm)
     fluct = u(*FLUCTUATION_DB)
     phases = tuple(float(v) for v in u(0.0, 2.0 * math.pi, NUM_POINTS))
     lane = u(*lane_range_m)
@@ -187,18 +201,19 @@ def draw_person(
             sway_m=u(0.005, 0.02), sway_hz=u(0.15, 0.5), sway_phase=u(0.0, 1.0), arm_swing_rad=0.0,
             rcs_dBsm=rcs, fluctuation_dB=fluct, point_phase_rad=phases,
         )
-    speed = u(*SPEED_M_S)
+    speed = u(*speed_m_s)
     # The straight part: turns near both ends of the walkable floor ("turning at the room's ends"),
-    # at least 3 m long so most of a file is straight walking toward or away from the radar.
+    # at least min_straight_m long so most of a file is straight walking (toward or away from the
+    # radar unless the racetrack is rotated).
     x_near = u(near + TURN_RADIUS_M, near + TURN_RADIUS_M + 0.7)
-    x_far = u(max(far - TURN_RADIUS_M - 1.0, x_near + 3.0), far - TURN_RADIUS_M)
+    x_far = u(min(max(far - TURN_RADIUS_M - 1.0, x_near + min_straight_m), far - TURN_RADIUS_M), far - TURN_RADIUS_M)
     step_hz = 1.8 * math.sqrt(speed / 1.3) * math.sqrt(1.75 / height) * u(0.95, 1.05)
     person = Person(
         standing=False, height_m=height, speed_m_s=speed, lane_y_m=lane, x_near_m=x_near, x_far_m=x_far,
         start_m=0.0, facing_rad=0.0, step_hz=step_hz, gait_phase=u(0.0, 1.0),
         swing_fraction=u(*SWING_FRACTION), clearance_m=u(*FOOT_CLEARANCE_M), bob_m=u(*BOB_M), sway_m=u(*SWAY_M),
         sway_hz=0.0, sway_phase=0.0, arm_swing_rad=u(*ARM_SWING_SCALE) * (0.15 + 0.25 * speed),
-        rcs_dBsm=rcs, fluctuation_dB=fluct, point_phase_rad=phases,
+        rcs_dBsm=rcs, fluctuation_dB=fluct, point_phase_rad=phases, track_yaw_rad=float(track_yaw_rad),
     )
     return replace(person, start_m=u(0.0, person.perimeter_m))
 
@@ -250,6 +265,15 @@ def positions(p: Person, t: np.ndarray) -> np.ndarray:
     t = np.asarray(t, dtype=np.float64)
     if p.standing:
         return _standing_positions(p, t)
+    out = _walker_positions(p, t)
+    if p.track_yaw_rad:  # the racetrack's frame -> the room's (a rotation about the origin)
+        c, s = math.cos(p.track_yaw_rad), math.sin(p.track_yaw_rad)
+        x, y = out[..., 0].copy(), out[..., 1].copy()
+        out[..., 0], out[..., 1] = c * x - s * y, s * x + c * y
+    return out
+
+
+def _walker_positions(p: Person, t: np.ndarray) -> np.ndarray:
     H = p.height_m
     s_body = p.start_m + p.speed_m_s * t
     xy, head = track_xy(p, s_body)
