@@ -16,7 +16,7 @@ Sub-commands::
     radaraug demo [-o DIR] [--overwrite] [--json]   capture walkthrough: the bundled recording, a fitted CalibratedDR
     radaraug recipes [NAME] [--json]            list the installed training recipes, or print one
     radaraug train fit --config RECIPE [--key value ...]   LightningCLI recipes (RECIPE: a name or a YAML file)
-    radaraug reproduce [--quick] [--seeds N] [--calibration C --test PATH[:COUNT] ...] [--test-sets S] [--representation R] [--cdr-floor F] [--ablations A] [--test-dr] [--accelerator A] -o OUT [--resume|--overwrite] [--json]
+    radaraug reproduce [--quick] [--seeds N] [--calibration C --test PATH[:COUNT] ...] [--test-sets S] [--worlds N] [--methods M] [--representation R] [--cdr-floor F] [--ablations A] [--test-dr] [--accelerator A] -o OUT [--resume|--overwrite] [--json]
     radaraug make-proxy -o DIR [--frames-per-count N] [--resume|--overwrite] [--json]   the held-out proxy test set
     radaraug diagnose CAPTURE [--scene SCENE] -o REPORT_DIR [--overwrite] [--json]   twin vs capture, fitted twin profile
     radaraug devices [--json] [--udev-rule]     Infineon radar boards on USB
@@ -451,6 +451,8 @@ def _cmd_reproduce(args: argparse.Namespace) -> Result:
                            test=test, ablation=not args.no_ablation, accelerator=accelerator, progress=True,
                            cdr_floor=args.cdr_floor, test_dr=args.test_dr, settings=settings,
                            test_sets=None if args.test_sets is None else tuple(args.test_sets.split(",")),
+                           methods=None if args.methods is None else [m for m in args.methods.split(",") if m],
+                           worlds=args.worlds,
                            ablations=None if args.ablations is None else [a for a in args.ablations.split(",") if a])
     if args.json:
         return {"output": str(args.output), "report": str(Path(args.output) / "report.md"), **report}
@@ -705,8 +707,13 @@ def build_parser() -> argparse.ArgumentParser:
     rep.add_argument("--test-sets", default=None,
                      help="generated test sets when no --test is given, comma-separated: proxy (the twin in "
                      "another room), independent (a NumPy generator sharing no code with the twin), standing (the "
-                     "independent generator with 30 %% of its people standing); default: independent with --quick, "
-                     "proxy and independent in full mode")
+                     "independent generator with 30 %% of its people standing), design (held-out worlds to look "
+                     "at: validation numbers), report (held-out worlds run only to report); default: independent "
+                     "with --quick, proxy and independent in full mode")
+    rep.add_argument("--worlds", type=int, default=None,
+                     help="worlds per held-out suite (design/report in --test-sets; default 4)")
+    rep.add_argument("--methods", default=None,
+                     help="comma-separated methods (default: the mode's: rt,randomdr,cdr with --quick)")
     rep.add_argument("--ablations", default=None,
                      help="comma-separated ablation variants (default: the mode's list; see docs/training.md)")
     rep.add_argument("--test-dr", action="store_true",

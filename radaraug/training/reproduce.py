@@ -70,6 +70,8 @@ class ReproduceSettings:
     methods: tuple[str, ...] = METHODS
     #: generated test sets used when no test captures are given (:data:`DEFAULT_TEST_SETS`)
     test_sets: tuple[str, ...] = ("proxy", "independent")
+    #: worlds per held-out suite (``design``/``report`` in ``test_sets``; None: ``radaraug.heldout.worlds.DEFAULT_WORLDS``)
+    worlds: int | None = None
     #: excise the calibration capture's persistent lines from floor-relative maps (``RadarDataModule.excise_persistent_db``)
     excise_persistent_db: float | None | str = RECIPE
     #: fit the twin's noise figure to each calibration capture (``RadarDataModule.calibrate_noise``)
@@ -139,9 +141,13 @@ def _cdr_floor_of(keep: dict[tuple[str, str, str], tuple[Any, Any]], settings: R
 #: another room (:mod:`radaraug.sim.proxy`) and a NumPy generator that shares no simulation code
 #: with the twin (:mod:`radaraug.heldout`). Each comes with its own empty-room capture.
 DEFAULT_TEST_SETS = ("proxy", "independent")
-#: Every generated test set ``--test-sets`` may name: the defaults, and ``standing``, the independent
-#: generator with standing (breathing, swaying) people in 30 % of the drawn people (another seed).
-GENERATED_TEST_SETS = (*DEFAULT_TEST_SETS, "standing")
+#: The held-out suites of test worlds (:mod:`radaraug.heldout.worlds`): ``design`` (look at it freely;
+#: its numbers are validation numbers) and ``report`` (run only to report). Each world is a test set.
+SUITE_TEST_SETS = ("design", "report")
+#: Every generated test set ``--test-sets`` may name: the defaults, ``standing`` (the independent
+#: generator with standing (breathing, swaying) people in 30 % of the drawn people, another seed) and
+#: the suites of :data:`SUITE_TEST_SETS`.
+GENERATED_TEST_SETS = (*DEFAULT_TEST_SETS, "standing", *SUITE_TEST_SETS)
 #: Seed and standing probability of the ``standing`` set.
 STANDING_SEED, STANDING_PROBABILITY = 2025, 0.3
 
@@ -182,6 +188,7 @@ class TestSet:
     calibration: str | None
     tests: list[dict[str, Any]]
     info: dict[str, Any] | None = None
+    suite: str | None = None
 
 
 def _test_sets(out: Path, settings: ReproduceSettings, calibration: str | None,
@@ -201,6 +208,15 @@ def _test_sets(out: Path, settings: ReproduceSettings, calibration: str | None,
         raise ConfigError(f"no test set: name at least one of {GENERATED_TEST_SETS}, or give --test captures")
     sets = []
     for name in names:
+        if name in SUITE_TEST_SETS:
+            from radaraug.heldout.worlds import make_suite
+
+            for world, made in make_suite(out / "worlds", name, worlds=settings.worlds,
+                                          frames_per_count=settings.proxy_frames_per_count, progress=progress):
+                sets.append(TestSet(world.name, str(made.calibration),
+                                    [{"path": str(p), "count": int(c)} for p, c in made.tests],
+                                    made.to_dict() | {"world": world.to_dict()}, suite=name))
+            continue
         if name == "proxy":
             from radaraug.sim.proxy import make_proxy
 
@@ -326,6 +342,7 @@ def reproduce(
     settings: ReproduceSettings | None = None,
     cdr_floor: str | None = None,
     test_dr: bool = False,
+    worlds: int | None = None,
 ) -> dict[str, Any]:
     """Run the experiment and write the report; return the ``report.json`` content.
 
@@ -343,7 +360,7 @@ def reproduce(
         ablation: run the ablation variants (``ablations``, default: the settings' list).
         ablations: names from :data:`ABLATIONS` (None: ``settings.ablations``).
         test_sets: the generated test sets used when ``test`` is None (None: the settings'; names from
-            :data:`DEFAULT_TEST_SETS`).
+            :data:`GENERATED_TEST_SETS`; ``design``/``report`` add one test set per world of the suite).
         accelerator: Lightning accelerator (``auto`` uses a GPU when there is one).
         progress: progress bars.
         settings: explicit sizes (overrides ``quick``).
@@ -352,6 +369,7 @@ def reproduce(
             (the paper's) or ``"empirical"`` (the capture's measured distribution).
         test_dr: pass the test captures through each run's DR too (not the paper's protocol; see
             :class:`~radaraug.training.data.RadarDataModule`).
+        worlds: worlds per held-out suite (``design``/``report`` in ``test_sets``; None: the settings').
     """
     if seeds < 1:
         raise ConfigError(f"seeds must be >= 1, got {seeds}")
@@ -360,6 +378,8 @@ def reproduce(
     settings = settings or (ReproduceSettings.quick() if quick else ReproduceSettings.full())
     if cdr_floor is not None:
         settings = replace(settings, cdr_floor=cdr_floor)
+    if worlds is not None:
+        settings = replace(settings, worlds=worlds)
     methods = tuple(settings.methods if methods is None else methods)
     test_sets = tuple(settings.test_sets if test_sets is None else test_sets)
     _check_known("method", methods, METHODS)
@@ -392,7 +412,7 @@ def reproduce(
     for name in ("lightning.pytorch", "lightning.fabric"):
         logging.getLogger(name).setLevel(logging.WARNING)
     bar = tqdm(total=len(sets) * len(tasks) * len(variants) * seeds, desc="reproduce runs", disable=not progress)
-    shared: dict[tuple[str, str, int], tuple[Any, Any, float, float | None]] = {}  # model, data module, fit s, val
+    shared: dict[tuple[str, str, int, str], tuple[Any, Any, float, float | None]] = {}  # model, data module, fit s, val
     for ts in sets:
         data_kw = {"calibration": ts.calibration, "test": ts.tests, "cache_dir": str(out / "cache"),
                    "proxy_dir": str(out / "proxy"), "test_dr": test_dr}
@@ -406,7 +426,8 @@ def reproduce(
                 for seed in range(seeds):
                     run_dir = out / "runs" / ts.name / f"{task}_{name}_seed{seed}"
                     bar.set_postfix_str(f"{ts.name} {task} {name} seed {seed}")
-                    key = (task, name, seed)
+                    # a shared run serves only test sets of its radar config (the twin simulates in it)
+                    key = (task, name, seed, json.dumps((ts.info or {}).get("config"), sort_keys=True))
                     if is_shared and key in shared:
                         model, trained_dm, fit_s, val_bacc = shared[key]
                         dm = _test_dm(trained_dm, ts, kw, run_dir)
@@ -442,6 +463,9 @@ def reproduce(
                 cm_sum = torch.tensor([r["confusion_matrix"] for r in seed_reps]).sum(dim=0)
                 results[ts.name][task][name] = {k: _summary([r[k] for r in seed_reps])
                                                 for k in ("balanced_accuracy", "accuracy")}
+                vals = [r["val_balanced_accuracy"] for r in seed_reps if r["val_balanced_accuracy"] is not None]
+                if vals:
+                    results[ts.name][task][name]["val_balanced_accuracy"] = _summary(vals)
                 results[ts.name][task][name]["confusion_matrix_sum_over_seeds"] = cm_sum.tolist()
     bar.close()
     from radaraug.training import figures as F
@@ -466,6 +490,7 @@ def reproduce(
         "test_sets": {ts.name: {"calibration": ts.calibration, "test": ts.tests, "generator": ts.info,
                                 "results": results[ts.name], "empty_room_median_db": floors[ts.name],
                                 "ablation_table": _ablation_table(results[ts.name])} for ts in sets},
+        "suites": _suite_summary(sets, results),
         "runs": runs,
         "settings": effective_settings(settings) | {"seeds": seeds, "quick": quick, "mode": mode, "tasks": list(tasks), "methods": list(methods),
                                         "ablations": names, "cdr_floor": _cdr_floor_of(keep, settings),
@@ -486,6 +511,35 @@ def reproduce(
     atomic_write_json(out / "report.json", report, newline=False, indent=2)
     atomic_write_text(out / "report.md", _markdown(report))
     return report
+
+
+def _suite_summary(sets: Sequence[TestSet], results: dict[str, dict[str, dict[str, Any]]]) -> dict[str, Any]:
+    """Per held-out suite, task and variant: the mean over worlds and the worst world.
+
+    Each world's value is its balanced accuracy averaged over seeds (and its simulated validation
+    beside it); ``worst`` is the world with the lowest.
+    """
+    out: dict[str, Any] = {}
+    for suite in SUITE_TEST_SETS:
+        worlds = [ts.name for ts in sets if ts.suite == suite]
+        if not worlds:
+            continue
+        by_task: dict[str, Any] = {}
+        for task in results[worlds[0]]:
+            by_task[task] = {}
+            for variant in results[worlds[0]][task]:
+                per_world = {w: results[w][task][variant]["balanced_accuracy"]["mean"] for w in worlds}
+                val = [results[w][task][variant].get("val_balanced_accuracy", {}).get("mean") for w in worlds]
+                worst = min(per_world, key=lambda w: per_world[w])
+                by_task[task][variant] = {
+                    "mean": statistics.fmean(per_world.values()), "worst": per_world[worst], "worst_world": worst,
+                    "per_world": per_world,
+                    "val_mean": statistics.fmean(v for v in val if v is not None) if any(v is not None for v in val)
+                    else None}
+        out[suite] = {"worlds": worlds, "results": by_task,
+                      "role": ("report suite: run only to report a decision already made" if suite == "report" else
+                               "design suite: looked at; its numbers are validation numbers")}
+    return out
 
 
 def _ablation_table(results: dict[str, dict[str, Any]]) -> list[dict[str, Any]]:
@@ -622,6 +676,14 @@ TEST_SET_TEXT = {
                  "(breathing, swaying) instead of walking; they count."),
 }
 
+SUITE_TEXT = {
+    "design": ("**design suite** (`radaraug.heldout.worlds`): test worlds drawn from wide priors (room, mounting, "
+               "radar config, people, disturbances), each with its own empty-room capture. It may be looked at as "
+               "often as one likes, so numbers on it are **validation** numbers."),
+    "report": ("**report suite**: worlds from the same priors and other seeds, run only to report a decision "
+               "already made, never to make one."),
+}
+
 QUICK_TRADES = ("Quick mode trades, against full mode (6000 items, 15 epochs, 128 x 64, every ablation): fewer "
                 "simulated items and epochs, 64 x 32 images, and only the ablations listed in its settings; the "
                 "network is still the paper's ResNet18. Full mode is for a GPU.")
@@ -641,7 +703,12 @@ def _md_table(header: Sequence[str], rows: Iterable[Sequence[Any]]) -> list[str]
 
 def _results_table(results: dict[str, dict[str, Any]]) -> list[str]:
     cols = list(next(iter(results.values())).keys())
-    cell = {task: {c: _fmt(by[c]["balanced_accuracy"]) for c in by} for task, by in results.items()}
+
+    def cell_of(r: dict[str, Any]) -> str:
+        val = r.get("val_balanced_accuracy")
+        return _fmt(r["balanced_accuracy"]) + ("" if val is None else f" (sim val {val['mean']:.3f})")
+
+    cell = {task: {c: cell_of(by[c]) for c in by} for task, by in results.items()}
     return _md_table(["task", *cols], ([task, *(cell[task].get(c, "") for c in cols)] for task in results))
 
 
@@ -677,10 +744,30 @@ def _markdown(rep: dict[str, Any]) -> str:
         lines += ["**These are sim-to-generated numbers, not sim-to-real.** The test captures come from generators "
                   "that training was not made with, each with its own empty-room capture (CDR and the twin's noise "
                   "fit see only that):", ""]
-        lines += [f"- {TEST_SET_TEXT.get(name, name)}" for name in rep["test_sets"]]
+        generic = [name for name in rep["test_sets"] if not (rep["test_sets"][name].get("generator") or {}).get("world")]
+        lines += [f"- {TEST_SET_TEXT.get(name, name)}" for name in generic]
+        lines += [f"- {SUITE_TEXT[suite]}" for suite in rep.get("suites") or {}]
         lines += [""]
+    for suite, summ in (rep.get("suites") or {}).items():
+        lines += [f"## Suite `{suite}`: mean over {len(summ['worlds'])} worlds and the worst world", "",
+                  f"{SUITE_TEXT[suite]} Each world's value is its balanced accuracy averaged over seeds.", ""]
+        header = ["task", "variant", "mean over worlds", "worst world", "simulated val (mean)", "per world"]
+        rows = [[task, variant, f"{v['mean']:.3f}", f"{v['worst']:.3f} ({v['worst_world']})",
+                 "n/a" if v["val_mean"] is None else f"{v['val_mean']:.3f}",
+                 ", ".join(f"{w.split('-')[-1]} {a:.3f}" for w, a in v["per_world"].items())]
+                for task, by in summ["results"].items() for variant, v in by.items()]
+        lines += [*_md_table(header, rows), ""]
     for name, ts in rep["test_sets"].items():
         lines += [f"## Test set `{name}`: balanced accuracy (mean ± std over seeds)", ""]
+        world = (ts.get("generator") or {}).get("world")
+        if world:
+            c = world["config"]
+            lines += [f"World `{name}`: {c['num_samples_per_chirp']} samples x {c['num_chirps_per_frame']} chirps, "
+                      f"{c['sample_rate_Hz'] / 1e6:g} MHz, IF gain {c['if_gain_dB']} dB, room "
+                      f"{' x '.join(f'{v:.1f}' for v in world['room']['size_m'])} m, radar at "
+                      f"{world['room']['radar_position_m'][2]:.2f} m tilted {world['room']['radar_tilt_down_deg']:.0f} deg, "
+                      f"people RCS {world['people']['rcs_dBsm'][0]:.1f}..{world['people']['rcs_dBsm'][1]:.1f} dBsm, "
+                      f"disturbances: {', '.join(world['disturbances']) or 'none'}.", ""]
         if ts["generator"] is None:
             lines += ["Test captures: " + ", ".join(
                 f"`{e['path']}`" + (f" (count {e['count']})" if e.get("count") is not None else " (per-frame labels)")

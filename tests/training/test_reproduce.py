@@ -168,3 +168,31 @@ def test_the_runs_take_their_hyperparameters_from_the_recipes():
     assert R.run_recipe("counting", "rt", s)["data"]["representation"] == "paper"
     assert R.run_recipe("counting", "cdr", s, "cdr_normal_floor")["data"]["cdr_floor"] == "normal"
     assert R.ABLATIONS["rt_no_excision"] == ("rt", {"excise_persistent_db": None})
+
+
+def test_a_suite_of_worlds_reports_mean_and_worst_world(tmp_path, capsys, monkeypatch):
+    """``--test-sets design``: one test set per world, trained in its config, summarized over worlds."""
+    settings = dataclasses.replace(TINY, calibrate_noise=False, excise_persistent_db=None, proxy_frames_per_count=3)
+    rep = reproduce(tmp_path / "out", seeds=1, settings=settings, progress=False, accelerator="cpu",
+                    tasks=["occupancy"], methods=["rt"], ablation=False, test_sets=["design"], worlds=2)
+    assert list(rep["test_sets"]) == ["design-w00", "design-w01"]
+    summ = rep["suites"]["design"]
+    assert summ["worlds"] == ["design-w00", "design-w01"] and "validation" in summ["role"]
+    row = summ["results"]["occupancy"]["rt"]
+    per_world = {w: rep["test_sets"][w]["results"]["occupancy"]["rt"]["balanced_accuracy"]["mean"]
+                 for w in summ["worlds"]}
+    assert row["per_world"] == per_world
+    assert row["mean"] == pytest.approx(sum(per_world.values()) / 2) and row["worst"] == min(per_world.values())
+    assert row["worst_world"] in per_world and row["val_mean"] is not None
+    # the worlds have other radar configs: RT does not use the calibration, yet trains once per config
+    runs = {x["test_set"]: x for x in rep["runs"]}
+    assert not runs["design-w01"]["shared_training"]
+    md = (tmp_path / "out" / "report.md").read_text()
+    assert "## Suite `design`: mean over 2 worlds" in md and "validation" in md and "World `design-w00`" in md
+    assert "sim val" in md
+    monkeypatch.setattr(R.ReproduceSettings, "quick", classmethod(lambda cls: settings))
+    capsys.readouterr()
+    rc = main(["reproduce", "--quick", "--seeds", "1", "--no-ablation", "--accelerator", "cpu", "--test-sets",
+               "design", "--worlds", "1", "--methods", "rt", "-o", str(tmp_path / "cli")])
+    out = capsys.readouterr().out
+    assert rc == 0 and "design-w00" in out and "design-w01" not in out
