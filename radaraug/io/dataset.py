@@ -236,6 +236,11 @@ class RadarCaptureDataset(Dataset):
             return label(self.paths[k], frame)
         return label
 
+    @property
+    def items_per_file(self) -> list[int]:
+        """Items of each file, in file order (item ``i`` of the dataset runs through them in turn)."""
+        return [int(n) for n in np.diff(self._offsets)]
+
     # ------------------------------------------------------------------ Dataset protocol
     def __len__(self) -> int:
         return int(self._offsets[-1])

@@ -25,7 +25,7 @@ from __future__ import annotations
 
 import copy
 import warnings
-from collections.abc import Sized
+from collections.abc import Sequence, Sized
 from pathlib import Path
 from typing import Any, Literal
 
@@ -77,6 +77,21 @@ class _Labelled(Dataset):
     def __getitem__(self, i: int) -> tuple[torch.Tensor, int]:
         x, count = self.base[i]
         return x, int(label_of(int(count), self.task))
+
+
+def _recording_starts(tests: Sequence[RadarCaptureDataset]) -> torch.Tensor:
+    """``(frames,)`` bool over the concatenated test captures: True at each recording's first frame.
+
+    A dataset over several files (or one) counts each file as a recording.
+    """
+    flags = []
+    for t in tests:
+        for n in t.items_per_file:
+            f = torch.zeros(n, dtype=torch.bool)
+            if n:
+                f[0] = True
+            flags.append(f)
+    return torch.cat(flags) if flags else torch.zeros(0, dtype=torch.bool)
 
 
 def _rank_world(trainer: Any) -> tuple[int, int]:
@@ -429,6 +444,9 @@ class RadarDataModule(L.LightningDataModule):
                                   f"than the training twin ({config.describe()}, from {source})")
         full: ConcatDataset[Any] = ConcatDataset(tests)  # items as RadarCaptureDataset gives them
         self._test = _Labelled(Subset(full, range(rank, len(full), world)), self.task)
+        # Where each recording starts, in test order (frame context, RDClassifier.context_frames);
+        # a DDP shard strides over the frames, so it has no order to give.
+        self.test_recording_starts = _recording_starts(tests) if world == 1 else None
         self._write_run_files()
 
     def _resolve_receiver(self, calibration: str | None, has_capture: bool, rank: int) -> None:

@@ -76,6 +76,38 @@ def classification_report(cm: torch.Tensor, class_names: Sequence[str] | None = 
     }
 
 
+def causal_context(probs: torch.Tensor, starts: torch.Tensor, frames: int) -> torch.Tensor:
+    """Each frame's class probabilities averaged with those of the ``frames - 1`` frames before it.
+
+    Causal (a frame sees only itself and earlier frames of its recording), so it works on a live
+    stream too; it never reaches across the start of a recording.
+
+    Args:
+        probs: ``(N, classes)`` per-frame probabilities, frames in recording order.
+        starts: ``(N,)`` bool, True where a recording starts.
+        frames: context length (1: the frames alone).
+
+    Returns:
+        ``(N, classes)`` averaged probabilities.
+
+    Raises:
+        ValueError: ``frames < 1`` or mismatched lengths.
+    """
+    if frames < 1:
+        raise ValueError(f"context frames must be >= 1, got {frames}")
+    if len(starts) != len(probs):
+        raise ValueError(f"{len(starts)} recording-start flags for {len(probs)} frames")
+    if frames == 1 or len(probs) == 0:
+        return probs.clone()
+    starts = starts.to(torch.bool).clone()
+    starts[0] = True
+    idx = torch.arange(len(probs))
+    first = torch.cummax(torch.where(starts, idx, torch.zeros_like(idx)), dim=0).values  # the recording's first frame
+    lo = torch.maximum(first, idx - frames + 1)  # window [lo, i]
+    csum = torch.cat([torch.zeros_like(probs[:1]), probs.cumsum(dim=0)])
+    return (csum[idx + 1] - csum[lo]) / (idx - lo + 1).unsqueeze(1).to(probs.dtype)
+
+
 def draw_confusion(ax: Any, cm: torch.Tensor, class_names: Sequence[str], *, with_counts: bool = False,
                    text_size: float = 8, label_size: float | None = 8) -> None:
     """Draw ``cm`` on the matplotlib axes ``ax``: row-normalised recall as colour and text (+ the counts).

@@ -10,7 +10,13 @@ import lightning as L
 import torch
 import torch.nn.functional as F
 
-from radaraug.training.metrics import balanced_accuracy, classification_report, confusion_matrix, save_metrics
+from radaraug.training.metrics import (
+    balanced_accuracy,
+    causal_context,
+    classification_report,
+    confusion_matrix,
+    save_metrics,
+)
 from radaraug.training.models import resnet18
 from radaraug.training.pipeline import check_task
 
@@ -35,6 +41,10 @@ class RDClassifier(L.LightningModule):
             counting run, eval-mode accuracy was 0.29-0.35 on both the training and the validation
             set while train-mode (batch statistics) accuracy was 0.99 / 0.94.
         out_dir: where test metrics are written.
+        context_frames: at test, also classify each frame from its class probabilities averaged with
+            those of the frames before it in its recording (causal, so it works live), this many
+            frames in all; the report's ``context`` section (1: single frames only). Needs the
+            data module's ``test_recording_starts`` (one process: DDP shards break the order).
         backbone: the network, as a callable taking the class count (None: the paper's ResNet18,
             :func:`radaraug.training.models.resnet18`); in a recipe a ``class_path`` such as
             :class:`radaraug.training.TorchvisionClassifier` (docs/training.md, "Another network").
@@ -54,6 +64,7 @@ class RDClassifier(L.LightningModule):
         balance_classes: bool = True,
         precise_bn_batches: int = 8,
         out_dir: str | None = None,
+        context_frames: int = 1,
         backbone: Callable[[int], torch.nn.Module] | None = None,
     ) -> None:
         super().__init__()
@@ -67,6 +78,10 @@ class RDClassifier(L.LightningModule):
         self._recent: deque[torch.Tensor] = deque(maxlen=max(int(precise_bn_batches), 1))
         self._bn_stale = False
         self.last_test_report: dict[str, Any] | None = None
+        #: the last test's per-frame class probabilities ``(N, classes)`` and labels ``(N,)``, in test order
+        self.last_test_probs: torch.Tensor | None = None
+        self.last_test_labels: torch.Tensor | None = None
+        self._test_out: list[tuple[torch.Tensor, torch.Tensor]] = []
 
     def forward(self, x: torch.Tensor) -> torch.Tensor:
         """Class logits ``(B, classes)`` of images ``x`` ``(B, 3, H, W)``."""
@@ -126,20 +141,26 @@ class RDClassifier(L.LightningModule):
         """Recompute the BatchNorm statistics the checkpoint will hold."""
         self.recompute_bn_stats()
 
-    def _eval_step(self, batch: Any, split: str) -> None:
+    def _eval_step(self, batch: Any, split: str) -> torch.Tensor:
         x, y = batch
         logits = self(x)
         self.log(f"{split}/loss", F.cross_entropy(logits, y), batch_size=y.shape[0], sync_dist=True)
         cm = confusion_matrix(logits.argmax(dim=1), y, len(self.class_names)).to(self.device)
         self._cm[split] = self._cm.get(split, torch.zeros_like(cm)) + cm
+        return logits
 
     def validation_step(self, batch: Any, batch_idx: int) -> None:
         """Log the batch's loss and add it to the epoch's confusion matrix."""
         self._eval_step(batch, "val")
 
     def test_step(self, batch: Any, batch_idx: int) -> None:
-        """Log the batch's loss and add it to the epoch's confusion matrix."""
-        self._eval_step(batch, "test")
+        """Log the batch's loss, add it to the epoch's confusion matrix and keep its probabilities."""
+        logits = self._eval_step(batch, "test")
+        self._test_out.append((torch.softmax(logits.detach().float(), dim=1).cpu(), batch[1].detach().cpu()))
+
+    def on_test_epoch_start(self) -> None:
+        """Forget the previous test's probabilities."""
+        self._test_out = []
 
     def _epoch_cm(self, split: str) -> torch.Tensor:
         k = len(self.class_names)
@@ -159,10 +180,23 @@ class RDClassifier(L.LightningModule):
         self.log("test/balanced_accuracy", bacc, sync_dist=True)
         dm = getattr(self.trainer, "datamodule", None)
         out = self.hparams["out_dir"] or getattr(dm, "hparams", {}).get("out_dir") or self.trainer.log_dir
+        self.last_test_probs = torch.cat([p for p, _ in self._test_out]) if self._test_out else None
+        self.last_test_labels = torch.cat([y for _, y in self._test_out]) if self._test_out else None
+        self._test_out = []
+        extra = self._context_report(getattr(dm, "test_recording_starts", None))
         if out is not None and self.trainer.global_rank == 0:
-            self.last_test_report = save_metrics(cm, self.class_names, out, "test")
+            self.last_test_report = save_metrics(cm, self.class_names, out, "test") | extra
         else:
-            self.last_test_report = classification_report(cm, self.class_names)
+            self.last_test_report = classification_report(cm, self.class_names) | extra
+
+    def _context_report(self, starts: torch.Tensor | None) -> dict[str, Any]:
+        """``{"context": report}`` of the context-averaged predictions, or ``{}`` (1 frame, no order)."""
+        k = int(self.hparams.get("context_frames", 1))
+        probs, labels = self.last_test_probs, self.last_test_labels
+        if k <= 1 or starts is None or probs is None or labels is None or len(starts) != len(probs):
+            return {}
+        cm = confusion_matrix(causal_context(probs, starts, k).argmax(dim=1), labels, len(self.class_names))
+        return {"context": {"frames": k, **classification_report(cm, self.class_names)}}
 
     def configure_optimizers(self) -> Any:
         """AdamW, with a cosine learning-rate schedule over ``max_epochs`` when the trainer has one."""

@@ -9,6 +9,7 @@ from radaraug.errors import ConfigError
 from radaraug.training.metrics import (
     accuracy,
     balanced_accuracy,
+    causal_context,
     classification_report,
     confusion_matrix,
     save_metrics,
@@ -60,3 +61,29 @@ def test_save_metrics_writes_json_and_png(tmp_path):
     assert data["method"] == "cdr" and data["confusion_matrix"] == cm.tolist()
     assert (tmp_path / "test_confusion.png").read_bytes()[:4] == b"\x89PNG"
     assert rep["accuracy"] == pytest.approx(11 / 15)
+
+
+
+def test_causal_context_averages_the_frames_before_within_a_recording():
+    probs = torch.tensor([[1.0, 0.0], [0.0, 1.0], [0.0, 1.0], [1.0, 0.0], [0.0, 1.0]])
+    starts = torch.tensor([True, False, False, True, False])
+    out = causal_context(probs, starts, 2)
+    expected = torch.tensor([[1.0, 0.0], [0.5, 0.5], [0.0, 1.0], [1.0, 0.0], [0.5, 0.5]])
+    assert torch.allclose(out, expected)  # frame 3 starts a recording: it does not see frame 2
+    out3 = causal_context(probs, starts, 3)
+    assert torch.allclose(out3[2], torch.tensor([1 / 3, 2 / 3]))
+    assert torch.equal(causal_context(probs, starts, 1), probs)
+    # causal: changing a later frame never changes an earlier one
+    later = probs.clone()
+    later[4] = torch.tensor([1.0, 0.0])
+    assert torch.equal(causal_context(later, starts, 3)[:4], out3[:4])
+    # a long window equals the running mean from the recording's start
+    run = causal_context(probs, starts, 100)
+    assert torch.allclose(run[2], probs[:3].mean(dim=0)) and torch.allclose(run[4], probs[3:].mean(dim=0))
+
+
+def test_causal_context_refuses_bad_input():
+    with pytest.raises(ValueError):
+        causal_context(torch.ones(3, 2), torch.ones(3, dtype=torch.bool), 0)
+    with pytest.raises(ValueError):
+        causal_context(torch.ones(3, 2), torch.ones(2, dtype=torch.bool), 2)

@@ -5,6 +5,7 @@ import inspect
 import json
 
 import pytest
+import torch
 
 import radaraug.training.reproduce as R
 from radaraug.cli import main
@@ -172,8 +173,9 @@ def test_the_runs_take_their_hyperparameters_from_the_recipes():
 
 def test_a_suite_of_worlds_reports_mean_and_worst_world(tmp_path, capsys, monkeypatch):
     """``--test-sets design``: one test set per world, trained in its config, summarized over worlds."""
-    settings = dataclasses.replace(TINY, calibrate_noise=False, excise_persistent_db=None, proxy_frames_per_count=3)
-    rep = reproduce(tmp_path / "out", seeds=1, settings=settings, progress=False, accelerator="cpu",
+    settings = dataclasses.replace(TINY, calibrate_noise=False, excise_persistent_db=None, proxy_frames_per_count=3,
+                                   context_frames=3)
+    rep = reproduce(tmp_path / "out", seeds=2, settings=settings, progress=False, accelerator="cpu",
                     tasks=["occupancy"], methods=["rt"], ablation=False, test_sets=["design"], worlds=2)
     assert list(rep["test_sets"]) == ["design-w00", "design-w01"]
     summ = rep["suites"]["design"]
@@ -184,8 +186,17 @@ def test_a_suite_of_worlds_reports_mean_and_worst_world(tmp_path, capsys, monkey
     assert row["per_world"] == per_world
     assert row["mean"] == pytest.approx(sum(per_world.values()) / 2) and row["worst"] == min(per_world.values())
     assert row["worst_world"] in per_world and row["val_mean"] is not None
+    # the headline uses 3 frames of context, the single frame beside it, and the two seeds' ensemble
+    res = rep["test_sets"]["design-w00"]["results"]["occupancy"]["rt"]
+    assert set(res["single_frame_balanced_accuracy"]) == {"mean", "std", "per_seed"}
+    assert res["ensemble"]["seeds"] == 2 and 0 <= res["ensemble"]["balanced_accuracy"] <= 1
+    assert "single_frame_mean" in row and "ensemble_mean" in row and "ensemble_worst" in row
+    run = json.loads((tmp_path / "out" / "runs" / "design-w00" / "occupancy_rt_seed0" / "run.json").read_text())
+    assert run["protocol"] == "context of 3 frames" and run["context"]["balanced_accuracy"] == run["balanced_accuracy"]
+    scores = torch.load(tmp_path / "out" / "runs" / "design-w00" / "occupancy_rt_seed0" / "test_scores.pt")
+    assert scores["probs"].shape == (9, 2) and scores["recording_starts"].sum() == 3  # 3 files of 3 frames
     # the worlds have other radar configs: RT does not use the calibration, yet trains once per config
-    runs = {x["test_set"]: x for x in rep["runs"]}
+    runs = {x["test_set"]: x for x in rep["runs"] if x["seed"] == 0}
     assert not runs["design-w01"]["shared_training"]
     md = (tmp_path / "out" / "report.md").read_text()
     assert "## Suite `design`: mean over 2 worlds" in md and "validation" in md and "World `design-w00`" in md
