@@ -21,7 +21,7 @@ its row's median. Each item is simulated
 
 Writes one JSON (settings, per-item records, summaries). Run with the repository's environment::
 
-    python scripts/twin_observability.py --items 600 --seed 0 --out /tmp/twin_observability.json
+    python scripts/twin_observability.py --items 600 --seed 0 --out twin_observability.json
 """
 
 from __future__ import annotations

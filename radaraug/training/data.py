@@ -148,6 +148,8 @@ class RadarDataModule(L.LightningDataModule):
             its Doppler median, zero Doppler blanked, the calibration's persistent lines excised:
             :class:`~radaraug.transforms.FloorRelative`) or ``"paper"`` (the RX-combined dBFS map,
             clipped); see docs/training.md.
+        blank_zero_doppler: with ``floor_relative``: Doppler bins blanked on each side of zero
+            (the static room's skirt; a standing person lies there too).
         excise_persistent_db: with ``floor_relative``: RD cells whose median over the calibration
             capture's frames stands more than this many dB above their row's floor (a spur's line, a
             fan's Doppler lines: what is in every frame of the empty room) are set to the floor in
@@ -212,6 +214,7 @@ class RadarDataModule(L.LightningDataModule):
         cache_dir: str | None = None,
         image_size: list[int] | None = None,
         representation: Literal["paper", "floor_relative"] = "floor_relative",
+        blank_zero_doppler: int = 1,
         excise_persistent_db: float | None = 3.0,
         clip_percentiles: tuple[float, float] = (1.0, 99.9),
         clip_range: list[float] | None = None,
@@ -422,7 +425,8 @@ class RadarDataModule(L.LightningDataModule):
             if self.clip is None:
                 self.clip = self._estimate_clip(train)
         assert self.clip is not None  # needs_sim whenever it was None
-        self.image = image_chain(*self.clip, self.hparams["image_size"], self.hparams["representation"], self.excise)
+        self.image = image_chain(*self.clip, self.hparams["image_size"], self.hparams["representation"], self.excise,
+                                 self._blank)
 
         tests: list[RadarCaptureDataset] = []
         given_used: set[int] = set()
@@ -550,10 +554,16 @@ class RadarDataModule(L.LightningDataModule):
         return dr.replace(floor="empirical", quantiles_db=self._from_rank0(q),
                           seed=self.hparams["dr_seed"] + 1000 * _rank_world(self.trainer)[0])
 
+    @property
+    def _blank(self) -> int:
+        """Doppler bins blanked on each side of zero (hparams of older checkpoints lack the key: 1)."""
+        return int(self.hparams.get("blank_zero_doppler", 1))
+
     def _estimate_clip(self, train: CachedMaps) -> tuple[float, float]:
         maps = train.maps(slice(0, 256))
         vmin, vmax = estimate_clip_range(maps, self.dr, percentiles=tuple(self.hparams["clip_percentiles"]),
-                                         representation=self.hparams["representation"], excise=self.excise)
+                                         representation=self.hparams["representation"], excise=self.excise,
+                                         blank_zero_doppler=self._blank)
         vmin, vmax = self._from_rank0((vmin, vmax))
         return float(vmin), float(vmax)
 
@@ -611,7 +621,7 @@ class RadarDataModule(L.LightningDataModule):
             vmin, vmax = state_dict["clip_range"]
             self.clip = (vmin, vmax)
             self.image = image_chain(*self.clip, self.hparams["image_size"], self.hparams["representation"],
-                                     self.excise)
+                                     self.excise, self._blank)
 
     def _loader(self, ds: Dataset | None, *, shuffle: bool) -> DataLoader:
         if ds is None:

@@ -131,26 +131,30 @@ def check_representation(representation: str) -> str:
     return representation
 
 
-def level_chain(representation: str = "paper", excise: torch.Tensor | None = None) -> nn.Sequential:
+def level_chain(representation: str = "paper", excise: torch.Tensor | None = None,
+                blank_zero_doppler: int = 1) -> nn.Sequential:
     """Per-RX dB maps -> the one-channel dB map that is clipped: RX combination (+ floor referencing).
 
     ``"paper"``: the RX-combined map in dBFS; ``"floor_relative"``: each range row referenced to its
-    Doppler median, zero Doppler ±1 bin blanked, and the ``excise`` cells (the calibration capture's
-    persistent lines) set to the floor (:class:`~radaraug.transforms.FloorRelative`).
+    Doppler median, zero Doppler ± ``blank_zero_doppler`` bins blanked, and the ``excise`` cells (the
+    calibration capture's persistent lines) set to the floor (:class:`~radaraug.transforms.FloorRelative`).
     """
     steps: list[nn.Module] = [CombineRx("mean_power", db=True)]
     if check_representation(representation) == "floor_relative":
-        steps.append(FloorRelative(blank_zero_doppler=1, excise=excise))
+        steps.append(FloorRelative(blank_zero_doppler=blank_zero_doppler, excise=excise))
     return nn.Sequential(*steps)
 
 
 def image_chain(vmin: float, vmax: float, size: Sequence[int] | None = None,
-                representation: str = "paper", excise: torch.Tensor | None = None) -> nn.Sequential:
+                representation: str = "paper", excise: torch.Tensor | None = None,
+                blank_zero_doppler: int = 1) -> nn.Sequential:
     """Per-RX dB maps -> ``(3, H, W)`` viridis images in [0, 1] (the network input).
 
-    ``representation`` (and ``excise``) pick the level chain before the clip (:func:`level_chain`).
+    ``representation`` (with ``excise`` and ``blank_zero_doppler``) picks the level chain before the
+    clip (:func:`level_chain`).
     """
-    steps: list[nn.Module] = [*level_chain(representation, excise), ClipNormalize(vmin, vmax), Colormap("viridis")]
+    steps: list[nn.Module] = [*level_chain(representation, excise, blank_zero_doppler), ClipNormalize(vmin, vmax),
+                              Colormap("viridis")]
     if size is not None:
         if len(size) != 2:
             raise ConfigError(f"image size must be [H, W], got {list(size)}")
@@ -161,7 +165,7 @@ def image_chain(vmin: float, vmax: float, size: Sequence[int] | None = None,
 @torch.no_grad()
 def estimate_clip_range(
     db_maps: torch.Tensor, dr: nn.Module | None = None, *, percentiles: tuple[float, float] = (1.0, 99.9),
-    representation: str = "paper", excise: torch.Tensor | None = None,
+    representation: str = "paper", excise: torch.Tensor | None = None, blank_zero_doppler: int = 1,
 ) -> tuple[float, float]:
     """``[vmin, vmax]`` from simulated per-RX dB maps ``(N, rx, range, doppler)``.
 
@@ -172,7 +176,7 @@ def estimate_clip_range(
     x = db_maps.float()
     if dr is not None:
         x = dr(x)
-    x = level_chain(representation, excise)(x).flatten()
+    x = level_chain(representation, excise, blank_zero_doppler)(x).flatten()
     if x.numel() > 2_000_000:  # quantile() refuses very large inputs; a strided subsample is enough
         x = x[:: math.ceil(x.numel() / 2_000_000)]
     lo, hi = torch.quantile(x.double(), torch.tensor([percentiles[0] / 100, percentiles[1] / 100], dtype=torch.float64))

@@ -68,6 +68,8 @@ class ReproduceSettings:
     context_frames: int | str = RECIPE
     #: network input of the main runs (``RadarDataModule.representation``)
     representation: str = RECIPE
+    #: Doppler bins blanked on each side of zero in floor-relative maps (``RadarDataModule.blank_zero_doppler``)
+    blank_zero_doppler: int | str = RECIPE
     #: methods run unless ``reproduce(methods=...)`` names them
     methods: tuple[str, ...] = METHODS
     #: generated test sets used when no test captures are given (:data:`DEFAULT_TEST_SETS`)
