@@ -50,6 +50,7 @@ def test_windows_and_stride(two_files, tiny_config, stride, starts):
         assert window.shape == (2, 3, 4, 32)
         np.testing.assert_array_equal(window.numpy(), pattern_counts(tiny_config, 2, first=start))
         assert ds.locate(i) == (Path(two_files[k]), start)
+    assert ds.items_per_file == [sum(1 for k, _ in starts if k == f) for f in (0, 1)]
 
 
 def test_float_items_are_sdk_floats(h5_capture, tiny_config):

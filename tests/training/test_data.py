@@ -87,6 +87,27 @@ def test_dr_only_on_simulated_splits(tmp_path, captures):
     assert dm2.dr is mine and "dr" not in dm2.hparams
 
 
+
+def test_test_recording_starts_and_zero_doppler_blanking(tmp_path, captures):
+    cal, tests = captures
+    entries = [{"path": str(p), "count": c} for p, c in tests]
+    dm = RadarDataModule(task="counting", method="rt", calibration=str(cal), test=entries, blank_zero_doppler=3,
+                         cache_dir=str(tmp_path / "c"), **SMALL)
+    dm.setup("fit")
+    from radaraug.io import open_capture
+
+    frames = []
+    for p, _ in tests:
+        with open_capture(p) as cap:
+            frames.append(cap.num_frames)
+    starts = dm.test_recording_starts
+    assert starts.shape == (sum(frames),) and starts.sum() == len(tests)
+    assert starts[0] and starts[frames[0]] and not starts[1]
+    # the blanked bins reach the network input: 3 bins on each side of zero Doppler set to the row's floor
+    floor = [m for m in dm.image.modules() if type(m).__name__ == "FloorRelative"]
+    assert len(floor) == 1 and floor[0].blank_zero_doppler == 3
+
+
 def test_caches_default_to_the_user_cache_folder_not_the_working_folder(tmp_path, monkeypatch):
     monkeypatch.setenv("RADARAUG_CACHE_DIR", str(tmp_path / "user_cache"))
     dm = RadarDataModule()
