@@ -42,6 +42,7 @@ from radaraug.heldout.generator import (
     RECEIVER,
     PeoplePriors,
     finish_set,
+    receiver_kwargs,
     resolve_effects,
     write_set_files,
 )
@@ -261,8 +262,6 @@ def draw_room(rng: np.random.Generator, config: RadarConfig, fan: bool) -> room_
 
 
 def _receiver(rng: np.random.Generator, config: RadarConfig) -> dict[str, Any]:
-    from radaraug.heldout.generator import receiver_kwargs
-
     kw = receiver_kwargs(config)
     kw["noise_figure_dB"] = float(rng.uniform(10.0, 16.0))
     kw["leakage_coupling_dB"] = [float(v + rng.uniform(-4.0, 4.0)) for v in kw["leakage_coupling_dB"]]

@@ -269,6 +269,8 @@ class RadarDataModule(L.LightningDataModule):
         self._train: Dataset | None = None
         self._val: Dataset | None = None
         self._test: Dataset | None = None
+        #: where each recording starts in the test order (set by setup; None under DDP: shards stride over frames)
+        self.test_recording_starts: torch.Tensor | None = None
         self.train_class_counts: torch.Tensor | None = None
         self.noise_fit: dict[str, Any] | None = None
         self.twin_profile: TwinProfile | None = None

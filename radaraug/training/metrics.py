@@ -108,6 +108,16 @@ def causal_context(probs: torch.Tensor, starts: torch.Tensor, frames: int) -> to
     return (csum[idx + 1] - csum[lo]) / (idx - lo + 1).unsqueeze(1).to(probs.dtype)
 
 
+def context_predictions(probs: torch.Tensor, starts: torch.Tensor | None, frames: int) -> torch.Tensor:
+    """Predicted classes ``(N,)``: the argmax of :func:`causal_context`.
+
+    Of ``probs`` alone when ``frames`` is 1 or there are no recording starts to keep the context inside.
+    """
+    if frames <= 1 or starts is None:
+        return probs.argmax(dim=1)
+    return causal_context(probs, starts, frames).argmax(dim=1)
+
+
 def draw_confusion(ax: Any, cm: torch.Tensor, class_names: Sequence[str], *, with_counts: bool = False,
                    text_size: float = 8, label_size: float | None = 8) -> None:
     """Draw ``cm`` on the matplotlib axes ``ax``: row-normalised recall as colour and text (+ the counts).

@@ -12,9 +12,9 @@ import torch.nn.functional as F
 
 from radaraug.training.metrics import (
     balanced_accuracy,
-    causal_context,
     classification_report,
     confusion_matrix,
+    context_predictions,
     save_metrics,
 )
 from radaraug.training.models import resnet18
@@ -195,7 +195,7 @@ class RDClassifier(L.LightningModule):
         probs, labels = self.last_test_probs, self.last_test_labels
         if k <= 1 or starts is None or probs is None or labels is None or len(starts) != len(probs):
             return {}
-        cm = confusion_matrix(causal_context(probs, starts, k).argmax(dim=1), labels, len(self.class_names))
+        cm = confusion_matrix(context_predictions(probs, starts, k), labels, len(self.class_names))
         return {"context": {"frames": k, **classification_report(cm, self.class_names)}}
 
     def configure_optimizers(self) -> Any:

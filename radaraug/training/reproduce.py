@@ -446,8 +446,7 @@ def reproduce(
                         if is_shared:
                             shared[key] = (model, dm, fit_s, val_bacc)
                     rep = _headline(_test(model, dm, trainer, run_dir))
-                    _save_scores(run_dir, model, dm)
-                    seed_scores.append((model.last_test_probs, model.last_test_labels, dm.test_recording_starts))
+                    seed_scores.append(_save_scores(run_dir, model, dm))
                     rep.update({"task": task, "method": method, "seed": seed, "fit_seconds": fit_s,
                                 "clip_range_db": None if dm.clip is None else list(dm.clip),
                                 "val_balanced_accuracy": val_bacc, "test_set": ts.name,
@@ -542,13 +541,12 @@ def _headline(rep: dict[str, Any]) -> dict[str, Any]:
         k: ctx[k] for k in keys}
 
 
-def _save_scores(run_dir: Path, model: Any, dm: Any) -> None:
-    """``run_dir/test_scores.pt``: per-frame probabilities, labels and recording starts of the test."""
-    if model.last_test_probs is None:
-        return
-    starts = getattr(dm, "test_recording_starts", None)
-    torch.save({"probs": model.last_test_probs, "labels": model.last_test_labels, "recording_starts": starts},
-               run_dir / "test_scores.pt")
+def _save_scores(run_dir: Path, model: Any, dm: Any) -> tuple[Any, Any, Any]:
+    """The test's per-frame probabilities, labels and recording starts, also written to ``run_dir/test_scores.pt``."""
+    scores = (model.last_test_probs, model.last_test_labels, dm.test_recording_starts)
+    if scores[0] is not None:
+        torch.save(dict(zip(("probs", "labels", "recording_starts"), scores)), run_dir / "test_scores.pt")
+    return scores
 
 
 def _ensemble(scores: Sequence[tuple[Any, Any, Any]], context_frames: int,
@@ -557,19 +555,18 @@ def _ensemble(scores: Sequence[tuple[Any, Any, Any]], context_frames: int,
 
     ``balanced_accuracy`` with the runs' frame context, ``single_frame_balanced_accuracy`` without.
     """
-    from radaraug.training.metrics import balanced_accuracy, causal_context, confusion_matrix
+    from radaraug.training.metrics import balanced_accuracy, confusion_matrix, context_predictions
 
     if len(scores) < 2 or any(p is None for p, _, _ in scores):
         return None
     probs = torch.stack([p for p, _, _ in scores]).mean(dim=0)
     labels, starts = scores[0][1], scores[0][2]
-    single = balanced_accuracy(confusion_matrix(probs.argmax(dim=1), labels, len(classes)))
-    if context_frames > 1 and starts is not None:
-        ctx = balanced_accuracy(confusion_matrix(causal_context(probs, starts, context_frames).argmax(dim=1),
-                                                 labels, len(classes)))
-    else:
-        ctx = single
-    return {"seeds": len(scores), "balanced_accuracy": ctx, "single_frame_balanced_accuracy": single}
+
+    def bacc(frames: int) -> float:
+        return balanced_accuracy(confusion_matrix(context_predictions(probs, starts, frames), labels, len(classes)))
+
+    return {"seeds": len(scores), "balanced_accuracy": bacc(context_frames),
+            "single_frame_balanced_accuracy": bacc(1)}
 
 
 def _suite_summary(sets: Sequence[TestSet], results: dict[str, dict[str, dict[str, Any]]]) -> dict[str, Any]:
