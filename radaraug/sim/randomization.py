@@ -166,6 +166,10 @@ class TwinRandomization:
             length minus ``wall_margin_m``.
         heading_jitter_deg: heading spread around straight toward/away (30 deg instead of 5):
             people do not walk on rails.
+        crossing_probability: chance that a drawn walker crosses the room (heading across its
+            axis plus the jitter) instead of walking toward/away (0: the items of before bit for
+            bit). People in offices cross a sensor's beam as often as they walk along it; a
+            crossing walker's body sits near zero Doppler. Passed to the :class:`ScenarioSampler`.
         standing_probability: chance that a drawn person stands (breathing, swaying) instead of
             walking (0: walkers only, the items of before bit for bit). Passed to the
             :class:`ScenarioSampler`; a standing person counts (docs/training.md measures what a
@@ -291,6 +295,7 @@ class TwinRandomization:
     speed_m_s: tuple[float, float] = (0.4, 2.0)
     range_m: tuple[float, float] = (0.8, 15.0)
     heading_jitter_deg: float = 30.0
+    crossing_probability: float = 0.0
     wall_margin_m: float = 0.35
     standing_probability: float = 0.0
     system_gain_offset_dB: tuple[float, float] = (-6.0, 6.0)
@@ -477,6 +482,7 @@ class TwinRandomization:
         return dataclasses.replace(
             base, speed_m_s=self.speed_m_s, height_m=self.person_height_m, range_m=(lo, hi),
             lateral_m=(-lateral, lateral), heading_jitter_deg=self.heading_jitter_deg,
+            crossing_probability=max(base.crossing_probability, self.crossing_probability),
             standing_probability=max(base.standing_probability, self.standing_probability),
         )
 

@@ -57,6 +57,10 @@ class ScenarioSampler:
         lateral_m: lateral offset range from the corridor axis (keep people inside the walls).
         p_toward: probability that a walker heads toward the radar (else away).
         heading_jitter_deg: extra random heading around straight toward/away.
+        crossing_probability: chance that a drawn walker crosses the corridor (heading across its
+            axis, either side, plus the jitter) instead of walking toward/away: little radial
+            velocity, so most of the body sits near zero Doppler and only the limbs and the
+            angle to the radar spread it. 0 (default) draws nothing extra (the scenarios of before).
         standing_probability: chance that a drawn person stands (breathing, swaying; a
             :class:`~radaraug.scene.people.StandingPerson` at the drawn start, facing the drawn
             heading) instead of walking. 0 (default, the paper's scenarios) draws nothing extra, so
@@ -78,6 +82,7 @@ class ScenarioSampler:
     lateral_m: tuple[float, float] = (-0.6, 0.6)
     p_toward: float = 0.5
     heading_jitter_deg: float = 5.0
+    crossing_probability: float = 0.0
     standing_probability: float = 0.0
     breathing_m: tuple[float, float] = (0.003, 0.012)
     breathing_Hz: tuple[float, float] = (0.2, 0.4)
@@ -85,10 +90,11 @@ class ScenarioSampler:
     sway_Hz: tuple[float, float] = (0.1, 0.5)
 
     def __post_init__(self) -> None:
-        p = self.standing_probability
-        if isinstance(p, bool) or not isinstance(p, (int, float)) or not 0.0 <= float(p) <= 1.0:
-            raise ConfigError(f"scenario sampler: standing_probability must be in [0, 1], got {p!r}")
-        self.standing_probability = float(p)
+        for name in ("crossing_probability", "standing_probability"):
+            p = getattr(self, name)
+            if isinstance(p, bool) or not isinstance(p, (int, float)) or not 0.0 <= float(p) <= 1.0:
+                raise ConfigError(f"scenario sampler: {name} must be in [0, 1], got {p!r}")
+            setattr(self, name, float(p))
 
     def sample(
         self, generator: torch.Generator, *, radar_xy: tuple[float, float] = (0.1, 0.0),
@@ -115,6 +121,12 @@ class ScenarioSampler:
             toward = bool(torch.rand((), generator=g) < self.p_toward)
             jitter = math.radians(_uniform((-self.heading_jitter_deg, self.heading_jitter_deg), g))
             heading = axis + (math.pi if toward else 0.0) + jitter
+            # Drawn only when crossing walkers are on, so that the other draws are unchanged.
+            crossing = self.crossing_probability > 0 and \
+                float(torch.rand((), generator=g, dtype=torch.float64)) < self.crossing_probability
+            if crossing:
+                side = 1.0 if float(torch.rand((), generator=g, dtype=torch.float64)) < 0.5 else -1.0
+                heading = axis + side * math.pi / 2 + jitter
             height = _uniform(self.height_m, g)
             phase = _uniform((0.0, 1.0), g)
             start = (radar_xy[0] + rng * ux - lat * uy, radar_xy[1] + rng * uy + lat * ux)
@@ -131,7 +143,8 @@ class ScenarioSampler:
                 continue
             people.append(Walker(height_m=height, speed_m_s=speed, start=start, heading_rad=heading, phase=phase))
             params.append({"range_m": rng, "lateral_m": lat, "speed_m_s": speed, "height_m": height,
-                           "toward": float(toward), "heading_rad": heading, "phase": phase})
+                           "toward": float(toward), "heading_rad": heading, "phase": phase,
+                           **({"crossing": 1.0} if crossing else {})})
         return Scenario(people, params)
 
     def _speeds(self, count: int, g: torch.Generator) -> list[float]:

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 import pickle
 
 import numpy as np
@@ -12,6 +13,7 @@ from torch.utils.data import DataLoader
 from radaraug.scene.scene import Scene
 from radaraug.sim import offline
 from radaraug.sim.dataset import SimulatedRadarDataset
+from radaraug.sim.randomization import TwinRandomization
 from radaraug.sim.scenarios import ScenarioSampler
 from radaraug.sim.seeding import item_seed
 from radaraug.sim.twin import DigitalTwin
@@ -210,6 +212,65 @@ def test_sampler_standing_people() -> None:
     assert kinds == {StandingPerson, Walker}
     with pytest.raises(ConfigError, match="standing_probability"):
         ScenarioSampler(standing_probability=1.5)
+
+
+def test_sampler_crossing_walkers() -> None:
+    from radaraug.errors import ConfigError
+
+    walkers = [ScenarioSampler().sample(torch.Generator().manual_seed(s)) for s in range(20)]
+    zero = [ScenarioSampler(crossing_probability=0.0).sample(torch.Generator().manual_seed(s)) for s in range(20)]
+    # Off: nothing extra is drawn, so the scenarios are those of before.
+    assert [w.params for w in walkers] == [z.params for z in zero]
+    jitter = math.radians(5.0)
+    sides = set()
+    for s in range(30):
+        sc = ScenarioSampler(crossing_probability=1.0, counts=(1, 2)).sample(
+            torch.Generator().manual_seed(s), axis_deg=30.0)
+        for par in sc.params:
+            off = par["heading_rad"] - math.radians(30.0)
+            # across the axis: within the jitter of +-90 deg
+            assert abs(math.cos(off)) <= math.sin(jitter) + 1e-12 and par["crossing"] == 1.0
+            sides.add(math.copysign(1.0, math.sin(off)))
+    assert sides == {1.0, -1.0}
+    mixed = ScenarioSampler(crossing_probability=0.5, counts=(2,))
+    kinds = {"crossing" in par for s in range(20) for par in mixed.sample(torch.Generator().manual_seed(s)).params}
+    assert kinds == {True, False}
+    twin_sampler = TwinRandomization(crossing_probability=0.4).sampler(
+        ScenarioSampler(), TwinRandomization().room(0, 0), radar_x_m=0.1)
+    assert twin_sampler.crossing_probability == 0.4
+    with pytest.raises(ConfigError, match="crossing_probability"):
+        ScenarioSampler(crossing_probability=-0.1)
+
+
+def test_crossing_walker_sits_near_zero_doppler_and_a_radial_one_at_its_speed() -> None:
+    """Closed form: a walker's body returns at Doppler bin v_r / velocity resolution. The torso's
+    speed swings over a stride, so over four gait phases: walking straight at the radar at 1.2 m/s,
+    the strongest bin of its field is at that bin on average; crossing the boresight at the same
+    speed (v_r = 0 for the torso), its field's Doppler centroid is within a bin of zero."""
+    from radaraug.scene.people import Walker
+    from radaraug.sensor.receiver import FMCWReceiver
+    from radaraug.transforms import RangeDoppler
+
+    scene = Scene.builtin("corridor")
+    twin = DigitalTwin(scene, receiver=FMCWReceiver(scene.config, effects=[]), **FAST)  # linear, no noise
+    cfg = twin.config
+    t = twin.frame_times([0])
+    x_empty = twin.simulate([], t, generators=torch.Generator().manual_seed(0))
+    rd = RangeDoppler()
+    bins = torch.arange(cfg.num_chirps_per_frame) - cfg.num_chirps_per_frame // 2
+    peak, centroid = {}, {}
+    for name, heading in (("toward", math.pi), ("crossing", math.pi / 2)):
+        p, c = [], []
+        for phase in (0.0, 0.25, 0.5, 0.75):
+            walker = Walker(height_m=1.8, speed_m_s=1.2, start=(4.1, 0.0), heading_rad=heading, phase=phase)
+            x = twin.simulate([walker], t, generators=torch.Generator().manual_seed(0))
+            field = (rd(x) - rd(x_empty)).abs().square().mean(1)[0].sum(0)  # the walker's Doppler profile
+            p.append(float(bins[field.argmax()]))
+            c.append(float((field * bins).sum() / field.sum()))
+        peak[name], centroid[name] = sum(p) / len(p), sum(c) / len(c)
+    expected = 1.2 / cfg.velocity_resolution_m_s  # toward the radar: negative bins
+    assert abs(-peak["toward"] - expected) <= 1.5
+    assert abs(centroid["crossing"]) <= 1.0
 
 
 def test_standing_person_returns_only_at_zero_doppler() -> None:
