@@ -58,10 +58,13 @@ from radaraug.io.generated_set import (
 WORLD_GENERATOR_VERSION = 1
 """Bumped whenever a world's draw or output changes; part of the reuse check."""
 WORLD_MANIFEST_FORMAT = "radaraug-heldout-world"
-SUITES: dict[str, int] = {"design": 340_117, "report": 902_551}
+SUITES: dict[str, int] = {"design": 340_117, "report": 611_873, "report-1": 902_551}
 """Entropy of each suite's seed sequence: world ``i`` of suite ``s`` is drawn from
-``SeedSequence(SUITES[s], spawn_key=(i,))``."""
-DEFAULT_WORLDS: dict[str, int] = {"design": 4, "report": 4}
+``SeedSequence(SUITES[s], spawn_key=(i,))``. ``report-1`` is the first report suite: run once, then
+looked at, so it is spent (:data:`SPENT_SUITES`); it stays drawable so that its record can be rerun."""
+SPENT_SUITES: tuple[str, ...] = ("report-1",)
+"""Report suites that have been looked at: their numbers are validation numbers now."""
+DEFAULT_WORLDS: dict[str, int] = {"design": 6, "report": 4, "report-1": 4}
 """Worlds per suite that ``reproduce --test-sets design|report`` uses unless told otherwise."""
 MAX_WORLDS = 1000
 
@@ -115,7 +118,7 @@ class World:
     """One drawn test world (everything its captures are made from).
 
     Attributes:
-        suite: ``"design"`` or ``"report"``.
+        suite: ``"design"``, ``"report"`` or a spent report suite.
         index: the world's number in its suite.
         seed: seed of its people and receiver noise (drawn from the suite's sequence).
         config: the radar configuration of its captures.
@@ -399,6 +402,8 @@ def make_world(out_dir: str | os.PathLike, world: World, *, frames_per_count: in
                       "generator (radaraug.heldout), which shares no simulation code with the training twin. "
                       + ("Report suite: run it only to report a decision already made, never to make one."
                          if world.suite == "report" else
+                         "Spent report suite: it has been looked at, so its numbers are validation numbers now."
+                         if world.suite in SPENT_SUITES else
                          "Design suite: numbers on it are validation numbers once they chose anything.")),
         "priors": PRIORS,
         "world": world.to_dict(),
@@ -428,7 +433,8 @@ def make_suite(out_dir: str | os.PathLike, suite: str, *, worlds: int | None = N
 
     Args:
         out_dir: parent folder.
-        suite: ``"design"`` (look at it freely) or ``"report"`` (run only to report).
+        suite: ``"design"`` (look at it freely), ``"report"`` (run only to report) or a spent
+            report suite (:data:`SPENT_SUITES`).
         worlds: how many (default :data:`DEFAULT_WORLDS`).
         frames_per_count: as :func:`make_world`.
         calibration_frames: as :func:`make_world`.
@@ -451,6 +457,6 @@ def make_suite(out_dir: str | os.PathLike, suite: str, *, worlds: int | None = N
 
 
 __all__ = [
-    "DEFAULT_WORLDS", "DISTURBANCES", "PRIORS", "SUITES", "WORLD_GENERATOR_VERSION", "World", "draw_config",
+    "DEFAULT_WORLDS", "DISTURBANCES", "PRIORS", "SPENT_SUITES", "SUITES", "WORLD_GENERATOR_VERSION", "World", "draw_config",
     "draw_room", "draw_world", "load_world", "make_suite", "make_world", "world_seed",
 ]

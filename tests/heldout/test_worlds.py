@@ -15,6 +15,7 @@ from radaraug.heldout import walkers
 from radaraug.heldout.generator import PeoplePriors, plan_episodes
 from radaraug.heldout.worlds import (
     DISTURBANCES,
+    SPENT_SUITES,
     SUITES,
     World,
     draw_world,
@@ -50,7 +51,11 @@ def test_a_world_is_a_pure_function_of_suite_and_index() -> None:
 def test_suites_are_disjoint_by_seed() -> None:
     seeds = {s: {world_seed(s, i) for i in range(500)} for s in SUITES}
     assert all(len(v) == 500 for v in seeds.values())
-    assert not seeds["design"] & seeds["report"]
+    names = sorted(seeds)
+    assert {"design", "report", *SPENT_SUITES} <= set(names)
+    for i, a in enumerate(names):
+        for b in names[i + 1:]:
+            assert not seeds[a] & seeds[b], (a, b)
 
 
 def test_config_prior_varies_samples_chirps_bandwidth_chirp_time_and_gain(drawn: list[World]) -> None:
