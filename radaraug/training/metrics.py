@@ -118,6 +118,29 @@ def context_predictions(probs: torch.Tensor, starts: torch.Tensor | None, frames
     return causal_context(probs, starts, frames).argmax(dim=1)
 
 
+def gated_predictions(preds: torch.Tensor, gate: torch.Tensor, starts: torch.Tensor | None,
+                      frames: int) -> torch.Tensor:
+    """Class predictions ``(N,)`` raised to at least one person where a presence gate fires.
+
+    The gate (e.g. :class:`~radaraug.detection.StaticChangeDetector`'s per-frame decisions) gets the
+    classifier's causal context: it fires on a frame when it fired on more than half of that frame and
+    the ``frames - 1`` before it in its recording. Where it fires, class 0 (empty) becomes 1 (one
+    person, or occupied); every other prediction stays, so the gate can only find people, never count.
+
+    Args:
+        preds: ``(N,)`` predicted classes (0 = nobody).
+        gate: ``(N,)`` bool per-frame detections, frames in recording order.
+        starts: ``(N,)`` bool recording starts (None: no context).
+        frames: context length.
+    """
+    if len(gate) != len(preds):
+        raise ValueError(f"{len(gate)} gate decisions for {len(preds)} predictions")
+    g = gate.to(torch.float64)
+    if frames > 1 and starts is not None:
+        g = causal_context(torch.stack([1 - g, g], dim=1), starts, frames)[:, 1]
+    return torch.where((preds == 0) & (g > 0.5), torch.ones_like(preds), preds)
+
+
 def draw_confusion(ax: Any, cm: torch.Tensor, class_names: Sequence[str], *, with_counts: bool = False,
                    text_size: float = 8, label_size: float | None = 8) -> None:
     """Draw ``cm`` on the matplotlib axes ``ax``: row-normalised recall as colour and text (+ the counts).

@@ -70,6 +70,12 @@ class ReproduceSettings:
     representation: str = RECIPE
     #: Doppler bins blanked on each side of zero in floor-relative maps (``RadarDataModule.blank_zero_doppler``)
     blank_zero_doppler: int | str = RECIPE
+    #: stop a run once simulated validation balanced accuracy has not risen for this many epochs and test
+    #: the best epoch's weights (None: train ``epochs`` epochs and test the last)
+    early_stopping_patience: int | None = None
+    #: margin of the zero-Doppler change gate fused beside every run (:class:`radaraug.detection.StaticChangeDetector`,
+    #: fitted on each test set's empty-room capture; None: no gate)
+    static_gate_margin_db: float | None = 3.0
     #: methods run unless ``reproduce(methods=...)`` names them
     methods: tuple[str, ...] = METHODS
     #: generated test sets used when no test captures are given (:data:`DEFAULT_TEST_SETS`)
@@ -146,8 +152,9 @@ def _cdr_floor_of(keep: dict[tuple[str, str, str], tuple[Any, Any]], settings: R
 #: with the twin (:mod:`radaraug.heldout`). Each comes with its own empty-room capture.
 DEFAULT_TEST_SETS = ("proxy", "independent")
 #: The held-out suites of test worlds (:mod:`radaraug.heldout.worlds`): ``design`` (look at it freely;
-#: its numbers are validation numbers) and ``report`` (run only to report). Each world is a test set.
-SUITE_TEST_SETS = ("design", "report")
+#: its numbers are validation numbers), ``report`` (run only to report) and the spent report suites
+#: (``report-1``: rerun its record; validation numbers now). Each world is a test set.
+SUITE_TEST_SETS = ("design", "report", "report-1")
 #: Every generated test set ``--test-sets`` may name: the defaults, ``standing`` (the independent
 #: generator with standing (breathing, swaying) people in 30 % of the drawn people, another seed) and
 #: the suites of :data:`SUITE_TEST_SETS`.
@@ -275,11 +282,16 @@ def _fit(task: str, method: str, seed: int, *, settings: ReproduceSettings, data
     dm = RadarDataModule(**(data_kw | {"task": task, "method": method, "dr_seed": seed, "out_dir": str(run_dir),
                                        "progress": progress}))
     model = RDClassifier(**(model_kw | {"task": task, "out_dir": str(run_dir)}))
-    trainer = _trainer(settings, accelerator, run_dir)
+    trainer = _trainer(settings, accelerator, run_dir, fitting=True)
     t0 = time.perf_counter()
     with _quiet():
         trainer.fit(model, datamodule=dm)
     val_bacc = trainer.callback_metrics.get("val/balanced_accuracy")  # test() resets the metrics
+    best = trainer.checkpoint_callback
+    if settings.early_stopping_patience is not None and best is not None and best.best_model_path:
+        # the best epoch's weights, and its validation score (not the last epoch's)
+        model.load_state_dict(torch.load(best.best_model_path, map_location="cpu", weights_only=False)["state_dict"])
+        val_bacc = best.best_model_score
     return model, dm, trainer, time.perf_counter() - t0, None if val_bacc is None else float(val_bacc)
 
 
@@ -293,12 +305,20 @@ def _size_kw(settings: ReproduceSettings) -> dict[str, Any]:
     return {k: getattr(settings, k) for k in keys} | {"image_size": list(settings.image_size)}
 
 
-def _trainer(settings: ReproduceSettings, accelerator: str, run_dir: Path) -> Any:
+def _trainer(settings: ReproduceSettings, accelerator: str, run_dir: Path, *, fitting: bool = False) -> Any:
     import lightning as L
 
+    callbacks: list[Any] = []
+    patience = settings.early_stopping_patience
+    if fitting and patience is not None:
+        from lightning.pytorch.callbacks import EarlyStopping, ModelCheckpoint
+
+        metric = "val/balanced_accuracy"
+        callbacks = [EarlyStopping(monitor=metric, mode="max", patience=patience),
+                     ModelCheckpoint(dirpath=run_dir / "best", filename="best", monitor=metric, mode="max", save_top_k=1)]
     return L.Trainer(max_epochs=settings.epochs, accelerator=accelerator, devices=1, logger=False,
-                     enable_checkpointing=False, enable_model_summary=False, num_sanity_val_steps=0,
-                     enable_progress_bar=False, default_root_dir=str(run_dir))
+                     enable_checkpointing=bool(callbacks), callbacks=callbacks, enable_model_summary=False,
+                     num_sanity_val_steps=0, enable_progress_bar=False, default_root_dir=str(run_dir))
 
 
 @contextlib.contextmanager
@@ -403,6 +423,7 @@ def reproduce(
         for task in tasks:
             check_test_set(ts.tests, task)
 
+    gates = {ts.name: _static_gate(ts, settings.static_gate_margin_db) for ts in sets}
     # (row name, method, ablation override or None): every run is its recipe (+ the ablation)
     variants: list[tuple[str, str, str | None]] = [(m, m, None) for m in methods]
     variants += [(n, ABLATIONS[n][0], n) for n in names if ABLATIONS[n][0] in methods]
@@ -447,6 +468,10 @@ def reproduce(
                             shared[key] = (model, dm, fit_s, val_bacc)
                     rep = _headline(_test(model, dm, trainer, run_dir))
                     seed_scores.append(_save_scores(run_dir, model, dm))
+                    gated = _gated(seed_scores[-1], gates[ts.name], int(recipe.get("model", {}).get("context_frames", 1)),
+                                   TASKS[task])
+                    if gated is not None:
+                        rep["static_gate"] = gated
                     rep.update({"task": task, "method": method, "seed": seed, "fit_seconds": fit_s,
                                 "clip_range_db": None if dm.clip is None else list(dm.clip),
                                 "val_balanced_accuracy": val_bacc, "test_set": ts.name,
@@ -476,6 +501,9 @@ def reproduce(
                 if "single_frame" in seed_reps[0]:  # the paper's protocol beside the context's
                     results[ts.name][task][name]["single_frame_balanced_accuracy"] = _summary(
                         [r["single_frame"]["balanced_accuracy"] for r in seed_reps])
+                if all("static_gate" in r for r in seed_reps):
+                    results[ts.name][task][name]["static_gate_balanced_accuracy"] = _summary(
+                        [r["static_gate"]["balanced_accuracy"] for r in seed_reps])
                 ens = _ensemble(seed_scores, int(recipe.get("model", {}).get("context_frames", 1)), TASKS[task])
                 if ens is not None:
                     results[ts.name][task][name]["ensemble"] = ens
@@ -502,6 +530,7 @@ def reproduce(
         "results": results[primary.name],
         "test_sets": {ts.name: {"calibration": ts.calibration, "test": ts.tests, "generator": ts.info,
                                 "results": results[ts.name], "empty_room_median_db": floors[ts.name],
+                                "static_gate": (gates[ts.name] or {}).get("info"),
                                 "ablation_table": _ablation_table(results[ts.name])} for ts in sets},
         "suites": _suite_summary(sets, results),
         "runs": runs,
@@ -547,6 +576,45 @@ def _save_scores(run_dir: Path, model: Any, dm: Any) -> tuple[Any, Any, Any]:
     if scores[0] is not None:
         torch.save(dict(zip(("probs", "labels", "recording_starts"), scores)), run_dir / "test_scores.pt")
     return scores
+
+
+def _static_gate(ts: TestSet, margin_db: float | None) -> dict[str, Any] | None:
+    """The zero-Doppler change gate of test set ``ts``, or None (no margin, or a JSON calibration).
+
+    Fitted on the set's empty-room capture and run on its test frames in test order:
+    ``{"detections": (N,) bool, "info": ...}``.
+    """
+    if margin_db is None or ts.calibration is None or is_calibration_json(ts.calibration):
+        return None
+    from radaraug.detection import StaticChangeDetector
+    from radaraug.io import open_capture
+
+    det = StaticChangeDetector.from_capture(ts.calibration, margin_db=margin_db)
+    detections = torch.cat([det.detect(open_capture(e["path"]).read(as_float=False)) for e in ts.tests])
+    return {"detections": detections,
+            "info": {"threshold_db": det.threshold_db, "margin_db": det.margin_db,
+                     "calibration_frames": len(det.calibration_scores_db),
+                     "calibration_max_db": float(det.calibration_scores_db.max()),
+                     "first_range_bin": det.first_bin, "test_frames_fired": float(detections.double().mean())}}
+
+
+def _gated(scores: tuple[Any, Any, Any], gate: dict[str, Any] | None, context_frames: int,
+           classes: Sequence[str]) -> dict[str, Any] | None:
+    """A run's test balanced accuracy with the static-change gate fused in (:func:`metrics.gated_predictions`)."""
+    from radaraug.training.metrics import (
+        balanced_accuracy,
+        confusion_matrix,
+        context_predictions,
+        gated_predictions,
+    )
+
+    probs, labels, starts = scores
+    if gate is None or probs is None or len(gate["detections"]) != len(probs):
+        return None
+    preds = gated_predictions(context_predictions(probs, starts, context_frames), gate["detections"], starts,
+                              context_frames)
+    cm = confusion_matrix(preds, labels, len(classes))
+    return {"balanced_accuracy": balanced_accuracy(cm), "confusion_matrix": cm.tolist()}
 
 
 def _ensemble(scores: Sequence[tuple[Any, Any, Any]], context_frames: int,
@@ -596,13 +664,18 @@ def _suite_summary(sets: Sequence[TestSet], results: dict[str, dict[str, dict[st
                 if all("single_frame_balanced_accuracy" in r for r in rows):
                     by_task[task][variant]["single_frame_mean"] = statistics.fmean(
                         r["single_frame_balanced_accuracy"]["mean"] for r in rows)
+                if all("static_gate_balanced_accuracy" in r for r in rows):
+                    gated = [r["static_gate_balanced_accuracy"]["mean"] for r in rows]
+                    by_task[task][variant]["gated_mean"] = statistics.fmean(gated)
+                    by_task[task][variant]["gated_worst"] = min(gated)
                 if all("ensemble" in r for r in rows):
                     ens = [r["ensemble"]["balanced_accuracy"] for r in rows]
                     by_task[task][variant]["ensemble_mean"] = statistics.fmean(ens)
                     by_task[task][variant]["ensemble_worst"] = min(ens)
         out[suite] = {"worlds": worlds, "results": by_task,
                       "role": ("report suite: run only to report a decision already made" if suite == "report" else
-                               "design suite: looked at; its numbers are validation numbers")}
+                               "design suite: looked at; its numbers are validation numbers" if suite == "design" else
+                               "spent report suite: looked at before; its numbers are validation numbers now")}
     return out
 
 
@@ -746,6 +819,8 @@ SUITE_TEXT = {
                "often as one likes, so numbers on it are **validation** numbers."),
     "report": ("**report suite**: worlds from the same priors and other seeds, run only to report a decision "
                "already made, never to make one."),
+    "report-1": ("**report-1**: the first report suite, run once and then looked at: spent, so its numbers are "
+                 "**validation** numbers now."),
 }
 
 QUICK_TRADES = ("Quick mode trades, against full mode (6000 items, 15 epochs, 128 x 64, every ablation): fewer "
@@ -770,9 +845,11 @@ def _results_table(results: dict[str, dict[str, Any]]) -> list[str]:
 
     def cell_of(r: dict[str, Any]) -> str:
         val, one, ens = r.get("val_balanced_accuracy"), r.get("single_frame_balanced_accuracy"), r.get("ensemble")
+        gated = r.get("static_gate_balanced_accuracy")
         return (_fmt(r["balanced_accuracy"]) + ("" if val is None else f" (sim val {val['mean']:.3f})")
                 + ("" if one is None else f"; 1 frame {one['mean']:.3f}")
-                + ("" if ens is None else f"; seed ensemble {ens['balanced_accuracy']:.3f}"))
+                + ("" if ens is None else f"; seed ensemble {ens['balanced_accuracy']:.3f}")
+                + ("" if gated is None else f"; + static gate {gated['mean']:.3f}"))
 
     cell = {task: {c: cell_of(by[c]) for c in by} for task, by in results.items()}
     return _md_table(["task", *cols], ([task, *(cell[task].get(c, "") for c in cols)] for task in results))
@@ -818,7 +895,7 @@ def _markdown(rep: dict[str, Any]) -> str:
         lines += [f"## Suite `{suite}`: mean over {len(summ['worlds'])} worlds and the worst world", "",
                   f"{SUITE_TEXT[suite]} Each world's value is its balanced accuracy averaged over seeds.", ""]
         header = ["task", "variant", "mean over worlds", "worst world", "simulated val (mean)", "single frame (mean)",
-                  "seed ensemble (mean / worst)", "per world"]
+                  "seed ensemble (mean / worst)", "+ static gate (mean / worst)", "per world"]
 
         def opt(v: dict[str, Any], key: str) -> str:
             return f"{v[key]:.3f}" if v.get(key) is not None else "n/a"
@@ -826,6 +903,7 @@ def _markdown(rep: dict[str, Any]) -> str:
         rows = [[task, variant, f"{v['mean']:.3f}", f"{v['worst']:.3f} ({v['worst_world']})", opt(v, "val_mean"),
                  opt(v, "single_frame_mean"),
                  f"{v['ensemble_mean']:.3f} / {v['ensemble_worst']:.3f}" if "ensemble_mean" in v else "n/a",
+                 f"{v['gated_mean']:.3f} / {v['gated_worst']:.3f}" if "gated_mean" in v else "n/a",
                  ", ".join(f"{w.split('-')[-1]} {a:.3f}" for w, a in v["per_world"].items())]
                 for task, by in summ["results"].items() for variant, v in by.items()]
         lines += [*_md_table(header, rows), ""]
@@ -845,6 +923,13 @@ def _markdown(rep: dict[str, Any]) -> str:
                 f"`{e['path']}`" + (f" (count {e['count']})" if e.get("count") is not None else " (per-frame labels)")
                 for e in ts["test"]) + f"; calibration `{ts['calibration']}`.", ""]
         lines += [*_results_table(ts["results"]), "", *_orderings(ts["results"]), ""]
+        gate = ts.get("static_gate")
+        if gate:
+            lines += [f"Static-change gate (`radaraug.detection.StaticChangeDetector`, docs/static_change.md): fitted "
+                      f"on the {gate['calibration_frames']} empty-room frames, threshold {gate['threshold_db']:.1f} dB "
+                      f"(their largest leave-one-out score {gate['calibration_max_db']:.1f} dB + {gate['margin_db']:g} "
+                      f"dB); it fired on {100 * gate['test_frames_fired']:.0f} % of the test frames. \"+ static gate\" "
+                      "raises a run's 'nobody' to one person where it fires (with the run's frame context).", ""]
         if ts["ablation_table"]:
             header = ["task", "ablation", "changes", "main run", "with", "without (ablation)", "delta"]
             rows = [[r["task"], r["ablation"], f"`{json.dumps(r['changes'])}`", r["main"], _fmt(r, "main_"),

@@ -87,3 +87,17 @@ def test_causal_context_refuses_bad_input():
         causal_context(torch.ones(3, 2), torch.ones(3, dtype=torch.bool), 0)
     with pytest.raises(ValueError):
         causal_context(torch.ones(3, 2), torch.ones(2, dtype=torch.bool), 2)
+
+
+def test_gated_predictions_raise_nobody_to_one_where_the_gate_fires_in_context() -> None:
+    from radaraug.training.metrics import gated_predictions
+
+    preds = torch.tensor([0, 0, 2, 0, 0, 0])
+    gate = torch.tensor([True, True, False, False, True, False])
+    starts = torch.tensor([True, False, False, True, False, False])
+    # single frames: wherever the gate fires, "nobody" becomes 1; a count of 2 stays
+    assert gated_predictions(preds, gate, None, 1).tolist() == [1, 1, 2, 0, 1, 0]
+    # 2 frames of context: the gate fires where more than half of (this, previous) fired, not across a start
+    assert gated_predictions(preds, gate, starts, 2).tolist() == [1, 1, 2, 0, 0, 0]
+    with pytest.raises(ValueError, match="gate decisions"):
+        gated_predictions(preds, gate[:3], starts, 2)

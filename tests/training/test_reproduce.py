@@ -38,6 +38,11 @@ def test_report_on_a_tiny_run(tmp_path, captures):
             assert set(bacc) == {"mean", "std", "per_seed"} and len(bacc["per_seed"]) == 2
             assert 0 <= bacc["mean"] <= 1
     assert data["kind"] == "sim-to-capture" and list(data["test_sets"]) == ["captures"]
+    # the static-change gate, fitted on the calibration capture, fused beside every row
+    gate = data["test_sets"]["captures"]["static_gate"]
+    assert gate["threshold_db"] == pytest.approx(gate["calibration_max_db"] + 3.0) and 0 <= gate["test_frames_fired"] <= 1
+    assert all(0 <= data["results"][t][m]["static_gate_balanced_accuracy"]["mean"] <= 1
+               for t in ("occupancy", "counting") for m in variants)
     assert data["test_sets"]["captures"]["results"] == data["results"]
     assert data["settings"]["cdr_floor"] == "matched" and data["settings"]["representation"] == "floor_relative"
     # the ablation table pairs each ablation with the run it changes
@@ -209,3 +214,28 @@ def test_a_suite_of_worlds_reports_mean_and_worst_world(tmp_path, capsys, monkey
                "design", "--worlds", "1", "--methods", "rt", "-o", str(tmp_path / "cli")])
     out = capsys.readouterr().out
     assert rc == 0 and "design-w00" in out and "design-w01" not in out
+
+
+def test_early_stopping_tests_the_best_epoch(tmp_path, captures, monkeypatch):
+    """With a patience, a run stops once validation stops rising and is tested with its best epoch's weights."""
+    cal, tests = captures
+    settings = dataclasses.replace(TINY, epochs=4, early_stopping_patience=1)
+    fitted = []
+    real_fit = R._fit
+
+    def spy(*args, **kwargs):
+        out = real_fit(*args, **kwargs)
+        fitted.append(out)
+        return out
+
+    monkeypatch.setattr(R, "_fit", spy)
+    rep = reproduce(tmp_path / "out", seeds=1, calibration=str(cal), settings=settings, progress=False,
+                    accelerator="cpu", test=[{"path": str(p), "count": c} for p, c in tests], methods=["rt"],
+                    tasks=["occupancy"], ablation=False)
+    model, _, trainer, _, val = fitted[0]
+    best = trainer.checkpoint_callback
+    assert best.best_model_path and val == pytest.approx(float(best.best_model_score))
+    weights = torch.load(best.best_model_path, map_location="cpu", weights_only=False)["state_dict"]
+    assert all(torch.equal(v, model.state_dict()[k]) for k, v in weights.items())
+    assert trainer.current_epoch <= 4 and rep["settings"]["early_stopping_patience"] == 1
+    assert rep["runs"][0]["val_balanced_accuracy"] == pytest.approx(val)
