@@ -400,7 +400,7 @@ def test_each_reproduce_flag_reaches_its_recipe_key(flag, tmp_path, monkeypatch)
         got.update({f"data.{k}": v for k, v in kw.items()})
         return SimpleNamespace(hparams=kw)
 
-    def trainer(settings, accelerator, run_dir):
+    def trainer(settings, accelerator, run_dir, **kw):
         got["trainer.accelerator"] = accelerator
         _reached()
 
