@@ -19,16 +19,22 @@ from __future__ import annotations
 import math
 import os
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import torch
 
 from radaraug.config import RadarConfig
 from radaraug.errors import ConfigError
 
+if TYPE_CHECKING:
+    from radaraug.io.base import CaptureReader
+
 DEFAULT_MARGIN_DB = 3.0
 """Added to the calibration's largest leave-one-out score (room for the drift between calibration and test)."""
 DEFAULT_MIN_RANGE_M = 0.5
 """Range bins nearer than this are left out (TX-RX leakage and the DC residue live there)."""
+CHUNK_FRAMES = 256
+"""Frames read from a capture at a time (a long recording is never held whole)."""
 
 
 def zero_doppler_profile(frames: torch.Tensor) -> torch.Tensor:
@@ -83,19 +89,25 @@ class StaticChangeDetector:
         Raises:
             ConfigError: fewer than 3 frames, a shape that does not match ``config``, or a bad margin/range.
         """
-        if not math.isfinite(margin_db):
-            raise ConfigError(f"StaticChangeDetector: margin_db must be finite, got {margin_db!r}")
         shape = (config.num_rx, config.num_chirps_per_frame, config.num_samples_per_chirp)
         if frames.ndim != 4 or tuple(frames.shape[1:]) != shape:
             raise ConfigError(f"StaticChangeDetector: calibration frames of shape {tuple(frames.shape)} do not match "
                               f"the config's (frames, {', '.join(map(str, shape))})")
-        n = int(frames.shape[0])
+        return cls.fit_profiles(zero_doppler_profile(frames), config, margin_db=margin_db, min_range_m=min_range_m)
+
+    @classmethod
+    def fit_profiles(cls, p: torch.Tensor, config: RadarConfig, *, margin_db: float = DEFAULT_MARGIN_DB,
+                     min_range_m: float = DEFAULT_MIN_RANGE_M) -> StaticChangeDetector:
+        """:meth:`fit` on empty-room frames' :func:`zero_doppler_profile` ``(frames, rx, range)``."""
+        if not math.isfinite(margin_db):
+            raise ConfigError(f"StaticChangeDetector: margin_db must be finite, got {margin_db!r}")
+        n = int(p.shape[0])
         if n < 3:
             raise ConfigError(f"StaticChangeDetector: needs at least 3 empty-room frames to fit, got {n}")
-        first = max(1, math.ceil(min_range_m / config.range_resolution_m))
-        if not 0 <= min_range_m or first >= config.num_samples_per_chirp // 2:
+        if not (math.isfinite(min_range_m) and min_range_m >= 0) or \
+                math.ceil(min_range_m / config.range_resolution_m) >= p.shape[-1]:
             raise ConfigError(f"StaticChangeDetector: min_range_m {min_range_m!r} leaves no range bin to score")
-        p = zero_doppler_profile(frames)
+        first = max(1, math.ceil(min_range_m / config.range_resolution_m))
         ref = p.mean(dim=0)
         power = p.abs().square()
         spread = (power.sum(0) - n * ref.abs().square()).clamp_min(0) / (n - 1)
@@ -118,8 +130,8 @@ class StaticChangeDetector:
         from radaraug.io import open_capture
 
         cap = open_capture(path)
-        stop = None if max_frames is None else min(int(max_frames), len(cap))
-        return cls.fit(cap.read(0, stop, as_float=False), cap.config, margin_db=margin_db, min_range_m=min_range_m)
+        stop = len(cap) if max_frames is None else min(int(max_frames), len(cap))
+        return cls.fit_profiles(_capture_profiles(cap, stop), cap.config, margin_db=margin_db, min_range_m=min_range_m)
 
     def score(self, frames: torch.Tensor) -> torch.Tensor:
         """``(frames,)`` score in dB: the largest mean-over-RX change over range, in empty-room spreads."""
@@ -133,6 +145,25 @@ class StaticChangeDetector:
     def detect(self, frames: torch.Tensor) -> torch.Tensor:
         """``(frames,)`` bool: True where the frame's score exceeds :attr:`threshold_db`."""
         return self.score(frames) > self.threshold_db
+
+    def detect_capture(self, path: str | os.PathLike) -> torch.Tensor:
+        """:meth:`detect` over every frame of a capture, read a chunk at a time.
+
+        Raises:
+            CaptureError: the capture cannot be read (named).
+            ConfigError: its frames do not match the calibration's shape.
+        """
+        from radaraug.io import open_capture
+
+        cap = open_capture(path)
+        return torch.cat([self.detect(cap.read(i, min(i + CHUNK_FRAMES, len(cap)), as_float=False))
+                          for i in range(0, len(cap), CHUNK_FRAMES)])
+
+
+def _capture_profiles(cap: CaptureReader, stop: int) -> torch.Tensor:
+    """Zero-Doppler profiles of a capture's first ``stop`` frames, a chunk at a time."""
+    return torch.cat([zero_doppler_profile(cap.read(i, min(i + CHUNK_FRAMES, stop), as_float=False))
+                      for i in range(0, stop, CHUNK_FRAMES)]) if stop else torch.zeros(0)
 
 
 def _score_db(z: torch.Tensor, first_bin: int) -> torch.Tensor:

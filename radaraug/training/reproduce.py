@@ -587,10 +587,9 @@ def _static_gate(ts: TestSet, margin_db: float | None) -> dict[str, Any] | None:
     if margin_db is None or ts.calibration is None or is_calibration_json(ts.calibration):
         return None
     from radaraug.detection import StaticChangeDetector
-    from radaraug.io import open_capture
 
     det = StaticChangeDetector.from_capture(ts.calibration, margin_db=margin_db)
-    detections = torch.cat([det.detect(open_capture(e["path"]).read(as_float=False)) for e in ts.tests])
+    detections = torch.cat([det.detect_capture(e["path"]) for e in ts.tests])
     return {"detections": detections,
             "info": {"threshold_db": det.threshold_db, "margin_db": det.margin_db,
                      "calibration_frames": len(det.calibration_scores_db),

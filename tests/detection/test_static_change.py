@@ -96,3 +96,20 @@ def test_bad_inputs_raise_a_config_error() -> None:
         StaticChangeDetector.fit(noise(5, g), CFG, min_range_m=1e3)
     with pytest.raises(ConfigError, match="margin_db"):
         StaticChangeDetector.fit(noise(5, g), CFG, margin_db=float("nan"))
+
+
+def test_from_and_over_a_capture_a_chunk_at_a_time(tmp_path, monkeypatch) -> None:
+    """A capture file gives what its frames give, read in chunks (a long recording is never held whole)."""
+    import radaraug.detection.static_change as sc
+    from radaraug.io import write_capture
+
+    g = torch.Generator().manual_seed(4)
+    empty, test = noise(11, g).round(), (noise(9, g) + tone(3.0, 4.0)).round()
+    write_capture(tmp_path / "empty.h5", empty.to(torch.int32), CFG)
+    write_capture(tmp_path / "test.h5", test.to(torch.int32), CFG)
+    monkeypatch.setattr(sc, "CHUNK_FRAMES", 4)
+    det = StaticChangeDetector.from_capture(tmp_path / "empty.h5")
+    ref = StaticChangeDetector.fit(empty, CFG)
+    assert det.threshold_db == pytest.approx(ref.threshold_db, abs=1e-9)
+    assert torch.equal(det.detect_capture(tmp_path / "test.h5"), ref.detect(test))
+    assert len(StaticChangeDetector.from_capture(tmp_path / "empty.h5", max_frames=5).calibration_scores_db) == 5
