@@ -460,6 +460,8 @@ def _cmd_reproduce(args: argparse.Namespace) -> Result:
     for name, ts in report["test_sets"].items():
         for task, by in ts["results"].items():
             text = ", ".join(f"{m} {v['balanced_accuracy']['mean']:.3f}+-{v['balanced_accuracy']['std']:.3f}"
+                             + (f" (+ static gate {v['static_gate_balanced_accuracy']['mean']:.3f})"
+                                if "static_gate_balanced_accuracy" in v else "")
                              for m, v in by.items())
             print(f"  {name} {task}: {text}")
     return 0

@@ -148,7 +148,8 @@ def test_cli_reproduce_and_bad_arguments(tmp_path, captures, capsys, monkeypatch
     rc = main(["reproduce", "--quick", "--seeds", "1", "--no-ablation", "--accelerator", "cpu", "--calibration",
                str(cal), *[a for p, c in tests for a in ("--test", f"{p}:{c}")], "-o", str(tmp_path / "o")])
     assert rc == 0
-    assert "report.md" in capsys.readouterr().out
+    printed = capsys.readouterr().out
+    assert "report.md" in printed and "(+ static gate " in printed
     data = json.loads((tmp_path / "o" / "report.json").read_text())
     assert set(data["results"]["counting"]) == {"rt", "randomdr", "cdr", "cdr_profile"}
     assert frames == [TINY.profile_max_frames]  # quick settings reach the diagnose; one fit for both tasks
