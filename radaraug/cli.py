@@ -710,7 +710,7 @@ def build_parser() -> argparse.ArgumentParser:
                      help="generated test sets when no --test is given, comma-separated: proxy (the twin in "
                      "another room), independent (a NumPy generator sharing no code with the twin), standing (the "
                      "independent generator with 30 %% of its people standing), design (held-out worlds to look "
-                     "at: validation numbers), report (held-out worlds run only to report), report-1 (the first report suite, spent); default: independent "
+                     "at: validation numbers), report (held-out worlds run only to report), report-1, report-2 (the first two report suites, spent); default: independent "
                      "with --quick, proxy and independent in full mode")
     rep.add_argument("--worlds", type=int, default=None,
                      help="worlds per held-out suite (design/report in --test-sets; default 6 design, 4 report)")

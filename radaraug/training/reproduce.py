@@ -153,8 +153,8 @@ def _cdr_floor_of(keep: dict[tuple[str, str, str], tuple[Any, Any]], settings: R
 DEFAULT_TEST_SETS = ("proxy", "independent")
 #: The held-out suites of test worlds (:mod:`radaraug.heldout.worlds`): ``design`` (look at it freely;
 #: its numbers are validation numbers), ``report`` (run only to report) and the spent report suites
-#: (``report-1``: rerun its record; validation numbers now). Each world is a test set.
-SUITE_TEST_SETS = ("design", "report", "report-1")
+#: (``report-1``, ``report-2``: rerun their records; validation numbers now). Each world is a test set.
+SUITE_TEST_SETS = ("design", "report", "report-1", "report-2")
 #: Every generated test set ``--test-sets`` may name: the defaults, ``standing`` (the independent
 #: generator with standing (breathing, swaying) people in 30 % of the drawn people, another seed) and
 #: the suites of :data:`SUITE_TEST_SETS`.
@@ -819,6 +819,8 @@ SUITE_TEXT = {
     "report": ("**report suite**: worlds from the same priors and other seeds, run only to report a decision "
                "already made, never to make one."),
     "report-1": ("**report-1**: the first report suite, run once and then looked at: spent, so its numbers are "
+                 "**validation** numbers now."),
+    "report-2": ("**report-2**: the second report suite, run once and then looked at: spent, so its numbers are "
                  "**validation** numbers now."),
 }
 
