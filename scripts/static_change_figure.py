@@ -15,8 +15,6 @@ import json
 import math
 from pathlib import Path
 
-import torch
-
 from radaraug.detection import StaticChangeDetector
 from radaraug.heldout.worlds import make_suite
 from radaraug.io import open_capture
@@ -33,6 +31,7 @@ def kind_of(people: list[dict], velocity_resolution_m_s: float) -> str:
 
 
 def main() -> None:
+    """Generate (or reuse) the design worlds, score them and write the figure and the JSON."""
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("out", type=Path)
     ap.add_argument("--worlds", type=int, default=6)
