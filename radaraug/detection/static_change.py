@@ -25,6 +25,7 @@ import torch
 
 from radaraug.config import RadarConfig
 from radaraug.errors import ConfigError
+from radaraug.transforms import functional as F
 
 if TYPE_CHECKING:
     from radaraug.io.base import CaptureReader
@@ -40,6 +41,9 @@ CHUNK_FRAMES = 256
 def zero_doppler_profile(frames: torch.Tensor) -> torch.Tensor:
     """Complex zero-Doppler range profile of raw frames: the mean over chirps, DC removed, Hann range FFT.
 
+    The range FFT is :func:`radaraug.transforms.functional.range_fft` (divided by the window sum); the
+    detector's scores are ratios, so that scale cancels.
+
     Args:
         frames: ``(frames, rx, chirps, samples)`` raw samples (counts or SDK floats).
 
@@ -48,11 +52,9 @@ def zero_doppler_profile(frames: torch.Tensor) -> torch.Tensor:
     """
     if frames.ndim != 4:
         raise ConfigError(f"zero_doppler_profile: frames must be (frames, rx, chirps, samples), got {tuple(frames.shape)}")
-    x = frames.to(torch.float64).mean(dim=-2)  # the chirp mean is the zero-Doppler bin (rectangular Doppler window)
-    x = x - x.mean(dim=-1, keepdim=True)
-    n = x.shape[-1]
-    w = torch.hann_window(n, periodic=False, dtype=torch.float64, device=x.device)
-    return torch.fft.fft(x * w, dim=-1)[..., : n // 2]
+    # the chirp mean is the zero-Doppler bin (a rectangular Doppler window); then the project's range FFT
+    x = frames.to(torch.float64).mean(dim=-2, keepdim=True)
+    return F.range_fft(F.remove_mean(x), "hann").squeeze(-2)
 
 
 @dataclass
