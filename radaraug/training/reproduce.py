@@ -287,8 +287,8 @@ def _fit(task: str, method: str, seed: int, *, settings: ReproduceSettings, data
     with _quiet():
         trainer.fit(model, datamodule=dm)
     val_bacc = trainer.callback_metrics.get("val/balanced_accuracy")  # test() resets the metrics
-    best = trainer.checkpoint_callback
-    if settings.early_stopping_patience is not None and best is not None and best.best_model_path:
+    best = trainer.checkpoint_callback  # None unless early stopping set one up (_trainer)
+    if best is not None and best.best_model_path:
         # the best epoch's weights, and its validation score (not the last epoch's)
         model.load_state_dict(torch.load(best.best_model_path, map_location="cpu", weights_only=False)["state_dict"])
         val_bacc = best.best_model_score
@@ -447,6 +447,7 @@ def reproduce(
                 seed_reps: list[dict[str, Any]] = []
                 seed_scores: list[tuple[Any, Any, Any]] = []
                 recipe = run_recipe(task, method, settings, ablation_name)
+                context_frames = int(recipe.get("model", {}).get("context_frames", 1))
                 kw = recipe.get("data", {}) | _size_kw(settings) | data_kw
                 is_shared = _shared_across_test_sets(method, kw)
                 for seed in range(seeds):
@@ -468,8 +469,7 @@ def reproduce(
                             shared[key] = (model, dm, fit_s, val_bacc)
                     rep = _headline(_test(model, dm, trainer, run_dir))
                     seed_scores.append(_save_scores(run_dir, model, dm))
-                    gated = _gated(seed_scores[-1], gates[ts.name], int(recipe.get("model", {}).get("context_frames", 1)),
-                                   TASKS[task])
+                    gated = _gated(seed_scores[-1], gates[ts.name], context_frames, TASKS[task])
                     if gated is not None:
                         rep["static_gate"] = gated
                     rep.update({"task": task, "method": method, "seed": seed, "fit_seconds": fit_s,
@@ -504,7 +504,7 @@ def reproduce(
                 if all("static_gate" in r for r in seed_reps):
                     results[ts.name][task][name]["static_gate_balanced_accuracy"] = _summary(
                         [r["static_gate"]["balanced_accuracy"] for r in seed_reps])
-                ens = _ensemble(seed_scores, int(recipe.get("model", {}).get("context_frames", 1)), TASKS[task])
+                ens = _ensemble(seed_scores, context_frames, TASKS[task])
                 if ens is not None:
                     results[ts.name][task][name]["ensemble"] = ens
                 results[ts.name][task][name]["confusion_matrix_sum_over_seeds"] = cm_sum.tolist()
