@@ -118,6 +118,47 @@ def context_predictions(probs: torch.Tensor, starts: torch.Tensor | None, frames
     return causal_context(probs, starts, frames).argmax(dim=1)
 
 
+def empty_room_threshold(calibration_probs: torch.Tensor, frames: int) -> float:
+    """The classifier's largest "somebody" score on an empty-room capture: its operating point there.
+
+    The score of a frame is ``1 - P(class 0)`` after :func:`causal_context` (the capture is one
+    recording). A test frame whose score exceeds the largest of ``n`` empty-room frames' is, when
+    empty and scored like them, a false alarm with probability ``1 / (n + 1)``: the threshold sets the
+    false-alarm rate in the user's own room, whatever the network learned in the twin's.
+
+    Args:
+        calibration_probs: ``(n, classes)`` probabilities of the empty-room frames, in recording order.
+        frames: the classifier's context length.
+
+    Raises:
+        ValueError: no frames.
+    """
+    if len(calibration_probs) == 0:
+        raise ValueError("no empty-room frames to set the operating point from")
+    starts = torch.zeros(len(calibration_probs), dtype=torch.bool)
+    starts[0] = True
+    return float((1 - causal_context(calibration_probs, starts, frames)[:, 0]).max())
+
+
+def operating_point_predictions(probs: torch.Tensor, starts: torch.Tensor | None, frames: int,
+                                threshold: float) -> torch.Tensor:
+    """Class predictions ``(N,)`` at an operating point: nobody unless the "somebody" score exceeds it.
+
+    In context (:func:`causal_context`), a frame is class 0 when ``1 - P(class 0) <= threshold``
+    and otherwise the most probable of the other classes (for counting: how many). At ``threshold``
+    0.5 this is the two-class argmax; :func:`empty_room_threshold` sets it from the empty room.
+
+    Args:
+        probs: ``(N, classes)`` per-frame probabilities, in recording order.
+        starts: ``(N,)`` bool recording starts (None: no context).
+        frames: context length.
+        threshold: the operating point, in ``[0, 1)``.
+    """
+    ctx = causal_context(probs, starts, frames) if frames > 1 and starts is not None else probs
+    somebody = 1 - ctx[:, 0]
+    return torch.where(somebody > threshold, ctx[:, 1:].argmax(dim=1) + 1, torch.zeros_like(somebody, dtype=torch.long))
+
+
 def gated_predictions(preds: torch.Tensor, gate: torch.Tensor, starts: torch.Tensor | None,
                       frames: int) -> torch.Tensor:
     """Class predictions ``(N,)`` raised to at least one person where a presence gate fires.

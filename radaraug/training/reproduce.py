@@ -468,7 +468,8 @@ def reproduce(
                         if is_shared:
                             shared[key] = (model, dm, fit_s, val_bacc)
                     rep = _headline(_test(model, dm, trainer, run_dir))
-                    seed_scores.append(_save_scores(run_dir, model, dm))
+                    seed_scores.append(_save_scores(run_dir, model, dm,
+                                                    _calibration_scores(model, dm, ts, kw, run_dir, test_dr)))
                     gated = _gated(seed_scores[-1], gates[ts.name], context_frames, TASKS[task])
                     if gated is not None:
                         rep["static_gate"] = gated
@@ -570,12 +571,36 @@ def _headline(rep: dict[str, Any]) -> dict[str, Any]:
         k: ctx[k] for k in keys}
 
 
-def _save_scores(run_dir: Path, model: Any, dm: Any) -> tuple[Any, Any, Any]:
-    """The test's per-frame probabilities, labels and recording starts, also written to ``run_dir/test_scores.pt``."""
+def _save_scores(run_dir: Path, model: Any, dm: Any,
+                 calibration_probs: torch.Tensor | None = None) -> tuple[Any, Any, Any]:
+    """The test's per-frame probabilities, labels and recording starts, also written to ``run_dir/test_scores.pt``.
+
+    ``calibration_probs``: the same network's probabilities on the empty-room capture (saved beside them).
+    """
     scores = (model.last_test_probs, model.last_test_labels, dm.test_recording_starts)
     if scores[0] is not None:
-        torch.save(dict(zip(("probs", "labels", "recording_starts"), scores)), run_dir / "test_scores.pt")
+        torch.save(dict(zip(("probs", "labels", "recording_starts"), scores))
+                   | {"calibration_probs": calibration_probs}, run_dir / "test_scores.pt")
     return scores
+
+
+def _calibration_scores(model: Any, test_dm: Any, ts: TestSet, data_kw: dict[str, Any], run_dir: Path,
+                        test_dr: bool, limit: int = 4096) -> torch.Tensor | None:
+    """The network's class probabilities on the test set's empty-room capture, in frame order (or None).
+
+    The capture goes through the test chain (the run's clip range and excision), so its frames
+    are scored exactly as an empty test capture recorded like it would be.
+    """
+    if ts.calibration is None or is_calibration_json(ts.calibration):
+        return None
+    cal = replace(ts, tests=[{"path": ts.calibration, "count": 0}])
+    dm = _test_dm(test_dm, cal, data_kw, run_dir)
+    from radaraug.training.testset import TestSetWarning
+
+    with _quiet(), warnings.catch_warnings():
+        warnings.simplefilter("ignore", TestSetWarning)  # an empty-room capture holds one class by design
+        dm.setup("test")
+    return _scores(model, dm, dm.test_dataloader(), with_dr=test_dr, limit=limit)[0]
 
 
 def _static_gate(ts: TestSet, margin_db: float | None) -> dict[str, Any] | None:

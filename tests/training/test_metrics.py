@@ -101,3 +101,39 @@ def test_gated_predictions_raise_nobody_to_one_where_the_gate_fires_in_context()
     assert gated_predictions(preds, gate, starts, 2).tolist() == [1, 1, 2, 0, 0, 0]
     with pytest.raises(ValueError, match="gate decisions"):
         gated_predictions(preds, gate[:3], starts, 2)
+
+
+def test_empty_room_threshold_is_the_largest_context_score_and_sets_the_false_alarm_rate() -> None:
+    from radaraug.training.metrics import empty_room_threshold, operating_point_predictions
+
+    cal = torch.tensor([[0.9, 0.1], [0.5, 0.5], [0.8, 0.2]])
+    # single frames: the largest 1 - P(empty); two frames of context: means over (this, previous)
+    assert empty_room_threshold(cal, 1) == pytest.approx(0.5)
+    assert empty_room_threshold(cal, 2) == pytest.approx(max(0.1, 0.3, 0.35))
+    with pytest.raises(ValueError, match="no empty-room frames"):
+        empty_room_threshold(cal[:0], 1)
+    # closed form: an exchangeable new empty frame exceeds the largest of n calibration scores w.p. 1/(n+1)
+    g = torch.Generator().manual_seed(0)
+    n, trials = 19, 20000
+    s = torch.rand(trials, n + 1, generator=g)
+    exceed = (s[:, -1] > s[:, :-1].max(dim=1).values).double().mean().item()
+    assert exceed == pytest.approx(1 / (n + 1), abs=0.006)
+    probs = torch.stack([1 - s[:200, -1], s[:200, -1]], dim=1)
+    thr = [empty_room_threshold(torch.stack([1 - row, row], dim=1), 1) for row in s[:200, :-1]]
+    fired = [operating_point_predictions(p[None], None, 1, t).item() for p, t in zip(probs, thr)]
+    assert fired == [int(a > b) for a, b in zip(s[:200, -1].tolist(), thr)]
+
+
+def test_operating_point_predictions_match_argmax_at_one_half_and_count_among_people() -> None:
+    from radaraug.training.metrics import context_predictions, operating_point_predictions
+
+    g = torch.Generator().manual_seed(1)
+    two = torch.softmax(torch.randn(50, 2, generator=g), dim=1)
+    starts = torch.zeros(50, dtype=torch.bool)
+    starts[[0, 20]] = True
+    assert torch.equal(operating_point_predictions(two, starts, 4, 0.5), context_predictions(two, starts, 4))
+    three = torch.tensor([[0.40, 0.35, 0.25], [0.70, 0.10, 0.20], [0.2, 0.3, 0.5]])
+    # somebody = 0.60 / 0.30 / 0.80: at 0.5 the first is a person (the argmax of 1 vs 2 says one)
+    assert operating_point_predictions(three, None, 1, 0.5).tolist() == [1, 0, 2]
+    assert operating_point_predictions(three, None, 1, 0.25).tolist() == [1, 2, 2]
+    assert operating_point_predictions(three, None, 1, 0.9).tolist() == [0, 0, 0]

@@ -203,6 +203,12 @@ def test_a_suite_of_worlds_reports_mean_and_worst_world(tmp_path, capsys, monkey
     assert run["protocol"] == "context of 3 frames" and run["context"]["balanced_accuracy"] == run["balanced_accuracy"]
     scores = torch.load(tmp_path / "out" / "runs" / "design-w00" / "occupancy_rt_seed0" / "test_scores.pt")
     assert scores["probs"].shape == (9, 2) and scores["recording_starts"].sum() == 3  # 3 files of 3 frames
+    # the same network on the world's empty-room capture (its operating point there: metrics.empty_room_threshold)
+    from radaraug.io import open_capture
+
+    cal_frames = len(open_capture(rep["test_sets"]["design-w00"]["calibration"]))
+    assert scores["calibration_probs"].shape == (cal_frames, 2)
+    assert torch.allclose(scores["calibration_probs"].sum(dim=1), torch.ones(cal_frames))
     # the worlds have other radar configs: RT does not use the calibration, yet trains once per config
     runs = {x["test_set"]: x for x in rep["runs"] if x["seed"] == 0}
     assert not runs["design-w01"]["shared_training"]
