@@ -287,14 +287,42 @@ def _spur() -> Candidate:
                     f = (j + dj + frac) / T
                     if abs(f - f_est) <= bin_hz and 0 < f < cfg.sample_rate_Hz / 2:
                         out.append({"freq_Hz": f, "amplitude_counts": amp, "phase_rad": 0.0})
-        return out
+        return out + _ridge_start(ctx, ex, cap, bin_hz)
 
     def specs(ctx: Context, start: dict[str, Any]) -> list[ParamSpec]:
-        half = 0.5 / (ctx.config.num_chirps_per_frame * ctx.config.chirp_repetition_time_s)
+        if start.get("phase_jitter_rad", 0.0) > 0:  # unlocked: only the fast-time frequency shows
+            half = 0.5 * ctx.config.sample_rate_Hz / ctx.config.num_samples_per_chirp
+        else:
+            half = 0.5 / (ctx.config.num_chirps_per_frame * ctx.config.chirp_repetition_time_s)
         return [_narrow(ctx, "spur_tone", start, "freq_Hz", half=half),
                 _narrow(ctx, "spur_tone", start, "amplitude_counts", rel=0.7)]
 
     return Candidate("spur_tone", specs, starts)
+
+
+def _ridge_start(ctx: Context, ex: torch.Tensor, cap: torch.Tensor, bin_hz: float,
+                 min_db: float = 6.0) -> list[dict[str, Any]]:
+    """An unlocked spur's start from a ridge: one range row raised over every Doppler bin.
+
+    The row's median excess over Doppler (zero Doppler left out) must stand ``min_db`` over the twin
+    and 4 dB over the rows 3 bins away. Its tone power is the row's excess summed over Doppler over
+    the Hann window's noise bandwidth (1.5 bins): a tone with a random phase per chirp spreads evenly.
+    """
+    K, M = ex.shape
+    if K < 8:
+        return []
+    keep = torch.ones(M, dtype=torch.bool, device=ex.device)
+    keep[max(M // 2 - 1, 0): M // 2 + 2] = False
+    row = ex[:, keep].median(dim=1).values
+    r = int(row[2: K - 1].argmax()) + 2
+    side = max(float(row[r - 3]), float(row[min(r + 3, K - 1)]))
+    if float(row[r]) < min_db or float(row[r]) - side < 4.0:
+        return []
+    twin = ctx.twin.stats.power.mean(dim=0)
+    spread = (cap - twin).clamp_min(0.0)[:, keep].sum(dim=1, keepdim=True) / 1.5  # (K, 1)
+    f = _sub_bin(spread, r, 0) * bin_hz
+    amp = 2 * math.sqrt(float(spread[r, 0])) * ctx.config.adc_full_scale_counts / 2
+    return [{"freq_Hz": f, "amplitude_counts": amp, "phase_rad": 0.0, "phase_jitter_rad": math.pi}]
 
 
 def _static_clutter() -> Candidate:

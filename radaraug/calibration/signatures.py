@@ -16,7 +16,9 @@ effect                     signature tested
                            the carrier's inter-RX phase (one LO), white over chirps, over range bins
                            5..40 bins away from the carrier; its level in dBc
 ``spur_tone``              one narrow line off zero Doppler, in every frame and every RX, with a
-                           constant amplitude and no mirror line (a vibration makes a pair)
+                           constant amplitude and no mirror line (a vibration makes a pair); or,
+                           unlocked (a new phase every chirp), one range bin raised evenly over
+                           every Doppler bin: a ridge
 ``if_highpass``            the shape of the noise floor at low IF frequency, from chirp-to-chirp
                            differences (static returns cancel): a Butterworth
                            ``|H|^2 = (f/fc)^2n / (1 + (f/fc)^2n)`` fitted and compared with the
@@ -507,8 +509,8 @@ def declared_skirt_dBc(config: RadarConfig, tau_s: float, offsets: torch.Tensor)
 @_detector("spur_tone", min_chirps=4)
 def detect_spur_tone(p: Prepared, config: RadarConfig, min_db: float = 15.0,
                      min_frames: float = 0.9, max_cv: float = 0.25, mirror_db: float = 10.0,
-                     max_migration_bins: float = 0.3) -> Signature:
-    """A single persistent line off zero Doppler with a constant amplitude.
+                     max_migration_bins: float = 0.3, min_ridge_db: float = 8.0) -> Signature:
+    """A single persistent line off zero Doppler with a constant amplitude, or an unlocked spur's ridge.
 
     A spur (clock, regulator) is a tone at the ADC input locked to absolute time: in each chirp a
     line at its frequency, advancing by ``2 pi f PRT`` from chirp to chirp, i.e. one Doppler line
@@ -527,6 +529,8 @@ def detect_spur_tone(p: Prepared, config: RadarConfig, min_db: float = 15.0,
         max_migration_bins: largest spread (10th..90th percentile, range bins) of the line's
             per-frame fine frequency: a spur stays put, a target moving at a constant speed (one
             Doppler line too, in every frame) migrates in range.
+        min_ridge_db: without a line, the smallest height of an unlocked spur's ridge (one range
+            bin raised over all Doppler bins) over its neighbouring range bins (:func:`_spur_ridge`).
 
     Returns:
         A :class:`Signature`; ``score`` is the line height in dB; ``params``: ``freq_Hz``,
@@ -591,7 +595,67 @@ def detect_spur_tone(p: Prepared, config: RadarConfig, min_db: float = 15.0,
         if present:
             return sig
         first = first or sig
-    return first or Signature("spur_tone", 0.0, False, {}, "no line off zero Doppler")
+    ridge = _spur_ridge(p, config, min_db=min_ridge_db)
+    if ridge.present:
+        return ridge
+    line = first or Signature("spur_tone", 0.0, False, {}, "no line off zero Doppler")
+    return Signature(line.effect, line.score, False, line.params, f"{line.detail}; {ridge.detail}")
+
+
+def _spur_ridge(p: Prepared, config: RadarConfig, min_db: float = 8.0, max_flat_db: float = 4.0,
+                neighbour_db: float = 6.0, min_frames: float = 0.9, max_cv: float = 0.25) -> Signature:
+    """An unlocked spur: one range bin raised evenly over every Doppler bin, in every frame.
+
+    A tone not locked to the chirp timing has a new phase every chirp, so its power spreads over
+    Doppler instead of forming a line. Its range bin's median over Doppler (zero Doppler left out)
+    stands over the median of its neighbours 3..10 bins away; it is flat over Doppler (10th to 90th
+    percentile), narrow in range (a Hann main lobe: the bins 3 away are not raised) and steady over
+    frames. Phase noise raises many range bins, a burst a few chirps of all of them, a large
+    vibration a band of Doppler bins: none of them passes all three.
+    """
+    F, R, M, N = p.shape
+    X, Pm, _ = p.doppler
+    K, c = Pm.shape[0], M // 2
+    if K < 8:
+        return Signature("spur_tone", 0.0, False, {}, "no ridge: too few range bins")
+    keep = torch.ones(M, dtype=torch.bool, device=p.device)
+    keep[max(c - 1, 0): c + 2] = False
+    rowmed = Pm[:, keep].median(dim=1).values.clamp_min(_TINY)  # (K,)
+    ref = torch.stack([torch.cat([rowmed[max(k - 10, 0): max(k - 2, 0)], rowmed[k + 3: k + 11]]).median()
+                       for k in range(K)]).clamp_min(_TINY)
+    h = 10 * torch.log10(rowmed / ref)
+    k = int(h[2: K - 1].argmax()) + 2
+    height = float(h[k])
+    row = Pm[k, keep]
+    flat = _db(row.quantile(0.9) / row.quantile(0.1).clamp_min(_TINY))
+    side = max(float(h[k - 3]), float(h[min(k + 3, K - 1)]))
+    per_frame = X[:, :, keep, k].abs().square().mean(dim=(1, 2))  # (F,)
+    frames_ok = float((per_frame / ref[k] > 10 ** 0.3).double().mean())
+    cv = float(per_frame.std() / per_frame.mean().clamp_min(_TINY)) if F > 1 else 0.0
+    # the tone's fast-time frequency from a fine DFT around the bin (its Doppler says nothing here)
+    n = torch.arange(N, dtype=torch.float64, device=p.device)
+    grid = k + torch.linspace(-1, 1, 81, dtype=torch.float64, device=p.device)
+    basis = torch.exp(-2j * math.pi * grid[:, None] * n[None, :] / N) * (p.hann / p.hann.sum())
+    a = torch.einsum("frmn,gn->frmg", p.moving.to(torch.complex128), basis)
+    g = int(a.abs().square().mean(dim=(0, 1, 2)).argmax())
+    amp = float(2 * a[..., g].abs().square().mean().sqrt())
+    # what is left of a line: a jitter of RMS s keeps exp(-s^2) of the power in it
+    line = float(row.max() / row.sum())
+    jitter = math.sqrt(max(-math.log(max(line, 1e-12)), 0.0))
+    present = (height >= min_db and flat <= max_flat_db and height - side >= neighbour_db
+               and frames_ok >= min_frames and cv <= max_cv)
+    f = float(grid[g]) * config.sample_rate_Hz / N
+    params = {"freq_Hz": f, "amplitude_counts": amp, "level_dBFS": 20 * math.log10(max(amp / p.full, _TINY)),
+              "range_bin": float(k), "ridge_dB": height, "flatness_dB": flat, "neighbour_dB": side,
+              "frames_fraction": frames_ok, "cv": cv, "phase_jitter_rad": jitter, "locked": 0.0}
+    if not present:
+        return Signature("spur_tone", 0.0, False, params,
+                         f"no ridge (best: range bin {k}, {height:.1f} dB over its neighbours, flat within "
+                         f"{flat:.1f} dB, bins 3 away {side:.1f} dB)")
+    return Signature("spur_tone", height, True, params,
+                     f"ridge {height:.1f} dB over its neighbours at range bin {k}, flat within {flat:.1f} dB over "
+                     f"Doppler, bins 3 away {side:.1f} dB, in {100 * frames_ok:.0f} % of frames, cv {cv:.2f}: an "
+                     f"unlocked spur of {amp:.2f} counts at {f / 1e3:.3f} kHz; score: ridge dB")
 
 
 # --------------------------------------------------------------------------- IF high-pass

@@ -43,7 +43,9 @@ Effects (``effects={name: params}``; catalog names, generator B's own parameters
                             relocks), common to all RX; a path of delay ``tau`` gets the phase
                             ``2 pi tau nu(t)`` (to first order: ``-A sin(theta) 2 pi tau nu``)
 ``spur_tone``               ``freq_Hz``, ``amplitude_mV``, ``phase_rad``: a tone at the ADC input at
-                            absolute time (``t_abs = frame * T_frame + chirp * PRT + t``), all RX
+                            absolute time (``t_abs = frame * T_frame + chirp * PRT + t``), all RX;
+                            optional ``unlocked: True``: a source that restarts at a uniformly random
+                            phase every chirp (not locked to the chirp timing), the same on all RX
 ``if_highpass``             ``cutoff_Hz``, ``order``: the high-pass as a Butterworth of that order
 ``rx_gain_phase_mismatch``  ``gain_dB``, ``phase_deg`` (one per RX): complex gain of each RX's RF
                             front end (signal and thermal noise)
@@ -103,7 +105,10 @@ EFFECTS: dict[str, tuple[str, ...]] = {
     "frame_drift": ("gain_rms_dB", "dc_rms_counts"),
 }
 
-_STREAMS = {"room": 1, "thermal": 2, "adc": 3, "phase_noise": 4, "interference": 5, "drift": 6}
+OPTIONAL: dict[str, tuple[str, ...]] = {"spur_tone": ("unlocked",)}
+"""Parameters an effect may also take (a variant of its physics)."""
+
+_STREAMS = {"room": 1, "thermal": 2, "adc": 3, "phase_noise": 4, "interference": 5, "drift": 6, "spur": 7}
 
 OFFICE: tuple[tuple[tuple[float, float, float], float], ...] = (
     # back wall (plasterboard), a few bright spots
@@ -193,7 +198,7 @@ def _check(effects: Mapping[str, Mapping[str, Any]]) -> None:
         if name not in EFFECTS:
             raise ValueError(f"generator B has no effect {name!r}; known: {', '.join(EFFECTS)}")
         missing = set(EFFECTS[name]) - set(params)
-        unknown = set(params) - set(EFFECTS[name])
+        unknown = set(params) - set(EFFECTS[name]) - set(OPTIONAL.get(name, ()))
         if missing or unknown:
             raise ValueError(f"effect {name!r}: missing {sorted(missing)}, unknown {sorted(unknown)}")
 
@@ -358,7 +363,10 @@ def make_capture(
     if "spur_tone" in effects:
         e = effects["spur_tone"]
         t_abs = t_chirp[:, None, :, None] + t_adc[None, None, None, :]
-        v = v + e["amplitude_mV"] * 1e-3 * np.cos(2 * np.pi * np.mod(e["freq_Hz"] * t_abs, 1.0) + e["phase_rad"])
+        phase = 2 * np.pi * np.mod(e["freq_Hz"] * t_abs, 1.0) + e["phase_rad"]
+        if e.get("unlocked", False):
+            phase = phase + _rng(seed, "spur").uniform(0, 2 * np.pi, (F, 1, M, 1))
+        v = v + e["amplitude_mV"] * 1e-3 * np.cos(phase)
     counts = v / v_pp * full + dc
     if adc_noise_counts > 0:
         counts = counts + _rng(seed, "adc").normal(0, adc_noise_counts, counts.shape)
@@ -415,9 +423,17 @@ _PARAMS: dict[str, dict[str, Any]] = {
 _CFGS = {"A": CFG_A, "Ahi": CFG_A_HIGH, "B": CFG_B}
 
 
+_VARIANTS: dict[str, tuple[str, dict[str, Any]]] = {
+    "spur_unlocked": ("spur_tone", _PARAMS["spur_tone"] | {"unlocked": True}),
+}
+"""Physical variants of an effect (issue: each effect's signature wide enough for the forms it takes):
+case name -> (the effect's catalog name, its parameters)."""
+
+
 def _case(name: str, cfg_key: str, names: Sequence[str]) -> tuple[str, RadarConfig, dict[str, dict[str, Any]],
                                                                   tuple[str, ...]]:
-    return (f"{name}@{cfg_key}", _CFGS[cfg_key], {n: dict(_PARAMS[n]) for n in names}, tuple(names))
+    effects = dict(_VARIANTS[n] if n in _VARIANTS else (n, _PARAMS[n]) for n in names)
+    return (f"{name}@{cfg_key}", _CFGS[cfg_key], {n: dict(p) for n, p in effects.items()}, tuple(effects))
 
 
 CASES: list[tuple[str, RadarConfig, dict[str, dict[str, Any]], tuple[str, ...]]] = [
@@ -431,10 +447,11 @@ CASES: list[tuple[str, RadarConfig, dict[str, dict[str, Any]], tuple[str, ...]]]
     _case("highpass+drift", "Ahi", ("if_highpass", "frame_drift")),
     _case("interference+vibration", "B", ("interference", "vibrating_clutter")),
     _case("clipping+spur", "A", ("adc_clipping", "spur_tone")),
+    *[_case(v, k, (v,)) for v in _VARIANTS for k in ("A", "Ahi", "B")],
 ]
 """``(name, config, effects, expected effect names)``: a control per config, every effect alone at
 three settings (the paper's config at IF gain 33 and 43 dB, and 128 samples x 32 chirps at 40 dB),
-and six pairs."""
+six pairs, and each physical variant (:data:`_VARIANTS`) at the three settings."""
 
 
 __all__ = ["CASES", "CFG_A", "CFG_A_HIGH", "CFG_B", "EFFECTS", "OFFICE", "butterworth_sos", "make_capture",

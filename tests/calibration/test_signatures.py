@@ -166,6 +166,33 @@ def test_spur_frequency_and_amplitude(cfg):
     assert abs(20 * math.log10(s.params["amplitude_counts"] / a_sp)) < 0.5
 
 
+@pytest.mark.parametrize("a_sp", [2.0, 5.0])
+def test_unlocked_spur_is_a_ridge_with_its_frequency_and_amplitude(cfg, a_sp):
+    """A tone with a new uniform phase every chirp: its power spreads evenly over Doppler at one range bin.
+
+    Closed forms: the ridge holds ``a^2 / 4`` (one side of the real tone) per chirp at its bin, the
+    same as a locked tone's line; and it is flat over Doppler because the chirps' phases are independent.
+    """
+    F = 16
+    rng = np.random.default_rng(11)
+    x = base(cfg, 6, F)
+    f_sp = 123_456.0
+    jitter = rng.uniform(0, 2 * np.pi, (F, 1, cfg.num_chirps_per_frame, 1))
+    x = x + a_sp * np.cos(2 * np.pi * f_sp * abs_time(cfg, F) + jitter)
+    s = detect_spur_tone(to_frames(x), cfg)
+    assert s.present and s.params["locked"] == 0.0, s.detail
+    bin_hz = cfg.sample_rate_Hz / cfg.num_samples_per_chirp
+    assert s.params["freq_Hz"] == pytest.approx(f_sp, abs=bin_hz / 20)
+    assert abs(20 * math.log10(s.params["amplitude_counts"] / a_sp)) < 0.5
+    assert s.params["flatness_dB"] < 4.0 and s.params["phase_jitter_rad"] > 1.5
+    # the same tone locked to absolute time is a line, not a ridge
+    locked = detect_spur_tone(to_frames(base(cfg, 6, F) + a_sp * np.cos(2 * np.pi * f_sp * abs_time(cfg, F))), cfg)
+    assert locked.present and "locked" not in locked.params and "line" in locked.detail
+    # noise and a static room alone: neither
+    none = detect_spur_tone(to_frames(base(cfg, 6, F)), cfg)
+    assert not none.present and "no ridge" in none.detail
+
+
 # --------------------------------------------------------------------------- RX mismatch
 def test_rx_gain_estimated_from_returns_and_noise(cfg):
     rng = np.random.default_rng(7)

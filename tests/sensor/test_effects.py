@@ -115,6 +115,36 @@ def test_spur_tone_level_and_frequency(small_cfg, rd):
     torch.testing.assert_close(rng[..., 10].mean(-1) * 4095, torch.tensor([4.0, 2.0, 1.0], dtype=torch.float64), rtol=1e-6, atol=0)
 
 
+@pytest.mark.parametrize("jitter", [0.5, 1.2, 3.0])
+def test_unlocked_spur_keeps_exp_minus_sigma_squared_in_its_line(small_cfg, jitter):
+    """Closed form: a per-chirp Gaussian phase of RMS s keeps |E e^{j phi}|^2 = exp(-s^2) of the line's power.
+
+    The line is the chirps' coherent sum along the locked tone's phase progression ``2 pi f m PRT``;
+    of M chirps it holds ``exp(-s^2) + (1 - exp(-s^2)) / M`` of the power, the rest spreads over Doppler.
+    """
+    from radaraug.sensor import Paths
+
+    cfg = small_cfg
+    M, N = cfg.num_chirps_per_frame, cfg.num_samples_per_chirp
+    f = 10 * cfg.sample_rate_Hz / N  # on range bin 10: no leakage into other bins
+    empty = Paths(torch.zeros(0, 3, dtype=torch.float64), torch.zeros(0, 3, dtype=torch.float64),
+                  torch.zeros(0, 3, dtype=torch.complex128))
+    g = torch.Generator().manual_seed(3)
+    rx = FMCWReceiver(cfg, effects=[SpurTone(freq_Hz=f, amplitude_counts=4.0, phase_jitter_rad=jitter)])
+    r = torch.stack([torch.fft.rfft(rx(empty, generator=g), dim=-1)[..., 10] for _ in range(300)])  # (F, RX, M)
+    m = torch.arange(M, dtype=torch.float64)
+    demod = r * torch.exp(-2j * math.pi * f * m * cfg.chirp_repetition_time_s)
+    line = demod.mean(-1).abs().square().mean() / r.abs().square().mean()
+    expected = math.exp(-jitter**2) + (1 - math.exp(-jitter**2)) / M
+    assert float(line) == pytest.approx(expected, abs=0.02)
+    # jitter moves the power in Doppler and adds none: every chirp carries the tone's full amplitude
+    torch.testing.assert_close(r.abs(), torch.full_like(r.abs(), 4.0 * (2 / 4095) * N / 2), rtol=1e-6, atol=0)
+    # a locked spur draws nothing from the generator
+    g1, g2 = torch.Generator().manual_seed(5), torch.Generator().manual_seed(5)
+    FMCWReceiver(cfg, effects=[SpurTone(freq_Hz=f)])(empty, generator=g1)
+    assert torch.equal(torch.rand(3, generator=g1), torch.rand(3, generator=g2))
+
+
 def test_gradients_flow_to_effect_parameters(cfg, make_paths):
     rx = FMCWReceiver(cfg)
     gain = rx.effect("system_gain").gain_dB.requires_grad_()

@@ -126,7 +126,7 @@ EXPECTED_SEARCHED = {
     "anti_alias_lowpass": {"cutoff_Hz"},
     "dc_offset": {"level_counts"},
     "rx_gain_phase_mismatch": {"gain_dB", "phase_rad"},
-    "spur_tone": {"freq_Hz", "amplitude_counts", "phase_rad"},
+    "spur_tone": {"freq_Hz", "amplitude_counts", "phase_rad", "phase_jitter_rad"},
     "if_gain": set(),
     "adc_quantization": set(),
     "adc_clipping": set(),
