@@ -357,7 +357,7 @@ def _vibrating() -> Candidate:
                 probed = _level_probe(ctx, "vibrating_clutter", params, r, d, v)
                 if probed is not None:
                     out.append(probed)
-        return out
+        return out + _band_starts(ctx, ex)
 
     def specs(ctx: Context, start: dict[str, Any]) -> list[ParamSpec]:
         dopp = 1 / (ctx.config.num_chirps_per_frame * ctx.config.chirp_repetition_time_s)
@@ -367,6 +367,41 @@ def _vibrating() -> Candidate:
                 ParamSpec("vibration_Hz", Prior(max(f_v - dopp, 1e-3), f_v + dopp, "lin"))]
 
     return Candidate("vibrating_clutter", specs, starts)
+
+
+def _band_starts(ctx: Context, ex: torch.Tensor, min_db: float = 6.0, min_bins: int = 3) -> list[dict[str, Any]]:
+    """Starts of a large vibration from a Doppler band: a row raised from zero Doppler out to +-v_max.
+
+    Frames sample the motion too slowly to separate the vibration's frequency from its
+    displacement (only ``2 pi f_v d = v_max`` shows), so the starts span ``f_v`` of 0.3, 1 and 3
+    Doppler bins with ``d = v_max / (2 pi f_v)``; the search refines both.
+    """
+    cfg = ctx.config
+    K, M = ex.shape
+    c = M // 2
+    if K < 4 or c < 6:
+        return []
+    hot = ex > min_db
+    w_up = torch.cumprod(hot[:, c + 2:].int(), dim=1).sum(dim=1)
+    w_dn = torch.cumprod(hot[:, : c - 1].flip(1).int(), dim=1).sum(dim=1)
+    w = torch.minimum(w_up, w_dn)
+    w[:1] = 0
+    r = int(w.argmax())
+    width = int(w[r])
+    if width < min_bins or max(int(w_up[r]), int(w_dn[r])) >= c - 3:
+        return []
+    dopp = 1 / (M * cfg.chirp_repetition_time_s)  # Hz per Doppler bin
+    v_max = (width + 1) * dopp * cfg.wavelength_m / 2
+    col = c + 2 + width // 2
+    hi = _priors(ctx, "vibrating_clutter")["displacement_m"].hi
+    out = []
+    for f_v in (0.3 * dopp, dopp, 3 * dopp):
+        params = {"range_m": ctx.range_m(r), "level_dB": -90.0, "displacement_m": min(v_max / (2 * math.pi * f_v), hi),
+                  "vibration_Hz": f_v, "phase_rad": 0.0, "carrier": 0.0 if ctx.mode == "estimated" else 1.0}
+        probed = _level_probe(ctx, "vibrating_clutter", params, r, col, float(ex[r, col]))
+        if probed is not None:
+            out.append(probed)
+    return out
 
 
 def _strongest_static(ctx: Context, first: int = 1) -> tuple[int, float]:

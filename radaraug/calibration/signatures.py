@@ -621,8 +621,7 @@ def _spur_ridge(p: Prepared, config: RadarConfig, min_db: float = 8.0, max_flat_
     keep = torch.ones(M, dtype=torch.bool, device=p.device)
     keep[max(c - 1, 0): c + 2] = False
     rowmed = Pm[:, keep].median(dim=1).values.clamp_min(_TINY)  # (K,)
-    ref = torch.stack([torch.cat([rowmed[max(k - 10, 0): max(k - 2, 0)], rowmed[k + 3: k + 11]]).median()
-                       for k in range(K)]).clamp_min(_TINY)
+    ref = _row_reference(Pm, keep)
     h = 10 * torch.log10(rowmed / ref)
     k = int(h[2: K - 1].argmax()) + 2
     height = float(h[k])
@@ -999,11 +998,85 @@ def _beta_from_ratio(r: float) -> float:
     return float(_BETA[i])
 
 
+def _row_reference(Pm: torch.Tensor, keep: torch.Tensor) -> torch.Tensor:
+    """Each range bin's noise reference ``(K,)``: the median, over the bins 3..10 away, of their median over Doppler.
+
+    A bin's own Doppler median is raised by what fills its row (a ridge, a band); its neighbours' is not.
+    """
+    rowmed = Pm[:, keep].median(dim=1).values.clamp_min(_TINY)
+    K = rowmed.numel()
+    return torch.stack([torch.cat([rowmed[max(k - 10, 0): max(k - 2, 0)], rowmed[k + 3: k + 11]]).median()
+                        for k in range(K)]).clamp_min(_TINY)
+
+
+def _vibration_band(p: Prepared, config: RadarConfig, min_db: float = 10.0, min_bins: int = 3,
+                    max_asym_bins: int = 2) -> Signature | None:
+    """A large vibration: a Doppler band, symmetric about zero, at one range bin (None: no band).
+
+    An object moving centimetres (a fan blade, a swinging lamp) has ``beta = 4 pi d / lambda >> 1``:
+    its Bessel lines reach out to ``+-beta f_v``, i.e. a radial speed ``+-2 pi f_v d``; slower than a
+    frame, each frame holds one Doppler line that sweeps the band from frame to frame. Either way,
+    averaged over frames, a contiguous band of cells ``min_db`` over the row's reference
+    (:func:`_row_reference`) from the zero-Doppler guard out to ``+-v_max``, with an edge (an unlocked
+    spur fills every Doppler bin), on both sides alike, in one range bin (the bins 3 away hold no band).
+    Only the product ``f_v d = v_max / (2 pi)`` is measured: frames sample the motion too slowly to tell
+    the two apart.
+    """
+    F, R, M, N = p.shape
+    X, Pm, _ = p.doppler
+    K, c = Pm.shape[0], M // 2
+    if K < 8 or c < 6:
+        return None
+    keep = torch.ones(M, dtype=torch.bool, device=p.device)
+    keep[c - 1: c + 2] = False
+    ref = _row_reference(Pm, keep)
+    hot = Pm / ref[:, None] > 10 ** (min_db / 10)
+    w_up = torch.cumprod(hot[:, c + 2:].int(), dim=1).sum(dim=1)  # bins from the guard outwards
+    w_dn = torch.cumprod(hot[:, : c - 1].flip(1).int(), dim=1).sum(dim=1)
+    rows = torch.nonzero((torch.minimum(w_up, w_dn) >= min_bins) & (torch.arange(K, device=p.device) >= 2))
+    if rows.numel() == 0:
+        return None
+    k = int(rows[(Pm[rows[:, 0]][:, keep]).max(dim=1).values.argmax()])  # the strongest banded row
+    up, dn = int(w_up[k]), int(w_dn[k])
+    if max(up, dn) >= c - 3 or abs(up - dn) > max_asym_bins:  # no edge (a ridge), or one-sided
+        return None
+    cells = torch.cat([torch.arange(c + 2, c + 2 + up), torch.arange(c - 1 - dn, c - 1)]).to(p.device)
+    level = Pm[k, cells].mean()
+    side = max(float(Pm[k - 3, cells].mean()), float(Pm[min(k + 3, K - 1), cells].mean()))
+    if _db(level / max(side, _TINY)) < 10.0:  # a band in a whole range span: not one object
+        return None
+    # The band's edge: where it falls 6 dB under its peak, interpolated in dB between bins.
+    row_db = 10 * torch.log10(Pm[k].clamp_min(_TINY))
+    edge_db = float(row_db[cells].max()) - 6.0
+
+    def edge(step: int, width: int) -> float:
+        start = c + 2 * step if step > 0 else c - 1 + step  # first band bin on that side
+        offs = [start + step * i for i in range(width + 1) if 0 <= start + step * i < M]
+        last = max((i for i, d in enumerate(offs) if float(row_db[d]) >= edge_db), default=0)
+        d0 = offs[last]
+        if last + 1 < len(offs):
+            a, b = float(row_db[d0]), float(row_db[offs[last + 1]])
+            return abs(d0 - c) + (a - edge_db) / max(a - b, 1e-9)
+        return float(abs(d0 - c))
+
+    dv = config.wavelength_m / (2 * M * config.chirp_repetition_time_s)
+    v_max = 0.5 * (edge(1, up) + edge(-1, dn)) * dv
+    height = _db(Pm[k, cells].median() / ref[k])
+    return Signature(
+        "vibrating_clutter", height, True,
+        {"range_bin": float(k), "range_m": k * config.range_resolution_m, "v_max_m_s": v_max,
+         "velocity_displacement_m_Hz": v_max / (2 * math.pi), "band_bins_up": float(up),
+         "band_bins_down": float(dn), "band_dB": height, "variant": 1.0},
+        f"Doppler band +{up}/-{dn} bins (edge +-{v_max:.2f} m/s) at range bin {k}, {height:.1f} dB over the "
+        f"floor: a vibration of f_v x d = {1e3 * v_max / (2 * math.pi):.1f} mm Hz (beta >> 1); score: band dB",
+    )
+
+
 @_detector("vibrating_clutter", min_chirps=8)
 def detect_vibrating_clutter(p: Prepared, config: RadarConfig, min_db: float = 10.0,
                              max_asym_db: float = 3.0, min_carrier_db: float = 20.0,
                              min_lock: float = 0.5) -> Signature:
-    """A symmetric pair of Doppler lines around a static return: a vibrating object.
+    """A symmetric pair of Doppler lines around a static return, or a Doppler band: a vibrating object.
 
     A return whose range oscillates, ``R + d sin(2 pi f_v t)``, is phase-modulated by
     ``beta sin(2 pi f_v t)``, ``beta = 4 pi d / lambda``; by Jacobi-Anger its range bin shows
@@ -1025,8 +1098,13 @@ def detect_vibrating_clutter(p: Prepared, config: RadarConfig, min_db: float = 1
     Returns:
         A :class:`Signature`; ``score`` is the weaker line's height (dB); ``params``:
         ``vibration_Hz``, ``displacement_m``, ``beta``, ``sideband_dBc`` (one line over the carrier),
-        ``range_m``, ``range_bin``, ``doppler_bin``, ``asymmetry_dB``, ``phase_lock``.
+        ``range_m``, ``range_bin``, ``doppler_bin``, ``asymmetry_dB``, ``phase_lock``. A large
+        vibration's band (:func:`_vibration_band`, tried first) gives ``v_max_m_s`` and
+        ``velocity_displacement_m_Hz`` instead, with ``variant`` 1.
     """
+    band = _vibration_band(p, config, min_db=min_db)
+    if band is not None:
+        return band
     F, R, M, N = p.shape
     X, Pm, floor = p.doppler
     K = Pm.shape[0]

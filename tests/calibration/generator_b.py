@@ -425,6 +425,8 @@ _CFGS = {"A": CFG_A, "Ahi": CFG_A_HIGH, "B": CFG_B}
 
 _VARIANTS: dict[str, tuple[str, dict[str, Any]]] = {
     "spur_unlocked": ("spur_tone", _PARAMS["spur_tone"] | {"unlocked": True}),
+    "vibration_band": ("vibrating_clutter", _PARAMS["vibrating_clutter"] | {"displacement_mm": 6.0,
+                                                                            "vibration_Hz": 25.0}),
 }
 """Physical variants of an effect (issue: each effect's signature wide enough for the forms it takes):
 case name -> (the effect's catalog name, its parameters)."""

@@ -301,6 +301,23 @@ def test_vibration_sidebands_spacing_and_bessel_level(cfg):
     assert s.params["displacement_m"] == pytest.approx(d, rel=0.12)
 
 
+@pytest.mark.parametrize(("d", "f_v"), [(6e-3, 25.0), (3e-3, 12.0)])
+def test_large_vibration_is_a_doppler_band_to_its_peak_speed(cfg, d, f_v):
+    """``beta = 4 pi d / lambda >> 1``: the band reaches the peak radial speed ``2 pi f_v d`` both ways."""
+    F, N = 40, cfg.num_samples_per_chirp
+    x = base(cfg, 15, F)
+    k0, A = 33, 120.0
+    beta = 4 * np.pi * d / cfg.wavelength_m
+    psi = beta * np.sin(2 * np.pi * f_v * abs_time(cfg, F) + 0.4)
+    x = x + A * np.cos(2 * np.pi * k0 * np.arange(N) / N + 1.1 + psi)
+    s = detect_vibrating_clutter(to_frames(x), cfg)
+    assert s.present and s.params["variant"] == 1.0, s.detail
+    assert abs(s.params["range_bin"] - k0) <= 1
+    dv = cfg.wavelength_m / (2 * cfg.num_chirps_per_frame * cfg.chirp_repetition_time_s)
+    assert s.params["v_max_m_s"] == pytest.approx(2 * np.pi * f_v * d, abs=1.0 * dv)
+    assert s.params["velocity_displacement_m_Hz"] == pytest.approx(s.params["v_max_m_s"] / (2 * np.pi))
+
+
 def test_single_doppler_line_is_a_spur_not_a_vibration(cfg):
     F = 16
     x = base(cfg, 15, F) + 5.0 * np.cos(2 * np.pi * 87_654.0 * abs_time(cfg, F))

@@ -124,7 +124,8 @@ class VibratingClutter(Effect):
             from a capture). Not searched.
 
     Priors (each scatterer): ``range_m`` in [0.05, ``config.max_range_m``], ``level_dB`` in
-    [-140, -30] dB, ``displacement_m`` in [10 um, 5 mm] (log), ``vibration_Hz`` in [0.5 Hz,
+    [-140, -30] dB, ``displacement_m`` in [10 um, 3 cm] (log; at centimetres the unmodelled in-chirp
+    range change starts to smear the return over a range bin), ``vibration_Hz`` in [0.5 Hz,
     ``1 / (2 PRT)``] (log; above the Doppler Nyquist the lines alias), ``phase_rad`` in
     [-pi, pi].
     """
@@ -140,7 +141,7 @@ class VibratingClutter(Effect):
     PRIORS = {
         "range_m": _range_prior,
         "level_dB": _LEVEL_PRIOR,
-        "displacement_m": Prior(1e-5, 5e-3, "log"),
+        "displacement_m": Prior(1e-5, 3e-2, "log"),  # up to a fan blade's or a swinging lamp's centimetres
         # Up to the Doppler Nyquist 1 / (2 PRT).
         "vibration_Hz": lambda cfg: Prior(0.5, max(0.5 / float(cfg.chirp_repetition_time_s), 1.0), "log"),
         "phase_rad": Prior(-math.pi, math.pi),
