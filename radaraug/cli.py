@@ -507,6 +507,7 @@ def _cmd_diagnose(args: argparse.Namespace) -> Result:
                                "error_after_db": st["error_after"], "verdict": st.get("verdict")} for st in r.steps],
             "verdict": [v["text"] for v in verdicts(diag)],
             "unexplained": len(diag.unexplained),
+            "base_not_physical": [b["text"] for b in diag.base_check if not b["ok"]],
         }
     print(f"{out / 'report.json'} ({diag.mode} mode, {diag.runtime_s:.1f} s)")
     print(f"  held-out error: default {r.before.overall:.2f} dB -> base refit {r.base.overall:.2f} dB -> "
@@ -519,6 +520,9 @@ def _cmd_diagnose(args: argparse.Namespace) -> Result:
     for verdict in verdicts(diag):
         if not verdict["added"] and verdict["verdict"] != "absent":
             print(f"  ! {verdict['text']}")
+    for b in diag.base_check:
+        if not b["ok"]:
+            print(f"  ! base not physical: {b['text']}")
     print(f"  unexplained: {len(diag.unexplained)} item(s); profile {out / 'profile.json'}")
     return 0
 

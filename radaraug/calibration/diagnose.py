@@ -18,6 +18,7 @@ from typing import Any
 
 import torch
 
+from radaraug.calibration.base_bounds import check_base
 from radaraug.calibration.catalog import BASE_STAGES, CATALOG_NAMES, Chain, _as_list, find, with_effect
 from radaraug.calibration.room import ROOM_PRIORS
 from radaraug.calibration.search import Search, SearchResult, SearchSettings
@@ -54,6 +55,11 @@ class Diagnosis:
     """Per effect with a detector, its :class:`~radaraug.calibration.evidence.Evidence` (empty when
     the signatures were not read)."""
 
+    @property
+    def base_check(self) -> list[dict[str, Any]]:
+        """The base refit against its physical bounds (:func:`~radaraug.calibration.base_bounds.check_base`)."""
+        return check_base(self.result.chain_before, self.result.chain_after, self.unexplained)
+
     def report(self) -> dict[str, Any]:
         """The ``report.json`` content."""
         r = self.result
@@ -78,6 +84,7 @@ class Diagnosis:
             "signatures": [e.as_dict() for e in self.evidence.values()],
             "verdict": verdicts(self),
             "unexplained": self.unexplained,
+            "base_check": self.base_check,
             "catalog": list(CATALOG_NAMES),
             "evaluations": r.evaluations,
             "runtime_s": round(self.runtime_s, 2),
@@ -188,6 +195,37 @@ def locate_unexplained(capture: Views, twin: Views, config: RadarConfig, limit: 
     return items[:limit]
 
 
+# Which catalog effects could make an unexplained item of each kind (view, where in Doppler).
+_NEAREST: dict[str, tuple[str, ...]] = {
+    "rd_map moving": ("spur_tone", "vibrating_clutter", "interference", "phase_noise", "frame_drift"),
+    "rd_map static": ("tx_rx_leakage", "rx_gain_phase_mismatch", "adc_clipping"),
+    "noise_floor": ("if_highpass", "phase_noise", "interference", "adc_clipping"),
+}
+
+
+def closest_effects(items: list[dict[str, Any]], evidence: dict[str, Any] | None) -> list[dict[str, Any]]:
+    """``items`` with ``closest``: the catalog effects that could make each, and the measurement that ruled them out.
+
+    An RD-map item off zero Doppler could be a spur, a vibration, interference, phase noise or drift;
+    one at zero Doppler a static stage; a noise-floor item a filter or a noise-like effect. Each comes
+    with its signature's verdict (``present`` and the detector's one-line measurement), so a user
+    sees why nothing was named.
+    """
+    out = []
+    for it in items:
+        if it["view"] == "noise_floor":
+            key = "noise_floor"
+        else:
+            key = "rd_map static" if abs(it.get("velocity_m_s") or 0.0) < 1e-9 else "rd_map moving"
+        closest = []
+        for name in _NEAREST[key]:
+            ev = (evidence or {}).get(name)
+            closest.append({"effect": name, "present": None if ev is None else bool(ev.present),
+                            "measured": "no signature run" if ev is None else ev.reason})
+        out.append({**it, "closest": closest})
+    return out
+
+
 def _clusters(mask: torch.Tensor) -> list[list[tuple[int, int]]]:
     """4-connected clusters of True cells (Doppler wraps around)."""
     todo = {tuple(x) for x in mask.nonzero().tolist()}
@@ -278,7 +316,7 @@ def diagnose(
         declared = declared_signatures(source, chain, int(frames.shape[0]), seed=settings.seed * 7919 + 3)
         evidence = assess(detect_all(frames, config), declared, config.num_rx)
     result = search.run(chain, room=room, evidence=evidence or None)
-    unexplained = locate_unexplained(search.cap_held, result.after.twin, config)
+    unexplained = closest_effects(locate_unexplained(search.cap_held, result.after.twin, config), evidence)
     runtime = time.perf_counter() - t0
     full_chain = profile_chain(result.chain_after, default_chain, source.mode)
     if source.mode == "estimated" and any(st["effect"] == "tx_rx_leakage" for st in result.steps):
@@ -411,12 +449,15 @@ def summary_text(diag: Diagnosis, report: dict[str, Any]) -> str:
               "|---|---|---|---|"]
     for k in r.before.views:
         lines.append(f"| {k} | {r.before.views[k]:.2f} | {r.base.views[k]:.2f} | {r.after.views[k]:.2f} |")
+    lines += ["", "## Base stages against their physical bounds", ""]
+    lines += [f"- {'ok' if b['ok'] else '**not physical**'}: {b['text']}" for b in diag.base_check]
     lines += ["", "## Unexplained residual", ""]
     if not diag.unexplained:
         lines.append("Nothing above the thresholds.")
     for u in diag.unexplained:
         where = f"{u['range_m']} m" + (f", {u['velocity_m_s']} m/s" if u.get("velocity_m_s") is not None else "")
         lines.append(f"- {u['view']}: {u['kind']} of {u['size_dB']:+.1f} dB at {where} ({u['cells']} cells)")
+        lines += [f"  - closest: `{c['effect']}`, {c['measured']}" for c in u.get("closest", [])]
     lines += ["", f"Units: {DB_CONVENTION}; samples {FLOAT_CONVENTION}.", ""]
     return "\n".join(lines)
 

@@ -42,6 +42,7 @@ from typing import Any
 
 import torch
 
+from radaraug.calibration.base_bounds import bounded
 from radaraug.calibration.catalog import (
     BASE_STAGES,
     Candidate,
@@ -247,7 +248,7 @@ class Search:
             e = find(chain, eff)
             if e is None or e["params"].get(p) is None:
                 continue
-            prior = EFFECTS[eff].priors(self.config)[p]
+            prior = bounded(eff, p, EFFECTS[eff].priors(self.config)[p])  # what a radar engineer would sign
             if p == "cutoff_Hz":
                 # A filter's cutoff is a config setting, known to a factor of 2 at worst; a wider
                 # range lets the base bend its shape to imitate a local feature (a line, a bump).
