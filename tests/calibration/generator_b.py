@@ -56,7 +56,8 @@ Effects (``effects={name: params}``; catalog names, generator B's own parameters
 ``interference``            ``probability``, ``power_dBm``, ``duration_us``: another radar's ramp
                             crossing ours in a chirp (probability per chirp): an RF burst whose beat
                             sweeps linearly from ``-1.8 fs`` to ``+1.8 fs`` in ``duration_us``, from
-                            broadside (same on all RX), random start and phase
+                            broadside (same on all RX), random start and phase; a list of durations
+                            is several radars of other chirp slopes (each burst draws one)
 ``vibrating_clutter``       ``position_m`` (x, y, z), ``rcs_m2``, ``displacement_mm``, ``vibration_Hz``:
                             a scatterer oscillating along its line of sight (a fan), exact phase
 ``frame_drift``             ``gain_rms_dB``, ``dc_rms_counts``: the IF gain and each RX's DC level
@@ -328,10 +329,11 @@ def make_capture(
         e = effects["interference"]
         rng = _rng(seed, "interference")
         hit = rng.random((F, M)) < e["probability"]
-        dur = e["duration_us"] * 1e-6
+        durs = np.atleast_1d(np.asarray(e["duration_us"], dtype=float)) * 1e-6  # several: several chirp slopes
         f_max = 1.8 * fs
         amp = port_amplitude(1e-3 * 10 ** (e["power_dBm"] / 10)) * g_rf
         for f_i, m_i in zip(*np.nonzero(hit)):
+            dur = durs[rng.integers(len(durs))] if len(durs) > 1 else durs[0]
             t0 = rng.uniform(t[0], t[-1] - 0.25 * dur)
             u = t - t0
             inside = (u >= 0) & (u <= dur)
@@ -425,6 +427,7 @@ _CFGS = {"A": CFG_A, "Ahi": CFG_A_HIGH, "B": CFG_B}
 
 _VARIANTS: dict[str, tuple[str, dict[str, Any]]] = {
     "spur_unlocked": ("spur_tone", _PARAMS["spur_tone"] | {"unlocked": True}),
+    "interference_slopes": ("interference", _PARAMS["interference"] | {"duration_us": [5.0, 20.0, 60.0]}),
     "vibration_band": ("vibrating_clutter", _PARAMS["vibrating_clutter"] | {"displacement_mm": 6.0,
                                                                             "vibration_Hz": 25.0}),
 }

@@ -102,6 +102,32 @@ def test_effects_are_validated():
         make_capture(CFG_B, {"spur_tone": {"freq_Hz": 1e5}}, frames=1)
 
 
+def test_variants_vary_what_they_claim_and_leave_the_plain_form_alone():
+    """An unlocked spur keeps its power per chirp and loses its Doppler line; several slopes draw per burst."""
+    spur = {"freq_Hz": 187_500.0, "amplitude_mV": 2.0, "phase_rad": 0.4}  # on a range bin at config B
+    kw = {"seed": 3, "frames": 4, "scatterers": [], "thermal_noise": False, "adc_noise_counts": 0.0}
+    plain = counts_of(make_capture(CFG_B, {}, **kw), CFG_B)  # the tone alone: the same capture without it
+    locked = counts_of(make_capture(CFG_B, {"spur_tone": spur}, **kw), CFG_B) - plain
+    unlocked = counts_of(make_capture(CFG_B, {"spur_tone": spur | {"unlocked": True}}, **kw), CFG_B) - plain
+    k = round(spur["freq_Hz"] * CFG_B.num_samples_per_chirp / CFG_B.sample_rate_Hz)
+
+    def line_share(c: np.ndarray) -> float:
+        r = np.fft.rfft(c - c.mean(axis=-1, keepdims=True), axis=-1)[..., k]  # (F, R, M)
+        return float((np.abs(np.fft.fft(r, axis=-1)) ** 2).max(axis=-1).sum() / (np.abs(r) ** 2).sum()
+                     / CFG_B.num_chirps_per_frame)
+
+    assert line_share(locked) > 0.95  # one Doppler line holds the tone
+    assert line_share(unlocked) < 0.3  # spread over the Doppler bins
+    power = [float((np.abs(np.fft.rfft(c, axis=-1)[..., k]) ** 2).mean()) for c in (locked, unlocked)]
+    assert power[1] == pytest.approx(power[0], rel=0.05)  # the tone's power, only its Doppler spread changes
+    inter = {"probability": 0.2, "power_dBm": -65.0, "duration_us": 20.0}
+    one = make_capture(CFG_B, {"interference": inter}, seed=3, frames=2)
+    np.testing.assert_array_equal(one, make_capture(CFG_B, {"interference": inter | {"duration_us": [20.0]}},
+                                                    seed=3, frames=2))
+    assert not np.array_equal(one, make_capture(CFG_B, {"interference": inter | {"duration_us": [5.0, 60.0]}},
+                                                seed=3, frames=2))
+
+
 def test_generator_b_imports_none_of_the_library_models():
     code = (
         "import sys; sys.path.insert(0, sys.argv[1]); import tests.calibration.generator_b as g; "
@@ -119,6 +145,8 @@ def test_cases_table():
     singles = {c[3][0] for c in CASES if len(c[3]) == 1}
     assert singles == set(SIGNATURE_EFFECTS)
     assert sum(len(c[3]) == 2 for c in CASES) == 6
+    variants = [c for c in CASES if c[0].split("@")[0] in ("spur_unlocked", "interference_slopes", "vibration_band")]
+    assert len(variants) == 9 and {c[3] for c in variants} == {("spur_tone",), ("interference",), ("vibrating_clutter",)}
     assert sum(len(c[3]) == 0 for c in CASES) >= 2
     assert {c[1].num_samples_per_chirp for c in CASES} == {128, 256}
 
