@@ -518,7 +518,9 @@ def _cmd_diagnose(args: argparse.Namespace) -> Result:
         how = f" ({s['verdict']})" if s.get("verdict") not in (None, "clear") else ""
         print(f"  + {s['effect']}: {s['error_before']:.3f} -> {s['error_after']:.3f} dB{how}")
     for verdict in verdicts(diag):
-        if not verdict["added"] and verdict["verdict"] != "absent":
+        if verdict["verdict"] == "declared, refitted":
+            print(f"  ~ {verdict['text']}")
+        elif not verdict["added"] and verdict["verdict"] != "absent":
             print(f"  ! {verdict['text']}")
     for b in diag.base_check:
         if not b["ok"]:

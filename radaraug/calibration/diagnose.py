@@ -19,7 +19,15 @@ from typing import Any
 import torch
 
 from radaraug.calibration.base_bounds import check_base
-from radaraug.calibration.catalog import BASE_STAGES, CATALOG_NAMES, Chain, _as_list, find, with_effect
+from radaraug.calibration.catalog import (
+    BASE_STAGES,
+    CATALOG_NAMES,
+    Chain,
+    _as_list,
+    find,
+    require,
+    with_effect,
+)
 from radaraug.calibration.room import ROOM_PRIORS
 from radaraug.calibration.search import Search, SearchResult, SearchSettings
 from radaraug.calibration.twin_source import STATIC_STAGES, TwinSource
@@ -54,6 +62,9 @@ class Diagnosis:
     evidence: dict[str, Any] = field(default_factory=dict)
     """Per effect with a detector, its :class:`~radaraug.calibration.evidence.Evidence` (empty when
     the signatures were not read)."""
+    refitted_declared: list[dict[str, Any]] = field(default_factory=list)
+    """Declared stages the capture shows at other parameters, refitted in the profile: ``effect``,
+    ``params_before``, ``params_after``, ``measured``."""
 
     @property
     def base_check(self) -> list[dict[str, Any]]:
@@ -85,6 +96,7 @@ class Diagnosis:
             "verdict": verdicts(self),
             "unexplained": self.unexplained,
             "base_check": self.base_check,
+            "refitted_declared": self.refitted_declared,
             "catalog": list(CATALOG_NAMES),
             "evaluations": r.evaluations,
             "runtime_s": round(self.runtime_s, 2),
@@ -319,8 +331,18 @@ def diagnose(
     unexplained = closest_effects(locate_unexplained(search.cap_held, result.after.twin, config), evidence)
     runtime = time.perf_counter() - t0
     full_chain = profile_chain(result.chain_after, default_chain, source.mode)
+    refitted: list[dict[str, Any]] = []
     if source.mode == "estimated" and any(st["effect"] == "tx_rx_leakage" for st in result.steps):
         full_chain = _measured_leakage(full_chain, evidence["tx_rx_leakage"], config.num_rx)
+    elif source.mode == "estimated" and _declared_elsewhere(evidence.get("tx_rx_leakage")):
+        # Declared, but at other parameters: the profile takes the measured level, and the report says so.
+        moved = _measured_leakage(full_chain, evidence["tx_rx_leakage"], config.num_rx)
+        refitted.append({"effect": "tx_rx_leakage",
+                         "params_before": {"coupling_dB": (find(full_chain, "tx_rx_leakage") or {}).get(
+                             "params", {}).get("coupling_dB")},
+                         "params_after": {"coupling_dB": require(moved, "tx_rx_leakage")["params"]["coupling_dB"]},
+                         "measured": evidence["tx_rx_leakage"].reason})
+        full_chain = moved
     rx_dict = {**receiver.to_dict(), "effects": full_chain}
     # The room parameters fitted (scene mode, a room with diffuse paths); what the loop could not
     # see (estimated mode, no diffuse paths) is kept from a start profile, like the static stages.
@@ -337,7 +359,20 @@ def diagnose(
     }, room=fitted_room)
     return Diagnosis(path, scene_name, source.mode, config, result, unexplained, profile,
                      {"read": int(frames.shape[0]), "fit": int(half), "held_out": int(frames.shape[0] - half),
-                      "simulated_per_evaluation": search.n_fit}, runtime, search.cap_held, evidence=evidence)
+                      "simulated_per_evaluation": search.n_fit}, runtime, search.cap_held, evidence=evidence,
+                     refitted_declared=refitted)
+
+
+REFIT_DECLARED_DB = 3.0
+"""A declared stage the capture shows this far (dB) from its declaration, on some RX, is refitted."""
+
+
+def _declared_elsewhere(ev: Any) -> bool:
+    """The leakage is visible and called declared, but more than :data:`REFIT_DECLARED_DB` from the declaration."""
+    if ev is None or ev.present:
+        return False
+    excess = ev.capture.params.get("excess_dB")
+    return excess is not None and ev.capture.detail.endswith("declared") and abs(float(excess)) >= REFIT_DECLARED_DB
 
 
 def _measured_leakage(chain: Chain, ev: Any, num_rx: int) -> Chain:
@@ -405,8 +440,14 @@ def verdicts(diag: Diagnosis) -> list[dict[str, Any]]:
             line += f" (ambiguous: {name} {s['error_after']:.2f} dB vs {alts})"
         out.append({"effect": name, "verdict": s.get("verdict", "clear"), "added": True, "text": line,
                     "signature": s.get("signature")})
+    for rd in diag.refitted_declared:
+        out.append({"effect": rd["effect"], "verdict": "declared, refitted", "added": False,
+                    "text": f"{rd['effect']}: declared, at other parameters: refitted {_fmt_params(rd['params_before'])} "
+                            f"-> {_fmt_params(rd['params_after'])} ({rd['measured']})",
+                    "signature": rd["measured"]})
+    refit = {rd["effect"] for rd in diag.refitted_declared}
     for name, e in diag.evidence.items():
-        if name in steps:
+        if name in steps or name in refit:
             continue
         text = (f"{name}: signature present ({e.reason}) but adding it did not lower the held-out error"
                 if e.present else f"{name}: not found ({e.reason})")

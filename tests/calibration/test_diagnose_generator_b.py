@@ -28,7 +28,9 @@ def _named(tmp_path, name: str, seed: int = 1):
     path = tmp_path / f"{name.replace('@', '_').replace('+', '_')}.h5"
     write_capture(path, float_to_counts(x) if x.is_floating_point() else x, cfg)
     diag = diagnose(path, max_frames=40)
-    return diag, sorted(s["effect"] for s in diag.result.steps), sorted(expected)
+    # named: added by the search, or declared and refitted at the parameters the capture shows
+    named = [s["effect"] for s in diag.result.steps] + [r["effect"] for r in diag.refitted_declared]
+    return diag, sorted(named), sorted(expected)
 
 
 @pytest.mark.parametrize("name", ["control@B", "mismatch+leakage@B"])

@@ -20,6 +20,7 @@ import torch
 
 from radaraug import RadarConfig
 from radaraug.calibration import SearchSettings, compute_views, diagnose, view_errors, write_report
+from radaraug.calibration.diagnose import verdicts
 from radaraug.calibration.search import Search
 from radaraug.calibration.twin_source import TwinSource
 from radaraug.config import SPEED_OF_LIGHT
@@ -286,3 +287,21 @@ def test_uncertainty_is_the_closed_form_of_a_parabola():
     sig = math.sqrt(noise / k)
     assert out["amplitude_counts"] == pytest.approx([2.0 * 10**-sig, 2.0 * 10**sig], rel=1e-6)
     assert out["phase_rad"] is None  # the objective does not see it: not identified
+
+
+def test_declared_leakage_at_other_parameters_is_refitted_and_reported(tmp_path):
+    """A leakage 7 dB stronger than declared: not an undeclared effect, but the profile takes its level."""
+    stronger = dict(BASE, leakage_coupling_dB=tuple(c + 7.0 for c in BASE["leakage_coupling_dB"]))
+    x = generate(CFG, FRAMES, seed=1, effects=BASE_EFFECTS, scene=[], **stronger)
+    path = tmp_path / "leak.h5"
+    save_capture(path, CFG, x)
+    d = diagnose(path, max_frames=FRAMES, settings=SETTINGS)
+    assert [s["effect"] for s in d.result.steps] == []
+    (rd,) = d.refitted_declared
+    assert rd["effect"] == "tx_rx_leakage"
+    shift = [a - b for a, b in zip(rd["params_after"]["coupling_dB"], rd["params_before"]["coupling_dB"])]
+    assert shift[0] == pytest.approx(7.0, abs=1.5)  # RX1, where the leakage stands over the noise
+    coupling = next(e for e in d.profile.to_dict()["receiver"]["effects"] if e["name"] == "tx_rx_leakage")
+    assert coupling["params"]["coupling_dB"] == rd["params_after"]["coupling_dB"]
+    verdict = next(v for v in verdicts(d) if v["effect"] == "tx_rx_leakage")
+    assert verdict["verdict"] == "declared, refitted" and "refitted" in verdict["text"]
