@@ -762,11 +762,34 @@ def detect_if_highpass(p: Prepared, config: RadarConfig, min_gain_db: float = 0.
 
 
 # --------------------------------------------------------------------------- RX mismatch
+def _mismatch_in_noise(floor: torch.Tensor, g_noise: torch.Tensor, params: dict[str, float],
+                       min_gain_db: float, max_spread_db: float = 0.5) -> Signature:
+    """Without a static return: a receiver several dB off in its noise, evenly over range.
+
+    The floor's per-RX ratio to RX1 must be at least ``min_gain_db`` on some RX and steady over the
+    range bins (MAD x 1.48 at most ``max_spread_db``): a gain in the channel scales its thermal
+    noise at every range alike, while a local feature (a return, a skirt) raises a few bins.
+    """
+    ratio = 10 * torch.log10(floor / floor[:1])  # (R, bins)
+    spread = float(((ratio - g_noise[:, None]).abs().median(dim=1).values * 1.4826).max())
+    worst = float(g_noise[1:].abs().max()) if g_noise.numel() > 1 else 0.0
+    present = worst >= min_gain_db and spread <= max_spread_db
+    gains = ", ".join(f"{float(g):+.2f}" for g in g_noise[1:])
+    return Signature(
+        "rx_gain_phase_mismatch", worst if present else 0.0, present,
+        {**params, **_per_rx("gain_dB", g_noise), "spread_dB": spread},
+        f"no static return to compare; noise gain re RX1 {gains} dB, steady over range within {spread:.2f} dB"
+        + ("" if present else f" (needs >= {min_gain_db:.1f} dB on some RX)")
+        + "; score: largest |noise gain| dB",
+    )
+
+
 @_detector("rx_gain_phase_mismatch", min_rx=2)
 def detect_rx_gain_phase_mismatch(p: Prepared, config: RadarConfig,
                                   min_gain_db: float = 0.5, max_spread_db: float = 1.0,
-                                  min_noise_share: float = 0.4, min_snr_db: float = 20.0) -> Signature:
-    """A per-RX gain that scales the static returns and the noise alike.
+                                  min_noise_share: float = 0.4, min_snr_db: float = 20.0,
+                                  min_noise_gain_db: float = 1.5) -> Signature:
+    """A per-RX gain that scales the static returns and the noise alike (or, with no return, the noise).
 
     A gain mismatch sits in the RX channel, so every static return *and* the channel's noise are
     scaled by it: the same ratio to RX1 at every static return (a return's angle of arrival
@@ -782,6 +805,8 @@ def detect_rx_gain_phase_mismatch(p: Prepared, config: RadarConfig,
         max_spread_db: largest spread of the ratio over the static returns (MAD x 1.48).
         min_noise_share: the noise's ratio must carry at least this share of the returns' (same sign).
         min_snr_db: static returns used must stand this far over the per-chirp floor (dB).
+        min_noise_gain_db: with no static return that strong, the smallest |gain| of the noise
+            alone, steady over range (:func:`_mismatch_in_noise`).
 
     Returns:
         A :class:`Signature`; ``score`` is the largest |gain| (dB) when the two agree, else 0;
@@ -802,8 +827,7 @@ def detect_rx_gain_phase_mismatch(p: Prepared, config: RadarConfig,
     peaks = [k for k in peaks if float(pcm[k]) > float(pcm[peaks[0]]) * 1e-3][:12] if peaks else []
     params = {"num_returns": float(len(peaks)), **_per_rx("noise_gain_dB", g_noise)}
     if not peaks:
-        return Signature("rx_gain_phase_mismatch", 0.0, False, {**params, **_per_rx("gain_dB", g_noise)},
-                         "no static return to compare")
+        return _mismatch_in_noise(floor[:, mid], g_noise, params, min_noise_gain_db)
     ks = torch.tensor(peaks, device=p.device)
     g_k = 10 * torch.log10(pc[:, ks] / pc[:1, ks])  # (R, P)
     g_static = g_k.median(dim=1).values

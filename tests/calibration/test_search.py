@@ -305,3 +305,15 @@ def test_declared_leakage_at_other_parameters_is_refitted_and_reported(tmp_path)
     assert coupling["params"]["coupling_dB"] == rd["params_after"]["coupling_dB"]
     verdict = next(v for v in verdicts(d) if v["effect"] == "tx_rx_leakage")
     assert verdict["verdict"] == "declared, refitted" and "refitted" in verdict["text"]
+
+
+def test_rx_mismatch_without_static_returns_is_named_from_the_noise(tmp_path):
+    """No static return to compare: a receiver 4 dB down in its (thermal-dominated) noise is named."""
+    cfg = RadarConfig.bgt60tr13c(if_gain_dB=48)  # thermal noise over the ADC side's
+    eff = BASE_EFFECTS + [{"name": "rx_gain_phase_mismatch", "gain_dB": [0.0, -4.0, 0.0], "phase_rad": [0.0, 0.3, -0.2]}]
+    path = tmp_path / "rx.h5"
+    save_capture(path, cfg, generate(cfg, 16, seed=1, effects=eff, scene=[], **BASE))
+    d = diagnose(path, max_frames=16, settings=SETTINGS)
+    assert [s["effect"] for s in d.result.steps] == ["rx_gain_phase_mismatch"]
+    # the ADC-side noise, after the mismatch, dilutes it: the noise shows part of the 4 dB
+    assert -4.5 < d.evidence["rx_gain_phase_mismatch"].capture.params["gain_dB_rx2"] < -1.5

@@ -194,6 +194,21 @@ def test_unlocked_spur_is_a_ridge_with_its_frequency_and_amplitude(cfg, a_sp):
 
 
 # --------------------------------------------------------------------------- RX mismatch
+@pytest.mark.parametrize("g_db", [(0.0, -3.0, 0.5), (0.0, 2.0, -4.0)])
+def test_rx_gain_from_the_noise_alone_without_static_returns(cfg, g_db):
+    """No static return: a channel gain scales the (thermal) noise at every range alike: ratio within 0.3 dB."""
+    rng = np.random.default_rng(9)
+    g = 10 ** (np.array(g_db) / 20)
+    x = noise(cfg, rng, 16, sigma=8.0) * g[None, :, None, None]
+    s = detect_rx_gain_phase_mismatch(to_frames(x), cfg)
+    assert s.present and s.params["num_returns"] == 0.0, s.detail
+    for i in (1, 2):
+        assert abs(s.params[f"gain_dB_rx{i + 1}"] - g_db[i]) < 0.3
+    # equal channels: nothing, and the detail says why
+    flat = detect_rx_gain_phase_mismatch(to_frames(noise(cfg, rng, 16, sigma=8.0)), cfg)
+    assert not flat.present and "no static return" in flat.detail
+
+
 def test_rx_gain_estimated_from_returns_and_noise(cfg):
     rng = np.random.default_rng(7)
     g_db = np.array([0.0, 1.5, -2.0])
