@@ -315,7 +315,7 @@ def _ridge_start(ctx: Context, ex: torch.Tensor, cap: torch.Tensor, bin_hz: floa
     keep[max(M // 2 - 1, 0): M // 2 + 2] = False
     row = ex[:, keep].median(dim=1).values
     r = int(row[2: K - 1].argmax()) + 2
-    side = max(float(row[r - 3]), float(row[min(r + 3, K - 1)]))
+    side = max(float(row[j]) for j in (r - 3, r + 3) if 0 <= j < K)
     if float(row[r]) < min_db or float(row[r]) - side < 4.0:
         return []
     twin = ctx.twin.stats.power.mean(dim=0)

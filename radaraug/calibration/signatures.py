@@ -627,7 +627,7 @@ def _spur_ridge(p: Prepared, config: RadarConfig, min_db: float = 8.0, max_flat_
     height = float(h[k])
     row = Pm[k, keep]
     flat = _db(row.quantile(0.9) / row.quantile(0.1).clamp_min(_TINY))
-    side = max(float(h[k - 3]), float(h[min(k + 3, K - 1)]))
+    side = max(float(h[j]) for j in (k - 3, k + 3) if 0 <= j < K)  # the bins 3 away that exist
     per_frame = X[:, :, keep, k].abs().square().mean(dim=(1, 2))  # (F,)
     frames_ok = float((per_frame / ref[k] > 10 ** 0.3).double().mean())
     cv = float(per_frame.std() / per_frame.mean().clamp_min(_TINY)) if F > 1 else 0.0
@@ -1066,7 +1066,7 @@ def _vibration_band(p: Prepared, config: RadarConfig, min_db: float = 10.0, min_
         return None
     cells = torch.cat([torch.arange(c + 2, c + 2 + up), torch.arange(c - 1 - dn, c - 1)]).to(p.device)
     level = Pm[k, cells].mean()
-    side = max(float(Pm[k - 3, cells].mean()), float(Pm[min(k + 3, K - 1), cells].mean()))
+    side = max(float(Pm[j, cells].mean()) for j in (k - 3, k + 3) if 0 <= j < K)
     if _db(level / max(side, _TINY)) < 10.0:  # a band in a whole range span: not one object
         return None
     # The band's edge: where it falls 6 dB under its peak, interpolated in dB between bins.
