@@ -23,6 +23,7 @@ from typing import Any
 
 import torch
 
+from radaraug.calibration.signatures import doppler_band_widths
 from radaraug.calibration.views import Views, _db
 from radaraug.config import SPEED_OF_LIGHT, RadarConfig
 from radaraug.errors import CalibrationError
@@ -381,9 +382,7 @@ def _band_starts(ctx: Context, ex: torch.Tensor, min_db: float = 6.0, min_bins: 
     c = M // 2
     if K < 4 or c < 6:
         return []
-    hot = ex > min_db
-    w_up = torch.cumprod(hot[:, c + 2:].int(), dim=1).sum(dim=1)
-    w_dn = torch.cumprod(hot[:, : c - 1].flip(1).int(), dim=1).sum(dim=1)
+    w_up, w_dn = doppler_band_widths(ex > min_db)
     w = torch.minimum(w_up, w_dn)
     w[:1] = 0
     r = int(w.argmax())

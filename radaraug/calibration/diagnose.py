@@ -366,21 +366,12 @@ def diagnose(
 REFIT_DECLARED_DB = 3.0
 """A declared stage the capture shows this far (dB) from its declaration, on some RX, is refitted."""
 
-LEAKAGE_MAX_CLIPPED = 1e-3
-"""Share of samples on the rails above which a near-DC level is not read as the leakage's (as the detector)."""
-
 
 def _declared_elsewhere(ev: Any) -> bool:
-    """The leakage is visible and called declared, but more than :data:`REFIT_DECLARED_DB` from the declaration.
-
-    Not on a clipping capture: the rails' intermodulation lands near DC too, so the level there is not the leakage's.
-    """
-    if ev is None or ev.present:
+    """The leakage detector called the leakage declared, but it stands :data:`REFIT_DECLARED_DB` or more from it."""
+    if ev is None or ev.present or not ev.capture.params.get("within_declared"):
         return False
-    excess = ev.capture.params.get("excess_dB")
-    clipped = float(ev.capture.params.get("clipped_fraction", 0.0))
-    return (excess is not None and ev.capture.detail.endswith("declared") and clipped <= LEAKAGE_MAX_CLIPPED
-            and abs(float(excess)) >= REFIT_DECLARED_DB)
+    return abs(float(ev.capture.params["excess_dB"])) >= REFIT_DECLARED_DB
 
 
 def _measured_leakage(chain: Chain, ev: Any, num_rx: int) -> Chain:

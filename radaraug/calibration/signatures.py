@@ -197,6 +197,24 @@ class Prepared:
         return X, Pm, Pm.median(dim=1, keepdim=True).values.clamp_min(_TINY)
 
     @cached_property
+    def doppler_rows(self) -> tuple[torch.Tensor, torch.Tensor, torch.Tensor]:
+        """Each range bin's Doppler row off zero Doppler, and what it stands on.
+
+        The mask of Doppler bins off zero Doppler (+-1 left out) ``(M,)``, each range bin's median
+        power over them ``(K,)``, and its reference ``(K,)``: the median of that median over the bins
+        3..10 away. A bin's own median is raised by what fills its row (a ridge, a band); its
+        neighbours' is not.
+        """
+        _, pm, _ = self.doppler
+        K, M = pm.shape
+        keep = torch.ones(M, dtype=torch.bool, device=self.device)
+        keep[max(M // 2 - 1, 0): M // 2 + 2] = False
+        rowmed = pm[:, keep].median(dim=1).values.clamp_min(_TINY)
+        ref = torch.stack([torch.cat([rowmed[max(k - 10, 0): max(k - 2, 0)], rowmed[k + 3: k + 11]]).median()
+                           for k in range(K)]).clamp_min(_TINY)
+        return keep, rowmed, ref
+
+    @cached_property
     def chirp_power(self) -> torch.Tensor:
         """Power of each chirp's moving part, all RX and samples, ``(F, M)`` (counts^2)."""
         return self.moving.square().mean(dim=(1, 3))
@@ -506,6 +524,20 @@ def declared_skirt_dBc(config: RadarConfig, tau_s: float, offsets: torch.Tensor)
 
 
 # --------------------------------------------------------------------------- spur tone
+def _fine_dft(p: Prepared, k: int) -> tuple[torch.Tensor, torch.Tensor, int]:
+    """A fine DFT over fast time around range bin ``k``: frequency to 1/40 bin, amplitude free of scalloping.
+
+    Returns the grid of fractional bins ``(G,)``, the moving part's Hann-weighted DFT on it
+    ``(F, R, M, G)`` and the grid index of the largest mean power.
+    """
+    N = p.shape[3]
+    n = torch.arange(N, dtype=torch.float64, device=p.device)
+    grid = k + torch.linspace(-1, 1, 81, dtype=torch.float64, device=p.device)
+    basis = torch.exp(-2j * math.pi * grid[:, None] * n[None, :] / N) * (p.hann / p.hann.sum())  # (G, N)
+    a = torch.einsum("frmn,gn->frmg", p.moving.to(torch.complex128), basis)
+    return grid, a, int(a.abs().square().mean(dim=(0, 1, 2)).argmax())
+
+
 @_detector("spur_tone", min_chirps=4)
 def detect_spur_tone(p: Prepared, config: RadarConfig, min_db: float = 15.0,
                      min_frames: float = 0.9, max_cv: float = 0.25, mirror_db: float = 10.0,
@@ -547,7 +579,6 @@ def detect_spur_tone(p: Prepared, config: RadarConfig, min_db: float = 15.0,
     # Candidates: 2-D local maxima (a strong line fills its neighbour cells too).
     flat = _peaks(E, above=0.0)[:8]
     K = E.shape[0]
-    n = torch.arange(N, dtype=torch.float64, device=p.device)
     first: Signature | None = None
     for idx in flat:
         k, d = divmod(idx, M)
@@ -560,11 +591,7 @@ def detect_spur_tone(p: Prepared, config: RadarConfig, min_db: float = 15.0,
         pre = mir < h - mirror_db and ok >= min_frames and 2 <= k < K - 1
         if first is not None and not pre:
             continue
-        # Fine DFT over fast time: frequency to 1/40 bin, amplitude free of scalloping.
-        grid = k + torch.linspace(-1, 1, 81, dtype=torch.float64, device=p.device)
-        basis = torch.exp(-2j * math.pi * grid[:, None] * n[None, :] / N) * (p.hann / p.hann.sum())  # (G, N)
-        a = torch.einsum("frmn,gn->frmg", p.moving.to(torch.complex128), basis)
-        g = int(a.abs().square().mean(dim=(0, 1, 2)).argmax())
+        grid, a, g = _fine_dft(p, k)
         # A spur's frequency is fixed; a moving target's beat frequency follows its range (range
         # migration over the capture): the line's fine frequency per frame, spread in range bins.
         g_fr = grid[a.abs().square().mean(dim=(1, 2)).argmax(dim=-1)]  # (F,)
@@ -613,15 +640,12 @@ def _spur_ridge(p: Prepared, config: RadarConfig, min_db: float = 8.0, max_flat_
     frames. Phase noise raises many range bins, a burst a few chirps of all of them, a large
     vibration a band of Doppler bins: none of them passes all three.
     """
-    F, R, M, N = p.shape
+    F, N = p.shape[0], p.shape[3]
     X, Pm, _ = p.doppler
-    K, c = Pm.shape[0], M // 2
+    K = Pm.shape[0]
     if K < 8:
         return Signature("spur_tone", 0.0, False, {}, "no ridge: too few range bins")
-    keep = torch.ones(M, dtype=torch.bool, device=p.device)
-    keep[max(c - 1, 0): c + 2] = False
-    rowmed = Pm[:, keep].median(dim=1).values.clamp_min(_TINY)  # (K,)
-    ref = _row_reference(Pm, keep)
+    keep, rowmed, ref = p.doppler_rows
     h = 10 * torch.log10(rowmed / ref)
     k = int(h[2: K - 1].argmax()) + 2
     height = float(h[k])
@@ -631,12 +655,7 @@ def _spur_ridge(p: Prepared, config: RadarConfig, min_db: float = 8.0, max_flat_
     per_frame = X[:, :, keep, k].abs().square().mean(dim=(1, 2))  # (F,)
     frames_ok = float((per_frame / ref[k] > 10 ** 0.3).double().mean())
     cv = float(per_frame.std() / per_frame.mean().clamp_min(_TINY)) if F > 1 else 0.0
-    # the tone's fast-time frequency from a fine DFT around the bin (its Doppler says nothing here)
-    n = torch.arange(N, dtype=torch.float64, device=p.device)
-    grid = k + torch.linspace(-1, 1, 81, dtype=torch.float64, device=p.device)
-    basis = torch.exp(-2j * math.pi * grid[:, None] * n[None, :] / N) * (p.hann / p.hann.sum())
-    a = torch.einsum("frmn,gn->frmg", p.moving.to(torch.complex128), basis)
-    g = int(a.abs().square().mean(dim=(0, 1, 2)).argmax())
+    grid, a, g = _fine_dft(p, k)  # the tone's fast-time frequency (its Doppler says nothing here)
     amp = float(2 * a[..., g].abs().square().mean().sqrt())
     # what is left of a line: a jitter of RMS s keeps exp(-s^2) of the power in it
     line = float(row.max() / row.sum())
@@ -938,17 +957,18 @@ def detect_tx_rx_leakage(p: Prepared, config: RadarConfig, bins: int = 3,
         dev = [params[f"level_dBFS_rx{r + 1}"] - decl[r] for r in range(R) if float(snr[r]) >= min_chirp_snr_db]
         excess = max(dev, key=abs) if dev else 0.0
         params |= {**_per_rx("declared_dBFS", decl), "excess_dB": excess}
-        if present and abs(excess) <= max_declared_db:
-            return Signature("tx_rx_leakage", 0.0, False, params,
-                             f"near-DC coherent return {float(snr[i]):.1f} dB over the per-chirp noise, "
-                             f"{excess:+.1f} dB from the declared (default receiver's) leakage: declared")
         declared_note = f", {excess:+.1f} dB from the declared leakage"
     if present and p.clipped_fraction > max_clipped:
         # The rails distort every chirp the same way: intermodulation of the static returns lands
-        # near DC, coherent in every chirp, and cannot be told from a leakage path.
+        # near DC, coherent in every chirp, and cannot be told from a leakage path (declared or not).
         return Signature("tx_rx_leakage", 0.0, False, params,
                          f"near-DC coherent content {float(snr[i]):.1f} dB over the noise, but "
                          f"{100 * p.clipped_fraction:.2g} % of samples clip: clipping intermodulation")
+    if present and max_declared_db is not None and abs(params["excess_dB"]) <= max_declared_db:
+        # the declared leakage, perhaps at another level: ``within_declared`` lets the loop refit it
+        return Signature("tx_rx_leakage", 0.0, False, params | {"within_declared": 1.0},
+                         f"near-DC coherent return {float(snr[i]):.1f} dB over the per-chirp noise, "
+                         f"{params['excess_dB']:+.1f} dB from the declared (default receiver's) leakage: declared")
     return Signature(
         "tx_rx_leakage", max(float(snr[i]), 0.0), present, params,
         f"near-DC coherent return (range bins 1..{bins - 1}) {float(snr[i]):.1f} dB over the per-chirp noise, "
@@ -1022,15 +1042,16 @@ def _beta_from_ratio(r: float) -> float:
     return float(_BETA[i])
 
 
-def _row_reference(Pm: torch.Tensor, keep: torch.Tensor) -> torch.Tensor:
-    """Each range bin's noise reference ``(K,)``: the median, over the bins 3..10 away, of their median over Doppler.
+def doppler_band_widths(hot: torch.Tensor) -> tuple[torch.Tensor, torch.Tensor]:
+    """Per range bin, how many Doppler bins in a row are ``hot`` from the zero-Doppler guard outwards.
 
-    A bin's own Doppler median is raised by what fills its row (a ridge, a band); its neighbours' is not.
+    ``hot`` is ``(K, M)`` with zero Doppler at ``M // 2``; the guard is zero Doppler +-1. Returns the
+    widths ``(K,)`` towards positive and towards negative Doppler.
     """
-    rowmed = Pm[:, keep].median(dim=1).values.clamp_min(_TINY)
-    K = rowmed.numel()
-    return torch.stack([torch.cat([rowmed[max(k - 10, 0): max(k - 2, 0)], rowmed[k + 3: k + 11]]).median()
-                        for k in range(K)]).clamp_min(_TINY)
+    c = hot.shape[1] // 2
+    up = torch.cumprod(hot[:, c + 2:].int(), dim=1).sum(dim=1)
+    down = torch.cumprod(hot[:, : c - 1].flip(1).int(), dim=1).sum(dim=1)
+    return up, down
 
 
 def _vibration_band(p: Prepared, config: RadarConfig, min_db: float = 10.0, min_bins: int = 3,
@@ -1041,7 +1062,7 @@ def _vibration_band(p: Prepared, config: RadarConfig, min_db: float = 10.0, min_
     its Bessel lines reach out to ``+-beta f_v``, i.e. a radial speed ``+-2 pi f_v d``; slower than a
     frame, each frame holds one Doppler line that sweeps the band from frame to frame. Either way,
     averaged over frames, a contiguous band of cells ``min_db`` over the row's reference
-    (:func:`_row_reference`) from the zero-Doppler guard out to ``+-v_max``, with an edge (an unlocked
+    (:attr:`Prepared.doppler_rows`) from the zero-Doppler guard out to ``+-v_max``, with an edge (an unlocked
     spur fills every Doppler bin), on both sides alike, in one range bin (the bins 3 away hold no band).
     Only the product ``f_v d = v_max / (2 pi)`` is measured: frames sample the motion too slowly to tell
     the two apart.
@@ -1051,12 +1072,8 @@ def _vibration_band(p: Prepared, config: RadarConfig, min_db: float = 10.0, min_
     K, c = Pm.shape[0], M // 2
     if K < 8 or c < 6:
         return None
-    keep = torch.ones(M, dtype=torch.bool, device=p.device)
-    keep[c - 1: c + 2] = False
-    ref = _row_reference(Pm, keep)
-    hot = Pm / ref[:, None] > 10 ** (min_db / 10)
-    w_up = torch.cumprod(hot[:, c + 2:].int(), dim=1).sum(dim=1)  # bins from the guard outwards
-    w_dn = torch.cumprod(hot[:, : c - 1].flip(1).int(), dim=1).sum(dim=1)
+    keep, _, ref = p.doppler_rows
+    w_up, w_dn = doppler_band_widths(Pm / ref[:, None] > 10 ** (min_db / 10))
     rows = torch.nonzero((torch.minimum(w_up, w_dn) >= min_bins) & (torch.arange(K, device=p.device) >= 2))
     if rows.numel() == 0:
         return None
@@ -1315,4 +1332,5 @@ __all__ = [
     "detect_spur_tone",
     "detect_tx_rx_leakage",
     "detect_vibrating_clutter",
+    "doppler_band_widths",
 ]
