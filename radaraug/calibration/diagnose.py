@@ -433,6 +433,9 @@ def verdicts(diag: Diagnosis) -> list[dict[str, Any]]:
     steps = {s["effect"]: s for s in diag.result.steps}
     for name, s in steps.items():
         line = f"{name}: added" if not s.get("source") else f"{name}: named from its signature"
+        if "params_before" in s:
+            line += (f"; declared, at other parameters: {_fmt_params(s['params_before'])} -> "
+                     f"{_fmt_params(s['params'])}")
         if s.get("verdict") == "ambiguous":
             alts = ", ".join(f"{a['effect']} {a['held_out_error']:.2f} dB" for a in s.get("alternatives", [])
                              if a["effect"] in s.get("ambiguous_with", []))

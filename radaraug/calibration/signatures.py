@@ -238,10 +238,27 @@ class Prepared:
         return _burst_flags(self.chirp_wideband)[0]
 
     @cached_property
+    def rails(self) -> torch.Tensor:
+        """Samples on an ADC rail ``(F, R, M, N)`` (bool)."""
+        c = torch.round(self.counts)
+        return (c <= 0) | (c >= self.full)
+
+    @cached_property
     def clipped_fraction(self) -> float:
         """Share of samples on an ADC rail."""
-        c = torch.round(self.counts)
-        return float(((c <= 0) | (c >= self.full)).double().mean())
+        return float(self.rails.double().mean())
+
+    @cached_property
+    def clipped_at_chirp_start(self) -> bool:
+        """Every clipped sample lies in the first 1/32 of its chirp (at least 4 samples).
+
+        A strong near-DC path (the TX->RX leakage) rings through the IF high-pass's start-up at the
+        ramp start and clips there, in every chirp alike; a return or noise pushed over a rail by
+        the gain clips all through the chirp.
+        """
+        n = self.shape[-1]
+        edge = max(4, n // 32)
+        return bool(self.rails.any()) and not bool(self.rails[..., edge:].any())
 
     @cached_property
     def floor_hann(self) -> torch.Tensor:
@@ -349,7 +366,9 @@ def detect_adc_clipping(p: Prepared, config: RadarConfig,
     Returns:
         A :class:`Signature`; ``score`` is the clipped fraction in percent; ``params``:
         ``fraction``, ``fraction_low``, ``fraction_high``, ``gaussian_fraction`` (the Gaussian's
-        prediction), ``pileup`` (rail code over neighbour codes, the larger rail).
+        prediction), ``pileup`` (rail code over neighbour codes, the larger rail), ``at_chirp_start``
+        (1: every clipped sample lies at the chirp start, the start-up transient of a strong near-DC
+        path, not the ADC's range: then not present).
     """
     c = torch.round(p.counts).clamp(0, p.full).transpose(0, 1).reshape(p.shape[1], -1)  # (R, n)
     n = c.shape[1]
@@ -365,19 +384,23 @@ def detect_adc_clipping(p: Prepared, config: RadarConfig,
     # A rail without samples gives 0 (the counts are >= 0).
     pileup = float(torch.maximum(lo / (lo_nb + 1), hi / (hi_nb + 1)).max())
     present = frac >= min_fraction and pileup >= min_pileup and float((lo + hi).sum()) >= 10
-    return Signature(
-        "adc_clipping", 100 * frac, present,
-        {"fraction": frac, "fraction_low": float(lo.sum() / c.numel()), "fraction_high": float(hi.sum() / c.numel()),
-         "gaussian_fraction": float(gauss.mean()), "pileup": pileup},
-        f"{100 * frac:.3g} % of samples on the rails (Gaussian of the measured spread: "
-        f"{100 * float(gauss.mean()):.3g} %), rail code {pileup:.1f}x its neighbours; score: % clipped",
-    )
+    params = {"fraction": frac, "fraction_low": float(lo.sum() / c.numel()), "fraction_high": float(hi.sum() / c.numel()),
+              "gaussian_fraction": float(gauss.mean()), "pileup": pileup,
+              "at_chirp_start": float(p.clipped_at_chirp_start)}
+    detail = (f"{100 * frac:.3g} % of samples on the rails (Gaussian of the measured spread: "
+              f"{100 * float(gauss.mean()):.3g} %), rail code {pileup:.1f}x its neighbours")
+    if present and p.clipped_at_chirp_start:
+        # The ADC's range is not what clips: a near-DC path's high-pass start-up transient is
+        # (``detect_tx_rx_leakage`` measures that path); a smaller ADC range would clip the whole chirp.
+        return Signature("adc_clipping", 0.0, False, params,
+                         detail + ", all in the first samples of the chirps: a near-DC path's start-up transient")
+    return Signature("adc_clipping", 100 * frac, present, params, detail + "; score: % clipped")
 
 
 # --------------------------------------------------------------------------- phase noise
 @_detector("phase_noise", min_rx=2, min_chirps=8)
 def detect_phase_noise(p: Prepared, config: RadarConfig, guard: int = 5,
-                       width: int = 40, min_z: float = 8.0, min_snr_db: float = 30.0,
+                       width: int = 40, min_z: float = 8.0, min_snr_db: float = 12.0,
                        line_db: float = 10.0, min_alignment: float = 0.9,
                        min_excess_db: float | None = 3.0) -> Signature:
     """A noise skirt around the strongest static return, common to all RX (one LO).
@@ -401,7 +424,9 @@ def detect_phase_noise(p: Prepared, config: RadarConfig, guard: int = 5,
         guard: nearest range-bin offset from the carrier counted in the skirt.
         width: farthest range-bin offset counted.
         min_z: smallest significance (skirt over its thermal-noise standard deviation).
-        min_snr_db: smallest static-return power over the per-chirp noise floor (dB) to test.
+        min_snr_db: smallest static-return power over the per-chirp noise floor (dB) to test. Low:
+            the cross-RX sum over frames, chirps and the band finds a skirt far under the floor of
+            one cell (a carrier 15 dB over the floor, its skirt 18 dB under it per cell).
         line_db: RD cells this far over their range bin's median Doppler power are lines.
         min_alignment: smallest cosine between the skirt's inter-RX phase and the carrier's
             (something common to the RX from another direction, an interferer, has another phase).
@@ -923,7 +948,9 @@ def detect_tx_rx_leakage(p: Prepared, config: RadarConfig, bins: int = 3,
         min_chirp_snr_db: smallest near-DC power over the per-chirp noise in those bins (dB).
         min_coherence: smallest frame-to-frame phase coherence.
         max_clipped: above this share of clipped samples the test is not made (the clipping's
-            intermodulation products of the static returns land near DC too).
+            intermodulation products of the static returns land near DC too), unless every
+            clipped sample lies at the chirp start (:attr:`Prepared.clipped_at_chirp_start`): a
+            leakage strong enough to clip through the high-pass's start-up.
         max_declared_db: every real BGT60 has this leakage and the library's default receiver
             declares it (:func:`declared_leakage_dBFS`): a visible leakage is reported only when
             on some RX where it is visible (``min_chirp_snr_db``) it differs from the declared
@@ -935,7 +962,8 @@ def detect_tx_rx_leakage(p: Prepared, config: RadarConfig, bins: int = 3,
         A :class:`Signature`; ``score`` is the near-DC power over the per-chirp noise (dB, best RX);
         ``params``: ``level_dBFS_rx{i}`` (near-DC power, dBFS), ``declared_dBFS_rx{i}``,
         ``excess_dB`` (largest |level - declared| over the RX where it is visible),
-        ``chirp_snr_dB``, ``coherence``, ``clipped_fraction``.
+        ``chirp_snr_dB``, ``coherence``, ``clipped_fraction``, ``clipped_at_chirp_start`` (1: the
+        clipping is this path's start-up transient).
     """
     F, R, M, N = p.shape
     S = p.static_bh4[..., 1:bins]  # (F, R, bins - 1); bin 0 is the DC, removed
@@ -951,6 +979,10 @@ def detect_tx_rx_leakage(p: Prepared, config: RadarConfig, bins: int = 3,
     params.update(_per_rx("level_dBFS", [_db(pl[r] * (2 / p.full) ** 2) for r in range(R)]))
     params["clipped_fraction"] = p.clipped_fraction
     present = float(snr[i]) >= min_chirp_snr_db and float(coh[i]) >= min_coherence
+    # Clipping confined to the chirp start is the leakage's own start-up transient: the
+    # Blackman-Harris window is ~0 on those samples, so no intermodulation reaches bins 1..2.
+    own_clipping = p.clipped_at_chirp_start
+    params["clipped_at_chirp_start"] = float(own_clipping)
     declared_note = ""
     if max_declared_db is not None:
         decl = declared_leakage_dBFS(config, bins)
@@ -958,7 +990,7 @@ def detect_tx_rx_leakage(p: Prepared, config: RadarConfig, bins: int = 3,
         excess = max(dev, key=abs) if dev else 0.0
         params |= {**_per_rx("declared_dBFS", decl), "excess_dB": excess}
         declared_note = f", {excess:+.1f} dB from the declared leakage"
-    if present and p.clipped_fraction > max_clipped:
+    if present and p.clipped_fraction > max_clipped and not own_clipping:
         # The rails distort every chirp the same way: intermodulation of the static returns lands
         # near DC, coherent in every chirp, and cannot be told from a leakage path (declared or not).
         return Signature("tx_rx_leakage", 0.0, False, params,
@@ -972,7 +1004,9 @@ def detect_tx_rx_leakage(p: Prepared, config: RadarConfig, bins: int = 3,
     return Signature(
         "tx_rx_leakage", max(float(snr[i]), 0.0), present, params,
         f"near-DC coherent return (range bins 1..{bins - 1}) {float(snr[i]):.1f} dB over the per-chirp noise, "
-        f"frame coherence {float(coh[i]):.3f}{declared_note}; score: dB over the per-chirp noise",
+        f"frame coherence {float(coh[i]):.3f}{declared_note}"
+        + (f", clipping {100 * p.clipped_fraction:.2g} % of samples at the chirp start" if own_clipping else "")
+        + "; score: dB over the per-chirp noise",
     )
 
 

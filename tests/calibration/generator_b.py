@@ -73,7 +73,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping, Sequence
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
 
@@ -425,23 +425,48 @@ _PARAMS: dict[str, dict[str, Any]] = {
 _CFGS = {"A": CFG_A, "Ahi": CFG_A_HIGH, "B": CFG_B}
 
 
+WEAK_ROOM: tuple[tuple[tuple[float, float, float], float], ...] = (
+    ((0.0, 0.0, 4.6), 0.05), ((1.2, -0.4, 5.5), 0.05),
+)
+"""A bare room: two faint returns 4.6-5.5 m away, ~15-18 dB over the per-chirp floor."""
+
 _VARIANTS: dict[str, tuple[str, dict[str, Any]]] = {
     "spur_unlocked": ("spur_tone", _PARAMS["spur_tone"] | {"unlocked": True}),
     "interference_slopes": ("interference", _PARAMS["interference"] | {"duration_us": [5.0, 20.0, 60.0]}),
     "vibration_band": ("vibrating_clutter", _PARAMS["vibrating_clutter"] | {"displacement_mm": 6.0,
                                                                             "vibration_Hz": 25.0}),
+    "phase_noise_weak_carrier": ("phase_noise", {"lo_fm_rms_Hz": 1.5e6, "lo_fm_corner_Hz": 100e3}),
+    # 18 dB over the usual case: its high-pass start-up transient clips the first samples of every chirp
+    "leakage_clipping": ("tx_rx_leakage", _PARAMS["tx_rx_leakage"] | {"coupling_dB": -42.0}),
 }
 """Physical variants of an effect (issue: each effect's signature wide enough for the forms it takes):
 case name -> (the effect's catalog name, its parameters)."""
 
+_VARIANT_ROOMS = {"phase_noise_weak_carrier": WEAK_ROOM}
+"""Variants that need another room than :data:`OFFICE` (a skirt under the floor of every cell)."""
 
-def _case(name: str, cfg_key: str, names: Sequence[str]) -> tuple[str, RadarConfig, dict[str, dict[str, Any]],
-                                                                  tuple[str, ...]]:
+
+class Case(NamedTuple):
+    """One row of the table: what :func:`make_capture` is called with and what must be named."""
+
+    name: str
+    config: RadarConfig
+    effects: dict[str, dict[str, Any]]
+    expected: tuple[str, ...]
+    scatterers: tuple[tuple[tuple[float, float, float], float], ...] | None = None
+
+    def capture(self, seed: int, frames: int = 40) -> np.ndarray:
+        """The case's raw frames at ``seed``."""
+        return make_capture(self.config, self.effects, seed=seed, frames=frames, scatterers=self.scatterers)
+
+
+def _case(name: str, cfg_key: str, names: Sequence[str]) -> Case:
     effects = dict(_VARIANTS[n] if n in _VARIANTS else (n, _PARAMS[n]) for n in names)
-    return (f"{name}@{cfg_key}", _CFGS[cfg_key], {n: dict(p) for n, p in effects.items()}, tuple(effects))
+    room = next((_VARIANT_ROOMS[n] for n in names if n in _VARIANT_ROOMS), None)
+    return Case(f"{name}@{cfg_key}", _CFGS[cfg_key], {n: dict(p) for n, p in effects.items()}, tuple(effects), room)
 
 
-CASES: list[tuple[str, RadarConfig, dict[str, dict[str, Any]], tuple[str, ...]]] = [
+CASES: list[Case] = [
     _case("control", "A", ()),
     _case("control", "Ahi", ()),
     _case("control", "B", ()),
@@ -454,10 +479,10 @@ CASES: list[tuple[str, RadarConfig, dict[str, dict[str, Any]], tuple[str, ...]]]
     _case("clipping+spur", "A", ("adc_clipping", "spur_tone")),
     *[_case(v, k, (v,)) for v in _VARIANTS for k in ("A", "Ahi", "B")],
 ]
-"""``(name, config, effects, expected effect names)``: a control per config, every effect alone at
-three settings (the paper's config at IF gain 33 and 43 dB, and 128 samples x 32 chirps at 40 dB),
-six pairs, and each physical variant (:data:`_VARIANTS`) at the three settings."""
+"""A :class:`Case` per row: a control per config, every effect alone at three settings (the
+paper's config at IF gain 33 and 43 dB, and 128 samples x 32 chirps at 40 dB), six pairs, and each
+physical variant (:data:`_VARIANTS`) at the three settings."""
 
 
-__all__ = ["CASES", "CFG_A", "CFG_A_HIGH", "CFG_B", "EFFECTS", "OFFICE", "butterworth_sos", "make_capture",
-           "sos_power_response", "thermal_psd_float"]
+__all__ = ["CASES", "CFG_A", "Case", "CFG_A_HIGH", "CFG_B", "EFFECTS", "OFFICE", "butterworth_sos", "make_capture",
+           "sos_power_response", "thermal_psd_float", "WEAK_ROOM"]

@@ -9,6 +9,7 @@ steps (estimated mode: no scene). Two quick cases run by default, the whole tabl
 from __future__ import annotations
 
 import json
+import math
 
 import pytest
 import torch
@@ -17,14 +18,15 @@ from radaraug.calibration import diagnose, write_report
 from radaraug.io import write_capture
 from radaraug.units import float_to_counts
 
-from .generator_b import CASES, make_capture
+from .generator_b import CASES
 
 _BY_NAME = {c[0]: c for c in CASES}
 
 
 def _named(tmp_path, name: str, seed: int = 1):
-    _, cfg, effects, expected = _BY_NAME[name]
-    x = torch.as_tensor(make_capture(cfg, effects, seed=seed, frames=40))
+    case = _BY_NAME[name]
+    cfg, expected = case.config, case.expected
+    x = torch.as_tensor(case.capture(seed))
     path = tmp_path / f"{name.replace('@', '_').replace('+', '_')}.h5"
     write_capture(path, float_to_counts(x) if x.is_floating_point() else x, cfg)
     diag = diagnose(path, max_frames=40)
@@ -50,6 +52,23 @@ def test_quick_cases_name_what_is_there(tmp_path, name):
         # Estimated mode: the undeclared leakage moves the profile's coupling by what the capture shows.
         coupling = next(e for e in leak if e["name"] == "tx_rx_leakage")["params"]["coupling_dB"]
         assert max(coupling) < -50.0  # generator B's leakage sits ~24 dB under the declared -35.8 / -43.8 dB
+
+
+def test_steeper_declared_highpass_is_refitted_with_its_parameters_before_and_after(tmp_path):
+    """The declared first-order high-pass, where the capture's is a second-order Butterworth at 150 kHz.
+
+    The twin's second order is two first-order sections: -3 dB at 150 kHz puts each at
+    ``150 sqrt(sqrt(2) - 1)`` = 96.5 kHz.
+    """
+    from radaraug.calibration.diagnose import verdicts
+
+    diag, named, expected = _named(tmp_path, "if_highpass@B")
+    assert named == expected == ["if_highpass"]
+    (step,) = diag.result.steps
+    assert step["refit"] and step["params_before"]["order"] == 1 and step["params"]["order"] == 2
+    assert step["params"]["cutoff_Hz"] == pytest.approx(150e3 * math.sqrt(math.sqrt(2) - 1), rel=0.2)
+    text = next(v["text"] for v in verdicts(diag) if v["effect"] == "if_highpass")
+    assert "declared, at other parameters" in text and "order=1" in text and "order=2" in text
 
 
 @pytest.mark.slow

@@ -145,8 +145,12 @@ def test_cases_table():
     singles = {c[3][0] for c in CASES if len(c[3]) == 1}
     assert singles == set(SIGNATURE_EFFECTS)
     assert sum(len(c[3]) == 2 for c in CASES) == 6
-    variants = [c for c in CASES if c[0].split("@")[0] in ("spur_unlocked", "interference_slopes", "vibration_band")]
-    assert len(variants) == 9 and {c[3] for c in variants} == {("spur_tone",), ("interference",), ("vibrating_clutter",)}
+    variants = [c for c in CASES if c[0].split("@")[0] in ("spur_unlocked", "interference_slopes", "vibration_band",
+                                                            "phase_noise_weak_carrier", "leakage_clipping")]
+    assert len(variants) == 15 and {c[3] for c in variants} == {("spur_tone",), ("interference",),
+                                                                ("vibrating_clutter",), ("phase_noise",),
+                                                                ("tx_rx_leakage",)}
+    assert {c.name for c in CASES if c.scatterers is not None} == {f"phase_noise_weak_carrier@{k}" for k in ("A", "Ahi", "B")}
     assert sum(len(c[3]) == 0 for c in CASES) >= 2
     assert {c[1].num_samples_per_chirp for c in CASES} == {128, 256}
 
@@ -166,9 +170,8 @@ def test_control_and_one_effect_quickly():
 @pytest.mark.parametrize("case", CASES, ids=[c[0] for c in CASES])
 def test_signatures_name_exactly_the_effects_present(case):
     """Each case's effects are detected, and no other (the control: none)."""
-    name, cfg, effects, expected = case
-    x = make_capture(cfg, effects, seed=11, frames=40)
-    sigs = detect_all(torch.from_numpy(x), cfg)
+    cfg, expected = case.config, case.expected
+    sigs = detect_all(torch.from_numpy(case.capture(11)), cfg)
     found = {s.effect for s in sigs if s.present}
     detail = "; ".join(f"{s.effect}: {s.detail}" for s in sigs if s.present or s.effect in expected)
     assert set(expected) <= found, detail
@@ -180,20 +183,20 @@ def test_single_effect_levels_are_recovered():
     cfg = CFG_A
     by = {c[0]: c for c in CASES}
     # Spur: frequency exact, amplitude in counts = mV / V_pp * full.
-    _, _, eff, _ = by["spur_tone@A"]
+    eff = by["spur_tone@A"].effects
     sigs = {s.effect: s for s in detect_all(torch.from_numpy(make_capture(cfg, eff, seed=3, frames=12)), cfg)}
     sp = sigs["spur_tone"]
     assert sp.params["freq_Hz"] == pytest.approx(eff["spur_tone"]["freq_Hz"], abs=30)
     a = eff["spur_tone"]["amplitude_mV"] * 1e-3 / 1.0 * cfg.adc_full_scale_counts
     assert abs(20 * math.log10(sp.params["amplitude_counts"] / a)) < 0.5
     # RX mismatch: gains re RX1.
-    _, _, eff, _ = by["rx_gain_phase_mismatch@A"]
+    eff = by["rx_gain_phase_mismatch@A"].effects
     sigs = {s.effect: s for s in detect_all(torch.from_numpy(make_capture(cfg, eff, seed=3, frames=12)), cfg)}
     g = eff["rx_gain_phase_mismatch"]["gain_dB"]
     for i in (1, 2):
         assert abs(sigs["rx_gain_phase_mismatch"].params[f"gain_dB_rx{i + 1}"] - g[i]) < 0.3
     # High-pass: cutoff and order.
-    _, _, eff, _ = by["if_highpass@A"]
+    eff = by["if_highpass@A"].effects
     sigs = {s.effect: s for s in detect_all(torch.from_numpy(make_capture(cfg, eff, seed=3, frames=12)), cfg)}
     hp = sigs["if_highpass"].params
     assert hp["order"] == eff["if_highpass"]["order"]

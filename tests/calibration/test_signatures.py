@@ -229,34 +229,56 @@ def test_rx_gain_in_the_returns_only_is_not_a_mismatch(cfg):
 
 
 # --------------------------------------------------------------------------- phase noise
-def test_phase_noise_skirt_level(cfg):
-    """A strong return with LO frequency noise: the skirt's level in dBc, closed form.
+def _lo_noise_return(cfg, rng, A: float, rms_Hz: float, frames: int, k0: int = 40):
+    """A return of amplitude ``A`` at bin ``k0`` with LO frequency noise, and the skirt's closed form.
 
     ``nu`` is white noise (variance ``s2`` per sample) filtered per chirp, circularly, by ``h_k``
-    (Lorentzian, corner ``fc``): its per-bin variance is ``s2 |h_k|^2 / N``, and the return's
+    (Lorentzian, corner 100 kHz): its per-bin variance is ``s2 |h_k|^2 / N``, and the return's
     phase ``2 pi tau nu`` puts ``(2 pi tau)^2 s2 |h_k|^2 / N`` of the carrier's power at
-    ``k`` bins from it (both sides). Summed over the detector's band (5..40 bins).
+    ``k`` bins from it (both sides). Returns the counts and the skirt summed over the detector's
+    band (5..40 bins), in dBc.
     """
-    N, M, F = cfg.num_samples_per_chirp, cfg.num_chirps_per_frame, 12
-    rng = np.random.default_rng(9)
-    k0, A = 40, 400.0
+    N, M = cfg.num_samples_per_chirp, cfg.num_chirps_per_frame
     tau = 2 * k0 * cfg.range_resolution_m / C
-    fcorner, s2 = 100e3, (250e3) ** 2
-    kf = np.fft.rfftfreq(N, 1 / cfg.sample_rate_Hz)
-    h = 1 / np.sqrt(1 + (kf / fcorner) ** 2)
-    nu = np.fft.irfft(np.fft.rfft(rng.normal(0, math.sqrt(s2), (F, 1, M, N)), axis=-1) * h, n=N, axis=-1)
-    n = np.arange(N)
+    s2 = rms_Hz**2
+    h = 1 / np.sqrt(1 + (np.fft.rfftfreq(N, 1 / cfg.sample_rate_Hz) / 100e3) ** 2)
+    nu = np.fft.irfft(np.fft.rfft(rng.normal(0, math.sqrt(s2), (frames, 1, M, N)), axis=-1) * h, n=N, axis=-1)
     ph = np.array([0.3, 1.9, -2.2])[None, :, None, None]
-    x = A * np.cos(2 * np.pi * k0 * n / N + ph + 2 * np.pi * tau * nu) + noise(cfg, rng, F, 2.0)
+    x = A * np.cos(2 * np.pi * k0 * np.arange(N) / N + ph + 2 * np.pi * tau * nu)
+    offs = np.arange(5, 41)
+    skirt = 2 * np.sum((2 * np.pi * tau) ** 2 * s2 * h[offs] ** 2 / N)
+    return x, (10 * np.log10(skirt) if skirt > 0 else -np.inf)
+
+
+def test_phase_noise_skirt_level(cfg):
+    """A strong return with LO frequency noise: the skirt's level in dBc, closed form."""
+    rng = np.random.default_rng(9)
+    x, expect = _lo_noise_return(cfg, rng, 400.0, 250e3, 12)
     # ~96 kHz RMS after the filter: about the declared (default receiver's) level, so the skirt's
     # measurement is tested alone (min_excess_db=None), not whether it exceeds the declared one.
-    s = detect_phase_noise(to_frames(x), cfg, min_excess_db=None)
-    offs = np.arange(5, 41)
-    expect = 2 * np.sum((2 * np.pi * tau) ** 2 * s2 * h[offs] ** 2 / N)
+    s = detect_phase_noise(to_frames(x + noise(cfg, rng, 12, 2.0)), cfg, min_excess_db=None)
     assert s.present, s.detail
-    assert s.params["range_bin"] == k0
-    assert abs(s.params["skirt_dBc"] - 10 * np.log10(expect)) < 2.0
+    assert s.params["range_bin"] == 40
+    assert abs(s.params["skirt_dBc"] - expect) < 2.0
     assert s.params["whiteness"] == pytest.approx(1.0, abs=0.2)
+
+
+@pytest.mark.parametrize("A", [2.0, 4.0])
+def test_phase_noise_skirt_under_the_floor_of_a_weak_return(cfg, A):
+    """A carrier only 15-20 dB over the floor, its skirt ~18 dB under the floor of every cell.
+
+    One cell cannot show it; the cross-RX sum over 40 frames, the chirps and the band does
+    (thermal noise is independent between RX, the skirt is not). Same closed form; the same
+    weak return without LO noise is not phase noise.
+    """
+    rng = np.random.default_rng(11)
+    x, expect = _lo_noise_return(cfg, rng, A, 1.5e6, 40)
+    s = detect_phase_noise(to_frames(x + noise(cfg, rng, 40, 2.0)), cfg)
+    assert s.present, s.detail
+    assert 13.0 < s.params["carrier_snr_dB"] < 22.0
+    assert abs(s.params["skirt_dBc"] - expect) < 1.5
+    quiet, _ = _lo_noise_return(cfg, rng, A, 0.0, 40)
+    assert not detect_phase_noise(to_frames(quiet + noise(cfg, rng, 40, 2.0)), cfg).present
 
 
 def test_independent_noise_around_a_return_is_not_phase_noise(cfg):
@@ -366,6 +388,40 @@ def test_leakage_near_dc_level(cfg):
     expect_db = 10 * np.log10(np.sum(np.abs(spec) ** 2) * (2 / FULL) ** 2)
     for r in (1, 2, 3):
         assert abs(s.params[f"level_dBFS_rx{r}"] - expect_db) < 0.5
+
+
+def test_leakage_that_clips_at_the_chirp_start(cfg):
+    """A near-DC path whose high-pass start-up transient drives the first samples onto a rail.
+
+    The slow curve plus a start-up transient ``-B exp(-t / T)`` (``T = 1 / (2 pi fc)``) that
+    reaches 2.5x the half range: the rails hold only the first samples of each chirp. The
+    Blackman-Harris window is ~0 there, so the level is the unclipped curve's (closed form as
+    above); the ADC's range is not what clips, so ``adc_clipping`` is not present. The same
+    leakage with the room pushed over the rails by the gain all through the chirp is clipping.
+    """
+    F, N = 12, cfg.num_samples_per_chirp
+    t = fast_time(cfg)
+    f_leak = 2 * 0.04 * cfg.slope_Hz_per_s / C
+    fc = cfg.effective_hp_cutoff_Hz
+    leak = 2500.0 * f_leak / fc * np.sin(2 * np.pi * f_leak * t + 0.3)
+    transient = -2.5 * FULL / 2 * np.exp(-t * 2 * np.pi * fc)
+    x = base(cfg, 17, F) + (leak + transient)[None, None, None, :]
+    # About the declared leakage's level: measured alone (max_declared_db=None), as above.
+    s = detect_tx_rx_leakage(to_frames(x), cfg, max_declared_db=None)
+    assert s.present and s.params["clipped_at_chirp_start"] == 1.0, s.detail
+    assert s.params["clipped_fraction"] > 1e-3
+    n = np.arange(N)
+    w = 0.35875 - 0.48829 * np.cos(2 * np.pi * n / N) + 0.14128 * np.cos(4 * np.pi * n / N) \
+        - 0.01168 * np.cos(6 * np.pi * n / N)
+    spec = np.fft.rfft((leak - np.sum(leak * w) / w.sum()) * w)[1:3] / w.sum()
+    expect_db = 10 * np.log10(np.sum(np.abs(spec) ** 2) * (2 / FULL) ** 2)
+    for r in (1, 2, 3):
+        assert abs(s.params[f"level_dBFS_rx{r}"] - expect_db) < 1.0
+    clip = detect_adc_clipping(to_frames(x), cfg)
+    assert not clip.present and clip.params["at_chirp_start"] == 1.0
+    loud = to_frames(x * 40.0)
+    assert detect_adc_clipping(loud, cfg).present
+    assert not detect_tx_rx_leakage(loud, cfg, max_declared_db=None).present
 
 
 # --------------------------------------------------------------------------- frame drift

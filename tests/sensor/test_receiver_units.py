@@ -81,6 +81,17 @@ def test_highpass_matches_measured_first_order_losses():
     torch.testing.assert_close(loss, torch.tensor([-16.9, -11.2, -6.0, -1.7], dtype=torch.float64), atol=0.05, rtol=0)
 
 
+@pytest.mark.parametrize("order", [1, 2, 3, 4])
+def test_cascade_section_cutoff_puts_the_3db_point_where_asked(order):
+    """``order`` sections at ``section_cutoff(f3, order)``: ``|H(f3)|^2 = 1/2`` exactly (closed form)."""
+    from radaraug.sensor.effects.filters import highpass_response, section_cutoff
+
+    f3 = torch.tensor([150e3], dtype=torch.float64)
+    h = highpass_response(f3, torch.tensor(section_cutoff(150e3, order), dtype=torch.float64), order)
+    assert float(h.abs().square()) == pytest.approx(0.5, rel=1e-12)
+    assert section_cutoff(150e3, 1) == 150e3 and section_cutoff(155e3, 2) == pytest.approx(155e3 / 1.5538, rel=1e-4)
+
+
 def test_range_and_doppler_bins_and_sign(cfg, rd, make_paths):
     """Range bin = beat / (fs / N) with beat = 2 R S / c + 2 v / lambda (the Doppler shift moves a
     fast target by a fraction of a bin); moving away (v > 0) lands at M//2 + round(v / v_res)

@@ -25,6 +25,16 @@ def highpass_response(freq_Hz: torch.Tensor, cutoff_Hz: torch.Tensor, order: int
     return (x / (1 + x)) ** order
 
 
+def section_cutoff(cutoff_3db_Hz: float, order: int) -> float:
+    """Cutoff of each of ``order`` cascaded first-order sections whose cascade is -3 dB at ``cutoff_3db_Hz``.
+
+    ``(x^2 / (1 + x^2))^n = 1/2`` at ``x^2 = 1 / (2^(1/n) - 1)``: a cascade's -3 dB point lies
+    ``1 / sqrt(2^(1/n) - 1)`` times above its sections' (1.55x for two). A filter measured by its
+    -3 dB point (a Butterworth fit) is set here by its sections' cutoff.
+    """
+    return float(cutoff_3db_Hz) * (2 ** (1 / int(order)) - 1) ** 0.5
+
+
 def lowpass_response(freq_Hz: torch.Tensor, cutoff_Hz: torch.Tensor, order: int = 1) -> torch.Tensor:
     """``(1 / (1 + j f/fc)) ** order``: complex, Hermitian in ``f``."""
     x = torch.complex(torch.zeros_like(freq_Hz), freq_Hz / cutoff_Hz)
