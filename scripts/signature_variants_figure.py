@@ -19,7 +19,12 @@ from pathlib import Path
 import torch
 
 from radaraug._optional import pyplot
-from radaraug.calibration.signatures import Prepared, detect_phase_noise, detect_spur_tone, detect_vibrating_clutter
+from radaraug.calibration.signatures import (
+    Prepared,
+    detect_phase_noise,
+    detect_spur_tone,
+    detect_vibrating_clutter,
+)
 from radaraug.config import RadarConfig
 from radaraug.sensor import FMCWReceiver, Paths
 from radaraug.sensor.defaults import default_effects
