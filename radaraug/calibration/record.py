@@ -17,7 +17,7 @@ to the calibration layer, not to the Lightning DataModule that asks for it:
   row in every frame (spur and fan lines), excised from every training and test map.
 
 The cached files carry ``{"format", "version"}`` and are read through
-:func:`radaraug.safe_read.load_json`; a file of another format or version, or one that cannot be
+:func:`radaraug.files.load_json`; a file of another format or version, or one that cannot be
 read, is fitted again and replaced (never trusted). Keys cover what the fit depends on, so a cache
 shared by runs is safe.
 """
@@ -42,7 +42,7 @@ from radaraug.calibration.record_file import (
 )
 from radaraug.config import RadarConfig
 from radaraug.errors import CalibrationError, ConfigError, RadarAugError
-from radaraug.io.atomic import atomic_write_json
+from radaraug.files import atomic_write_json
 from radaraug.sensor.profile import TwinProfile
 from radaraug.transforms._motion import DEFAULT_THRESHOLD_DB
 
@@ -77,7 +77,7 @@ def cached_noise_fit(calibration: str, *, scene: str, config: RadarConfig, cache
         ``version``.
     """
     from radaraug.calibration.noise_fit import capture_noise_floor_db
-    from radaraug.safe_read import load_json
+    from radaraug.files import load_json
 
     target = capture_noise_floor_db(calibration)
     path = noise_fit_path(cache_dir, scene, config, target, tracer_rays)

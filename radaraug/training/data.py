@@ -33,9 +33,9 @@ import lightning as L
 import torch
 from torch.utils.data import ConcatDataset, DataLoader, Dataset, Subset
 
-from radaraug._files import atomic_write_json
 from radaraug.config import RadarConfig
 from radaraug.errors import CalibrationError, ConfigError
+from radaraug.files import atomic_write_json
 from radaraug.io import RadarCaptureDataset, open_capture
 from radaraug.sensor.profile import PROFILE_VERSION, TwinProfile
 from radaraug.sim.dataset import SimulatedRadarDataset

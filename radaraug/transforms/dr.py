@@ -32,7 +32,7 @@ import torch
 
 from radaraug.config import RadarConfig
 from radaraug.errors import CalibrationError, ConfigError, RadarAugError
-from radaraug.safe_read import safe_repr
+from radaraug.files import safe_repr
 from radaraug.transforms import functional as F
 from radaraug.transforms._motion import DEFAULT_THRESHOLD_DB
 from radaraug.transforms.base import Params, RandomRadarTransform
