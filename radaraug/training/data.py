@@ -544,8 +544,8 @@ class RadarDataModule(L.LightningDataModule):
 
     def _matched_dr(self, dr: CalibratedDR, train: CachedMaps) -> CalibratedDR:
         """``dr`` with its floor quantiles matched to the twin's own empty-room floor (``cdr_floor="matched"``)."""
-        from radaraug.calibration.floor_fit import floor_values, matched_floor_quantiles
         from radaraug.transforms.dsp_spec import doppler_window_of
+        from radaraug.transforms.floor_fit import floor_values, matched_floor_quantiles
 
         empty = (train.counts == 0).nonzero().flatten()[:256].tolist()
         if not empty or dr.quantiles_db is None:

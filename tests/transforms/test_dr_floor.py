@@ -14,11 +14,11 @@ import math
 import pytest
 import torch
 
-from radaraug.calibration.floor_fit import QUANTILES
 from radaraug.cli import main
 from radaraug.errors import CalibrationError, InputTensorError
 from radaraug.transforms import CalibratedDR, RadarCompose, RangeDoppler, ToDecibels
 from radaraug.transforms import functional as F
+from radaraug.transforms.floor_fit import QUANTILES
 
 P0_DB = -100.0  # mean noise power per cell, dB
 CLUTTER_DB = -40.0

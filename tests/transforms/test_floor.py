@@ -7,10 +7,10 @@ import math
 import pytest
 import torch
 
-from radaraug.calibration.floor_fit import floor_values, matched_floor_quantiles
 from radaraug.errors import ConfigError
 from radaraug.transforms import FloorRelative
 from radaraug.transforms import functional as F
+from radaraug.transforms.floor_fit import floor_values, matched_floor_quantiles
 
 
 def exp_noise_db(shape: tuple[int, ...], mean_db: float, seed: int) -> torch.Tensor:

@@ -15,8 +15,8 @@ came before it as partial records:
 Anything else (another format or version, a malformed field) is one :class:`CalibrationError`
 naming the file and what is wrong. ``CalibratedDR.from_record(record)`` makes the clamp.
 
-This module imports nothing of :mod:`radaraug.transforms` (``CalibratedDR.load`` and ``save`` call
-it), so it stays a leaf below the transforms.
+It imports no other transform module (``CalibratedDR.load`` and ``save`` call it); the calibration
+layer above fits the records (:func:`radaraug.calibration.record.fit_record`).
 """
 
 from __future__ import annotations
