@@ -97,12 +97,6 @@ def _stdout_for(args: argparse.Namespace) -> contextlib.AbstractContextManager[A
     return contextlib.nullcontext()
 
 
-def _deprecated(command: str, old: str, new: str) -> None:
-    """Say on stderr (never in ``--json``'s stdout) that ``old`` is an alias kept for one release."""
-    print(f"DeprecationWarning: radaraug {command} {old} is deprecated and will be removed in the next release; "
-          f"use {new}", file=sys.stderr)
-
-
 def _exists(path: Path, folder: bool) -> bool:
     """An earlier output at ``path``: a file (or link), or a folder that is not empty."""
     if folder and path.is_dir():
@@ -233,20 +227,13 @@ def _device_arg(text: str, option: str = "--device") -> str:
 
 
 def _accelerator_args(parser: argparse.ArgumentParser, default: str) -> None:
-    """``--accelerator`` and its deprecated alias ``--device`` (a torch device, one more release)."""
+    """``--accelerator``: the torch device."""
     parser.add_argument("--accelerator", choices=ACCELERATORS, default=default,
                         help="torch device: cpu, cuda, or auto (cuda where there is one, else cpu)")
-    parser.add_argument("--device", dest="torch_device", default=None, metavar="DEVICE",
-                        help="deprecated alias of --accelerator (a torch device: cpu, cuda or cuda:N); "
-                        "removed in the next release")
 
 
 def _torch_device(args: argparse.Namespace) -> str:
-    """The torch device that ``--accelerator`` (or the deprecated ``--device``) picks, checked."""
-    if args.torch_device is not None:
-        device = _device_arg(args.torch_device)  # a bad value: its one error line, no warning before it
-        _deprecated(args.command, f"--device {device}", "--accelerator")
-        return device
+    """The torch device that ``--accelerator`` picks, checked."""
     if args.accelerator == "auto":
         import torch
 
@@ -344,7 +331,7 @@ def _cmd_simulate(args: argparse.Namespace) -> Result:
         result = simulate_capture(_scene_arg(args.scene), args.output, frames=args.frames, seed=args.seed,
                                   shard=shard, device=device, profile=args.profile)
     if args.json:
-        return {"output": result["path"], **result}  # "path": deprecated duplicate, one release
+        return {"output": result.pop("path"), **result}
     print(f"{result['path']}: frames [{result['frames'][0]}, {result['frames'][1]}), "
           f"{result['simulated']} simulated, resumed from frame {result['resumed_from']}")
     return 0
@@ -438,9 +425,6 @@ def _cmd_reproduce(args: argparse.Namespace) -> Result:
 
     test = [parse_test_arg(t) for t in args.test] if args.test else None
     accelerator = args.accelerator
-    if accelerator == "gpu":  # Lightning's other word for cuda, the old help's spelling
-        _deprecated("reproduce", "--accelerator gpu", "--accelerator cuda")
-        accelerator = "cuda"
     _check_output(args, args.output, folder=True, owned=REPRODUCE_OUTPUTS)
     with _stdout_for(args):
         settings = None
@@ -534,11 +518,7 @@ def _live_device(args: argparse.Namespace):
     from radaraug.capture import open_device
     from radaraug.config import RadarConfig
 
-    radar_config = args.radar_config
-    if args.deprecated_config is not None:
-        _deprecated(args.command, "--config", "--radar-config (--config is a recipe YAML, in train)")
-        radar_config = radar_config or args.deprecated_config
-    config = RadarConfig.from_json(radar_config) if radar_config else None
+    config = RadarConfig.from_json(args.radar_config) if args.radar_config else None
     # The virtual-only options default to None so that one given with a board is refused, not ignored.
     return open_device(args.device, config, scene=args.scene, profile=args.profile, seed=args.seed,
                        realtime=args.realtime)
@@ -575,7 +555,7 @@ def _cmd_capture(args: argparse.Namespace) -> Result:
                     overwrite=args.overwrite, progress=not args.no_progress)
     if args.json:
         data = result.to_dict()
-        _print_json({"output": data["path"], **data})  # "path": deprecated duplicate, one release
+        _print_json({"output": data.pop("path"), **data})
     else:
         rate = result.frames / result.seconds if result.seconds > 0 else float("nan")
         where = result.path if result.path is not None else "no file (no frame recorded)"
@@ -728,9 +708,8 @@ def build_parser() -> argparse.ArgumentParser:
                      help="pass the test captures through each run's DR too (not the paper's protocol; "
                      "docs/training.md)")
     rep.add_argument("--no-ablation", action="store_true", help="skip the ablation variants")
-    rep.add_argument("--accelerator", choices=(*ACCELERATORS, "gpu"), default="auto",
-                     help="Lightning accelerator: cpu, cuda, or auto (cuda where there is one); gpu: deprecated "
-                     "alias of cuda")
+    rep.add_argument("--accelerator", choices=ACCELERATORS, default="auto",
+                     help="Lightning accelerator: cpu, cuda, or auto (cuda where there is one)")
     _output_args(rep, "output folder (report, runs, figures, cache)",
                  resume="run again in it, reusing its generated test sets and simulated sets (cached by "
                  "content, never stale)")
@@ -768,9 +747,6 @@ def build_parser() -> argparse.ArgumentParser:
         parser.add_argument("--radar-config", default=None,
                             help="radar config JSON (radaraug or Infineon config.json; default: the scene's "
                             "for virtual, the BGT60TR13C preset for a board)")
-        parser.add_argument("--config", dest="deprecated_config", default=None,
-                            help="deprecated alias of --radar-config (--config is a recipe YAML, in train); "
-                            "removed in the next release")
         parser.add_argument("--seconds", type=float, default=10.0, help="how long to record")
         parser.add_argument("--scene", default=None, help="virtual: scene file or built-in scene name "
                             "(default: corridor)")

@@ -29,8 +29,8 @@ from typing import Any, NoReturn
 
 import numpy as np
 
-from radaraug._files import load_json, parse_json, safe_repr
 from radaraug.errors import ConfigError
+from radaraug.files import load_json, parse_json, safe_repr
 
 SPEED_OF_LIGHT = 299_792_458.0
 """Speed of light in vacuum, m/s."""
@@ -453,7 +453,7 @@ class RadarConfig:
         """JSON text of :meth:`to_dict`; also written to ``path`` when given."""
         text = json.dumps(self.to_dict(), indent=2, sort_keys=True)
         if path is not None:
-            from radaraug._files import atomic_write_text
+            from radaraug.files import atomic_write_text
 
             atomic_write_text(path, text + "\n")
         return text

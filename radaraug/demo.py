@@ -15,7 +15,7 @@ from pathlib import Path
 
 import torch
 
-from radaraug._files import atomic_savefig, atomic_write_json
+from radaraug.files import atomic_savefig, atomic_write_json
 
 
 def run_demo(out_dir: Path, *, capture: str | Path | None = None) -> dict:

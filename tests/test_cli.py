@@ -264,8 +264,7 @@ def test_fit_cdr_and_simulate_json(tmp_path, capsys) -> None:
     assert rec == {"output": str(tmp_path / "cdr.json"), **json.loads((tmp_path / "cdr.json").read_text())}
     assert main(["simulate", "corridor", "--frames", "1", "-o", str(tmp_path / "s.h5"), "--json"]) == 0
     res = json.loads(capsys.readouterr().out)
-    # "path": the deprecated duplicate of "output", kept for one release
-    assert res == {"output": str(tmp_path / "s.h5"), "path": str(tmp_path / "s.h5"), "frames": [0, 1],
+    assert res == {"output": str(tmp_path / "s.h5"), "frames": [0, 1],
                    "resumed_from": 0, "simulated": 1}
 
 

@@ -50,10 +50,6 @@ def _reached(*args, **kwargs):
     raise Reached("reached the work")
 
 
-def _deprecations(err: str) -> list[str]:
-    return [line for line in err.splitlines() if line.startswith("DeprecationWarning: radaraug ")]
-
-
 # --------------------------------------------------------------------------- 1. --accelerator / --device
 TORCH_COMMANDS = {"simulate": ["corridor", "--frames", "1", "-o", "x.h5"], "bench": ["transforms"]}
 BOARD_COMMANDS = ("capture", "calibrate")
@@ -66,10 +62,9 @@ def test_device_means_a_board_and_accelerator_a_torch_device(name) -> None:
     if name in BOARD_COMMANDS:
         assert device.dest == "device" and "board" in device.help and accelerator is None
     elif name in TORCH_COMMANDS:
-        assert accelerator.choices == cli.ACCELERATORS == ("auto", "cpu", "cuda")
-        assert device.dest == "torch_device" and device.help.startswith("deprecated alias of --accelerator")
+        assert accelerator.choices == cli.ACCELERATORS == ("auto", "cpu", "cuda") and device is None
     elif name == "reproduce":
-        assert device is None and set(cli.ACCELERATORS) <= set(accelerator.choices)
+        assert device is None and accelerator.choices == cli.ACCELERATORS
     else:
         assert device is None and accelerator is None, name
 
@@ -91,34 +86,16 @@ def test_accelerator_picks_the_torch_device(name, monkeypatch) -> None:
         device_of("--accelerator", "gpu:0")
 
 
-def test_deprecated_device_of_simulate_warns_on_stderr_not_in_the_json(tmp_path, capsys) -> None:
-    out = tmp_path / "s.h5"
-    assert main(["simulate", "corridor", "--frames", "1", "-o", str(out), "--device", "cpu", "--json"]) == 0
-    printed = capsys.readouterr()
-    assert json.loads(printed.out)["output"] == str(out)  # stdout: the JSON alone
-    assert _deprecations(printed.err) == [
-        "DeprecationWarning: radaraug simulate --device cpu is deprecated and will be removed in the next release; "
-        "use --accelerator"]
-
-
-def test_deprecated_device_of_bench_warns_and_is_checked(capsys) -> None:
-    assert main(["bench", "transforms", "--batch", "2", "--repeats", "1", "--device", "cpu", "--json"]) == 0
-    printed = capsys.readouterr()
-    assert json.loads(printed.out)["torch_frames_per_s"] > 0
-    assert len(_deprecations(printed.err)) == 1
-    assert main(["bench", "transforms", "--device", "tpu"]) == 3
-    assert "--device 'tpu'" in capsys.readouterr().err
-
-
-def test_reproduce_accelerator_reaches_lightning_and_gpu_is_a_deprecated_cuda(monkeypatch, tmp_path, capsys) -> None:
+def test_reproduce_accelerator_reaches_lightning(monkeypatch, tmp_path) -> None:
     import radaraug.training.reproduce as rep
 
     seen = []
     monkeypatch.setattr(rep, "reproduce", lambda out, **kw: seen.append(kw["accelerator"]) or _reached())
-    for given, passed in (("auto", "auto"), ("cpu", "cpu"), ("cuda", "cuda"), ("gpu", "cuda")):
+    for given in ("auto", "cpu", "cuda"):
         assert main(["reproduce", "--quick", "--accelerator", given, "-o", str(tmp_path / given)]) == 3
-        assert seen[-1] == passed
-        assert len(_deprecations(capsys.readouterr().err)) == (given == "gpu")
+        assert seen[-1] == given
+    with pytest.raises(SystemExit):  # one word per device: cuda, not Lightning's "gpu"
+        build_parser().parse_args(["reproduce", "--accelerator", "gpu"])
 
 
 # --------------------------------------------------------------------------- 2. --config / --radar-config
@@ -128,34 +105,31 @@ def test_config_is_a_recipe_and_radar_config_a_radar_json(name) -> None:
     config, radar = _option(parser, "--config"), _option(parser, "--radar-config")
     if name in BOARD_COMMANDS:
         assert radar is not None and "radar config JSON" in radar.help
-        assert config.dest == "deprecated_config" and config.help.startswith("deprecated alias of --radar-config")
+        assert config is None
     else:  # train's --config (a recipe) is LightningCLI's: its parser here is a stub for --help
         assert config is None and radar is None, name
 
 
 @pytest.mark.parametrize("name", BOARD_COMMANDS)
-@pytest.mark.parametrize("flag", ["--radar-config", "--config"])
-def test_radar_config_reaches_the_device(name, flag, tmp_path, monkeypatch, capsys) -> None:
+def test_radar_config_reaches_the_device(name, tmp_path, monkeypatch, capsys) -> None:
     import radaraug.capture as capture
 
     cfg = RadarConfig.bgt60tr13c(num_chirps_per_frame=16)
     cfg.to_json(tmp_path / "radar.json")
     got = []
     monkeypatch.setattr(capture, "open_device", lambda spec, config, **kw: got.append((spec, config)) or _reached())
-    argv = [name, "--device", "virtual", flag, str(tmp_path / "radar.json"), "-o", str(tmp_path / "out")]
+    argv = [name, "--device", "virtual", "--radar-config", str(tmp_path / "radar.json"), "-o", str(tmp_path / "out")]
     assert main(argv) == 3
     assert got == [("virtual", cfg)]
-    err = capsys.readouterr().err
-    assert "reached the work" in err
-    assert len(_deprecations(err)) == (flag == "--config")
+    assert "reached the work" in capsys.readouterr().err
 
 
 # --------------------------------------------------------------------------- 3. --json: "output"
-def test_simulate_json_names_its_file_output_and_keeps_path_one_release(tmp_path, capsys) -> None:
+def test_simulate_json_names_its_file_output(tmp_path, capsys) -> None:
     out = tmp_path / "s.h5"
     assert main(["simulate", "corridor", "--frames", "1", "-o", str(out), "--json"]) == 0
     printed = json.loads(capsys.readouterr().out)
-    assert printed["output"] == printed["path"] == str(out) and list(printed)[0] == "output"
+    assert printed["output"] == str(out) and list(printed)[0] == "output" and "path" not in printed
 
 
 def test_capture_and_calibrate_json_name_their_file_output(tmp_path, monkeypatch, capsys) -> None:
@@ -168,7 +142,7 @@ def test_capture_and_calibrate_json_name_their_file_output(tmp_path, monkeypatch
     monkeypatch.setattr(capture, "record", lambda device, path, **kw: rec)
     assert main(["capture", "--device", "virtual", "-o", str(tmp_path / "c.h5"), "--json"]) == 0
     printed = json.loads(capsys.readouterr().out)
-    assert printed == {"output": str(tmp_path / "c.h5"), **rec.to_dict()}  # "path": deprecated duplicate
+    assert printed == {"output": str(tmp_path / "c.h5"), **{k: v for k, v in rec.to_dict().items() if k != "path"}}
 
     cdr = SimpleNamespace(mean_db=-90.0, std_db=2.0, floor="normal", motion=0.0)
     run = SimpleNamespace(cdr=cdr, output=tmp_path / "cdr.json", recording=rec)

@@ -11,8 +11,8 @@ from typing import Any
 
 import torch
 
-from radaraug._files import atomic_write_json
 from radaraug._torch import torch_threads as torch_threads  # re-exported: the benchmarks run on set threads
+from radaraug.files import atomic_write_json
 
 
 def write_figures(out: str | os.PathLike | None, figures: dict[str, Any], *, newline: bool = True) -> None:

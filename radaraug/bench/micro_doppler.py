@@ -19,7 +19,7 @@ from typing import Any
 
 import torch
 
-from radaraug._files import atomic_savefig
+from radaraug.files import atomic_savefig
 
 
 def doppler_spectrogram(frames: torch.Tensor) -> torch.Tensor:

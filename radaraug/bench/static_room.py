@@ -22,8 +22,8 @@ from typing import Any
 
 import torch
 
-from radaraug._files import atomic_savefig
 from radaraug.bench import write_figures
+from radaraug.files import atomic_savefig
 
 SBR_RAYS = (128, 256, 512, 1024)
 

@@ -11,11 +11,11 @@ twin profile, the noise fit, the persistent cells) is one :class:`CalibrationRec
 
 from radaraug.calibration.catalog import CATALOG_NAMES, Candidate, ParamSpec, catalog
 from radaraug.calibration.diagnose import Diagnosis, diagnose, locate_unexplained, write_report
-from radaraug.calibration.record_file import CalibrationRecord, load_record
 from radaraug.calibration.search import Search, SearchResult, SearchSettings
 from radaraug.calibration.twin_source import TwinSource
 from radaraug.calibration.views import VIEW_NAMES, Views, compute_views, overall_error, view_errors
 from radaraug.sensor.profile import TwinProfile
+from radaraug.transforms.record_file import CalibrationRecord, load_record
 
 __all__ = [
     "CATALOG_NAMES",

@@ -34,7 +34,7 @@ from radaraug.calibration.twin_source import STATIC_STAGES, TwinSource
 from radaraug.calibration.views import VIEW_UNITS, Views, _db
 from radaraug.config import RadarConfig
 from radaraug.errors import CalibrationError
-from radaraug.io.atomic import atomic_write_json, atomic_write_text
+from radaraug.files import atomic_write_json, atomic_write_text
 from radaraug.sensor.profile import TwinProfile, as_profile
 from radaraug.sensor.receiver import FMCWReceiver
 from radaraug.units import DB_CONVENTION, FLOAT_CONVENTION

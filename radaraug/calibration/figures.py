@@ -8,7 +8,7 @@ from typing import TYPE_CHECKING
 import torch
 
 from radaraug.calibration.views import ADC_QUANTILES, RD_QUANTILES, _db
-from radaraug.io.atomic import atomic_savefig
+from radaraug.files import atomic_savefig
 
 if TYPE_CHECKING:
     from radaraug.calibration.diagnose import Diagnosis

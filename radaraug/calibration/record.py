@@ -1,6 +1,6 @@
 """What an empty-room capture calibrates: every fit on it, and the one record that holds them.
 
-:func:`fit_record` fits a :class:`~radaraug.calibration.record_file.CalibrationRecord` on an
+:func:`fit_record` fits a :class:`~radaraug.transforms.record_file.CalibrationRecord` on an
 empty-room capture (CalibratedDR's floor, and on request the twin profile, the twin's noise fit and
 the persistent cells); :meth:`CalibrationRecord.save` writes it as one versioned file and
 :func:`load_record` reads it back (or an older CalibratedDR JSON, twin profile or noise fit, as a
@@ -17,7 +17,7 @@ to the calibration layer, not to the Lightning DataModule that asks for it:
   row in every frame (spur and fan lines), excised from every training and test map.
 
 The cached files carry ``{"format", "version"}`` and are read through
-:func:`radaraug.safe_read.load_json`; a file of another format or version, or one that cannot be
+:func:`radaraug.files.load_json`; a file of another format or version, or one that cannot be
 read, is fitted again and replaced (never trusted). Keys cover what the fit depends on, so a cache
 shared by runs is safe.
 """
@@ -32,7 +32,12 @@ from typing import Any
 import torch
 
 from radaraug._cache_key import cache_key
-from radaraug.calibration.record_file import (
+from radaraug.config import RadarConfig
+from radaraug.errors import CalibrationError, ConfigError, RadarAugError
+from radaraug.files import atomic_write_json
+from radaraug.sensor.profile import TwinProfile
+from radaraug.transforms._motion import DEFAULT_THRESHOLD_DB
+from radaraug.transforms.record_file import (
     NOISE_FIT_FORMAT,
     RECORD_FORMAT,
     RECORD_VERSION,
@@ -40,11 +45,6 @@ from radaraug.calibration.record_file import (
     content_digest,
     load_record,
 )
-from radaraug.config import RadarConfig
-from radaraug.errors import CalibrationError, ConfigError, RadarAugError
-from radaraug.io.atomic import atomic_write_json
-from radaraug.sensor.profile import TwinProfile
-from radaraug.transforms._motion import DEFAULT_THRESHOLD_DB
 
 NOISE_FIT_VERSION = 2
 """The version :func:`cached_noise_fit` writes and reuses (2: thermal and ADC-side noise moved together)."""
@@ -77,7 +77,7 @@ def cached_noise_fit(calibration: str, *, scene: str, config: RadarConfig, cache
         ``version``.
     """
     from radaraug.calibration.noise_fit import capture_noise_floor_db
-    from radaraug.safe_read import load_json
+    from radaraug.files import load_json
 
     target = capture_noise_floor_db(calibration)
     path = noise_fit_path(cache_dir, scene, config, target, tracer_rays)
@@ -177,8 +177,8 @@ def fit_record(
     Raises:
         CalibrationError, CaptureError: as the fits they come from.
     """
-    from radaraug.calibration.floor_fit import floor_statistics
     from radaraug.transforms.dr import FLOORS
+    from radaraug.transforms.floor_fit import floor_statistics
 
     if floor not in FLOORS:
         raise CalibrationError(f"fit_record: floor must be one of {FLOORS}, got {floor!r}")

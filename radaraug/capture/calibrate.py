@@ -2,7 +2,7 @@
 
 The fit is :func:`radaraug.calibration.record.fit_record` on the recording (CalibratedDR's floor,
 exactly what ``radaraug fit-cdr`` fits on a file), written as one calibration record
-(:mod:`radaraug.calibration.record_file`) that ``CalibratedDR.load`` reads. The emptiness test is
+(:mod:`radaraug.transforms.record_file`) that ``CalibratedDR.load`` reads. The emptiness test is
 the motion check that fit already runs (:mod:`radaraug.transforms._motion`). Where ``fit-cdr`` only warns, this
 refuses: a calibration of a room in which something moved is not written, and the message gives
 the measured motion fraction against the threshold. What does not move (a person standing still,
@@ -26,7 +26,7 @@ from radaraug.transforms._motion import DEFAULT_THRESHOLD_DB, MIN_FRAMES, WARN_F
 from radaraug.transforms.dr import FLOORS
 
 if TYPE_CHECKING:
-    from radaraug.calibration.record_file import CalibrationRecord
+    from radaraug.transforms.record_file import CalibrationRecord
 
 CALIBRATION_SECONDS = 10.0
 """The empty-room sequence's length (the paper's 10 s, ~100 frames at 10 Hz)."""

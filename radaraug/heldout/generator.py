@@ -44,9 +44,9 @@ from typing import Any
 
 import numpy as np
 
-from radaraug._files import atomic_write_json
 from radaraug.config import RadarConfig
 from radaraug.errors import ConfigError
+from radaraug.files import atomic_write_json
 from radaraug.heldout import room as room_mod
 from radaraug.heldout import walkers
 from radaraug.heldout.receiver import _check_effects, _chirp_times, generate

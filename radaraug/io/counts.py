@@ -7,9 +7,9 @@ from typing import Any
 import numpy as np
 import torch
 
-from radaraug._files import safe_repr
 from radaraug.config import RadarConfig
 from radaraug.errors import CaptureError, InputTensorError
+from radaraug.files import safe_repr
 
 
 def as_counts(data: Any, config: RadarConfig, where: str) -> np.ndarray:

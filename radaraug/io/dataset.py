@@ -68,8 +68,6 @@ class RadarCaptureDataset(Dataset):
             ``num_workers``; call :meth:`set_epoch` each epoch). See
             :mod:`radaraug.transforms.per_item`.
         augmentation_seed: seed of the ``"per_item"`` draws.
-        frames_per_sample: deprecated name of ``frames_per_item`` (radaraug 0.1).
-        as_float: deprecated inverse of ``as_counts`` (radaraug 0.1).
 
     The knobs are named as in :class:`radaraug.sim.SimulatedRadarDataset` (``frames_per_item``,
     ``as_counts``, ``transform``, ``augmentation``); ``label`` differs from the simulated set's
@@ -100,19 +98,7 @@ class RadarCaptureDataset(Dataset):
         max_open_files: int = 16,
         augmentation: str = "stream",
         augmentation_seed: int = 0,
-        frames_per_sample: int | None = None,
-        as_float: bool | None = None,
     ) -> None:
-        if frames_per_sample is not None:
-            if frames_per_item is not None:
-                raise CaptureError("RadarCaptureDataset: give frames_per_item, not also frames_per_sample")
-            warnings.warn("RadarCaptureDataset(frames_per_sample=...) is deprecated; use frames_per_item",
-                          DeprecationWarning, stacklevel=2)
-            frames_per_item = frames_per_sample
-        if as_float is not None:
-            warnings.warn("RadarCaptureDataset(as_float=...) is deprecated; use as_counts (= not as_float)",
-                          DeprecationWarning, stacklevel=2)
-            as_counts = not as_float
         frames_per_item = 1 if frames_per_item is None else frames_per_item
 
         try:

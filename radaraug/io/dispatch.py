@@ -5,8 +5,8 @@ from __future__ import annotations
 import os
 from pathlib import Path
 
-from radaraug._files import regular_file_size
 from radaraug.errors import CaptureError
+from radaraug.files import regular_file_size
 from radaraug.io import hdf5_format as fmt
 from radaraug.io.base import CaptureReader
 from radaraug.io.hdf5_reader import HDF5Capture

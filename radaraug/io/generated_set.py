@@ -14,9 +14,9 @@ from typing import Any
 
 import numpy as np
 
-from radaraug._files import load_json
 from radaraug.config import RadarConfig
 from radaraug.errors import ConfigError
+from radaraug.files import load_json
 
 
 @dataclass

@@ -25,8 +25,8 @@ import os
 from dataclasses import dataclass
 from pathlib import Path
 
-from radaraug._files import open_regular
 from radaraug.errors import CaptureError
+from radaraug.files import open_regular
 
 FORMAT_NAME = "radaraug-capture"
 FORMAT_VERSION = "1.1"

@@ -11,9 +11,9 @@ from typing import Any
 import h5py
 import numpy as np
 
-from radaraug._files import parse_json, regular_file_size
 from radaraug.config import RadarConfig
 from radaraug.errors import CaptureError, ConfigError, RadarAugError
+from radaraug.files import parse_json, regular_file_size
 from radaraug.io import hdf5_format as fmt
 from radaraug.io.base import CaptureReader, CaptureWarning, broadcast_label, frames_problem, timestamp_problem
 from radaraug.io.hdf5_open import open_hdf5_readonly

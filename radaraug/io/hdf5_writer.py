@@ -11,7 +11,7 @@ On top of that:
   it is in SWMR mode (first append) or closed, so a file at the target name is always one that
   opens; a kill before that leaves only the hidden temporary ``.<name>.*.partial``, which the
   next writer of the same name removes (when no process holds it and it is older than a minute).
-  The name follows the one convention of temporary files (:mod:`radaraug._files`). A
+  The name follows the one convention of temporary files (:mod:`radaraug.files`). A
   generated file that must appear only complete is written with ``publish="close"``: renamed at
   :meth:`CaptureWriter.close`, dropped on an exception in its ``with`` block.
 - After each append's data is flushed, the count of complete frames is written to
@@ -40,7 +40,9 @@ import h5py
 import numpy as np
 import torch
 
-from radaraug._files import (
+from radaraug.config import RadarConfig
+from radaraug.errors import CaptureError, ConfigError
+from radaraug.files import (
     PARTIAL_SUFFIX,
     fsync_folder,
     parse_json,
@@ -48,8 +50,6 @@ from radaraug._files import (
     temporaries_of,
     temporary_name,
 )
-from radaraug.config import RadarConfig
-from radaraug.errors import CaptureError, ConfigError
 from radaraug.io import hdf5_format as fmt
 from radaraug.io.counts import as_counts, as_timestamps
 from radaraug.io.hdf5_reader import committed_frame_count
@@ -95,7 +95,7 @@ def _remove_stale_partials(path: Path) -> list[Path]:
     its hidden temporary behind. One is stale when no process holds a lock on it (a live writer
     holds its lock from right after creating it to the rename) and it was last written more than
     :data:`STALE_PARTIAL_S` ago (so a writer between creating and locking its file is never hit).
-    Files that cannot be checked or removed are left alone (:func:`radaraug._files.remove_stale_temporaries`).
+    Files that cannot be checked or removed are left alone (:func:`radaraug.files.remove_stale_temporaries`).
     """
     return remove_stale_temporaries(path.parent, temporaries_of(path, PARTIAL_SUFFIX),
                                     older_than_s=STALE_PARTIAL_S, in_use=writer_is_alive)

@@ -30,9 +30,9 @@ from typing import Any
 import numpy as np
 import torch
 
-from radaraug._files import MAX_TEXT_BYTES, atomic_open, atomic_write_text, load_json, read_bytes
 from radaraug.config import DEFAULT_ADC_DELAY_S, RadarConfig
 from radaraug.errors import CaptureError, ConfigError
+from radaraug.files import MAX_TEXT_BYTES, atomic_open, atomic_write_text, load_json, read_bytes
 from radaraug.io.base import CaptureReader, CaptureWarning, frames_problem, timestamp_problem
 from radaraug.io.counts import as_counts, as_timestamps
 from radaraug.io.npy import open_npy

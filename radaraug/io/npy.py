@@ -24,8 +24,8 @@ from typing import Literal
 
 import numpy as np
 
-from radaraug._files import open_regular
 from radaraug.errors import CaptureError
+from radaraug.files import open_regular
 
 MAX_HEADER_BYTES = 10_000
 """Largest .npy header accepted (numpy writes 128 bytes for any array radaraug stores)."""

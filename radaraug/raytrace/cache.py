@@ -24,7 +24,7 @@ from typing import Any
 
 import torch
 
-from radaraug._files import TMP_SUFFIX, atomic_save, remove_stale_temporaries
+from radaraug.files import TMP_SUFFIX, atomic_save, remove_stale_temporaries
 
 TRACER_VERSION = 2
 """Bump when a change to the tracer changes the static paths of an unchanged scene."""
@@ -79,9 +79,9 @@ def store(folder: Path, key: str, data: dict[str, Any]) -> None:
     """Write an entry atomically; warn once per folder when it cannot be written."""
     try:
         folder.mkdir(parents=True, exist_ok=True)
-        # Any temporary of this key's entry (radaraug._files' convention), however old its writer.
+        # Any temporary of this key's entry (radaraug.files' convention), however old its writer.
         remove_stale_temporaries(folder, f".static-{key}.*.{TMP_SUFFIX}", older_than_s=STALE_TEMPORARY_S)
-        # Temporary name .static-<key>.pt.<pid>.<random>.tmp (radaraug._files).
+        # Temporary name .static-<key>.pt.<pid>.<random>.tmp (radaraug.files).
         atomic_save(folder / f"static-{key}.pt", lambda f: torch.save({**data, "version": TRACER_VERSION}, f))
     except OSError as err:
         if str(folder) not in _warned_dirs:

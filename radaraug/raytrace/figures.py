@@ -13,7 +13,7 @@ from pathlib import Path
 
 import torch
 
-from radaraug._files import atomic_savefig
+from radaraug.files import atomic_savefig
 from radaraug.raytrace.shadow import ellipse_obstacle_transmission, knife_edge, shadow_transmission
 from radaraug.scene.people import SEGMENT_NAMES, Walker
 from radaraug.scene.people.person import Person

@@ -22,9 +22,9 @@ from typing import TYPE_CHECKING, Any
 import torch
 import yaml
 
-from radaraug._files import atomic_write_text, load_json
 from radaraug.config import RadarConfig
 from radaraug.errors import ConfigError, SceneError
+from radaraug.files import atomic_write_text, load_json
 from radaraug.scene.geometry import RadarPose, SceneGeometry
 from radaraug.scene.materials import MATERIALS, Material, get_material, register_material
 from radaraug.scene.people._rotations import axis_rotation

@@ -27,9 +27,9 @@ from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
-from radaraug._files import atomic_write_json, load_json
 from radaraug.config import RadarConfig
 from radaraug.errors import CalibrationError, ConfigError
+from radaraug.files import atomic_write_json, load_json
 from radaraug.sensor.receiver import FMCWReceiver
 from radaraug.units import DB_CONVENTION, FLOAT_CONVENTION
 
@@ -98,7 +98,7 @@ class TwinProfile:
         }
 
     def save(self, path: str | os.PathLike) -> Path:
-        """Write the profile atomically (:mod:`radaraug._files`).
+        """Write the profile atomically (:mod:`radaraug.files`).
 
         A temporary file of this process, fsync, rename: concurrent writers of the same profile never mix
         their bytes, a full disk leaves the old file.

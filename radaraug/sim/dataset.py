@@ -12,7 +12,6 @@ from __future__ import annotations
 
 import math
 import os
-import warnings
 from collections.abc import Callable
 from typing import Any
 
@@ -31,12 +30,6 @@ from radaraug.sim.twin import DigitalTwin
 from radaraug.transforms.per_item import check_augmentation, check_epoch, transform_item
 
 TARGETS = ("count", "occupancy", "both", "none")
-
-
-def load_scene(scene: Scene | str | os.PathLike) -> Scene:
-    """Deprecated alias of :meth:`Scene.load` (kept for code written against radaraug 0.1)."""
-    warnings.warn("radaraug.sim.dataset.load_scene is deprecated; use Scene.load", DeprecationWarning, stacklevel=2)
-    return Scene.load(scene)
 
 
 class SimulatedRadarDataset(Dataset):

@@ -16,7 +16,7 @@ from typing import Any
 import torch
 
 from radaraug.config import RadarConfig
-from radaraug.io.atomic import atomic_savefig
+from radaraug.files import atomic_savefig
 from radaraug.raytrace.diffuse import diffuse_paths
 from radaraug.scene.scene import Scene
 from radaraug.sensor.paths import Paths

@@ -8,8 +8,8 @@ from typing import Any
 
 import torch
 
-from radaraug._files import atomic_savefig
 from radaraug._optional import lazy_import
+from radaraug.files import atomic_savefig
 from radaraug.scene.geometry import Ellipsoids
 from radaraug.scene.people import Walker
 from radaraug.scene.people.skeleton import without_turn

@@ -31,12 +31,12 @@ import torch
 from radaraug._optional import lazy_import
 from radaraug._torch import parse_device
 from radaraug.errors import CaptureError, ConfigError
+from radaraug.files import parse_json
 from radaraug.io import hdf5_format as fmt
 from radaraug.io import open_capture
 from radaraug.io.blocks import BLOCK_FRAMES, BlockWriter, blocks_covering, frame_times
 from radaraug.io.hdf5_recovery import status_flags, writer_is_alive
 from radaraug.io.hdf5_writer import check_free_space
-from radaraug.safe_read import parse_json
 from radaraug.scene.scene import Scene
 from radaraug.sensor.profile import as_profile
 from radaraug.sim.seeding import Stream, item_generator

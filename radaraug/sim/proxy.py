@@ -48,11 +48,11 @@ import numpy as np
 import torch
 import yaml
 
-from radaraug._files import atomic_write_json
 from radaraug._optional import lazy_import
 from radaraug._torch import parse_device, torch_threads
 from radaraug.config import RadarConfig
 from radaraug.errors import ConfigError
+from radaraug.files import atomic_write_json
 from radaraug.io.blocks import BLOCK_FRAMES, BlockWriter
 from radaraug.io.generated_set import (
     GeneratedTestSet,

@@ -42,7 +42,6 @@ from __future__ import annotations
 import dataclasses
 import json
 import math
-import warnings
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any
@@ -75,7 +74,6 @@ from radaraug.sim.item_signal import (
 )
 from radaraug.sim.scenarios import ScenarioSampler, _uniform
 from radaraug.sim.seeding import Stream, item_generator
-from radaraug.sim.twin import DigitalTwin
 
 ITEM_STREAM = Stream.ITEM_DRAWS
 """Generator stream of the per-item draws (room variant, gain, noise figure, RCS per person)."""
@@ -688,21 +686,6 @@ def check_receiver(receiver: FMCWReceiver, randomization: TwinRandomization) -> 
                           "returns; add one or set static_phase_noise_probability to 0")
 
 
-@torch.no_grad()
-def simulate_item(twin: DigitalTwin, people: Sequence[Any], times: torch.Tensor, draw: ItemDraw,
-                  generator: torch.Generator | None, phase_noise_paths: int | None = None) -> torch.Tensor:
-    """Deprecated: ``twin.simulate(people, times, generators=generator, draw=draw)``.
-
-    Raw frames ``(T, rx, chirps, samples)`` of one randomized item; ``phase_noise_paths`` (when given)
-    replaces ``draw.phase_noise_paths``.
-    """
-    warnings.warn("simulate_item is deprecated; use DigitalTwin.simulate(people, times, generators=..., draw=...)",
-                  DeprecationWarning, stacklevel=2)
-    if phase_noise_paths is not None:
-        draw = dataclasses.replace(draw, phase_noise_paths=int(phase_noise_paths))
-    return twin.simulate(people, times, generators=generator, draw=draw)
-
-
 # ---------------------------------------------------------------------------- validation
 def _flag(value: Any, name: str) -> bool:
     if not isinstance(value, bool):
@@ -804,5 +787,5 @@ _FIELD_CHECKS: dict[str, Callable[[Any, str], Any]] = {
 __all__ = [
     "DEFAULT_MATERIALS", "EFFECTS_STREAM", "ITEM_STREAM", "ROOM_STREAM", "ItemDraw", "RoomDraw", "TwinRandomization",
     "SCATTERER_ANTENNA_GAIN_DBI", "check_receiver", "item_receiver", "people_paths", "room_quadrature",
-    "scale_people_paths", "simulate_item", "static_scatterer_paths", "strongest_room_paths",
+    "scale_people_paths", "static_scatterer_paths", "strongest_room_paths",
 ]

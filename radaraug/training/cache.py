@@ -8,7 +8,7 @@ size) with the people count of each item. The file name carries a hash of everyt
 depend on -- scene, radar config, receiver, scenario sampler, twin randomization, seed, the item
 indices, the RD chain and the twin's physics version (``TWIN_MODEL_VERSION``) -- so a change of any of them re-simulates and an unchanged one does not.
 
-A file is written under a temporary name (the package's one convention, :mod:`radaraug._files`) and
+A file is written under a temporary name (the package's one convention, :mod:`radaraug.files`) and
 renamed when complete: a killed run leaves no half-written cache that a later run would trust, and
 the next build of the same key removes what a dead process left.
 """
@@ -30,9 +30,9 @@ from torch.utils.data import DataLoader, Dataset, Subset
 
 from radaraug._cache_key import cache_key
 from radaraug._cache_key import content_digest as content_digest  # re-exported: its old home
-from radaraug._files import remove_stale_temporaries, temporaries_of, temporary_name
 from radaraug._optional import lazy_import
 from radaraug.errors import CaptureError
+from radaraug.files import remove_stale_temporaries, temporaries_of, temporary_name
 from radaraug.raytrace.cache import default_cache_dir as default_cache_dir  # one folder for every cache
 from radaraug.sim.dataset import SimulatedRadarDataset
 from radaraug.sim.twin import TWIN_MODEL_VERSION

@@ -33,9 +33,9 @@ import lightning as L
 import torch
 from torch.utils.data import ConcatDataset, DataLoader, Dataset, Subset
 
-from radaraug._files import atomic_write_json
 from radaraug.config import RadarConfig
 from radaraug.errors import CalibrationError, ConfigError
+from radaraug.files import atomic_write_json
 from radaraug.io import RadarCaptureDataset, open_capture
 from radaraug.sensor.profile import PROFILE_VERSION, TwinProfile
 from radaraug.sim.dataset import SimulatedRadarDataset
@@ -544,8 +544,8 @@ class RadarDataModule(L.LightningDataModule):
 
     def _matched_dr(self, dr: CalibratedDR, train: CachedMaps) -> CalibratedDR:
         """``dr`` with its floor quantiles matched to the twin's own empty-room floor (``cdr_floor="matched"``)."""
-        from radaraug.calibration.floor_fit import floor_values, matched_floor_quantiles
         from radaraug.transforms.dsp_spec import doppler_window_of
+        from radaraug.transforms.floor_fit import floor_values, matched_floor_quantiles
 
         empty = (train.counts == 0).nonzero().flatten()[:256].tolist()
         if not empty or dr.quantiles_db is None:

@@ -14,8 +14,8 @@ from typing import TYPE_CHECKING, Any
 
 import torch
 
-from radaraug._files import atomic_savefig
 from radaraug._optional import pyplot  # imports matplotlib when called
+from radaraug.files import atomic_savefig
 from radaraug.training.metrics import balanced_accuracy, draw_confusion
 from radaraug.transforms import CombineRx
 

@@ -16,8 +16,8 @@ from typing import Any
 
 import torch
 
-from radaraug._files import atomic_savefig, atomic_write_json
 from radaraug.errors import ConfigError
+from radaraug.files import atomic_savefig, atomic_write_json
 
 
 def confusion_matrix(preds: torch.Tensor, targets: torch.Tensor, num_classes: int) -> torch.Tensor:

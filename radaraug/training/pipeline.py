@@ -47,7 +47,7 @@ REPRESENTATIONS = ("paper", "floor_relative")
 #: CalibratedDR floors a run can ask for: CalibratedDR's own (``normal``: the paper's, ``empirical``:
 #: the capture's measured distribution) and ``matched``: the empirical clamp distribution
 #: deconvolved against the twin's own empty-room floor, so that ``max(S, N)`` has the capture's
-#: (:func:`radaraug.calibration.floor_fit.matched_floor_quantiles`).
+#: (:func:`radaraug.transforms.floor_fit.matched_floor_quantiles`).
 CDR_FLOORS = ("normal", "empirical", "matched")
 #: Methods whose DR is CalibratedDR (they need a calibration).
 CDR_METHODS = ("cdr", "cdr_profile")

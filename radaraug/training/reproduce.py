@@ -30,9 +30,9 @@ from typing import Any
 import torch
 
 from radaraug import recipes
-from radaraug._files import atomic_write_json, atomic_write_text
 from radaraug._optional import lazy_import
 from radaraug.errors import ConfigError
+from radaraug.files import atomic_write_json, atomic_write_text
 from radaraug.training.pipeline import CDR_METHODS, METHODS, PROFILE_METHODS, TASKS, is_calibration_json
 from radaraug.units import DB_CONVENTION
 

@@ -7,7 +7,7 @@ exactly unchanged. ``N`` is i.i.d. Gaussian per cell, per RX and per frame (samp
 * :class:`RandomDR`: per frame, ``m ~ U(mean_db)``, ``s ~ U(std_db)``, ``N ~ Normal(m, s**2)``.
 * :class:`CalibratedDR`: fixed ``(m_t, s_t)``, the mean and standard deviation of all RD dB
   values of an empty-room capture processed by the same chain (fitted by
-  :mod:`radaraug.calibration.floor_fit`; :meth:`CalibratedDR.fit` delegates to it).
+  :mod:`radaraug.transforms.floor_fit`; :meth:`CalibratedDR.fit` delegates to it).
 
 Replayable parameters (``last_params``): ``apply`` (bool per sample), ``noise_db`` (the floor
 map ``N``, broadcastable to the input), and for RandomDR ``mean_db``/``std_db`` per sample.
@@ -32,14 +32,14 @@ import torch
 
 from radaraug.config import RadarConfig
 from radaraug.errors import CalibrationError, ConfigError, RadarAugError
-from radaraug.safe_read import safe_repr
+from radaraug.files import safe_repr
 from radaraug.transforms import functional as F
 from radaraug.transforms._motion import DEFAULT_THRESHOLD_DB
 from radaraug.transforms.base import Params, RandomRadarTransform
 from radaraug.transforms.dsp_spec import canonical_chain, describe_chain
 
 if TYPE_CHECKING:
-    from radaraug.calibration.record_file import CalibrationRecord
+    from radaraug.transforms.record_file import CalibrationRecord
 
 DEFAULT_RANDOM_DR_MEAN_DB = (-120.0, -90.0)
 DEFAULT_RANDOM_DR_STD_DB = (1.0, 4.0)
@@ -167,8 +167,8 @@ class CalibratedDR(_DRClamp):
     empty room, 99.9th percentile -89.4 dB measured vs -81.2 dB for the normal; docs/transforms.md).
 
     Made by :meth:`fit` (from an empty-room capture), :meth:`load` (from a calibration file) or
-    :meth:`from_record` (from a :class:`~radaraug.calibration.record_file.CalibrationRecord`); the
-    fitting and the file belong to :mod:`radaraug.calibration`, these classmethods delegate to it.
+    :meth:`from_record` (from a :class:`~radaraug.transforms.record_file.CalibrationRecord`); these
+    classmethods delegate to :mod:`~radaraug.transforms.floor_fit` and :mod:`~radaraug.transforms.record_file`.
     They record the DSP chain, radar config and map shape the floor was measured with; a
     :class:`~radaraug.transforms.compose.RadarCompose` then refuses a different chain, and a map
     of another shape is refused at call time. The constructor itself only takes fitted numbers:
@@ -380,8 +380,8 @@ class CalibratedDR(_DRClamp):
         The standard deviation is the population one (``correction=0``); statistics are
         accumulated in float64.
         """
-        # The fit is calibration's; this delegates (imported here: calibration sits above the transforms).
-        from radaraug.calibration.floor_fit import floor_statistics
+        # Imported here: floor_fit builds its chain from the transforms' submodules.
+        from radaraug.transforms.floor_fit import floor_statistics
 
         stats = floor_statistics(
             source, pipeline=pipeline, config=config, max_frames=max_frames, input=input,
@@ -392,19 +392,19 @@ class CalibratedDR(_DRClamp):
     # ------------------------------------------------------------------ persistence
     def to_dict(self) -> dict[str, Any]:
         """The calibration record :meth:`save` writes (``radaraug fit-cdr --json`` prints it)."""
-        from radaraug.calibration.record_file import CalibrationRecord  # the record is calibration's
+        from radaraug.transforms.record_file import CalibrationRecord
 
         return CalibrationRecord.from_cdr(self).to_dict()
 
     def save(self, path: str | os.PathLike) -> None:
-        """Write the calibration as a :class:`~radaraug.calibration.record_file.CalibrationRecord`, atomically.
+        """Write the calibration as a :class:`~radaraug.transforms.record_file.CalibrationRecord`, atomically.
 
         A full disk or a crash leaves the previous file, or none, never a partial one.
 
         Raises:
             CalibrationError: the file cannot be written (the message names it).
         """
-        from radaraug.calibration.record_file import CalibrationRecord  # the record is calibration's
+        from radaraug.transforms.record_file import CalibrationRecord
 
         CalibrationRecord.from_cdr(self).save(path)
 
@@ -429,19 +429,19 @@ class CalibratedDR(_DRClamp):
         """Read a calibration record (or an older CalibratedDR JSON); ``kwargs`` go to the constructor.
 
         ``CalibratedDR.from_record(load_record(path), **kwargs)``
-        (:func:`radaraug.calibration.record_file.load_record`).
+        (:func:`radaraug.transforms.record_file.load_record`).
 
         Raises:
             CalibrationError: missing, unreadable or malformed file, another format or version, another
                 ``db_convention``, or a record without a floor (the message names the file).
         """
-        from radaraug.calibration.record_file import load_record  # the one reader of calibration files
+        from radaraug.transforms.record_file import load_record  # the one reader of calibration files
 
         return cls.from_record(load_record(path), **kwargs)
 
     @classmethod
     def from_record(cls, record: CalibrationRecord, **kwargs: Any) -> CalibratedDR:
-        """The clamp of a :class:`~radaraug.calibration.record_file.CalibrationRecord`'s floor.
+        """The clamp of a :class:`~radaraug.transforms.record_file.CalibrationRecord`'s floor.
 
         Nothing is fitted or read: the record's numbers go to the constructor, ``kwargs`` after them
         (e.g. ``seed=``, or ``floor=`` to override the record's).

@@ -8,13 +8,13 @@ import warnings
 
 import pytest
 
-from radaraug.calibration.record_file import content_digest, load_record
 from radaraug.capture import VirtualSensor, calibrate
 from radaraug.cli import main
 from radaraug.errors import CalibrationError
 from radaraug.io import open_capture
 from radaraug.scene.scene import Scene
 from radaraug.transforms import CalibratedDR
+from radaraug.transforms.record_file import content_digest, load_record
 
 # 0.1 s frames: in 32 frames (3.2 s) the walker crosses enough range-Doppler cells to be seen.
 CFG = Scene.builtin("corridor").config.replace(num_chirps_per_frame=16, num_samples_per_chirp=64,

@@ -10,7 +10,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from radaraug.io.atomic import (
+from radaraug.files import (
     atomic_save,
     atomic_savefig,
     atomic_write_bytes,
@@ -70,7 +70,7 @@ def test_a_real_file_size_limit_never_leaves_a_partial_file(tmp_path) -> None:
         "import resource, signal, sys\n"
         "signal.signal(signal.SIGXFSZ, signal.SIG_IGN)\n"
         "resource.setrlimit(resource.RLIMIT_FSIZE, (1000, resource.RLIM_INFINITY))\n"
-        "from radaraug.io.atomic import atomic_write_text\n"
+        "from radaraug.files import atomic_write_text\n"
         "try:\n"
         "    atomic_write_text(sys.argv[1], 'x' * 5000)\n"
         "except OSError as e:\n"

@@ -144,14 +144,3 @@ def test_dataloader_with_spawned_workers(two_files, tiny_config):
     torch.testing.assert_close(x, expected)
 
 
-def test_deprecated_knob_names_still_work(two_files) -> None:
-    # radaraug 0.1 named the knobs frames_per_sample / as_float; they map to the new names.
-    with pytest.warns(DeprecationWarning, match="frames_per_item"):
-        old = RadarCaptureDataset(two_files, frames_per_sample=2)
-    with pytest.warns(DeprecationWarning, match="as_counts"):
-        counts = RadarCaptureDataset(two_files, as_float=False)
-    new = RadarCaptureDataset(two_files, frames_per_item=2)
-    assert len(old) == len(new) and torch.equal(old[0], new[0])
-    assert counts[0].dtype == torch.int32
-    with pytest.raises(CaptureError, match="not also"):
-        RadarCaptureDataset(two_files, frames_per_item=2, frames_per_sample=2)

@@ -1,9 +1,8 @@
 """The file helpers sit below every layer, and the twin's layers do not import the capture layer.
 
-``radaraug._files`` (atomic writes, temporary names, safe reads) is imported by scenes, the ray
+``radaraug.files`` (atomic writes, temporary names, safe reads) is imported by scenes, the ray
 tracer, the receiver, captures, transforms and training; it may import nothing of radaraug but
-``radaraug.errors``, or it would tie those layers together. Its public paths
-(``radaraug.io.atomic``, ``radaraug.safe_read``) re-export it.
+``radaraug.errors``, or it would tie those layers together.
 """
 
 from __future__ import annotations
@@ -11,9 +10,6 @@ from __future__ import annotations
 import subprocess
 import sys
 
-import radaraug._files as files
-import radaraug.io.atomic as atomic
-import radaraug.safe_read as safe_read
 from tests.conftest import REPO_ROOT
 from tests.test_import_cycles import _imported_names
 
@@ -21,17 +17,11 @@ ALLOWED = {"radaraug", "radaraug.errors"}
 
 
 def test_files_module_imports_nothing_of_radaraug_but_errors() -> None:
-    path = REPO_ROOT / "radaraug" / "_files.py"
-    found = {m for m in _imported_names("radaraug._files", path) if m == "radaraug" or m.startswith("radaraug.")}
+    path = REPO_ROOT / "radaraug" / "files.py"
+    found = {m for m in _imported_names("radaraug.files", path) if m == "radaraug" or m.startswith("radaraug.")}
     # "from radaraug.errors import X" also counts as "radaraug.errors.X"
     bad = sorted(m for m in found if m not in ALLOWED and not m.startswith("radaraug.errors."))
-    assert not bad, f"radaraug._files must import nothing of radaraug but radaraug.errors, found {bad}"
-
-
-def test_public_paths_re_export_the_same_objects() -> None:
-    for module in (atomic, safe_read):
-        for name in module.__all__:
-            assert getattr(module, name) is getattr(files, name), f"{module.__name__}.{name}"
+    assert not bad, f"radaraug.files must import nothing of radaraug but radaraug.errors, found {bad}"
 
 
 def test_twin_layers_do_not_load_the_capture_layer() -> None:

@@ -178,34 +178,11 @@ def test_spur_tone_uses_each_frames_own_start_in_a_batch(small_cfg):
 
 
 def test_module_apply_works_on_receivers_and_effects():
-    """``nn.Module.apply(fn)`` reaches every effect (effects implement ``forward(state)``; an old
-    ``apply(state)`` hid ``Module.apply``), and a legacy subclass is adapted with a warning."""
-    import warnings as _warnings
-
+    """``nn.Module.apply(fn)`` reaches every effect (effects implement ``forward(state)``)."""
     from radaraug.config import RadarConfig
-    from radaraug.sensor.effects.base import Effect
     from radaraug.sensor.receiver import FMCWReceiver
 
     rx = FMCWReceiver(RadarConfig.bgt60tr13c())
     seen = []
     assert rx.apply(lambda m: seen.append(type(m).__name__)) is rx
     assert "FMCWReceiver" in seen and len(seen) > len(rx.effects)
-
-    with _warnings.catch_warnings(record=True) as caught:
-        _warnings.simplefilter("always")
-
-        class Legacy(Effect):
-            name = "legacy_test_effect"
-
-            def apply(self, state):  # the old interface
-                state.touched = True
-
-    assert any(issubclass(w.category, DeprecationWarning) for w in caught)
-
-    class State:
-        touched = False
-
-    st = State()
-    Legacy()(st)
-    assert st.touched
-    assert Legacy().apply(lambda m: None) is not None  # Module.apply again

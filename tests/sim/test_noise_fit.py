@@ -3,12 +3,12 @@
 import pytest
 import torch
 
+from radaraug.calibration.noise_fit import fit_noise_figure, noise_fit_receiver
 from radaraug.errors import CalibrationError
 from radaraug.io.summary import noise_floor_db
 from radaraug.scene.scene import Scene
 from radaraug.sensor.defaults import ADC_NOISE_RMS_COUNTS
 from radaraug.sensor.receiver import FMCWReceiver
-from radaraug.sim.noise_fit import fit_noise_figure, noise_fit_receiver
 from radaraug.sim.twin import DigitalTwin
 from radaraug.transforms import RangeDoppler, ToDecibels
 

@@ -3,7 +3,6 @@ are applied exactly (closed forms), YAML round trip, and ``off()`` is the plain 
 
 from __future__ import annotations
 
-import dataclasses
 import math
 import pickle
 
@@ -371,14 +370,3 @@ def test_drawn_phase_noise_skirts_a_strong_static_scatterer() -> None:
     assert min(draws) < 80e3 and max(draws) > 350e3
 
 
-def test_simulate_item_is_a_deprecated_wrapper_of_the_twin(ideal_twin: DigitalTwin) -> None:
-    """``simulate_item`` warns and gives ``DigitalTwin.simulate(..., draw=...)`` bit for bit."""
-    from radaraug.sim.randomization import simulate_item
-
-    times = ideal_twin.frame_times([0])
-    draw = ItemDraw(0, 1.5, -1.0, (), ((6.0, 0.0, 0.0, 0.0),), 2e5)
-    with pytest.warns(DeprecationWarning, match="DigitalTwin.simulate"):
-        old = simulate_item(ideal_twin, [], times, draw, torch.Generator().manual_seed(1), phase_noise_paths=3)
-    new = ideal_twin.simulate([], times, generators=torch.Generator().manual_seed(1),
-                              draw=dataclasses.replace(draw, phase_noise_paths=3))
-    assert torch.equal(old, new)

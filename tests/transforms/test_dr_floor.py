@@ -18,7 +18,7 @@ from radaraug.cli import main
 from radaraug.errors import CalibrationError, InputTensorError
 from radaraug.transforms import CalibratedDR, RadarCompose, RangeDoppler, ToDecibels
 from radaraug.transforms import functional as F
-from radaraug.transforms.dr_fit import QUANTILES
+from radaraug.transforms.floor_fit import QUANTILES
 
 P0_DB = -100.0  # mean noise power per cell, dB
 CLUTTER_DB = -40.0

@@ -10,7 +10,7 @@ import torch
 from radaraug.errors import ConfigError
 from radaraug.transforms import FloorRelative
 from radaraug.transforms import functional as F
-from radaraug.transforms.dr_fit import floor_values, matched_floor_quantiles
+from radaraug.transforms.floor_fit import floor_values, matched_floor_quantiles
 
 
 def exp_noise_db(shape: tuple[int, ...], mean_db: float, seed: int) -> torch.Tensor:

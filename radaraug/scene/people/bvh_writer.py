@@ -7,8 +7,8 @@ from pathlib import Path
 
 import torch
 
-from radaraug._files import atomic_write_text
 from radaraug.errors import SceneError
+from radaraug.files import atomic_write_text
 from radaraug.scene.people import _rotations as rot
 from radaraug.scene.people.bvh_person import _BVH_TO_WORLD, UNIT_SCALES
 from radaraug.scene.people.skeleton import ANKLE_HEIGHT_FRACTION

@@ -18,7 +18,6 @@ stages; :func:`insert_in_order` puts a new effect at its place in an existing ch
 from __future__ import annotations
 
 import math
-import warnings
 from collections.abc import Callable, Iterator, Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any, ClassVar, cast
@@ -131,22 +130,8 @@ class Effect(nn.Module):
     whose value is ``None`` are taken from the :class:`~radaraug.RadarConfig` at call time (e.g. the
     IF gain) and are not stored.
 
-    ``nn.Module.apply(fn)`` works as on any module. (Effects once implemented ``apply(state)``,
-    which hid it; a subclass that still does is adapted with a ``DeprecationWarning``.)
+    ``nn.Module.apply(fn)`` works as on any module.
     """
-
-    def __init_subclass__(cls, **kwargs: Any) -> None:
-        super().__init_subclass__(**kwargs)
-        legacy = cls.__dict__.get("apply")
-        if legacy is not None and "forward" not in cls.__dict__:
-            warnings.warn(
-                f"{cls.__name__}.apply(state) is deprecated: implement forward(state) (apply hid "
-                "torch.nn.Module.apply); adapted for now",
-                DeprecationWarning,
-                stacklevel=2,
-            )
-            cls.forward = legacy  # type: ignore[method-assign]
-            cls.apply = nn.Module.apply  # type: ignore[method-assign]
 
     name: ClassVar[str] = ""
     # Subclasses annotate each parameter (``gain_dB: torch.Tensor``, ``| None`` when it may come

@@ -1,4 +1,4 @@
-"""The bounded, non-blocking file reads and the one safe JSON loader (radaraug.safe_read)."""
+"""The bounded, non-blocking file reads and the one safe JSON loader (radaraug.files)."""
 
 from __future__ import annotations
 
@@ -8,7 +8,7 @@ import time
 import pytest
 
 from radaraug.errors import CalibrationError, ConfigError
-from radaraug.safe_read import MAX_JSON_DEPTH, load_json, parse_json, read_bytes, safe_repr
+from radaraug.files import MAX_JSON_DEPTH, load_json, parse_json, read_bytes, safe_repr
 
 
 def test_reads_a_regular_file_and_parses_json(tmp_path) -> None:

@@ -8,13 +8,13 @@ import pytest
 import torch
 
 from radaraug.calibration.record import fit_record
-from radaraug.calibration.record_file import CalibrationRecord, content_digest, load_record
 from radaraug.config import RadarConfig
 from radaraug.errors import CalibrationError
 from radaraug.io import write_capture
 from radaraug.sensor import FMCWReceiver
 from radaraug.sensor.profile import TwinProfile
 from radaraug.transforms import CalibratedDR, RadarCompose, RangeDoppler, ToDecibels
+from radaraug.transforms.record_file import CalibrationRecord, content_digest, load_record
 from radaraug.units import DB_CONVENTION, float_to_counts
 
 CFG = RadarConfig.bgt60tr13c(num_samples_per_chirp=64, num_chirps_per_frame=16)

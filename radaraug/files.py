@@ -2,9 +2,7 @@
 
 This module imports nothing of radaraug but :mod:`radaraug.errors`, so that any layer (scenes,
 the ray tracer, the receiver, captures, transforms, training) can write and read its files
-without importing another layer (``tests/io/test_layering.py`` checks it). The public paths are
-:mod:`radaraug.io.atomic` (writes, temporary names) and :mod:`radaraug.safe_read` (reads), which
-re-export from here.
+without importing another layer (``tests/io/test_layering.py`` checks it).
 
 **Atomic writes.** Every file radaraug writes in one piece (calibration and profile JSON, reports, figures, caches,
 Infineon recording files) goes through :func:`atomic_open`. A reader, a crash or a full disk then

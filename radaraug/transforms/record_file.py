@@ -4,7 +4,7 @@ A :class:`CalibrationRecord` holds the empty-room fit: CalibratedDR's floor stat
 the radar config and the capture's identity, and optionally the twin profile ``diagnose`` fits on
 it, the twin's noise fit and the capture's persistent RD cells. It is written as one JSON file
 (``{"format": "radaraug-calibration", "version": 1, ...}``, atomically) and read by one reader,
-:func:`load_record`, through :func:`radaraug.safe_read.load_json`, which also reads the files that
+:func:`load_record`, through :func:`radaraug.files.load_json`, which also reads the files that
 came before it as partial records:
 
 * a CalibratedDR JSON (``"format": "radaraug.CalibratedDR"``, ``format_version`` 1 or 2, or none: 1);
@@ -15,8 +15,8 @@ came before it as partial records:
 Anything else (another format or version, a malformed field) is one :class:`CalibrationError`
 naming the file and what is wrong. ``CalibratedDR.from_record(record)`` makes the clamp.
 
-This module imports nothing of :mod:`radaraug.transforms` (``CalibratedDR.load`` and ``save`` call
-it), so it stays a leaf below the transforms.
+It imports no other transform module (``CalibratedDR.load`` and ``save`` call it); the calibration
+layer above fits the records (:func:`radaraug.calibration.record.fit_record`).
 """
 
 from __future__ import annotations
@@ -31,9 +31,9 @@ from typing import Any
 import torch
 
 from radaraug._cache_key import content_digest as content_digest  # re-exported: the record names it
-from radaraug._files import atomic_write_json, load_json, safe_repr
 from radaraug.config import RadarConfig
 from radaraug.errors import CalibrationError, ConfigError
+from radaraug.files import atomic_write_json, load_json, safe_repr
 from radaraug.sensor.profile import PROFILE_FORMAT, TwinProfile
 from radaraug.units import DB_CONVENTION
 

@@ -1,8 +1,7 @@
 """Fitting the calibrated noise floor: ``(m_t, s_t)`` of an empty-room capture's RD dB maps.
 
-The fit belongs to the calibration layer; :mod:`radaraug.transforms.dr` keeps the clamp itself
-(:meth:`CalibratedDR.fit <radaraug.transforms.CalibratedDR.fit>` is a thin delegate to
-:func:`floor_statistics`). Only submodules of :mod:`radaraug.transforms` are imported here, never
+:mod:`radaraug.transforms.dr` keeps the clamp itself (:meth:`CalibratedDR.fit
+<radaraug.transforms.CalibratedDR.fit>` is a thin delegate to :func:`floor_statistics`). Only submodules of :mod:`radaraug.transforms` are imported here, never
 the package or :mod:`~radaraug.transforms.dr`, so the delegate closes no import cycle.
 """
 
