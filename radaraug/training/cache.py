@@ -32,7 +32,7 @@ from radaraug._cache_key import cache_key
 from radaraug._cache_key import content_digest as content_digest  # re-exported: its old home
 from radaraug._optional import lazy_import
 from radaraug.errors import CaptureError
-from radaraug.files import remove_stale_temporaries, temporaries_of, temporary_name
+from radaraug.files import parse_json, remove_stale_temporaries, temporaries_of, temporary_name
 from radaraug.raytrace.cache import default_cache_dir as default_cache_dir  # one folder for every cache
 from radaraug.sim.dataset import SimulatedRadarDataset
 from radaraug.sim.twin import TWIN_MODEL_VERSION
@@ -235,7 +235,7 @@ class CachedMaps(Dataset):
             with h5py.File(self.path, "r") as f:
                 if f.attrs.get("format") != CACHE_FORMAT:
                     raise CaptureError(f"{self.path}: not a radaraug simulated-map cache")
-                self.spec = json.loads(f.attrs["spec"])
+                self.spec = parse_json(f.attrs["spec"], source=self.path, error=CaptureError, what="cache spec")
                 self.counts = torch.from_numpy(f["count"][()])
                 self.indices = torch.from_numpy(f["index"][()])
                 self.map_shape = tuple(f["maps"].shape[1:])
