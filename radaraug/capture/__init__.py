@@ -1,16 +1,6 @@
 """Live capture: find boards on USB, record crash-safely, calibrate in one step, a virtual sensor.
 
-* :class:`RadarDevice`: what every live source offers (``config``, ``info``, ``start()``,
-  ``next_frame()``, ``stop()``, a context manager); :class:`Frame` is one frame.
-* :class:`VirtualSensor`: the digital twin as a device (tests, and users without a board).
-* :class:`SdkDevice`: a real Infineon board through Infineon's ``ifxradarsdk`` (optional,
-  installed from Infineon; untested on hardware in this project's CI).
-* :func:`find_boards`: Infineon radar boards on USB (pyusb).
-* :func:`open_device`: ``"virtual"``, ``"auto"`` or a serial -> a device.
-* :func:`record`: a device -> a radaraug HDF5 capture (:class:`~radaraug.io.CaptureWriter`).
-* :func:`calibrate`: record the empty room and fit ``CalibratedDR`` in one step.
-
-See ``docs/capture.md``.
+Boards (:class:`SdkDevice`) and the twin (:class:`VirtualSensor`) are each a :class:`RadarDevice` (``docs/capture.md``).
 """
 
 from __future__ import annotations
@@ -39,19 +29,15 @@ def open_device(
     """A device from a ``--device`` value (nothing is opened until ``start()``).
 
     Args:
-        spec: ``"virtual"`` (the twin), ``"auto"`` (the first board the SDK finds) or a board's
-            serial/UUID.
-        config: radar config (virtual default: the scene's; boards: ``RadarConfig.bgt60tr13c()``).
-        scene: the virtual sensor's scene: a Scene, a scene file or a built-in name (default
-            ``"corridor"``).
+        spec: ``"virtual"``, ``"auto"`` (the first board the SDK finds) or a board's serial/UUID.
+        config: radar config (default: the scene's, or ``RadarConfig.bgt60tr13c()`` for a board).
+        scene: the virtual sensor's scene (default ``"corridor"``).
         profile: the virtual sensor's fitted twin profile (default: none).
         seed: the virtual sensor's noise seed (default 0).
-        realtime: the virtual sensor hands frames out at the frame rate (True, the default) or as
-            fast as possible.
+        realtime: the virtual sensor's pacing at the frame rate (default True).
 
     Raises:
-        ConfigError: a virtual-sensor argument (``scene``, ``profile``, ``seed``, ``realtime``)
-            given for a board: a board would silently ignore it.
+        ConfigError: a virtual-sensor argument given for a board (it would be ignored).
         DeviceError: a MIMO config for a board. SceneError: an unknown scene (virtual).
     """
     if spec == "virtual":

@@ -1,15 +1,4 @@
-"""`RadarDevice`: what every live radar source offers, a real board or the virtual sensor.
-
-A device is created cheaply (nothing is opened), then :meth:`RadarDevice.start` opens the board
-(or builds the twin) and starts acquisition, :meth:`RadarDevice.next_frame` blocks until the
-next frame is ready, and :meth:`RadarDevice.stop` ends acquisition and releases the board. Used
-as a context manager, ``with device:`` starts and stops it.
-
-Frames come as :class:`Frame`: the raw cube ``(rx, chirps, samples)`` in Infineon SDK floats
-(``2*counts/4095 - 1``, the unit of every raw cube in radaraug), the frame's start time in
-seconds since acquisition started, and the frame's index in the device's frame sequence. A gap
-in the indices is a frame the device dropped (a host that did not read in time).
-"""
+"""`RadarDevice`: what every live radar source offers, a real board or the virtual sensor."""
 
 from __future__ import annotations
 
@@ -28,7 +17,7 @@ class Frame:
     """One frame from a :class:`RadarDevice`.
 
     Attributes:
-        data: ``(rx, chirps, samples)`` float32 tensor in SDK floats.
+        data: ``(rx, chirps, samples)`` float32 tensor in SDK floats (``2*counts/4095 - 1``).
         timestamp: start of the frame in seconds since acquisition started.
         index: the frame's number in the device's sequence (0, 1, 2, ...; a gap is a dropped frame).
     """
@@ -41,9 +30,7 @@ class Frame:
 class RadarDevice(abc.ABC):
     """A live source of radar frames (a board on USB, or :class:`~radaraug.capture.VirtualSensor`).
 
-    Subclasses implement :meth:`_open`, :meth:`_read` and :meth:`_close`; this class keeps the
-    started/stopped state so that ``start``/``stop`` are idempotent and ``next_frame`` on a
-    stopped device is a clear error.
+    Subclasses implement ``_open``, ``_read`` and ``_close``; ``start``/``stop`` are idempotent.
     """
 
     def __init__(self) -> None:
@@ -65,7 +52,7 @@ class RadarDevice(abc.ABC):
         return self._running
 
     def start(self) -> None:
-        """Open the device and start acquisition (no-op when already started).
+        """Open the device and start acquisition (no-op when started).
 
         Raises:
             DeviceError: the device cannot be opened or configured.

@@ -1,13 +1,4 @@
-"""One-step calibration: record the empty room from a device and fit its calibration record.
-
-The fit is :func:`radaraug.calibration.record.fit_record` on the recording (CalibratedDR's floor,
-exactly what ``radaraug fit-cdr`` fits on a file), written as one calibration record
-(:mod:`radaraug.transforms.record_file`) that ``CalibratedDR.load`` reads. The emptiness test is
-the motion check that fit already runs (:mod:`radaraug.transforms._motion`). Where ``fit-cdr`` only warns, this
-refuses: a calibration of a room in which something moved is not written, and the message gives
-the measured motion fraction against the threshold. What does not move (a person standing still,
-a fan whose blades stay in the same cells) is not seen by the check.
-"""
+"""One-step calibration: record the empty room and fit its calibration record as ``radaraug fit-cdr`` does."""
 
 from __future__ import annotations
 
@@ -37,11 +28,9 @@ class CalibrationRun:
     """What :func:`calibrate` did.
 
     Attributes:
-        cdr: the fitted clamp (``CalibratedDR.from_record(record)``).
-        output: the calibration record written.
-        recording: the recording's :class:`~radaraug.capture.record.RecordResult` (its ``path``
-            is None unless the recording was kept).
-        record: the calibration record saved to ``output``.
+        cdr, record: the fitted clamp (``CalibratedDR.from_record(record)``) and its record.
+        output: where the record was saved.
+        recording: the :class:`~radaraug.capture.record.RecordResult` (``path`` None unless kept).
     """
 
     cdr: CalibratedDR
@@ -65,26 +54,22 @@ def calibrate(
 
     Args:
         device: a :class:`RadarDevice`, not started.
-        output: the calibration record (``CalibratedDR.load(output)`` and
-            :func:`~radaraug.calibration.record.load_record` read it).
+        output: the calibration record to write (``CalibratedDR.load`` reads it).
         seconds: length of the empty-room recording.
         keep_recording: also keep the recording as this ``.h5`` capture (else it is deleted).
         overwrite: replace an existing ``keep_recording`` file.
-        motion_threshold_db: threshold of the motion check (see :mod:`radaraug.transforms._motion`).
-        progress: show the recording's progress bar.
-        floor: the calibration's floor distribution, ``"normal"`` (the paper's) or ``"empirical"``
-            (see :class:`~radaraug.transforms.CalibratedDR`).
+        motion_threshold_db: threshold of the motion check.
+        progress: show a progress bar.
+        floor: ``"normal"`` (the paper's) or ``"empirical"`` (see :class:`~radaraug.transforms.CalibratedDR`).
 
     Returns:
         A :class:`CalibrationRun`.
 
     Raises:
-        CalibrationError: something moved in the room (motion above the threshold), the recording
-            has too few frames to check it (fewer than 16), or ``output`` cannot be written
+        CalibrationError: something moved, fewer than 16 frames, or ``output`` not writable
             (checked before recording).
         CaptureError, DeviceError, ConfigError: as :func:`~radaraug.capture.record.record`.
-        KeyboardInterrupt: Ctrl-C during the recording (nothing is fitted or written; a kept
-            recording holds the frames so far).
+        KeyboardInterrupt: Ctrl-C while recording (nothing is written; a kept recording keeps its frames).
     """
     from radaraug.calibration.record import fit_record
 

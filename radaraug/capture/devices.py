@@ -1,13 +1,6 @@
-"""Find Infineon radar boards on USB (pyusb's public API), and say why one cannot be used.
+"""Find Infineon radar boards on USB (pyusb), and say why one cannot be used.
 
-Boards are recognised by Infineon's USB vendor id and the product ids of its radar evaluation
-platforms (:data:`BOARDS`). For each one the serial number is read from the string descriptors,
-which needs the right to open the device: on Linux a user without it sees ``permission denied``
-here, and the udev rule shipped with radaraug (:func:`udev_rule_path`, installed as described in
-``docs/capture.md``) fixes that.
-
-Nothing here talks to the radar itself; streaming goes through Infineon's SDK
-(:mod:`radaraug.capture.sdk`).
+Reading a serial number needs the right to open the board: on Linux the shipped udev rule grants it.
 """
 
 from __future__ import annotations
@@ -45,10 +38,8 @@ class UsbBoard:
 
     Attributes:
         name: board name from :data:`BOARDS`.
-        vendor_id, product_id: the USB ids.
-        bus, address: where it is on the USB tree.
-        serial: the serial number string, or None when it could not be read.
-        product: the product string the board reports, or None.
+        vendor_id, product_id, bus, address: the USB ids and where the board is on the USB tree.
+        serial, product: the board's serial number and product strings, or None when unreadable.
         access: ``"ok"``, :data:`PERMISSION_DENIED`, or why the strings could not be read.
     """
 
@@ -73,17 +64,14 @@ def find_boards(backend: Any = None) -> list[UsbBoard]:
     """The Infineon radar boards on USB.
 
     Args:
-        backend: a pyusb backend (``usb.backend.IBackend``); None lets pyusb choose (libusb 1.0,
-            OpenUSB, libusb 0.1, whichever is installed).
+        backend: a pyusb backend (``usb.backend.IBackend``); None lets pyusb choose.
 
     Returns:
-        One :class:`UsbBoard` per board, in pyusb's enumeration order; empty when none is plugged
-        in. A board whose strings cannot be read (no permission) is listed with ``access`` saying
-        why.
+        One :class:`UsbBoard` per board, in pyusb's order (empty when none); a board whose strings
+        cannot be read (no permission) is listed with ``access`` saying why.
 
     Raises:
-        DeviceError: no USB backend (libusb missing; the message says how to install it), or the
-            USB bus cannot be enumerated.
+        DeviceError: no USB backend (libusb missing), or the USB bus cannot be enumerated.
     """
     import usb.core
 

@@ -1,19 +1,6 @@
-"""Record a live device into a radaraug HDF5 capture, crash-safely.
+"""Record a live device into a radaraug HDF5 capture, crash-safely (see ``docs/capture.md``).
 
-The recording goes through :class:`~radaraug.io.CaptureWriter` (config written first, SWMR, a
-flush and a committed frame count per frame), so a crash, a ``kill -9`` or an unplugged board
-loses at most the frame in flight and leaves a file that opens with every earlier frame.
-
-Order of a run, so that whatever can be refused is refused before the device is touched:
-
-1. the output is checked: an existing file is refused (unless ``overwrite``), its folder is
-   created, the writer creates its hidden temporary file (an unwritable path fails here) and
-   checks that the run's frames fit the free space and ``ulimit -f``;
-2. only then is the device started, and frames stream into the file until the requested number
-   of frame periods has passed, the user presses Ctrl-C, or the device fails.
-
-Ctrl-C (SIGINT) is caught between frames (when recording in the main thread): the frame being
-written is finished, the file is closed cleanly and the result says ``interrupted``.
+Through :class:`~radaraug.io.CaptureWriter`: a crash, ``kill -9`` or unplugged board loses at most the frame in flight.
 """
 
 from __future__ import annotations
@@ -39,9 +26,7 @@ class RecordResult:
 
     Attributes:
         path: the capture file (None when no frame was recorded and no file was written).
-        frames: frames written.
-        dropped: frames the device dropped (gaps in its frame indices).
-        requested: frame periods asked for.
+        frames, dropped, requested: frames written, dropped by the device, and asked for.
         seconds: wall time of the streaming, seconds.
         interrupted: stopped early by Ctrl-C (the file is complete and closed all the same).
         device: the device's ``info``.
@@ -92,28 +77,23 @@ def record(
     Args:
         device: a :class:`RadarDevice`, not started (it is started and stopped here).
         path: the ``.h5`` capture to write.
-        seconds: how long to record (converted to frame periods of the device's config).
-        frames: or how many frame periods to record (give one of the two).
-        label: people count of the whole recording: stored per frame as ``count`` and
-            ``occupancy`` (``count > 0``), the labels ``radaraug reproduce --test`` and the
-            recipes read.
+        seconds: how long to record (give this or ``frames``).
+        frames: how many frame periods to record.
+        label: people count of the whole recording, stored per frame as ``count`` and ``occupancy``.
         overwrite: replace an existing file at ``path`` (else it is refused).
-        progress: show a progress bar (frames, rate, dropped frames) on stderr.
-        compression: ``"gzip"``, ``"lzf"`` or None (see :class:`~radaraug.io.CaptureWriter`).
+        progress: show a progress bar on stderr.
+        compression: ``"gzip"``, ``"lzf"`` or None.
         attrs: extra file attributes.
-        catch_sigint: end cleanly on Ctrl-C (only in the main thread; elsewhere a
-            KeyboardInterrupt propagates and the writer still closes the file).
+        catch_sigint: in the main thread, Ctrl-C ends the run cleanly (file closed, ``interrupted``).
 
     Returns:
         A :class:`RecordResult`.
 
     Raises:
         ConfigError: bad ``seconds``/``frames``/``label``.
-        CaptureError: the output exists (without ``overwrite``), cannot be created, or its
-            frames do not fit the free space: all before the device is started; or a write fails
-            later (the file keeps the frames completed before).
-        DeviceError: the device cannot be started, or fails while streaming (the file keeps the
-            frames recorded before; the message says how many).
+        CaptureError: the output exists, cannot be created or does not fit the free space (before
+            the device starts), or a write fails later (the file keeps the frames completed before).
+        DeviceError: the device cannot be started or fails while streaming (earlier frames are kept).
     """
     config = device.config
     if (seconds is None) == (frames is None):

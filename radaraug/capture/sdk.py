@@ -1,23 +1,6 @@
-"""`SdkDevice`: a real Infineon board, streamed through Infineon's own Python SDK ``ifxradarsdk``.
+"""`SdkDevice`: a real Infineon board, streamed through Infineon's optional Python SDK ``ifxradarsdk``.
 
-The SDK is an optional dependency that users install from Infineon (the Radar Development Kit's
-Python wheel); it is imported only when a board is opened, and its absence is a
-:class:`~radaraug.errors.DeviceError` that says what to install. radaraug does not speak the
-boards' protocol itself: it calls the SDK's public FMCW API only --
-``DeviceFmcw(uuid=...)``, ``get_sensor_information()``, ``create_simple_sequence(...)`` with a
-``FmcwSimpleSequenceConfig`` / ``FmcwSequenceChirp``, ``set_acquisition_sequence(...)``,
-``get_next_frame()`` (a list with one ``(rx, chirps, samples)`` float array per shape, already in
-SDK floats) and ``stop_acquisition()``.
-
-**Untested on hardware in this project's CI**: the adapter is tested against a stand-in module
-with the same calls, not against a board.
-
-Timestamps are host time (``time.monotonic``) at the moment each frame arrives, relative to the
-first frame; the SDK's Python API gives no frame counter, so a frame's index is estimated from
-its arrival time (``round(t / frame_period)``, never less than the previous index + 1), and a gap
-counts as dropped frames. A frame-acquisition error of the SDK (its FIFO overflowed because the
-host read too slowly) is counted as one dropped frame and reading goes on; any other SDK error while
-streaming (e.g. the board was unplugged) ends the stream with a DeviceError.
+Untested on hardware in CI (tested against a stand-in module). Frame timing: ``docs/capture.md``.
 """
 
 from __future__ import annotations
@@ -71,13 +54,12 @@ class SdkDevice(RadarDevice):
 
     Args:
         config: the radar config to apply (one FMCW shape, one TX: ``mimo_mode="off"``).
-        serial: the board's serial/UUID as ``radaraug devices`` or the SDK lists it; None opens
-            the first board the SDK finds.
+        serial: the board's serial/UUID; None opens the first board the SDK finds.
         timeout_ms: longest wait for one frame before the board counts as lost (default: two
             frame periods plus one second).
 
     Raises:
-        DeviceError: a MIMO config (not supported by this adapter).
+        DeviceError: a MIMO config (not supported).
     """
 
     def __init__(self, config: RadarConfig, *, serial: str | None = None, timeout_ms: int | None = None) -> None:

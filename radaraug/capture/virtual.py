@@ -1,18 +1,6 @@
 """`VirtualSensor`: the digital twin as a live radar device, for tests and for users without a board.
 
-The sensor plays a scene continuously, as ``radaraug simulate`` does: frame ``k`` starts at
-``k * frame_repetition_time``, the people walk on from their start positions, and frames are
-simulated in blocks of :data:`radaraug.io.blocks.BLOCK_FRAMES` (the block size of ``radaraug
-simulate``, so the streams agree) whose receiver noise comes from a generator seeded by
-``(seed, block)`` (:func:`radaraug.sim.seeding.item_generator`, ``Stream.BLOCK_NOISE``, the
-stream ``simulate`` uses). Frame ``k`` is therefore a pure function of (scene, config, profile,
-seed, ``k``): two sensors with the same settings give identical frames, and they equal the
-frames of ``radaraug simulate`` with the same scene and seed.
-
-Pacing: with ``realtime=True`` frame ``k`` is handed out when a real sensor would have it, at
-``k * frame_period + chirps * chirp_repetition_time`` after :meth:`start` (its last chirp's end);
-with ``realtime=False`` as fast as the twin simulates. When the twin is slower than real time the
-frames come late, never dropped (:attr:`VirtualSensor.late_s` says by how much).
+Frame ``k`` equals frame ``k`` of ``radaraug simulate`` with the same settings. See ``docs/capture.md``.
 """
 
 from __future__ import annotations
@@ -36,17 +24,12 @@ if TYPE_CHECKING:
 class VirtualSensor(RadarDevice):
     """The digital twin as a :class:`RadarDevice`.
 
-    Example:
-        >>> with VirtualSensor("corridor", realtime=False) as sensor:  # doctest: +SKIP
-        ...     frame = sensor.next_frame()        # Frame(data (3, 64, 256), timestamp 0.0, index 0)
-
     Args:
-        scene: a :class:`~radaraug.scene.scene.Scene`, a scene file or a built-in scene name
-            (default ``"corridor"``: the paper's empty corridor).
+        scene: a :class:`~radaraug.scene.scene.Scene`, a scene file or a built-in scene name.
         config: the radar config to simulate (default: the scene's).
         profile: a fitted twin profile (object, JSON path or dict from ``radaraug diagnose``).
         seed: noise seed; frame ``k`` depends only on the settings and ``(seed, k)``.
-        realtime: hand frames out at the sensor's frame rate (True) or as fast as possible.
+        realtime: frames at the sensor's frame rate (late, never dropped, if the twin is slower) or at once.
         device: torch device the twin simulates on (frames are returned on the CPU).
         twin_options: more keyword arguments of :class:`~radaraug.sim.twin.DigitalTwin`.
 
@@ -101,10 +84,7 @@ class VirtualSensor(RadarDevice):
                 "seed": self.seed, "realtime": self.realtime, "block_frames": BLOCK_FRAMES, "profile": profile}
 
     def frames(self, start: int, stop: int) -> torch.Tensor:
-        """Frames ``[start, stop)`` of this sensor's stream, ``(n, rx, chirps, samples)`` SDK floats.
-
-        Without pacing: for checking a recording against the stream it came from.
-        """
+        """Frames ``[start, stop)`` of the stream, ``(n, rx, chirps, samples)`` SDK floats, without pacing."""
         self._ensure_twin()
         out = [self._frame(k) for k in range(start, stop)]
         return torch.stack(out) if out else torch.empty(0, *self._shape())

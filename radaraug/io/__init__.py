@@ -1,13 +1,8 @@
 """Radar captures: radaraug's HDF5 format, Infineon recordings, and a torch Dataset over them.
 
-* :func:`open_capture` reads either kind and returns a :class:`CaptureReader`;
-* :class:`CaptureWriter` / :func:`write_capture` record radaraug HDF5 captures (crash-safe);
-* :func:`write_infineon_recording` writes Infineon's recording layout;
-* :mod:`radaraug.io.blocks`: the block size and the one block writer of simulated captures;
-* :class:`RadarCaptureDataset` serves frames or frame windows of many captures to a DataLoader;
-* :func:`sample_recording_path` points at the small real recording shipped with radaraug.
-
-The format is specified in ``docs/captures.md``. This package knows nothing of transforms.
+:func:`open_capture` reads either kind; :class:`CaptureWriter` records HDF5 captures crash-safely;
+:class:`RadarCaptureDataset` serves them to a DataLoader. Format: ``docs/captures.md``. This package
+knows nothing of transforms.
 """
 
 from radaraug.io.base import CaptureReader, CaptureWarning

@@ -1,17 +1,8 @@
 """Simulated captures in blocks of frames: the block size, the block arithmetic and the one block writer.
 
-A scene played continuously (``radaraug simulate``, :mod:`radaraug.sim.offline`; the virtual
-sensor, :mod:`radaraug.capture.virtual`; the held-out proxy, :mod:`radaraug.sim.proxy`) is
-simulated :data:`BLOCK_FRAMES` frames at a time: one twin call and one receiver-noise generator
-per block. The block size is therefore part of every such frame's identity (block ``b``'s noise
-comes from its own generator): never change it.
-
-:class:`BlockWriter` writes those frames to a radaraug HDF5 capture (:class:`CaptureWriter`) with
-the per-frame ``count`` and ``occupancy`` labels (:data:`COUNT_LABELS`), one append -- one flush,
-so one crash-safe commit -- per block. How a caller survives a crash is its choice, made here
-explicitly: ``BlockWriter.create`` (a new file, readable under its name from its first block; with
-``publish="close"`` it appears only complete), ``BlockWriter.resume`` (append to a killed or
-stopped run's file, which kept every block flushed before).
+Continuously played scenes (``radaraug simulate``, the virtual sensor, the held-out proxy) are simulated
+:data:`BLOCK_FRAMES` frames at a time, one noise generator per block: the block size is part of every
+such frame's identity, never change it. See ``docs/captures.md``, "Simulated captures".
 """
 
 from __future__ import annotations
@@ -48,11 +39,7 @@ def frame_times(start: int, stop: int, period_s: float) -> torch.Tensor:
 
 
 class BlockWriter:
-    """Frames with ``count``/``occupancy`` labels written to a capture, one flushed append per block.
-
-    Example:
-        >>> with BlockWriter.create("sim.h5", config, attrs={"source": "me"}) as w:  # doctest: +SKIP
-        ...     w.write(counts, timestamps, count=np.full(len(counts), 1))
+    """Frames with ``count``/``occupancy`` labels written to a capture, one flushed (crash-safe) append per block.
 
     Args:
         writer: an open :class:`CaptureWriter` whose per-frame labels are :data:`COUNT_LABELS`.

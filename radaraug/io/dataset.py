@@ -36,43 +36,24 @@ def _config_difference(a: RadarConfig, b: RadarConfig) -> str:
 class RadarCaptureDataset(Dataset):
     """Frames (or windows of consecutive frames) of one or more captures, as tensors.
 
-    Item ``i`` is a global index over all files: file ``k`` contributes
-    ``(F_k - frames_per_item) // stride + 1`` items, in file order; a file shorter than one
-    window contributes none (with a :class:`CaptureWarning`).
-
-    Files are opened lazily, in the process that reads them (each DataLoader worker opens its
-    own handles; at most ``max_open_files`` stay open per process). The dataset itself holds no
-    open file when pickled, so it works with the ``spawn`` and ``forkserver`` start methods.
+    File ``k`` gives ``(F_k - frames_per_item) // stride + 1`` items, in file order. Files are opened
+    lazily in each process (DataLoader workers included); a pickled dataset holds no open file.
+    Indexing, labels and workers: ``docs/captures.md``.
 
     Args:
         paths: one capture or a sequence of captures (anything :func:`open_capture` reads).
-        frames_per_item: ``T``. ``1`` gives ``(rx, chirps, samples)`` items; ``T > 1`` gives
-            ``(T, rx, chirps, samples)`` windows.
+        frames_per_item: ``T``: ``(rx, chirps, samples)`` items for 1, ``(T, rx, chirps, samples)`` windows above.
         stride: frames between the starts of consecutive windows (default ``T``: no overlap).
-        label: what the target of each item is:
-
-            * ``None``: items are just the tensor;
-            * a string: the name of a per-frame or file-level label stored in every file
-              (e.g. ``"count"``); a window takes the label of its **last** frame;
-            * a dict ``path -> label``: one label per file (paths compared after resolving);
-            * a callable ``(path, frame_index) -> label``, called with the window's last frame;
-            * anything else: a constant given to every item. (A constant *string* would be read
-              as a label name: pass ``{path: "text"}`` or a callable instead.)
+        label: the target: None (items are the tensor), a label name stored in every file (a window
+            takes its **last** frame's), a dict ``path -> label``, a callable ``(path, frame) -> label``,
+            or any other constant (a constant string would be read as a name).
         transform: applied to the frame tensor.
         target_transform: applied to the label.
-        as_counts: int32 raw ADC counts instead of float32 SDK floats (default False).
+        as_counts: int32 raw ADC counts instead of float32 SDK floats.
         max_open_files: open readers kept per process (least recently used are closed).
-        augmentation: ``"stream"`` (default: random transforms draw from their own generator or
-            the global RNG, per DataLoader worker) or ``"per_item"`` (they draw from a generator
-            of ``(augmentation_seed, index, epoch)``: item ``i`` is the same with any
-            ``num_workers``; call :meth:`set_epoch` each epoch). See
-            :mod:`radaraug.transforms.per_item`.
+        augmentation: ``"stream"`` or ``"per_item"`` (draws from ``(augmentation_seed, index, epoch)``:
+            the same with any ``num_workers``; call :meth:`set_epoch`). See :mod:`radaraug.transforms.per_item`.
         augmentation_seed: seed of the ``"per_item"`` draws.
-
-    The knobs are named as in :class:`radaraug.sim.SimulatedRadarDataset` (``frames_per_item``,
-    ``as_counts``, ``transform``, ``augmentation``); ``label`` differs from the simulated set's
-    ``target`` on purpose: a capture's labels are whatever its files store (any name, a dict, a
-    callable), while the simulator computes a fixed choice of targets.
 
     Attributes:
         config: the shared :class:`RadarConfig` of every file.
@@ -80,9 +61,8 @@ class RadarCaptureDataset(Dataset):
         num_frames: frames per file.
 
     Raises:
-        CaptureError: no paths, a file cannot be opened, files disagree on the radar
-            configuration (naming both files), a named label is missing from a file, a dict
-            label lacks a file, or no file holds a full window.
+        CaptureError: no paths, an unreadable file, files with different radar configs, a missing
+            label, a dict label lacking a file, or no file holding a full window.
     """
 
     def __init__(
@@ -232,10 +212,7 @@ class RadarCaptureDataset(Dataset):
         return int(self._offsets[-1])
 
     def set_epoch(self, epoch: int) -> None:
-        """Set the epoch of ``augmentation="per_item"`` draws (call before each epoch).
-
-        DataLoader workers started afterwards see it; persistent workers keep the one they started with.
-        """
+        """Set the epoch of ``augmentation="per_item"`` draws (before each epoch; persistent workers keep theirs)."""
         try:
             self.epoch = check_epoch(epoch, "RadarCaptureDataset")
         except ConfigError as e:

@@ -16,18 +16,13 @@ from radaraug.io.infineon import InfineonRecording
 def open_capture(path: str | os.PathLike) -> CaptureReader:
     """Open a capture for reading, choosing the reader from what ``path`` is.
 
-    * a ``.h5`` / ``.hdf5`` file (or any file starting with the HDF5 signature) -> radaraug
-      HDF5 capture (:class:`~radaraug.io.hdf5_reader.HDF5Capture`);
-    * a folder holding ``RadarIfxAvian_00/``, that folder itself, or its ``radar.npy`` /
-      ``config.json`` -> Infineon recording (:class:`~radaraug.io.InfineonRecording`).
-
-    Example:
-        >>> with open_capture(sample_recording_path()) as cap:  # doctest: +SKIP
-        ...     x = cap.read(0, 10)          # float32 (10, rx, chirps, samples)
+    An HDF5 file (``.h5``/``.hdf5`` or the HDF5 signature) gives an :class:`~radaraug.io.HDF5Capture`;
+    an Infineon recording folder (or its ``RadarIfxAvian_00``, ``radar.npy``, ``config.json``) an
+    :class:`~radaraug.io.InfineonRecording`.
 
     Raises:
-        CaptureError: the path does not exist, is of no known kind, is not a regular file or
-            folder (a FIFO, a device), or its reader refuses it.
+        CaptureError: the path does not exist, is of no known kind or not a regular file or folder,
+            or its reader refuses it.
     """
     p = Path(path)
     if not os.path.lexists(p):

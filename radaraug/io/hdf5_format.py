@@ -1,22 +1,7 @@
-"""Names and version of the radaraug HDF5 capture format (specified in ``docs/captures.md``).
+"""Names and version of the radaraug HDF5 capture format, and its superblock checks.
 
-Layout of a version 1.x file::
-
-    /                   attrs: format, format_version, radar_config (JSON), sample_units,
-                               float_convention, db_convention, created, source, description,
-                               optional file-level labels (label_<name> or a JSON "labels")
-    /frames             uint16 (F, rx, chirps, samples), one chunk per frame
-    /timestamps         float64 (F,) Unix seconds                       (optional)
-    /labels/<name>      (F,) per-frame label, e.g. labels/count int64    (optional)
-    /frames_written     int64 (1,) frames completely written and flushed  (1.1, optional)
-
-Since 1.1 the writer records in ``frames_written`` how many frames reached the file completely
-(data, then flush, then the count, then a second flush). A reader serves no more frames than
-that count: a writer stopped by a full disk or a kill mid-append may have extended ``frames``
-over a frame whose data never reached the disk.
-
-Readers accept any ``1.x`` version (minor versions only add optional content) and refuse
-other major versions.
+The format (``/frames``, ``/timestamps``, ``/labels/<name>``, ``/frames_written`` and the file
+attributes) is specified in ``docs/captures.md``.
 """
 
 from __future__ import annotations
@@ -64,10 +49,7 @@ def _rot(x: int, k: int) -> int:
 
 
 def lookup3(data: bytes, initval: int = 0) -> int:
-    """Bob Jenkins' lookup3 ``hashlittle`` (HDF5's ``H5_checksum_lookup3``).
-
-    The checksum HDF5 stores after its v2/v3 superblocks and other metadata.
-    """
+    """Bob Jenkins' lookup3 ``hashlittle``: the checksum HDF5 stores after its v2/v3 superblocks."""
     length = len(data)
     a = b = c = (0xDEADBEEF + length + initval) & MASK32
     if length == 0:
@@ -107,12 +89,10 @@ class Superblock:
     Attributes:
         version: superblock version (0..3; SWMR and ``libver="latest"`` files have 2 or 3).
         file_size: size of the file in bytes.
-        flags: file consistency flags (v2/v3; non-zero while a writer has the file open, and
-            after a writer was killed); 0 for v0/v1.
+        flags: consistency flags (v2/v3; non-zero while a writer has the file open or was killed).
         eof: stored end-of-file address plus base address (v2/v3), else None.
         checksum_ok: the stored lookup3 checksum matches (v2/v3), else None.
-        checksum_offset: where the checksum is stored, i.e. the length of the checksummed bytes
-            (v2/v3 with a valid size of offsets), else None.
+        checksum_offset: where the checksum is stored (= length of the checksummed bytes), else None.
     """
 
     version: int
@@ -129,10 +109,7 @@ class Superblock:
 
 
 def read_superblock(path: str | os.PathLike) -> Superblock | None:
-    """The superblock fields of an HDF5 file without a user block.
-
-    None when the file does not start with the HDF5 signature. Reads 64 bytes of a regular file (never
-    blocks on a FIFO).
+    """The superblock fields of an HDF5 file (no user block), or None without the HDF5 signature.
 
     Raises:
         CaptureError: the path is not a readable regular file.
@@ -149,10 +126,7 @@ SUPERBLOCK_HEAD_BYTES = 64
 
 
 def parse_superblock(head: bytes, file_size: int) -> Superblock | None:
-    """:func:`read_superblock` of bytes already read from the start of a file.
-
-    The bytes come e.g. through a locked descriptor. None when they do not start with the HDF5 signature.
-    """
+    """:func:`read_superblock` of bytes already read from the start of a file."""
     if len(head) < 9 or not head.startswith(HDF5_SIGNATURE):
         return None
     version = head[8]
@@ -169,13 +143,10 @@ def parse_superblock(head: bytes, file_size: int) -> Superblock | None:
 
 
 def stored_eof_shortfall(path: str | os.PathLike) -> int:
-    """Bytes missing from the end of an HDF5 file according to its superblock (0 if complete).
+    """Bytes missing from the end of an HDF5 file according to its v2/v3 superblock (0 if complete).
 
-    HDF5 skips its own truncation check when a file is opened for SWMR reading. This re-does the
-    check for superblock versions 2 and 3, the ones ``libver="latest"`` (and SWMR) files have.
-    Older superblocks return 0 here; HDF5 catches them. So does a file whose consistency flags
-    are still set (a writer was killed): its stored end-of-file may legitimately run ahead of
-    what reached the disk, and the frames flushed before the kill must stay readable.
+    HDF5 skips this check for SWMR reads. 0 for older superblocks and for files a writer left open
+    (their stored end of file may run ahead of the disk).
     """
     try:
         sb = read_superblock(path)

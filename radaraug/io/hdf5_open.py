@@ -1,19 +1,7 @@
 """Opening an HDF5 capture read-only so that a damaged file fails in seconds, never hangs.
 
-HDF5 re-reads metadata whose checksum fails when a file is opened for SWMR reading (a writer
-may be rewriting it), up to 100 times with a doubling sleep in between: a file with damaged
-metadata (a 12-byte truncation, a few flipped bits, a wrong end-of-file field) then blocks for
-hours, while a plain read-only open fails in well under a second. Yet SWMR reading is what opens
-a file whose writer was killed (HDF5 refuses a plain open while the superblock says "open for
-write"). So :func:`open_hdf5_readonly`
-
-1. checks the superblock itself (signature, lookup3 checksum of v2/v3 superblocks, stored
-   end-of-file against the file size for a cleanly closed file),
-2. opens a cleanly closed file without SWMR (damage fails fast), and
-3. uses SWMR only for a file whose consistency flags say a writer has it open (or was killed
-   while it had), with HDF5's metadata read attempts cut to :data:`SWMR_READ_ATTEMPTS` so that
-   a damaged one fails fast too. A live writer's torn metadata is retried that many times,
-   which lasts a few milliseconds.
+SWMR (needed for a file a writer left open) is used only when the superblock says so, with fewer
+metadata retries; see ``docs/captures.md``, "Reading".
 """
 
 from __future__ import annotations
@@ -66,7 +54,7 @@ def _swmr_open(path: Path) -> h5py.File:
 
 
 def open_hdf5_readonly(path: Path) -> h5py.File:
-    """Open a radaraug HDF5 capture for reading (see the module docstring).
+    """Open a radaraug HDF5 capture for reading: superblock checked first, SWMR only when needed.
 
     Raises:
         CaptureError: not a regular file, no HDF5 signature, a damaged superblock, a truncated

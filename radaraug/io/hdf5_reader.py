@@ -59,19 +59,17 @@ def committed_frame_count(file: h5py.File, stored: int) -> int:
 
 
 class HDF5Capture(CaptureReader):
-    """A radaraug HDF5 capture file, opened read-only (SWMR, so crashed recordings open).
+    """A radaraug HDF5 capture file, opened read-only (a crashed recording opens too).
 
-    Metadata is read on construction; frames are read (and decompressed) on demand, one HDF5
-    chunk per frame. Use :func:`radaraug.io.open_capture` rather than this class directly.
+    Metadata is read on construction, frames on demand. Use :func:`radaraug.io.open_capture`.
 
     Args:
         path: the ``.h5`` / ``.hdf5`` file.
 
     Raises:
-        CaptureError: the file is missing, not HDF5, truncated or corrupt, not a radaraug
-            capture, has an unsupported major version, a missing or invalid ``radar_config``
-            (the :class:`~radaraug.errors.ConfigError` is chained), a ``frames`` dataset of the
-            wrong dtype/rank/shape, no frames, or per-frame labels shorter than the frames.
+        CaptureError: the file is missing, not HDF5, damaged, not a radaraug capture (or another
+            major version), has an invalid ``radar_config`` (``ConfigError`` chained) or ``frames``,
+            no frames, or per-frame labels shorter than the frames.
     """
 
     def __init__(self, path: str | os.PathLike) -> None:
@@ -169,14 +167,10 @@ class HDF5Capture(CaptureReader):
         return obj
 
     def _written_rows(self, ds: h5py.Dataset) -> tuple[int, int | None]:
-        """``(w, gap_end)``: rows ``0..w-1`` of ``ds`` (axis 0) have stored data.
+        """``(w, gap_end)``: rows ``0..w-1`` of ``ds`` have stored data (unwritten rows read as fill values).
 
-        ``gap_end`` is None when no row from ``w`` on has stored data, else the first row after ``w`` that
-        has some (the unwritten rows ``w..gap_end-1`` then lie between written ones).
-
-        A row without stored data would read as the dataset's fill value (2048 counts, a 0
-        timestamp), which must never pass as data. This costs one step per stored chunk, never
-        per declared row, so a file declaring 2**40 frames is checked as fast as its real size.
+        ``gap_end``: None when no row from ``w`` on has stored data, else the first later row that has.
+        One step per stored chunk, never per declared row.
         """
         n = int(ds.shape[0])
         if n == 0 or ds.size == 0:

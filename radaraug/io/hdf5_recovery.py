@@ -1,24 +1,8 @@
 """Recovering an HDF5 capture whose writer was killed, and knowing whether a writer is alive.
 
-A writer that opens an HDF5 file for (SWMR) writing sets the *file consistency flags* of the
-superblock and clears them when it closes the file. A writer killed with SIGKILL (or a power
-cut) never clears them, and HDF5 then refuses every later open for writing ("file is already
-open for write/SWMR write"); ``h5clear -s`` resets them through a file-access property that is
-internal to HDF5 and that h5py does not expose. radaraug does the same reset itself, on the
-superblock versions 2 and 3 that every radaraug capture has (``libver="latest"``):
-
-    signature (8) | version (1) | size of offsets O (1) | size of lengths (1) | flags (1)
-    | base address (O) | superblock extension address (O) | end-of-file address (O)
-    | root group object header address (O) | checksum (4)
-
-The checksum is Jenkins' lookup3 ``hashlittle`` (seed 0) of every byte before it, as HDF5
-computes it (``H5_checksum_lookup3``).
-
-A set flag alone cannot tell a dead writer from a live one (HDF5 drops its own file lock once
-SWMR writing starts), so radaraug's writer holds a shared ``flock`` on the file for as long as it
-writes (:func:`hold_writer_lock`). The flags are reset only when an exclusive lock can be taken,
-that is when no process holds the file open through radaraug's writer or through HDF5 (whose
-readers hold a shared lock while a file is open: a file being read is never reset either).
+A killed writer leaves the superblock's consistency flags set; they are reset here as ``h5clear -s``
+does, only under an exclusive ``flock`` that no live writer or reader holds. Superblock layout and
+locking: ``docs/captures.md``, "Crash safety".
 """
 
 from __future__ import annotations
@@ -39,11 +23,7 @@ _FLAGS_OFFSET = 11
 
 
 def _superblock(head: bytes, file_size: int, path: Path) -> fmt.Superblock:
-    """The version 2/3 superblock at the start of ``head``, if its flags can be reset.
-
-    Parsed by :func:`~radaraug.io.hdf5_format.parse_superblock`; refused unless signature, version, size
-    of offsets and checksum allow a reset.
-    """
+    """The version 2/3 superblock at the start of ``head``; CaptureError unless its flags can be reset."""
     sb = fmt.parse_superblock(head, file_size)
     if sb is None or len(head) < 12:
         raise CaptureError(f"{path}: not an HDF5 file (no HDF5 signature at its start)")
@@ -73,11 +53,7 @@ def status_flags(path: str | os.PathLike) -> int:
 
 
 def _flock(fd: int, how: int) -> None:
-    """``flock(fd, how | LOCK_NB)``; no flock support counts as unlocked.
-
-    On a filesystem without flock support (some network filesystems) radaraug cannot tell a live writer
-    from a killed one.
-    """
+    """``flock(fd, how | LOCK_NB)``; no flock support (some network filesystems) counts as unlocked."""
     try:
         fcntl.flock(fd, how | fcntl.LOCK_NB)
     except BlockingIOError:
@@ -88,10 +64,7 @@ def _flock(fd: int, how: int) -> None:
 
 
 def writer_is_alive(path: str | os.PathLike) -> bool:
-    """True when another process holds a lock on ``path``; False when nobody does.
-
-    The lock is radaraug's writer lock, or the lock HDF5 takes while a file is open (readers included).
-    """
+    """True when another process holds a lock on ``path`` (radaraug's writer lock, or HDF5's, readers included)."""
     try:
         fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK)
     except OSError as e:
@@ -150,16 +123,12 @@ def _lock_or_busy(fd: int, how: int, path: Path) -> None:
 def clear_status_flags(path: str | os.PathLike) -> bool:
     """Reset the consistency flags left by a killed writer, like ``h5clear -s`` (superblock v2/v3).
 
-    The superblock is rewritten in place (flags byte and checksum) while an exclusive ``flock``
-    on the file proves that no live writer holds it. A file shorter than the end of file its
-    superblock records (a writer stopped by a full disk) is first extended to it with zeros.
-
     Returns:
         True when flags were set and reset, False when the file was already clean.
 
     Raises:
-        CaptureError: a live process holds the file for writing, or the file is not an HDF5 file
-            with a version 2/3 superblock, or its superblock is damaged or cannot be written.
+        CaptureError: a live process holds the file, or it is not HDF5 with a v2/v3 superblock, or
+            its superblock is damaged or cannot be written.
     """
     path = Path(path)
     fd = _open_exclusive(path, os.O_RDWR)
@@ -172,23 +141,17 @@ def clear_status_flags(path: str | os.PathLike) -> bool:
 def hold_writer_lock(path: str | os.PathLike, *, reset_flags: bool = False) -> int:
     """Take the writer lock of ``path``: a shared ``flock`` on the file itself, held until released.
 
-    An exclusive lock is taken first, so a second writer (or a flag reset) is refused while the
-    first is alive; with ``reset_flags`` the flags a killed writer left are reset under that
-    exclusive lock (:func:`clear_status_flags`). The lock is then turned into a shared one so
-    that readers which lock the file (HDF5 does, shared) can open it while it is recorded. (flock
-    converts by dropping and re-taking; a second writer slipping into that gap would itself hold
-    the lock, and this one fails with the same error.)
+    Exclusive first (a second writer is refused), then shared, so that HDF5 readers can open the file.
 
     Args:
         path: the capture file.
-        reset_flags: reset stale consistency flags (a resume).
+        reset_flags: reset stale consistency flags under the exclusive lock (a resume).
 
     Returns:
         The file descriptor holding the lock; :func:`release_writer_lock` closes it.
 
     Raises:
-        CaptureError: the file cannot be opened (missing folder, permissions, a folder in the
-            way), another process holds it, or its flags cannot be reset.
+        CaptureError: the file cannot be opened, another process holds it, or its flags cannot be reset.
     """
     path = Path(path)
     fd = _open_exclusive(path, os.O_RDWR)

@@ -1,27 +1,7 @@
 """Writing radaraug HDF5 captures: a crash-safe frame-by-frame recorder and a one-shot helper.
 
-Crash safety follows what was measured with h5py (docs/capture.md): every attribute and dataset is
-created first, then the file switches to SWMR mode, and each :meth:`CaptureWriter.append`
-ends with a flush. A process killed (even SIGKILL) while recording leaves a file that opens
-with every frame flushed before the kill; without SWMR such a file is unreadable.
-
-On top of that:
-
-- The file is built under a temporary name in the target folder and renamed to its name once
-  it is in SWMR mode (first append) or closed, so a file at the target name is always one that
-  opens; a kill before that leaves only the hidden temporary ``.<name>.*.partial``, which the
-  next writer of the same name removes (when no process holds it and it is older than a minute).
-  The name follows the one convention of temporary files (:mod:`radaraug.files`). A
-  generated file that must appear only complete is written with ``publish="close"``: renamed at
-  :meth:`CaptureWriter.close`, dropped on an exception in its ``with`` block.
-- After each append's data is flushed, the count of complete frames is written to
-  ``frames_written`` and flushed again; readers serve no frame past it.
-- The writer holds a ``flock`` on the file while it writes (:mod:`radaraug.io.hdf5_recovery`),
-  so :meth:`CaptureWriter.resume` can tell a killed writer from a live one, and resets the
-  HDF5 consistency flags that a killed writer leaves (what ``h5clear -s`` does) only then.
-- A failed write or flush (full disk, file-size limit, I/O error) closes the file and raises
-  :class:`~radaraug.errors.CaptureError`; the file keeps every frame completed before it.
-  Given ``expected_frames``, the free space is checked before anything is written.
+How crash safety works (SWMR, flushes, ``frames_written``, hidden temporaries, the writer lock,
+resume and full disks) is described in ``docs/captures.md``, "Crash safety".
 """
 
 from __future__ import annotations
@@ -91,11 +71,8 @@ STALE_PARTIAL_S = 60.0
 def _remove_stale_partials(path: Path) -> list[Path]:
     """Remove the temporaries ``.<name>.*.partial`` that killed writers of ``path`` left; the removed paths.
 
-    A writer killed before its first frame (or, with ``publish="close"``, before it closed) leaves
-    its hidden temporary behind. One is stale when no process holds a lock on it (a live writer
-    holds its lock from right after creating it to the rename) and it was last written more than
+    One is stale when no process holds a lock on it and it was last written more than
     :data:`STALE_PARTIAL_S` ago (so a writer between creating and locking its file is never hit).
-    Files that cannot be checked or removed are left alone (:func:`radaraug.files.remove_stale_temporaries`).
     """
     return remove_stale_temporaries(path.parent, temporaries_of(path, PARTIAL_SUFFIX),
                                     older_than_s=STALE_PARTIAL_S, in_use=writer_is_alive)
@@ -104,40 +81,27 @@ def _remove_stale_partials(path: Path) -> list[Path]:
 class CaptureWriter:
     """Record frames into a new radaraug HDF5 capture, one flushed append at a time.
 
-    Example:
-        >>> with CaptureWriter("run.h5", config, labels_schema={"count": "int64"}) as w:  # doctest: +SKIP
-        ...     for counts in sensor:          # uint16 (rx, chirps, samples)
-        ...         w.append(counts, timestamp=time.time(), labels={"count": 1})
+    Crash-safe: a process killed while recording (even by SIGKILL) leaves a file that opens with every
+    frame flushed before; a failed write (full disk) closes the file with the frames completed before.
+    Timestamps are given with every append or with none (the first append decides).
 
     Args:
-        path: file to create (overwritten if it exists).
+        path: file to create (replaced if it exists).
         config: radar configuration of every frame (stored as JSON in ``radar_config``).
-        labels_schema: per-frame label name -> numeric numpy dtype (e.g. ``{"count": "int64"}``),
-            stored under ``labels/<name>``. ``None``: taken from the first ``append``'s labels.
-        compression: ``"gzip"`` (level 4 + shuffle, readable by any HDF5), ``"lzf"`` (fast,
-            h5py only) or ``None``.
-        attrs: extra file attributes (``source``, ``description``, file-level labels such as
-            ``label_count=2`` or ``labels={"count": 2}``); dicts and lists are stored as JSON.
-        expected_frames: frames this run will write, when known: the folder's free space (and
-            the process's file-size limit) must hold their uncompressed size plus
-            :data:`SPACE_MARGIN_BYTES`, else nothing is written and CaptureError is raised.
-        publish: when the file gets its name: ``"first_append"`` (default: a recording, readable
-            under its name while it grows and after a kill) or ``"close"`` (a generated file that
-            appears under its name only complete; until then, and after a kill or an exception in
-            the ``with`` block, only the hidden temporary exists, and a file already at ``path``
-            stays as it was and may be open elsewhere).
-
-    Timestamps: pass one with every append or with none; the choice made by the first append
-    holds for the file (SWMR files cannot gain datasets later).
+        labels_schema: per-frame label name -> numeric numpy dtype (e.g. ``{"count": "int64"}``);
+            ``None``: taken from the first ``append``'s labels.
+        compression: ``"gzip"`` (level 4 + shuffle), ``"lzf"`` (fast, h5py only) or ``None``.
+        attrs: extra file attributes (e.g. ``source``, ``label_count=2``); dicts and lists are stored as JSON.
+        expected_frames: frames this run will write, when known: checked against the free space
+            (:func:`check_free_space`) before anything is written.
+        publish: when the file gets its name: ``"first_append"`` (a recording, readable while it
+            grows and after a kill) or ``"close"`` (a generated file that appears only complete).
 
     Raises:
-        CaptureError: the file cannot be created (missing or read-only folder, a file in the way,
-            another process writing it, not enough space), an attribute is reserved or not
-            storable, an append breaks the file's timestamp/label layout, a write or flush fails
-            (full disk: the writer closes, the file keeps the frames completed before), or the
-            writer is closed.
-        radaraug.errors.InputTensorError: frames of the wrong dtype, shape or value range
-            (see :func:`radaraug.io.counts.as_counts`).
+        CaptureError: the file cannot be created (bad folder, another writer, not enough space),
+            a reserved or unstorable attribute, an append that breaks the timestamp/label layout,
+            a failed write or flush, or a closed writer.
+        radaraug.errors.InputTensorError: frames of the wrong dtype, shape or value range.
     """
 
     # The state of a writer with no file yet (__init__ and resume set what they open).
@@ -213,10 +177,7 @@ class CaptureWriter:
             raise
 
     def _setup_failed(self, err: BaseException, doing: str, wrapped: tuple[type[Exception], ...]) -> None:
-        """Close after ``__init__`` or :meth:`resume` failed; raise errors of the ``wrapped`` kinds as CaptureError.
-
-        The caller re-raises any other error itself.
-        """
+        """Close after ``__init__`` or :meth:`resume` failed; re-raise ``wrapped`` kinds as CaptureError."""
         if isinstance(err, (OSError, RuntimeError)):
             self._failed = _short_reason(err)  # e.g. a full disk: drop what HDF5 cannot write
         self._abort()
@@ -313,23 +274,19 @@ class CaptureWriter:
     def resume(
         cls, path: str | os.PathLike, config: RadarConfig, *, expected_frames: int | None = None
     ) -> CaptureWriter:
-        """Reopen a capture written by a :class:`CaptureWriter` to append more frames.
+        """Reopen a capture written by a :class:`CaptureWriter` (also a killed one) to append more frames.
 
-        Frames, timestamps and labels already completed (also by a writer that was killed, even
-        with SIGKILL) are kept; ``num_frames`` starts at their count. Whatever a kill or a full
-        disk left past that count (frames whose data may be missing, timestamps or labels ahead
-        of the frames) is cut off. The HDF5 consistency flags a killed writer leaves are reset
-        (as ``h5clear -s`` does) when no live process holds the file.
+        Completed frames are kept and anything past them is cut off; the consistency flags a killed
+        writer left are reset (as ``h5clear -s`` does) when no live process holds the file.
 
         Args:
             path: the capture.
             config: the radar config of the frames to append (must equal the file's).
-            expected_frames: frames still to write, for the free-space check (see the class).
+            expected_frames: frames still to write, for the free-space check.
 
         Raises:
-            CaptureError: the file is missing, another process is writing it, it is not a
-                radaraug capture, was made with another radar config, or there is not enough
-                space for ``expected_frames``.
+            CaptureError: the file is missing, held by another process, not a radaraug capture,
+                recorded with another config, or there is not enough space.
         """
         self = cls.__new__(cls)
         self.path = Path(path)
@@ -479,8 +436,7 @@ class CaptureWriter:
         """Flush and close the file (idempotent); a file never appended to is published now.
 
         Raises:
-            CaptureError: the final flush or close failed (the file keeps the frames completed
-                before; the writer is closed all the same).
+            CaptureError: the final flush or close failed (the writer is closed, earlier frames kept).
         """
         f = self._file
         if f is None:
@@ -502,11 +458,7 @@ class CaptureWriter:
             self._release()
 
     def discard(self) -> None:
-        """Close a writer that never appended a frame without giving the file its name.
-
-        Nothing is left behind (a file already at the path stays as it was). A writer that has appended is
-        closed as by :meth:`close` (its frames are kept).
-        """
+        """Close without leaving a file if no frame was appended; else as :meth:`close`."""
         if self._started or self._file is None:
             self.close()
             return
@@ -538,14 +490,11 @@ class CaptureWriter:
 def check_free_space(path: str | os.PathLike, config: RadarConfig, frames: int, *, existing: int = 0) -> None:
     """Refuse, before anything is written, a run whose frames cannot fit next to ``path``.
 
-    The bound is the frames' uncompressed size (compression of noisy ADC data saves little, and a
-    run must not fail halfway) plus :data:`SPACE_MARGIN_BYTES`, against the free space of the
-    folder and the process's file-size limit (``ulimit -f``, less ``existing`` bytes the file
-    already has when it is resumed).
+    The frames' uncompressed size plus :data:`SPACE_MARGIN_BYTES` must fit the folder's free space and
+    the file-size limit (``ulimit -f``, less the ``existing`` bytes of a resumed file).
 
     Raises:
-        CaptureError: not enough space (the message gives both figures), or the folder cannot be
-            examined.
+        CaptureError: not enough space, or the folder cannot be examined.
     """
     path = Path(path)
     c = config
@@ -584,10 +533,8 @@ def _short_reason(err: BaseException) -> str:
 def _discard_pending_writes(f: h5py.File) -> None:
     """Point HDF5's file descriptor at /dev/null so that closing a file whose writes fail succeeds.
 
-    The writes fail e.g. on a full disk. What HDF5 still holds in its caches is dropped, the file stays as
-    it was at the failure (every frame counted in ``frames_written`` is complete; its consistency flags
-    stay set and :meth:`CaptureWriter.resume` resets them). A file HDF5 cannot close makes the process
-    crash at exit, when HDF5 shuts down and tries once more.
+    What HDF5 still caches is dropped (else it retries at shutdown and crashes the process); the file
+    stays as it was at the failure.
     """
     try:
         handle = f.id.get_vfd_handle()
@@ -617,8 +564,7 @@ def write_capture(
         counts: integer ADC counts.
         config: their radar configuration.
         timestamps: optional ``(F,)`` Unix seconds.
-        labels: name -> value. A scalar becomes a file-level label (attribute ``label_<name>``,
-            read back broadcast to every frame); an ``(F,)`` array becomes ``labels/<name>``.
+        labels: name -> a scalar (file-level ``label_<name>``) or an ``(F,)`` array (``labels/<name>``).
         attrs: extra file attributes (see :class:`CaptureWriter`).
         compression: ``"gzip"``, ``"lzf"`` or ``None``.
 

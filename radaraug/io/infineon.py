@@ -1,19 +1,6 @@
-"""Infineon recording folders (ifxdaq / Radar Fusion GUI, ``format.version`` 1.0.0).
+"""Infineon recording folders (ifxdaq / Radar Fusion GUI, ``format.version`` 1.0.0): reader and writer.
 
-Layout::
-
-    <recording>/
-      meta.json                    host metadata (optional)
-      RadarIfxAvian_00/
-        config.json                {"device_config": {"fmcw_single_shape": {...}}}
-        meta.json                  device metadata (optional)
-        format.version             "1.0.0" (optional)
-        radar.npy                  uint16 (frame, rx, chirp, sample) raw ADC counts
-        radar_timestamp.csv        one Unix time per frame (optional)
-        temperature.npy            float32 (n, 1) chip temperature, deg C (optional)
-
-``radar.npy`` is memory-mapped: opening a recording reads only its header. Files are looked up with
-``os.path.lexists``: a dangling link is still "there" and gets a clear error instead of being skipped.
+The folder layout is described in ``docs/captures.md``, "Infineon recording folders".
 """
 
 from __future__ import annotations
@@ -42,11 +29,7 @@ FORMAT_VERSION = "1.0.0"
 
 
 def find_device_folder(path: str | os.PathLike) -> Path:
-    """The ``RadarIfxAvian_00`` folder of a recording.
-
-    The recording is given as the recording folder, the device folder itself, or one of its files
-    (``radar.npy``, ``config.json``).
-    """
+    """The ``RadarIfxAvian_00`` folder of a recording folder, of itself, or of its ``radar.npy``/``config.json``."""
     p = Path(path)
     if not p.exists():
         raise CaptureError(f"{p}: recording does not exist")
@@ -70,11 +53,7 @@ MAX_TEMPERATURE_BYTES = 64 * 1024 * 1024
 
 
 def _read_json(path: Path, *, required: bool) -> dict[str, Any]:
-    """A JSON object file; an unreadable one raises when ``required``, else warns.
-
-    Required ones raise :class:`CaptureError`; optional ones (``meta.json``) that are unreadable give a
-    :class:`CaptureWarning` and ``{}``.
-    """
+    """A JSON object file; unreadable: CaptureError when ``required``, else a CaptureWarning and ``{}``."""
     if not os.path.lexists(path):
         if required:
             raise CaptureError(f"{path.parent}: Infineon recording has no {path.name}")
@@ -92,29 +71,23 @@ def _read_json(path: Path, *, required: bool) -> dict[str, Any]:
 
 
 class InfineonRecording(CaptureReader):
-    """An Infineon ifxdaq / Radar Fusion GUI recording folder, read lazily.
+    """An Infineon ifxdaq / Radar Fusion GUI recording folder, read lazily (``radar.npy`` is memory-mapped).
+
+    ``labels`` is always empty (the format has none: label through ``RadarCaptureDataset``'s ``label``).
 
     Args:
-        path: the recording folder (holding ``RadarIfxAvian_00/``), the ``RadarIfxAvian_00``
-            folder itself, or its ``radar.npy`` / ``config.json``.
+        path: the recording folder, its ``RadarIfxAvian_00`` folder, or its ``radar.npy`` / ``config.json``.
 
     Attributes:
         device_folder: the ``RadarIfxAvian_00`` folder.
         temperature_C: chip temperature per reading (``temperature.npy``), or ``None``.
 
-    ``labels`` is always empty (the format has none): label Infineon recordings through
-    :class:`~radaraug.io.RadarCaptureDataset`'s ``label`` argument. ``attrs`` holds
-    ``format`` ("infineon-ifxdaq"), ``format_version`` and the parsed ``recording_meta``
-    (top-level meta.json) and ``device_meta`` (device meta.json).
-
     Raises:
-        CaptureError: missing folder, ``config.json`` or ``radar.npy``; unreadable/invalid
-            config (the :class:`~radaraug.errors.ConfigError` is chained); ``radar.npy``
-            truncated, not a .npy, not integer, not 4-D, not matching the config, or empty.
+        CaptureError: a missing folder, ``config.json`` or ``radar.npy``; an invalid config
+            (``ConfigError`` chained); a ``radar.npy`` that is not integer frames matching the config.
 
     Warns:
-        CaptureWarning: the timestamp count differs from the frame count (timestamps are then
-            ``None``), or an optional file (temperature) is unreadable.
+        CaptureWarning: unusable timestamps (then ``None``) or an unreadable optional file.
     """
 
     def __init__(self, path: str | os.PathLike) -> None:
@@ -224,12 +197,13 @@ def write_infineon_recording(
 ) -> Path:
     """Write ADC counts as an Infineon recording folder that Infineon's tools and radaraug read.
 
+    Each file is written atomically, ``radar.npy`` last (its presence marks a recording).
+
     Args:
         folder: recording folder to create (``RadarIfxAvian_00/`` goes inside).
         counts: integer ADC counts ``(F, rx, chirps, samples)`` (a single frame is allowed).
-        config: radar configuration, written as ``config.json`` via ``to_infineon()``. The
-            format cannot store ``adc_delay_s``, ``adc_bits`` or ``rx_positions_m``: non-default
-            values give a :class:`CaptureWarning` (they read back as defaults).
+        config: radar configuration (``config.json``); ``adc_delay_s``, ``adc_bits`` and
+            ``rx_positions_m`` cannot be stored: non-default values give a :class:`CaptureWarning`.
         timestamps: optional ``(F,)`` Unix seconds -> ``radar_timestamp.csv``.
         meta: extra entries for the top-level ``meta.json``.
         overwrite: replace an existing recording in ``folder``.
@@ -238,8 +212,7 @@ def write_infineon_recording(
         The recording folder.
 
     Raises:
-        CaptureError: a recording exists and ``overwrite`` is false, or timestamps do not
-            match the frames.
+        CaptureError: a recording exists and ``overwrite`` is false, or timestamps do not match the frames.
         radaraug.errors.InputTensorError: counts of the wrong dtype, shape or range.
     """
     folder = Path(folder)

@@ -1,18 +1,7 @@
 """Safe opening of ``.npy`` files: the header is parsed and checked before any data is touched.
 
-numpy's own loader trusts the header: a shape of ``(2**64, ...)``, ``(-1, ...)`` or ``(True, ...)``,
-a NUL byte in the padding or a 144-byte file that declares ``(2**40,)`` values end in bare
-``OverflowError`` / ``ValueError`` / ``TypeError`` / ``tokenize.TokenError`` or a terabyte
-allocation, and its messages advise users to "fully trust the file using allow_pickle=True".
-:func:`open_npy` parses the header with numpy's public ``read_magic`` /
-``read_array_header_1_0`` / ``read_array_header_2_0`` inside one guard and accepts it only when
-
-* the dtype is a plain numeric one of the allowed kinds (never an object, structured or subarray
-  dtype),
-* every shape entry is a non-negative Python ``int`` (not a bool), and
-* the header plus the declared data is exactly the size of the file,
-
-then memory-maps (or reads) exactly that.
+numpy's loader trusts the header (a hostile shape ends in a bare error or a terabyte allocation);
+here a plain numeric dtype, a valid shape and the exact file size are required first.
 """
 
 from __future__ import annotations
@@ -35,9 +24,8 @@ def read_npy_header(path: Path) -> tuple[tuple[int, ...], bool, np.dtype, int, i
     """``(shape, fortran_order, dtype, data_offset, file_size)`` of a .npy file, validated.
 
     Raises:
-        CaptureError: not a regular file, not a .npy file, a header numpy cannot parse, an object
-            or structured dtype, a shape entry that is not a non-negative integer, or a file size
-            that differs from the header plus the declared data.
+        CaptureError: not a regular .npy file, an unparsable header, a non-plain dtype, an invalid
+            shape, or a file size other than the header plus the declared data.
     """
     fd = open_regular(path, error=CaptureError, what=".npy file")
     with os.fdopen(fd, "rb") as fh:

@@ -104,11 +104,8 @@ class Ellipsoids:
         rotations: ``(..., S, 3, 3)`` world-from-local rotations (columns: local axes in world).
         velocities: ``(..., S, 3)`` velocity of each centre, m/s.
         material: material name of the surface (for reflectivity), default human skin.
-        angular_velocities: ``(..., S, 3)`` world-frame angular velocity of each segment, rad/s, or
-            None (not given: the tracer then moves every point of a segment with its centre). A
-            rotating segment's echo sits at its specular point, whose range changes at the
-            material velocity there, ``v + omega x (p - centre)`` (the envelope theorem), not at
-            the centre's: a swinging lower leg's differs by several Doppler bins.
+        angular_velocities: ``(..., S, 3)`` world-frame angular velocity of each segment, rad/s (the
+            tracer moves each echo with its specular point), or None: every point moves with the centre.
     """
 
     centers: torch.Tensor

@@ -1,40 +1,7 @@
 """Building materials (ITU-R P.2040-3, Table 3) and their Fresnel reflection, in torch.
 
-Permittivity model (ITU-R P.2040-3, Table 3 and the relations above it), ``f`` in GHz::
-
-    eps'  = a * f**b
-    sigma = c * f**d                      (S/m)
-    eps'' = 17.98 * sigma / f
-    eps   = eps' - j eps''                (relative complex permittivity)
-
-Conventions used everywhere in this module:
-
-* **Time convention** ``exp(+j omega t)`` (engineering): lossy media have ``Im(eps) < 0`` and a
-  wave travelling a distance ``z`` picks up ``exp(-j k z)``, the same sign the receiver uses for
-  the propagation phase ``exp(-j 2 pi f tau)``.
-* **Fresnel coefficients** are the ITU-R P.2040 ones, ratios of reflected to
-  incident *electric field*::
-
-      Gamma_TE = (cos - sqrt(eps - sin^2)) / (cos + sqrt(eps - sin^2))
-      Gamma_TM = (eps cos - sqrt(eps - sin^2)) / (eps cos + sqrt(eps - sin^2))
-
-  TE = perpendicular = s polarisation (E normal to the plane of incidence); TM = parallel =
-  p polarisation. In this convention the TM reference directions of the incident and the
-  reflected field are mirrored, so at normal incidence ``Gamma_TM == -Gamma_TE`` with
-  ``Gamma_TE = (1 - sqrt(eps)) / (1 + sqrt(eps))`` (about -1 for metal): the same physical
-  reflection, ``|Gamma_TE| == |Gamma_TM|``. Both tend to ``-1`` at grazing incidence, and
-  ``Gamma_TM`` vanishes at the Brewster angle ``tan theta_B = sqrt(eps)`` of a lossless
-  dielectric. At normal incidence the physical field ratio (fixed world frame) is ``Gamma_TE``
-  ``= -Gamma_TM`` for every polarisation, e.g. ``-1`` for metal.
-* ``cos_theta_i`` is the cosine of the angle between the incident ray and the surface normal.
-  Its sign is ignored (a face hit from behind reflects like one hit from the front) and it is
-  clamped to ``[1e-6, 1]`` so that exact grazing incidence stays finite and differentiable.
-
-Thickness: a :class:`Material` is a half-space unless ``thickness_m`` is set, in which case it
-is a slab in air (ITU-R P.2040 single-layer formulas, all internal reflections summed). Because
-:class:`~radaraug.scene.geometry.SceneGeometry` stores materials by name, a slab is named with a
-thickness suffix in metres: ``"plasterboard@0.0125"`` is a 12.5 mm plasterboard slab. Every
-function that takes a material name accepts this form.
+``eps = a f^b - j 17.98 c f^(d-1)`` (f in GHz), time convention ``exp(+j omega t)``. A name
+``"plasterboard@0.0125"`` is a 12.5 mm slab in air. Conventions and signs: ``docs/scenes.md``, "Materials".
 """
 
 from __future__ import annotations
@@ -60,12 +27,9 @@ class Material:
         name: material name (a key of :data:`MATERIALS` for the built-in ones).
         a, b: real relative permittivity ``eps' = a * f_GHz**b``.
         c, d: conductivity ``sigma = c * f_GHz**d`` in S/m.
-        thickness_m: slab thickness in metres; None for a half-space (a thick wall whose back
-            face does not matter).
-        eps_complex_override: a measured relative complex permittivity ``eps' - j eps''`` used
-            at every frequency instead of the ``a, b, c, d`` model (e.g. human skin at 60 GHz).
-        valid_GHz: frequency range over which ITU-R P.2040 defines the fit; outside it
-            :meth:`permittivity` warns and extrapolates. None means no stated range.
+        thickness_m: slab thickness in metres; None for a half-space (a wall whose back face does not matter).
+        eps_complex_override: a measured ``eps' - j eps''`` used at every frequency (e.g. skin at 60 GHz).
+        valid_GHz: frequency range of the ITU-R fit; outside it :meth:`permittivity` warns and extrapolates.
     """
 
     name: str
@@ -96,8 +60,7 @@ class Material:
     def permittivity(self, frequency_Hz: float) -> complex:
         """Relative complex permittivity ``eps' - j eps''`` at ``frequency_Hz``.
 
-        Warns (UserWarning) when the frequency is outside the range ITU-R P.2040 gives for the
-        material, e.g. brick above 40 GHz.
+        Warns (UserWarning) outside the material's ITU-R range, e.g. brick above 40 GHz.
         """
         if self.eps_complex_override is not None:
             return complex(self.eps_complex_override)
@@ -287,7 +250,7 @@ def fresnel_coefficients(
 
     Returns:
         ``(Gamma_TE, Gamma_TM)`` complex field reflection coefficients, broadcast shape, complex64
-        for float32 input and complex128 for float64. See the module docstring for the signs.
+        for float32 input and complex128 for float64 (signs: ``docs/scenes.md``).
     """
     eps_t, cos = _prepare(eps, cos_theta_i)
     gamma_te, gamma_tm, _ = _half_space(eps_t, cos)
@@ -323,12 +286,9 @@ def slab_reflection(
     frequency_Hz: torch.Tensor | float,
     cos_theta_i: torch.Tensor | float,
 ) -> tuple[torch.Tensor, torch.Tensor]:
-    """Reflection of a homogeneous slab in air, all internal reflections summed.
+    """Reflection of a homogeneous slab in air, all internal reflections summed (ITU-R P.2040-3).
 
-    ITU-R P.2040-3 single slab: ``R = R' (1 - e^{-j2q}) / (1 - R'^2 e^{-j2q})`` with ``R'`` the
-    half-space Fresnel coefficient and ``q = (2 pi d / lambda) sqrt(eps - sin^2 theta)``. The
-    phase reference is the slab's front face. A thick lossy slab tends to the half-space value; a
-    lossless slab is transparent (``R = 0``) when ``q`` is a multiple of ``pi``.
+    Phase reference: the slab's front face. A thick lossy slab tends to the half-space value.
 
     Args:
         eps: relative complex permittivity of the slab.
@@ -349,11 +309,7 @@ def slab_transmission(
     frequency_Hz: torch.Tensor | float,
     cos_theta_i: torch.Tensor | float,
 ) -> tuple[torch.Tensor, torch.Tensor]:
-    """Field transmission ``(T_TE, T_TM)`` through a slab in air (ITU-R P.2040-3).
-
-    ``T = (1 - R'^2) e^{-jq} / (1 - R'^2 e^{-j2q})``. For a lossless slab ``|R|^2 + |T|^2 = 1``.
-    Same arguments as :func:`slab_reflection`.
-    """
+    """Field transmission ``(T_TE, T_TM)`` through a slab in air (ITU-R P.2040-3), as :func:`slab_reflection`."""
     _, _, t_te, t_tm = _slab(eps, thickness_m, frequency_Hz, cos_theta_i)
     return t_te, t_tm
 

@@ -111,20 +111,17 @@ def corridor(
 ) -> SceneGeometry:
     """A box corridor along +x: ``x in [0, L]``, ``y in [-W/2, W/2]``, ``z in [0, H]``.
 
-    Every face's normal points into the corridor (counter-clockwise seen from inside). Large
-    surfaces are split into triangles no longer than ``max_edge_m`` so that physical-optics
-    facets stay small compared with the Fresnel zone.
+    Normals point into the corridor. Surfaces are split into triangles no longer than
+    ``max_edge_m``, so that physical-optics facets stay small compared with the Fresnel zone.
 
     Args:
         length_m: inner length (along x) in metres.
         width_m: inner width (along y) in metres.
         height_m: inner height (along z) in metres.
-        materials: material per surface (keys of :data:`CORRIDOR_SURFACES`); missing surfaces
-            take :data:`PAPER_CORRIDOR_MATERIALS` (floorboard floor, ceiling-board ceiling,
-            plasterboard side walls, concrete end walls: a guess, the paper names none).
+        materials: material per surface (keys of :data:`CORRIDOR_SURFACES`); default
+            :data:`PAPER_CORRIDOR_MATERIALS`.
         thickness_m: optional slab thickness per surface in metres (None = half-space).
-        end_walls: include the walls at ``x = 0`` (near, behind a radar at the start) and
-            ``x = L`` (far).
+        end_walls: include the walls at ``x = 0`` (near) and ``x = L`` (far).
         max_edge_m: longest triangle edge.
         dtype: vertex dtype (default: torch's default dtype).
         device: device of the tensors.
@@ -275,11 +272,9 @@ def load_mesh(
     Args:
         path: mesh file. Coordinates are taken as metres times ``scale``.
         material: material of every face not chosen by ``face_materials``.
-        face_materials: either a dict from the file's part names to materials (an OBJ group or
-            object name, a GLB node/mesh name, or a material name from the file's MTL; keys may
-            be shell patterns like ``"wall*"``), or a callable
-            ``f(centroids, normals, groups) -> name or list of F names`` evaluated once on all
-            faces (after scale and transform).
+        face_materials: a dict from the file's part names (OBJ group/object, GLB node/mesh or MTL
+            material; shell patterns allowed) to materials, or a callable
+            ``f(centroids, normals, groups) -> name or F names`` run once after scale and transform.
         scale: factor applied to the file's coordinates (e.g. 0.001 for millimetres).
         transform: optional 4x4 (or 3x4) world-from-file matrix applied after ``scale``.
         dtype: vertex dtype (default: torch's default dtype).
@@ -289,8 +284,7 @@ def load_mesh(
         The mesh, ``object_id`` 0, no vertex velocities.
 
     Raises:
-        SceneError: missing/unreadable/empty file, bad transform or material names (the message
-            names the file).
+        SceneError: missing/unreadable/empty file, bad transform or material names.
     """
     path = Path(path)
     if not path.is_file():
@@ -328,15 +322,10 @@ def load_mesh(
 def box(
     lo: Sequence[float], hi: Sequence[float], material: str | Material, *, max_edge_m: float = 0.5,
 ) -> SceneGeometry:
-    """An axis-aligned box (a cabinet, a pillar, a bench) from corner ``lo`` to corner ``hi``.
-
-    Outward normals, faces split into triangles no longer than ``max_edge_m`` (like
-    :func:`corridor`, so physical-optics facets stay small). Merge it into a room with
-    :func:`merge`.
+    """An axis-aligned box (a cabinet, a pillar) from corner ``lo`` to ``hi``: outward normals, edges <= ``max_edge_m``.
 
     Raises:
-        SceneError: a corner that is not 3 finite numbers, ``hi <= lo`` on an axis, or an unknown
-            material.
+        SceneError: a corner that is not 3 finite numbers, ``hi <= lo`` on an axis, or an unknown material.
     """
     trimesh = lazy_import("trimesh", feature="meshes")
 
@@ -388,9 +377,7 @@ def placed_box(
 ) -> SceneGeometry:
     """A box of ``size`` (x, y, z extents before the yaw) standing with its base centre at ``position``.
 
-    A door frame, a radiator, a cabinet: ``position`` is the centre of the bottom face (so
-    ``z = 0`` stands on the floor), ``yaw_deg`` turns it about the vertical. Outward normals,
-    faces no longer than ``max_edge_m``.
+    ``yaw_deg`` turns it about the vertical. Outward normals, edges no longer than ``max_edge_m``.
 
     Raises:
         SceneError: bad size/position or unknown material.
@@ -409,8 +396,7 @@ def placed_cylinder(
 ) -> SceneGeometry:
     """A vertical cylinder (a pillar, a pipe, a bin) with its base centre at ``position``.
 
-    ``sections`` facets around (24: the facets' chords deviate from the circle by
-    ``r (1 - cos(pi / 24))``, 0.9 % of the radius).
+    ``sections`` facets around (24 keeps the chords within 0.9 % of the radius).
 
     Raises:
         SceneError: bad radius/height/position/sections or unknown material.
@@ -435,13 +421,10 @@ def placed_mesh(
 
 
 def merge(geoms: Sequence[SceneGeometry]) -> SceneGeometry:
-    """Union of triangle soups.
+    """Union of triangle soups: materials merged by name, object ids shifted to stay distinct.
 
-    Material tables are merged by name; object ids stay distinct: the ids of each geometry are
-    shifted past the largest id of the ones before it (the first keeps its ids, so a room built
-    first keeps id 0). A geometry without ``object_id`` counts as all zeros; if any geometry has
-    vertex velocities, the static ones get zeros. Tensors end on the first geometry's device, at
-    the promoted vertex dtype.
+    The first geometry keeps its ids (a room built first keeps id 0); missing ``object_id`` counts as
+    zeros and missing velocities as zeros. Tensors end on the first geometry's device.
 
     Raises:
         SceneError: empty list or a geometry with inconsistent tensor shapes.

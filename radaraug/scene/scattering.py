@@ -1,59 +1,7 @@
-"""Diffuse scattering of building materials: the "effective roughness" (ER) model.
+"""Diffuse scattering of building materials: Degli-Esposti's effective-roughness (ER) model.
 
-A rough or inhomogeneous surface (plaster texture, concrete pores, wood grain, joints, screws,
-paint drips) does not only reflect specularly: part of the reflected field is scattered into
-every direction. radaraug follows the effective-roughness model of V. Degli-Esposti
-("A diffuse scattering model for urban propagation prediction", IEEE Trans. AP 49(7), 2001;
-Degli-Esposti, Fuschini, Vitucci, Falciasecca, "Measurement and modelling of scattering from
-buildings", IEEE Trans. AP 55(1), 2007), the model ITU-R P.2040 and P.1411 point to for
-diffuse scattering from building surfaces.
-
-Energy balance (per unit of incident power on a surface patch; ``Gamma`` the Fresnel reflection
-coefficient of :mod:`radaraug.scene.materials`, ``S`` the *scattering coefficient*, a field
-ratio in ``[0, 1]``)::
-
-    reflected power  = |Gamma|^2                       (what the smooth surface would reflect)
-    diffuse power    = S^2 |Gamma|^2                   (scattered into the front hemisphere)
-    specular power   = (1 - S^2) |Gamma|^2             (specular field times sqrt(1 - S^2))
-
-so the specular field of a material is multiplied by :attr:`DiffuseScattering.specular_reduction`
-``= sqrt(1 - S^2)``; :func:`specular_reduction` gives it per material for a tracer's specular
-part. Transmission is unchanged (the ER model takes the scattered power from the reflected one).
-
-Scattering pattern ``f`` (per steradian, ``integral over the front hemisphere of f dOmega = 1``),
-``theta_s`` the scattering direction's angle from the surface normal, ``psi`` its angle from the
-specular direction:
-
-* ``"lambertian"``: ``f = cos(theta_s) / pi``;
-* ``"directive"``: ``f = ((1 + cos psi) / 2)^alpha_R / F(alpha_R, theta_i)`` with the
-  normalization integral (Degli-Esposti 2007, eq. 7, closed form for an integer ``alpha_R``)::
-
-      F = 2^-alpha_R sum_j C(alpha_R, j) I_j,   I_j = integral_hemisphere cos^j psi dOmega
-      I_j = 2 pi / (j + 1)                                            (j even)
-      I_j = 2 pi / (j + 1) cos(theta_i) sum_{w=0}^{(j-1)/2} C(2w, w) sin^{2w}(theta_i) / 4^w   (j odd)
-
-Radar cross-section of a patch of area ``A`` lit at ``theta_i`` (incident power density ``W``,
-intercepted power ``W A cos theta_i``, scattered intensity ``I = S^2 |Gamma|^2 W A cos theta_i f``
-watts per steradian; ``sigma = 4 pi I / W``)::
-
-    sigma = 4 pi S^2 |Gamma|^2 A cos(theta_i) f(scattering direction)
-
-Monostatic (the radar's TX and RX a few mm apart), ``theta_s = theta_i = theta`` and
-``cos psi = cos 2 theta`` (the backscatter direction is ``2 theta`` from the specular one),
-hence the diffuse RCS per unit area ``sigma0`` (:meth:`DiffuseScattering.sigma0`)::
-
-    lambertian:  sigma0 = 4 S^2 |Gamma(theta)|^2 cos^2(theta)
-    directive:   sigma0 = 4 pi S^2 |Gamma(theta)|^2 cos(theta) cos^(2 alpha_R)(theta) / F(alpha_R, theta)
-
-At normal incidence ``F(alpha_R, 0) = 2 pi (2^(alpha_R + 1) - 1) / ((alpha_R + 1) 2^alpha_R)``,
-below ``pi`` for ``alpha_R >= 3``, where the directive ``sigma0`` at normal incidence exceeds the
-Lambertian one (the lobe points back at a radar looking at the surface head-on); away from
-normal incidence it falls off as ``cos^(2 alpha_R + 1)``, much faster than the Lambertian ``cos^2``.
-
-Defaults (:data:`DIFFUSE_DEFAULTS`): see the table there and ``docs/diffuse_clutter.md``. A
-scene file overrides them per material (``materials: {plasterboard: {diffuse: {S: 0.5}}}``), a
-call per material (``scattering=`` of :func:`radaraug.raytrace.diffuse.diffuse_paths`), and the
-calibration loop scales all of them at once with one gain (``gain_dB`` there).
+A material scatters ``S^2`` of its reflected power diffusely and keeps ``(1 - S^2)`` specular (field
+factor ``sqrt(1 - S^2)``). Model, patterns, ``sigma0`` and the defaults' fit: ``docs/diffuse_clutter.md``.
 """
 
 from __future__ import annotations
@@ -76,11 +24,9 @@ class DiffuseScattering:
     """Effective-roughness parameters of one material.
 
     Args:
-        S: scattering coefficient, the diffusely scattered fraction of the reflected *field*
-            amplitude, in ``[0, 1]`` (``S^2`` of the reflected power is scattered).
+        S: scattering coefficient in ``[0, 1]``, a *field* ratio (``S^2`` of the reflected power is scattered).
         pattern: ``"lambertian"`` or ``"directive"`` (lobe around the specular direction).
-        alpha_R: integer lobe exponent of the directive pattern (1..10 in Degli-Esposti's fits;
-            larger = narrower lobe); ignored by the Lambertian pattern.
+        alpha_R: integer lobe exponent of the directive pattern (larger = narrower; Lambertian ignores it).
     """
 
     S: float = 0.0
@@ -137,7 +83,7 @@ class DiffuseScattering:
 def directive_norm(cos_theta_i: torch.Tensor, alpha_R: int) -> torch.Tensor:
     """``F(alpha_R, theta_i)``: integral of ``((1 + cos psi)/2)^alpha_R`` over the front hemisphere.
 
-    Closed form of the module docstring (Degli-Esposti et al. 2007); exact for integer ``alpha_R``.
+    Degli-Esposti et al. (2007)'s closed form, exact for integer ``alpha_R``.
     """
     c = cos_theta_i.abs().clamp(0, 1)
     s2 = (1 - c * c).clamp_min(0)
@@ -208,11 +154,7 @@ def as_scattering(value: DiffuseScattering | Mapping[str, Any] | float, where: s
 def get_scattering(
     key: str, overrides: ScatteringOverrides | None = None,
 ) -> DiffuseScattering:
-    """Scattering of material ``key`` (``"name"`` or ``"name@thickness"``).
-
-    Lookup order: ``overrides[key]``, ``overrides[name]``, :data:`DIFFUSE_DEFAULTS` ``[name]``,
-    :data:`FALLBACK`.
-    """
+    """Scattering of material ``key``: ``overrides[key]``, ``overrides[name]``, the default, or :data:`FALLBACK`."""
     name, _ = parse_material_key(key)
     overrides = overrides or {}
     for k in (key, name):
@@ -230,8 +172,7 @@ def specular_reduction(
 ) -> torch.Tensor:
     """``(M,)`` specular field factor ``sqrt(1 - S^2)`` per material key (e.g. ``SceneGeometry.materials``).
 
-    Multiply a specular reflection coefficient of a face of material ``m`` by entry ``m`` so
-    that specular + diffuse power equals the smooth surface's reflected power.
+    Multiplying a face's specular reflection by it makes specular + diffuse power the smooth surface's.
     """
     return torch.tensor([get_scattering(n, overrides).specular_reduction for n in names],
                         dtype=dtype, device=device)

@@ -1,10 +1,7 @@
 """Scene files: reading, validating and writing the YAML/JSON description of a :class:`Scene`.
 
-The file format is documented in ``docs/scenes.md``. Relative file paths inside a scene file
-(meshes, BVH files, mesh sequences, radar configs) resolve against the scene file's folder. Every
-error is a :class:`~radaraug.errors.SceneError` that names the file and the key. The data model
-(:class:`~radaraug.scene.scene.Scene`) is in :mod:`radaraug.scene.scene`, whose
-``from_file``/``from_dict``/``to_dict``/``save`` call the functions here.
+Format: ``docs/scenes.md``. Relative paths resolve against the file's folder; every error is a
+:class:`~radaraug.errors.SceneError` naming the file and the key.
 """
 
 from __future__ import annotations

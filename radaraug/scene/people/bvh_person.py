@@ -91,12 +91,9 @@ _BVH_TO_WORLD = torch.tensor([[0.0, 0.0, 1.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]
 class BVHPerson(SkeletonPerson):
     """A BVH clip (e.g. CMU motion capture) on the 16-segment skeleton.
 
-    The file's joints are mapped by name onto the 17 skeleton joints (CMU, Mixamo and common
-    aliases), converted from +Y up to +Z up and to metres, and placed so that the pelvis is at
-    ``start`` at ``t = 0`` and the clip's net travel direction (first to last frame; the initial
-    facing for clips that move less than 0.2 m) points along ``heading_rad``. Heights are kept:
-    the file's floor is taken as ``z = 0``. Between frames, joints follow a Catmull-Rom spline,
-    and velocities are its exact derivative.
+    Joints are mapped by name (CMU, Mixamo and common aliases) and placed with the pelvis at ``start``
+    and the clip's net travel along ``heading_rad``; joints follow a Catmull-Rom spline between
+    frames, with exact velocities. Details: ``docs/people.md``, "BVH motion capture".
 
     Args:
         path: BVH file.

@@ -117,11 +117,9 @@ def write_bvh(
     duration_s: float | None = None,
     unit: str = "cm",
 ) -> Path:
-    """Write a :class:`Walker`'s motion as BVH (+Y up, ``Zrotation Xrotation Yrotation``).
+    """Write a :class:`Walker`'s motion as BVH (+Y up, ``Zrotation Xrotation Yrotation``, CMU joint names).
 
-    The hierarchy uses CMU joint names (Hips, LeftUpLeg, LeftLeg, LeftFoot, Spine, Neck, Head,
-    LeftArm, LeftForeArm, LeftHand, ...), so :class:`BVHPerson` maps it back onto the same
-    skeleton. World coordinates are written as they are (start and heading included).
+    :class:`BVHPerson` maps it back onto the same skeleton; start and heading are kept.
 
     Args:
         person: the walker.

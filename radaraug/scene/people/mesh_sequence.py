@@ -96,24 +96,17 @@ def _attach(points: torch.Tensor, vertices: torch.Tensor, faces: torch.Tensor,
 class MeshSequencePerson(Person):
     """An animated triangle mesh, one mesh per frame, every frame with the same vertices.
 
-    Vertices follow a Catmull-Rom spline through the frames (the sequence is cyclic: frame
-    ``N-1`` is followed by frame 0, period ``N / fps``), and vertex velocities are its exact
-    derivative. Placement: the file's up axis is turned to ``+z`` (the character is assumed to
-    face ``+Z`` in a Y-up file, Mixamo's convention, which becomes ``+x``), scaled, rotated to
-    ``heading_rad`` and moved so that the horizontal centroid of frame 0 is at ``start``; the
-    file's floor stays at ``z = 0``. ``speed_m_s`` adds root motion along the heading for
-    "in place" animations.
+    The sequence is cyclic (period ``N / fps``); vertices follow a Catmull-Rom spline through the
+    frames, with exact velocities. Placement and conventions: ``docs/people.md``.
 
     Args:
-        files_or_meshes: mesh files (OBJ, PLY, GLB, ... anything trimesh reads) or
-            ``trimesh.Trimesh`` objects, one per frame. Files are loaded with ``process=False`` so
-            the vertex order is kept.
+        files_or_meshes: mesh files (anything trimesh reads; vertex order kept) or
+            ``trimesh.Trimesh`` objects, one per frame.
         fps: animation frames per second.
         start: ``(x, y)`` of the body centroid at ``t = 0``.
         heading_rad: facing / walking direction in the x-y plane.
         scale: metres per file unit.
-        max_faces: triangle budget; larger meshes are decimated with :func:`simplify_mesh`
-            once, and the other frames follow through barycentric coordinates on frame 0.
+        max_faces: triangle budget; frame 0 is decimated once and the other frames follow it.
         up_axis: ``"y"`` (default, OBJ/GLB/Mixamo) or ``"z"``.
         speed_m_s: root motion along the heading (m/s), added to the animation.
     """
@@ -200,10 +193,7 @@ class MeshSequencePerson(Person):
     def ellipsoids(self, t: torch.Tensor) -> Ellipsoids:
         """A coarse 16-ellipsoid decomposition: one per vertex cluster (k-means on frame 0).
 
-        Each cluster's ellipsoid has the cluster's centroid, principal axes, and semi-axes
-        ``sqrt(3 * variance)`` (exact for points spread uniformly over an ellipsoid's surface);
-        its velocity is the cluster's mean vertex velocity. Cluster order is not the skeleton's
-        segment order.
+        Semi-axes ``sqrt(3 * variance)`` along the cluster's principal axes; not the skeleton's segment order.
         """
         pos, vel = self.vertices(as_times(t))
         ids = self._labels.to(pos.device)

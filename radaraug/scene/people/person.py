@@ -53,10 +53,7 @@ def icosphere_level(faces_per_segment: int) -> int:
 
 
 def tessellate(ell: Ellipsoids, faces_per_segment: int = 320) -> tuple[torch.Tensor, torch.Tensor]:
-    """Triangulate ellipsoids (icosphere mapped through each ellipsoid's affine map).
-
-    The map ``c + R diag(a) u`` has positive determinant, so the outward, counter-clockwise
-    icosphere faces stay outward. The polyhedron is inscribed (area ~1 % low at 320 faces).
+    """Triangulate ellipsoids: an icosphere through each ellipsoid's affine map (faces stay outward).
 
     Args:
         ell: ellipsoids with shapes ``(..., S, ...)``.
@@ -149,11 +146,7 @@ class Person(ABC):
         dtype: torch.dtype = torch.float32,
         device: torch.device | str | None = None,
     ) -> SceneGeometry:
-        """Triangle mesh of the body at time ``t`` with per-vertex velocities.
-
-        Vertex velocities are central differences of the tessellated surface over
-        ``t +- MESH_VELOCITY_DT_S`` computed in float64, so they include each segment's
-        rotation (``v_centre + omega x r``), not only its translation.
+        """Triangle mesh of the body at time ``t`` with per-vertex velocities (rotation included).
 
         Args:
             t: time in seconds.

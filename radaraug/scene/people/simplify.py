@@ -30,9 +30,8 @@ def simplify_mesh(
 ) -> tuple[torch.Tensor | np.ndarray, torch.Tensor | np.ndarray]:
     """Repair a triangle mesh and decimate it to at most ``target_faces`` triangles.
 
-    Repair: merge duplicate vertices, drop duplicate and zero-area faces and unreferenced
-    vertices. Decimation: quadric edge collapse (Garland-Heckbert) keeping normals and
-    topology, with a planar-simplification term so that flat regions go first.
+    Repair merges duplicates and drops degenerate faces; decimation is a quadric edge collapse
+    keeping normals and topology (``docs/people.md``).
 
     Args:
         vertices: ``(V, 3)`` float positions.

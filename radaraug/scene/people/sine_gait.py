@@ -1,37 +1,8 @@
 """A sinusoidal gait model written as BVH: a motion source independent of the Boulic walker.
 
-The held-out proxy set (:mod:`radaraug.sim.proxy`) must not be driven by the same walking model
-the training twin uses (:class:`~radaraug.scene.people.Walker`, Boulic-Thalmann). This module is
-a deliberately different, simple kinematic gait whose clips radaraug writes itself (no motion
-capture is bundled) and plays back with :class:`~radaraug.scene.people.BVHPerson`:
-
-* **cadence law**: the gait-cycle frequency grows linearly with speed and does not depend on
-  height, ``f_cycle = 0.575 + 0.275 V`` Hz (half the step-frequency law
-  ``1.15 + 0.55 V`` steps/s); stride length ``V / f_cycle``. Boulic's law depends on the
-  relative velocity ``V / leg length``: ``Dc = 1.346 / sqrt(rv)`` (e.g. 0.5 m/s, 1.75 m:
-  1.40 s here against 1.77 s);
-* **joint angles**: single sinusoids or squared raised cosines of the cycle phase ``u`` instead
-  of Boulic's PCHIP control points, with their own amplitudes: hip flexion
-  ``6 + (12 + 7V) cos(2 pi u)``; knee flexion ``4 + (42 + 12V) r(u - 0.22)^2`` with the raised
-  cosine ``r(x) = (1 - cos 2 pi x) / 2``; ankle dorsiflexion
-  ``8 sin(2 pi (u - 0.15)) - 4 sin(4 pi (u - 0.03))``; a larger arm swing, shoulder flexion
-  ``-(8 + 14V) cos(2 pi u)`` (Boulic: ``9.88 rv``), elbow flexion
-  ``14 + 8V + (6 + 8V) r(u)``; a forward trunk lean ``2 + 3V``; pelvis rotation
-  ``(3 + 4V) cos(2 pi u)`` with the thorax counter-rotating by 1.3 times it; pelvis obliquity
-  ``2.5 sin(2 pi u)`` (all degrees, the left side half a cycle later);
-* **pelvis translation**: vertical bob ``-(0.010 + 0.012V) cos(4 pi u)`` m, lateral sway
-  ``-(0.025 - 0.006V) sin(2 pi u)`` m, forward surge ``0.008 sin(4 pi (u - 0.1))`` m on top of
-  the constant speed;
-* **body proportions**: Drillis-Contini fractions of the height for the legs, trunk and head
-  (as the walker) but a longer foot (0.115 H ankle-to-toe) and shorter arms (upper arm 0.186 H,
-  forearm 0.146 H).
-
-Heel strike of the right foot is at ``u = 0``. The pelvis height is set once per clip so that
-the lowest heel or toe point over the cycle touches the floor. The model is open loop and not
-validated against gait data: it is plausible walking, not a reference.
-
-BVH axes: +Y up, +Z the walking direction, +X the person's left (CMU joint names, so
-:class:`~radaraug.scene.people.BVHPerson` maps it onto the 16-segment skeleton).
+The held-out proxy set must not walk with the training twin's model; this simple, open-loop gait
+(sinusoids of the cycle phase, its own cadence law) is played back with ``BVHPerson``. Its
+equations: ``docs/people.md``, "Sinusoidal gait".
 """
 
 from __future__ import annotations
@@ -216,9 +187,7 @@ class SineGait:
 def write_sine_gait_bvh(gait: SineGait, path: str | Path, *, fps: float = 100.0, unit: str = "cm") -> Path:
     """Write one gait cycle of ``gait`` as a looping BVH clip (CMU joint names).
 
-    The clip has ``round(cycle * fps) + 1`` frames, the last one exactly one cycle (one stride
-    forward) after the first, so :class:`~radaraug.scene.people.BVHPerson` with ``loop=True``
-    walks on seamlessly. The frame time is ``cycle / round(cycle * fps)``.
+    The last frame is one stride after the first, so ``BVHPerson(..., loop=True)`` walks on seamlessly.
 
     Args:
         gait: the gait.

@@ -127,11 +127,9 @@ class Skeleton:
     ) -> tuple[torch.Tensor, torch.Tensor]:
         """World-from-local rotations of the segments (local z along the bone).
 
-        The cross-section axes follow a body reference (hip or shoulder line, or world up for
-        the lateral bones). When a bone is within ~12 degrees of its reference (e.g. arms
-        straight out in a T-pose) a second reference is used; ``fallback`` returns that choice
-        so that frames at nearby instants can be built with the same one (continuity for
-        finite differences).
+        Cross-section axes follow a body reference (hip or shoulder line; world up for lateral bones),
+        or a second one for a bone within ~12 degrees of it; ``fallback`` returns that choice so that
+        nearby instants can reuse it (continuous finite differences).
 
         Args:
             joints: ``(..., 17, 3)`` joint positions.
@@ -181,11 +179,8 @@ class Skeleton:
     ) -> Ellipsoids:
         """Segment ellipsoids from joint positions and velocities.
 
-        Centres are bone midpoints; their velocities the mean of the two joint velocities,
-        which is exact for a rigid bone. Angular velocities: from the segment frames a short step
-        ahead along the joints' velocities, ``R(t + dt) R(t)^T = I + [omega]x dt`` (the bone's turn and
-        the twist the hip and shoulder lines give it); the tracer moves each echo with its specular
-        point's velocity ``v + omega x offset`` (:mod:`radaraug.raytrace.targets`).
+        Centres are bone midpoints moving with the mean joint velocity (exact for a rigid bone);
+        angular velocities come from the segment frames a short step ahead (``docs/people.md``).
 
         Args:
             joints: ``(..., 17, 3)`` positions, metres.
@@ -221,8 +216,7 @@ class Skeleton:
 def without_turn() -> Iterator[None]:
     """Inside, skeleton people give no angular velocities: echoes move with their segments' centres.
 
-    The rule before ``TWIN_MODEL_VERSION`` 2 (for before/after comparisons and the pinned digests of
-    items simulated that way). Not thread-safe: it replaces :meth:`Skeleton.ellipsoids`.
+    Reproduces twin model version 1 (``docs/people.md``). Not thread-safe: it replaces :meth:`Skeleton.ellipsoids`.
     """
     with_turn = Skeleton.ellipsoids
 

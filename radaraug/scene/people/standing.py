@@ -1,22 +1,7 @@
-"""A standing person: upright rest pose, breathing and postural sway.
+"""A standing person: upright rest pose, breathing and postural sway (analytic, exact velocities).
 
-Why a separate person: a walker with speed 0 is outside Boulic's model, and a person who stands
-in a room (waiting, talking, at a desk) is the case a one-frame range-Doppler classifier finds
-hardest: every part of the body moves at millimetres per second, so at 60 GHz the whole return
-sits in the zero-Doppler bin(s) next to the room's static clutter. The twin needs such people to
-say so with numbers (docs/training.md) instead of leaving them out.
-
-Motion (all analytic, velocities exact):
-
-* **Breathing**: the chest wall moves ``breathing_m`` peak (4-12 mm at rest, Droitcour et al.
-  2009; 1 cm is a deep breath) at ``breathing_Hz`` (0.2-0.4 Hz, 12-24 breaths/min) along the
-  facing direction. The joints above the pelvis (neck, head, shoulders, arms) move by twice that,
-  so that the torso ellipsoid's centre (midway between pelvis and neck) moves by the chest
-  displacement itself.
-* **Postural sway**: quiet standing is an inverted pendulum about the ankles (Winter 1995): a
-  joint at height ``z`` above the ankle moves ``sway_rad * (z - z_ankle)`` horizontally, in the
-  direction ``sway_direction_rad`` relative to the facing direction; centre-of-mass sway is
-  ~0.5-1 cm at 0.1-0.5 Hz.
+Why: standing still is outside Boulic's walker, and is the case a one-frame range-Doppler classifier
+finds hardest (the whole return sits at zero Doppler). Model: ``docs/people.md``, "Standing person".
 """
 
 from __future__ import annotations
@@ -42,7 +27,7 @@ _UPPER_BODY = ("neck", "head_top", "left_shoulder", "right_shoulder", "left_elbo
 
 @register_person
 class StandingPerson(SkeletonPerson):
-    """A person standing still: rest pose, breathing and sway (see the module docstring).
+    """A person standing still: rest pose, breathing (along the facing direction) and sway about the ankles.
 
     Args:
         height_m: body height, metres (0.5-2.5).
@@ -51,8 +36,7 @@ class StandingPerson(SkeletonPerson):
         breathing_m: peak chest displacement, metres (0-0.03).
         breathing_Hz: breathing rate, Hz (0-1).
         breathing_phase: breathing phase at ``t = 0``, cycles in [0, 1).
-        sway_rad: peak sway angle about the ankles, radians (0-0.05; 0.01 rad moves the pelvis
-            ~1 cm).
+        sway_rad: peak sway angle about the ankles, radians (0-0.05; 0.01 rad moves the pelvis ~1 cm).
         sway_Hz: sway frequency, Hz (0-2).
         sway_phase: sway phase at ``t = 0``, cycles in [0, 1).
         sway_direction_rad: sway direction relative to the facing direction (0 = fore-aft).

@@ -1,15 +1,7 @@
 """Procedural walker: the Boulic-Magnenat-Thalmann-Thalmann (1990) global walking model.
 
-R. Boulic, N. Magnenat-Thalmann, D. Thalmann, "A global human walking model with real-time
-kinematic personification", The Visual Computer 6:344-358, 1990, as used for radar
-micro-Doppler by V.C. Chen ("The Micro-Doppler Effect in Radar", 2011) and MATLAB's
-``backscatterPedestrian``. Every trajectory is a function of the relative velocity
-``rv = V / Ht`` (``Ht`` = leg length = 0.491 H) and of the normalized cycle time ``u`` in [0, 1)
-(``u = 0``: heel strike of the right foot). Control points and amplitudes are the published ones
-(Boulic's appendices, in Chen's / MATLAB's transcription); see docs/people.md for what differs.
-
-Velocities are analytic: joint angles are PCHIP curves (or sinusoids) differentiated exactly,
-and rotations are propagated together with their time derivative down each kinematic chain.
+Trajectories are functions of the relative velocity ``rv = V / leg length`` and the cycle time ``u``
+(0 = right heel strike), with analytic velocities. References and deviations: ``docs/people.md``.
 """
 
 from __future__ import annotations
