@@ -1,21 +1,9 @@
-"""An independent held-out test generator that shares no simulation code with the twin.
+"""An independent held-out test generator: a NumPy simulation that shares no code with the twin.
 
-radaraug's classifiers train on the digital twin (:mod:`radaraug.sim`, :mod:`radaraug.raytrace`,
-:mod:`radaraug.sensor`, :mod:`radaraug.scene`). The held-out proxy of :mod:`radaraug.sim.proxy` is
-that same twin in another room, so a shared modelling error is invisible on it. This package
-writes a second test set from a simulation written separately, in NumPy:
-
-* :mod:`radaraug.heldout.walkers`: people as 14 point scatterers on a sinusoidal gait;
-* :mod:`radaraug.heldout.room`: an office as static point scatterers levelled by the radar equation;
-* :mod:`radaraug.heldout.receiver`: the FMCW receiver chain with undeclared effects;
-* :mod:`radaraug.heldout.generator`: :func:`make_independent_proxy`, the labelled captures;
-* :mod:`radaraug.heldout.worlds`: whole test worlds (room, mounting, radar config, people,
-  disturbances) drawn from wide priors, in a ``design`` suite to look at and a ``report`` suite
-  run only to report (:func:`make_suite`).
-
-It imports none of the twin's packages (a test checks it); it uses only
-:class:`~radaraug.config.RadarConfig`, :mod:`radaraug.io` (the capture writer) and
-:mod:`radaraug.errors`.
+Its room (:mod:`~radaraug.heldout.room`), people (:mod:`~radaraug.heldout.walkers`) and receiver
+(:mod:`~radaraug.heldout.receiver`) are written anew, so a modelling error of the twin is not
+shared by the test. :func:`make_independent_proxy` writes the ``independent`` set, :func:`make_suite`
+the drawn test worlds. It imports none of the twin's packages (tested). See docs/heldout_worlds.md.
 """
 
 from radaraug.heldout.generator import (

@@ -1,33 +1,9 @@
-"""The independent held-out test set: labelled captures made without any of the twin's code.
+"""The ``independent`` held-out set: labelled captures made without any of the twin's code.
 
-:func:`make_independent_proxy` writes radaraug HDF5 captures of 0, 1 and 2 people (every frame of a
-file has the file's count; per-frame ``count`` and ``occupancy`` labels) and an empty-room
-calibration capture of the same room, like :func:`radaraug.sim.proxy.make_proxy`, but from a
-simulation that shares **no code** with the twin:
-
-* people: :mod:`radaraug.heldout.walkers` (point scatterers on a sinusoidal gait; not the twin's
-  Boulic-Thalmann walker, ellipsoids or skin model);
-* room: :mod:`radaraug.heldout.room` (point scatterers levelled by the radar equation; not the
-  twin's scene, materials or ray tracer);
-* receiver: :mod:`radaraug.heldout.receiver` (NumPy, per-sample float64 phases, analog IF filters
-  with the high-pass start-up transient; not ``radaraug.sensor``).
-
-Only the :class:`~radaraug.config.RadarConfig` (numbers), the capture writer and the atomic JSON
-writer are shared with the rest of radaraug.
-
-Receiver (fixed before any training result was seen; see :data:`RECEIVER` and
-:func:`default_effects`): thermal noise with a 13 dB noise figure, 1.6 counts RMS of ADC-side
-noise before the anti-alias filter (about 1.4 at the ADC, the 1.3-1.5 counts measured on real
-recordings), TX->RX leakage, DC offsets, and undeclared effects present in **every** capture,
-the calibration capture included: LO phase noise (a skirt around the strong static returns), a
-spur tone, frame-to-frame gain and DC drift, an RX gain/phase mismatch and the vibrating desk fan.
-
-Determinism: a file depends only on ``(seed, its count, frames, config, effects,
-standing_probability, GENERATOR_VERSION)``: the people of episode ``j`` of count ``c`` come from
-``SeedSequence(seed, spawn_key=(1, c, j))``, the receiver noise of block ``b`` of file ``k``
-(0 = calibration, ``c + 1`` = count ``c``) from ``SeedSequence(seed, spawn_key=(2, k, b))``.
-Re-running with the same arguments on a complete folder reuses it (``manifest.json`` is written
-last and checked).
+:func:`make_independent_proxy` writes captures of 0, 1 and 2 people and an empty-room calibration
+capture of one fixed office, like :func:`radaraug.sim.proxy.make_proxy`, from the independent room,
+people and receiver; its undeclared effects act on every capture, the calibration one included.
+Receiver constants, effects and seeding: docs/heldout_worlds.md ("Inside the generator").
 """
 
 from __future__ import annotations
@@ -88,23 +64,8 @@ RECEIVER: dict[str, Any] = {
     "phase_noise_min_level_dB": -110.0,
     "adc_noise_rms_counts_12bit": 1.6,
 }
-"""The receiver's base constants (per-RX values by antenna number 1, 2, 3), and why:
-
-* ``front_end_gain_dB`` (ADC float units per sqrt(W) at the RX port, 0 dB IF gain) with
-  ``noise_figure_dB``: real BGT60TR13C noise floors barely move between 23 and 38 dB IF gain and
-  rise ~3 dB at 48 dB, so thermal noise equals the ADC-side noise near 47 dB IF gain; with
-  NF 13 dB that puts the front-end gain near 26 dB.
-* ``adc_noise_rms_counts_12bit``: 1.6 counts before the anti-alias filter, ~1.4 at the ADC
-  (the 1.3-1.5 counts measured on real recordings at 23 dB).
-* ``tx_power_dBm_at_level_31``: ~5 dBm, the order of a 60 GHz radar-on-chip PA; lower power
-  levels scale the amplitude linearly with the level (assumed).
-* leakage: a few cm of on-board coupling, ~-41 dB re TX at the ADC's reference on RX2/RX3 and
-  ~8 dB more on RX1 (closest to the TX), a strong near-DC return as on the real sensor.
-* ``dc_counts_12bit``: per-RX DC levels of a 12-bit ADC (another device than the twin's default chain).
-* ``phase_noise_min_level_dB``: paths below -110 dB re TX carry no LO noise: the skirt lies
-  > 50 dB under its path (see :data:`UNDECLARED_EFFECTS`), and such a path is at most ~25 dB
-  above the RD noise floor, so it would change nothing but the run time.
-"""
+"""The receiver's base constants (per-RX values by antenna number 1, 2, 3), fixed before any
+training result was seen; why each has its value: docs/heldout_worlds.md ("The independent set's receiver")."""
 
 UNDECLARED_EFFECTS: tuple[dict[str, Any], ...] = (
     {"name": "phase_noise", "freq_noise_rms_Hz": 25e3, "corner_Hz": 300e3},
@@ -112,20 +73,9 @@ UNDECLARED_EFFECTS: tuple[dict[str, Any], ...] = (
     {"name": "frame_drift", "gain_rms_dB": 0.1, "dc_rms_counts": 1.0},
     {"name": "rx_gain_phase_mismatch", "gain_dB": (0.0, -0.6, 0.4), "phase_rad": (0.0, 0.2, -0.3)},
 )
-"""The default undeclared effects besides the fan (per-RX values by antenna number 1, 2, 3):
-
-* LO phase noise, 25 kHz RMS frequency noise (over the 500 kHz band) with a 300 kHz corner:
-  SSB phase noise about -70 dBc/Hz at 100 kHz and -101 dBc/Hz at 1 MHz offset, a 60 GHz
-  radar-on-chip PLL. Every path above
-  ``phase_noise_min_level_dB`` carries it, the room's strong static returns included. On these
-  short delays (< 60 ns) the skirt stays well under the noise floor, as on real short-range
-  sensors; it is there so that nothing static is perfectly static;
-* a spur at 156.25 kHz (20 MHz / 128: a clock harmonic), 0.5-0.7 counts peak at the ADC input;
-* frame drift: 0.1 dB RMS gain and 1 count RMS DC change from frame to frame;
-* RX mismatch: up to 0.6 dB and 0.3 rad between the RX channels;
-* the running desk fan of :func:`radaraug.heldout.room.fan_effects` (housing vibration and three
-  blades), added by :func:`default_effects`.
-"""
+"""The default undeclared effects besides the desk fan (:func:`default_effects` adds it; per-RX
+values by antenna number 1, 2, 3): LO phase noise, a spur tone, frame drift and an RX gain/phase
+mismatch, in every capture (docs/heldout_worlds.md, "The independent set's receiver")."""
 
 
 #: The generated set (:class:`radaraug.io.generated_set.GeneratedTestSet`, shared by both generators).

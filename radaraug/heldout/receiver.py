@@ -1,138 +1,10 @@
-"""An independent NumPy receiver: raw FMCW ADC frames written again from the physics.
+"""An independent FMCW receiver in NumPy: raw ADC frames of point scatterers, from the physics.
 
-radaraug's digital twin (``radaraug.sensor``) synthesizes IF signals in torch. Testing anything
-against captures made by the twin itself only shows that the twin agrees with itself, so this
-module writes the receiver again, in NumPy, sharing no code with ``radaraug.sensor`` (it reads
-numbers from a :class:`~radaraug.config.RadarConfig` and, in :func:`save_capture` only, uses the
-public capture writer). Two users:
-
-* the calibration-loop tests (``tests/calibration``), which need "measured" captures with known,
-  undeclared effects;
-* :mod:`radaraug.heldout`, the independent held-out test generator, which feeds it people and a
-  room built without the twin's scene, ray tracer or body model.
-
-Signal model (one TX, real IF, as a BGT60TR13C samples it)
------------------------------------------------------------
-Fast time ``t_n = n / fs`` counts from the first ADC sample; chirp ``m`` of frame ``f`` starts its
-ramp at ``t0 + f * frame_period + m * T`` (``t0 = start_time_s``, 0 by default) and samples from
-``t_d`` (ADC delay) later, so a sample's absolute time is
-``t_abs = t0 + f * frame_period + m * T + t_d + t_n``. A path of one-way range
-``R(t_abs)`` has delay ``tau = 2 R / c`` evaluated at every sample, and contributes the beat tone
-
-    x = A cos(2 pi (f0 tau + S tau t_n - S tau^2 / 2) + phase),   A = sqrt(2 P) * g_fe
-
-(``f0`` = RF at the first sample, ``S`` = slope, ``P`` = received power in W, ``g_fe`` = front-end
-gain in ADC float units per sqrt(W) at 0 dB IF gain). The phase is computed per sample in float64
-cycles, reduced modulo 1, with no separable expansion. A receding path (``tau`` growing) turns
-the positive-frequency component of its range bin at ``+2 v / lambda`` over slow time.
-
-Receiver chain, in hardware order (every stage written here)
--------------------------------------------------------------
-1. paths: TX->RX leakage (static, ``leak_range_m``, power ``coupling_dB[rx]`` re TX, phase per
-   RX), the ``scene`` points, the ``tracks`` and the path-type effects (clutter, multipath ghosts,
-   moving target), with LO phase noise and chirp non-linearity acting on their phases;
-2. thermal noise at the RX port, power ``k * 290 K * NF * fs / 2``;
-3. system gain (dB); then ``rx_gain_phase_mismatch`` (a complex gain per RX on the paths and its
-   magnitude on the noise);
-4. IF high-pass (first order, ``fc = cfg.effective_hp_cutoff_Hz``), see *Filters*;
-5. IF gain ``cfg.if_gain_dB``; then ``adc_noise`` and ``interference`` bursts are added;
-6. anti-alias low-pass (first order, ``fc = cfg.effective_aaf_cutoff_Hz``), see *Filters*;
-7. ``frame_drift`` gain (per frame); ``spur_tone``; DC offset per RX (+ ``frame_drift`` DC shift);
-8. quantization ``counts = clip(round((x + 1) * full / 2), 0, full)`` with ``full = 4095`` for a
-   12-bit ADC, which is the library's float convention ``x = 2 * counts / full - 1``. The DC
-   offset is given as the absolute ADC level in counts of each RX (mid-scale is 2047.5).
-
-Filters (``filter_method``)
----------------------------
-Both IF filters are first-order analog filters, ``H_hp(f) = (j f / fh) / (1 + j f / fh)`` and
-``H_aaf(f) = 1 / (1 + j f / fl)``, which the ADC samples after the fact.
-
-* ``"analog"`` (default; ``"iir"`` is accepted as the same): what a real receiver does, both
-  filters starting from zero state when the IF switches on at the ramp start, ``t_d`` before the
-  first ADC sample. For a first-order filter the zero-state output is the steady-state output
-  plus a free decay of the state the steady state would have had at the switch-on, so
-
-  - the steady state is computed on the samples: each chirp is generated on an extended grid
-    (``ROLL`` = 16 samples before the first and after the last ADC sample, the tones simply
-    continued), mirrored at both ends (even extension: no jump, so no Gibbs ringing), ``rfft``,
-    multiplied by ``H_hp * G_if * H_aaf`` at the bins, ``irfft``, the roll samples dropped. This
-    filters everything (paths with their phase noise and non-linearity, thermal noise) by the
-    analog response at its own frequency; ``adc_noise`` and ``interference`` get ``H_aaf`` only.
-  - the high-pass start-up transient is added analytically: with ``K`` the steady-state
-    high-pass *capacitor* voltage at the ramp start, ``K = sum_p Re{C_p e^{j Phi_p(-t_d)} /
-    (1 + j f_p / fh)}`` (each path's instantaneous beat frequency ``f_p``; noise left out), the
-    ADC sees ``G_if K fl / (fl - fh) (e^{-wh (t + t_d)} - e^{-wl (t + t_d)})`` (the second
-    term is the AAF's response to the decay). On the BGT60 the TX->RX leakage makes ``K`` large:
-    a decay with a 2 us time constant, ~e^-1.56 already gone at the first sample, over the first
-    few samples of every chirp, with a per-RX, per-chirp-constant size (the library's tone
-    response has no such transient). The AAF's own start-up (0.3 us time constant, e^-9.7 at the
-    first sample) is neglected.
-* ``"steady"``: the same without the start-up transient: the exact analog tone response, what
-  the library's twin models.
-* ``"circular"``: the textbook frequency-domain filter: ``rfft`` over the N ADC samples of each
-  chirp, times the analog responses, ``irfft`` (circular, no roll: tones that are not periodic
-  in the chirp wrap around, giving edge artefacts).
-
-Undeclared effects (``effects=[{"name": ..., **params}, ...]``)
---------------------------------------------------------------
-Units mirror the library's effect catalog; per-RX parameters accept a scalar or one value per RX.
-The order of the list does not matter (each effect has its fixed place in the chain above); an
-effect may appear more than once.
-
-* ``spur_tone``: ``freq_Hz``, ``amplitude_counts`` (peak, ADC counts, scalar or per RX),
-  ``phase_rad`` (phase at ``t_abs = 0``): ``a cos(2 pi freq t_abs + phase)`` added after the AAF
-  and the frame drift gain, before the DC offset.
-* ``adc_noise``: ``rms_counts``: white Gaussian noise (RMS in counts before the AAF), independent
-  per RX, added after the IF gain; the AAF shapes it.
-* ``rx_gain_phase_mismatch``: ``gain_dB``, ``phase_rad`` (scalar or per RX): complex gain
-  ``10**(gain_dB/20) exp(j phase)`` on the positive-frequency component of each RX's paths
-  (leakage included) and ``10**(gain_dB/20)`` on its thermal noise; after the system gain.
-* ``static_clutter``: ``range_m``, ``level_dB`` (received power re TX power), ``phase_rad``.
-* ``vibrating_clutter``: ``range_m``, ``level_dB``, ``displacement_m``, ``vibration_Hz``,
-  ``phase_rad`` (phase of the vibration), optional ``path_phase_rad`` (phase of the tone, 0):
-  range ``R + displacement sin(2 pi vibration_Hz t_abs + phase_rad)`` per sample.
-* ``multipath``: ``extra_range_m``, ``level_dB``, ``phase_rad``: every ``scene`` point and
-  ``moving_target`` gets a ghost at ``R + extra_range_m`` (same motion) with complex ratio
-  ``10**(level_dB/20) exp(j phase_rad)``; the leakage, the clutter effects and other ghosts get
-  none (as in the library, where multipath runs before leakage and clutter are added).
-* ``interference``: ``probability``, ``amplitude_counts``, ``duration_s``: each chirp of each
-  frame independently gets, with that probability, a burst whose beat frequency sweeps linearly
-  from ``-fs/2`` to ``fs/2`` over ``duration_s`` (the two radars' ramps cross at the burst's
-  centre, where the beat passes through zero), Hann-windowed (``sin^2``, peak ``amplitude_counts``), random phase, start
-  uniform in ``[0, max(T_adc - duration_s, 0)]`` after the first ADC sample; the same burst on
-  every RX; added after the IF gain (the AAF shapes it).
-* ``frame_drift``: ``gain_rms_dB``, ``dc_rms_counts``: per frame a gain ``10**(g/20)``,
-  ``g ~ N(0, gain_rms_dB)``, common to all RX on the whole signal after the AAF (not on spurs),
-  and per frame and RX a DC shift ``~ N(0, dc_rms_counts)`` counts.
-* ``phase_noise``: ``freq_noise_rms_Hz``, ``corner_Hz``: LO frequency noise ``nu(t)``, white
-  Gaussian noise filtered along fast time by ``1 / sqrt(1 + (f / corner)^2)`` (a Lorentzian
-  PSD), independent per chirp, common to all RX (one LO), scaled so its expected RMS is
-  ``freq_noise_rms_Hz``; each path of delay ``tau`` gets the phase ``2 pi tau nu(t)`` exactly.
-* ``chirp_nonlinearity``: ``deviation_Hz``, ``ripple_Hz``, ``phase_rad``: the ramp frequency
-  deviates by ``dF(t) = deviation sin(2 pi ripple t + phase)`` (``t`` fast time from the first
-  sample, identical every chirp); a path gets ``2 pi * integral_{t - tau}^{t} dF`` =
-  ``(deviation / ripple) (cos(2 pi ripple (t - tau) + phase) - cos(2 pi ripple t + phase))``.
-* ``moving_target`` (not in the library's catalog): ``range_m``, ``speed_m_s`` (+ = away),
-  ``level_dB``, optional ``phase_rad`` (0): range ``R + speed * t_abs`` (it keeps moving from
-  frame to frame).
-
-Scene points and tracks
------------------------
-* ``scene``: static points ``{"range_m", "level_dB", "phase_rad" (0), "rx_phase_rad" (0)}``;
-  ``level_dB`` is the received power relative to the TX power, ``rx_phase_rad`` an extra phase
-  per RX (scalar or one per RX), e.g. the angle of arrival's ``-2 pi (d_rx . u) / lambda``.
-* ``tracks``: points on any trajectory, sampled at every chirp: ``{"range_m", "rate_m_s",
-  "level_dB", "phase_rad" (0), "rx_phase_rad" (0)}``. ``range_m`` and ``rate_m_s`` are ``(F, M)``:
-  the one-way range at each chirp's first ADC sample and its rate; within a chirp the range moves
-  linearly, ``R + rate * t_n`` (the ramp-start transient uses ``t_n = -t_d``). ``level_dB`` is a
-  scalar, ``(F,)`` or ``(F, M)``; ``rx_phase_rad`` a scalar, ``(RX,)`` or ``(F, RX, M)``. A track
-  costs one phase evaluation per sample, whatever the number of RX (the per-RX phase is a
-  complex gain per chirp). ``multipath`` ghosts tracks like scene points.
-
-Randomness: every random stage draws from its own stream
-``np.random.default_rng(np.random.SeedSequence(seed, spawn_key=(stage, occurrence)))``, so a
-capture is reproducible from ``seed`` and adding an effect does not change the thermal noise (or
-any other stage's) realization: two captures with the same seed differ only by that effect.
+It shares no code with :mod:`radaraug.sensor` (it reads only a
+:class:`~radaraug.config.RadarConfig`'s numbers), so captures made with it can test the twin and the
+calibration loop with known, undeclared effects. The signal model, the receiver chain, the IF
+filters (``filter_method``), the ``effects``, the ``scene``/``tracks`` formats and the seeding are
+specified in docs/heldout_worlds.md ("Receiver").
 """
 
 from __future__ import annotations
@@ -266,7 +138,7 @@ def _nonlinearity_cycles(
 
 
 def _track_path(p: Mapping[str, Any], F: int, n_rx: int, M: int, p_tx: float, g_fe: float) -> _Path:
-    """The :class:`_Path` of a track ``p`` (module docstring) over ``F`` frames of ``M`` chirps."""
+    """The :class:`_Path` of a track ``p`` (see :func:`generate`) over ``F`` frames of ``M`` chirps."""
     _check_keys("track", p, ("range_m", "rate_m_s", "level_dB"), ("phase_rad", "rx_phase_rad"))
     rng_m = np.asarray(p["range_m"], dtype=np.float64)
     rate = np.asarray(p["rate_m_s"], dtype=np.float64)
@@ -376,15 +248,17 @@ def generate(
 ) -> np.ndarray:
     """Raw ADC counts ``(frames, RX, chirps, samples)`` (uint16) of a scene through the receiver.
 
+    The model and the formats of ``effects``, ``scene`` and ``tracks``: docs/heldout_worlds.md ("Receiver").
+
     Args:
         cfg: radar configuration (only its numbers are read).
         frames: number of frames F; frame ``f`` starts at ``f * cfg.frame_repetition_time_s``.
-        seed: seed of every random draw (see the module docstring).
-        effects: undeclared effects ``{"name": ..., **params}`` (module docstring).
+        seed: seed of every random draw (one stream per stage).
+        effects: undeclared effects ``{"name": ..., **params}`` (:data:`EFFECT_PARAMS`).
         scene: static points ``{"range_m", "level_dB", "phase_rad" (0), "rx_phase_rad" (0)}``,
-            level = received power relative to the TX power, dB (module docstring).
+            level = received power relative to the TX power, dB.
         tracks: points on trajectories sampled per chirp ``{"range_m", "rate_m_s", "level_dB",
-            "phase_rad" (0), "rx_phase_rad" (0)}`` (module docstring).
+            "phase_rad" (0), "rx_phase_rad" (0)}``, ranges and rates ``(F, M)``.
         start_time_s: absolute time of the first frame's start (moves every time-dependent
             stage: moving target, vibrating clutter, spur phase).
         noise_figure_dB: receiver noise figure (``-inf`` turns the thermal noise off).
@@ -395,12 +269,13 @@ def generate(
         leak_range_m: equivalent one-way range of the leakage path.
         leak_phase_rad: phase of the leakage tone, scalar or per RX.
         dc_counts: DC level of each RX in ADC counts (scalar or per RX).
-        filter_method: ``"analog"`` (alias ``"iir"``), ``"steady"`` or ``"circular"`` (module
-            docstring).
+        filter_method: ``"analog"`` (alias ``"iir"``), ``"steady"`` or ``"circular"``.
         phase_noise_min_level_dB: paths received below this level (dB re TX; a track's
-            strongest chirp) get no LO phase noise. A path's phase-noise skirt lies some 40 dB
-            or more under the path itself, so for weak paths it is far below the noise; skipping
-            it spares the per-sample phase of every weak static path. Default: every path.
+            strongest chirp) get no LO phase noise, which saves time where their skirt is far
+            under the noise. Default: every path.
+
+    Raises:
+        ValueError: an unknown filter method or effect, a bad parameter, or a path reaching range <= 0.
     """
     if filter_method not in FILTER_METHODS:
         raise ValueError(f"filter_method must be one of {FILTER_METHODS}, got {filter_method!r}")

@@ -1,50 +1,9 @@
 """The held-out generator's room: static point scatterers levelled by the radar equation.
 
-This room shares nothing with the twin's (:mod:`radaraug.scene`, :mod:`radaraug.raytrace`: meshes,
-materials, image-method ray tracing): it is a list of points, each with a radar cross-section,
-turned into received levels by the radar equation and an antenna pattern written here.
-
-Geometry
---------
-A 9 m x 4 m x 2.8 m office (``x`` along the room, ``y`` across, ``z`` up; the twin trains in a
-20 m x 2 m corridor). The radar hangs on the near wall at :data:`RADAR_POSITION_M`, 1.65 m from
-the ``y = 0`` wall and 1.1 m above the floor, boresight along ``+x`` tilted
-:data:`RADAR_TILT_DOWN_DEG` down.
-
-Levels
-------
-A point of RCS ``sigma`` at range ``R`` and angle ``theta`` off boresight returns the power, relative
-to the TX power,
-
-    P_r / P_t = G(theta)^2 lambda^2 sigma / ((4 pi)^3 R^4)
-
-with one antenna's gain ``G(theta) = G0 max(cos(theta)^q, floor)``: ``G0`` =
-:data:`ANTENNA_GAIN_DBI` (the BGT60TR13C's patch antennas are ~5-6 dBi), ``q`` set so the
-half-power beam is :data:`HALF_POWER_BEAMWIDTH_DEG` wide, and a floor of :data:`PATTERN_FLOOR_DB`
-for the wide angles (small patches on a small board radiate some power everywhere).
-
-* **Walls** (specular): a flat wall at perpendicular distance ``d`` returns what the radar's
-  mirror image at ``2 d`` would, the RCS-equivalent ``sigma = pi d^2 |Gamma|^2``, placed at the
-  foot of the perpendicular. The far wall's lies almost on boresight (a strong return); the side
-  walls', floor's and ceiling's lie ~90 degrees off it (pattern floor, weak).
-* **Walls** (diffuse): seen at grazing angles, the side walls, floor and ceiling return a spread
-  of weak points, one per :data:`DIFFUSE_STEP_M` along each surface, each ``sigma = mu cos^2(i) A``
-  (``mu`` the surface's backscatter coefficient at normal incidence, ``i`` the incidence angle from
-  the surface normal, ``A`` the patch area), each with a fixed +-3 dB roughness factor.
-* **Corners**: the far wall's dihedral edges (with floor and ceiling) and a metal door frame.
-* **Objects**: a metal filing cabinet, a desk and an office chair, a concrete pillar, a radiator
-  under the window and two ceiling lamps, each a few points with RCS assumed from their size
-  and material.
-* **Fan**: a running desk fan on the desk (:data:`FAN`), passed to the receiver as
-  ``vibrating_clutter`` paths: its housing vibrates 0.25 mm at the motor's rotation rate (a
-  Doppler pair within a bin of zero), and its three blades, turning in a plane seen at an angle,
-  move a point each toward and away from the radar by ``r cos(2 pi f t + k 2 pi / 3)`` (exactly a
-  sinusoidal displacement): at 24 rev/s the blade points reach ~12 m/s radially, far beyond the
-  unambiguous velocity, so their Doppler aliases into a faint stripe across every Doppler bin at
-  the fan's range, as a real fan's does.
-
-Every point has a constant scattering phase drawn once from a fixed seed (:data:`ROOM_SEED`):
-the room is the same for every capture and every seed.
+Nothing of the twin's scene, materials or ray tracer: walls (specular and diffuse), corners,
+fixtures and an optional fan are points with an RCS, an antenna pattern written here turns them
+into received levels, and :data:`OFFICE` is the ``independent`` set's room. Model and values:
+docs/heldout_worlds.md ("Room").
 """
 
 from __future__ import annotations
@@ -140,7 +99,7 @@ class Mount:
 class Room:
     """A room of point scatterers: its box, surfaces, fixtures, the radar's mount and the walkable floor.
 
-    The defaults are the office described in the module docstring (the ``independent`` set's room);
+    The defaults are the ``independent`` set's office (docs/heldout_worlds.md, "Room");
     :mod:`radaraug.heldout.worlds` draws others.
 
     Attributes:
@@ -282,7 +241,7 @@ def room_scene(config: RadarConfig, scatterers: list[Scatterer] | None = None,
 
 
 def fan_effects(config: RadarConfig, room: Room = OFFICE) -> list[dict[str, Any]]:
-    """The room's fan as the receiver's ``vibrating_clutter`` effects: the housing, then each blade (none without a fan)."""
+    """The room's fan as ``vibrating_clutter`` effects: the housing, then each blade (none without a fan)."""
     fan = room.fan
     if fan is None:
         return []

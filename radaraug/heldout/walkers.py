@@ -1,52 +1,9 @@
 """People as a handful of moving point scatterers, written from gait physics in NumPy.
 
-This is the held-out generator's own people model. It shares nothing with the twin's
-(:mod:`radaraug.scene.people`: Boulic-Thalmann walker, ellipsoid body, ray-traced skin): a person
-is :data:`NUM_POINTS` point scatterers whose positions follow a simple sinusoidal gait, and whose
-radar cross-sections split a drawn whole-body RCS and fluctuate from frame to frame.
-
-Room frame: metres, ``x`` along the room (the radar looks roughly along ``+x``), ``y`` across it,
-``z`` up from the floor.
-
-Walking person
---------------
-* **Path**: a racetrack (stadium) in the floor plane: two straight lanes ``lane_y -+ TURN_RADIUS_M``
-  from ``x_near`` to ``x_far``, joined by half circles of radius :data:`TURN_RADIUS_M`. The person
-  walks it at constant speed ``v`` from a random point, so they walk toward or away from the radar
-  with a lateral offset and turn around at the room's ends. A half-circle turn makes the radial
-  velocity pass smoothly through zero, as a real turn does (no instantaneous Doppler jump).
-* **Cadence**: step frequency ``f_step = 1.8 sqrt(v / 1.3) sqrt(1.75 / H)`` Hz (x ``U(0.95, 1.05)``),
-  a pendulum-like law: ~1.8 Hz at 1.3 m/s for a 1.75 m person; stride ``2 v / f_step``.
-* **Torso** (pelvis, waist, chest, 2 shoulders, head) moves with the body point at speed ``v``
-  plus a vertical bob ``b cos(4 pi p)`` (two bobs per stride, ``b`` 1.5-3 cm) and a lateral sway
-  ``s sin(2 pi p)`` (``s`` 1-3 cm), ``p`` the gait phase in strides.
-* **Feet**: a foot stands still during stance and moves along the path during swing (a fraction
-  ``w`` 0.50-0.60 of the stride) by one stride length with a ``(1 - cos)`` profile, so its speed
-  peaks at ``pi / (2 w) v`` = 2.6-3.1 times the body speed; it lifts by 4-9 cm mid-swing. The
-  two feet are half a stride apart. Each knee sits between its hip and its foot, pushed forward
-  and up during swing.
-* **Arms**: pendulums from the shoulders, ``theta = A sin(2 pi (p + phase))`` with
-  ``A = k (0.15 + 0.25 v)`` rad (``k`` 0.7-1.3), each arm in phase with the opposite leg; elbow at
-  0.19 H, hand at 0.40 H along the arm (the forearm swings 15% more).
-
-Standing person (``standing=True`` in :func:`draw_person`): fixed position and facing, the
-whole body sways ``0.5-2 cm`` at 0.15-0.5 Hz (the head twice as much) and the chest and waist
-move ``2-6 mm`` at the breathing rate 0.2-0.35 Hz. They still count: the label is the number of
-people in the room, whatever they do.
-
-Radar cross-section
--------------------
-A person's mean total RCS is drawn ``U(-5, +3)`` dBsm (60 GHz human RCS is roughly -5 to +3 dBsm,
-varying with aspect, clothing and size), split over the points by :data:`RCS_FRACTIONS` (torso
-about 55%, legs 22%, arms 14%, head 7%; normalized). Each point's RCS fluctuates from frame to
-frame by a log-normal factor ``10^(xi / 10)``, ``xi`` an AR(1) Gaussian sequence over frames
-(correlation 0.5 from one 100 ms frame to the next, standard deviation 2.5-4.5 dB drawn per person)
-with its mean set so the linear mean RCS is unchanged. It stays constant within a frame's chirps
-(a frame lasts ~25 ms, shorter than the body's aspect changes). Each point also has a random,
-constant scattering phase.
-
-Everything random comes from ``numpy.random.Generator`` objects the caller seeds with
-``np.random.default_rng(np.random.SeedSequence(...))``.
+Nothing of the twin's people model: a person is :data:`NUM_POINTS` points on a sinusoidal gait
+(walking a racetrack, or standing, breathing and swaying) whose RCS splits a drawn whole-body
+RCS and fluctuates from frame to frame. Room frame: metres, ``x`` along the room, ``y`` across,
+``z`` up. Randomness comes from generators the caller seeds. Model: docs/heldout_worlds.md ("People").
 """
 
 from __future__ import annotations

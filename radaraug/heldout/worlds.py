@@ -1,23 +1,9 @@
 """Held-out test worlds drawn from wide priors, in two suites: one to look at, one only to report.
 
-The ``independent`` set (:mod:`radaraug.heldout.generator`) is one fixed office, one radar config
-and one set of disturbances; once its scores chose a default it became a validation set. A
-*world* here is a whole test situation drawn at random by the same independent generator (it
-shares no simulation code with the twin): a room (box, surfaces, furniture), the radar's mounting
-(height, tilt, yaw), the radar config (samples, chirps, sample rate, bandwidth, chirp time, IF
-gain, high-pass cutoff, TX power), the receiver (noise figure, ADC noise, leakage, DC levels),
-the people (strength, speed, walking toward/away, crossing the beam, standing) and a random
-subset of disturbances (spur, fan, interference, drift, RX mismatch, phase noise, clipping).
-Every world has its own empty-room capture, with the world's disturbances in it.
-
-Suites (:data:`SUITES`): ``design`` worlds may be looked at as often as one likes; numbers on them
-are **validation** numbers once they choose anything. ``report`` worlds are drawn from other seeds
-and are run only to report a decision already made, never to make one. A world is a pure function
-of ``(suite, index)`` and :data:`WORLD_GENERATOR_VERSION`; the two suites' world seeds are
-disjoint (tested).
-
-The priors (:data:`PRIORS`, written before any world was generated or scored) are wide on
-purpose: a classifier that only works inside the twin's corridor should show it here.
+A world is a whole test situation (room, mounting, radar config, receiver, people, disturbances)
+drawn from :data:`PRIORS` by the independent generator, with its own empty-room capture. A world
+is a pure function of ``(suite, index)`` and :data:`WORLD_GENERATOR_VERSION`; ``design`` worlds may
+be looked at freely, ``report`` worlds are run only to report. See docs/heldout_worlds.md.
 """
 
 from __future__ import annotations
@@ -60,9 +46,9 @@ WORLD_GENERATOR_VERSION = 1
 WORLD_MANIFEST_FORMAT = "radaraug-heldout-world"
 SUITES: dict[str, int] = {"design": 340_117, "report": 258_449, "report-1": 902_551, "report-2": 611_873}
 """Entropy of each suite's seed sequence: world ``i`` of suite ``s`` is drawn from
-``SeedSequence(SUITES[s], spawn_key=(i,))``. ``report-1`` and ``report-2`` are the first two report
-suites: each was run once, then looked at, so they are spent (:data:`SPENT_SUITES`); they stay drawable
-so that their records can be rerun. ``report`` draws from seeds nobody has run."""
+``SeedSequence(SUITES[s], spawn_key=(i, 1))``, its seed from ``spawn_key=(i, 0)``. The spent suites
+(:data:`SPENT_SUITES`) stay drawable so that their records can be rerun; ``report`` draws from seeds
+nobody has run."""
 SPENT_SUITES: tuple[str, ...] = ("report-1", "report-2")
 """Report suites that have been looked at: their numbers are validation numbers now."""
 DEFAULT_WORLDS: dict[str, int] = {"design": 6, "report": 4, "report-1": 4, "report-2": 4}

@@ -1,11 +1,8 @@
-"""On-the-fly simulation: the digital twin, scenario sampling and twin randomization.
-
-Also the simulated Dataset, offline sharded generation and the held-out proxy set.
+"""On-the-fly simulation: the digital twin, its Dataset, offline generation (docs/simulation.md).
 
 * :class:`DigitalTwin`: a scene's people at frame times -> raw ADC frames;
 * :class:`SimulatedRadarDataset`: a torch Dataset whose item ``i`` is a pure function of (seed, i);
-* :class:`ScenarioSampler` / :class:`Scenario`: who walks where, per item;
-* :class:`TwinRandomization`: room, people and sensor randomization of the twin;
+* :class:`ScenarioSampler` / :class:`Scenario`: who walks where; :class:`TwinRandomization`: per-item draws;
 * :func:`simulate_capture`: a scene simulated into a radaraug HDF5 capture (sharded, resumable);
 * :func:`make_proxy` / :func:`load_proxy`: the held-out proxy set (another room, another sensor chain);
 * :func:`item_generator` / :func:`item_seed`: the per-item seeding; :class:`Stream`: its named streams.

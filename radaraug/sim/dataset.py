@@ -1,11 +1,8 @@
 """`SimulatedRadarDataset`: the digital twin as an on-the-fly map-style torch Dataset.
 
-Item ``i`` is a pure function of ``(seed, i)``: its scenario and its receiver noise come from
-generators seeded by :func:`radaraug.sim.seeding.item_seed`, never from worker or rank state,
-so the same item comes out in any DataLoader worker, process or DDP rank (use a
-``DistributedSampler`` to split the indices; nothing else is needed). With a
-:class:`~radaraug.sim.randomization.TwinRandomization`, item ``i`` also draws its room (from a
-pool that is a pure function of ``seed``), people's RCS and the receiver's gain and noise figure.
+Item ``i`` is a pure function of ``(seed, i)`` (generators seeded by
+:func:`radaraug.sim.seeding.item_seed`, never worker or rank state), so any DataLoader worker,
+process or DDP rank gives the same item. See docs/simulation.md.
 """
 
 from __future__ import annotations
@@ -36,8 +33,8 @@ class SimulatedRadarDataset(Dataset):
     """Simulated raw frames (or whatever ``transform`` makes of them) with people-count labels.
 
     Args:
-        scene: a :class:`Scene`, a scene file, or a built-in scene name (default ``"corridor"``:
-            the paper's empty corridor; people come from ``sampler``, not from the scene).
+        scene: a :class:`Scene`, a scene file, or a built-in scene name (default: the paper's empty
+            ``"corridor"``; people come from ``sampler``).
         length: number of items.
         seed: dataset seed; item ``i`` depends only on ``(seed, i)``.
         frames_per_item: consecutive frames per item (1 -> ``(rx, chirps, samples)``, else
@@ -49,22 +46,19 @@ class SimulatedRadarDataset(Dataset):
         target_transform: applied to the label.
         as_counts: return uint16 ADC codes instead of SDK floats (before ``transform``).
         device: where the twin runs (the item is returned on that device).
-        augmentation: ``"stream"`` (default: random transforms draw from their own generator or
-            the global RNG, per DataLoader worker) or ``"per_item"`` (they draw from a generator
-            of ``(seed, index, epoch)``: item ``i`` is the same with any ``num_workers``; call
-            :meth:`set_epoch` each epoch). See :mod:`radaraug.transforms.per_item`.
+        augmentation: ``"stream"`` (default: random transforms draw from their own stream per
+            worker) or ``"per_item"`` (from a generator of ``(seed, index, epoch)``: the same with
+            any ``num_workers``; call :meth:`set_epoch` each epoch; :mod:`radaraug.transforms.per_item`).
         twin_options: keyword arguments of :class:`DigitalTwin` (``tracer_options``,
             ``receiver``, ``multipath``); with randomization they apply to every room variant.
-        randomization: twin randomization (a :class:`TwinRandomization` or a dict of its fields);
-            None (default) or :meth:`TwinRandomization.off` simulate the scene as it is. When
-            enabled, the scene must be a corridor scene: it gives the radar's x, y position,
-            pose and mounting; the room, the radar's height and tilt, the people's ranges, each
-            person's RCS and the receiver's gain and noise figure are drawn per item.
-        profile: a fitted twin profile (:class:`~radaraug.sensor.profile.TwinProfile`, its JSON
-            path or dict, from ``radaraug diagnose``): the twin's receiver carries its effects
-            (randomization then draws its offsets around the profile's gain and noise figure)
-            and its room section (the fitted ``diffuse_gain_dB``) goes to the tracer unless
-            ``twin_options["tracer_options"]`` sets it.
+        randomization: twin randomization drawn per item (a :class:`TwinRandomization` or a dict of
+            its fields; then the scene must be a corridor scene); None (default): the scene as it is.
+        profile: a fitted twin profile (:class:`~radaraug.sensor.profile.TwinProfile`, its JSON path
+            or dict, from ``radaraug diagnose``) for the twin's receiver and room section.
+
+    Raises:
+        ConfigError: a bad target, size, randomization or profile, or a scene or receiver the
+            randomization cannot use.
     """
 
     def __init__(
@@ -184,8 +178,8 @@ class SimulatedRadarDataset(Dataset):
     def prepare(self) -> SimulatedRadarDataset:
         """Trace the room now (once), so DataLoader workers inherit it instead of each tracing it.
 
-        With randomization, every room variant of the pool is traced (one room trace each, cached on disk).
-        The shadow's static basis is made here too: each worker made its own before.
+        With randomization, every room variant of the pool is traced. The shadow's static basis is made
+        here too.
         """
         twins = [self.variant_twin(k) for k in range(len(self._rooms))] if self.randomized else [self.twin]
         for twin in twins:
@@ -213,15 +207,10 @@ class SimulatedRadarDataset(Dataset):
         return self.sampler.sample(g, radar_xy=(pos[0], pos[1]), axis_deg=axis_deg)
 
     def item_params(self, index: int) -> dict[str, Any]:
-        """What item ``index`` is made of, without simulating it (JSON-able).
+        """What item ``index`` is made of (scenario, people, labels; with randomization every draw), JSON-able.
 
-        Always ``index``, ``seed``, ``randomized``, ``count``, ``occupancy`` and ``people`` (each
-        person's drawn parameters). With randomization also ``variant``, ``room`` (size,
-        materials, radar height / pitch / yaw), each person's ``rcs_scale_dB``, and the receiver's
-        ``system_gain_offset_dB`` / ``noise_figure_offset_dB`` with the resulting absolute
-        ``system_gain_dB`` / ``noise_figure_dB`` (None where the receiver lacks the stage), and
-        ``effects``: the effect-catalog draws the item carries (``{name: {parameter: value}}``, e.g.
-        ``spur_tone``, ``interference``; empty when none).
+        Nothing is simulated. With randomization: ``variant``, ``room``, each person's ``rcs_scale_dB``,
+        the receiver's gain and noise figure (None without the stage), scatterers, phase noise, ``effects``.
         """
         index = self._check_index(index)
         scenario = self.scenario(index)
@@ -255,10 +244,7 @@ class SimulatedRadarDataset(Dataset):
         return given if given is not None else FMCWReceiver(self.config)
 
     def set_epoch(self, epoch: int) -> None:
-        """Set the epoch of ``augmentation="per_item"`` draws (call before each epoch).
-
-        DataLoader workers started afterwards see it; persistent workers keep the one they started with.
-        """
+        """Set the epoch of ``augmentation="per_item"`` draws (call before each epoch; workers started later see it)."""
         self.epoch = check_epoch(epoch, "SimulatedRadarDataset")
 
     def _check_index(self, index: int) -> int:

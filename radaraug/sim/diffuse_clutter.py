@@ -1,10 +1,8 @@
 """Twin vs recording: the room's zero-Doppler clutter with and without diffuse scattering.
 
-Used to fit the diffuse defaults (:data:`radaraug.scene.scattering.DIFFUSE_DEFAULTS`) and to draw
-``docs/img/twin/diffuse_range_profile.png``. dB convention: RD magnitude ``20 log10 |X|`` with
-the FFTs divided by their window sums (dBFS, :data:`radaraug.units.DB_CONVENTION`); the profile
-is the mean over frames and RX of the zero-Doppler power per range bin, as the calibration's
-``range_profile`` view computes it.
+Used to fit :data:`radaraug.scene.scattering.DIFFUSE_DEFAULTS` and to draw its figure
+(docs/diffuse_clutter.md). Profiles are the mean over frames and RX of the zero-Doppler power per
+range bin, in dBFS (:data:`radaraug.units.DB_CONVENTION`), as the calibration's ``range_profile``.
 """
 
 from __future__ import annotations
@@ -47,8 +45,7 @@ def twin_profiles(
         scene: the room (its people are ignored).
         config: radar config to simulate (e.g. a recording's).
         gain_dB: passed to :func:`~radaraug.raytrace.diffuse.diffuse_paths`.
-        scattering: passed to :func:`~radaraug.raytrace.diffuse.diffuse_paths`
-            (``scene.scattering`` is the base, ``scattering`` overrides it).
+        scattering: passed to it too, over ``scene.scattering``.
         seed: seed of the diffuse cells and of the receiver noise.
         frames: frames simulated per profile.
 

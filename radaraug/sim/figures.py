@@ -20,10 +20,7 @@ from radaraug.transforms import RangeDoppler
 
 
 def doppler_profiles_db(x: torch.Tensor) -> torch.Tensor:
-    """Per-frame Doppler profiles ``(T, chirps)`` of frames ``(T, RX, chirps, samples)``, dB.
-
-    RD power summed over range, mean over RX (zero Doppler centred).
-    """
+    """Per-frame Doppler profiles ``(T, chirps)``, dB, of frames ``(T, RX, chirps, samples)`` (zero Doppler centred)."""
     p = RangeDoppler()(x).abs().square().mean(dim=1).sum(dim=1)
     return 10 * torch.log10(p.clamp_min(1e-30))
 
@@ -44,11 +41,7 @@ def traced_at_every_chirp(scene_name: str, people: list, times: torch.Tensor) ->
 
 
 def plot_limb_doppler_check(path: str | os.PathLike, frames: int = 4) -> Path:
-    """A walker's Doppler profiles: a trace at every chirp vs the twin's frames.
-
-    The twin with the echo's velocity at the segment centre (before issue 22) and at the specular
-    point (now). Paper corridor, walker only, ideal receiver, no multipath; one panel per frame.
-    """
+    """A walker's Doppler profiles: traced per chirp vs the twin, echo at the centre (old) or specular point."""
     lazy_import("matplotlib.pyplot", feature="figures")  # a missing matplotlib fails before the simulation
     scene = Scene.builtin("corridor")
     walker = Walker(start=(2.0, 0.3), heading_rad=0.0)
@@ -130,11 +123,7 @@ def rod_frame_times(frames: int) -> torch.Tensor:
 
 
 def shadow_in_frame_profiles(frames: int = 6, intervals: tuple[int, ...] = (0, 2)) -> dict[str, torch.Tensor]:
-    """Doppler profiles ``(T, chirps)`` dB of a :class:`TurningRod` in the paper corridor.
-
-    The reference (a trace at every chirp, the shadow evaluated there too) and the twin with
-    ``shadow_intervals`` each of ``intervals`` (ideal receiver, no multipath, the empty room subtracted).
-    """
+    """Doppler profiles ``(T, chirps)`` dB of a :class:`TurningRod`: traced per chirp vs the twin per ``intervals``."""
     scene = Scene.builtin("corridor")
     rod = TurningRod()
     times = rod_frame_times(frames)

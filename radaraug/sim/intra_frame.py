@@ -1,42 +1,8 @@
-"""Motion inside a frame: sub-frame snapshots of moving targets -> per-chirp path delays.
+"""Motion inside a frame: sub-frame snapshots of moving targets -> per-chirp path delays and gains.
 
-A frame lasts ~25 ms (64 chirps at the paper's config). A walker's torso moves at nearly constant
-velocity over that time, but a foot's radial velocity changes by up to ~10 Doppler bins and a
-lower leg's by ~5: the linear delay model of :class:`~radaraug.sensor.paths.Paths`
-(``tau0 + r t``) draws limb micro-Doppler as sharp lines. Here the targets are traced at ``K + 1``
-instants (knots) across the frame's chirps; path slots correspond across knots (same body segment,
-same multipath slot). Each slot's delay rate (the tracer's: the segment's velocity projected on
-the path's legs) is interpolated between the knots (piecewise-cubic Hermite with finite-difference
-slopes, third-order accurate) and integrated from the frame-start delay to every chirp; a straight
-line is fitted to that delay history (least squares over the chirps: the path's ``delay_s`` and
-``delay_rate``, which the fast-time side of the synthesis and the IF filters use) and the rest is
-carried as ``Paths.chirp_delay_s``. The amplitude at the knots gives ``Paths.chirp_gain`` (linear
-in between, relative to the amplitude at the first knot where the slot exists), so a slot that
-becomes occluded or visible mid-frame fades in or out (resolved to the knot spacing).
-
-Integrating the rate (rather than interpolating the traced delays) is exact because the tracer's
-rate is the derivative of its delay: a segment's echo sits at its specular point, and the tracer
-moves it with the material velocity of that point, ``v + omega x offset`` plus the aspect's turn as
-the segment crosses the line of sight (:mod:`radaraug.raytrace.targets`; the envelope theorem). Up to
-``TWIN_MODEL_VERSION`` 1 the rate was the segment centre's, and a rotating, elongated segment's
-sliding specular point was not followed (a lower leg's echo up to ~6 Doppler bins off): a walker's
-Doppler profile then differed from a trace at every chirp by 12.9 dB RMS, now by 0.11 dB
-(tests/sim/test_intra_frame.py).
-
-**Choosing K (no user setting).** Knots are refined dyadically per frame: with ``K`` intervals
-of length ``H`` the midpoints of the next level are traced and their rates compared with the
-interpolation from the ``K + 1`` knots; the delay error this implies over the frame is bounded by
-``(2/3) H sum_k |e_k|`` (the integral of a bump of height ``e_k`` over each interval, all of one
-sign). When that bound, over the frame's live paths (amplitude within 120 dB of the frame's
-strongest, valid at both neighbouring knots), is below ``tol_cycles`` carrier cycles
-(``f0 |delta tau|``, default 0.05 cycles, see :data:`DEFAULT_TOL_CYCLES` for the error it leaves:
-at most ~0.02 cycles, a path-length error of lambda / 50), the finer level is used (its own error
-is then ~8x smaller still), else the slot's frame is refined again, up to a knot per ~2 chirps. Each frame's level depends only on its own motion, so a frame
-is simulated the same whatever batch it is in. ``intervals=K`` fixes the knots instead (``0``:
-one snapshot per frame and the linear model, the behaviour before sub-frame snapshots).
-
-Cost: tracing is ~0.5 ms per snapshot of two walkers on one CPU core, and the paths keep their
-number ``P``: only the slow-time side of the synthesis gains per-chirp terms.
+Each path slot's delay rate is interpolated between ``K + 1`` traced knots across the frame and
+integrated to every chirp: a fitted line (``delay_s``, ``delay_rate``) plus ``Paths.chirp_delay_s`` and
+``Paths.chirp_gain``; ``K`` is chosen per frame and slot. See docs/simulation.md ("Motion inside a frame").
 """
 
 from __future__ import annotations
@@ -51,10 +17,7 @@ from radaraug.sensor.synthesis import ChirpTiming
 
 DEFAULT_TOL_CYCLES = 0.05
 """Bound on the interpolation error of a path's delay, in carrier cycles ``f0 * delta_tau``, that the
-automatic choice of sub-frame snapshots accepts. The bound is conservative: for the two walkers of
-the corridor (32 frames) the delay error it leaves against 64 knot intervals per frame is at most
-0.023 cycles (8 degrees), 0.002 cycles at the 99th percentile, with 5.5 intervals per frame on
-average (a bound of 0.02 cycles: 0.009 / 0.001 cycles with 7 intervals, ~35 % more tracing)."""
+automatic choice of sub-frame snapshots accepts (conservative: docs/simulation.md measures what it leaves)."""
 
 LIVE_BELOW_DB = 120.0
 """Paths weaker than this below a frame's strongest do not steer the refinement (below the float32
@@ -128,9 +91,8 @@ def _weights(interpolant: Callable[[torch.Tensor, torch.Tensor], torch.Tensor], 
              like: torch.Tensor) -> torch.Tensor:
     """The ``(knots, Q)`` matrix ``W`` with ``interpolant(y, x) == y @ W`` for any knot values ``y``.
 
-    The interpolants (and their closed-form integral) are linear in the knot values, so applying
-    one to the identity gives its weights: one small GEMM per call then replaces the gathers of
-    every (frame, slot) row at every query point.
+    The interpolants are linear in the knot values: applied to the identity they give their weights,
+    and one small GEMM replaces the gathers of every (frame, slot) row.
     """
     return interpolant(torch.eye(knots, dtype=like.dtype, device=like.device), x.to(like.device, like.dtype))
 
@@ -150,11 +112,8 @@ def _refinement_error(r_coarse: torch.Tensor, r_mid: torch.Tensor, amp: torch.Te
                       interval_s: float) -> torch.Tensor:
     """Bound on the delay error (carrier cycles) per frame and slot ``(T, P)`` of the interpolated rate.
 
-    The error of integrating the rate interpolated from the coarse knots: ``f0 (2/3) H sum_k |e_k|`` with
-    ``e_k`` the rate error at the midpoint of interval ``k`` (of length ``H``).
-
-    ``r_coarse`` ``(T, P, RX, K+1)``, ``r_mid`` ``(T, P, RX, K)``, ``amp`` ``(T, P, RX, 2K+1)`` on
-    the fine knots.
+    ``f0 (2/3) H sum_k |e_k|``, ``e_k`` the rate error at interval ``k``'s midpoint, over the live paths.
+    ``r_coarse`` ``(T, P, RX, K+1)``, ``r_mid`` ``(T, P, RX, K)``, ``amp`` ``(T, P, RX, 2K+1)`` (fine knots).
     """
     k = r_coarse.shape[-1] - 1
     x = torch.arange(k, dtype=torch.float64, device=r_coarse.device) + 0.5
@@ -192,13 +151,12 @@ def intra_frame_paths(
             ``(n, P, RX)`` (same slots at every time).
         times: frame start times ``(T,)``, s.
         timing: the chirp timing (chirp times, carrier frequency).
-        intervals: ``"auto"`` (refine per frame until converged, see the module docstring), or a
-            fixed number of knot intervals per frame (``0``: one snapshot, linear model).
+        intervals: ``"auto"`` (halve the knot spacing per frame and slot until the delay error bound
+            is under ``tol_cycles``), or a fixed number of knot intervals per frame (``0``: one
+            snapshot, linear model).
         tol_cycles: the automatic refinement's tolerance, carrier cycles.
-        trace_slots: optional ``trace`` of some slots: ``(times, slots)`` with ``slots`` ``(P,)``
-            bool -> :class:`Paths` ``(n, P, RX)`` whose other slots may hold anything finite. The
-            automatic refinement traces its finer knots with it for just the slots that still
-            need them (after the first level a frame's refinement is for ~1 of 32 segments).
+        trace_slots: optional ``trace`` of some slots, ``(times, slots (P,) bool) -> Paths (n, P, RX)``
+            (other slots anything finite): the finer knots are traced only for the slots that need them.
 
     Returns:
         ``(paths, intervals_used)``: ``paths`` ``(T, P, RX)`` with ``chirp_delay_s`` and

@@ -1,11 +1,8 @@
 """What a per-item draw changes in the twin's signal: the pieces of ``DigitalTwin.simulate(..., draw=...)``.
 
-A :class:`~radaraug.sim.randomization.ItemDraw` (from :class:`~radaraug.sim.randomization.TwinRandomization`)
-scales each person's paths by its RCS draw (:func:`people_paths`), adds static point scatterers
-(:func:`static_scatterer_paths`), builds the item's receiver (offsets, phase noise and the catalog's
-effects: :func:`item_receiver`) and adjusts the room's cached signal to that receiver
-(:func:`drawn_signal`). :meth:`~radaraug.sim.twin.DigitalTwin.simulate` calls these; the dependency
-goes one way (``twin -> item_signal``; ``randomization`` imports both and re-exports these names).
+Each person's paths scaled by its RCS draw, static point scatterers, the item's receiver (offsets,
+phase noise, catalog effects) and the room's cached signal adjusted to it. The dependency goes one way
+(``twin -> item_signal``; :mod:`~radaraug.sim.randomization` re-exports these names).
 """
 
 from __future__ import annotations
@@ -45,14 +42,13 @@ azimuth is drawn within +-45 deg, where the pattern loses a few dB, small next t
 def scale_people_paths(paths: Paths, segments: Sequence[int], rcs_scale_dB: Sequence[float]) -> Paths:
     """Scale each person's paths by ``10**(dB/20)`` (amplitude ~ sqrt(RCS)).
 
-    ``paths`` are the target paths of people traced together (so that they still shadow each
-    other), ``segments`` the number of body segments of each person in the order traced. The
-    ellipsoid tracer lays out ``S`` direct paths (one per segment), then ``S K`` paths
-    radar -> wall -> segment -> radar, ``S K`` of the reverse and ``S K`` radar -> wall ->
-    segment -> same wall -> radar, each segment-major (``K`` mirror planes); a multipath path
-    scatters off its segment, so it belongs to that segment's person.
+    ``paths`` are the target paths of people traced together (so that they still shadow each other),
+    ``segments`` each person's number of body segments in that order. The ellipsoid tracer lays out
+    ``S`` direct paths, then three multipath blocks of ``S K`` (``K`` mirror planes), segment-major; a
+    multipath path belongs to its segment's person.
 
     Raises:
+        ValueError: the number of scales is not the number of people.
         RuntimeError: the paths do not have that layout (the tracer changed: fix this helper).
     """
     s = int(sum(segments))
@@ -89,14 +85,12 @@ def people_paths(twin: DigitalTwin, people: Sequence[Any], times: torch.Tensor,
 def item_receiver(receiver: FMCWReceiver, system_gain_offset_dB: float, noise_figure_offset_dB: float,
                   phase_noise: tuple[float, int] | None = None, *, adc_noise_offset_dB: float = 0.0,
                   extra_effects: Sequence[Effect] = ()) -> FMCWReceiver:
-    """A receiver like ``receiver`` with its ``system_gain`` and ``thermal_noise`` stages offset.
+    """A receiver like ``receiver`` with its first ``system_gain`` and ``thermal_noise`` stages offset.
 
-    The first stage of each is offset; its ``phase_noise`` stage is set to ``(rms_Hz, num_paths)`` when
-    given, its ``adc_noise`` RMS scaled by ``adc_noise_offset_dB``. ``extra_effects`` (the item's catalog
-    effects) are inserted at their hardware position
-    (:func:`~radaraug.sensor.effects.base.hardware_position`: after any stage of the same name, before
-    the first stage the hardware applies after them). ``receiver`` is not changed (its other stages are
-    shared, not copied), so nothing leaks from one item to the next, even across threads.
+    Its ``phase_noise`` stage is set to ``phase_noise`` ``(rms_Hz, num_paths)`` when given, its
+    ``adc_noise`` RMS scaled by ``adc_noise_offset_dB``, and ``extra_effects`` are inserted at their
+    hardware position (:func:`~radaraug.sensor.effects.base.hardware_position`). ``receiver`` is not
+    changed, so nothing leaks from one item to the next, even across threads.
     """
     effects = list(receiver.effects)
 
@@ -142,9 +136,8 @@ def _room_cached(twin: DigitalTwin, key: Any, make: Any) -> Any:
 def _quadrature(receiver: FMCWReceiver, paths: Paths) -> torch.Tensor:
     """The signal of ``paths`` through the linear stages with every beat tone turned by -90 deg.
 
-    ``Re{-j C exp(j Phi)} = Im{C exp(j Phi)}``: a path's amplitude times ``j`` (the receiver conjugates
-    it). With it a per-RX complex gain ``a exp(j phi)`` on the in-phase signal ``S`` is exactly
-    ``a (cos(phi) S - sin(phi) Q)``.
+    A path's amplitude times ``j`` (the receiver conjugates it); a per-RX complex gain ``a exp(j phi)``
+    on the in-phase signal ``S`` is then exactly ``a (cos(phi) S - sin(phi) Q)``.
     """
     return receiver.static_signal(dataclasses.replace(paths, amplitude=paths.amplitude * 1j))
 
@@ -152,10 +145,8 @@ def _quadrature(receiver: FMCWReceiver, paths: Paths) -> torch.Tensor:
 def strongest_room_paths(twin: DigitalTwin, k: int) -> tuple[Paths, torch.Tensor]:
     """The ``k`` room paths with the largest ``|amplitude| x delay`` and their cached-room signal.
 
-    The ranking of the ``phase_noise`` stage (:func:`~radaraug.sensor.effects.base.strongest_paths`,
-    strongest over RX): the paths whose phase-noise skirt is largest. Their signal (through the twin
-    receiver's linear stages, as the room's cached signal) is what leaves the cached signal when they are
-    passed to the receiver as paths instead. Cached per twin and ``k``.
+    The ``phase_noise`` stage's ranking (largest skirt); their signal is what leaves the cached room
+    signal when they are passed to the receiver as paths. Cached per twin and ``k``.
     """
     def make() -> tuple[Paths, torch.Tensor]:
         room = twin.tracer.static_paths()
@@ -221,17 +212,11 @@ def drawn_signal(twin: DigitalTwin, people: list[Any], times: torch.Tensor, draw
                  paths: Paths, *, shadow: bool = True) -> tuple[FMCWReceiver, Paths, torch.Tensor]:
     """The item's receiver, all its paths and the room's signal for :meth:`DigitalTwin.simulate` with a draw.
 
-    ``paths`` are the people's (RCS-scaled, negligible ones off). The room's cached signal went through
-    the receiver's linear stages, ``system_gain`` included: it is scaled by the item's gain offset,
-    which by linearity equals tracing the room through the offset receiver. The catalog's RX
-    gain/phase mismatch (a linear stage the cached signal did not go through) is applied to it the
-    same way, exactly: ``a (cos(phi) S - sin(phi) Q)`` with ``Q`` the room's quadrature signal
-    (:func:`room_quadrature`, synthesized once per twin), and to the people's shadow correction
-    through the twin's static basis (:func:`_mismatched_shadow`). With ``draw.static_phase_noise_paths``
-    the room's strongest returns leave the cached signal and go through the receiver as paths
-    (:func:`strongest_room_paths`), so that its ``phase_noise`` stage can give them their skirt.
-    ``shadow=False``: the people's shadow is not added to the room's signal (the caller passes it
-    in ``paths``, ``DigitalTwin(shadow_method="paths")``).
+    ``paths`` are the people's (RCS-scaled, negligible ones off). The room's cached signal is adjusted
+    exactly: scaled by the gain offset (by linearity), turned by a drawn RX mismatch as
+    ``a (cos(phi) S - sin(phi) Q)`` (``Q``: :func:`room_quadrature`), less the strongest returns passed
+    as paths for their phase noise (docs/simulation.md, "Twin randomization"). ``shadow=False``: the
+    caller passes the people's shadow in ``paths`` (``DigitalTwin(shadow_method="paths")``).
     """
     if draw.scatterers:
         paths = Paths.cat([paths, static_scatterer_paths(twin.config, draw.scatterers, paths)])
@@ -263,9 +248,8 @@ def drawn_signal(twin: DigitalTwin, people: list[Any], times: torch.Tensor, draw
 def _static_mismatch(receiver: FMCWReceiver, extra: Sequence[Effect]) -> RxGainPhaseMismatch | None:
     """The item's drawn mismatch stage (in ``extra``) when the room's cached signal must get it by hand.
 
-    The receiver adds the cached signal before its first non-linear stage: a drawn mismatch placed
-    before that must be applied to it here; one placed after acts on it by itself. (A mismatch of the
-    twin's own receiver is in the cached signal already.)
+    That is, when it comes before the receiver's first non-linear stage, where the cached signal is
+    added (a mismatch of the twin's own receiver is in the cached signal already).
     """
     drawn = next((e for e in extra if isinstance(e, RxGainPhaseMismatch)), None)
     if drawn is None:

@@ -1,22 +1,9 @@
 """Offline generation: simulate a scene into a radaraug HDF5 capture, sharded and resumable.
 
-A scene plays continuously: frame ``k`` starts at ``k * frame_repetition_time`` and the people
-walk on from their start positions. Frames are simulated in blocks of ``block_frames``; the
-receiver noise of block ``b`` comes from a generator seeded by ``(seed, b)``, so every frame is
-a pure function of ``(scene, seed, k)`` however the job is split.
-
-``--shard i/n`` takes the ``i``-th of ``n`` contiguous, block-aligned ranges of frames and writes
-``<out stem>.shard-<i>-of-<n>.h5``; a cluster scheduler runs the pieces independently. Re-running
-the same command resumes: frames already flushed to the output (the capture format flushes every
-append in SWMR mode, so they survive a crash, even SIGKILL) are kept and simulation continues after
-them; the HDF5 consistency flags a killed run leaves are reset first (only when no live process
-writes the file; see :mod:`radaraug.io.hdf5_recovery`). A file that another job wrote (other scene,
-seed, frame count, shard or device type), that another process is writing, or that is not a
-simulated capture at all (also a damaged or truncated HDF5 file) is refused, never overwritten.
-The free space for the frames still to write is checked before the run starts.
-
-The noise streams of a CPU and a CUDA ``torch.Generator`` differ for the same seed, so frames are
-reproducible per device type (CPU or CUDA); a job is resumed only on the device type that began it.
+The scene plays continuously; the receiver noise of frame block ``b`` comes from ``(seed, b)``, so a
+frame is a pure function of ``(scene, seed, k)`` and the device type however the job is split.
+Re-running a job resumes it; a file of another job is refused. See docs/simulation.md ("Offline
+generation").
 """
 
 from __future__ import annotations
@@ -100,9 +87,8 @@ def simulate_frames(twin: DigitalTwin, people: list[Any], start: int, stop: int,
                     device: str | torch.device, **options: Any) -> tuple[torch.Tensor, torch.Tensor]:
     """``(times, frames)``: frames ``[start, stop)`` of ``people`` simulated by ``twin``.
 
-    Their receiver noise comes from ``(seed, block)`` (``Stream.BLOCK_NOISE``): the one stream
-    ``radaraug simulate``, :class:`~radaraug.capture.virtual.VirtualSensor` and the proxy use.
-    ``options`` go to :meth:`DigitalTwin.simulate`.
+    Receiver noise from ``(seed, block)`` (``Stream.BLOCK_NOISE``, shared with the virtual sensor and
+    the proxy); ``options`` go to :meth:`DigitalTwin.simulate`.
     """
     times = frame_times(start, stop, twin.config.frame_repetition_time_s)
     gen = item_generator(seed, block, stream=Stream.BLOCK_NOISE, device=device)
@@ -132,18 +118,18 @@ def simulate_capture(
         device: where to simulate.
         progress: show a progress bar.
         twin_options: keyword arguments of :class:`DigitalTwin`.
-        profile: a fitted twin profile (object, JSON path or dict) for the receiver; part of
-            the job's identity, so a resume never mixes frames of two profiles.
+        profile: a fitted twin profile (object, JSON path or dict) for the receiver; part of the
+            job's identity.
 
     Returns:
         ``{"path", "frames": [start, stop), "resumed_from", "simulated"}``.
 
     Raises:
-        SceneError: bad scene; ConfigError: ``frames < 1`` or a bad shard or device;
-        CaptureError: ``out`` exists and was not written by this same job, another process is
-            writing it, it cannot be created (read-only folder, a file in the way), there is not
-            enough space for the frames to write, or the disk fills up while writing (the file
-            then keeps every frame completed before and a re-run resumes it).
+        SceneError: bad scene.
+        ConfigError: ``frames < 1`` or a bad shard or device.
+        CaptureError: ``out`` exists and was not written by this same job, another process has it
+            open, it cannot be created, there is not enough space, or the disk fills up while
+            writing (the file keeps every completed frame; a re-run resumes it).
     """
     scene = Scene.load(scene)
     if isinstance(frames, bool) or not isinstance(frames, int) or frames < 1:

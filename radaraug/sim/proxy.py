@@ -1,36 +1,9 @@
-"""The held-out proxy test set: labelled captures from a twin that training was *not* made with.
+"""The held-out proxy test set: labelled captures from a twin configuration training was *not* made with.
 
-No labelled real corridor recording ships with radaraug, so the default test side of the
-recipes is this proxy: radaraug HDF5 captures of 0, 1 and 2 walking people (per-frame ``count``
-and ``occupancy`` labels) plus an empty-room calibration capture (to fit
-:class:`~radaraug.transforms.CalibratedDR`), simulated from a deliberately **different**
-configuration. It shows whether training survives a twin it was not made with. It is a
-sim-to-proxy test, **not** a sim-to-real one, and its settings were fixed before any training
-result was seen: do not tune them to make a method look good.
-
-The proxy is data plus the shared simulator. ``radaraug/data/proxy.yaml`` (:data:`SPEC_PATH`)
-holds what it simulates: the room and radar (a scene in the scene-file format), the clutter, the
-people and walk ranges, and the receiver's effect chain. This module loads it, draws the walks,
-simulates them with :meth:`DigitalTwin.simulate <radaraug.sim.twin.DigitalTwin.simulate>` (one
-fixed :class:`~radaraug.sim.randomization.ItemDraw`: phase noise on the room's strongest static
-returns) and writes the files with :class:`~radaraug.io.blocks.BlockWriter`.
-
-What is the same as training: the radar configuration (:meth:`RadarConfig.bgt60tr13c`, so that
-CalibratedDR's chain and map shape match), the ray tracer, the IF synthesis and the 16-segment
-body model. What differs (the room, the radar pose, the motion source :class:`SineGait
-<radaraug.scene.people.sine_gait.SineGait>` played by :class:`~radaraug.scene.people.BVHPerson`,
-the body surface, the walks and the receiver) is written into ``proxy.json`` (:func:`differences`)
-and ``docs/proxy.md``.
-
-Labels: a person counts in a frame when :func:`radaraug.sim.offline.people_inside` puts the body
-centre inside the room and it is at least ``people.min_range_m`` in front of the radar along its
-horizontal boresight. Walks are drawn so that every frame of a file has the file's count (a walk
-that would break this is drawn again), so files work both as ``PATH:COUNT`` and per frame.
-
-Determinism: the walks and noise of count ``c`` depend only on ``(seed, c, frames_per_count,
-tracer settings)`` and the device type, so the file of one count is bit-identical whichever
-other counts are generated with it. Re-running with the same arguments on a complete output
-folder reuses the files (``proxy.json`` is written last and checked).
+:func:`make_proxy` writes captures of 0, 1 and 2 walking people (per-frame ``count`` and ``occupancy``
+labels) and an empty-room calibration capture, simulated by the shared twin from the data file
+:data:`SPEC_PATH` (another room, radar pose, motion source, body surface and receiver). Numbers on it
+are sim-to-proxy, not sim-to-real, and its settings are not to be tuned. See docs/proxy.md.
 """
 
 from __future__ import annotations
@@ -112,10 +85,7 @@ BODY_MATERIAL = Material(_PEOPLE["material"], _BODY_EPS[0], 0.0, 0.0, 0.0,
 
 
 def proxy_room(max_edge_m: float = 0.5) -> SceneGeometry:
-    """The proxy room: the scene's corridor plus the :data:`CLUTTER` boxes, merged.
-
-    Object id 0 = walls, 1.. = the objects.
-    """
+    """The proxy room: the scene's corridor plus the :data:`CLUTTER` boxes, merged (object id 0: walls)."""
     return proxy_scene(max_edge_m=max_edge_m).room
 
 
@@ -125,10 +95,7 @@ def proxy_pose() -> RadarPose:
 
 
 def proxy_scene(config: RadarConfig | None = None, *, max_edge_m: float | None = None) -> Scene:
-    """The empty proxy room with the radar (``config`` default: the data file's, :meth:`RadarConfig.bgt60tr13c`).
-
-    Loading it registers the proxy's body material.
-    """
+    """The empty proxy room with the radar (``config`` default: the data file's); registers the body material."""
     spec = copy.deepcopy(SPEC["scene"])
     if max_edge_m is not None:
         spec["room"]["max_edge"] = max_edge_m
@@ -149,10 +116,8 @@ _FROM_CONFIG = {"if_highpass": lambda c: c.effective_hp_cutoff_Hz, "if_gain": la
 def proxy_effects(config: RadarConfig) -> list[Effect]:
     """The proxy receiver's effect chain, in hardware order (the data file's ``receiver.effects``).
 
-    leakage -> phase noise -> thermal noise -> system gain -> RX gain/phase mismatch -> IF
-    high-pass -> IF gain -> ADC-side noise -> anti-alias low-pass -> spur tone -> DC offset -> ADC
-    quantization -> ADC clipping. Values are fixed, not fitted to anything; a ``config`` parameter
-    comes from ``config``, and the ADC-side noise (12-bit counts) is scaled to its ADC.
+    Values are fixed, not fitted; a ``"config"`` parameter comes from ``config``, and the ADC-side
+    noise (12-bit counts) is scaled to its ADC.
     """
     out = []
     for e in SPEC["receiver"]["effects"]:
@@ -178,10 +143,7 @@ def proxy_draw() -> ItemDraw:
 # ------------------------------------------------------------------------------------ labelling
 def people_in_view(twin: DigitalTwin, people: list[Any], times: torch.Tensor,
                    min_range_m: float = _PEOPLE["min_range_m"]) -> np.ndarray:
-    """Per frame, the people inside the room and at least ``min_range_m`` in front of the radar.
-
-    Inside: the body centre, :func:`people_inside`; in front: along the radar's horizontal boresight.
-    """
+    """Per frame, the people inside the room (:func:`people_inside`) and ``min_range_m`` in front of the radar."""
     return people_inside(twin, people, times, min_range_m=min_range_m)
 
 
@@ -337,11 +299,8 @@ def _write_file(twin: DigitalTwin, path: Path, walks: list[dict[str, Any]], nois
                 device: str, bar: Any) -> None:
     """Simulate ``walks`` (each ``{"people", "frames", "t0", "labels"}``) into ``path``, :data:`BLOCK_FRAMES` at a time.
 
-    Each walk's people move from its time 0; the recording's time is ``t0`` later
-    (``DigitalTwin.simulate(..., t0=...)``). The file appears under its name only complete
-    (``publish="close"``): a killed run leaves the hidden temporary of
-    :class:`~radaraug.io.CaptureWriter`, which a later writer of ``path`` removes, and a file
-    already at ``path`` (an earlier run's) stays until the new one replaces it.
+    Each walk's people move from its time 0, the recording's time is ``t0`` later. The file appears
+    under its name only complete (``publish="close"``; docs/proxy.md, "Crash safety").
     """
     path.with_name(path.stem + ".partial.h5").unlink(missing_ok=True)  # the temporary name of older versions
     draw, block = proxy_draw(), 0
@@ -398,8 +357,7 @@ def make_proxy(
     """Generate (or reuse) the held-out proxy set in ``out_dir``.
 
     Args:
-        out_dir: output folder (created); the generator owns the names it writes there
-            (``calibration_empty.h5``, ``test_count<c>.h5``, ``motion/``, ``room.json``, ``proxy.json``).
+        out_dir: output folder (created); the generator owns the names it writes there (docs/proxy.md).
         frames_per_count: frames of each test file (several short walks, 10 frames/s).
         calibration_frames: frames of the empty-room capture (100 = the paper's 10 s).
         seed: seed of the walks and of the receiver noise.

@@ -1,40 +1,9 @@
 """Twin randomization: per-item draws of what one empty-room calibration cannot pin down.
 
-An empty-room capture pins the receiver's noise floor, not a stranger's radar cross-section,
-the room's size and materials, the radar's mounting or the receiver's exact gain. A classifier
-trained on a twin that fixes those learns the twin (e.g. "bright blob = person": the twin's
-walkers were ~18 dB brighter against the room than in independently generated data). With
-:class:`TwinRandomization`, :class:`~radaraug.sim.dataset.SimulatedRadarDataset` draws them per
-item around the calibrated values, all from generators seeded by ``(seed, index)``:
-
-* per person: an RCS scale in dB, applied to every path of that person (direct and wall
-  multipath), so ``|amplitude|`` scales by ``10**(dB / 20)`` (amplitude ~ sqrt(RCS));
-* people's count, height, speed, heading and position, through :class:`ScenarioSampler` with
-  wider ranges, kept inside the drawn room;
-* the room (corridor length, width, height, the P.2040 material of each surface) and the
-  radar's height, pitch and yaw: these change the static room, whose ray trace costs seconds,
-  so a *pool* of ``room_variants`` rooms is drawn (variant ``k`` from its own generator seeded by
-  ``(seed, k)``: the pool is a pure function of the seed) and each item picks one;
-* the receiver's ``system_gain`` and ``thermal_noise`` noise figure, as offsets around the
-  receiver's own (calibrated) values, for that item only;
-* the *effect catalog*: sensor effects a capture from another generator (or another unit) may
-  carry and the calibrated twin does not -- a spur tone, another radar's interference, a
-  vibrating object (fan), RX gain/phase mismatch, frame-to-frame drift, wider gain / noise
-  levels, and the phase-noise skirt of the room's strongest static returns -- each with a
-  probability per item, inserted into the item's receiver at its hardware position
-  (:data:`~radaraug.sensor.effects.HARDWARE_ORDER`).
-
-Generator streams (:class:`radaraug.sim.seeding.Stream`, the registry of every stream): the
-dataset uses ``Stream.SCENARIO`` for the scenario and ``Stream.ITEM_NOISE`` for the receiver
-noise (the catalog's effects draw their own randomness, e.g. which chirps an interferer hits,
-from it too); this module uses :data:`ITEM_STREAM` (``Stream.ITEM_DRAWS``) for the per-item
-draws, :data:`ROOM_STREAM` (``Stream.ROOM_POOL``, index = variant number) for the room pool,
-:data:`SCATTERER_STREAM` (``Stream.SCATTERERS``) for the static scatterers and the phase noise,
-and :data:`EFFECTS_STREAM` (``Stream.EFFECTS``) for the effect catalog. The catalog has its own stream so that the older
-draws do not shift: an item that draws no catalog effect (every item with
-``effects_probability=0``) is bit for bit the item of a randomization without the catalog. The
-order of the draws inside a stream is part of the contract: changing it changes every item of
-every seed.
+:class:`TwinRandomization` draws per item each person's RCS, the people, the room and mounting (from
+a pool of room variants), receiver offsets, static scatterers, phase noise and an effect catalog, from
+generators seeded by ``(seed, index)``; the order of the draws is part of the contract. See
+docs/simulation.md ("Twin randomization").
 """
 
 from __future__ import annotations
@@ -129,154 +98,62 @@ def _materials_default() -> dict[str, tuple[str, ...]]:
 
 @dataclass
 class TwinRandomization:
-    """What the twin draws per item, and from which ranges (every range is ``(lo, hi)``, uniform).
+    """What the twin draws per item, and from which ranges (``(lo, hi)``: uniform; "log": in the logarithm).
 
-    Every field is a plain type (bool, int, float, a pair of floats, lists of material names),
-    so a YAML/JSON mapping of the same keys (:meth:`from_dict`) configures it; lists are
-    accepted wherever a pair is expected.
+    Every field is a plain type (bool, int, float, a pair, lists of material names), so a YAML/JSON
+    mapping of the same keys configures it (:meth:`from_dict`; lists are accepted for pairs). Why
+    each default: docs/simulation.md ("Twin randomization"), which also lists every prior.
 
     Args:
         enabled: False gives the twin without randomization (see :meth:`off`).
-        rcs_scale_dB: per-person RCS scale in dB (amplitude x ``10**(dB/20)``). Default
-            (-20, +10): drawing people's RCS over -20...+5 dB was measured to be the largest
-            single sim-to-real gain, and nothing pins which side of the twin's own walker level
-            (itself ~18 dB brighter than independently generated data) real people sit on, so
-            the range also reaches +10 dB; human RCS at 60 GHz alone fluctuates by several dB.
-        room_variants: size of the room pool. Each variant is one ray trace of the room
-            (about a second each with diffuse clutter on a 2-core CPU, done once by ``prepare()`` and
-            cached on disk).
-        length_m: corridor length. Default (8, 25): short rooms to ones reaching past the
-            BGT60TR13C default's ~21.7 m maximum range (the paper's corridor is 20 m).
-        width_m: corridor width (1.5, 3.5): a narrow corridor to a wide hall.
-        height_m: ceiling height (2.4, 3.5): offices to lobbies.
-        materials: per corridor surface, the P.2040 material names drawn from (uniformly).
-            A mapping naming only some surfaces keeps the defaults (:data:`DEFAULT_MATERIALS`)
-            for the others.
-        radar_height_m: radar height above the floor (0.8, 2.0): table to wall mount (the paper's
-            1.2 m inside); clipped to the drawn ceiling height minus 0.15 m.
-        radar_pitch_deg: pitch added to the scene's pose (-10, +10): a hand-mounted sensor is
-            rarely level, and a high mount is often tilted down.
-        radar_yaw_deg: yaw added to the scene's pose (-5, +5): a little misalignment with the
-            corridor's axis.
-        person_height_m: body height (1.45, 2.0): wider than the paper-like 1.55-1.95 default.
-        speed_m_s: walking speed (0.4, 2.0): slow strolling to brisk walking.
-        range_m: start distance along the corridor (0.8, 15.0), clipped to the drawn room's
-            length minus ``wall_margin_m``.
-        heading_jitter_deg: heading spread around straight toward/away (30 deg instead of 5):
-            people do not walk on rails.
-        crossing_probability: chance that a drawn walker crosses the room (heading across its
-            axis plus the jitter) instead of walking toward/away (0: the items of before bit for
-            bit). People in offices cross a sensor's beam as often as they walk along it; a
-            crossing walker's body sits near zero Doppler. Passed to the :class:`ScenarioSampler`.
-        standing_probability: chance that a drawn person stands (breathing, swaying) instead of
-            walking (0: walkers only, the items of before bit for bit). Passed to the
-            :class:`ScenarioSampler`; a standing person counts (docs/training.md measures what a
-            one-frame map, whose zero-Doppler bins the default representation blanks, sees of them).
-        wall_margin_m: lateral positions are drawn in +-(width / 2 - margin) of the drawn room
-            (0.35 m: half a shoulder width plus swinging arms).
-        system_gain_offset_dB: added to the receiver's ``system_gain`` (-6, +6): the residual
-            gain a calibration leaves uncertain (unit to unit, temperature, the IF gain law).
-        noise_figure_offset_dB: added to the receiver's ``thermal_noise`` noise figure (-3, +3),
-            around the calibrated value (the recipes fit it on the empty-room capture,
-            :mod:`radaraug.calibration.noise_fit`): the floor a capture shows is known to a few dB, but
-            the gain and noise figure behind it shift with the unit and its temperature.
-        clutter_objects: number of clutter objects per room variant, ``[lo, hi]`` inclusive
-            (default 0-6). Real rooms hold furniture: boxes of :data:`CLUTTER_LENGTH_M` x
-            :data:`CLUTTER_DEPTH_M` x :data:`CLUTTER_HEIGHT_M` standing against a side wall at
-            least :data:`CLUTTER_START_M` along the corridor. Why: in a twin whose rooms are
-            empty boxes, a strong return between the radar and the end wall only ever comes from a
-            person, and a classifier learns "zero-Doppler blob at mid range = person".
-        clutter_materials: materials drawn (uniformly) for each clutter object.
-        static_scatterers: number of extra static point scatterers per *item*, ``[lo, hi]``
-            inclusive (default 0-8): furniture, door frames, radiators and pipes the room pool
-            does not hold, redrawn for every item at no ray-tracing cost. They are passed to the
-            receiver with the people, so the strongest get the receiver's phase noise (a skirt
-            around strong clutter, as real sensors show). Their zero-Doppler lines at random
-            ranges keep "a static return at mid range" from meaning "a person".
-        static_scatterer_range_m: range of a static scatterer from the radar (0.5, 20).
-        static_scatterer_rcs_dBsm: its RCS in dBsm (-20, +10): a chair leg to a metal cabinet
-            face seen square on.
-        static_scatterer_azimuth_deg: its azimuth off boresight (-45, +45); the elevation is
-            drawn in (-20, +20) deg.
-        phase_noise_rms_Hz: RMS LO frequency noise of the receiver's ``phase_noise`` stage, drawn
-            per item (30 kHz, 400 kHz) around the chain's *assumed* 100 kHz (the BGT60's is not
-            public). Phase noise turns a strong static return into a skirt across Doppler at its
-            range -- a horizontal line, which is what a walking person looks like too -- so a
-            twin that always has the same, weak skirt teaches "a line across Doppler = person".
-        phase_noise_paths: how many of the strongest per-item paths (people, static scatterers,
-            leakage and, when drawn, the room's strongest returns; ranked by amplitude x delay) get
-            the skirt.
-
-    The *effect catalog* (each effect drawn per item with probability ``effects_probability`` x its
-    own; an item may carry several; ``effects_probability=0`` turns the catalog off and gives the
-    items of the twin without it, bit for bit). Why: classifiers trained on the calibrated twin
-    collapse on captures that carry effects the twin does not make (a spur line, interference, a
-    fan, channel imbalance, drift, another floor level, a skirt around the strongest wall). Each
-    effect is inserted into the item's receiver where the hardware applies it
-    (:func:`~radaraug.sensor.effects.base.hardware_position`), after any stage of the same name the
-    receiver already has (a profile's fitted spur stays; the drawn one is a second spur). Ranges
-    are uniform unless marked log (uniform in the logarithm, the scale of the effect's own
-    :class:`~radaraug.sensor.effects.Prior`).
-
-    Args:
-        effects_probability: factor on every catalog probability below (0: catalog off, 1: each
-            effect at its own probability).
-        spur_tone_probability: chance of a :class:`~radaraug.sensor.effects.SpurTone` (0.3).
-        spur_tone_freq_nyquist: its frequency as a fraction of the Nyquist frequency (0.01, 0.99):
-            anywhere in the IF band, like the effect's prior ``[0, fs/2]`` (a clock or regulator
-            spur lands wherever its harmonic falls).
-        spur_tone_amplitude_counts: its peak amplitude at the ADC, counts, log (0.3, 5): a fraction
-            of an ADC count (visible only after the range FFT's gain, the ADC-side noise being
-            ~1.3-1.5 counts RMS at 23 dB IF gain) to a few counts (a line well above the floor);
-            inside the prior's [0.05, 200].
-        interference_probability: chance of another FMCW radar's
-            :class:`~radaraug.sensor.effects.Interference` (0.3).
-        interference_chirp_probability: the chance that a chirp gets a burst (0.01, 0.3): ramps of an
-            unsynchronised radar cross ours in a few to a third of the chirps (prior [0, 1]; the
-            effect's default 0.05 is an assumption).
-        interference_amplitude_counts: peak burst amplitude at the IF-gain output, counts, log
-            (5, 1000): from a burst that barely lifts the floor of its chirp (~15 counts doubles a
-            chirp's noise energy over 256 samples) to one near the 12-bit ADC's headroom above the
-            per-RX DC levels of ~1600-2070 counts (prior [1, 2000]).
-        interference_duration_s: burst length, s, log (0.5 us, 20 us): the time the difference
-            frequency needs to cross the IF band, set by both radars' slopes (prior [0.2, 30] us).
-        vibrating_clutter_probability: chance of a :class:`~radaraug.sensor.effects.VibratingClutter`
-            (a fan, a pump, a vibrating panel) (0.3).
-        vibrating_clutter_range_m: its range (0.5, 10) m.
-        vibrating_clutter_rcs_dBsm: its RCS (-20, +5) dBsm (a desk fan's blades to a metal
-            enclosure); the level is the radar equation with the scatterers' 6 dBi antenna gain,
-            as :func:`static_scatterer_paths`.
-        vibrating_clutter_displacement_m: peak displacement, log (0.1, 3) mm: mm scale, inside the
-            prior's [10 um, 5 mm] (modulation index 4 pi d / lambda from 0.25 to 7.5 rad at 60 GHz).
-        vibrating_clutter_Hz: vibration frequency, log (5, 60) Hz: mains-driven fans, pumps and
-            motors (prior [0.5 Hz, Doppler Nyquist]).
-        rx_mismatch_probability: chance of an :class:`~radaraug.sensor.effects.RxGainPhaseMismatch`
-            on top of the receiver's own (0.3).
-        rx_mismatch_gain_dB: per-RX gain offset (-1.5, +1.5) dB (inside the prior's [-6, 6]).
-        rx_mismatch_phase_deg: per-RX phase offset (-30, +30) deg (inside the prior's [-180, 180]).
-        frame_drift_probability: chance of a :class:`~radaraug.sensor.effects.FrameDrift` (0.3).
-        frame_drift_gain_rms_dB: RMS of its per-frame gain (0.1, 1.0) dB (prior [0, 3]).
-        frame_drift_dc_rms_counts: RMS of its per-frame, per-RX DC shift (0.2, 4) counts (prior
-            [0, 20]): field captures show 1.44-1.60 counts frame to frame against 1.3-1.5 within a
-            frame, a slow drift of about a count, and other units more.
-        wide_levels_probability: chance that the item's gain and noise levels come from the wider
-            ranges below instead of ``system_gain_offset_dB`` / ``noise_figure_offset_dB`` (0.3).
-            Those two keep their defaults, so items without this draw stay the items of before.
-        wide_system_gain_offset_dB: (-12, +12) dB: another generator (or another unit, IF-gain
-            setting 18-60 dB, a mount behind a cover) renders returns at levels the calibration
-            does not pin; the front-end gain itself moved by 20 dB once it was refitted.
-        wide_noise_figure_offset_dB: (-4, +8) dB: 60 GHz receiver noise figures span ~8-20 dB
-            around the chain's assumed 12 dB.
-        adc_noise_offset_dB: offset on the ``adc_noise`` stage's RMS, drawn with the wide levels
-            (-3, +3) dB: the ADC-side floor that dominates at low IF gain (1.3-1.5 counts at 23 dB
-            in the field captures; another unit or generator differs by more).
-        static_phase_noise_probability: chance that the room's ``static_phase_noise_paths``
-            strongest returns (by amplitude x delay, as the ``phase_noise`` stage ranks) carry the
-            item's phase-noise skirt (0.5: every real capture has one, and the drawn
-            ``phase_noise_rms_Hz`` already sets how strong it is). Those paths are taken out of
-            the room's cached signal and passed to the receiver with the people, where they
-            compete for the ``phase_noise_paths`` slots.
-        static_phase_noise_paths: how many of the room's returns are re-synthesized so (4).
+        rcs_scale_dB: per-person RCS scale, dB (amplitude x ``10**(dB/20)``, direct and multipath paths).
+        room_variants: size of the room pool (one room trace each, by ``prepare()``, cached on disk).
+        length_m, width_m, height_m: corridor size, m.
+        materials: per corridor surface, the P.2040 material names drawn from; surfaces not named
+            keep :data:`DEFAULT_MATERIALS`.
+        radar_height_m: radar height above the floor, m (at most the drawn ceiling minus 0.15 m).
+        radar_pitch_deg, radar_yaw_deg: added to the scene's radar pose, degrees.
+        person_height_m, speed_m_s: people's body height (m) and walking speed (m/s).
+        range_m: start distance along the corridor, m (at most the drawn length minus ``wall_margin_m``).
+        heading_jitter_deg: heading spread around straight toward/away, degrees.
+        crossing_probability, standing_probability: chance that a walker crosses the room, and that a
+            person stands (they count), passed to the :class:`ScenarioSampler` (0 draws nothing extra).
+        wall_margin_m: lateral positions are drawn within +-(width / 2 - margin), m.
+        system_gain_offset_dB, noise_figure_offset_dB: added to the receiver's ``system_gain`` and
+            ``thermal_noise`` noise figure, dB.
+        clutter_objects: clutter boxes per room variant, ``[lo, hi]`` inclusive, against a side wall
+            (:data:`CLUTTER_LENGTH_M` x :data:`CLUTTER_DEPTH_M` x :data:`CLUTTER_HEIGHT_M`).
+        clutter_materials: materials drawn for each clutter box.
+        static_scatterers: static point scatterers per item, ``[lo, hi]`` inclusive (no tracing cost;
+            they reach the receiver with the people, so the strongest get its phase noise).
+        static_scatterer_range_m, static_scatterer_rcs_dBsm: a scatterer's range (m) and RCS (dBsm).
+        static_scatterer_azimuth_deg: its azimuth off boresight, deg (elevation: +-20 deg).
+        phase_noise_rms_Hz: RMS LO frequency noise of the ``phase_noise`` stage, Hz.
+        phase_noise_paths: how many of the strongest per-item paths (by amplitude x delay) get it.
+        effects_probability: factor on every catalog probability below (0: the catalog off).
+        spur_tone_probability, spur_tone_freq_nyquist, spur_tone_amplitude_counts: chance of a
+            :class:`~radaraug.sensor.effects.SpurTone`, its frequency (fraction of Nyquist) and
+            peak amplitude at the ADC (counts, log).
+        interference_probability, interference_chirp_probability: chance of another radar's
+            :class:`~radaraug.sensor.effects.Interference` and the fraction of chirps it hits.
+        interference_amplitude_counts, interference_duration_s: peak burst amplitude after the IF
+            gain (counts, log) and burst length (s, log).
+        vibrating_clutter_probability, vibrating_clutter_range_m: chance of a
+            :class:`~radaraug.sensor.effects.VibratingClutter` (a fan, a pump) and its range (m).
+        vibrating_clutter_rcs_dBsm, vibrating_clutter_displacement_m, vibrating_clutter_Hz: its RCS
+            (dBsm, radar equation with 6 dBi antennas), peak displacement (m, log) and frequency (Hz, log).
+        rx_mismatch_probability, rx_mismatch_gain_dB, rx_mismatch_phase_deg: chance of an
+            :class:`~radaraug.sensor.effects.RxGainPhaseMismatch` on top of the receiver's own, and
+            its per-RX gain (dB) and phase (deg).
+        frame_drift_probability, frame_drift_gain_rms_dB, frame_drift_dc_rms_counts: chance of a
+            :class:`~radaraug.sensor.effects.FrameDrift`, its per-frame gain RMS (dB) and per-RX DC
+            shift RMS (counts).
+        wide_levels_probability: chance that the item's gain and noise come from the wide ranges below
+            instead of ``system_gain_offset_dB`` / ``noise_figure_offset_dB``.
+        wide_system_gain_offset_dB, wide_noise_figure_offset_dB: the wide ranges, dB.
+        adc_noise_offset_dB: offset on the ``adc_noise`` stage's RMS, drawn with the wide levels, dB.
+        static_phase_noise_probability, static_phase_noise_paths: chance that the room's strongest
+            returns get the item's phase noise (passed to the receiver as paths), and how many.
     """
 
     enabled: bool = True
@@ -306,7 +183,7 @@ class TwinRandomization:
     static_scatterer_azimuth_deg: tuple[float, float] = (-45.0, 45.0)
     phase_noise_rms_Hz: tuple[float, float] = (30e3, 400e3)
     phase_noise_paths: int = 16
-    # ---- the effect catalog (per-item probabilities; the ranges' sources are in the docstring)
+    # ---- the effect catalog (per-item probabilities; the ranges' sources: docs/simulation.md)
     effects_probability: float = 1.0
     spur_tone_probability: float = 0.3
     spur_tone_freq_nyquist: tuple[float, float] = (0.01, 0.99)
@@ -429,9 +306,8 @@ class TwinRandomization:
     def effects(self, seed: int, index: int) -> dict[str, Any]:
         """The effect-catalog draws of item ``index`` (its own stream, :data:`EFFECTS_STREAM`).
 
-        Every effect draws its hit and all its parameters whether it hits or not, so one
-        probability does not shift the others' values. Returns the :class:`ItemDraw` fields (None
-        for an effect not drawn) plus ``wide_levels`` (bool) and the wide levels' three values.
+        Every effect draws all its values whether it hits or not (one probability shifts no other draw).
+        Returns the :class:`ItemDraw` fields plus ``wide_levels`` (bool) and the wide levels' values.
         """
         g = item_generator(seed, index, stream=Stream.EFFECTS)
         scale = self.effects_probability
@@ -495,8 +371,7 @@ class RoomDraw:
         materials: P.2040 material name per corridor surface.
         radar_height_m: radar height above the floor.
         radar_pitch_deg, radar_yaw_deg: added to the base scene's pose.
-        clutter: boxes standing in the room, each ``{"min": [x, y, z], "max": [x, y, z],
-            "material": name}`` in the corridor's frame.
+        clutter: boxes in the room, ``{"min": [x, y, z], "max": [x, y, z], "material": name}`` (corridor frame).
     """
 
     index: int
@@ -516,8 +391,8 @@ class RoomDraw:
     def scene(self, base: Scene, config: RadarConfig | None = None) -> Scene:
         """This room as a :class:`Scene`, with ``base``'s radar in the drawn corridor.
 
-        The radar's x, y position, pose and mounting, and ``max_edge`` and end walls of its corridor come
-        from ``base``.
+        The radar's x, y position, pose and mounting and the corridor's ``max_edge`` and end walls
+        come from ``base``.
 
         Raises:
             ConfigError: ``base`` is not a corridor scene, or its radar is outside the drawn room.
@@ -550,11 +425,10 @@ class RoomDraw:
         return scene
 
     def _rotation(self, base: Scene) -> torch.Tensor:
-        """The base pose turned by the drawn yaw (about world z) and pitch (boresight up).
+        """The base pose turned by the drawn yaw (about world z) and pitch (boresight up), mounting kept.
 
-        The base pose is written as ``yaw_pitch_roll(yaw0, pitch0, 0) @ M``, with ``M`` what
-        remains (roll and the portrait/landscape mounting, a turn about the boresight); the
-        variant is ``yaw_pitch_roll(yaw0 + yaw, pitch0 + pitch, 0) @ M``, so the mounting stays.
+        ``yaw_pitch_roll(yaw0, pitch0, 0) @ M`` (``M``: roll, mounting) becomes ``yaw_pitch_roll(yaw0 + yaw,
+        pitch0 + pitch, 0) @ M``.
         """
         rot = base.radar.rotation.detach().cpu().to(torch.float64)
         b = rot[:, 2]
@@ -576,12 +450,10 @@ class ItemDraw:
     * ``vibrating_clutter``: ``(range_m, rcs_dBsm, displacement_m, vibration_Hz, phase_rad)``;
     * ``rx_mismatch``: ``(gain_dB, phase_deg)``, each a value per antenna number 1..16;
     * ``frame_drift``: ``(gain_rms_dB, dc_rms_counts)``;
-    * ``wide_levels``: the gain and noise-figure offsets came from the wide ranges, and
-      ``adc_noise_offset_dB`` offsets the ``adc_noise`` stage;
+    * ``wide_levels``: the offsets came from the wide ranges (``adc_noise_offset_dB`` applies);
     * ``static_phase_noise_paths``: how many of the room's strongest returns carry the phase noise.
 
-    ``phase_noise_paths`` is not drawn: it is :attr:`TwinRandomization.phase_noise_paths`, carried so
-    that the draw is all :meth:`DigitalTwin.simulate` needs besides the people.
+    ``phase_noise_paths`` is carried (:attr:`TwinRandomization.phase_noise_paths`), not drawn.
     """
 
     variant: int

@@ -1,10 +1,7 @@
-"""The paper's scenarios as a seeded sampler: empty corridor, one walker, two walkers.
+"""The paper's scenarios as a seeded sampler: empty corridor, one walker, two walkers (Sec. 2.1-2.2).
 
-Paper (Sec. 2.1-2.2): an empty corridor, one person walking, and two people walking at
-different speeds, toward or away from the radar. Everything the paper leaves open is drawn
-from ranges (documented defaults below): speed, height, start distance, lateral offset,
-heading (toward/away) and gait phase. All draws come from the generator passed in, so a
-scenario is a pure function of the generator's seed.
+What the paper leaves open (speed, height, start, lateral offset, heading, gait phase) is drawn from
+ranges, all from the generator passed in, so a scenario is a pure function of its seed.
 """
 
 from __future__ import annotations
@@ -57,20 +54,12 @@ class ScenarioSampler:
         lateral_m: lateral offset range from the corridor axis (keep people inside the walls).
         p_toward: probability that a walker heads toward the radar (else away).
         heading_jitter_deg: extra random heading around straight toward/away.
-        crossing_probability: chance that a drawn walker crosses the corridor (heading across its
-            axis, either side, plus the jitter) instead of walking toward/away: little radial
-            velocity, so most of the body sits near zero Doppler and only the limbs and the
-            angle to the radar spread it. 0 (default) draws nothing extra (the scenarios of before).
-        standing_probability: chance that a drawn person stands (breathing, swaying; a
-            :class:`~radaraug.scene.people.StandingPerson` at the drawn start, facing the drawn
-            heading) instead of walking. 0 (default, the paper's scenarios) draws nothing extra, so
-            its scenarios are those of before, bit for bit. A standing person still counts: the
-            labels are about people, not about motion (docs/training.md measures what a one-frame
-            map can see of them).
-        breathing_m: a standing person's peak chest displacement (3-12 mm: quiet to deep breaths).
-        breathing_Hz: their breathing rate (0.2-0.4 Hz).
-        sway_rad: their peak postural sway about the ankles (0.002-0.012 rad: 0.2-1.2 cm at the hips).
-        sway_Hz: their sway frequency (0.1-0.5 Hz).
+        crossing_probability: chance that a drawn walker crosses the corridor (across its axis,
+            either side, plus the jitter) instead of walking toward/away; 0 (default) draws nothing extra.
+        standing_probability: chance that a drawn person stands (a :class:`~radaraug.scene.people.StandingPerson`
+            at the drawn start, facing the drawn heading); they count. 0 (default) draws nothing extra.
+        breathing_m, breathing_Hz: a standing person's peak chest displacement (m) and breathing rate.
+        sway_rad, sway_Hz: their peak postural sway about the ankles (rad) and its frequency.
     """
 
     counts: tuple[int, ...] = (0, 1, 2)

@@ -1,9 +1,7 @@
 """Deterministic per-item seeds: a simulated item is a pure function of (seed, index).
 
-The seed of item ``i`` does not depend on which worker, process or DDP rank computes it, so a
-dataset gives the same items however it is split. SplitMix64 mixes the pair so that nearby
-(seed, index) pairs give unrelated streams (:mod:`radaraug._seeding`, the mixer the transforms
-use too).
+The seed of item ``i`` does not depend on the worker, process or DDP rank that computes it;
+SplitMix64 (:mod:`radaraug._seeding`) mixes the pair so that nearby pairs give unrelated streams.
 """
 
 from __future__ import annotations
@@ -20,10 +18,9 @@ __all__ = ["Stream", "splitmix64", "item_seed", "item_generator"]
 class Stream(IntEnum):
     """The registry of generator streams: every ``stream=`` of :func:`item_seed` / :func:`item_generator`.
 
-    A stream separates two uses of the same ``(seed, index)``, so that one use drawing more or
-    fewer numbers never shifts another. The values are part of every recorded simulation (they
-    are mixed into the seeds): never renumber a member, and give a new use a new, unused value.
-    ``index`` means what each member's docstring says (an item, a frame block, a file...).
+    A stream separates two uses of the same ``(seed, index)``, so that one never shifts another's
+    draws. The values are mixed into every recorded simulation's seeds: never renumber a member; give
+    a new use a new value. ``index`` means what each member's docstring says.
     """
 
     SCENARIO = 0

@@ -1,14 +1,8 @@
 """`DigitalTwin`: a scene's people at frame times -> ray-traced paths -> raw ADC frames.
 
-One object per process: it traces the static room once (cached by the ray tracer, in memory and
-on disk) and then
-simulates any batch of frame times with tensor work only: people give their body segments at
-sub-frame instants (a few snapshots per frame, as many as the limbs' acceleration needs, chosen
-per frame by :mod:`radaraug.sim.intra_frame`), the tracer gives the target paths for all of them
-at once, each path's delay is interpolated to every chirp (a reference line plus a per-chirp
-residual and amplitude factor), the people's shadow on the room's paths changes the cached room
-signal per frame (:meth:`DigitalTwin.shadow_signal`), and the receiver synthesizes the IF signal
-with the sensor effects and the 12-bit ADC.
+One object per process: it traces and synthesizes the static room once, then simulates any batch of
+frame times with tensor work only (the people's paths over each frame, their shadow on the room,
+the receiver). See docs/simulation.md.
 """
 
 from __future__ import annotations
@@ -36,12 +30,7 @@ from radaraug.sim.item_signal import drawn_signal, people_paths
 
 #: Version of the twin's physics, part of the cache key of every simulated map set
 #: (:func:`radaraug.training.cache.cache_spec`): bumped when a change makes the same inputs simulate
-#: other frames, so that no cache made before is reused. 2: a moving segment's echo moves with the
-#: material velocity of its specular point (rotation included), not with the segment's centre.
-#: 3: the RX channels share the fast-time synthesis factor of moving paths
-#: (:mod:`radaraug.sensor.synthesis`; one ADC code moves in ~5e-4 of the samples of an item with people).
-#: 4: the coupling of moving paths is a Chebyshev (Jacobi-Anger) series with orders chosen per frame
-#: instead of a Taylor series with one set of orders per batch (:func:`~radaraug.sensor.synthesis.taylor_coupling`).
+#: other frames, so that no cache made before is reused (history: docs/simulation.md, "Model versions").
 TWIN_MODEL_VERSION = 4
 
 if TYPE_CHECKING:
@@ -55,13 +44,8 @@ synthesis (:func:`negligible_paths_off`)."""
 def negligible_paths_off(paths: Paths, below_dB: float = WEAK_PATH_DB) -> Paths:
     """``paths`` ``(T, P, RX)`` with the slots more than ``below_dB`` under their frame's strongest off.
 
-    Masked per frame, so a frame's result does not depend on its batch.
-
-    The receiver drops slots that are zero in every frame of a call before synthesis: multipath
-    slots that exist for no one (a wall a person is not seen in) and such negligible ones then
-    cost nothing. Why 100 dB: with the default chain (ADC-side noise ~2.2 counts RMS) the
-    range-Doppler noise floor of a 64 x 256 frame lies ~98 dB under a full-scale tone, so a path
-    100 dB under the strongest echo is under the floor even when that echo fills the ADC.
+    Masked per frame (a frame's result does not depend on its batch). The default leaves out only
+    paths under the RD noise floor, even when the strongest echo fills the ADC (docs/simulation.md).
     """
     if paths.num_paths == 0:
         return paths
@@ -85,37 +69,29 @@ class DigitalTwin:
             recording); the pose stays the scene's.
         receiver: the FMCW receiver (default: :class:`FMCWReceiver` with the BGT60TR13C chain).
         tracer_options: keyword arguments of :class:`RayTracer` (``method``, ``max_bounces``,
-            ``cache``...); the default image method needs no ray count and the traced room is
-            cached on disk per (scene, config, tracer version).
+            ``cache``...); the traced room is cached on disk per (scene, config, tracer version).
         multipath: first-order multipath of the people via the room's walls.
         device: where to simulate (default CPU).
         dtype: real dtype of the tracer (float32; the receiver follows the paths' dtype).
         static_signal: the room's signal from an earlier :meth:`static_signal` of the same
             scene, config and receiver (skips the room's trace and synthesis).
         profile: a fitted twin profile (:class:`~radaraug.sensor.profile.TwinProfile`, its JSON
-            path or dict, e.g. written by ``radaraug diagnose``): the receiver is built from it,
-            and its room section (the fitted ``diffuse_gain_dB``) goes to the tracer unless
-            ``tracer_options`` sets it. Give ``receiver`` or ``profile``, not both.
-        shadowing: the people shadow the room's paths (knife-edge diffraction by their body
-            segments, :mod:`radaraug.raytrace.shadow`); needs the static paths' geometry
-            (:meth:`RayTracer.static_vertices`, given by the default image method, not by SBR).
+            path or dict): the receiver is built from it, and its room section goes to the tracer
+            unless ``tracer_options`` sets it. Give ``receiver`` or ``profile``, not both.
+        shadowing: the people shadow the room's paths (knife-edge diffraction,
+            :mod:`radaraug.raytrace.shadow`; the image method's rooms, not SBR's).
         shadow_method: how :meth:`simulate` applies that shadow: ``"signal"`` (default) changes the
             room's cached signal through the static basis (:meth:`shadow_signal`, one small matrix
             product per batch); ``"paths"`` passes the shadowed room paths' corrections to the
-            receiver as paths (:meth:`shadow_paths`, slower; the held-out proxy's frames were made
-            so). The two agree to float rounding (see ``tests/sim/test_twin_shadowing.py``).
-        intra_frame: motion of the people inside a frame: ``"auto"`` (default) traces as many
-            sub-frame snapshots as each frame needs for its paths' delays to be interpolated to
-            every chirp within ``intra_frame_tol_cycles`` (see :mod:`radaraug.sim.intra_frame`);
-            an int fixes the number of knot intervals per frame; ``0`` is one snapshot per frame
-            with each path's delay extrapolated linearly (limb micro-Doppler as sharp lines).
+            receiver as paths (:meth:`shadow_paths`, slower; equal to float rounding).
+        intra_frame: motion inside a frame: ``"auto"`` (default, :mod:`radaraug.sim.intra_frame`), a
+            fixed number of knot intervals per frame, or ``0`` (one snapshot, delays extrapolated linearly).
         intra_frame_tol_cycles: tolerance of the automatic choice, carrier cycles of delay.
-        shadow_intervals: the people's shadow on the room over a frame: ``0`` (default) holds it
-            at the frame's start; ``K >= 1`` evaluates it at ``K + 1`` instants from the first to the
-            last chirp and interpolates linearly in between (:meth:`shadow_knots`), at ``K + 1``
-            times the shadow's cost. Measured against a shadow at every chirp (docs/shadowing.md):
-            for a walker the held shadow's error is ~43 dB under the walker's peak off zero Doppler,
-            ``K = 4`` removes it; a thin rod turning at 6 rad/s needs ``K >= 2``.
+        shadow_intervals: ``0`` (default) holds the people's shadow at the frame's start; ``K >= 1``
+            moves it inside the frame (:meth:`shadow_knots`) at ``K + 1`` times its cost (docs/shadowing.md).
+
+    Raises:
+        ConfigError: a bad option, or both ``receiver`` and ``profile``.
     """
 
     def __init__(
@@ -170,17 +146,13 @@ class DigitalTwin:
 
     @property
     def cached_static_signal(self) -> torch.Tensor | None:
-        """The room's signal if :meth:`static_signal` has computed (or was given) it, else None.
-
-        For handing it to another twin of the same scene, e.g. in a DataLoader worker.
-        """
+        """The room's signal if computed (or given) yet, else None: for another twin of the same scene."""
         return self._static_signal
 
     def static_signal(self) -> torch.Tensor:
-        """The room's contribution ``(rx, chirps, samples)``: traced and synthesized once.
+        """The room's contribution ``(rx, chirps, samples)`` through the linear stages, the same in every frame.
 
-        The room does not move, so by superposition its signal through the receiver's linear
-        stages is the same in every frame (:meth:`FMCWReceiver.static_signal`).
+        Traced and synthesized once (superposition: :meth:`FMCWReceiver.static_signal`).
         """
         if self._static_signal is None:
             self._static_signal = self.receiver.static_signal(self.tracer.static_paths())
@@ -205,10 +177,9 @@ class DigitalTwin:
                           omega)
 
     def paths(self, people: Sequence[Any], times: torch.Tensor) -> Paths:
-        """Paths of the people over the frames starting at ``times`` ``(T, P, RX)``.
+        """Paths ``(T, P, RX)`` of the people over the frames starting at ``times``, with per-chirp terms.
 
-        The room's are in :meth:`static_signal`. With per-chirp delays and gains ``(T, P, chirps)`` unless
-        ``intra_frame=0``.
+        The per-chirp delays and gains ``(T, P, chirps)`` are absent with ``intra_frame=0``.
         """
         if not people:
             rx = self.config.num_rx
@@ -246,8 +217,7 @@ class DigitalTwin:
     def shadow_transmission(self, people: Sequence[Any], times: torch.Tensor) -> torch.Tensor | None:
         """``(T, P)`` field transmission of the room's paths through the people at ``times``, or None.
 
-        :func:`~radaraug.raytrace.shadow.shadow_transmission`. None: no people, ``shadowing=False``, or
-        an SBR room (its merged paths have no vertices).
+        None: no people, ``shadowing=False``, or an SBR room (its merged paths have no vertices).
         """
         if not people or not self.shadowing:
             return None
@@ -262,12 +232,10 @@ class DigitalTwin:
     def shadow_knots(self, people: Sequence[Any], times: torch.Tensor) -> tuple[torch.Tensor, torch.Tensor | None] | None:
         """The shadow over each frame: transmissions ``(T, J, P)`` at its knots and the chirps' weights ``(M, J)``.
 
-        The people move inside a frame, and so does their shadow on the room. With
-        ``shadow_intervals=K >= 1`` it is evaluated at ``K + 1`` instants from the first chirp to the
-        last (their first ADC samples) and interpolated linearly in between (hat-function weights),
-        so a limb sweeping through a wall's Fresnel zone modulates that wall across the chirps
-        (Doppler at the wall's range), not only from frame to frame. With ``K = 0`` (default) it is
-        held at the frame's start: one knot, weights None. None as for :meth:`shadow_transmission`.
+        With ``shadow_intervals=K >= 1`` the knots are ``K + 1`` instants from the first chirp's first
+        ADC sample to the last's, with hat-function weights, so a limb sweeping through a wall's Fresnel
+        zone modulates that wall across the chirps; with ``K = 0`` one knot at the frame's start, weights
+        None. None as for :meth:`shadow_transmission`.
         """
         tc = chirp_times(ChirpTiming.from_config(self.config))
         k = self.shadow_intervals
@@ -284,9 +252,8 @@ class DigitalTwin:
     def shadow_paths(self, people: Sequence[Any], times: torch.Tensor) -> Paths | None:
         """Correction paths ``(T, P', RX)`` for the room's paths that the people shadow, or None.
 
-        The room's signal is synthesized once (:meth:`static_signal`); people shadowing it enter
-        as ``(T - 1) * a`` at the static paths' delays (:func:`correction_paths`), one set per knot of
-        :meth:`shadow_knots` with its weight as the per-chirp gain.
+        ``(T - 1) * a`` at the static paths' delays, one set per knot of :meth:`shadow_knots` with its
+        weight as the per-chirp gain.
         """
         knots = self.shadow_knots(people, times)
         if knots is None:
@@ -311,15 +278,10 @@ class DigitalTwin:
     def static_basis(self) -> torch.Tensor:
         """``(P, 2, RX, N)`` one chirp of each static path's signal and of its quadrature twin.
 
-        Both through the linear stages: the path as is and with its amplitude times ``j`` (the in-phase
-        and quadrature basis).
-
-        A static path gives the same samples on every chirp, so a frame in which the people
-        multiply path ``p``'s amplitude by ``T_p`` differs from the cached room signal by
-        ``sum_p Re(T_p - 1) b_p0 + Im(T_p - 1) b_p1`` on every chirp: one small matrix product
-        per batch (:meth:`shadow_signal`) instead of synthesizing thousands of correction paths.
-        Computed once per twin (one chirp per path, chunked: ~0.3 s for the corridor's ~6,600 paths on
-        one CPU thread).
+        Both through the linear stages (the path, and with its amplitude times ``j``). A frame in which
+        the people multiply path ``p``'s amplitude by ``T_p`` then differs from the cached room signal by
+        ``sum_p Re(T_p - 1) b_p0 + Im(T_p - 1) b_p1`` on every chirp (:meth:`shadow_signal`). Computed
+        once per twin.
         """
         if self._static_basis is None:
             static = self.tracer.static_paths()
@@ -346,12 +308,9 @@ class DigitalTwin:
     ) -> torch.Tensor | tuple[torch.Tensor, torch.Tensor] | None:
         """``(T, RX, chirps, N)`` what the people's shadow changes in the room's signal, or None.
 
-        ``(T, RX, 1, N)``, broadcast over chirps, where the shadow is held for the frame
-        (:meth:`shadow_knots`). The change at each knot is one matrix product with the
-        :meth:`static_basis`; the chirps between knots are their weighted sums (the basis is linear).
-        ``quadrature``: a pair, the change and the one of ``-j (T - 1)`` (what a per-RX complex gain
-        needs to turn it, :func:`~radaraug.sim.item_signal.drawn_signal`). None: no people,
-        ``shadowing=False``, SBR room.
+        ``(T, RX, 1, N)`` where the shadow is held for the frame. One matrix product with the
+        :meth:`static_basis` per knot. ``quadrature``: also the change of ``-j (T - 1)`` (to turn it by
+        a per-RX complex gain). None as for :meth:`shadow_transmission`.
         """
         knots = self.shadow_knots(people, times)
         if knots is None:
@@ -376,11 +335,9 @@ class DigitalTwin:
         return (out[0], out[1]) if quadrature else out
 
     def frame_paths(self, people: Sequence[Any], times: torch.Tensor) -> Paths:
-        """The people's paths and their shadow corrections as explicit paths.
+        """The people's paths (negligible ones masked) and their shadow corrections (:meth:`shadow_paths`).
 
-        Negligible paths are masked (:func:`negligible_paths_off`); the corrections come from
-        :meth:`shadow_paths`. With the room's cached signal they give the same frames as :meth:`simulate`
-        (which applies the shadow through :meth:`shadow_signal`, far cheaper), for code that needs the
+        With the room's cached signal they give the frames of :meth:`simulate`, for code that needs the
         paths themselves (the calibration, the proxy).
         """
         people = list(people or [])
@@ -400,23 +357,16 @@ class DigitalTwin:
     ) -> torch.Tensor:
         """Raw frames ``(T, rx, chirps, samples)`` in SDK floats at frame start ``times`` ``(T,)``.
 
-        The one simulation path: the dataset (plain or randomized) calls it.
-
         Args:
             people: the people (default: none); ``scene.people`` for the scene's own.
             times: frame start times in seconds.
-            generators: one generator per frame (then frame ``k`` is a pure function of its
-                generator's seed, whatever the batch), a single generator for the batch, or
-                None (global RNG).
-            draw: a per-item draw of :class:`~radaraug.sim.randomization.TwinRandomization`
-                (:meth:`~radaraug.sim.randomization.TwinRandomization.item`) to simulate this twin
-                under: each person's RCS scale, static scatterers, the receiver's gain / noise /
-                phase-noise offsets and the effect catalog (:func:`~radaraug.sim.item_signal.drawn_signal`).
-                The draw's room variant is not applied here: simulate with that variant's twin.
-                None (default): the twin as it is.
-            t0: the recording's time at ``times == 0``, seconds: the people move at ``times``, the
-                receiver's time-locked effects (a spur tone) see ``t0 + times``, so that several
-                scenes (e.g. the held-out proxy's walks) can be played into one long recording.
+            generators: one generator per frame (frame ``k`` then depends only on its seed), one
+                for the batch, or None (global RNG).
+            draw: a per-item draw (:meth:`~radaraug.sim.randomization.TwinRandomization.item`) to
+                simulate under (:func:`~radaraug.sim.item_signal.drawn_signal`); its room variant is
+                not applied here: simulate with that variant's twin. None (default): the twin as it is.
+            t0: the recording's time at ``times == 0``, s: the receiver's time-locked effects (a spur
+                tone) see ``t0 + times``, so that several scenes can be played into one recording.
         """
         people = list(people or [])
         traced = self.paths(people, times) if draw is None else people_paths(self, people, times, draw.rcs_scale_dB)
