@@ -1,17 +1,8 @@
 """Range-Doppler processing and noise-floor domain randomization as torch transforms.
 
-Typical training pipeline (raw cube -> network image)::
-
-    from radaraug.transforms import (RadarCompose, RangeDoppler, ToDecibels, CalibratedDR,
-                                     CombineRx, ClipNormalize, Colormap)
-    cdr = CalibratedDR.fit("empty_room.h5")
-    pipeline = RadarCompose([RangeDoppler(), ToDecibels(), cdr, CombineRx("mean_power", db=True),
-                             ClipNormalize(-110, -40), Colormap("viridis")])
-
-A transform takes a tensor or a sample (tuple, list, dict) like torchvision v2 does; the kernels
-behind the classes are plain functions in :mod:`radaraug.transforms.functional`.
-
-Units: ``radaraug.units.DB_CONVENTION`` (dBFS: both FFTs divided by their window sums).
+Transforms take tensors or torchvision-v2-style samples; their kernels are plain functions in
+:mod:`radaraug.transforms.functional`. dB values follow ``radaraug.units.DB_CONVENTION`` (dBFS).
+See docs/transforms.md.
 """
 
 from radaraug.transforms import functional

@@ -15,14 +15,9 @@ def check_tensor(
     allow_complex: bool = False,
     finite: bool = True,
 ) -> torch.Tensor:
-    """Raise :class:`InputTensorError` unless ``x`` is a floating tensor of rank >= ``min_ndim``.
+    """``x`` if it is a floating (or, with ``allow_complex``, complex) tensor of rank >= ``min_ndim``.
 
-    Args:
-        x: the input.
-        what: name of the transform and the layout it expects, for the message.
-        min_ndim: smallest accepted rank.
-        allow_complex: accept complex tensors too.
-        finite: check for NaN/Inf.
+    Also refuses an empty event and, with ``finite``, NaN/Inf; raises InputTensorError naming ``what``.
     """
     if not isinstance(x, torch.Tensor):
         raise InputTensorError(f"{what}: expected a torch.Tensor, got {type(x).__name__}")

@@ -1,28 +1,7 @@
-"""Random-number ownership for random transforms: pickling and DataLoader workers.
+"""Where random transforms draw from, across pickling and DataLoader workers.
 
-A random transform draws from, in order of precedence:
-
-1. a ``torch.Generator`` given by the user (``generator=``), used as is in the process that
-   created the transform;
-2. a generator the transform owns, built from ``seed=`` (one per device, created lazily);
-3. torch's global RNG (``generator=None, seed=None``, the default).
-
-Pickling stores a generator's device and state (``get_state``) and rebuilds it, so a pickled
-transform continues the same stream. In a DataLoader worker (case 1 or 2) every worker would
-otherwise inherit an identical generator and draw identical noise; unless
-``reseed_in_workers=False`` the generator is re-seeded once per worker from
-``(seed, worker_info.seed)``. ``worker_info.seed`` is the DataLoader's per-epoch base seed plus
-the worker id, so workers and epochs differ, and a run is reproducible when the DataLoader's
-base seed is (``torch.manual_seed(...)`` before iterating, or ``DataLoader(generator=...)``).
-Case 3 needs nothing: torch already seeds each worker's global RNG the same way.
-
-All three make a sample's random parameters depend on which worker drew it and on what that
-worker drew before (a *stream* per worker). For per-item reproducible augmentation, a dataset
-wraps its transform call in :func:`use_generator` (defined in :mod:`radaraug._augmentation`, below
-``io``, ``sim`` and ``transforms``, and re-exported here) with a generator derived from
-``(seed, index, epoch)``: inside the block every random radaraug transform draws from that
-generator instead (it wins over all three above), so item ``i`` of an epoch is the same however
-the DataLoader splits the work (``augmentation="per_item"`` of the radaraug datasets).
+Precedence: :func:`use_generator`'s scoped generator, the transform's ``generator``, its ``seed`` (an owned
+generator per device), torch's global RNG. See docs/transforms.md, "Seeding story".
 """
 
 from __future__ import annotations
@@ -47,11 +26,9 @@ def draw(
     mean: float = 0.0,
     std: float = 1.0,
 ) -> torch.Tensor:
-    """Uniform [0, 1) (``kind="rand"``) or ``Normal(mean, std**2)`` (``"normal"``) draws.
+    """Uniform [0, 1) (``kind="rand"``) or ``Normal(mean, std**2)`` (``"normal"``) draws of ``shape``.
 
-    The result has ``shape`` and ``like``'s dtype and device. A generator on another device than
-    ``like`` draws on its own device and the result is moved (correct but slower: give a
-    generator on the data's device).
+    The result has ``like``'s dtype and device; a generator on another device draws there and the result is moved.
     """
     device = (
         like.device

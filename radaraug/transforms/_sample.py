@@ -1,21 +1,7 @@
 """Samples like torchvision v2: a tensor, or any nesting of tuples, lists and dicts (a pytree).
 
-A transform flattens the sample (``torch.utils._pytree.tree_flatten``, as torchvision's
-``Transform.forward`` does), transforms only its *radar leaves* and puts the sample back
-together. The rule, given the transform's accepted kinds and event rank ``k`` (3 for
-``(rx, range, doppler)`` and raw cubes, 2 for image steps):
-
-* a leaf is *eligible* when it is a ``torch.Tensor`` of a real floating dtype (complex too when
-  the transform takes complex input) with at least ``k`` dims;
-* the first eligible leaf in flattening order (dict values in insertion order) is the radar tensor;
-  every further eligible leaf with exactly its shape is a radar leaf too, and gets the *same*
-  random parameters (like torchvision's one crop for an image and its mask);
-* everything else passes through as the same object: integer and bool tensors (labels, counts),
-  tensors with fewer dims (scalar and vector targets), tensors of another shape, numbers,
-  strings, None, NumPy arrays.
-
-A sample with no eligible leaf is an error (:class:`~radaraug.errors.InputTensorError`), not a
-silent pass-through: the message is the transform's own check of the most likely leaf.
+Its radar leaves are the first eligible floating tensor and every other of exactly that shape; the rest
+passes through (docs/transforms.md, "Samples").
 """
 
 from __future__ import annotations
@@ -62,14 +48,10 @@ def most_likely_radar_leaf(flat: list[Any], min_ndim: int) -> Any:
 
 
 def is_sample_aware(module: Any) -> bool:
-    """Whether ``module`` takes a whole sample.
+    """Whether ``module`` takes a whole sample, not each radar tensor of it.
 
-    radaraug or torchvision v2 transforms do, and ``nn.Sequential``s of them; other modules are given the
-    sample's radar tensors one by one.
-
-    radaraug's own sample-aware modules (``RadarTransform``, ``RadarCompose``) say so with a class
-    attribute ``takes_samples = True`` (read here instead of importing their classes, which import
-    this module).
+    True for torchvision v2 transforms, ``nn.Sequential``s of such modules, and radaraug's modules, which
+    say so with ``takes_samples = True`` (read here: importing their classes would import this module).
     """
     if getattr(module, "takes_samples", False) is True:
         return True
@@ -81,10 +63,7 @@ def is_sample_aware(module: Any) -> bool:
 
 
 def apply_to_radar_leaves(fn: Callable[[torch.Tensor], Any], sample: Any, min_ndim: int = 2) -> Any:
-    """``fn`` applied to each radar leaf of ``sample``; a plain tensor is passed to ``fn`` as is.
-
-    A radar leaf is a real or complex floating tensor of at least ``min_ndim`` dims.
-    """
+    """``fn`` applied to a plain tensor, or to each radar leaf (floating, >= ``min_ndim`` dims) of ``sample``."""
     if isinstance(sample, torch.Tensor):
         return fn(sample)
     flat, spec = pytree.tree_flatten(sample)

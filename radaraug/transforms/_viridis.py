@@ -1,9 +1,7 @@
-"""The 256-entry viridis lookup table of matplotlib (RGB in [0, 1]).
+"""matplotlib's 256-entry viridis table (RGB in [0, 1]), shipped so that radaraug needs no matplotlib.
 
-The numbers live in ``radaraug/data/viridis_rgb.txt``, copied from
-``matplotlib.colormaps["viridis"].colors`` (matplotlib 3.11): viridis by Stefan van der Walt,
-Nathaniel Smith and Eric Firing, released under CC0. Shipped with the package so radaraug needs no
-matplotlib at run time; the tests compare it with matplotlib.
+``radaraug/data/viridis_rgb.txt`` holds ``matplotlib.colormaps["viridis"].colors`` (matplotlib 3.11):
+viridis by Stefan van der Walt, Nathaniel Smith and Eric Firing, released under CC0.
 """
 
 import functools

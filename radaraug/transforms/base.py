@@ -1,25 +1,4 @@
-"""Base classes of radaraug transforms (torchvision-v2 / kornia style ``nn.Module``s).
-
-* :class:`RadarTransform`: deterministic; ``transform(x, params)`` does the work and
-  :meth:`~RadarTransform.chain_spec` describes it as a JSON-able dict, so that the DSP chain a
-  calibration was fitted with can be recorded and checked.
-* :class:`RandomRadarTransform`: draws per-sample parameters with :meth:`make_params`, applies them
-  with :meth:`transform`, keeps them in :attr:`last_params`, and replays them with
-  ``forward(x, params=...)``. A "sample" is one item of the leading batch dims; the last
-  :attr:`event_ndim` dims are the event (3: ``(rx, range, doppler)`` or ``(rx, chirps, samples)``).
-
-Calling conventions (both classes), as torchvision v2's ``Transform.forward``: ``t(x)`` returns
-the transformed tensor; ``t(sample)`` with a tuple, list or dict (any nesting: a pytree) returns
-the same structure with its radar leaves transformed and everything else passed through, and
-``t(x, *rest)`` is ``t((x, *rest))``. Which leaves are radar leaves is decided by
-:mod:`radaraug.transforms._sample` (the first real floating tensor with at least
-:attr:`~RadarTransform.event_ndim` dims, and any other of exactly its shape, with the same random
-parameters). That makes a radaraug transform usable on ``(cube, label)`` and
-``{"image": cube, "label": label}`` samples inside ``torchvision.transforms.v2.Compose``.
-
-``.eval()`` mode: random transforms become the identity (like dropout) and return their input
-object itself; replaying explicit ``params`` still applies them. Deterministic DSP is unaffected.
-"""
+"""Base classes of radaraug transforms: torchvision-v2 / kornia style ``nn.Module``s (docs/transforms.md)."""
 
 from __future__ import annotations
 
@@ -39,11 +18,10 @@ Params = dict[str, torch.Tensor]
 
 
 class RadarTransform(nn.Module):
-    """A deterministic radar transform.
+    """A deterministic radar transform; inputs are never modified in place.
 
-    Subclasses set :attr:`kernel` and :attr:`spec_fields` (the kernel then gets the parameters by
-    name), or implement :meth:`transform` and, when they have parameters, :meth:`extra_spec`.
-    Inputs are never modified in place; dtype and device follow the input.
+    Subclasses set :attr:`kernel` and :attr:`spec_fields` (the kernel's keyword arguments), or override
+    :meth:`transform` (and :meth:`extra_spec` when they have parameters).
     """
 
     #: trailing dims that make one sample (the event); leading dims are batch dims.
@@ -82,8 +60,8 @@ class RadarTransform(nn.Module):
         """Flatten ``sample`` and validate its radar leaves.
 
         Returns:
-            ``(leaves, spec, chosen)``: the flat leaves, the tree spec (None for a plain tensor)
-            and the indices of the radar leaves, each checked with :meth:`check_input`.
+            ``(leaves, spec, chosen)``: the flat leaves, the tree spec (None for a plain tensor) and the
+            indices of the radar leaves, each checked with :meth:`check_input`.
 
         Raises:
             InputTensorError: no leaf is a radar tensor, or one fails :meth:`check_input`.
@@ -105,14 +83,14 @@ class RadarTransform(nn.Module):
         return flat, spec, chosen
 
     def forward(self, *inputs: Any) -> Any:
-        """Transform a tensor or the radar leaves of a sample (see the module docstring)."""
+        """Transform a tensor, or the radar leaves of a sample."""
         flat, spec, chosen = self.select(_sample.as_sample(inputs))
         for i in chosen:
             flat[i] = self.transform(flat[i], {})
         return flat[0] if spec is None else pytree.tree_unflatten(flat, spec)
 
     def extra_spec(self) -> dict[str, Any]:
-        """The transform's parameters as JSON types (for :meth:`chain_spec`): its :attr:`spec_fields`."""
+        """The transform's parameters (its :attr:`spec_fields`) as JSON types."""
         return {k: getattr(self, k) for k in self.spec_fields}
 
     def chain_spec(self) -> dict[str, Any]:
@@ -125,19 +103,17 @@ class RadarTransform(nn.Module):
 
 
 class RandomRadarTransform(RadarTransform):
-    """A random radar transform with per-sample parameters.
+    """A random radar transform with per-sample parameters (a sample: one item of the batch dims).
+
+    Subclasses implement :meth:`sample_params` and :meth:`transform` and extend :attr:`spec_fields`.
 
     Args:
-        p: probability of applying the transform to each sample (drawn per sample).
-        same_on_batch: draw one set of parameters and use it for every sample of a batch.
+        p: probability of applying the transform, drawn per sample.
+        same_on_batch: draw one set of parameters for the whole batch.
         generator: a ``torch.Generator`` to draw from (else ``seed``, else the global RNG).
-        seed: integer seed of a generator the transform owns (pickles; one per device).
-        reseed_in_workers: in DataLoader workers, re-seed ``generator``/``seed`` streams per
-            worker (and per epoch) so workers draw different numbers; ``False`` makes every
-            worker replay the same stream. See :mod:`radaraug.transforms._rng`.
-
-    Subclasses implement :meth:`sample_params` and :meth:`transform`, and add their parameters to
-    :attr:`spec_fields` (``p`` and ``same_on_batch`` here).
+        seed: seed of a generator the transform owns (one per device; pickles).
+        reseed_in_workers: re-seed ``generator``/``seed`` per DataLoader worker so workers differ;
+            ``False`` makes every worker replay the same stream.
     """
 
     spec_fields: tuple[str, ...] = ("p", "same_on_batch")
@@ -188,11 +164,11 @@ class RandomRadarTransform(RadarTransform):
 
     # ------------------------------------------------------------------ application
     def forward(self, *inputs: Any, params: Mapping[str, torch.Tensor] | None = None) -> Any:
-        """Transform a tensor (or a sample's radar leaves) with fresh random parameters, or replay ``params``.
+        """Transform a tensor (or a sample's radar leaves) with fresh parameters, or replay ``params``.
 
-        ``params`` may also be given as the second positional argument (a mapping with an
-        ``"apply"`` key, e.g. ``t.last_params``). The parameters are drawn once, from the first
-        radar leaf, and applied to every radar leaf of the sample.
+        ``params`` (a mapping with an ``"apply"`` key, e.g. ``t.last_params``) may also be the second positional
+        argument. The parameters (drawn from the first radar leaf) are applied to every radar leaf and kept
+        in ``last_params``.
         """
         if params is None and len(inputs) > 1 and isinstance(inputs[1], Mapping) and "apply" in inputs[1]:
             params, inputs = inputs[1], (inputs[0], *inputs[2:])

@@ -15,22 +15,9 @@ from radaraug.transforms.dsp_spec import chain_of
 class RadarCompose(nn.Module):
     """Apply transforms in order; ``chain_spec()`` lists every step (JSON-able).
 
-    Like :class:`~radaraug.transforms.base.RadarTransform`, a compose takes a tensor or a sample
-    (tuple, list, dict; ``compose(x, *rest)`` is ``compose((x, *rest))``) and returns the same
-    structure: every step gets the whole sample, so each radaraug step transforms the radar leaves
-    it recognizes and passes the rest (e.g. a label) through. A step that is not sample-aware (a
-    plain ``nn.Module``) is applied to each radar leaf (the first real or complex floating tensor
-    with at least 2 dims and any other of its shape). ``.eval()``/``.train()`` reach every step.
-
-    At construction every :class:`~radaraug.transforms.dr.CalibratedDR` (and
-    :class:`~radaraug.transforms.dr.RandomDR`) is checked against the steps before it:
-
-    * the clamp works on dB maps, so if any deterministic step precedes it, the last one must
-      produce dB (``ToDecibels``, or a ``CombineRx(db=True)`` after it);
-    * a CalibratedDR that records the chain it was fitted with must follow exactly that chain
-      (compared step by step after expanding ``RangeDoppler`` into its parts; random steps are
-      ignored). A compose that *starts* with the CalibratedDR is taken to receive maps made with
-      the fitted chain elsewhere: only the map shape is then checked, at call time.
+    Takes a tensor or a sample: sample-aware steps get the whole sample, any other ``nn.Module`` each
+    radar leaf. At construction each DR step is checked: the steps before it must end in dB maps, and a
+    CalibratedDR must follow the chain it was fitted with (docs/transforms.md, "Checks").
 
     Args:
         transforms: the steps (radaraug transforms, nested composes, or any ``nn.Module``).
@@ -50,7 +37,7 @@ class RadarCompose(nn.Module):
         self._check_dr_placement()
 
     def forward(self, *inputs: Any) -> Any:
-        """Run every step on a tensor or a sample (see the class docstring)."""
+        """Run every step on a tensor or a sample."""
         sample = _sample.as_sample(inputs)
         for t in self.transforms:
             if isinstance(sample, torch.Tensor) or _sample.is_sample_aware(t):

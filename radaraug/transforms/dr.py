@@ -1,22 +1,6 @@
-"""Noise-floor domain randomization: the paper's per-cell clamp ``S~ = max(S, N)`` in dB.
+"""Noise-floor domain randomization: the paper's per-cell clamp ``S~ = max(S, N)`` on dB RD maps.
 
-Both transforms take dB RD maps ``(..., rx, range, doppler)`` (``radaraug.units.DB_CONVENTION``)
-and raise every cell below a random floor ``N`` to it; cells above the floor are returned
-exactly unchanged. ``N`` is i.i.d. Gaussian per cell, per RX and per frame (sample).
-
-* :class:`RandomDR`: per frame, ``m ~ U(mean_db)``, ``s ~ U(std_db)``, ``N ~ Normal(m, s**2)``.
-* :class:`CalibratedDR`: fixed ``(m_t, s_t)``, the mean and standard deviation of all RD dB
-  values of an empty-room capture processed by the same chain (fitted by
-  :mod:`radaraug.transforms.floor_fit`; :meth:`CalibratedDR.fit` delegates to it).
-
-Replayable parameters (``last_params``): ``apply`` (bool per sample), ``noise_db`` (the floor
-map ``N``, broadcastable to the input), and for RandomDR ``mean_db``/``std_db`` per sample.
-
-Default RandomDR range: the paper draws ``m`` from [-130, -100] dB in its simulator's units.
-radaraug keeps the 30 dB width and centres it on the RD noise floor of a real BGT60TR13C with
-``RadarConfig.bgt60tr13c()`` and the default chain (``RangeDoppler() -> ToDecibels()``),
-about -105 dBFS at 33 dB IF gain: ``mean_db=(-120, -90)``. See docs/transforms.md for the
-measurement and how the floor moves with IF gain, samples and chirps.
+Floors, defaults, fitting and measurements: docs/transforms.md, "Noise-floor domain randomization".
 """
 
 from __future__ import annotations
@@ -83,10 +67,9 @@ class _DRClamp(RandomRadarTransform):
         return F.dr_clamp(x, params["noise_db"])
 
     def check_preceding_chain(self, before: list[dict[str, Any]], where: str) -> None:
-        """Raise :class:`CalibrationError` if the steps ``before`` this one do not make dB maps.
+        """Raise :class:`CalibrationError` if the steps before this one do not make dB maps.
 
-        The steps are given by their chain specs. Called by
-        :class:`~radaraug.transforms.compose.RadarCompose`.
+        Called by :class:`~radaraug.transforms.compose.RadarCompose`.
 
         Args:
             before: chain specs of the preceding steps (empty: maps made elsewhere, not checked).
@@ -99,11 +82,13 @@ class _DRClamp(RandomRadarTransform):
 
 
 class RandomDR(_DRClamp):
-    """Random noise-floor clamp with per-frame ``(m, s)`` drawn from ranges.
+    """Random noise-floor clamp: per frame ``m ~ U(mean_db)``, ``s ~ U(std_db)``, ``N ~ Normal(m, s**2)``.
+
+    Parameters in ``last_params``: ``apply``, ``mean_db``, ``std_db`` (per frame) and the floor ``noise_db``.
 
     Args:
-        mean_db: range of the floor mean ``m`` (dB), drawn uniformly per frame.
-        std_db: range of the floor standard deviation ``s`` (dB), drawn uniformly per frame.
+        mean_db: range of the floor mean ``m`` (dB).
+        std_db: range of the floor standard deviation ``s`` (dB).
         p, same_on_batch, generator, seed, reseed_in_workers: see
             :class:`~radaraug.transforms.base.RandomRadarTransform`.
     """
@@ -126,7 +111,7 @@ class RandomDR(_DRClamp):
     def sample_params(
         self, x: torch.Tensor, shape: tuple[int, ...], generator: torch.Generator | None
     ) -> Params:
-        """Per-frame ``mean_db``/``std_db`` drawn from the ranges and the floor ``noise_db`` they give."""
+        """Per-frame ``mean_db``/``std_db`` and the floor ``noise_db`` they give."""
         (m_lo, m_hi), (s_lo, s_hi) = self.mean_db, self.std_db
         mean = m_lo + (m_hi - m_lo) * self.draw("rand", shape, x, generator)
         std = s_lo + (s_hi - s_lo) * self.draw("rand", shape, x, generator)
@@ -139,11 +124,7 @@ class RandomDR(_DRClamp):
 
 
 def _valid_chain(chain: Any) -> list[dict[str, Any]]:
-    """A recorded DSP chain, checked: a list of step objects, each with a string ``name``.
-
-    As ``chain_spec()`` makes them. Checked when a calibration is made or loaded, so a malformed one fails
-    there with :class:`CalibrationError`, not later where the chain is compared.
-    """
+    """A recorded chain, checked at load: a list of step objects with a string ``name`` (else CalibrationError)."""
     if not isinstance(chain, (list, tuple)):
         raise CalibrationError(f"CalibratedDR: chain must be a list of step objects, got {safe_repr(chain)}")
     steps = []
@@ -157,50 +138,29 @@ def _valid_chain(chain: Any) -> list[dict[str, Any]]:
 
 
 class CalibratedDR(_DRClamp):
-    """Calibrated noise-floor clamp ``max(S, N)``, ``N`` drawn per cell from the measured floor.
+    """Calibrated noise-floor clamp ``max(S, N)``, ``N`` drawn per cell from an empty room's floor.
 
-    ``floor="normal"`` (the paper's CDR, the default): ``N ~ Normal(mean_db, std_db**2)``, the mean
-    and std of all RD dB values of the empty-room capture. ``floor="empirical"``: ``N`` follows the
-    capture's own distribution of dB values off zero Doppler (``quantiles_db``, inverse-transform
-    sampling), so its upper tail is the real floor's: a receiver's noise in dB is the log of an
-    exponential, whose upper tail is far lighter than a normal's with the same std (on the proxy's
-    empty room, 99.9th percentile -89.4 dB measured vs -81.2 dB for the normal; docs/transforms.md).
-
-    Made by :meth:`fit` (from an empty-room capture), :meth:`load` (from a calibration file) or
-    :meth:`from_record` (from a :class:`~radaraug.transforms.record_file.CalibrationRecord`); these
-    classmethods delegate to :mod:`~radaraug.transforms.floor_fit` and :mod:`~radaraug.transforms.record_file`.
-    They record the DSP chain, radar config and map shape the floor was measured with; a
-    :class:`~radaraug.transforms.compose.RadarCompose` then refuses a different chain, and a map
-    of another shape is refused at call time. The constructor itself only takes fitted numbers:
-    it never reads a file or the environment and never fits anything.
+    ``floor="normal"`` (the paper's): ``N ~ Normal(mean_db, std_db**2)``; ``floor="empirical"``: the
+    capture's own dB values off zero Doppler (``quantiles_db``), with the real floor's lighter upper tail.
+    radaraug ships no default floor: get one with :meth:`fit`, :meth:`load` or :meth:`from_record`. The
+    recorded chain and map shape are enforced by :class:`~radaraug.transforms.compose.RadarCompose` and at
+    call time.
 
     Args:
-        mean_db: floor mean ``m_t`` in dB (dBFS with radaraug's chain). Required.
+        mean_db: floor mean ``m_t`` in dB. Required.
         std_db: floor standard deviation ``s_t`` in dB. Required.
-        chain: chain spec list the maps were made with (None: not checked).
-        config: ``RadarConfig`` (or its dict) of the calibration capture (None: not checked).
-        map_shape: ``(rx, range, doppler)`` of the fitted maps (None: not checked).
-        p, same_on_batch, generator, seed, reseed_in_workers: see
+        chain, config, map_shape: the chain specs, ``RadarConfig`` (or dict) and ``(rx, range, doppler)``
+            shape the floor was fitted with (None: not checked).
+        p, same_on_batch, generator, seed, reseed_in_workers: as for
             :class:`~radaraug.transforms.base.RandomRadarTransform`.
-        source: name of the calibration capture (recorded only).
-        num_frames: frames the statistics came from (recorded only).
-        motion: the motion statistic of the fit (recorded only; see :mod:`._motion`).
+        source, num_frames, motion: the capture's name, frame count and motion statistic (recorded only).
         floor: ``"normal"`` (default) or ``"empirical"`` (needs ``quantiles_db``).
-        quantiles_db: quantiles of the floor's dB values at equally spaced probabilities from 0 to
-            1 (non-decreasing, >= 2 values; :meth:`fit` records 1025, off zero Doppler).
-
-    radaraug ships no default floor: the floor depends on the sensor, its IF gain, the chain and
-    the room, and no empty-room recording at the paper's configuration is available to fit one
-    from (docs/transforms.md). So ``CalibratedDR()`` without ``mean_db``/``std_db`` is a
-    :class:`~radaraug.errors.ConfigError` that says what to call instead:
-    ``CalibratedDR.fit(empty_room_capture)`` or ``CalibratedDR.load("cdr.json")``.
-    :attr:`provenance` says where the numbers came from.
+        quantiles_db: non-decreasing floor quantiles in dB at probabilities ``0, ..., 1`` (>= 2 values).
 
     Raises:
         ConfigError: ``mean_db`` or ``std_db`` not given (use :meth:`fit` or :meth:`load`).
-        CalibrationError: invalid fitted values: non-finite ``mean_db``/``std_db`` or a negative
-            ``std_db``, a malformed ``chain``/``config``/``map_shape``, an unknown ``floor``,
-            ``floor="empirical"`` without valid ``quantiles_db``.
+        CalibrationError: an invalid fitted value, ``chain``, ``config``, ``map_shape`` or ``floor``, or
+            ``floor="empirical"`` without ``quantiles_db``.
     """
 
     spec_fields = ("mean_db", "std_db", "floor", "p", "same_on_batch")
@@ -297,7 +257,7 @@ class CalibratedDR(_DRClamp):
     def sample_params(
         self, x: torch.Tensor, shape: tuple[int, ...], generator: torch.Generator | None
     ) -> Params:
-        """The floor ``noise_db`` drawn per cell from the fitted statistics (``floor``'s distribution)."""
+        """The floor ``noise_db`` drawn per cell from ``floor``'s distribution."""
         event = tuple(x.shape[-self.event_ndim :])
         if self.floor == "empirical":
             assert self.quantiles_db is not None  # checked in __init__
@@ -305,10 +265,7 @@ class CalibratedDR(_DRClamp):
         return {"noise_db": F.calibrated_floor(shape + event, self.mean_db, self.std_db, like=x, generator=generator)}
 
     def check_config(self, config: RadarConfig | dict[str, Any]) -> None:
-        """Raise :class:`CalibrationError` if ``config`` differs from the calibration's config.
-
-        Warns (``UserWarning``) when the calibration recorded no config.
-        """
+        """Raise :class:`CalibrationError` if ``config`` differs from the calibration's (warn if none recorded)."""
         if isinstance(config, dict):
             config = RadarConfig.from_dict(config)
         if self.config is None:
@@ -349,36 +306,29 @@ class CalibratedDR(_DRClamp):
         progress: bool = False,
         **kwargs: Any,
     ) -> CalibratedDR:
-        """Fit ``(m_t, s_t)`` = mean and std of all RD dB values of an empty-room capture.
+        """Fit ``(m_t, s_t)``, the mean and population std of all RD dB values of an empty-room capture.
 
-        Also records the quantiles of the dB values off the zero-Doppler main lobe, which
-        ``floor="empirical"`` draws from (pass ``floor=`` here or when loading).
+        Also records the floor's quantiles off the zero-Doppler main lobe, for ``floor="empirical"``.
 
         Args:
-            source: a capture path (radaraug ``.h5`` or Infineon recording folder, opened with
-                ``radaraug.io.open_capture``), an open capture reader, a tensor of frames
-                ``(frames, rx, chirps, samples)`` (raw) or ``(frames, rx, range, doppler)`` (dB),
-                or a ``Dataset`` / iterable yielding frames or ``(frame, label)`` samples.
-            pipeline: raw cube -> dB map chain (default ``RangeDoppler() -> ToDecibels()``). With
-                ``input="db"`` it is not run, only recorded as the chain that made the maps.
-            config: the radar config (taken from the capture when the source is one; an
-                explicit config that differs from the capture's is an error).
+            source: a capture path or open reader, a tensor of frames, or a Dataset / iterable of frames
+                or ``(frame, label)`` samples.
+            pipeline: raw cube -> dB map chain (default ``RangeDoppler() -> ToDecibels()``); with
+                ``input="db"`` only recorded.
+            config: the radar config (a capture's own by default; a different one is an error).
             max_frames: use at most this many frames.
-            input: ``"raw"`` (raw cubes, default) or ``"db"`` (already dB RD maps).
+            input: ``"raw"`` cubes (default) or ``"db"`` RD maps.
             batch_size: frames processed at once.
-            motion_threshold_db: threshold of the motion check (see :mod:`._motion`).
-            progress: show a progress bar (tqdm, on stderr) over the batches.
-            **kwargs: passed to the constructor (``floor``, ``p``, ``generator``, ``seed``...).
+            motion_threshold_db: threshold of the motion check.
+            progress: show a tqdm progress bar on stderr.
+            **kwargs: passed to the constructor (``floor``, ``p``, ``seed``, ...).
 
         Raises:
-            CalibrationError: ``max_frames``/``batch_size`` not a positive integer, a source with
-                no frames, NaN/Inf maps, or a config that differs from the capture's.
+            CalibrationError: a bad ``max_frames``/``batch_size``, no frames, NaN/Inf maps, or a config that
+                differs from the capture's.
 
         Warns:
-            MotionWarning: (a ``UserWarning``) when the capture shows motion (it should be empty).
-
-        The standard deviation is the population one (``correction=0``); statistics are
-        accumulated in float64.
+            MotionWarning: the capture shows motion (it should be empty).
         """
         # Imported here: floor_fit builds its chain from the transforms' submodules.
         from radaraug.transforms.floor_fit import floor_statistics
@@ -397,9 +347,7 @@ class CalibratedDR(_DRClamp):
         return CalibrationRecord.from_cdr(self).to_dict()
 
     def save(self, path: str | os.PathLike) -> None:
-        """Write the calibration as a :class:`~radaraug.transforms.record_file.CalibrationRecord`, atomically.
-
-        A full disk or a crash leaves the previous file, or none, never a partial one.
+        """Write the calibration record atomically (a crash leaves the old file or none).
 
         Raises:
             CalibrationError: the file cannot be written (the message names it).
@@ -409,10 +357,7 @@ class CalibratedDR(_DRClamp):
         CalibrationRecord.from_cdr(self).save(path)
 
     def replace(self, **changes: Any) -> CalibratedDR:
-        """A copy with ``changes`` to its constructor arguments (e.g. ``floor=``, ``quantiles_db=``, ``seed=``).
-
-        The fitted numbers, chain, config and map shape are kept unless changed, and so are the
-        provenance and the file it was loaded from (named by the errors raised when it is used).
+        """A copy with ``changes`` to its constructor arguments (``floor=``, ``seed=``, ...), provenance kept.
 
         Raises:
             CalibrationError: a changed value the constructor refuses.
@@ -428,12 +373,9 @@ class CalibratedDR(_DRClamp):
     def load(cls, path: str | os.PathLike, **kwargs: Any) -> CalibratedDR:
         """Read a calibration record (or an older CalibratedDR JSON); ``kwargs`` go to the constructor.
 
-        ``CalibratedDR.from_record(load_record(path), **kwargs)``
-        (:func:`radaraug.transforms.record_file.load_record`).
-
         Raises:
-            CalibrationError: missing, unreadable or malformed file, another format or version, another
-                ``db_convention``, or a record without a floor (the message names the file).
+            CalibrationError: missing, unreadable or malformed file, another format, version or ``db_convention``,
+                or a record without a floor (the message names the file).
         """
         from radaraug.transforms.record_file import load_record  # the one reader of calibration files
 
@@ -441,14 +383,10 @@ class CalibratedDR(_DRClamp):
 
     @classmethod
     def from_record(cls, record: CalibrationRecord, **kwargs: Any) -> CalibratedDR:
-        """The clamp of a :class:`~radaraug.transforms.record_file.CalibrationRecord`'s floor.
-
-        Nothing is fitted or read: the record's numbers go to the constructor, ``kwargs`` after them
-        (e.g. ``seed=``, or ``floor=`` to override the record's).
+        """The clamp of a :class:`~radaraug.transforms.record_file.CalibrationRecord`'s floor; ``kwargs`` override.
 
         Raises:
-            CalibrationError: the record holds no floor, or a value the constructor refuses (the message
-                names the record's file).
+            CalibrationError: the record holds no floor, or a value the constructor refuses.
         """
         try:
             made = cls(**(record.cdr_arguments() | kwargs))

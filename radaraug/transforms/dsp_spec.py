@@ -22,11 +22,7 @@ def expand_step(spec: dict[str, Any]) -> list[dict[str, Any]]:
 
 
 def canonical_chain(specs: list[dict[str, Any]] | None) -> list[dict[str, Any]]:
-    """A chain's deterministic DSP as a list of primitive step specs (``None`` -> empty list).
-
-    Random steps (specs with ``"random": True``) are left out: they do not define the processing
-    a map went through, only an augmentation of it.
-    """
+    """A chain's deterministic DSP as primitive step specs; random steps (augmentations) left out."""
     out: list[dict[str, Any]] = []
     for spec in specs or []:
         if not spec.get("random", False):
@@ -52,10 +48,9 @@ def doppler_window_of(specs: list[dict[str, Any]] | None) -> str | None:
 
 
 def chain_of(pipeline: Any) -> list[dict[str, Any]] | None:
-    """The chain spec list of a pipeline, or None when it cannot be described.
+    """A pipeline's chain specs, or None when a step cannot be described.
 
-    A pipeline is a radaraug transform or compose, or a list / ``nn.Sequential`` /
-    torchvision ``Compose`` of them.
+    A pipeline is a radaraug transform or compose, or a list / ``nn.Sequential`` / torchvision ``Compose`` of them.
     """
     spec_fn = getattr(pipeline, "chain_spec", None)
     if callable(spec_fn):

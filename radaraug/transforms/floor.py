@@ -1,12 +1,4 @@
-"""Floor-relative RD maps: a representation that does not key on absolute levels.
-
-The paper's network input is the RD map in dBFS, clipped to a fixed range. Its absolute levels --
-the receiver's noise floor, the system gain, the skirt that phase noise spreads around strong static
-returns -- differ between the twin and every sensor and room. :class:`FloorRelative` references
-each range row to its own median over Doppler (CFAR-like) and blanks the zero-Doppler bins, so the
-network sees motion above the local floor in dB. Kernel:
-:func:`radaraug.transforms.functional.floor_relative`.
-"""
+"""Floor-relative RD maps: a network input that does not key on absolute levels (docs/transforms.md)."""
 
 from __future__ import annotations
 
@@ -22,12 +14,10 @@ from radaraug.transforms.functional._floor import check_blank_bins
 class FloorRelative(RadarTransform):
     """Each range row of a dB RD map minus its median over Doppler; zero Doppler ± ``bins`` set to 0 dB.
 
-    Deterministic (no random parameters; ``.eval()`` changes nothing). Input and output are dB maps
-    ``(..., range, doppler)`` with a centred Doppler axis (any leading dims, e.g. ``rx``).
+    Deterministic; dB maps ``(..., range, doppler)`` with a centred Doppler axis in and out.
 
     Args:
-        blank_zero_doppler: bins on each side of zero Doppler set to the row's floor (0 dB); 0 keeps
-            the static returns.
+        blank_zero_doppler: bins on each side of zero Doppler set to 0 dB; 0 keeps the static returns.
         excise: optional bool ``(range, doppler)`` mask of cells also set to 0 dB (an empty room's
             persistent lines: :func:`~radaraug.transforms.functional.persistent_cells`).
     """

@@ -1,8 +1,6 @@
-"""Fitting the calibrated noise floor: ``(m_t, s_t)`` of an empty-room capture's RD dB maps.
+"""Fitting the calibrated noise floor (``CalibratedDR.fit`` delegates here).
 
-:mod:`radaraug.transforms.dr` keeps the clamp itself (:meth:`CalibratedDR.fit
-<radaraug.transforms.CalibratedDR.fit>` is a thin delegate to :func:`floor_statistics`). Only submodules of :mod:`radaraug.transforms` are imported here, never
-the package or :mod:`~radaraug.transforms.dr`, so the delegate closes no import cycle.
+Only submodules are imported, never the package or :mod:`.dr`, so that no import cycle forms.
 """
 
 from __future__ import annotations
@@ -46,15 +44,11 @@ def floor_statistics(
     motion_threshold_db: float = DEFAULT_THRESHOLD_DB,
     progress: bool = False,
 ) -> dict[str, Any]:
-    """The statistics a CalibratedDR is built from.
-
-    What :meth:`CalibratedDR.fit <radaraug.transforms.dr.CalibratedDR.fit>` computes (arguments, errors
-    and warnings: see there).
+    """The keyword arguments of a CalibratedDR fitted on ``source`` (see ``CalibratedDR.fit``).
 
     Returns:
-        The constructor's keyword arguments: ``mean_db``, ``std_db``, ``chain``, ``config``,
-        ``map_shape``, ``source``, ``num_frames``, ``motion``, ``quantiles_db`` (:data:`QUANTILES`
-        quantiles of the dB values off the zero-Doppler main lobe, for ``floor="empirical"``).
+        ``mean_db``, ``std_db``, ``chain``, ``config``, ``map_shape``, ``source``, ``num_frames``,
+        ``motion`` and ``quantiles_db`` (:data:`QUANTILES` quantiles off the zero-Doppler main lobe).
     """
     if input not in ("raw", "db"):
         raise CalibrationError(f"CalibratedDR.fit: input must be 'raw' or 'db', got {input!r}")
@@ -133,10 +127,7 @@ def floor_statistics(
 
 
 def floor_values(maps_db: torch.Tensor, window: str = "hann") -> torch.Tensor:
-    """The dB values of ``(..., doppler)`` maps off the zero-Doppler main lobe, flattened (float64).
-
-    The cells the empirical floor's quantiles are taken from (:func:`floor_statistics`).
-    """
+    """The dB values of ``(..., doppler)`` maps off the zero-Doppler main lobe, flattened (float64)."""
     off = off_zero_doppler(maps_db, MAIN_LOBE_HALF_WIDTH_BINS.get(window, 1) + 1)
     return (off if off.numel() else maps_db).double().flatten()
 
@@ -146,24 +137,15 @@ def matched_floor_quantiles(
 ) -> torch.Tensor:
     """Quantiles of a clamp floor ``N`` such that ``max(S, N)`` has the capture's floor distribution.
 
-    ``S`` is the twin's own empty-room RD level (``twin_values_db``, e.g. :func:`floor_values` of
-    simulated empty maps), the capture's distribution is given by its quantiles (CalibratedDR's
-    ``quantiles_db``). For independent ``S`` and ``N`` the CDF of the maximum is the product,
-    ``F_max = F_S F_N``, so ``F_N = F_capture / F_S``. The ratio is made a CDF by taking the largest
-    non-decreasing function below it (its running minimum from the right), clipped to [0, 1]: where
-    the twin already sits above the capture the clamp cannot lower it and stays out of the way
-    (``F_N = 1``: ``N`` below ``S``), and it never lifts the floor more than the capture asks.
-
-    Why: the paper's clamp ``max(S, N)`` lifted a twin floor far *below* the real one; on a twin
-    whose noise is already fitted to the capture, drawing ``N`` from the capture's own
-    distribution stacks a second floor on top (measured +2.7 dB on the held-out proxy). Matching
-    the product instead makes the training floor the capture's, whatever the twin's own floor is.
+    For independent ``S`` (the twin's own floor) and ``N``, ``F_N = F_capture / F_S``, made a CDF by its
+    largest non-decreasing minorant and clipped to [0, 1]: where the twin already sits above the capture,
+    ``N`` stays below it. Why: drawing ``N`` from the capture alone stacks a second floor on a twin whose
+    floor is near the capture's (docs/transforms.md).
 
     Args:
-        capture_quantiles_db: ``(K,)`` non-decreasing quantiles of the capture's floor (probabilities
-            ``0, 1/(K-1), ..., 1``).
+        capture_quantiles_db: ``(K,)`` non-decreasing capture quantiles at probabilities ``0, ..., 1``.
         twin_values_db: dB values of the twin's own empty-room floor (any shape).
-        points: quantiles returned (probabilities ``0, 1/(points-1), ..., 1``).
+        points: quantiles returned.
 
     Returns:
         ``(points,)`` non-decreasing quantiles in dB (float64) for ``F.empirical_floor``.

@@ -1,11 +1,4 @@
-"""From dB RD maps to network images: clip + normalize, colormap, resize.
-
-``ClipNormalize`` maps ``[vmin, vmax]`` dB to ``[0, 1]`` (values outside are clipped first);
-``Colormap`` turns a one-channel ``(..., 1, H, W)`` map in [0, 1] into ``(..., 3, H, W)`` RGB with
-matplotlib's lookup semantics (256 entries, nearest entry: index ``floor(256 x)`` clipped to 255);
-``Resize`` resamples the last two dims to ``(height, width)`` (bilinear, antialiased). The kernels
-are in :mod:`radaraug.transforms.functional`.
-"""
+"""From dB RD maps to network images: clip and normalize to [0, 1], colormap to RGB, resize (docs/transforms.md)."""
 
 from __future__ import annotations
 
@@ -25,11 +18,8 @@ from radaraug.transforms.functional._image import check_clip_range, check_one_ch
 class ClipNormalize(RadarTransform):
     """``(clip(x, vmin, vmax) - vmin) / (vmax - vmin)``: dB map -> [0, 1].
 
-    Kernel: :func:`radaraug.transforms.functional.clip_normalize`.
-
     Args:
-        vmin: dB value mapped to 0 (everything below too).
-        vmax: dB value mapped to 1 (everything above too).
+        vmin, vmax: the dB values mapped to 0 and 1 (and everything beyond them).
     """
 
     event_ndim = 2
@@ -51,11 +41,8 @@ class ClipNormalize(RadarTransform):
     ) -> ClipNormalize:
         """Choose ``[vmin, vmax]`` as percentiles of all dB values in ``data``.
 
-        The defaults keep the noise floor's body (its log-Rayleigh lower tail, which reaches
-        tens of dB below the floor, is clipped at the 1st percentile) and the strongest returns
-        up to the 99.9th percentile, so a handful of leakage peaks does not squeeze the rest of
-        the scale. The paper estimates the range once, from simulation, and uses it for
-        simulated and real maps alike: do the same (estimate on the training maps).
+        The defaults clip the deep lower tail of the noise and let a few leakage peaks saturate. As in the
+        paper, estimate once on the training maps and use the same range for real maps.
 
         Args:
             data: a tensor of dB maps, or a Dataset / iterable of them (or of ``(map, label)``).
@@ -97,13 +84,10 @@ def _iterate(data: Any, max_items: int | None) -> Iterable[Any]:
 
 
 class Colormap(RadarTransform):
-    """One-channel map in [0, 1] ``(..., 1, H, W)`` -> RGB ``(..., 3, H, W)`` through a 256-entry LUT.
+    """One-channel map in [0, 1] ``(..., 1, H, W)`` -> RGB ``(..., 3, H, W)`` through a 256-entry table.
 
-    Matches ``matplotlib.colormaps[name](x)[..., :3]`` for x in [0, 1]: entry ``floor(256 x)``,
-    with x = 1 mapped to the last entry; inputs outside [0, 1] are clipped first. ``viridis``
-    ships with radaraug; any other matplotlib colormap name is read from matplotlib.
-    An rx dim > 1 is an error: combine the channels first (:class:`~radaraug.transforms.spectral.CombineRx`).
-    Kernel: :func:`radaraug.transforms.functional.colormap`.
+    matplotlib's lookup; ``viridis`` ships with radaraug, other names need matplotlib. Combine RX
+    channels first (:class:`~radaraug.transforms.spectral.CombineRx`).
 
     Args:
         name: colormap name.
@@ -122,7 +106,7 @@ class Colormap(RadarTransform):
         return check_one_channel(super().check_input(x))
 
     def transform(self, x: torch.Tensor, params: Params) -> torch.Tensor:
-        """Look every value up in the colour table: ``(..., 1, H, W)`` -> ``(..., 3, H, W)``."""
+        """Look every value up in the colour table."""
         return F.colormap(x, self.lut)
 
     def extra_spec(self) -> dict[str, Any]:
@@ -133,14 +117,12 @@ class Colormap(RadarTransform):
 class Resize(RadarTransform):
     """Resample the last two dims to ``size = (height, width)`` (bilinear, antialiased when shrinking).
 
-    The same values as ``torchvision.transforms.v2.Resize((height, width))`` on float tensors.
-    Kernel: :func:`radaraug.transforms.functional.resize`.
+    The values of torchvision v2's ``Resize((height, width))`` on float tensors, to float rounding.
 
     Args:
-        size: ``(height, width)``. A single int is refused with :class:`~radaraug.errors.ConfigError`:
-            torchvision reads ``Resize(64)`` as "short side 64, keep the aspect ratio", radaraug
-            once read it as 64 x 64; write ``(64, 64)``.
-        antialias: low-pass before shrinking (as torchvision v2 does by default).
+        size: ``(height, width)``; a single int raises :class:`~radaraug.errors.ConfigError` (torchvision
+            reads it as the short side).
+        antialias: low-pass before shrinking (torchvision v2's default).
     """
 
     event_ndim = 2

@@ -1,22 +1,8 @@
-"""The calibration record: what one empty-room capture calibrates, in one versioned file.
+"""The calibration record: what one empty-room capture calibrates, in one versioned JSON file.
 
-A :class:`CalibrationRecord` holds the empty-room fit: CalibratedDR's floor statistics (``cdr``),
-the radar config and the capture's identity, and optionally the twin profile ``diagnose`` fits on
-it, the twin's noise fit and the capture's persistent RD cells. It is written as one JSON file
-(``{"format": "radaraug-calibration", "version": 1, ...}``, atomically) and read by one reader,
-:func:`load_record`, through :func:`radaraug.files.load_json`, which also reads the files that
-came before it as partial records:
-
-* a CalibratedDR JSON (``"format": "radaraug.CalibratedDR"``, ``format_version`` 1 or 2, or none: 1);
-* a twin profile (``"format": "radaraug-twin-profile"``, the versions
-  :class:`~radaraug.sensor.profile.TwinProfile` reads);
-* a noise fit (``"format": "radaraug-noise-fit"`` version 1 or 2, or an untagged one).
-
-Anything else (another format or version, a malformed field) is one :class:`CalibrationError`
-naming the file and what is wrong. ``CalibratedDR.from_record(record)`` makes the clamp.
-
-It imports no other transform module (``CalibratedDR.load`` and ``save`` call it); the calibration
-layer above fits the records (:func:`radaraug.calibration.record.fit_record`).
+:func:`load_record` is the one reader; it also reads older CalibratedDR, twin-profile and noise-fit
+files as partial records (docs/calibration.md, "The calibration record"). No other transform module is
+imported here; :func:`radaraug.calibration.record.fit_record` fits records.
 """
 
 from __future__ import annotations
@@ -60,16 +46,15 @@ class CalibrationRecord:
     """The empty-room fit of one capture (every section optional; a partial record has some).
 
     Attributes:
-        cdr: CalibratedDR's fitted arguments (``mean_db``, ``std_db``, ``floor``, ``quantiles_db``,
-            ``chain``, ``map_shape``, ``source``, ``num_frames``, ``motion``); None when not fitted.
+        cdr: CalibratedDR's fitted arguments (``mean_db``, ``std_db``, ``floor``, ``quantiles_db``, ``chain``,
+            ``map_shape``, ``source``, ``num_frames``, ``motion``).
         config: the capture's radar config.
-        capture: the capture's identity, ``{"name", "sha256", "frames"}`` (``sha256``: the content
-            digest of :func:`content_digest`, None for frames that came from no file; ``frames``: the
-            frames the floor was fitted on).
+        capture: ``{"name", "sha256", "frames"}``: :func:`content_digest` (None for frames from no file) and
+            the frames the floor was fitted on.
         profile: the twin profile ``diagnose`` fitted on the capture (no scene).
         noise_fit: the twin's noise fit (:func:`radaraug.calibration.noise_fit.fit_noise_figure`'s dict).
-        persistent_cells: ``{"threshold_db", "shape": [range, doppler], "cells": [[r, d], ...]}``, the RD
-            cells above their row in every frame (:meth:`persistent_mask`).
+        persistent_cells: ``{"threshold_db", "shape": [range, doppler], "cells": [[r, d], ...]}``
+            (:meth:`persistent_mask`).
         file: the file it was read from (not saved).
         read_as: the format and version it was read as, e.g. ``"radaraug.CalibratedDR 2"`` (not saved).
     """
@@ -85,7 +70,7 @@ class CalibrationRecord:
 
     @classmethod
     def from_cdr(cls, cdr: Any, **sections: Any) -> CalibrationRecord:
-        """The record of a CalibratedDR's floor (its fitted attributes), plus the other ``sections`` given."""
+        """The record of a CalibratedDR's floor, plus the other ``sections`` given."""
         args = {arg: getattr(cdr, arg) for arg in _CDR_KEYS.values()}
         if args["quantiles_db"] is not None:
             args["quantiles_db"] = args["quantiles_db"].tolist()
@@ -95,7 +80,7 @@ class CalibrationRecord:
         """CalibratedDR's constructor arguments (``config`` included).
 
         Raises:
-            CalibrationError: the record holds no floor (a profile or noise fit alone); names the file.
+            CalibrationError: the record holds no floor; the message names the file.
         """
         if self.cdr is None:
             raise CalibrationError(f"{self.file or 'calibration record'} ({self.read_as}) holds no CalibratedDR "
@@ -151,8 +136,8 @@ def load_record(path: str | os.PathLike) -> CalibrationRecord:
     """Read a calibration record, or an older CalibratedDR JSON, twin profile or noise fit as a partial one.
 
     Raises:
-        CalibrationError: missing, not a regular file, too large, not JSON, another format or version,
-            another dB convention, or a malformed field; the message names the file.
+        CalibrationError: a missing, oversized or non-JSON file, another format, version or dB convention,
+            or a malformed field; the message names the file.
     """
     data = load_json(path, error=CalibrationError, what="calibration file")
     record = parse_record(data, str(path))
@@ -227,10 +212,7 @@ def _profile(data: Mapping[str, Any], where: str) -> TwinProfile:
 
 
 def _cdr_section(data: Mapping[str, Any], where: str) -> dict[str, Any]:
-    """CalibratedDR's arguments in a ``cdr`` section or an old CalibratedDR JSON.
-
-    Types are checked here, values by the constructor (``CalibratedDR.from_record``).
-    """
+    """CalibratedDR's arguments in a ``cdr`` section or an old CalibratedDR JSON (types checked here)."""
     try:
         mean, std = data["mean_db"], data["std_db"]
         if isinstance(mean, bool) or isinstance(std, bool):

@@ -1,18 +1,6 @@
-"""Range-Doppler processing: mean removal, MTI, range/Doppler FFTs, dB conversion.
+"""Range-Doppler processing: mean removal, MTI, range/Doppler FFTs, dB conversion, RX combination.
 
-Layouts: raw cube ``(..., rx, chirps, samples)`` (SDK floats in [-1, 1], or any real float);
-range profiles ``(..., rx, chirps, range)``; RD map ``(..., rx, range, doppler)``.
-
-Conventions (``radaraug.units.DB_CONVENTION``): each FFT is divided by its window sum, so a
-tone's amplitude is read directly ("dBFS"). The chirp is real-sampled: only the ``N // 2``
-positive range bins are kept, and a real tone of amplitude ``A`` reads ``|X| = A / 2`` in its
-bin -- a full-scale tone (``A = 1``) reads -6.02 dBFS. The Doppler axis is centred (fftshift):
-zero velocity at index ``M // 2``, bin ``M // 2 + k`` is ``k`` velocity resolutions, and positive
-indices are targets moving *away* (range increasing), matching
-``RadarConfig.velocity_axis_m_s()``. Why: the beat signal of a target at ``R(t)`` is
-``cos(2 pi (f_b t + f_c tau))`` with ``tau = 2 R / c``; its positive-frequency part (the range bin
-kept) carries the phase ``+2 pi f_c tau``, which grows by ``4 pi v T_c / lambda`` per chirp
-when the target moves away (``v > 0``): a positive slow-time frequency ``+2 v / lambda``.
+Layouts, the dBFS convention and the Doppler sign: docs/transforms.md, "Layouts and units".
 """
 
 from __future__ import annotations
@@ -54,10 +42,7 @@ class _WindowedFFT(_FFTTransform):
 
 
 class RemoveMean(RadarTransform):
-    """Subtract each chirp's mean over fast time (removes the per-RX ADC DC offset).
-
-    Kernel: :func:`radaraug.transforms.functional.remove_mean`.
-    """
+    """Subtract each chirp's mean over fast time (the per-RX ADC DC offset)."""
 
     input_layout = RAW_LAYOUT
     kernel = staticmethod(F.remove_mean)
@@ -66,10 +51,8 @@ class RemoveMean(RadarTransform):
 class StaticClutterRemoval(RadarTransform):
     """Moving-target indication: subtract the mean over chirps of each sample (or range bin).
 
-    Works on a raw cube or on complex range profiles (``(..., rx, chirps, *)``): the operation is
-    linear and acts on the chirp axis only, so both give the same RD map. Everything that does not
-    change within a frame -- walls, leakage, DC -- ends up exactly in the zero-Doppler bin
-    and is removed. Kernel: :func:`radaraug.transforms.functional.static_clutter_removal`.
+    On a raw cube or complex range profiles (the same RD map either way): whatever does not change
+    within a frame (walls, leakage, DC) is removed.
     """
 
     input_layout = "(..., rx, chirps, samples or range)"
@@ -78,11 +61,7 @@ class StaticClutterRemoval(RadarTransform):
 
 
 class RangeFFT(_WindowedFFT):
-    """Window over samples, real FFT, keep the ``N // 2`` positive bins, divide by the window sum.
-
-    Input ``(..., rx, chirps, samples)`` real; output complex ``(..., rx, chirps, N // 2)``
-    (complex64 for float32 input, complex128 for float64).
-    Kernel: :func:`radaraug.transforms.functional.range_fft`.
+    """Range FFT: real ``(..., rx, chirps, samples)`` -> complex ``(..., rx, chirps, N // 2)``, dBFS scaled.
 
     Args:
         window: ``rect``, ``hann``, ``hamming``, ``blackman`` or ``blackmanharris`` (symmetric).
@@ -93,11 +72,7 @@ class RangeFFT(_WindowedFFT):
 
 
 class DopplerFFT(_WindowedFFT):
-    """Window over chirps, FFT, divide by the window sum, centre zero Doppler (fftshift).
-
-    Input complex range profiles ``(..., rx, chirps, range)``; output ``(..., rx, range,
-    doppler)``, zero velocity at index ``M // 2``, positive index = moving away.
-    Kernel: :func:`radaraug.transforms.functional.doppler_fft`.
+    """Doppler FFT: complex ``(..., rx, chirps, range)`` -> ``(..., rx, range, doppler)``, zero Doppler centred.
 
     Args:
         window: as for :class:`RangeFFT`.
@@ -109,15 +84,12 @@ class DopplerFFT(_WindowedFFT):
 
 
 class RangeDoppler(_FFTTransform):
-    """Raw cube -> complex RD map: [mean removal] -> [MTI] -> range FFT -> Doppler FFT.
+    """Raw cube -> complex RD map: [mean removal] -> [MTI] -> range FFT -> Doppler FFT, in one pass.
 
-    Equivalent to ``RemoveMean -> StaticClutterRemoval -> RangeFFT -> DopplerFFT`` (the optional
-    steps only when enabled) and recorded as that chain in :meth:`chain_spec` comparisons.
-    Kernel: :func:`radaraug.transforms.functional.range_doppler`.
+    Chain checks compare it as ``RemoveMean -> [StaticClutterRemoval] -> RangeFFT -> DopplerFFT``.
 
     Args:
-        range_window: window over samples.
-        doppler_window: window over chirps.
+        range_window, doppler_window: windows over samples and over chirps.
         remove_mean: subtract each chirp's mean (DC offset) first.
         static_clutter: subtract the mean over chirps (MTI).
     """
@@ -141,13 +113,10 @@ class RangeDoppler(_FFTTransform):
 
 
 class ToDecibels(RadarTransform):
-    """``20 * log10(max(|X|, floor))``: complex or magnitude map -> dB (dBFS with this chain).
-
-    A real input is taken as a magnitude (its absolute value is used).
-    Kernel: :func:`radaraug.transforms.functional.to_decibels`.
+    """``20 * log10(max(|X|, floor))``: complex or magnitude map -> dB (dBFS with radaraug's chain).
 
     Args:
-        floor: smallest magnitude before the log (keeps exact zeros finite: -240 dB by default).
+        floor: smallest magnitude before the log (-240 dB by default, keeping exact zeros finite).
     """
 
     accepts_complex = True
@@ -163,21 +132,11 @@ class ToDecibels(RadarTransform):
 
 
 class CombineRx(RadarTransform):
-    """Combine the RX channels of a (linear) RD map into one, keeping an rx dim of size 1.
-
-    Modes (linear maps, complex or magnitude):
-
-    * ``"mean_power"``: ``sqrt(mean_rx |X|**2)`` (real magnitude; dB of it = mean power in dB);
-    * ``"coherent"``: ``mean_rx X`` (complex sum / n_rx: a broadside target keeps its level);
-    * ``"max"``: ``max_rx |X|``;
-    * ``"select"``: channel ``index`` only.
-
-    With ``db=True`` the input is a dB map: ``mean_power`` averages ``10**(dB/10)`` and returns
-    dB, ``max`` and ``select`` work as is, ``coherent`` is refused (dB has no phase).
-    Kernel: :func:`radaraug.transforms.functional.combine_rx`.
+    """Combine the RX channels of an RD map into one, keeping an rx dim of size 1.
 
     Args:
-        mode: one of the modes above.
+        mode: ``"mean_power"`` ``sqrt(mean |X|**2)`` (with ``db``: the mean of ``10**(dB/10)``, in dB),
+            ``"coherent"`` ``mean X`` (not with ``db``: dB has no phase), ``"max"`` or ``"select"``.
         index: the channel for ``"select"``.
         db: the input is in dB.
     """

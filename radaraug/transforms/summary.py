@@ -1,12 +1,6 @@
-"""Plausibility summary of a capture: what `radaraug info` prints.
+"""Plausibility summary of a capture (``radaraug info``): DC, noise, clipping, floor, static return, motion.
 
-Numbers a radar engineer checks first on a new recording: per-RX DC offset and RMS noise in ADC
-counts, clipping, the RD noise floor in dBFS (:func:`radaraug.io.summary.noise_floor_db`), the
-strongest static return (range, level) and whether anything moves (energy off zero Doppler against
-what noise alone gives). It reads a capture (``radaraug.io``) and runs the RD chain on it, so it
-lives here, above ``io``, which knows nothing of transforms.
-
-Units: ``radaraug.units.DB_CONVENTION`` (dBFS: both FFTs divided by their window sums).
+It runs the RD chain, so it lives here rather than in ``io``.
 """
 
 from __future__ import annotations
@@ -29,15 +23,11 @@ MAX_SUMMARY_SAMPLES = 2**24
 
 
 def summarize_capture(reader: Any, *, max_frames: int = 256) -> dict[str, Any]:
-    """Summarize a capture opened with :func:`radaraug.io.open_capture`.
+    """Summarize a capture opened with :func:`radaraug.io.open_capture` as a JSON-able dict.
 
     Args:
         reader: an open capture reader.
-        max_frames: frames read for the statistics (from the start), at most
-            :data:`MAX_SUMMARY_SAMPLES` samples in all.
-
-    Returns:
-        A JSON-able dict.
+        max_frames: frames read from the start (at most :data:`MAX_SUMMARY_SAMPLES` samples in all).
 
     Raises:
         RadarAugError: ``max_frames`` is not a positive integer.

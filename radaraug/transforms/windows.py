@@ -1,10 +1,4 @@
-"""Window functions for the range and Doppler FFTs, cached per (name, length, dtype, device).
-
-All windows are the *symmetric* forms (``periodic=False`` in torch, ``sym=True`` in scipy), i.e.
-the same values as ``numpy.hanning``/``numpy.hamming``/``numpy.blackman`` and
-``scipy.signal.windows.blackmanharris(n)``. Symmetric windows are the usual choice for spectral
-analysis of one block (Infineon's examples use them); periodic ones are meant for overlap-add.
-"""
+"""Symmetric FFT windows (numpy's and scipy's ``sym=True`` values), cached per name, length, dtype and device."""
 
 from __future__ import annotations
 
@@ -52,10 +46,10 @@ def _window_f64(name: str, n: int) -> torch.Tensor:
 def get_window(
     name: str, n: int, dtype: torch.dtype = torch.float32, device: torch.device | str = "cpu"
 ) -> torch.Tensor:
-    """A symmetric window of length ``n`` (cached; do not modify the returned tensor in place).
+    """A symmetric window of length ``n`` (cached: do not modify it in place).
 
     Args:
-        name: one of :data:`WINDOWS` (``"hanning"``, ``"boxcar"`` are accepted as aliases).
+        name: one of :data:`WINDOWS`, or an alias such as ``"hanning"``.
         n: window length.
         dtype: real floating dtype of the result.
         device: device of the result.
@@ -74,9 +68,8 @@ def normalized_window(name: str, n: int, dtype: torch.dtype, device: torch.devic
 def shifted_doppler_window(name: str, m: int, dtype: torch.dtype, device: torch.device) -> torch.Tensor:
     """``w / sum(w)`` times ``exp(j*pi*2*(m//2)*k/m)``: the Doppler fftshift folded into the window.
 
-    Multiplying slow time by ``exp(j 2 pi (M//2) k / M)`` moves every FFT bin up by ``M//2``
-    (circularly), which is exactly ``torch.fft.fftshift``, without a second pass over the map.
-    For even ``M`` the factor is ``(-1)**k`` and the window stays real.
+    Multiplying slow time by this phase shifts every FFT bin by ``M//2``, as ``fftshift`` does, without a
+    second pass; for even ``M`` it is ``(-1)**k`` and the window stays real.
     """
     w = _window_f64(check_window_name(name), int(m))
     w = w / w.sum()
@@ -89,10 +82,9 @@ def shifted_doppler_window(name: str, m: int, dtype: torch.dtype, device: torch.
 
 
 def noise_power_gain(name: str, n: int) -> float:
-    """``sum(w**2) / sum(w)**2``: the power a white-noise sample of unit variance keeps per bin.
+    """``sum(w**2) / sum(w)**2``: the power per bin of unit-variance white noise (FFT divided by ``sum(w)``).
 
-    With the FFT divided by ``sum(w)``, white noise of variance ``sigma**2`` has
-    ``E|X|**2 = sigma**2 * noise_power_gain`` in every bin (``1/n`` for ``rect``).
+    Noise of variance ``sigma**2`` has ``E|X|**2 = sigma**2 * noise_power_gain``; ``1/n`` for ``rect``.
     """
     w = _window_f64(check_window_name(name), int(n))
     return float((w * w).sum() / w.sum() ** 2)

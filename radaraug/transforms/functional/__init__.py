@@ -1,20 +1,15 @@
 """The kernels behind radaraug's transforms, as plain functions with explicit parameters.
 
-Like ``torchvision.transforms.v2.functional``: each transform class validates its input, draws its
-random parameters and calls one of these; call them directly when the parameters are yours (a
-fixed noise floor, a known clip range). They take tensors with any leading batch dims, keep dtype
-and device, and never modify their input. They check type, dtype and rank (raising
-:class:`~radaraug.errors.InputTensorError`) but, unlike the classes, do not scan the values for
-NaN/Inf.
+Like ``torchvision.transforms.v2.functional``: for parameters of your own (a fixed floor, a known clip
+range). Any leading batch dims, dtype and device kept, inputs never modified; type, dtype and rank are
+checked (:class:`~radaraug.errors.InputTensorError`) but, unlike the classes, not NaN/Inf.
 
 Examples:
     >>> import torch
     >>> from radaraug.transforms import functional as F
-    >>> cube = 0.01 * torch.randn(4, 3, 64, 256)
-    >>> db = F.to_decibels(F.range_doppler(cube))
-    >>> floor = F.calibrated_floor(db.shape, -100.0, 3.0, like=db)
-    >>> img = F.colormap(F.clip_normalize(F.combine_rx(F.dr_clamp(db, floor), db=True), -120, -40))
-    >>> F.resize(img, (224, 224)).shape
+    >>> db = F.to_decibels(F.range_doppler(0.01 * torch.randn(4, 3, 64, 256)))
+    >>> rgb = F.colormap(F.clip_normalize(F.combine_rx(F.dr_clamp(db, torch.tensor(-100.0)), db=True), -120, -40))
+    >>> F.resize(rgb, (224, 224)).shape
     torch.Size([4, 3, 224, 224])
 """
 

@@ -1,12 +1,4 @@
-"""Floor-relative RD maps: each range row referenced to its own Doppler median, zero Doppler blanked.
-
-Why: a network trained on absolute dB levels keys on what moves between domains -- the receiver's
-noise floor, the system gain, the skirt that phase noise spreads across Doppler around strong static
-returns. Referencing each range row to its median over Doppler (a CFAR-like normalization: the
-median of a row is its floor, or its skirt where a strong static return spreads one) leaves what
-stands out of its own row, and blanking the zero-Doppler bins removes the static room itself. What
-is left is motion above the local floor, in dB.
-"""
+"""Floor-relative RD maps: motion above each range row's own floor, in dB (docs/transforms.md)."""
 
 from __future__ import annotations
 
@@ -27,23 +19,14 @@ def floor_relative(x: torch.Tensor, blank_zero_doppler: int = 1, excise: torch.T
     """Each range row of a dB RD map minus its median over Doppler; zero Doppler ± ``bins`` set to 0 dB.
 
     Args:
-        x: dB RD maps ``(..., range, doppler)`` with the Doppler axis centred (zero velocity at
-            index ``doppler // 2``, radaraug's layout), real floating.
-        blank_zero_doppler: bins on each side of zero Doppler set to 0 dB (the row's floor) after
-            referencing; 0 keeps them.
-        excise: optional boolean ``(range, doppler)`` mask of cells also set to 0 dB: persistent lines of
-            the empty room (a spur, a fan), found on a calibration capture by :func:`persistent_cells`.
-
-    Returns:
-        A map of the same shape, dtype and device, in dB relative to each row's median.
+        x: dB RD maps ``(..., range, doppler)``, Doppler centred (zero at ``doppler // 2``).
+        blank_zero_doppler: bins on each side of zero Doppler set to 0 dB; 0 keeps them.
+        excise: optional bool ``(range, doppler)`` mask of cells also set to 0 dB (see :func:`persistent_cells`).
 
     Examples:
-        >>> import torch
-        >>> from radaraug.transforms import functional as F
         >>> x = torch.full((1, 4, 8), -100.0)
-        >>> x[0, 2, 6] = -70.0          # a mover, 30 dB above its row's floor
-        >>> x[0, 1, 4] = -40.0          # a static return at zero Doppler
-        >>> y = F.floor_relative(x)
+        >>> x[0, 2, 6], x[0, 1, 4] = -70.0, -40.0    # a mover and a static return
+        >>> y = floor_relative(x)
         >>> float(y[0, 2, 6]), float(y[0, 1, 4]), float(y.abs().sum() - 30)
         (30.0, 0.0, 0.0)
     """
@@ -64,29 +47,21 @@ def floor_relative(x: torch.Tensor, blank_zero_doppler: int = 1, excise: torch.T
 
 
 def persistent_cells(maps_db: torch.Tensor, threshold_db: float = 3.0, blank_zero_doppler: int = 1) -> torch.Tensor:
-    """Cells of an empty room's RD maps that stand persistently above their row's floor.
+    """The ``(range, doppler)`` bool mask of empty-room cells whose median over frames stands above their row.
 
-    The median over frames of :func:`floor_relative` maps: noise alone gives ~0 dB in every cell (its
-    per-frame values scatter, their median over frames does not), so a cell whose median exceeds
-    ``threshold_db`` carries something that is there in every frame -- a spur tone's line, a fan's
-    Doppler lines, a phase-noise skirt's shoulder. Like a CFAR clutter map, these cells are then left
-    out of every map (:func:`floor_relative`'s ``excise``), simulated and captured alike.
+    Noise alone gives ~0 dB there; a spur's or a fan's lines, present in every frame, do not. Like a CFAR
+    clutter map, these cells are then excised from every map (:func:`floor_relative`).
 
     Args:
         maps_db: ``(frames, range, doppler)`` dB maps of the empty room (RX combined), >= 3 frames.
         threshold_db: excess of the median over the row's floor that marks a cell.
         blank_zero_doppler: as :func:`floor_relative` (those cells are blanked anyway, not marked).
 
-    Returns:
-        A ``(range, doppler)`` bool mask.
-
     Examples:
-        >>> import torch
-        >>> from radaraug.transforms import functional as F
         >>> g = torch.Generator().manual_seed(0)
-        >>> maps = -100 + 10 * torch.log10(torch.empty(40, 16, 8).exponential_(generator=g))
+        >>> maps = -100 + 10 * torch.log10(torch.empty(40, 16, 8).exponential_(generator=g))   # noise
         >>> maps[:, 5, 1] += 20.0   # a spur's line in every frame
-        >>> F.persistent_cells(maps).nonzero().tolist()
+        >>> persistent_cells(maps).nonzero().tolist()
         [[5, 1]]
     """
     x = check_tensor(maps_db, "persistent_cells expects dB maps (frames, range, doppler)", min_ndim=3, finite=False)

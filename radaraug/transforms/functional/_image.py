@@ -1,4 +1,4 @@
-"""From dB maps to network images: clip + normalize, colormap lookup, resize."""
+"""From dB maps to network images: clip and normalize, colormap lookup, resize."""
 
 from __future__ import annotations
 
@@ -21,13 +21,11 @@ def clip_normalize(x: torch.Tensor, vmin: float, vmax: float) -> torch.Tensor:
 
     Args:
         x: a dB map ``(..., H, W)``, real floating.
-        vmin: dB value mapped to 0 (everything below too).
-        vmax: dB value mapped to 1 (everything above too), > ``vmin``.
+        vmin: dB value mapped to 0 (and everything below).
+        vmax: dB value mapped to 1 (and everything above), > ``vmin``.
 
     Examples:
-        >>> import torch
-        >>> from radaraug.transforms import functional as F
-        >>> F.clip_normalize(torch.tensor([[-130.0, -75.0, 0.0]]), -110.0, -40.0).tolist()
+        >>> clip_normalize(torch.tensor([[-130.0, -75.0, 0.0]]), -110.0, -40.0).tolist()
         [[0.0, 0.5, 1.0]]
     """
     vmin, vmax = check_clip_range(vmin, vmax)
@@ -56,16 +54,13 @@ def _lut_f64(name: str) -> torch.Tensor:
 
 
 def colormap_lut(name: str = "viridis") -> torch.Tensor:
-    """The 256-entry RGB table ``(256, 3)`` (float64) of a colormap.
-
-    ``viridis`` ships with radaraug; any other name is read from matplotlib.
+    """The ``(256, 3)`` float64 RGB table of a colormap (``viridis`` built in, others from matplotlib).
 
     Raises:
         RadarAugError: an unknown name.
 
     Examples:
-        >>> from radaraug.transforms import functional as F
-        >>> F.colormap_lut("viridis").shape
+        >>> colormap_lut("viridis").shape
         torch.Size([256, 3])
     """
     return _lut_f64(str(name)).clone()
@@ -84,19 +79,16 @@ def check_one_channel(x: torch.Tensor) -> torch.Tensor:
 def colormap(x: torch.Tensor, cmap: str | torch.Tensor = "viridis") -> torch.Tensor:
     """One-channel map in [0, 1] ``(..., 1, H, W)`` -> RGB ``(..., 3, H, W)`` through a lookup table.
 
-    Matches ``matplotlib.colormaps[name](x)[..., :3]``: entry ``floor(K x)`` of a ``K``-entry
-    table, x = 1 mapped to the last entry; values outside [0, 1] are clipped first.
+    As ``matplotlib.colormaps[name](x)[..., :3]``: entry ``floor(K x)`` of a ``K``-entry table, x = 1 the
+    last entry; values outside [0, 1] are clipped.
 
     Args:
         x: ``(..., 1, H, W)``, real floating (combine RX channels first).
         cmap: a colormap name (see :func:`colormap_lut`) or a ``(K, 3)`` table.
 
     Examples:
-        >>> import torch
-        >>> from radaraug.transforms import functional as F
-        >>> rgb = F.colormap(torch.tensor([[[0.0, 1.0]]]))
-        >>> rgb.shape, torch.allclose(rgb[:, 0, 1], F.colormap_lut()[-1].float())
-        (torch.Size([3, 1, 2]), True)
+        >>> colormap(torch.tensor([[[0.0, 1.0]]])).shape
+        torch.Size([3, 1, 2])
     """
     x = check_one_channel(check_tensor(x, "colormap expects a one-channel map (..., 1, H, W) in [0, 1]", finite=False))
     lut = colormap_lut(cmap) if isinstance(cmap, str) else cmap
@@ -108,11 +100,7 @@ def colormap(x: torch.Tensor, cmap: str | torch.Tensor = "viridis") -> torch.Ten
 
 
 def check_size(size: object, what: str = "Resize") -> tuple[int, int]:
-    """``(height, width)`` as ints, else :class:`ConfigError`.
-
-    A single int is refused: torchvision reads ``Resize(64)`` as "short side 64, keep the aspect
-    ratio" while radaraug once read it as 64 x 64; asking for the pair avoids both traps.
-    """
+    """``(height, width)`` as ints, else :class:`ConfigError` (also for one int, torchvision's short side)."""
     if isinstance(size, (int, np.integer)) and not isinstance(size, bool):
         raise ConfigError(
             f"{what}: size must be (height, width), got the int {size}; write ({size}, {size}) for a square "
@@ -129,22 +117,18 @@ def check_size(size: object, what: str = "Resize") -> tuple[int, int]:
 def resize(x: torch.Tensor, size: Sequence[int], antialias: bool = True) -> torch.Tensor:
     """Resample the last two dims to ``size = (height, width)`` (bilinear, antialiased when shrinking).
 
-    The same values as ``torchvision.transforms.v2.functional.resize(x, [height, width])`` on a
-    float tensor (bilinear, ``antialias=True``), to float rounding (the channels are resized as
-    separate images, which a single-threaded kernel may sum in another order).
+    The values of torchvision v2's ``resize(x, [height, width])`` on float tensors, to float rounding.
 
     Args:
         x: an image or map ``(..., H, W)``, real floating.
-        size: ``(height, width)``; an int is refused (see :func:`check_size`).
-        antialias: low-pass before shrinking (as torchvision v2 does by default).
+        size: ``(height, width)``.
+        antialias: low-pass before shrinking (torchvision v2's default).
 
     Raises:
         ConfigError: ``size`` is not two positive ints.
 
     Examples:
-        >>> import torch
-        >>> from radaraug.transforms import functional as F
-        >>> F.resize(torch.full((3, 64, 32), 0.25), (224, 224)).shape
+        >>> resize(torch.full((3, 64, 32), 0.25), (224, 224)).shape
         torch.Size([3, 224, 224])
     """
     size = check_size(size, "resize")

@@ -1,9 +1,4 @@
-"""Range-Doppler kernels: mean removal, MTI, range/Doppler FFTs, dB conversion, RX combination.
-
-Conventions as in :mod:`radaraug.transforms.spectral` (``radaraug.units.DB_CONVENTION``): each FFT
-is divided by its window sum (dBFS), only the ``N // 2`` positive range bins are kept, and the
-Doppler axis is centred (zero velocity at index ``M // 2``, positive index = moving away).
-"""
+"""Range-Doppler kernels, with the conventions of :mod:`radaraug.transforms.spectral`."""
 
 from __future__ import annotations
 
@@ -23,15 +18,9 @@ COMBINE_MODES = ("mean_power", "coherent", "max", "select")
 
 
 def check_fft_input(x: object, what: str, layout: str, *, allow_complex: bool) -> torch.Tensor:
-    """:func:`~radaraug.transforms._checks.check_tensor` (no value test) plus the FFT dtypes.
+    """``x`` if it passes ``check_tensor`` (no value test) and is float32/64 (or complex64/128).
 
-    A raw cube (``layout`` :data:`RAW_LAYOUT`) also needs at least 2 samples per chirp.
-
-    Args:
-        x: the input.
-        what: the caller's name, for the message.
-        layout: the layout it expects, for the message.
-        allow_complex: accept complex input.
+    A raw cube (``layout`` :data:`RAW_LAYOUT`) also needs 2 samples per chirp; messages name ``what`` and ``layout``.
     """
     x = check_tensor(x, f"{what} expects {layout}", allow_complex=allow_complex, finite=False)
     if x.dtype not in FFT_DTYPES:
@@ -43,11 +32,7 @@ def check_fft_input(x: object, what: str, layout: str, *, allow_complex: bool) -
 
 
 def _event_wise(kernel: Callable[[torch.Tensor], torch.Tensor], x: torch.Tensor) -> torch.Tensor:
-    """``kernel(x)``, also for an empty batch of non-empty 3-dim events.
-
-    Some torch builds (MKL FFT in torch 2.14 on CPU) raise on a zero-size batch instead of
-    returning an empty result: transform one zero event and keep none of it.
-    """
+    """``kernel(x)``, also for an empty batch of non-empty events (some CPU FFT builds raise on one)."""
     event = x.shape[x.ndim - 3 :]
     if x.numel() == 0 and all(d > 0 for d in event):
         probe = kernel(x.new_zeros(event))
@@ -56,19 +41,14 @@ def _event_wise(kernel: Callable[[torch.Tensor], torch.Tensor], x: torch.Tensor)
 
 
 def remove_mean(x: torch.Tensor) -> torch.Tensor:
-    """Subtract each chirp's mean over fast time (removes the per-RX ADC DC offset).
+    """Subtract each chirp's mean over fast time (the per-RX ADC DC offset).
 
     Args:
         x: raw cube ``(..., rx, chirps, samples)``, real floating.
 
-    Returns:
-        A new tensor of the same shape.
-
     Examples:
-        >>> import torch
-        >>> from radaraug.transforms import functional as F
-        >>> F.remove_mean(torch.full((1, 2, 4), 0.25)).abs().max().item()
-        0.0
+        >>> remove_mean(torch.tensor([[[0.25, 0.75]]])).tolist()
+        [[[-0.25, 0.25]]]
     """
     x = check_tensor(x, f"remove_mean expects {RAW_LAYOUT}", finite=False)
     return x - x.mean(dim=-1, keepdim=True)
@@ -77,21 +57,12 @@ def remove_mean(x: torch.Tensor) -> torch.Tensor:
 def static_clutter_removal(x: torch.Tensor) -> torch.Tensor:
     """Moving-target indication: subtract the mean over chirps of each sample (or range bin).
 
-    Linear and acting on the chirp axis only, so it gives the same RD map on a raw cube as on
-    complex range profiles; everything constant within a frame ends up in zero Doppler, removed.
-
     Args:
-        x: ``(..., rx, chirps, samples or range)``, real or complex floating.
-
-    Returns:
-        A new tensor of the same shape and dtype.
+        x: raw cube or complex range profiles ``(..., rx, chirps, samples or range)``.
 
     Examples:
-        >>> import torch
-        >>> from radaraug.transforms import functional as F
-        >>> wall = torch.linspace(-1, 1, 8).expand(1, 4, 8)   # the same chirp 4 times
-        >>> F.static_clutter_removal(wall).abs().max().item()
-        0.0
+        >>> static_clutter_removal(torch.tensor([[[1.0, 2.0], [3.0, 2.0]]])).tolist()
+        [[[-1.0, 0.0], [1.0, 0.0]]]
     """
     x = check_tensor(x, "static_clutter_removal expects (..., rx, chirps, samples or range)",
                      allow_complex=True, finite=False)
@@ -99,23 +70,15 @@ def static_clutter_removal(x: torch.Tensor) -> torch.Tensor:
 
 
 def range_fft(x: torch.Tensor, window: str = "hann") -> torch.Tensor:
-    """Window over samples, real FFT, keep the ``N // 2`` positive bins, divide by the window sum.
+    """Range FFT -> complex ``(..., rx, chirps, N // 2)``: windowed, divided by the window sum, positive bins.
 
     Args:
         x: raw cube ``(..., rx, chirps, samples)``, float32 or float64, at least 2 samples.
-        window: one of :data:`~radaraug.transforms.windows.WINDOWS` (symmetric).
-
-    Returns:
-        Complex range profiles ``(..., rx, chirps, N // 2)`` (complex64 for float32 input).
+        window: one of :data:`~radaraug.transforms.windows.WINDOWS`.
 
     Examples:
-        A full-scale tone on bin 8 reads ``|X| = 1/2`` (-6.02 dBFS):
-
-        >>> import math, torch
-        >>> from radaraug.transforms import functional as F
-        >>> n = torch.arange(64, dtype=torch.float64)
-        >>> tone = torch.cos(2 * math.pi * 8 * n / 64).expand(1, 1, 64)
-        >>> round(F.range_fft(tone, "rect")[0, 0, 8].abs().item(), 6)
+        >>> tone = torch.cos(2 * math.pi * 8 * torch.arange(64.0) / 64).expand(1, 1, 64)   # full scale, bin 8
+        >>> round(range_fft(tone, "rect")[0, 0, 8].abs().item(), 6)   # A/2: -6.02 dBFS
         0.5
     """
     window = check_window_name(window)
@@ -130,21 +93,14 @@ def range_fft(x: torch.Tensor, window: str = "hann") -> torch.Tensor:
 
 
 def doppler_fft(x: torch.Tensor, window: str = "hann") -> torch.Tensor:
-    """Window over chirps, FFT, divide by the window sum, centre zero Doppler (fftshift).
+    """Doppler FFT -> RD map ``(..., rx, range, doppler)``: windowed, divided by the window sum, centred.
 
     Args:
-        x: complex range profiles ``(..., rx, chirps, range)`` (complex64/128, or float32/64).
+        x: complex range profiles ``(..., rx, chirps, range)``.
         window: as for :func:`range_fft`.
 
-    Returns:
-        The RD map ``(..., rx, range, doppler)``: zero velocity at index ``M // 2``.
-
     Examples:
-        Profiles that do not change over chirps (a static target) land in bin ``M // 2``:
-
-        >>> import torch
-        >>> from radaraug.transforms import functional as F
-        >>> rd = F.doppler_fft(torch.ones(1, 16, 4, dtype=torch.complex128))
+        >>> rd = doppler_fft(torch.ones(1, 16, 4, dtype=torch.complex64))   # a static target: bin M // 2
         >>> rd.shape, rd[0, 0].abs().argmax().item()
         (torch.Size([1, 4, 16]), 8)
     """
@@ -167,11 +123,7 @@ def range_doppler(
     remove_mean: bool = True,
     static_clutter: bool = False,
 ) -> torch.Tensor:
-    """Raw cube -> complex RD map: [mean removal] -> [MTI] -> range FFT -> Doppler FFT, in one pass.
-
-    Equals ``doppler_fft(range_fft(static_clutter_removal(remove_mean(x))))`` with the optional
-    steps only when enabled; both windows, the dBFS scaling and the fftshift are folded into one
-    multiply before ``rfft2``.
+    """Raw cube -> complex RD map ``(..., rx, N // 2, M)``: [mean removal, MTI], range and Doppler FFTs.
 
     Args:
         x: raw cube ``(..., rx, chirps, samples)``, float32 or float64, at least 2 samples.
@@ -180,16 +132,9 @@ def range_doppler(
         remove_mean: subtract each chirp's mean (DC offset) first.
         static_clutter: subtract the mean over chirps (MTI).
 
-    Returns:
-        Complex RD map ``(..., rx, N // 2, M)``.
-
     Examples:
-        >>> import torch
-        >>> from radaraug.transforms import functional as F
-        >>> cube = 0.01 * torch.randn(2, 3, 64, 256)        # (frames, rx, chirps, samples)
-        >>> rd = F.range_doppler(cube)
-        >>> rd.shape, rd.dtype
-        (torch.Size([2, 3, 128, 64]), torch.complex64)
+        >>> range_doppler(torch.randn(2, 3, 64, 256)).shape   # (frames, rx, chirps, samples)
+        torch.Size([2, 3, 128, 64])
     """
     range_window, doppler_window = check_window_name(range_window), check_window_name(doppler_window)
     x = check_fft_input(x, "range_doppler", RAW_LAYOUT, allow_complex=False)
@@ -220,16 +165,11 @@ def to_decibels(x: torch.Tensor, floor: float = 1e-12) -> torch.Tensor:
     """``20 * log10(max(|X|, floor))``: complex or magnitude map -> dB (dBFS with radaraug's chain).
 
     Args:
-        x: complex map, or a real map taken as a magnitude (its absolute value is used).
-        floor: smallest magnitude before the log, > 0 (keeps exact zeros finite: -240 dB).
-
-    Returns:
-        A real tensor of ``x``'s shape (float64 for complex128 / float64 input).
+        x: complex map, or a real map taken as a magnitude.
+        floor: smallest magnitude before the log, > 0 (-240 dB by default).
 
     Examples:
-        >>> import torch
-        >>> from radaraug.transforms import functional as F
-        >>> F.to_decibels(torch.tensor([1.0, 0.1, 0.0], dtype=torch.float64)).tolist()
+        >>> to_decibels(torch.tensor([1.0, 0.1, 0.0], dtype=torch.float64)).tolist()
         [0.0, -20.0, -240.0]
     """
     if not floor > 0:
@@ -255,25 +195,15 @@ def check_combine_args(mode: str, index: int | None, db: bool) -> None:
 def combine_rx(x: torch.Tensor, mode: str = "mean_power", index: int | None = None, db: bool = False) -> torch.Tensor:
     """Combine the RX channels of an RD map into one, keeping an rx dim of size 1.
 
-    Modes, on linear maps (complex or magnitude): ``"mean_power"`` ``sqrt(mean_rx |X|**2)``,
-    ``"coherent"`` ``mean_rx X``, ``"max"`` ``max_rx |X|``, ``"select"`` channel ``index``. With
-    ``db=True`` the input is a dB map: ``mean_power`` averages ``10**(dB/10)`` and returns dB,
-    ``max`` and ``select`` work as is, ``coherent`` is refused (dB has no phase).
-
     Args:
-        x: RD map ``(..., rx, range, doppler)``.
-        mode: one of the modes above.
+        x: RD map ``(..., rx, range, doppler)``, linear (complex or magnitude) or dB with ``db=True``.
+        mode: ``"mean_power"`` ``sqrt(mean |X|**2)`` (with ``db``: the mean of ``10**(dB/10)``, in dB),
+            ``"coherent"`` ``mean X`` (not with ``db``), ``"max"`` or ``"select"`` (channel ``index``).
         index: the channel for ``"select"`` (negative counts from the end).
         db: the input is in dB.
 
-    Returns:
-        ``(..., 1, range, doppler)``.
-
     Examples:
-        >>> import torch
-        >>> from radaraug.transforms import functional as F
-        >>> db = torch.tensor([-100.0, -100.0, -100.0], dtype=torch.float64).reshape(3, 1, 1)
-        >>> round(F.combine_rx(db, db=True).item(), 9)
+        >>> combine_rx(torch.full((3, 1, 1), -100.0, dtype=torch.float64), db=True).item()
         -100.0
     """
     check_combine_args(mode, index, db)
