@@ -1,10 +1,8 @@
-"""Vectorized torch ray tracer: shooting-and-bouncing rays + physical optics -> `Paths`.
+"""Vectorized torch ray tracer: scene + radar -> propagation `Paths` for the FMCW receiver.
 
-Entry point: :class:`RayTracer` (static room paths traced once and cached, moving targets per
-snapshot) and :func:`paths_to_json`. Building blocks: :func:`intersect` / :func:`any_hit`
-(batched Möller–Trumbore style tests), :class:`TriangleBVH`, the PO integrals in
-:mod:`radaraug.raytrace.po` and antenna patterns (the kernel's benchmark is
-:func:`radaraug.bench.intersection.benchmark_intersection`).
+Entry point: :class:`RayTracer` and :func:`paths_to_json`; building blocks :func:`intersect` /
+:func:`any_hit`, :class:`TriangleBVH` and the PO integrals of :mod:`radaraug.raytrace.po`. See
+``docs/raytracer.md``.
 """
 
 from radaraug.raytrace.accel import TriangleBVH

@@ -1,17 +1,8 @@
 """Acceleration structure: a flat two-level bounding-volume hierarchy over triangles.
 
-Build (CPU, once per static mesh): recursive median split of the triangle centroids along the
-longest axis until a node holds at most ``leaf_size`` triangles. Only the leaves are kept, as
-flat tensors: an axis-aligned box per leaf and a padded ``(L, S)`` table of triangle indices.
-
-Traversal (vectorized, any device): a slab test of every ray against every leaf box
-(``R x L``), then Möller–Trumbore on the triangles of the candidate (ray, leaf) pairs only, and
-a scatter-min per ray. Cost ~ ``R (L + k S)`` tests for ``k`` boxes crossed per ray, smallest
-for ``L ~ sqrt(k F)``, i.e. ``S ~ sqrt(F / k)``: the default leaf size is ``~sqrt(F) / 2`` (``k ~ 4``,
-measured on the randomized rooms). A deeper tree would cut the box
-tests further but needs a per-ray stack (a data-dependent loop); with rooms of 10^2-10^5
-triangles the flat two-level form keeps the work in a few large tensor ops, which is what
-torch does well on both CPU and CUDA.
+Built once on CPU by median split; traversal tests every ray against every leaf box, then the triangles of
+the candidate (ray, leaf) pairs only: a few large tensor ops on CPU and CUDA instead of a per-ray stack.
+Why this shape and its cost: ``docs/raytracer.md``, "Intersection and acceleration".
 """
 
 from __future__ import annotations
@@ -168,8 +159,7 @@ class TriangleBVH:
     ) -> torch.Tensor:
         """``(R,)`` bool: something lies on the ray between ``t_min`` and ``t_max`` (shadow ray).
 
-        The same answer as ``intersect(...).face >= 0`` without its nearest-hit bookkeeping (the
-        winning face, ties, barycentrics): a ray is blocked when any candidate pair is hit.
+        ``intersect(...).face >= 0`` without the nearest-hit bookkeeping.
         """
         o, d = origins, directions
         if o.ndim != 2 or o.shape[-1] != 3 or d.shape != o.shape or self.num_faces <= _BRUTE_FORCE_FACES:

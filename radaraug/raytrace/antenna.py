@@ -1,12 +1,7 @@
 """Antenna power patterns of the radar's TX and RX elements (radar frame: z = boresight).
 
-The BGT60TR13C has antennas-in-package patches; Infineon publishes no exact gain in the sources
-radaraug relies on. :class:`PatchAntenna` is therefore an **assumption**: a rotationally
-symmetric ``cos^q`` power pattern over the front hemisphere with peak gain ``G0`` (default
-6 dBi, typical of a single 60 GHz patch) and all power in front: the directivity of ``cos^q``
-is ``2 (q + 1)``, so ``q = G0 / 2 - 1`` (lossless), i.e. ``q ~ 1`` for 6 dBi. Behind the
-antenna the gain is ``G0`` times ``back_lobe_dB`` (default -30 dB) rather than exactly zero.
-Fit ``gain_dBi`` with the calibration's ``system_gain`` effect when a measurement is at hand.
+:class:`PatchAntenna` is an **assumption** (no exact BGT60TR13C gain is published): a lossless ``cos^q``
+pattern with a 6 dBi peak by default (``docs/raytracer.md``, "Antenna").
 """
 
 from __future__ import annotations
@@ -30,7 +25,7 @@ class Antenna(Protocol):
 
 @dataclass(frozen=True)
 class PatchAntenna:
-    """``G(theta) = G0 max(cos theta, 0)^q`` with a back-lobe floor (power gain, linear).
+    """``G(theta) = G0 max(cos theta, 0)^q``, ``q = G0 / 2 - 1`` (lossless), with a back-lobe floor (linear power).
 
     Args:
         gain_dBi: peak gain at boresight, dBi (>= 3.01, the directivity of ``cos^0``).

@@ -1,17 +1,7 @@
 """On-disk cache of traced static rooms, keyed by (scene, radar, tracer options, tracer version).
 
-The room is traced once per scene; DataLoader workers, later runs and other processes load the
-result instead of tracing again. The key is a SHA-256 of everything the static paths depend on:
-the room's vertices, faces, per-face materials and each material's permittivity table, the
-radar's pose, carrier frequency and antenna positions (not the IF gain, the chirp timing or
-anything else the receiver applies later), the tracer's options and :data:`TRACER_VERSION`.
-
-Folder: ``$RADARAUG_CACHE_DIR``, else ``$XDG_CACHE_HOME/radaraug``, else ``~/.cache/radaraug``;
-files ``static-<key>.pt`` (plain tensors, loaded with ``weights_only=True``). Writes are atomic
-(temporary file + rename), so a killed process never leaves a half-written entry (its temporary
-file is removed by the next write of that entry once it is an hour old); an unreadable
-entry is traced again and replaced, a folder that cannot be written is warned about once and the
-trace is simply not cached.
+Entries are ``static-<key>.pt`` files written atomically; an unreadable entry is traced again, an unwritable
+folder warned about once. Key, folder and behaviour: ``docs/raytracer.md``, "The static-room cache".
 """
 
 from __future__ import annotations
@@ -37,7 +27,7 @@ _warned_dirs: set[str] = set()
 
 
 def default_cache_dir() -> Path:
-    """The folder of the static-room cache (module docstring)."""
+    """``$RADARAUG_CACHE_DIR``, else ``$XDG_CACHE_HOME/radaraug``, else ``~/.cache/radaraug``."""
     env = os.environ.get("RADARAUG_CACHE_DIR")
     if env:
         return Path(env)

@@ -1,11 +1,6 @@
-"""Is the static room converged? Its range profile against a denser trace, in dB.
+"""Is the static room converged? Its noise-free range profile against a denser trace, in dB.
 
-The static clutter a classifier sees is the room's zero-Doppler range profile. This module
-computes it noise-free (the paths through an ideal receiver: IF synthesis only, a Hann window
-and a range FFT of the mean chirp, power averaged over the RX channels, dB re 1 ADC float^2) and
-compares two traces of the same scene: the error at the strongest far return (the end wall of a
-corridor) and the RMS error in dB over a range interval, on bins within ``floor_dB`` of the
-strongest bin of the reference (weaker bins are below any receiver's noise floor).
+See ``docs/raytracer.md``, "Convergence of the static room".
 """
 
 from __future__ import annotations
@@ -20,14 +15,14 @@ from radaraug.sensor.paths import Paths
 
 
 def static_range_profile(paths: Paths, config: RadarConfig) -> tuple[torch.Tensor, torch.Tensor]:
-    """``(range_m, power_dB)`` of static ``paths`` ``(P, RX)``: ideal receiver, Hann, mean chirp.
+    """``(range_m, power_dB)`` of static ``paths`` ``(P, RX)``: ideal receiver, Hann window, mean chirp.
 
     Args:
-        paths: static paths (delay rate ignored: the mean chirp of a static scene).
+        paths: static paths (delay rate ignored).
         config: the radar configuration (chirp and ADC).
 
     Returns:
-        Range of each bin (m) and its power in dB (mean over RX), first half of the spectrum.
+        Range of each bin (m) and its power in dB re 1 ADC float^2 (mean over RX), first half of the spectrum.
     """
     from radaraug.sensor.receiver import FMCWReceiver
 
@@ -68,7 +63,10 @@ def compare_profiles(
     range_m: torch.Tensor, test_dB: torch.Tensor, reference_dB: torch.Tensor, *,
     interval_m: tuple[float, float] = (2.0, 19.5), far_from_m: float = 10.0, floor_dB: float = 60.0,
 ) -> ProfileComparison:
-    """Compare a profile with a reference profile (module docstring)."""
+    """Compare a profile with a reference: the error at the strongest far bin and over ``interval_m``.
+
+    Only bins within ``floor_dB`` of the reference's strongest count (weaker ones are under any noise floor).
+    """
     in_range = (range_m >= interval_m[0]) & (range_m <= interval_m[1])
     strong = reference_dB >= float(reference_dB[in_range].max()) - floor_dB
     sel = in_range & strong

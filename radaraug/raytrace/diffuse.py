@@ -1,52 +1,9 @@
 """Diffuse static clutter of a room: independent random scatterers on every surface.
 
-The room's specular paths (image method / SBR) give the walls' mirror returns; rough finishes,
-joints and fixtures also scatter diffusely (:mod:`radaraug.scene.scattering`, the effective
-roughness model). That diffuse field is a **stochastic model**, not a discretization that
-must converge: every surface is tiled into cells of area at most ``cell_m^2`` and each cell is
-one independent scatterer at a random point inside it, with
-
-* RCS ``sigma0(theta) * A_cell`` (``sigma0`` the monostatic diffuse RCS per unit area of the
-  cell's material at its incidence angle ``theta``, :meth:`DiffuseScattering.sigma0`, the
-  polarization-matched Fresnel ``|Gamma|^2`` of :class:`~radaraug.raytrace.reflect.FaceReflectivity`),
-* a complex Gaussian factor ``z`` of unit mean power (Rayleigh amplitude, uniform phase): the
-  field of a rough patch is the sum of many random wavelets (central limit theorem),
-* the radar equation (:func:`~radaraug.raytrace.radar.radar_amplitude`) with the antenna gains
-  toward the point, and per-RX delays ``(|p - tx| + |p - rx_k|) / c``.
-
-A cell counts only when its point sees the radar: a shadow ray from the point (stepped off the
-surface by :func:`~radaraug.raytrace.sbr.surface_offset` toward the radar's side) to the radar's
-centre must hit nothing. Faces are two-sided like in the SBR tracer (the back of a wall is
-reached only through occlusion tests, which a closed room or object always fails).
-
-Tiling. Triangle ``f`` of area ``A_f`` is split into ``n^2`` congruent sub-triangles,
-``n = ceil(sqrt(A_f) / cell_m)`` (so every cell has area ``A_f / n^2 <= cell_m^2``), one scatterer
-per sub-triangle at a uniform random point in it. Every random number comes from one CPU
-``torch.Generator`` seeded with ``seed``, in the order of the faces: the clutter is a pure
-function of (geometry, radar, parameters, seed) and identical on CPU and CUDA.
-
-Why the result does not depend on the triangulation or on ``cell_m`` beyond statistics: a sum of
-independent zero-mean complex Gaussians is a zero-mean complex Gaussian whose power is the sum of
-the powers (the family is infinitely divisible). The field of any region (a range bin, an angle
-cell) is therefore complex Gaussian with mean power ``integral of sigma0 dA`` whatever the number
-of cells inside it; and because each point is uniform inside its cell, the expected power in a
-range bin equals the integral over the exact surface part in that bin even when a cell straddles
-two bins. What changes with the tiling is only *which* realization one gets. ``cell_m`` (default
-0.1 m) must stay below the smallest range resolution of interest (0.17 m at the paper's 882 MHz,
-0.16 m at 1 GHz) so that cells straddle bins rarely, and it sets the cost (about 20k cells in the
-paper's corridor). It is far above the wavelength (5 mm), so a cell is a whole rough patch, not
-a roughness grain.
-
-Merge (optional, ``merge_bin_m``): cells in the same path-length bin of ``merge_bin_m`` *and* in
-the same cubic voxel of ``merge_voxel_m`` are summed coherently (the carrier phase of every member
-kept, :func:`radaraug.raytrace.merge.merge_paths`' rule) into one path whose vertex is their
-power-weighted centroid. At the carrier the merged path is exact for every RX (angle of arrival
-included); across the sweep the members' delays differ from the merged delay by at most
-``merge_bin_m / c`` per RX, a phase error at the band edges of at most ``pi B merge_bin_m / c``
-(0.09 rad, i.e. < 0.04 dB of power and < 1 % of a bin's field, for 1 cm at 882 MHz; 0.58 rad at
-5.5 GHz, where a 2 mm bin keeps the same error). The voxel keeps the geometry: a merged path's
-vertex stays within ``merge_voxel_m`` of its members, so later occlusion of the clutter (a
-person in front of a wall) still acts on the right place.
+A stochastic model (effective roughness, :mod:`radaraug.scene.scattering`), not a discretization that must
+converge: every face is tiled into cells of area ``<= cell_m^2``, each one scatterer at a random point with
+RCS ``sigma0(theta) A_cell``, a unit-power complex Gaussian factor and the radar equation, kept when it sees
+the radar. Seeded, so the clutter is a pure function of the scene. See ``docs/diffuse_clutter.md``.
 """
 
 from __future__ import annotations
@@ -86,8 +43,7 @@ def surface_cells(
         generator: CPU generator; two uniforms are drawn per cell, in face order.
 
     Returns:
-        ``(points (C, 3), face (C,) long, area (C,))``: scatterer positions, their face and
-        their cell's area (m^2).
+        ``(points (C, 3), face (C,) long, area (C,))``: scatterer positions, their face and cell area (m^2).
     """
     if not (math.isfinite(cell_m) and cell_m > 0):
         raise SceneError(f"diffuse_paths: cell_m must be a positive number, got {cell_m!r}")
@@ -149,30 +105,26 @@ def diffuse_paths(
     merge_bin_m: float | None = 0.05,
     merge_voxel_m: float = 1.0,
 ) -> tuple[Paths, torch.Tensor]:
-    """Diffuse scattering paths of a static room (module docstring).
+    """Diffuse scattering paths of a static room (``docs/diffuse_clutter.md``).
 
     Args:
         room: static geometry (walls, floor, ceiling, objects); materials by key.
         radar: TX/RX positions, polarization and wavelength (its device and dtype are used).
         antenna: object with ``gain(directions_radar_frame) -> power gain`` (TX and RX).
-        bvh: acceleration structure of ``room``'s triangles for the shadow rays; None (or
-            ``occlusion=False``) skips them (e.g. a convex room, where nothing can block).
+        bvh: acceleration structure of ``room``'s triangles for the shadow rays; None skips them.
         frequency_Hz: carrier (Fresnel coefficients).
-        seed: seed of the cells' points and complex Gaussian factors (e.g. derived from the
-            scene's content, so that the clutter is a pure function of the scene).
+        seed: seed of the cells' points and complex Gaussian factors.
         scattering: per-material overrides (key or base name -> :class:`DiffuseScattering`,
-            ``{S, pattern, alpha_R}`` or a number ``S``) over
-            :data:`~radaraug.scene.scattering.DIFFUSE_DEFAULTS` (e.g. ``Scene.scattering``).
-        gain_dB: one power gain on every diffuse path (the calibration's knob: 20 log10 of a
-            common factor on every material's ``S``).
+            ``{S, pattern, alpha_R}`` or a number ``S``) over :data:`~radaraug.scene.scattering.DIFFUSE_DEFAULTS`.
+        gain_dB: one power gain on every diffuse path (the calibration's knob).
         cell_m: cell size (m), cells have area ``<= cell_m^2``.
         occlusion: cast shadow rays (needs ``bvh``).
         merge_bin_m: path-length bin of the coherent merge; None returns one path per visible cell.
         merge_voxel_m: voxel edge of the merge (cells merge only within one voxel).
 
     Returns:
-        ``(paths, vertices)``: static :class:`Paths` ``(P, RX)`` (``kind`` 0, ``delay_rate`` 0)
-        and ``vertices`` ``(P, 3, 3)`` = ``[radar.centre, scatter point, radar.centre]``.
+        ``(paths, vertices)``: static :class:`Paths` ``(P, RX)`` (``kind`` 0, ``delay_rate`` 0) and
+        ``vertices`` ``(P, 3, 3)`` = ``[radar.centre, scatter point, radar.centre]``.
     """
     device, dtype = radar.tx.device, radar.tx.dtype
     gen = torch.Generator().manual_seed(int(seed))
@@ -243,10 +195,7 @@ def diffuse_paths(
 def occluder_faces(tri: torch.Tensor, centre: torch.Tensor, *, budget: int = 400_000_000) -> torch.Tensor | None:
     """``(F,)`` bool: faces that may block a segment from ``centre`` to a point of the room.
 
-    A face whose plane supports the whole vertex set (every vertex on one side, ``centre``
-    strictly on that side too) cannot block such a segment: the segment lies in the closed
-    half-space and meets the plane at most at its end point on the surface itself. What is left
-    are the faces of objects and of non-convex room parts. Returns None when ``F x V`` exceeds
+    A face whose plane supports the whole vertex set, ``centre`` included, cannot. None when ``F x V`` exceeds
     ``budget`` (then every face counts).
     """
     f = tri.shape[0]
@@ -273,7 +222,7 @@ def occluder_faces(tri: torch.Tensor, centre: torch.Tensor, *, budget: int = 400
 def merge_cells(
     paths: Paths, points: torch.Tensor, frequency_Hz: float, *, bin_m: float = 0.01, voxel_m: float = 0.5,
 ) -> tuple[Paths, torch.Tensor]:
-    """Coherent merge of cells sharing a path-length bin and a voxel (module docstring).
+    """Coherent merge of cells sharing a path-length bin and a voxel (``docs/diffuse_clutter.md``, "Merge").
 
     Returns:
         ``(paths, points)``: merged paths ``(G, RX)`` and their power-weighted centroids ``(G, 3)``.

@@ -1,20 +1,8 @@
 """Physical optics of the room's small faces (furniture, frames, radiators), converged by subdivision.
 
-Faces that belong to no mirror plane (:class:`~radaraug.raytrace.targets.MirrorPlanes`) are too
-small for the image method to be the right limit; each is scattered by monostatic facet PO
-(:func:`radaraug.raytrace.po.facet_root_rcs`, Gordon's closed form) toward the radar, lit where
-it faces the radar and its centroid sees the radar past the room.
-
-Facet PO evaluates the phase across a facet as a plane wave; a spherical wave from the radar at
-distance ``R`` adds a quadratic phase of about ``k rho^2 / R`` at a distance ``rho`` from the
-facet's centre (two-way), i.e. ``k e^2 / (4 R)`` at the corners of a facet of edge ``e``. Facets
-are therefore split (edge midpoints, 1 -> 4) until every edge satisfies ``e <= sqrt(lambda R / 4)
-/ sqrt(density)``, where that error is at most ``pi / 8`` at ``density = 1``. The sum over the
-split facets is then the PO integral of the face with a spherical incident wave to within that
-bound, whatever the mesh's own triangulation: the result depends on the physics, not on a
-setting (``density > 1`` only tightens the bound; the convergence test compares 1 with 4).
-
-Multiple interactions involving small faces (furniture -> wall -> radar) are not traced here.
+Faces of no mirror plane are scattered by monostatic facet PO toward the radar, split until every edge is
+below the Fresnel limit ``sqrt(lambda R / 4) / sqrt(density)`` so the sum is the spherical-wave PO integral
+whatever the mesh's triangulation. See ``docs/raytracer.md``, "The static room".
 """
 
 from __future__ import annotations
@@ -37,14 +25,14 @@ MAX_FACETS = 2_000_000
 
 
 def fresnel_edge_limit(distance_m: torch.Tensor, wavelength: float, density: float) -> torch.Tensor:
-    """Largest facet edge at ``distance_m`` from the radar (module docstring)."""
+    """Largest facet edge ``sqrt(lambda R / 4 / density)`` at ``distance_m`` from the radar (phase error <= pi/8)."""
     return torch.sqrt(wavelength * distance_m / 4) / math.sqrt(density)
 
 
 def subdivide(
     triangles: torch.Tensor, face: torch.Tensor, radar_centre: torch.Tensor, wavelength: float, density: float,
 ) -> tuple[torch.Tensor, torch.Tensor]:
-    """Split ``triangles`` ``(F, 3, 3)`` until every edge meets :func:`fresnel_edge_limit`.
+    """Split ``triangles`` ``(F, 3, 3)`` (1 -> 4) until every edge meets :func:`fresnel_edge_limit`.
 
     Returns the split triangles and, for each, the index of its original face.
     """
@@ -76,10 +64,9 @@ def monostatic_facet_rcs(
     triangles: torch.Tensor, material: torch.Tensor, radar: RadarGeometry, reflectivity: FaceReflectivity,
     specular_factor: torch.Tensor | None = None,
 ) -> tuple[torch.Tensor, torch.Tensor, torch.Tensor, torch.Tensor]:
-    """``(centroid, range, unit vector to the radar, root RCS)`` of facets ``(F, 3, 3)``.
+    """``(centroid, range, unit vector to the radar, root RCS)`` of the radar-facing facets ``(F, 3, 3)``.
 
-    For the facets seen by the radar: monostatic PO toward the radar centre, the face's Fresnel
-    coefficient times the optional per-material ``specular_factor``.
+    The root RCS uses the face's Fresnel coefficient times the optional per-material ``specular_factor``.
     """
     cen = triangles.mean(-2)
     to_r = radar.centre - cen

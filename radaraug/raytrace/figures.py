@@ -1,10 +1,4 @@
-"""Figures of the ray tracer's documentation, made from the physics modules of this package.
-
-* :func:`plot_walker_shadowing`: ``docs/img/twin/walker_shadowing.png`` of ``docs/shadowing.md``,
-  the shadowing model (:mod:`radaraug.raytrace.shadow`) against independent estimates.
-
-matplotlib is optional: it is imported (:func:`radaraug._optional.pyplot`) only when a figure is made.
-"""
+"""Figures of the ray tracer's documentation; matplotlib is imported only when a figure is made."""
 
 from __future__ import annotations
 
@@ -43,13 +37,10 @@ def _walker_wall_curves(walker: Person, times: torch.Tensor, wall_m: float, rada
 
 def plot_walker_shadowing(path: str | Path, *, wall_m: float = 8.0, radar_height_m: float = 1.25,
                           frames: int = 241) -> dict[str, float]:
-    """Figure: a metal wall's return vs a walker's position, model against independent estimates.
+    """Figure ``docs/img/twin/walker_shadowing.png``: a metal wall's return vs a walker's position.
 
-    Radar at ``(0, 0, radar_height_m)`` looking along +x, a metal wall at ``x = wall_m`` (its
-    first-order image path); left, a 1.8 m walker walking along the radar-wall line from the wall
-    toward the radar; right, one crossing it at ``wall_m / 2``. The model (all 16 segments, both
-    passes) is drawn against the knife edge of the torso's nearer edge and the physical-optics
-    integral over the torso's elliptic cross-section (both two passes, the torso alone).
+    The shadowing model (all segments, both passes) against the torso's knife edge and physical-optics
+    estimates, for a walk along the radar-wall line and a crossing at ``wall_m / 2`` (``docs/shadowing.md``).
 
     Args:
         path: PNG file to write.
@@ -58,8 +49,8 @@ def plot_walker_shadowing(path: str | Path, *, wall_m: float = 8.0, radar_height
         frames: walker positions per panel.
 
     Returns:
-        Summary numbers (dB): along the line, the means over the middle half; crossing, the values
-        at the closest pass and the means while the torso covers the line.
+        Summary numbers (dB): along the line, the means over the middle half; crossing, the values at the
+        closest pass and the means while the torso covers the line.
     """
     from radaraug._optional import pyplot
 

@@ -1,34 +1,9 @@
 """Specular room paths by the image method: exact, no ray density to converge.
 
-A large flat face acts on a radar inside the room like a mirror: by image theory, the field
-that reaches the RX after specular reflections on planes ``k1, ..., kn`` is the free-space field
-of the TX's image ``I = M_kn ... M_k1 (TX)`` (``M_k`` mirrors a point in plane ``k``), times the
-product of the Fresnel coefficients at the reflection points. In the receiver's units
-(:class:`~radaraug.sensor.paths.Paths`: sqrt(W) at the RX port per sqrt(W) at the TX port)::
-
-    a = sqrt(G_t(u_1) G_r(u_n)) * lambda / (4 pi L) * prod_i Gamma_i(theta_i)
-    L = |RX - I|        (the unfolded length of TX -> q_1 -> ... -> q_n -> RX)
-
-with ``u_1`` the launch direction toward the first reflection point and ``u_n`` the arrival
-direction from the last. This is exactly the stationary-phase limit of physical optics on a
-face that extends more than a Fresnel zone around each reflection point (the limit the PO
-prefactor of :mod:`radaraug.raytrace.po` is normalized to), and the closed form the tracer's
-tests check: a metal wall at 10 m seen by two 6 dBi patches is ``-82.0 dB``.
-
-A sequence exists when, tracing back from the radar toward the image, each leg meets its plane
-between its end points (``0 < t < 1``), each reflection point lies on a face of that plane
-(point-in-triangle with a small tolerance, so the corner points of dihedral and trihedral
-returns count), consecutive planes differ, and no leg is blocked by the room. Sequences whose
-images coincide (the two orders of a 90-degree dihedral, the six of a trihedral corner) are one
-image and one path, as image theory of a right-angled corner requires.
-
-The mirror planes are the coplanar face groups of :class:`~radaraug.raytrace.targets.MirrorPlanes`
-(total area at least ``mirror_min_area_m2``); smaller faces (furniture, frames) are scattered by
-facet physical optics instead (:mod:`radaraug.raytrace.facets`). Not modelled: edge diffraction at
-a plane's free edges (a reflection point within a Fresnel zone of a doorway's edge counts fully
-or not at all).
-
-All geometry runs in float64 (a few hundred sequences), the result in the tracer's dtype.
+The field after reflections on planes ``k1..kn`` is the free-space field of the TX's image times the product
+of the Fresnel coefficients, ``a = sqrt(G_t G_r) lambda / (4 pi L) prod Gamma_i`` with ``L = |RX - image|``
+(the stationary-phase limit of PO). Existence checks, mirror planes and limits: ``docs/raytracer.md``,
+"The static room". Geometry runs in float64, the result in the tracer's dtype.
 """
 
 from __future__ import annotations
@@ -85,13 +60,12 @@ def image_paths(
         antenna: TX/RX power pattern with ``gain(dirs_radar_frame)``.
         reflectivity: Fresnel coefficients of the room's materials.
         max_order: most reflections per path.
-        specular_factor: ``(num_materials,)`` amplitude factor of the specular reflection per
-            material (the rough-surface reduction ``sqrt(1 - S^2)``), None for 1.
+        specular_factor: ``(num_materials,)`` amplitude factor of the specular reflection (the rough-surface
+            reduction ``sqrt(1 - S^2)``), None for 1.
 
     Returns:
-        ``(paths, vertices)``: :class:`Paths` ``(P, RX)`` (kind 0 for one reflection, 1 for
-        more) in the radar's dtype, and ``(P, max_order + 2, 3)`` vertices ``[radar centre,
-        q_1, ..., q_n, radar centre]`` padded by repeating the radar centre.
+        ``(paths, vertices)``: :class:`Paths` ``(P, RX)`` (kind 0 for one reflection, 1 for more) and
+        ``(P, max_order + 2, 3)`` vertices ``[radar centre, q_1, ..., q_n, radar centre]``, padded with the centre.
     """
     dev, dt = radar.tx.device, radar.tx.dtype
     f64 = torch.float64

@@ -1,17 +1,9 @@
 """Batched ray-triangle intersection (brute force), eager or ``torch.compile``-d.
 
-Every ray is tested against every triangle: ``R x F`` tests, chunked over rays so that one chunk
-holds at most ``chunk_tests`` tests. The nearest-hit kernel uses per-triangle precomputed plane
-and barycentric dual vectors (:func:`triangle_planes`, Baldwin-Weber style: one division and
-three dot products per test); Möller–Trumbore (:func:`mt_distance`) gives the barycentrics of
-the winning faces. The eager kernel is memory-bound (each elementwise op writes an ``R x F``
-tensor); under ``torch.compile`` the test plus the min-reduction over faces fuses into one loop
-that only writes ``(R,)``, 10-70x faster on CPU. Compilation is optional:
-:func:`compile_enabled` reads ``RADARAUG_COMPILE`` (``0`` turns it off) and any failure of the
-compiler falls back to eager for the rest of the process.
-
-Directions need not be unit vectors: ``t`` is measured in units of ``|direction|``.
-:class:`radaraug.raytrace.accel.TriangleBVH` uses the same test on candidate (ray, leaf) pairs.
+Every ray is tested against every triangle, chunked over rays, with per-triangle plane and dual vectors
+(:func:`triangle_planes`); Möller–Trumbore gives the winners' barycentrics. ``RADARAUG_COMPILE=0`` keeps the
+eager kernel, and a compiler failure falls back to it. Directions need not be unit vectors: ``t`` is in
+units of ``|direction|``. See ``docs/raytracer.md``, "Intersection and acceleration".
 """
 
 from __future__ import annotations
@@ -38,8 +30,7 @@ class Hit(NamedTuple):
         t: ``(R,)`` distance along the ray (units of ``|direction|``), ``inf`` on a miss.
         face: ``(R,)`` long index of the hit triangle, ``-1`` on a miss.
         u: ``(R,)`` barycentric weight of vertex 1 (0 on a miss).
-        v: ``(R,)`` barycentric weight of vertex 2 (0 on a miss); the hit point is
-            ``(1-u-v) p0 + u p1 + v p2``.
+        v: ``(R,)`` barycentric weight of vertex 2 (0 on a miss); the point is ``(1-u-v) p0 + u p1 + v p2``.
     """
 
     t: torch.Tensor
@@ -54,10 +45,7 @@ class Hit(NamedTuple):
 
 
 def compile_enabled(compiled: bool | None = None) -> bool:
-    """Whether to use the ``torch.compile``-d kernel: the explicit flag, else ``RADARAUG_COMPILE``.
-
-    ``RADARAUG_COMPILE=0`` (or ``false``/``no``/``off``) disables compilation; default on.
-    """
+    """Whether to use the compiled kernel: the explicit flag, else ``RADARAUG_COMPILE`` (``0``/``off``...: no)."""
     if compiled is not None:
         return bool(compiled)
     return os.environ.get("RADARAUG_COMPILE", "1").strip().lower() not in ("0", "false", "no", "off")
@@ -69,10 +57,8 @@ def mt_distance(
 ) -> tuple[torch.Tensor, torch.Tensor, torch.Tensor]:
     """Möller–Trumbore on broadcast shapes; returns ``(t, u, v)`` with ``t = inf`` where missed.
 
-    ``o, d`` are ``(..., 3)`` rays and ``v0, e1, e2`` ``(..., 3)`` triangles (vertex 0 and the
-    two edges), broadcast against each other. Components are handled one by one so that no
-    ``(..., 3)`` temporary of the broadcast shape is ever made. Degenerate triangles (zero
-    edges, used as padding) have ``det = 0`` and never hit.
+    Rays ``o, d`` and triangles ``v0, e1, e2`` (vertex 0 and two edges) are ``(..., 3)``, broadcast; no
+    ``(..., 3)`` temporary of the broadcast shape is made. Degenerate triangles (padding) never hit.
     """
     ox, oy, oz = o.unbind(-1)
     dx, dy, dz = d.unbind(-1)
@@ -98,11 +84,9 @@ def mt_distance(
 def triangle_planes(triangles: torch.Tensor) -> torch.Tensor:
     """Per-triangle precomputation ``(F, 12)`` for :func:`_nearest_kernel` (Baldwin-Weber style).
 
-    Columns: plane normal ``n = e1 x e2`` (3) and ``n . v0``; dual vectors ``U = (e2 x n)/|n|^2``,
-    ``V = (n x e1)/|n|^2`` (3 each) and their offsets ``-U . v0``, ``-V . v0``, so that a point
-    ``P`` of the plane has barycentrics ``u = U . P + u0`` and ``v = V . P + v0``. This halves the
-    arithmetic of a test compared with Möller–Trumbore (plane distance, one division, two dots).
-    Degenerate triangles get NaN rows and never hit.
+    Columns: normal ``n = e1 x e2`` and ``n . v0``; dual vectors ``U = (e2 x n)/|n|^2``, ``V = (n x e1)/|n|^2`` and
+    their offsets, so a point ``P`` of the plane has ``u = U . P + u0``, ``v = V . P + v0``. Degenerate
+    triangles get NaN rows and never hit.
     """
     v0 = triangles[:, 0]
     e1 = triangles[:, 1] - v0
@@ -121,11 +105,9 @@ def plane_distance(
     o: torch.Tensor, d: torch.Tensor, planes: torch.Tensor, t_min: torch.Tensor | float,
     t_max: torch.Tensor | float, *, coef_dim: int = -1,
 ) -> torch.Tensor:
-    """Hit distance (``inf`` on a miss) of rays ``o, d`` ``(..., 3)`` on triangles.
+    """Hit distance (``inf`` on a miss) of rays ``o, d`` ``(..., 3)`` on :func:`triangle_planes` rows ``(..., 12)``.
 
-    The triangles are given by :func:`triangle_planes` rows ``(..., 12)``; all are broadcast against each
-    other. ``coef_dim=0``: the 12 coefficients come first, ``(12, ...)`` (each a contiguous block:
-    the arithmetic then streams instead of striding over interleaved coefficients; same results).
+    All broadcast; ``coef_dim=0`` takes the 12 coefficients first, ``(12, ...)`` (contiguous blocks, same result).
     """
     ox, oy, oz = o.unbind(-1)
     dx, dy, dz = d.unbind(-1)
@@ -141,11 +123,7 @@ def plane_distance(
 def _nearest_kernel(
     o: torch.Tensor, d: torch.Tensor, planes: torch.Tensor, t_min: torch.Tensor, t_max: torch.Tensor,
 ) -> tuple[torch.Tensor, torch.Tensor]:
-    """``(R,)`` nearest ``t`` and face index of rays ``(R, 3)`` against ``planes`` ``(12, F)``.
-
-    Planes come transposed so that each of the 12 coefficients is a contiguous ``(F,)`` row: the
-    compiled loop over faces then vectorizes with plain (unit-stride) loads.
-    """
+    """``(R,)`` nearest ``t`` and face of rays ``(R, 3)`` against ``planes`` ``(12, F)`` (rows contiguous)."""
     t = plane_distance(o[:, None], d[:, None], planes, t_min[:, None], t_max[:, None], coef_dim=0)
     return t.min(dim=1)
 
@@ -218,8 +196,7 @@ def intersect(
         triangles: ``(F, 3, 3)`` vertex coordinates, same device and dtype as the rays.
         t_min: scalar or ``(R,)`` lower bound of accepted ``t`` (exclusive), default 0.
         t_max: scalar or ``(R,)`` upper bound (exclusive), default ``inf``.
-        compiled: use the ``torch.compile``-d kernel (None: ``RADARAUG_COMPILE``, and only for
-            calls large enough to amortise the compilation).
+        compiled: use the compiled kernel (None: ``RADARAUG_COMPILE``, only for calls large enough).
         chunk_tests: ray-triangle tests per chunk (memory bound of the eager kernel).
 
     Returns:
@@ -269,9 +246,9 @@ def any_hit(
     compiled: bool | None = None,
     chunk_tests: int = DEFAULT_CHUNK_TESTS,
 ) -> torch.Tensor:
-    """``(R,)`` bool: True where a triangle lies on the ray strictly between ``t_min`` and ``t_max``.
+    """``(R,)`` bool: a triangle lies on the ray strictly between ``t_min`` and ``t_max`` (shadow rays).
 
-    The occlusion (shadow-ray) test. Same arguments as :func:`intersect`.
+    Same arguments as :func:`intersect`.
     """
     hit = intersect(origins, directions, triangles, t_min=t_min, t_max=t_max, compiled=compiled,
                     chunk_tests=chunk_tests)

@@ -1,12 +1,8 @@
 """Coherent merging of many nearly-equal-delay paths (SBR tube contributions) into few paths.
 
-Paths whose mean delay falls in the same bin of ``bin_m`` metres of path length (and of the
-same kind) are summed coherently at the carrier: per RX, the merged delay is the
-power-weighted mean ``tau_bar`` of the members and the merged amplitude is
-``sum_i a_i exp(-j 2 pi f_c (tau_i - tau_bar))``, so the carrier phase of every member is kept.
-Across the sweep the members' delays differ from ``tau_bar`` by at most ``bin_m / c``: the phase
-error at the band edges is at most ``pi * B * bin_m / c`` (0.09 rad for 1 cm at 882 MHz).
-Merged paths weaker than ``floor_dB`` below the strongest are dropped.
+Paths of one kind whose mean delay falls in the same ``bin_m`` path-length bin are summed at the carrier per
+RX, at their power-weighted mean delay ``tau_bar``: ``sum_i a_i exp(-j 2 pi f_c (tau_i - tau_bar))``, so every
+member's carrier phase is kept (error bound: ``docs/raytracer.md``, "Merging the static paths").
 """
 
 from __future__ import annotations
@@ -21,14 +17,11 @@ from radaraug.sensor.paths import Paths
 
 def coherent_sum(paths: Paths, inv: torch.Tensor, frequency_Hz: float,
                   ) -> tuple[torch.Tensor, torch.Tensor, torch.Tensor, torch.Tensor]:
-    """Sum the paths ``(P, RX)`` of each group coherently at the carrier (module docstring).
-
-    The groups are ``inv`` ``(P,)`` (values ``0..G-1``).
+    """Sum the paths ``(P, RX)`` of each group ``inv`` ``(P,)`` (values ``0..G-1``) coherently at the carrier.
 
     Returns:
-        ``(tau_bar, amplitude, kind, weight)``: per group the power-weighted mean delay and the
-        summed amplitude ``(G, RX)`` and the kind ``(G,)``; per member its weight ``(P,)`` (power,
-        mean over RX) for power-weighted means of anything else (e.g. where the members scatter).
+        ``(tau_bar, amplitude, kind, weight)``: per group the power-weighted mean delay and summed amplitude
+        ``(G, RX)`` and the kind ``(G,)``; per member its power weight ``(P,)`` (mean over RX).
     """
     delay, amp = paths.delay_s, paths.amplitude
     kind = paths.kind if paths.kind is not None else torch.zeros(delay.shape[0], dtype=torch.int8,
@@ -56,7 +49,7 @@ def weighted_mean(values: torch.Tensor, inv: torch.Tensor, weight: torch.Tensor,
 
 
 def merge_paths(paths: Paths, frequency_Hz: float, *, bin_m: float = 0.01, floor_dB: float = -100.0) -> Paths:
-    """Merge the paths of one snapshot (``delay_s`` ``(P, RX)``); see the module docstring."""
+    """Merge the paths of one snapshot (``delay_s`` ``(P, RX)``), dropping those ``floor_dB`` below the strongest."""
     if paths.delay_s.ndim != 2 or paths.num_paths == 0:
         return paths
     kind = paths.kind if paths.kind is not None else torch.zeros(paths.num_paths, dtype=torch.int8,
@@ -75,11 +68,9 @@ def merge_paths_with_vertices(
 ) -> tuple[Paths, torch.Tensor]:
     """:func:`merge_paths` that keeps where each merged path scatters (for shadowing).
 
-    Members are merged only when they share the path-length bin, the kind and the ``voxel_m``
-    cube of their first interaction point (``vertices[:, 1]``); each merged path's vertices are
-    the power-weighted mean of its members'. The coherent sum is the same as :func:`merge_paths`
-    (carrier phase of every member kept); the geometry is exact to ``voxel_m``, below the first
-    Fresnel zone (0.15 m at a few metres) that sets the shadowing's soft edge. Nothing is dropped.
+    Members merge only when they also share the ``voxel_m`` cube of their first interaction point; a merged
+    path's vertices are the power-weighted mean of its members', exact to ``voxel_m`` (below the first Fresnel
+    zone). Nothing is dropped.
 
     Args:
         paths: ``(P, RX)`` static paths.

@@ -1,30 +1,9 @@
 """Physical-optics (PO) scattering of flat facets: closed-form surface integrals.
 
-Kirchhoff/PO in scalar form, time convention ``exp(+j omega t)`` (a path of length ``L`` carries
-``exp(-j k L)``). A flat facet of area ``A`` lit from direction ``k_i`` (unit, propagation
-direction of the incident wave) and observed toward ``k_s`` (unit, from the facet to the
-receiver) has the complex root RCS (``|s|^2 = sigma``)::
-
-    s = sqrt(4 pi) * (j / (2 lambda)) * Gamma * (cos th_i + cos th_s) * I(w)
-    I(w) = integral over the facet of exp(j w . (r - r_ref)) dA,   w = -k (k_i - k_s)
-
-``th_i, th_s`` are measured from the normal on the lit side and ``Gamma`` is the face's
-reflection coefficient (-1 for a perfect conductor). At normal incidence on a plate this is
-``sigma = 4 pi A^2 / lambda^2``; the prefactor makes the stationary-phase limit of a large flat
-face equal to the image-source field exactly.
-
-``I(w)`` in closed form:
-
-* triangle (any polygon): Gordon's formula. With ``n`` the unit normal, ``p`` the part of ``w``
-  in the facet plane, edges ``a_m`` (counter-clockwise about ``n``) with midpoints ``c_m``::
-
-      I = -j / |p|^2 * sum_m (p . (a_m x n)) exp(j w . (c_m - r_ref)) sinc(w . a_m / 2)
-
-  and ``I = A exp(j w . (centroid - r_ref))`` when ``|p| * edge`` is tiny (the formula's limit).
-* parallelogram centred on ``r_ref`` with edge vectors ``e1, e2``:
-  ``I = |e1 x e2| sinc(w.e1/2) sinc(w.e2/2)`` (the ray-tube footprint of SBR).
-
-``sinc(x) = sin(x) / x`` throughout.
+Scalar Kirchhoff PO, time convention ``exp(+j omega t)``. A facet lit along ``k_i`` and observed toward
+``k_s`` has the complex root RCS ``s = sqrt(4 pi) (j / (2 lambda)) Gamma (cos th_i + cos th_s) I(w)``
+(``|s|^2 = sigma``), ``I(w)`` the facet integral of ``exp(j w . (r - r_ref))``, ``w = -k (k_i - k_s)``, in
+closed form for triangles (Gordon) and parallelograms. Formulas: ``docs/raytracer.md``, "Physical optics".
 """
 
 from __future__ import annotations
@@ -108,7 +87,7 @@ def facet_root_rcs(
     ref: torch.Tensor | None = None,
     two_sided: bool = True,
 ) -> torch.Tensor:
-    """Complex root RCS ``s`` of each facet (module docstring), phase referenced at ``ref``.
+    """Complex root RCS ``s`` of each facet, phase referenced at ``ref``.
 
     Args:
         triangles: ``(..., 3, 3)`` facets.
@@ -117,8 +96,7 @@ def facet_root_rcs(
         wavelength: metres.
         gamma: reflection coefficient per facet (broadcast), -1 = perfect conductor.
         ref: ``(..., 3)`` phase reference (default: each facet's centroid).
-        two_sided: a facet lit from behind scatters too (room walls, meshes of unknown
-            winding); False lights only the side the normal points to.
+        two_sided: a facet lit from behind scatters too (room walls, meshes of unknown winding).
 
     Returns:
         Complex ``(...)``; zero for unlit facets and for receivers on the far side.
@@ -148,9 +126,8 @@ def plane_wave_rcs(
     lit: torch.Tensor | None = None,
     two_sided: bool = False,
 ) -> torch.Tensor:
-    """Far-field PO RCS (m^2) of a whole facet set for one plane wave: ``|sum_f s_f|^2``.
+    """Far-field PO RCS (m^2) ``|sum_f s_f|^2`` of a facet set for one plane wave (phase reference at the origin).
 
-    All facets share the phase reference at the origin, so their fields add coherently.
     ``lit`` (``(F,)`` bool) masks facets shadowed by the rest of the object.
     """
     ref = torch.zeros_like(triangles[..., 0, :])

@@ -1,14 +1,7 @@
 """Radar-side geometry and the radar equation in amplitude form, shared by every path builder.
 
-Amplitude of a path (sqrt(W) at the RX port per sqrt(W) at the TX port, see
-:class:`radaraug.sensor.paths.Paths`) from a scatterer with complex "root RCS" ``s``
-(``|s|^2 = sigma``, its phase the scattering phase) at distances ``r_t`` from the TX and ``r_r``
-from the RX (bistatic radar equation)::
-
-    a = sqrt(G_t G_r) * lambda * s / ((4 pi)^(3/2) * r_t * r_r)
-
-so that ``|a|^2 = G_t G_r lambda^2 sigma / ((4 pi)^3 r_t^2 r_r^2)``, the textbook
-``P_r / P_t = G_t G_r lambda^2 sigma / ((4 pi)^3 R^4)`` when monostatic.
+A scatterer of complex root RCS ``s`` (``|s|^2 = sigma``) at ``r_t`` from the TX and ``r_r`` from the RX gives
+``a = sqrt(G_t G_r) lambda s / ((4 pi)^(3/2) r_t r_r)`` (sqrt(W) at the RX port per sqrt(W) at the TX port).
 """
 
 from __future__ import annotations
@@ -66,6 +59,6 @@ def radar_amplitude(
     sqrt_rcs: torch.Tensor, r_t: torch.Tensor, r_r: torch.Tensor, gain_t: torch.Tensor,
     gain_r: torch.Tensor, wavelength: float,
 ) -> torch.Tensor:
-    """Path amplitude from the bistatic radar equation (module docstring); broadcasts."""
+    """Path amplitude ``sqrt(G_t G_r) lambda s / ((4 pi)^(3/2) r_t r_r)`` (bistatic radar equation); broadcasts."""
     k = wavelength / (4 * math.pi) ** 1.5
     return sqrt_rcs * (k * torch.sqrt(gain_t * gain_r) / (r_t * r_r))

@@ -1,14 +1,8 @@
 """Ray launching: a gnomonic grid of ray tubes from the TX antenna.
 
-Directions are ``(u, v, 1)`` in the radar frame on a regular ``nu x nv`` grid of the plane
-``z = 1`` (the gnomonic projection), covering ``|u| <= tan(half_angle_x)``,
-``|v| <= tan(half_angle_y)`` about ``centre`` (default boresight). Each ray owns the grid cell
-around it: a ray tube whose cross-section at unfolded path length ``s`` is the parallelogram
-spanned by ``s * g1`` and ``s * g2`` (the cell edges scaled to unit distance). Cells of a
-gnomonic grid project onto any plane as quadrilaterals that tile it without gaps or overlap,
-so the footprints of neighbouring tubes on a wall tile the wall: the sum of the tubes' PO
-integrals is the PO integral of the lit area. The solid angle of a tube is
-``du dv / |(u, v, 1)|^3``.
+Directions ``(u, v, 1)`` in the radar frame on a regular grid of the plane ``z = 1``; each ray's tube is its
+grid cell, spanned by ``s g1`` and ``s g2`` at unfolded length ``s``. Gnomonic cells project onto any plane
+without gaps or overlap, so the tubes' footprints tile a wall and their PO integrals sum to the lit area's.
 """
 
 from __future__ import annotations
@@ -47,15 +41,14 @@ def ray_grid(
     *,
     centre: tuple[float, float] = (0.0, 0.0),
 ) -> RayTubes:
-    """Gnomonic ray-tube grid (module docstring).
+    """Gnomonic ray-tube grid covering ``|u| <= tan(half_angle_x)``, ``|v| <= tan(half_angle_y)`` about ``centre``.
 
     Args:
         num: rays per axis ``n`` or ``(nu, nv)``.
         half_angle_deg: half field of view per axis, degrees (< 89).
         origin: ``(3,)`` world position of the TX phase centre (sets device and dtype).
         rotation: ``(3, 3)`` world-from-radar rotation.
-        centre: ``(u0, v0)`` direction tangents of the grid centre (0, 0 = boresight); lets a
-            test aim a narrow grid at a distant target.
+        centre: ``(u0, v0)`` direction tangents of the grid centre (0, 0 = boresight).
     """
     nu, nv = (num, num) if isinstance(num, int) else num
     hx, hy = (half_angle_deg, half_angle_deg) if isinstance(half_angle_deg, (int, float)) else half_angle_deg

@@ -1,18 +1,8 @@
 """Scalar reflection coefficient of a face for the radar's linear polarization.
 
-The tracer carries one complex amplitude per ray (a scalar field), not a polarization vector.
-At each hit the TE and TM Fresnel coefficients (ITU-R P.2040, from
-:mod:`radaraug.scene.materials`) are blended by how much of the radar's electric-field direction
-``e`` is perpendicular to the plane of incidence::
-
-    w_TE  = |e . s|^2,   s = unit(d x n)        (d: ray direction, n: face normal)
-    Gamma = w_TE * Gamma_TE - (1 - w_TE) * Gamma_TM
-
-The minus sign undoes the mirrored TM reference of P.2040 (``Gamma_TM = -Gamma_TE`` at normal
-incidence), so that ``Gamma`` is the co-polar field ratio relative to what a perfect conductor
-does: ``-1`` for metal at every angle, ``Gamma_TE`` at normal incidence for any material. The
-polarization direction is not rotated by the bounces (an approximation that is exact for TE or
-TM incidence on a set of parallel or perpendicular walls, the common corridor case).
+The TE and TM Fresnel coefficients (ITU-R P.2040) are blended by ``w_TE = |e . s|^2``:
+``Gamma = w_TE Gamma_TE - (1 - w_TE) Gamma_TM``, -1 for metal at every angle. The polarization is not rotated
+by bounces. See ``docs/raytracer.md``, "Shooting and bouncing rays".
 """
 
 from __future__ import annotations
@@ -57,11 +47,7 @@ class FaceReflectivity:
 
 
 def te_weight(direction: torch.Tensor, normal: torch.Tensor, polarization: torch.Tensor) -> torch.Tensor:
-    """``|e . s|^2`` with ``s`` the unit normal of the plane of incidence; 0.5 at normal incidence.
-
-    At normal incidence the plane of incidence is undefined, but there ``Gamma_TE = -Gamma_TM``
-    so any weight gives the same ``Gamma``.
-    """
+    """``|e . s|^2``, ``s`` the unit normal of the plane of incidence; 0.5 at normal incidence (any weight fits)."""
     s = torch.linalg.cross(direction, normal.expand_as(direction), dim=-1)
     norm = s.norm(dim=-1)
     e = polarization.to(direction)

@@ -1,20 +1,8 @@
-"""Shooting and bouncing rays (SBR) with ray-tube physical optics toward the radar.
+"""Shooting and bouncing rays (SBR) with ray-tube physical optics toward the radar (Ling, Chou and Lee, 1989).
 
-The standard SBR formulation (Ling, Chou and Lee, 1989) adapted to a radar inside a scene:
-
-1. Ray tubes leave the TX on a gnomonic grid (:mod:`radaraug.raytrace.rays`).
-2. At every hit (up to ``max_bounces`` hits per ray) the tube's footprint on the face, a
-   parallelogram, radiates its PO field back to the radar (:mod:`radaraug.raytrace.po`): one
-   path per hit, with the incident amplitude carried by the tube (product of the reflection
-   coefficients of the previous hits, spherical spreading ``1 / s`` over the unfolded length
-   ``s``, TX gain at the launch direction) and the return leg checked for occlusion by the scene.
-3. The ray reflects specularly and the tube's edge vectors are mirrored with it, so the tube
-   keeps diverging from the image of the TX: after any number of plane reflections its
-   cross-section is ``s`` times the launch cell.
-
-The delay of each path is ``(s + |p - rx|) / c`` per RX (the RX positions from the config, so the
-array phase is in the per-RX delays); static scenes have ``delay_rate = 0``. Coherent summation
-of the many tube paths happens in the receiver, or earlier by :func:`merge_paths`.
+Tubes leave the TX on a gnomonic grid; at each hit the tube's parallelogram footprint radiates its PO field
+back to the radar (one path per hit, return leg checked for occlusion), then the ray and tube reflect
+specularly, diverging from the TX image. Delays are per RX; static paths have ``delay_rate = 0``.
 """
 
 from __future__ import annotations

@@ -1,69 +1,9 @@
 """People shadowing the static room: per-segment knife-edge diffraction on the static paths' legs.
 
-The room is traced and synthesized once (:meth:`radaraug.raytrace.tracer.RayTracer.static_paths`),
-so without this module a person standing between the radar and a wall never reduces the wall's
-return. Here every static path comes with its geometry (``vertices`` ``(P, V, 3)``: radar centre,
-interaction points, radar centre, padded by repeating the last vertex), and each body segment
-(an ellipsoid) acts on each leg of each path as a **knife edge**: its silhouette seen along the
-leg gives a signed clearance ``h`` (positive = the leg passes inside the silhouette), which with
-the distances ``d1``, ``d2`` from the leg's ends to the point of closest approach gives the
-Fresnel-Kirchhoff parameter (ITU-R P.526)::
-
-    nu = h * sqrt(2 / lambda * (1 / d1 + 1 / d2))
-
-and the field factor of a half-plane edge::
-
-    F(nu) = (1 + j) / 2 * integral_nu^inf exp(-j pi t^2 / 2) dt
-
-(``F(-inf) = 1``, ``F(0) = 1/2``: -6.02 dB, ``|F| ~ 1 / (pi sqrt(2) nu)`` deep in the shadow). Each
-person acts on each leg through its most obstructing segment (largest ``nu``), and the factors
-of the legs (and of different people) multiply, so a monostatic single-bounce path through a
-person gets two factors (out and back).
-
-Approximations (see docs/shadowing.md):
-
-* **One knife edge per person and leg**: the nearest edge of the most obstructing segment's
-  silhouette. A segment that covers the first Fresnel zone on all sides is treated like a
-  half-plane at its nearest edge, not as a finite disk: in the Fresnel approximation an on-axis
-  circular disk leaves the on-axis field unchanged (Arago/Poisson spot), which a real,
-  irregular, moving body does not show in the mean; the knife edge gives the "soft edge of the
-  order of the first Fresnel zone" and a drop of the size a knife-edge estimate predicts.
-  Against a physical-optics integral over the torso's elliptic cross-section (the figure
-  docs/img/twin/walker_shadowing.png) the mean drop agrees within ~1 dB for a walker crossing
-  the line and is ~4 dB deeper for a walker centred on it (physical optics oscillates by
-  +-10 dB there: the partial Poisson spot of a centred ellipse).
-* **Combining obstacles**: segments of one person overlap in the leg's view (arm in front of
-  the torso, hips inside the torso's silhouette), so multiplying their factors would count the
-  same blocked Fresnel zone several times (e.g. -57 dB instead of -34 dB for a walker seen from
-  the side); hence the dominant segment. Its limit: a ray between two segments (between the
-  legs) sees only the nearer edge, while physical optics gives ``1 + sum(F_i - 1)``; pass
-  ``combine="product"`` for the product of all segment factors (the multiple knife-edge
-  approximation for obstacles in series), which over-attenuates overlapping segments instead.
-  Different legs and different people multiply (obstacles in series along the path).
-* **Silhouette clearance** in closed form: the silhouette of an ellipsoid with shape matrix
-  ``M = R diag(s^2) R^T`` seen along the leg's direction ``u`` is the ellipse with shape matrix
-  ``E^T M E`` (``E`` an orthonormal basis of the plane normal to ``u``). Outside it the clearance
-  is minus the radial distance to the ellipse along the direction from its centre toward the
-  leg (exact on the principal axes and for circles, at most ``1 / cos`` of the angle between that
-  direction and the boundary normal too large elsewhere); inside, the smallest of the radial
-  distance, the two principal-axis chord distances and the first-order (Sampson) distance to
-  the boundary, all upper bounds of the true distance, exact at the centre (the semi-minor
-  axis), for circles and at the boundary (0). The clearance is continuous across the boundary.
-* A segment acts on a leg only when its centre projects inside the leg (``0 < d1 < L``): a
-  person behind the radar or beyond a reflection point does not shadow that leg, and one
-  straddling an end of a leg is ignored.
-* **Lit-side cut-off**: an infinite half-plane keeps a ripple ``|F - 1| ~ 1 / (pi sqrt(2) |nu|)``
-  far into the lit region, which a body segment one or two Fresnel zones wide does not
-  produce; ``F - 1`` is tapered to 0 (raised cosine) between ``nu = -nu_full`` and
-  ``-nu_cut`` (defaults 3 and 5; ``|F(-3) - 1| = 0.075``, i.e. +-0.65 dB of ripple is what the
-  taper removes at most). This is also what makes the geometric culling possible.
-* The factor is evaluated at one snapshot per frame and held constant within the frame (the
-  correction paths have ``delay_rate = 0``): a walker moves ~4 cm in a 25 ms frame, a fraction
-  of the ~0.1 m Fresnel zone.
-
-Accuracy of :func:`knife_edge`: float64 inside (power series of the Fresnel integral for
-``|nu| <= 3.5``, 85 terms, cancellation error < 1e-8; asymptotic expansion with 9 terms
-beyond, truncation error < 1e-9); measured against ``scipy.special.fresnel``: < 5e-10.
+Each body segment (an ellipsoid) acts on each leg of each static path as a knife edge (ITU-R P.526): its
+silhouette seen along the leg gives a signed clearance ``h``, ``nu = h sqrt(2 / lambda (1 / d1 + 1 / d2))``,
+and the field factor ``F(nu)``. Per person and leg the most obstructing segment counts; legs and people
+multiply. Model, approximations, accuracy and cost: ``docs/shadowing.md``.
 """
 
 from __future__ import annotations
@@ -95,8 +35,8 @@ SHADOW_TOL = 1e-3
 def fresnel_integrals(x: torch.Tensor) -> tuple[torch.Tensor, torch.Tensor]:
     """Fresnel integrals ``C(x) = int_0^x cos(pi t^2 / 2) dt`` and ``S(x) = int_0^x sin(pi t^2 / 2) dt``.
 
-    Note the order: ``(C, S)`` (``scipy.special.fresnel`` returns ``(S, C)``). Computed in float64
-    (absolute error < 1e-8) and returned in ``x``'s floating dtype.
+    Note the order ``(C, S)`` (``scipy.special.fresnel`` returns ``(S, C)``). Computed in float64 (absolute
+    error < 1e-8), returned in ``x``'s floating dtype.
 
     Args:
         x: real tensor, any shape and device.
@@ -167,17 +107,15 @@ def _q_integral(nu: torch.Tensor) -> torch.Tensor:
 def knife_edge(nu: torch.Tensor) -> torch.Tensor:
     """Complex field factor of a half-plane (knife-edge) obstacle, ITU-R P.526 convention.
 
-    ``F(nu) = (1 + j) / 2 * int_nu^inf exp(-j pi t^2 / 2) dt``: 1 far in the lit region
-    (``nu -> -inf``), 1/2 at grazing (``nu = 0``), ``~ 1 / (pi sqrt(2) nu)`` deep in the shadow. The
-    diffraction loss is ``J(nu) = -20 log10 |F(nu)|`` dB. Phase convention: fields vary as
-    ``exp(-j k r)`` (the receiver's ``exp(-j 2 pi f tau)``); ``F`` multiplies the free-space field.
+    ``F(nu) = (1 + j) / 2 * int_nu^inf exp(-j pi t^2 / 2) dt``: 1 far in the lit region, 1/2 at grazing
+    (``nu = 0``), ``~ 1 / (pi sqrt(2) nu)`` deep in the shadow. It multiplies the free-space field (fields vary
+    as ``exp(-j k r)``); the loss is ``-20 log10 |F|`` dB.
 
     Args:
         nu: real tensor, the Fresnel-Kirchhoff diffraction parameter.
 
     Returns:
-        Complex tensor shaped like ``nu`` (complex64 for float32 input, complex128 otherwise),
-        absolute error < 1e-8 before the cast.
+        Complex tensor shaped like ``nu`` (complex64 for float32 input, else complex128), error < 1e-8.
     """
     f = (0.5 + 0.5j) * _q_integral(nu.to(torch.float64))
     return f.to(torch.complex64 if nu.dtype in (torch.float32, torch.float16, torch.bfloat16) else torch.complex128)
@@ -190,12 +128,7 @@ _TABLES: dict[torch.device, tuple[torch.Tensor, torch.Tensor]] = {}
 def _knife_edge_fast(nu: torch.Tensor) -> torch.Tensor:
     """:func:`knife_edge` (complex128) of float64 ``nu`` by cubic Hermite interpolation of a table.
 
-    The shadow test evaluates ~10^5 factors per batch, mostly in the lit taper (``-5 < nu < -3``)
-    where the exact power series needs 85 Horner steps. The table holds ``F`` and its derivative
-    ``F'(nu) = -(1 + j)/2 exp(-j pi nu^2 / 2)`` (exact) every ``h = 1/256`` on [-8, 3.5]; the cubic
-    Hermite error is at most ``h^4 / 384`` times the largest fourth derivative, ``|F^(4)| < (pi |nu|)^3``,
-    i.e. ~1e-11 there, below the tabulated values' own error (< 1e-8: the result is within 1e-8 of
-    scipy, tested). Outside the table the exact function is used.
+    ``F`` and its exact derivative every 1/256 on [-8, 3.5] (within 1e-8 of scipy); the exact function outside.
     """
     dev = nu.device
     if dev not in _TABLES:
@@ -235,10 +168,7 @@ def _check_inputs(vertices: torch.Tensor, ellipsoids: Ellipsoids, wavelength: fl
 
 
 def leg_basis(u: torch.Tensor) -> tuple[torch.Tensor, torch.Tensor]:
-    """Orthonormal basis ``(e1, e2)`` of the plane normal to unit vectors ``u`` ``(N, 3)``.
-
-    Built from the world axis least aligned with ``u`` (z, or x for near-vertical legs).
-    """
+    """Orthonormal basis ``(e1, e2)`` of the plane normal to unit vectors ``u`` ``(N, 3)``."""
     ref = torch.zeros_like(u)
     use_z = u[:, 2].abs() < 0.9
     ref[:, 2] = use_z.to(u.dtype)
@@ -252,20 +182,18 @@ def silhouette_clearance(
     rel: torch.Tensor, t: torch.Tensor, u: torch.Tensor, e1: torch.Tensor, e2: torch.Tensor,
     shape: torch.Tensor,
 ) -> torch.Tensor:
-    """Signed clearance of a leg from an ellipsoid's silhouette (module docstring).
+    """Signed clearance of a leg from an ellipsoid's silhouette (``docs/shadowing.md``, "Model").
 
     Args:
         rel: ``(N, 3)`` ellipsoid centre minus the leg's start.
         t: ``(N,)`` ``rel . u``: distance along the leg to the point of closest approach.
         u: ``(N, 3)`` unit direction of the leg.
-        e1: ``(N, 3)`` and ``e2``: orthonormal basis of the plane normal to ``u`` (:func:`leg_basis`).
+        e1: ``(N, 3)`` with ``e2``, an orthonormal basis of the plane normal to ``u`` (:func:`leg_basis`).
         e2: see ``e1``.
-        shape: ``(N, 3, 3)`` ellipsoid shape matrix ``M = R diag(s^2) R^T`` (the ellipsoid is
-            ``(x - c)^T M^-1 (x - c) <= 1``).
+        shape: ``(N, 3, 3)`` shape matrix ``M = R diag(s^2) R^T`` (the ellipsoid is ``(x - c)^T M^-1 (x - c) <= 1``).
 
     Returns:
-        ``(N,)`` clearance in metres, positive when the leg's line passes inside the silhouette
-        (obstructed), negative outside.
+        ``(N,)`` clearance in metres, positive when the leg passes inside the silhouette (obstructed).
     """
     w = t[:, None] * u - rel  # from the centre to the leg, normal to the leg
     me1, me2 = matvec(shape, e1), matvec(shape, e2)
@@ -317,27 +245,22 @@ def shadow_transmission(
 ) -> torch.Tensor:
     """Field transmission of each static path through the people's body segments.
 
-    Vectorized over (snapshot, path, leg, segment) after two culls: each person's bounding sphere
-    over the whole batch (``segments_per_person`` consecutive segments; all segments form one
-    group when ``S`` is not a multiple) against every leg, then every segment's bounding sphere
-    at every snapshot against the surviving legs (matrix products), each with a margin of the
-    clearance where ``nu = -nu_cut``. Only the surviving (snapshot, segment, leg) triples get a
-    silhouette, and one knife-edge factor is evaluated per (snapshot, path, leg, person).
+    Legs far from every person and segment are culled first (``docs/shadowing.md``, "Cost"); one knife-edge
+    factor is then evaluated per (snapshot, path, leg, person).
 
     Args:
-        vertices: ``(P, V, 3)`` path vertices (radar centre, interaction points, radar centre;
-            padded by repeating the last vertex), world frame, metres.
+        vertices: ``(P, V, 3)`` path vertices (radar centre, interaction points, radar centre; padded by
+            repeating the last vertex), world frame, metres.
         ellipsoids: body segments ``(..., S)`` at the snapshot times.
         wavelength: carrier wavelength, metres.
         segments_per_person: segments per person, for the cull's bounding spheres.
         nu_full: ``F - 1`` is applied in full for ``nu >= -nu_full``.
-        nu_cut: and not at all for ``nu <= -nu_cut`` (module docstring); also the cull's margin.
-        combine: ``"dominant"``: per person and leg, the factor of the segment with the largest
-            ``nu``; ``"product"``: the product of every segment's factor (module docstring).
+        nu_cut: and not at all for ``nu <= -nu_cut`` (raised-cosine taper between); also the cull's margin.
+        combine: ``"dominant"`` (per person and leg, the segment with the largest ``nu``) or ``"product"``
+            (the product of every segment's factor).
 
     Returns:
-        ``(..., P)`` complex transmission (complex64 for float32 ellipsoids), 1 where no segment
-        is near a path.
+        ``(..., P)`` complex transmission (complex64 for float32 ellipsoids), 1 where no segment is near.
 
     Raises:
         InputTensorError: ``vertices`` is not ``(P, V, 3)`` or the wavelength is not positive.
@@ -536,11 +459,8 @@ def shadow_correction_paths(
 ) -> Paths:
     """Paths to add to the people's so that static + correction = the shadowed static paths.
 
-    Each affected static path ``p`` gets a correction path with the same delay, amplitude
-    ``(T - 1) * a`` and ``delay_rate = 0``: ``T`` (:func:`shadow_transmission`) is evaluated at the
-    snapshot and held constant within the frame (the segments move a fraction of a Fresnel zone
-    in a frame). Only the union over the batch of the paths with ``|T - 1| > tol`` somewhere is
-    returned, so ``P'`` is small.
+    An affected static path ``p`` gets a path with its delay, amplitude ``(T - 1) a`` and ``delay_rate = 0`` (``T``
+    held within the frame); only paths with ``|T - 1| > tol`` somewhere in the batch are returned.
 
     Args:
         static: the static paths ``(P, RX)`` (no batch dims), aligned with ``vertices``.
@@ -548,8 +468,7 @@ def shadow_correction_paths(
         ellipsoids: body segments ``(..., S)`` at the snapshot times.
         wavelength: carrier wavelength, metres.
         tol: smallest ``|T - 1|`` kept (1e-3: -60 dB relative to the path).
-        **options: ``segments_per_person``, ``nu_full``, ``nu_cut``, ``combine`` of
-            :func:`shadow_transmission`.
+        **options: ``segments_per_person``, ``nu_full``, ``nu_cut``, ``combine`` of :func:`shadow_transmission`.
 
     Returns:
         :class:`Paths` ``(..., P', RX)`` with ``kind = 0`` and ``mask = True``.
@@ -567,10 +486,7 @@ def shadow_correction_paths(
 
 
 def correction_paths(static: Paths, t: torch.Tensor, *, tol: float = SHADOW_TOL) -> Paths:
-    """The correction paths of :func:`shadow_correction_paths` for given transmissions.
-
-    The transmissions ``t`` ``(..., P)`` are those of the static paths ``(P, RX)``.
-    """
+    """The correction paths of :func:`shadow_correction_paths` for transmissions ``t`` ``(..., P)`` of ``static``."""
     batch = t.shape[:-1]
     dev = (t - 1).abs().reshape(-1, t.shape[-1])
     sel = torch.nonzero((dev > tol).any(0))[:, 0] if dev.shape[0] else torch.zeros(0, dtype=torch.long)
@@ -603,21 +519,16 @@ def ellipse_obstacle_transmission(
 ) -> torch.Tensor:
     """Physical-optics (Fresnel-Kirchhoff) transmission past one elliptic opaque screen.
 
-    By Babinet, ``T = 1 - (j / 2) * iint_ellipse exp(-j pi |nu|^2 / 2) d^2 nu`` in Fresnel-zone
-    units (``nu = r sqrt(2 / lambda (1/d1 + 1/d2))`` from the leg). The inner integral (along the
-    first axis) is a difference of Fresnel integrals; the outer one is Gauss-Legendre in
-    ``y = b sin(theta)`` (smooth at the ellipse's ends). The reference estimate of the docs'
-    figure (:func:`radaraug.raytrace.figures.plot_walker_shadowing`); for a centred disk it gives
-    ``|T| = 1`` (Poisson spot).
+    By Babinet, ``T = 1 - (j / 2) iint_ellipse exp(-j pi |nu|^2 / 2) d^2 nu`` in Fresnel-zone units; the
+    reference of the docs' walker figure (a centred disk gives ``|T| = 1``, the Poisson spot).
 
     Args:
-        offset: ``(N, 2)`` position of the ellipse centre relative to the leg, metres, along
-            the ellipse's axes.
+        offset: ``(N, 2)`` ellipse centre relative to the leg, along the ellipse's axes, metres.
         semi_axes: the ellipse's semi-axes along those axes, metres.
         d1: distance from the leg's start to the screen, metres.
         d2: distance from the screen to the leg's end, metres.
         wavelength: metres.
-        nodes: Gauss-Legendre nodes.
+        nodes: Gauss-Legendre nodes (the outer integral, in ``y = b sin(theta)``).
 
     Returns:
         ``(N,)`` complex128 transmission.

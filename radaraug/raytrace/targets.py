@@ -1,39 +1,8 @@
 """Moving targets: analytic ellipsoid body segments (fast) and PO on person meshes.
 
-**Ellipsoids.** Each segment scatters from its specular point with the geometric-optics RCS of
-an ellipsoid of semi-axes ``a, b, c`` seen along the unit direction ``l`` (local frame)::
-
-    h     = sqrt(a^2 lx^2 + b^2 ly^2 + c^2 lz^2)       (support distance: centre -> specular plane)
-    sigma = pi a^2 b^2 c^2 / h^4                         (= the same closed form in theta, phi)
-
-times ``|Gamma_skin|^2`` at normal incidence (the root RCS is ``Gamma_skin * sqrt(sigma)``, the
-stationary-phase result of PO on a convex surface: -sqrt(sigma) for metal). The specular point
-is ``centre - h * l``, so a sphere's echo comes from its front, ``R - a``. Monostatic
-``delay_rate = v . (u_tx + u_rx) / c`` with ``u`` the unit vectors from the antennas to the
-scatterer and ``v`` the material velocity at the specular point, ``v_centre + omega x (p - centre)``
-when the segments' angular velocities are given (the envelope theorem: the stationary-phase range
-of a rotating segment changes at that rate, not at its centre's). A segment is dropped (mask False) when the line of sight to its specular point
-crosses another ellipsoid or the room.
-
-**First-order multipath** (``multipath=True``): for each large planar face group of the room
-(mirror planes, total area >= ``min_area_m2``) the image method gives radar -> wall -> segment
--> radar and its reverse; the bistatic RCS is the monostatic one along the bisector (the
-bistatic equivalence theorem, exact for a sphere in geometric optics), times the wall's
-Fresnel coefficient. A path exists when the segment -> image-radar ray first meets the room on
-that plane and the wall -> radar leg is clear.
-
-**Second-order multipath** (same switch): radar -> wall ``k`` -> segment -> wall ``k`` -> radar,
-the person seen monostatically from the radar's image in plane ``k`` (delay ``|img(TX) - p| +
-|p - img(RX)|`` with ``p`` the specular point towards the image, root RCS times ``Gamma_k^2``,
-both bounces at the same angle), valid under the same checks. These are the strongest
-second-order ghosts of a person (both bounces specular); paths via two different walls
-(``j != k``, a corner's double bounce) and higher orders are not traced, and the legs between
-the wall and the segment are not checked against the other body segments (as for first order).
-
-**Meshes** (``SceneGeometry`` with ``vertex_velocity``): monostatic PO of every facet
-(:func:`radaraug.raytrace.po.facet_root_rcs`), lit where the facet faces the radar and its
-centroid sees the radar past the mesh itself and the room. One path per lit facet, at the
-centroid, with the facet's mean vertex velocity.
+An ellipsoid segment scatters from its specular point with the geometric-optics RCS of an ellipsoid times
+the skin's reflection; first- and second-order multipath via the room's mirror planes by the image method;
+a mesh person by monostatic facet PO. Formulas, validity checks and limits: ``docs/raytracer.md``, "People".
 """
 
 from __future__ import annotations
@@ -71,9 +40,8 @@ def ray_hits_ellipsoids(
 ) -> torch.Tensor:
     """``(N, S_i)`` bool: the ray from segment slot ``i`` meets another ellipsoid of its snapshot.
 
-    The rays are ``(N, S_i, 3)``; a hit is on an ellipsoid ``j != own[i]`` of the same snapshot
-    (``(N, S_j, ...)``) at ``0 < t < t_max``. ``own``: each ray's own ellipsoid ``(S_i,)`` (default:
-    ray ``i`` belongs to ellipsoid ``i``).
+    Rays ``(N, S_i, 3)``; a hit is on an ellipsoid ``j != own[i]`` of the same snapshot at ``0 < t < t_max``.
+    ``own``: each ray's own ellipsoid ``(S_i,)`` (default: ray ``i`` belongs to ellipsoid ``i``).
     """
     # Into each ellipsoid's unit-sphere frame: x' = R^T (x - c) / axes.  Shapes (N, S_i, S_j, 3).
     rot_t = rotations.transpose(-1, -2)[:, None]  # (N, 1, Sj, 3, 3)
@@ -140,13 +108,10 @@ class MirrorPlanes:
                 self.plane_material = lo
 
     def convex_enclosure(self, point: torch.Tensor, tol: float = 1e-6) -> bool:
-        """True when the room is a convex polyhedron made of these planes, enclosing ``point``.
+        """True when the room is a convex polyhedron of these planes enclosing ``point``.
 
-        Then no straight segment between two points of the room (the radar, a person, a point
-        on a wall) is blocked by the room, and a bounce point lies on its wall exactly when it
-        is on the inner side of every plane: multipath needs no ray casting. Requires every face
-        to belong to a mirror plane, one material per plane, and the faces to cover the convex
-        hull's surface exactly (no openings: same area).
+        Then the room blocks no leg and a bounce point is on its wall iff it is inside every plane: multipath needs
+        no ray casting. Requires every face on a mirror plane, one material per plane and no openings.
         """
         if self.plane_material is None or not self._closed_convex:
             return False
@@ -192,19 +157,14 @@ def ellipsoid_paths(
 ) -> Paths:
     """Paths of ellipsoid segments ``(..., S)`` -> :class:`Paths` ``(..., P, RX)`` with a mask.
 
-    ``P = S`` direct paths, plus ``3 S K`` multipath slots when ``mirrors`` (K planes) is given:
-    ``S K`` radar -> wall -> segment -> radar, ``S K`` of the reverse and ``S K`` radar -> wall ->
-    segment -> same wall -> radar, each block segment-major.
-    With ``convex_room`` (see :meth:`MirrorPlanes.convex_enclosure`) the room cannot block any
-    leg and bounce points are checked against the planes instead of cast against the room.
-    ``targets`` (segment indices, ascending): the paths of just those segments (``S`` = their count
-    above), every segment still occluding; they are the slots of all segments whose segment
-    (:func:`slot_segments`) is a target, in the same order.
+    ``P = S`` direct paths, plus ``3 S K`` multipath slots with ``mirrors`` (K planes): radar -> wall ->
+    segment -> radar, the reverse, and radar -> wall -> segment -> same wall -> radar, each block
+    segment-major. ``convex_room`` (:meth:`MirrorPlanes.convex_enclosure`) skips the ray casts. ``targets``
+    (ascending segment indices): only those segments' slots, in the same order; every segment still occludes.
 
     Raises:
-        SceneError: semi-axes not finite and positive; multipath (``mirrors`` and ``room_bvh``)
-            without ``room_reflectivity``; ``convex_room`` with mirror planes that have no
-            material each.
+        SceneError: semi-axes not finite and positive; multipath without ``room_reflectivity``; ``convex_room``
+            with mirror planes that have no material each.
     """
     dev, dt = radar.tx.device, radar.tx.dtype
     lead = ell.centers.shape[:-2]
@@ -223,14 +183,9 @@ def ellipsoid_paths(
                        distance: torch.Tensor | None = None) -> torch.Tensor:
         """Material velocity ``(N, S, ..., 3)`` at each segment's true specular point for bisector ``bis``.
 
-        ``v + omega x o`` with ``o = R (-(A^2 l) / h)`` the offset of the surface point whose normal is
-        the bisector (``l = R^T bis`` in the local frame, ``A = diag(semi-axes)``): the range of a
-        rotating segment's echo changes at the velocity of that point along the bisector (the
-        envelope theorem). The point ``c - h bis`` the paths use has the same range but not this
-        velocity: ``omega x (-h bis)`` has no component along ``bis``. With ``distance`` (a monostatic
-        path: the radar -> centre distance, ``bis`` the direction) the aspect's turn as the centre moves
-        across the line of sight is added, ``bis (o . (v - (v . bis) bis)) / distance``, so that the rate
-        is the time derivative of the path's delay ``|c - r| - h`` (tested against a finite difference).
+        ``v + omega x o``, ``o`` the offset of the surface point whose normal is the bisector (envelope theorem).
+        With ``distance`` (monostatic) the aspect's turn as the centre crosses the line of sight is added, so the
+        rate is the time derivative of the delay ``|c - r| - h`` (``docs/raytracer.md``, "People").
         """
         extra = bis.ndim - 3
         v = vel.reshape(*vel.shape[:2], *([1] * extra), 3).expand_as(bis)
@@ -309,11 +264,7 @@ def ellipsoid_paths(
 
 
 def slot_segments(s_count: int, num_slots: int, device: torch.device | None = None) -> torch.Tensor:
-    """The segment of each of the ``num_slots`` slots of :func:`ellipsoid_paths` ``(num_slots,)``.
-
-    The slots are ``S`` direct paths then three blocks of ``S K`` multipath slots, segment-major
-    (``num_slots = S (1 + 3 K)``).
-    """
+    """The segment ``(num_slots,)`` of each slot of :func:`ellipsoid_paths` (``num_slots = S (1 + 3 K)``)."""
     k = (num_slots // s_count - 1) // 3
     seg = torch.arange(s_count, device=device)
     return torch.cat([seg, *(seg.repeat_interleave(k),) * 3])
@@ -336,13 +287,9 @@ def _second_order(c, ax, rot, point_velocity, radar: RadarGeometry, antenna, nrm
                   room_bvh: TriangleBVH, room_face_material, room_reflectivity, convex_room: bool):
     """Wall -> segment -> same wall paths ``(N, S, K, RX)``: delay, rate, amplitude, valid.
 
-    Image method: the TX and each RX are mirrored in plane ``k``; the segment scatters
-    monostatically towards the radar's image (specular point ``p`` along the image -> centre
-    direction), the path is ``|img(TX) - p| + |p - img(RX)|``, and both legs cross the plane at
-    the bounce point ``q`` where the ``p`` -> image line meets it (the wall is hit twice at the
-    same angle, so the amplitude carries ``Gamma(theta)^2``). Valid when ``p`` is on the radar's
-    side of the plane, ``q`` lies on that plane's faces (``p`` -> image first meets the room
-    there; convex room: ``q`` is inside every other plane) and the ``q`` -> radar leg is clear.
+    The segment scatters monostatically towards the radar's image in plane ``k``; both legs cross the plane
+    at the same bounce point and angle, so the amplitude carries ``Gamma(theta)^2``. Validity as
+    :func:`_wall_bounce`.
     """
     dt = c.dtype
     k = nrm.shape[0]
@@ -386,13 +333,9 @@ def _wall_bounce(p, img, nrm, off, mirrors: MirrorPlanes, radar: RadarGeometry, 
                  room_bvh: TriangleBVH, room_face_material, room_reflectivity: FaceReflectivity):
     """``(q, ok, gamma)``: bounce points ``(N, S, K, 3)`` of scatterers ``p`` on the mirror planes.
 
-    ``q`` is where the line from ``p`` to the radar's image ``img`` in plane ``k`` crosses the
-    plane, so that ``|TX -> q -> p|`` is exactly the image distance ``|p - img|``; ``gamma`` is the
-    wall's reflection coefficient for the radar -> ``q`` leg. A bounce is valid (``ok``) when ``p``
-    is on the radar's side of plane ``k``, ``q`` lies on that plane's faces and the ``q`` -> radar
-    leg is clear. In a convex room ``q`` is on its wall iff it is on the radar's side of every
-    other plane and no leg can be blocked; otherwise the ``p`` -> image ray must first meet a face
-    of plane ``k`` and a shadow ray checks the ``q`` -> radar leg.
+    ``q`` is where the line from ``p`` to the radar's image in plane ``k`` crosses it; ``gamma`` is the wall's
+    reflection coefficient for the radar -> ``q`` leg. Valid when ``p`` is on the radar's side, ``q`` on that
+    plane's faces and the ``q`` -> radar leg clear (in a convex room: ``q`` inside every other plane).
     """
     u_img = _unit(img - p)
     denom = (u_img * nrm).sum(-1)

@@ -1,18 +1,9 @@
 """`RayTracer`: scene + radar -> :class:`~radaraug.sensor.paths.Paths` (static room + moving targets).
 
-The room does not move, so its paths are traced once (:meth:`RayTracer.static_paths`, kept in
-memory and on disk by :mod:`radaraug.raytrace.cache`). The default ``method="image"`` builds them
-without any ray density to tune: the specular orders of the room's large flat faces by the image
-method (:mod:`radaraug.raytrace.images`, exact), the small faces by facet physical optics split to
-the Fresnel limit (:mod:`radaraug.raytrace.facets`), and the diffuse part of rough surfaces when
-the materials scatter (:mod:`radaraug.raytrace.diffuse`). ``method="sbr"`` is the shooting-and-
-bouncing-rays trace (:mod:`radaraug.raytrace.sbr`), whose result depends on ``rays``: at the
-former default 256 x 256 over +-70 deg a metal wall at 10 m came out 22 dB low; it converges to the
-image method only with ~1024 x 1024 rays. Every static path carries its vertices
-(:meth:`RayTracer.static_vertices`) so people can shadow it.
-
-Targets are traced per snapshot by :meth:`RayTracer.target_paths`: the ellipsoid model is pure
-tensor work over any leading (time) dims, so a batch of frames costs a handful of tensor ops.
+The static room is traced once and cached (:mod:`radaraug.raytrace.cache`): by default with the image
+method, Fresnel-split facet PO and diffuse scattering, with no ray density to tune (``method="sbr"``: shooting
+and bouncing rays). Targets are traced per snapshot, batched over any leading (time) dims. See
+``docs/raytracer.md``.
 """
 
 from __future__ import annotations
@@ -61,30 +52,26 @@ class RayTracer:
         room: static scene (walls, floor, ceiling, furniture); its ``vertex_velocity`` is ignored.
         radar: pose of the radar's antenna frame.
         config: radar configuration (carrier, TX/RX positions).
-        method: how the static room is traced: ``"image"`` (default; exact specular orders,
-            Fresnel-split facet PO, diffuse scattering; no ray density) or ``"sbr"``.
-        max_bounces: most specular reflections per static path (image method, default 3: the
-            trihedral corners of a room) or surface interactions per SBR ray (default 2).
+        method: how the static room is traced: ``"image"`` (default) or ``"sbr"``.
+        max_bounces: most specular reflections per static path (image method, default 3: trihedral corners)
+            or surface interactions per SBR ray (default 2).
         rays: SBR rays per axis of the gnomonic grid, ``n`` or ``(nu, nv)`` (``method="sbr"``).
         fov_deg: half field of view of the SBR grid per axis, degrees (``method="sbr"``).
         antenna: TX/RX pattern with ``gain(dirs)`` (default :class:`PatchAntenna`, 6 dBi assumed).
         polarization: radar E-field direction in the radar frame (default ``y``, an assumption).
-        merge_bin_m: path-length bin of the coherent merge of the static SBR paths (None: no merge;
-            ``method="sbr"`` only: the image method's merges are fixed, see its comments).
+        merge_bin_m: path-length bin of the coherent merge of the static SBR paths (None: no merge; SBR only).
         floor_dB: merged static paths weaker than this relative to the strongest are dropped.
-        mirror_min_area_m2: planar face groups at least this large act as mirrors (image method
-            and people's multipath); smaller faces are scattered by facet PO.
-        density: tightening of every sampled part of the image method (facet split bound;
-            1 = the documented bound): for convergence checks, not something to tune.
+        mirror_min_area_m2: planar face groups at least this large act as mirrors (image method and
+            people's multipath); smaller faces are scattered by facet PO.
+        density: tightening of every sampled part of the image method (1 = the documented bound), for
+            convergence checks.
         cache: keep the traced static room on disk (True: :func:`~radaraug.raytrace.cache.default_cache_dir`,
             a folder, or False).
-        diffuse: add the diffuse scattering of rough surfaces (image method only,
-            :mod:`radaraug.raytrace.diffuse`); the specular reflections are then reduced by
-            ``sqrt(1 - S^2)`` per material.
+        diffuse: add the diffuse scattering of rough surfaces (image method only); the specular reflections
+            are then reduced by ``sqrt(1 - S^2)`` per material.
         scattering: per-material diffuse-scattering overrides (``Scene.scattering``).
         diffuse_gain_dB: one power gain on every diffuse path (what the calibration fits).
-        diffuse_seed: seed of the diffuse scatterers (default: derived from the room's content,
-            so the clutter is a pure function of the scene).
+        diffuse_seed: seed of the diffuse scatterers (default: derived from the room's content).
         device: torch device (default: the room's).
         dtype: real dtype of the computation and of the returned paths.
     """
@@ -166,12 +153,9 @@ class RayTracer:
         """The room's paths ``(P, RX)`` (traced on the first call, then kept in memory and on disk).
 
         Args:
-            part: ``"all"`` (default), ``"specular"`` (image-method reflections and facet PO:
-                everything but the diffuse scattering) or ``"diffuse"`` (the diffuse scatterers of
-                :mod:`radaraug.raytrace.diffuse`, already scaled by ``diffuse_gain_dB``). The two
-                parts partition ``"all"``: a calibration synthesizes them apart and scales the
-                diffuse one (a power gain ``g`` is a field factor ``10**(g/20)`` on every diffuse
-                path) without tracing again.
+            part: ``"all"`` (default), ``"specular"`` (everything but the diffuse scattering) or ``"diffuse"``
+                (already scaled by ``diffuse_gain_dB``). The two parts partition ``"all"``, so a calibration can
+                scale the diffuse one without tracing again.
         """
         if part not in STATIC_PARTS:
             raise SceneError(f"static_paths: part must be one of {STATIC_PARTS}, got {part!r}")
@@ -186,10 +170,9 @@ class RayTracer:
         return self._traced_static()[2]
 
     def static_vertices(self) -> torch.Tensor | None:
-        """``(P, V, 3)`` vertices of :meth:`static_paths`, or None for ``method="sbr"``.
+        """``(P, V, 3)`` vertices of :meth:`static_paths`, or None for ``method="sbr"`` (merged tubes).
 
         ``[radar centre, interaction points..., radar centre]``, padded by repeating the radar centre.
-        SBR's merged tube paths have no single geometry.
         """
         return self._traced_static()[1]
 
@@ -305,17 +288,14 @@ class RayTracer:
         """Paths of moving targets.
 
         Args:
-            ellipsoids: body segments ``(..., S)``; leading dims (e.g. ``T`` frames) carry
-                through to the result ``(..., P, RX)``.
-            meshes: meshes at one instant (PO on every facet); only without leading dims on
-                ``ellipsoids``.
-            multipath: add first-order multipath of the ellipsoids via the room's mirror planes.
-            targets: only these segments' paths (indices, ascending; all segments still occlude),
-                see :func:`~radaraug.raytrace.targets.ellipsoid_paths`.
+            ellipsoids: body segments ``(..., S)``; leading dims (e.g. ``T`` frames) carry through to ``(..., P, RX)``.
+            meshes: meshes at one instant (PO on every facet); only without leading dims on ``ellipsoids``.
+            multipath: add the ellipsoids' multipath via the room's mirror planes.
+            targets: only these segments' paths (indices, ascending; all segments still occlude), see
+                :func:`~radaraug.raytrace.targets.ellipsoid_paths`.
 
         Returns:
-            :class:`Paths` with ``kind`` and ``mask`` (masked slots are occluded segments or
-            multipath that does not exist for that snapshot).
+            :class:`Paths` with ``kind`` and ``mask`` (masked: occluded segments, absent multipath).
         """
         parts: list[Paths] = []
         lead: tuple[int, ...] = ()
@@ -374,14 +354,9 @@ def _check_scene(scene: SceneGeometry, name: str) -> None:
 
 
 def paths_to_json(paths: Paths, config: RadarConfig) -> dict[str, Any]:
-    """A JSON-ready summary of paths (for ``radaraug trace SCENE --json``).
+    """A JSON-ready summary of paths (for ``radaraug trace SCENE --json``; fields in ``docs/raytracer.md``).
 
-    Per path: ``delay_ns`` (per RX), ``range_m`` (``c * mean delay / 2``),
-    ``radial_velocity_m_s`` (``c * mean delay_rate / 2``, positive = receding), ``power_dB``
-    (``10 log10`` of the mean over RX of ``|a|^2``: RX-port power relative to the TX power),
-    ``rx_phase_deg`` (carrier phase of each RX, ``angle(a exp(-j 2 pi f_c tau))``) and ``kind``
-    (``"los"`` single scattering, ``"multipath"``). Masked slots are left out; paths are sorted by
-    range. Leading batch dims give ``{"snapshots": [...]}``.
+    Masked slots are left out and paths sorted by range; leading batch dims give ``{"snapshots": [...]}``.
     """
     if paths.delay_s.ndim > 2:
         flat = paths.delay_s.shape[:-2]

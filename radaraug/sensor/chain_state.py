@@ -1,19 +1,7 @@
-"""`ChainState`: the signal as it travels down the receiver chain, in two cheap forms.
+"""`ChainState`: the signal down the receiver chain, as path coefficients and spectra until samples are needed.
 
-Until something non-linear or time-domain needs the samples, the signal is kept as
-
-* **paths**: complex coefficients ``C`` (``(…, RX, P)``, ADC float units, coefficient of the
-  positive-frequency component of each real beat tone) with their delays and delay rates
-  (optionally a per-chirp extra delay and amplitude factor ``(…, 1, P, M)`` for motion inside
-  the frame), and paths *modulated* by a random process (phase noise);
-* **spectrum**: additive signals (thermal noise, spurs, offsets) as the real FFT over fast time
-  of each chirp, ``(…, RX, M, N//2 + 1)``.
-
-A linear, time-invariant stage (gain, IF filter) then costs almost nothing: each path's
-coefficient is multiplied by the stage's response at the path's beat frequency (exact for a tone,
-the filter's start-up transient aside) and the spectrum by the response at the FFT bins (a
-circular filter per chirp). :meth:`ChainState.materialize` synthesizes the samples once, after
-which stages act on the samples directly.
+A linear stage then only multiplies each by its response; :meth:`ChainState.materialize` synthesizes the
+samples once (``docs/receiver.md``, "How it is computed").
 """
 
 from __future__ import annotations
@@ -54,19 +42,13 @@ class ChainState:
         timing: chirp constants of ``config``.
         dtype: real output dtype; ``device``: where everything lives.
         generator: the ``torch.Generator`` for every random draw (None: global RNG).
-        frame_start_s: absolute time of the frame's first ramp start (for time-locked effects): a
-            float, or a float64 tensor broadcastable to :attr:`batch_shape` (one start per frame).
+        frame_start_s: absolute time of the frame's first ramp start: a float, or a float64 tensor
+            broadcastable to :attr:`batch_shape` (one start per frame).
         tx_power_W: transmit power.
         front_end_gain: ADC float units per sqrt(W) at the RX port (0 dB IF gain).
         batch_shape: leading dims of the paths.
-        chirp_delay: ``(…, 1, P, M)`` extra delay of each path at each chirp (intra-frame motion
-            beyond ``tau0 + r t``, shared by the RX channels) or None (zero).
+        chirp_delay: ``(…, 1, P, M)`` extra delay per path and chirp (shared by the RX) or None (zero).
         chirp_gain: ``(…, 1, P, M)`` real per-chirp amplitude factor or None (one).
-
-    Linear stages scale a path's coefficient by their response at the path's beat frequency from
-    its mean delay and rate (:func:`beat_frequency_Hz`): the per-chirp extra delay of a limb moves
-    its beat frequency by ~ S * 2 * (a few mm) / c, a few hundred Hz, far inside the IF filters'
-    transition bands (tens of kHz wide), so that is not evaluated per chirp.
     """
 
     config: RadarConfig
@@ -125,10 +107,9 @@ class ChainState:
                                   device=self.device)
 
     def sample_times_s(self) -> torch.Tensor:
-        """Absolute time ``frame_start_s + m PRT + adc_delay + n / fs`` of every sample, float64 ``(…, 1, M, N)``.
+        """Absolute time ``frame_start_s + m PRT + adc_delay + n / fs`` of every sample, float64.
 
-        ``(M, N)`` when :attr:`frame_start_s` is a float. For time-locked effects (spurs, vibration),
-        which continue from frame to frame.
+        ``(…, 1, M, N)``, or ``(M, N)`` when :attr:`frame_start_s` is a float; for time-locked effects.
         """
         tm = self.timing
         m = torch.arange(tm.num_chirps, device=self.device, dtype=torch.float64)
@@ -165,10 +146,7 @@ class ChainState:
         self, coef: torch.Tensor, delay_s: torch.Tensor, delay_rate: torch.Tensor,
         chirp_delay: torch.Tensor | None = None, chirp_gain: torch.Tensor | None = None,
     ) -> None:
-        """Append paths ``(…, RX, P')`` (broadcast to the batch shape).
-
-        Optionally with per-chirp extra delays / gains ``(…, 1, P', M)`` (default zero / one).
-        """
+        """Append paths ``(…, RX, P')``, optionally with per-chirp delays / gains ``(…, 1, P', M)`` (default 0 / 1)."""
         if self.samples is not None:
             raise RuntimeError("paths cannot be added after the samples were synthesized")
         shape = (*self.batch_shape, self.num_rx, coef.shape[-1])
@@ -198,8 +176,7 @@ class ChainState:
     def add_samples_after_synthesis(self, x: torch.Tensor) -> None:
         """Add a signal broadcastable to ``(…, RX, M, N)`` to the synthesized samples.
 
-        Unlike :meth:`add_samples` the signal is not filtered by later linear stages in the
-        spectral form: it is added to the samples themselves (synthesizing them first).
+        Unlike :meth:`add_samples`, later linear stages do not filter it.
         """
         self.samples = self.materialize() + x.to(device=self.device, dtype=self.dtype)
 
@@ -223,8 +200,8 @@ class ChainState:
     ) -> None:
         """Apply an LTI stage: a complex gain per RX ``(RX,)`` and/or a frequency response.
 
-        ``response(freq_Hz)`` maps a float64 frequency tensor (any shape, may be negative for
-        a path with a negative IF) to the complex response, Hermitian in frequency.
+        ``response(freq_Hz)`` maps float64 frequencies (negative for a path with a negative IF) to the complex,
+        Hermitian response; paths take it at their mean beat frequency.
         """
         cd = self.complex_dtype
         g = None if rx_gain is None else rx_gain.to(cd)
@@ -250,10 +227,7 @@ class ChainState:
         return h
 
     def chirp_terms(self, idx: torch.Tensor) -> tuple[torch.Tensor | None, torch.Tensor | None]:
-        """The per-chirp delay and gain ``(…, 1, k, M)`` of the paths ``idx`` ``(…, RX, k)``.
-
-        The RX channels pick the same paths. E.g. for a :class:`ModulatedPaths` copy of them.
-        """
+        """The per-chirp delay and gain ``(…, 1, k, M)`` of the paths ``idx`` ``(…, RX, k)`` (the same on every RX)."""
         def pick(t: torch.Tensor | None) -> torch.Tensor | None:
             if t is None:
                 return None

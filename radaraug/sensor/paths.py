@@ -1,15 +1,8 @@
 """`Paths`: the interface between the ray tracer and the FMCW receiver.
 
-A set of propagation paths seen by the radar at one instant (a frame's snapshot time),
-with enough information to evaluate them at every chirp of the frame: the receiver
-extrapolates each path's delay linearly over the frame (``tau(t) = delay_s + delay_rate * t``,
-``t`` measured from the frame's first chirp start). That is accurate while a scatterer's
-acceleration over one frame (~25 ms) moves it by much less than a wavelength's fraction that
-matters for Doppler. A walker's limbs accelerate more than that (a foot's velocity changes by up
-to ~10 Doppler bins in a frame): the optional ``chirp_delay_s`` carries each path's delay
-beyond the linear reference at every chirp, and ``chirp_gain`` a per-chirp amplitude factor
-(a slot that appears or is occluded mid-frame), as :class:`~radaraug.sim.twin.DigitalTwin`
-fills them from sub-frame snapshots.
+The paths seen at one snapshot time, with each delay extrapolated linearly over the frame; the optional
+per-chirp delay and gain carry what a line misses (a limb's acceleration, a slot occluded mid-frame), as
+:class:`~radaraug.sim.twin.DigitalTwin` fills them from sub-frame snapshots.
 """
 
 from __future__ import annotations
@@ -23,30 +16,19 @@ import torch
 
 @dataclass
 class Paths:
-    """Propagation paths of one (or a batch of) snapshot(s).
-
-    Shapes use ``P`` paths and ``RX`` receive channels, with any leading batch dims ``...``.
+    """Propagation paths of one (or a batch of) snapshot(s): ``P`` paths, ``RX`` channels, leading dims ``...``.
 
     Attributes:
-        delay_s: ``(..., P, RX)`` round-trip delay TX -> scatterer(s) -> each RX, seconds,
-            at the snapshot time.
-        delay_rate: ``(..., P, RX)`` time derivative of the delay (s/s); a monostatic point
-            target moving away at radial speed ``v`` has ``2 v / c``.
-        amplitude: ``(..., P, RX)`` complex amplitude in sqrt(W) per watt of transmit power:
-            ``|a|**2`` is the power at the RX port for 1 W at the TX port, including TX and RX
-            antenna gains (pattern), path loss, scattering (RCS / Fresnel / PO) and any
-            scattering phase. The propagation phase ``exp(-j 2 pi f tau)`` is *not* included:
-            the receiver applies it from ``delay_s``.
-        kind: ``(..., P)`` int8 path kind: 0 line-of-sight scattering (single bounce),
-            1 multipath (more than one bounce). Optional.
-        mask: ``(..., P)`` bool, False for padding entries (batched snapshots with different
-            path counts). Optional; None means all valid.
-        chirp_delay_s: ``(..., P, M)`` extra delay of each path at chirp ``m`` (``M`` chirps of
-            the frame), shared by the RX channels: the delay at chirp ``m``, sample time ``t_n``
-            is ``delay_s + delay_rate * (m T + t_d + t_n) + chirp_delay_s[m]`` (intra-frame
-            acceleration). Optional; None means zero.
-        chirp_gain: ``(..., P, M)`` real amplitude factor of each path at chirp ``m``, shared
-            by the RX channels (``amplitude`` is the reference). Optional; None means one.
+        delay_s: ``(..., P, RX)`` round-trip delay TX -> scatterer(s) -> each RX at the snapshot time, s.
+        delay_rate: ``(..., P, RX)`` d(delay)/dt, s/s (``2 v / c`` for a point target receding at ``v``).
+        amplitude: ``(..., P, RX)`` complex, sqrt(W) at the RX port per sqrt(W) at the TX port: antenna gains,
+            path loss and scattering (with its phase) included; the propagation phase ``exp(-j 2 pi f tau)``
+            is not (the receiver applies it from ``delay_s``).
+        kind: optional ``(..., P)`` int8: 0 single bounce, 1 multipath.
+        mask: optional ``(..., P)`` bool, False for padding slots; None means all valid.
+        chirp_delay_s: optional ``(..., P, M)`` extra delay at chirp ``m``, shared by the RX: the delay at
+            sample ``t_n`` is ``delay_s + delay_rate * (m T + t_d + t_n) + chirp_delay_s[m]``. None means zero.
+        chirp_gain: optional ``(..., P, M)`` real amplitude factor per chirp, shared by the RX. None means one.
     """
 
     delay_s: torch.Tensor
@@ -62,10 +44,7 @@ class Paths:
         cls, num_rx: int, *, dtype: torch.dtype, device: torch.device | str | None = None,
         lead: tuple[int, ...] = (), mask: bool = False,
     ) -> Paths:
-        """No paths: ``(*lead, 0, RX)`` tensors of ``dtype`` (the amplitude of its complex match).
-
-        ``kind`` is an empty int8 tensor; ``mask`` an empty bool one with ``mask=True``, else None.
-        """
+        """No paths: empty ``(*lead, 0, RX)`` tensors of ``dtype`` (complex amplitude); ``mask`` if ``mask=True``."""
         z = torch.zeros(*lead, 0, num_rx, dtype=dtype, device=device)
         cdt = torch.complex128 if dtype == torch.float64 else torch.complex64
         kind = torch.zeros(*lead, 0, dtype=torch.int8, device=device)

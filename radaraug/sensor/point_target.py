@@ -21,20 +21,21 @@ def point_target_paths(
 ) -> Paths:
     """Paths of point scatterers in free space, in the radar's antenna frame.
 
-    Bistatic per RX: delay ``(|p - tx| + |p - rx|) / c``; delay rate from the velocity's
-    components along both lines of sight; amplitude from the radar equation
-    ``|a|^2 = G_t G_r lambda^2 sigma / ((4 pi)^3 R_tx^2 R_rx^2)`` (isotropic pattern of gain
-    ``antenna_gain_dBi``, real and positive: a point scatterer adds no phase).
+    Bistatic per RX, amplitude from the radar equation ``|a|^2 = G_t G_r lambda^2 sigma / ((4 pi)^3 R_tx^2 R_rx^2)``
+    (isotropic antennas, real: a point scatterer adds no phase).
 
     Args:
         config: radar configuration (wavelength, TX/RX positions).
-        positions_m: ``(..., P, 3)`` target positions (x right, y up, z boresight), metres.
+        positions_m: ``(..., P, 3)`` target positions (x right, y up, z boresight), m.
         velocities_m_s: ``(..., P, 3)`` velocities, or None for static targets.
         rcs_m2: ``(..., P)`` or scalar radar cross-section, m^2.
         antenna_gain_dBi: gain of each of the TX and RX antennas.
 
     Returns:
         :class:`Paths` with ``(..., P, RX)`` tensors in ``positions_m``'s dtype and device.
+
+    Raises:
+        InputTensorError: a wrong shape, or a target on an antenna.
     """
     if not isinstance(positions_m, torch.Tensor) or positions_m.ndim < 2 or positions_m.shape[-1] != 3:
         raise InputTensorError("positions_m must be a (..., P, 3) tensor")

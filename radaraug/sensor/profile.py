@@ -1,21 +1,9 @@
 """Twin profiles: a fitted receiver chain as a small JSON the simulator and the recipes load.
 
-A profile holds the receiver description (:meth:`FMCWReceiver.to_dict`: TX power, front-end
-gain, the effect chain with every parameter) and what it was fitted on. Parameters that belong
-to the radar *configuration* rather than to the sensor are stored as ``null`` so that they are
-taken from whatever config the profile is applied to: the IF gain. Everything else (noise
-figure, ADC-side noise, filter cutoffs, DC levels, spurs, drift...) is the sensor's and is kept.
-
-Applying a profile to a config with another RX count fails with a clear error for per-RX
-parameters (a per-RX list for 3 channels cannot serve 1).
-
-A profile fitted in scene mode also carries a ``room`` section: parameters of the traced room
-that the calibration fitted (:data:`ROOM_PARAMS`, today the diffuse-scattering power gain
-``diffuse_gain_dB``). They are not receiver effects: :meth:`TwinProfile.tracer_options` turns
-them into :class:`~radaraug.raytrace.RayTracer` options, which ``DigitalTwin(profile=...)`` and
-``SimulatedRadarDataset(profile=...)`` pass to their tracer unless the caller set them.
-
-Format versions: 2 added ``room``; version 1 files (no room section) still load.
+A profile holds the receiver description (:meth:`FMCWReceiver.to_dict`), the fitted ``room`` section
+(ray-tracer options, :data:`ROOM_PARAMS`) and what it was fitted on. The IF gain belongs to the radar
+configuration and is stored as ``null``; per-RX parameters fail clearly on a config with another RX count.
+Format and use: ``docs/calibration.md``, "Twin profiles".
 """
 
 from __future__ import annotations
@@ -98,11 +86,7 @@ class TwinProfile:
         }
 
     def save(self, path: str | os.PathLike) -> Path:
-        """Write the profile atomically (:mod:`radaraug.files`).
-
-        A temporary file of this process, fsync, rename: concurrent writers of the same profile never mix
-        their bytes, a full disk leaves the old file.
-        """
+        """Write the profile atomically (temporary file, fsync, rename; :mod:`radaraug.files`)."""
         return atomic_write_json(path, self.to_dict(), newline=False, indent=1)
 
     @classmethod

@@ -1,17 +1,9 @@
 """`FMCWReceiver`: propagation paths -> raw ADC frames in the real sensor's units.
 
-The chain, in the order the hardware applies it:
-
-1. radar equation in absolute units: ``Paths.amplitude`` (sqrt(W) at the RX port per watt of
-   TX power) times ``sqrt(P_tx)``;
-2. the receiver's effects in list order (default, see :mod:`radaraug.sensor.defaults`):
-   TX->RX leakage, phase noise, thermal noise, system gain, IF high-pass, IF gain,
-   anti-alias low-pass, DC offset, ADC quantization, ADC clipping;
-3. IF synthesis of every path over fast and slow time for every RX (:mod:`.synthesis`),
-   done once, as late as the effects allow (linear stages act on path coefficients).
-
-Output: ``(..., RX, chirps, samples)`` in Infineon Radar SDK 3.6 floats
-(:data:`radaraug.units.FLOAT_CONVENTION`: ``x = 2*counts/4095 - 1``).
+Paths are scaled by the TX power, passed through the effect chain in hardware order (default:
+:mod:`radaraug.sensor.defaults`) and synthesized once, as late as the effects allow (:mod:`.synthesis`). The
+output ``(..., RX, chirps, samples)`` is in Infineon Radar SDK 3.6 floats
+(:data:`radaraug.units.FLOAT_CONVENTION`). See ``docs/receiver.md``.
 """
 
 from __future__ import annotations
@@ -40,21 +32,18 @@ class FMCWReceiver(nn.Module):
 
     Args:
         config: radar configuration (chirp, IF gain, filter cutoffs, ADC bits, RX layout).
-        noise_figure_dB: noise figure of the default chain's thermal noise (default 12 dB, see
-            :mod:`radaraug.sensor.defaults`). Only with ``effects=None``.
-        tx_power_dBm: TX power; ``None`` maps ``config.tx_power_level`` (assumed law in
-            :func:`radaraug.sensor.defaults.tx_power_dBm`).
-        system_gain_dB: residual gain of the default chain's ``system_gain`` stage. Only with
-            ``effects=None``.
-        effects: the effect chain in hardware order; ``None`` builds the default BGT60TR13C
-            chain; ``[]`` gives the ideal receiver (front-end gain only, no IF gain, filters,
-            noise or ADC).
+        noise_figure_dB: noise figure of the default chain's thermal noise. Only with ``effects=None``.
+        tx_power_dBm: TX power; ``None`` maps ``config.tx_power_level`` by the assumed law of
+            :func:`~radaraug.sensor.defaults.tx_power_dBm`.
+        system_gain_dB: gain of the default chain's ``system_gain`` stage. Only with ``effects=None``.
+        effects: the effect chain in hardware order; ``None`` builds the default BGT60TR13C chain; ``[]`` gives
+            the ideal receiver (front-end gain only).
         synthesis: ``"fast"`` (separable GEMM, default) or ``"exact"`` (direct sum, reference).
-        front_end_gain_dB: ADC float units per sqrt(W) at the RX port at 0 dB IF gain (pinned
-            from measured noise, see :data:`radaraug.sensor.defaults.FRONT_END_GAIN_DB`).
+        front_end_gain_dB: ADC float units per sqrt(W) at the RX port at 0 dB IF gain
+            (:data:`~radaraug.sensor.defaults.FRONT_END_GAIN_DB`).
         taylor_tol: truncation bound of the fast synthesis' coupling expansion.
         adc_noise_rms_counts: RMS of the default chain's ``adc_noise`` stage (None: the fitted
-            default, :data:`radaraug.sensor.defaults.ADC_NOISE_RMS_COUNTS`). Only with ``effects=None``.
+            :data:`~radaraug.sensor.defaults.ADC_NOISE_RMS_COUNTS`). Only with ``effects=None``.
     """
 
     units = FLOAT_CONVENTION
@@ -132,14 +121,11 @@ class FMCWReceiver(nn.Module):
         """Simulate the ADC samples of ``paths``.
 
         Args:
-            paths: propagation paths ``(..., P, RX)`` (see :class:`Paths`); their device and
-                delay dtype (float32/float64) set the output's.
+            paths: propagation paths ``(..., P, RX)``; their device and delay dtype set the output's.
             generator: source of every random draw (on the paths' device); None: global RNG.
-            frame_start_s: absolute time of the frame's first ramp start (time-locked effects):
-                a number, or a tensor broadcastable to the paths' batch dims ``...`` giving each
-                frame of a batch its own start.
-            static_signal: the precomputed contribution of static paths, from
-                :meth:`static_signal` (broadcast over the batch); added before the first
+            frame_start_s: absolute time of the frame's first ramp start (time-locked effects): a number, or a
+                tensor broadcastable to the paths' batch dims (one start per frame).
+            static_signal: precomputed signal of static paths (:meth:`static_signal`), added before the first
                 non-linear stage.
 
         Returns:
@@ -162,14 +148,8 @@ class FMCWReceiver(nn.Module):
     def static_signal(self, paths: Paths) -> torch.Tensor:
         """The deterministic signal of paths that are the same in every frame (a static room).
 
-        By superposition, the signal of static paths through the chain is their synthesis
-        through the *linear* stages only (gains, IF filters): additive stages (noise, leakage,
-        offsets) add the same with or without them. Computing it once and passing it to
-        :meth:`forward` as ``static_signal`` gives the same frames as tracing the static paths
-        with the moving ones, except that the ``phase_noise`` stage (which modulates the
-        strongest paths of the call) then only sees the paths passed to ``forward`` and the
-        leakage. Linear stages after the first non-linear one are not applied (there are none
-        in the default chain).
+        Their synthesis through the linear stages; passed to :meth:`forward` as ``static_signal`` it gives the same
+        frames as tracing them with the moving paths (``docs/receiver.md``, "Static paths once").
 
         Args:
             paths: static paths ``(P, RX)`` (any leading dims are kept).
@@ -183,10 +163,8 @@ class FMCWReceiver(nn.Module):
     def static_chirp(self, paths: Paths) -> torch.Tensor:
         """One chirp ``(..., RX, samples)`` of :meth:`static_signal`, for paths that do not move.
 
-        A path with no delay rate (and no per-chirp terms) gives the same samples on every chirp, so
-        one chirp is synthesized instead of the frame's: ``static_signal(paths)[..., 0, :]`` at
-        1/chirps of the work, bit for bit for a batch of single paths (the twin's static basis) and
-        to float rounding otherwise (a GEMM of another shape sums several paths in another order).
+        Such a path gives the same samples on every chirp, so this is ``static_signal(paths)[..., 0, :]`` at
+        1/chirps of the work (equal up to float rounding).
 
         Raises:
             InputTensorError: a path moves (non-zero ``delay_rate``) or has per-chirp terms.
@@ -351,10 +329,7 @@ def _validated_start(start: float | torch.Tensor, batch_shape: tuple[int, ...]) 
 
 
 def _live_slots(coef: torch.Tensor, chirp_gain: torch.Tensor | None) -> torch.Tensor | None:
-    """Indices of the path slots ``(…, P, RX)`` that are non-zero in some frame of the batch.
-
-    None when all are (nothing to drop).
-    """
+    """Indices of the path slots ``(…, P, RX)`` non-zero in some frame of the batch; None when all are."""
     if coef.numel() == 0:
         return None
     live = coef != 0

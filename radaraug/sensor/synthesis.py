@@ -1,41 +1,10 @@
 """IF synthesis: the real beat signal of a set of paths over fast and slow time.
 
-Signal model (one TX, real-valued IF as the BGT60's ADC samples it). The TX ramp has phase
-``2 pi (f_s t' + S t'^2 / 2)`` with ``t'`` from the ramp start. Mixing the TX with its copy
-delayed by ``tau`` gives the beat phase ``2 pi (f_s tau + S tau t' - S tau^2 / 2)``. With the
-fast time ``t = t' - t_d`` counted from the first ADC sample (``t_d`` = ADC delay) the same phase
-is ``2 pi (f0 tau + S tau t - S tau^2 / 2)`` with ``f0 = f_s + S t_d`` the RF frequency at the
-first sample (:attr:`RadarConfig.sampled_start_frequency_Hz`): one consistent origin.
-
-The delay moves during the frame: ``tau(m, n) = tau0 + r (m T + t_d + t_n)`` (``T`` = chirp
-repetition time, ``t_n = n / fs``, ``r`` = delay rate, time counted from the first chirp's ramp
-start as :class:`~radaraug.sensor.paths.Paths` defines it). Each path contributes
-
-    x[m, n] = Re{ C * exp(j * Phi[m, n]) }
-
-where ``C`` is the complex coefficient of the positive-frequency component (peak amplitude and
-phase of the real tone). Expanding ``Phi / 2 pi`` with ``tau_m = tau0 + r (m T + t_d)``:
-
-    f0 tau_m - S tau_m^2 / 2                               (slow time only)
-    + [f0 r + S (tau0 + r t_d)(1 - r)] t_n + S r (1 - r/2) t_n^2   (fast time only)
-    + S r (1 - r) T m t_n                                  (range-Doppler coupling)
-
-Every term is kept (none is negligible for a walker: at 5 m/s the coupling reaches 4.5 rad
-over a frame and the in-chirp quadratic term 0.05 rad). Only the coupling term is not separable
-in (m, n); ``fast`` synthesis centres it and expands ``exp(j theta u v)`` (``u, v`` in [-1, 1],
-``|theta|`` <= 1.1 rad at 5 m/s for the BGT60 chirp) in the Jacobi-Anger (Chebyshev) series
-``sum_k eps_k j^k J_k(theta u) T_k(v)``, whose order-``k`` term is bounded by ``|C| 2 (theta/2)^k / k!``
-(the Taylor series' by ``|C| theta^k / k!``: about two orders more for the same bound). A path
-keeps the orders whose bound is at least a quarter of ``taylor_tol`` times the amplitude of the
-strongest path of the call, chosen per chunk of rows (a frame on the CPU): weak multipath needs
-fewer orders than the torso, and a limb needs its orders only in the frames where it glints or
-swings fast. The product of slow and fast factors becomes a few real GEMMs over (path, re/im),
-and static clutter costs one GEMM. ``exact`` evaluates ``Phi`` for every (m, n, path) directly in
-float64 (memory-chunked): the reference. Measured agreement (60 paths at 0.5-20 m, |v| <= 5 m/s,
-3 RX): relative RMS error 2.4e-7 in float64 and 1.2e-6 in float32, max abs error 1.5e-6 of the peak.
-
-Phases are accumulated in float64 cycles and reduced modulo 1 before the trig functions, so
-float32 outputs do not lose the ~1e4 cycles of carrier phase to rounding.
+Each path contributes ``Re{C exp(j Phi[m, n])}``, ``Phi = 2 pi (f0 tau + S tau t - S tau^2 / 2)`` with the
+delay ``tau`` moving over the frame. ``fast`` splits ``Phi`` into slow-time, fast-time and coupling terms,
+expands the coupling in a Chebyshev series to ``taylor_tol`` and sums the paths with real GEMMs; ``exact``
+evaluates ``Phi`` for every sample in float64 (the reference). Phases are reduced modulo one cycle in float64
+before the trig. Phase model, accuracy and speed: ``docs/receiver.md``, "How it is computed".
 """
 
 from __future__ import annotations
@@ -105,10 +74,7 @@ class ChirpTiming:
 
 
 def beat_frequency_Hz(delay_s: torch.Tensor, delay_rate: torch.Tensor, timing: ChirpTiming) -> torch.Tensor:
-    """IF frequency of a path at the first sample of the first chirp: ``S tau + f0 r`` (Hz).
-
-    Range beat plus the Doppler shift; used to evaluate filter responses per path.
-    """
+    """IF frequency ``S tau + f0 r`` (Hz) of a path at the first sample: range beat plus Doppler."""
     tau = delay_s.double() + delay_rate.double() * timing.adc_delay
     return timing.slope * tau + timing.f0 * delay_rate.double()
 
@@ -121,25 +87,16 @@ def _frac(cycles: torch.Tensor) -> torch.Tensor:
 def _phase_terms(
     delay_s: torch.Tensor, delay_rate: torch.Tensor, timing: ChirpTiming, chirp_delay: torch.Tensor | None = None,
 ):
-    """Per-path phase pieces of the separable form (all float64).
+    """Per-path phase pieces of the separable form (float64).
 
-    With ``chirp_delay`` ``d_m`` (``(…, P, M)``, broadcast against ``(…, P)``) the delay at chirp
-    ``m`` is ``tau_m = tau0 + r (m T + t_d) + d_m``; the fast-time rate of the beat is then
-    ``f0 r + S (1 - r) tau_m``, i.e. a coupling ``g_m n`` cycles with
-    ``g_m = S (1 - r) (tau_m - tau0 - r t_d) / fs`` (``g_m = gamma m`` without ``d_m``). It is
-    split about the mid-range ``g_bar`` of ``g_m`` and the centre ``nc`` of the samples:
-    ``g_m n = g_bar n + (g_m - g_bar) nc + (g_m - g_bar)(n - nc)``; the last term is the residual
-    coupling ``theta w_m v_n`` with ``w_m, v_n`` in [-1, 1].
+    With ``chirp_delay`` ``d_m`` ``(…, P, M)`` the delay at chirp ``m`` is ``tau_m = tau0 + r (m T + t_d) + d_m``.
+    The coupling ``g_m n`` is split about the mid-range ``g_bar`` of ``g_m`` and the centre sample ``nc``; what
+    remains is the residual ``theta w_m v_n`` with ``w_m, v_n`` in [-1, 1].
 
     Returns:
-        slow: ``(…, P, M)`` slow-time cycles mod 1 (incl. the constant and the centred
-            coupling's slow part);
-        rate: ``(…, P)`` fast-time cycles per sample (beat + Doppler + centred coupling);
-        theta: ``(…, P)`` largest residual coupling phase (rad), ``theta * w_m * v_n``;
-        quad: ``(…, P)`` the fast-time quadratic term ``S r (1 - r/2) t_n^2`` in cycles per
-            sample^2 (in-chirp range migration: 0.046 rad at the last sample at 5 m/s);
-        w: ``(…, P, M)`` the slow factor of the residual coupling in [-1, 1] (``u_m`` = the
-            centred chirp index without ``chirp_delay``).
+        ``(slow, rate, theta, quad, w)``: slow-time cycles mod 1 ``(…, P, M)``; fast-time cycles per sample
+        ``(…, P)``; largest residual coupling phase ``(…, P)``, rad; the quadratic term ``S r (1 - r/2) t_n^2``
+        in cycles per sample^2 ``(…, P)``; the residual's slow factor ``w`` ``(…, P, M)``.
     """
     dev = delay_s.device
     tau0 = delay_s.double()
@@ -163,12 +120,7 @@ def _phase_terms(
 def _fast_time_rate(
     tau0: torch.Tensor, r: torch.Tensor, g_bar: torch.Tensor, timing: ChirpTiming,
 ) -> tuple[torch.Tensor, torch.Tensor]:
-    """A path's fast-time phase: its linear rate and its quadratic term, float64.
-
-    The rate in cycles per sample (beat + Doppler + the coupling's centre ``g_bar``), the quadratic
-    term ``S r (1 - r/2) t_n^2`` in cycles per sample^2. Both :func:`_phase_terms` and the RX-sharing
-    bound of :func:`_coupling_phase` use it.
-    """
+    """A path's fast-time rate (cycles per sample, incl. ``g_bar``) and quadratic term (cycles per sample^2)."""
     lin = timing.f0 * r + timing.slope * (tau0 + r * timing.adc_delay) * (1 - r)
     return lin / timing.fs + g_bar, timing.slope * r * (1 - r / 2) / timing.fs**2
 
@@ -178,9 +130,8 @@ def _fast_time_cos_sin(
 ) -> torch.Tensor:
     """``[cos, sin](2 pi (c n + q n^2))`` for n = 0..N-1 as ``(…, 2, P, N)`` in ``dtype``.
 
-    ``n = L a + b`` with ``L ~ sqrt(N)``: the phase is ``frac(L c) a + frac(c) b`` cycles, with
-    both fractions taken in float64 per path, so the full-size work is one add and one cosine
-    in the output precision (phase error ~1e-5 rad in float32 instead of ~1e-4 for ``c * n``).
+    ``n = L a + b`` with ``L ~ sqrt(N)`` and the fractions of ``L c`` and ``c`` taken in float64: the full-size
+    work is one add and one cosine in ``dtype``, with a phase error of ~1e-5 rad in float32 (~1e-4 for ``c * n``).
     """
     dev = per_sample.device
     L = max(1, math.isqrt(num_samples - 1) + 1)
@@ -221,9 +172,8 @@ def synthesize_fast(
         delay_rate: ``(…, RX, P)`` delay rates, s/s.
         timing: chirp constants.
         dtype: real output dtype.
-        taylor_tol: bound on the largest neglected term of the coupling's expansion (:data:`DEFAULT_TAYLOR_TOL`).
-        chirp_delay: optional ``(…, 1 or RX, P, M)`` extra delay ``d_m`` of each path at chirp
-            ``m`` (intra-frame motion beyond the linear ``tau0 + r t``), s.
+        taylor_tol: largest neglected term of the coupling's expansion (:data:`DEFAULT_TAYLOR_TOL`).
+        chirp_delay: optional ``(…, 1 or RX, P, M)`` extra delay ``d_m`` per chirp (motion beyond ``tau0 + r t``), s.
         chirp_gain: optional ``(…, 1 or RX, P, M)`` real amplitude factor ``g_pm`` per chirp.
 
     Returns:
@@ -345,11 +295,7 @@ def synthesize_fast(
 
 @contextlib.contextmanager
 def per_channel_synthesis() -> Iterator[None]:
-    """Synthesize every RX channel with its own fast-time factor (the rule before the channels shared it).
-
-    The items recorded before then are reproduced bit for bit inside this context (their pinned
-    digests are checked so); the shared factor agrees with the exact sum to the tolerance.
-    """
+    """Context in which every RX channel gets its own fast-time factor (reference rule, ``docs/receiver.md``)."""
     global _SHARE_RX
     before, _SHARE_RX = _SHARE_RX, False
     try:
@@ -360,11 +306,7 @@ def per_channel_synthesis() -> Iterator[None]:
 
 @contextlib.contextmanager
 def taylor_coupling() -> Iterator[None]:
-    """Expand the coupling in a Taylor series with one set of orders per call (before ``TWIN_MODEL_VERSION`` 4).
-
-    The items recorded before then are reproduced bit for bit inside this context (their pinned
-    digests are checked so); the bench measures the Chebyshev series with per-chunk orders against it.
-    """
+    """Context in which the coupling uses a Taylor series, one set of orders per call (``docs/receiver.md``)."""
     global _COUPLING
     before, _COUPLING = _COUPLING, "taylor"
     try:
@@ -374,10 +316,7 @@ def taylor_coupling() -> Iterator[None]:
 
 
 def _unravel(flat: torch.Tensor, shape: tuple[int, ...]) -> tuple[torch.Tensor, ...]:
-    """Row-major coordinates of the flat indices ``flat`` in ``shape``.
-
-    ``torch.unravel_index`` without its per-call Python overhead, which showed in the chunk loop.
-    """
+    """Row-major coordinates of ``flat`` in ``shape`` (``torch.unravel_index`` without its per-call overhead)."""
     coords = []
     for size in reversed(shape):
         coords.append(flat % size)
@@ -389,15 +328,11 @@ def _coupling_phase(
     delay_s: torch.Tensor, delay_rate: torch.Tensor, timing: ChirpTiming, chirp_delay: torch.Tensor | None,
     rel_amplitude: torch.Tensor, tol: float,
 ) -> tuple[torch.Tensor, torch.Tensor | None]:
-    """Every row's largest residual coupling phase (rad) of each path ``(…, RX, P)``, alone and with the RX shared.
+    """Each row's largest residual coupling phase (rad) per path ``(…, RX, P)``, alone and with the RX shared.
 
-    ``theta`` of :func:`_phase_terms` without the rest: the coupling ``g_m = S (1 - r) e_m / fs``
-    with ``e_m = r m T + d_m`` has the half range ``S (1 - r) (max e - min e) / (2 fs)`` over the
-    chirps (``1 - r > 0``). Where the RX channels (the last batch dimension) share the fast-time
-    factor, their linear rate difference from the channels' mean, ``2 pi nc |d rate|``, is added
-    (:func:`synthesize_fast`); they can share it (the second value, else None) when each path's
-    quadratic-term difference, ``2 pi |d quad| (N - 1)^2`` rad, times its relative amplitude stays
-    below ``tol``.
+    The second value (None when the channels cannot share the fast-time factor) adds the channels' linear rate
+    difference ``2 pi nc |d rate|``. Sharing is allowed when every path's quadratic-term difference
+    ``2 pi |d quad| (N - 1)^2`` rad times its relative amplitude stays below ``tol``.
     """
     r = delay_rate.double()
     nc = (timing.num_samples - 1) / 2
@@ -429,14 +364,10 @@ def _fast_rows(
     ar: torch.Tensor, ai: torch.Tensor, per_sample: torch.Tensor, quad: torch.Tensor, tw: torch.Tensor | None,
     counts: list[int], v_pow: list[torch.Tensor], num_samples: int, dtype: torch.dtype,
 ) -> torch.Tensor:
-    """:func:`synthesize_fast` of a chunk of rows.
+    """Taylor-series :func:`synthesize_fast` of a chunk of rows.
 
-    Slow factors ``ar, ai`` ``(c, P, M)`` (Re and Im of ``C e^{j slow}``), paths sorted by Taylor order
-    (``counts[k - 1]`` of them need order ``k``), ``tw`` the coupling ``theta w_m``.
-
-    ``Re{A B}`` with ``B = cos + j sin`` is ``Re(A) cos - Im(A) sin``: two GEMMs whose slow side is
-    a transposed view (no copies), accumulated in place; the paths that need order ``k`` are a
-    prefix of both.
+    ``ar, ai`` ``(c, P, M)``: Re and Im of ``C e^{j slow}``, paths sorted by order (``counts[k - 1]`` need order
+    ``k``); ``tw``: the coupling ``theta w_m``. Each order is a pair of GEMMs on a prefix of the paths.
     """
     cos_sin = _fast_time_cos_sin(per_sample, quad, num_samples, dtype)  # (c, 2, P, N)
     cos, sin = cos_sin[:, 0], cos_sin[:, 1]
@@ -475,10 +406,9 @@ def _sorted_by_orders(
     coef: torch.Tensor, delay_s: torch.Tensor, delay_rate: torch.Tensor, chirp_delay: torch.Tensor | None,
     chirp_gain: torch.Tensor | None, need: torch.Tensor,
 ) -> tuple:
-    """Paths sorted by the orders they ``need`` ``(P,)``, descending, and the order counts.
+    """Paths sorted by the orders they ``need`` ``(P,)``, descending.
 
-    ``(coef, delay_s, delay_rate, chirp_delay, chirp_gain, counts)``: the inputs (``(…, P)``,
-    ``(…, P, M)``) with their paths sorted, and ``counts[k - 1]`` the number that need order ``k``.
+    Returns ``(coef, delay_s, delay_rate, chirp_delay, chirp_gain, counts)``, ``counts[k - 1]`` needing order ``k``.
     """
     order = torch.argsort(need, descending=True, stable=True)
     K = int(need.max()) + 1
@@ -490,10 +420,8 @@ def _sorted_by_orders(
 def _bessel_ratios(x: torch.Tensor, orders: int, tol: float) -> list[torch.Tensor]:
     """``F_k(x) = J_k(x) k! / (x/2)^k`` for ``k = 0..orders`` (same shape as ``x``).
 
-    ``F_k = 0F1(; k + 1; -x^2/4)``: the two highest orders by their power series (Horner, as many
-    terms as bring the first neglected one under ``tol``), the rest by the backward recurrence
-    ``F_{k-1} = F_k - (x^2/4) F_{k+1} / (k (k + 1))`` (the form of ``J_{k-1} = (2k/x) J_k - J_{k+1}``
-    without a division by ``x``; stable downwards).
+    The two highest orders by their power series (to ``tol``), the rest by the stable backward recurrence
+    ``F_{k-1} = F_k - (x^2/4) F_{k+1} / (k (k + 1))`` (no division by ``x``).
     """
     y = (x * 0.5).square()
     y_max = float(y.amax()) if y.numel() else 0.0
@@ -518,16 +446,11 @@ def _fast_rows_chebyshev(
     ar: torch.Tensor, ai: torch.Tensor, per_sample: torch.Tensor, quad: torch.Tensor, z: torch.Tensor | None,
     counts: list[int], cheb: Callable[[int], torch.Tensor], dtype: torch.dtype,
 ) -> torch.Tensor:
-    """:func:`synthesize_fast` of a chunk of rows ``(c, R M, N)``.
+    """Chebyshev-series :func:`synthesize_fast` of a chunk of rows ``(c, R M, N)``.
 
-    Slow factors ``ar, ai`` ``(c, P, R M)`` (Re and Im of ``A = C e^{j slow}``), paths sorted by the
-    orders they need (``counts[k - 1]`` of them need order ``k``), ``z`` ``(c, P, R M)`` the coupling
-    phase ``theta w_m`` (rad; None when no path needs an order). The coupling ``e^{j z v}`` is the
-    Jacobi-Anger series ``sum_k eps_k j^k J_k(z) T_k(v)`` (``eps_0 = 1``, else 2; ``cheb(k)`` =
-    ``T_k(v_n)``): ``Re{A e^{j z v} (cos + j sin)}`` is, per order, a pair of real GEMMs (slow side
-    a transposed view, no copies) on the prefix of paths that need it, weighted by ``T_k`` on the
-    fast side. The series' terms fall as ``(z/2)^k / k!``, the Taylor series' as ``z^k / k!``: ~2
-    orders fewer per path for the same bound.
+    ``ar, ai`` ``(c, P, R M)``: Re and Im of ``A = C e^{j slow}``, paths sorted by order (``counts[k - 1]`` need
+    order ``k``); ``z``: the coupling phase ``theta w_m`` (rad; None when no path needs an order). With
+    ``e^{j z v} = sum_k eps_k j^k J_k(z) T_k(v)`` each order is a pair of real GEMMs on the paths that need it.
     """
     num_samples = cheb(0).shape[-1]
     cos_sin = _fast_time_cos_sin(per_sample, quad, num_samples, dtype)  # (c, 2, P, N)
@@ -561,10 +484,8 @@ def _fast_rows_chebyshev(
 def chebyshev_orders_needed(theta: torch.Tensor, rel_amplitude: torch.Tensor, tol: float) -> torch.Tensor:
     """Highest order ``k`` (0 = none) with ``rel_amplitude * 2 (theta/2)^k / k! >= tol``, elementwise.
 
-    ``2 (theta/2)^k / k!`` bounds the order-``k`` term ``eps_k |J_k(theta)| |T_k|`` of the
-    Jacobi-Anger series of ``e^{j theta w v}`` (``|w|, |v| <= 1``). ``theta`` and ``rel_amplitude``
-    broadcast (any shape); the orders are tried upwards past the largest term (``k > theta/2``)
-    until none is kept.
+    ``2 (theta/2)^k / k!`` bounds the order-``k`` term of the Jacobi-Anger series of ``e^{j theta w v}``
+    (``|w|, |v| <= 1``). ``theta`` and ``rel_amplitude`` broadcast.
     """
     log_half = torch.log((theta.double() / 2).clamp_min(1e-300))
     excess = torch.log((2 * rel_amplitude.double()).clamp_min(1e-300)) - math.log(tol)
@@ -583,12 +504,7 @@ def chebyshev_orders_needed(theta: torch.Tensor, rel_amplitude: torch.Tensor, to
 
 
 def taylor_orders_needed(theta: torch.Tensor, rel_amplitude: torch.Tensor, tol: float) -> torch.Tensor:
-    """Highest Taylor order ``k`` (0 = none) with ``rel_amplitude * theta^k / k! >= tol``, per path.
-
-    ``theta`` ``(P,)`` coupling phases (rad), ``rel_amplitude`` ``(P,)`` amplitudes relative to the
-    strongest path of the call. For ``theta < 2`` the terms decrease with ``k``, so a path needs
-    exactly the orders ``1..k``.
-    """
+    """Highest Taylor order ``k`` (0 = none) with ``rel_amplitude * theta^k / k! >= tol``, per path ``(P,)``."""
     ks = torch.arange(1, _MAX_TAYLOR_ORDERS, device=theta.device, dtype=torch.float64)
     log_term = (ks[:, None] * torch.log(theta.double().clamp_min(1e-300))[None] - torch.lgamma(ks + 1)[:, None]
                 + torch.log(rel_amplitude.double().clamp_min(1e-300))[None])
@@ -606,11 +522,9 @@ def synthesize_exact(
     chirp_delay: torch.Tensor | None = None,
     chirp_gain: torch.Tensor | None = None,
 ) -> torch.Tensor:
-    """Direct sum of ``Re{C_p g_pm exp(j Phi_p[m, n])}`` with ``Phi`` evaluated exactly in float64.
+    """Direct float64 sum of ``Re{C_p g_pm exp(j Phi_p[m, n])}``, chunked over paths: the reference.
 
-    ``tau(m, n) = tau0 + r (m T + t_d + t_n) + d_m``.
-
-    Memory-chunked over paths. Same arguments and result as :func:`synthesize_fast`.
+    Same arguments and result as :func:`synthesize_fast` (without ``taylor_tol``).
     """
     M, N = timing.num_chirps, timing.num_samples
     dev = coef.device

@@ -1,8 +1,4 @@
-"""The ADC end of the chain: per-RX DC offsets, 12-bit quantization and clipping.
-
-Output units are Infineon Radar SDK 3.6 floats ``x = 2*counts/(2**bits - 1) - 1``
-(:data:`radaraug.units.FLOAT_CONVENTION`).
-"""
+"""The ADC end of the chain: per-RX DC offsets, quantization and clipping, in SDK 3.6 floats."""
 
 from __future__ import annotations
 
@@ -17,11 +13,8 @@ class DCOffset(Effect):
     """Per-RX DC level at the ADC input, given as the ADC code it sits at.
 
     Args:
-        level_counts: per-RX (or scalar) mean ADC code; mid-scale is ``(2**bits - 1) / 2``
-            (2047.5 for 12 bits), i.e. zero offset.
-
-    Priors: ``level_counts`` (each RX) over the ADC's codes, [0, ``config.adc_full_scale_counts``]
-    (linear).
+        level_counts: per-RX (or scalar) mean ADC code; mid-scale ``(2**bits - 1) / 2`` (2047.5 for 12 bits)
+            is zero offset.
     """
 
     name = "dc_offset"
@@ -44,8 +37,6 @@ class ADCQuantization(Effect):
 
     Args:
         bits: ADC resolution; ``None`` takes ``config.adc_bits``.
-
-    Priors: none (the bit depth is the sensor's, not searched).
     """
 
     name = "adc_quantization"
@@ -67,10 +58,7 @@ class ADCQuantization(Effect):
 
 @register
 class ADCClipping(Effect):
-    """Clip to the ADC range: codes ``0 .. 2**bits - 1``, i.e. ``[-1, 1]`` in SDK floats.
-
-    No parameters, so no priors.
-    """
+    """Clip to the ADC range: codes ``0 .. 2**bits - 1``, i.e. ``[-1, 1]`` in SDK floats."""
 
     name = "adc_clipping"
     kind = "nonlinear"

@@ -1,18 +1,7 @@
 """The effect protocol and the registry of effects by name.
 
-An effect is one physical mechanism of the receiver (a filter, a noise source, the ADC...). It
-is a ``torch.nn.Module`` whose parameters are tensors (registered as buffers, so ``.to()``
-moves them and a calibration loop can call ``requires_grad_()`` on them and fit them by
-gradient). It acts on a :class:`~radaraug.sensor.chain_state.ChainState` in place; the receiver
-applies its effects in list order, which is the order the hardware applies them.
-
-Every effect carries a ``name`` from the effect catalog (``docs/receiver.md``), :meth:`params`
-(the live tensors), :meth:`from_params` (build from numbers or tensors), a JSON-friendly
-:meth:`to_dict` / :func:`effect_from_dict` pair for twin profiles, and :meth:`Effect.priors`: the
-search range (:class:`Prior`) of each parameter a calibration search may move.
-
-:data:`HARDWARE_ORDER` lists every registered name in the order the hardware applies the
-stages; :func:`insert_in_order` puts a new effect at its place in an existing chain.
+An effect is one physical mechanism of the receiver: an ``nn.Module`` whose parameters are tensor buffers,
+acting on a :class:`~radaraug.sensor.chain_state.ChainState` in place. The catalog: ``docs/receiver.md``.
 """
 
 from __future__ import annotations
@@ -65,17 +54,12 @@ level, spurs and quantization.
 
 @dataclass(frozen=True)
 class Prior:
-    """Search range of one effect parameter, in the parameter's physical unit.
-
-    A calibration search draws or bounds the parameter in ``[lo, hi]``, uniformly in the value
-    (``scale="lin"``) or in its logarithm (``scale="log"``, for quantities spanning decades:
-    frequencies, noise levels). A per-RX or per-scatterer parameter uses the same range for
-    each element.
+    """Search range of one effect parameter, in its physical unit (per element for per-RX parameters).
 
     Attributes:
         lo: lower bound (``> 0`` for ``scale="log"``).
         hi: upper bound, ``> lo``.
-        scale: ``"lin"`` or ``"log"``.
+        scale: ``"lin"`` (uniform in the value) or ``"log"`` (uniform in its logarithm).
     """
 
     lo: float
@@ -124,13 +108,9 @@ def as_param(value: Any, name: str, effect: str) -> torch.Tensor:
 class Effect(nn.Module):
     """Base class of receiver effects.
 
-    Subclasses set ``name``, ``param_names`` and ``kind``, pass their parameters to
-    ``super().__init__(**params)`` (which registers them) and implement :meth:`forward`, which acts
-    on the receiver's chain state in place (``effect(state)``, as for any ``nn.Module``). Parameters
-    whose value is ``None`` are taken from the :class:`~radaraug.RadarConfig` at call time (e.g. the
-    IF gain) and are not stored.
-
-    ``nn.Module.apply(fn)`` works as on any module.
+    Subclasses set ``name``, ``param_names`` and ``kind``, pass their parameters to ``super().__init__(**params)``
+    (which registers them) and implement :meth:`forward`, which acts on the chain state in place. A parameter
+    whose value is ``None`` is taken from the :class:`~radaraug.RadarConfig` at call time (e.g. the IF gain).
     """
 
     name: ClassVar[str] = ""
@@ -151,9 +131,7 @@ class Effect(nn.Module):
 
     @classmethod
     def priors(cls, config: RadarConfig) -> dict[str, Prior]:
-        """Search range of each searchable parameter, in physical units.
-
-        The default evaluates :attr:`PRIORS` for ``config``; an effect may override this.
+        """Search range of each searchable parameter (:attr:`PRIORS` evaluated for ``config``).
 
         Args:
             config: the radar configuration the effect will run with.
@@ -204,11 +182,7 @@ class Effect(nn.Module):
 
 
 class EffectList(nn.ModuleList):
-    """The ``nn.ModuleList`` of a receiver's effects, iterated as :class:`Effect` s.
-
-    A plain ``nn.ModuleList`` iterates as ``nn.Module``; the receiver checks that every item is
-    an :class:`Effect` when it builds the list, so the iteration is typed as such.
-    """
+    """The ``nn.ModuleList`` of a receiver's effects, typed to iterate as :class:`Effect` s (checked on build)."""
 
     def __iter__(self) -> Iterator[Effect]:
         return cast(Iterator[Effect], super().__iter__())
@@ -235,18 +209,14 @@ def per_rx(state: ChainState, value: torch.Tensor, name: str, effect: str) -> to
 
 
 def insert_in_order(effects: Sequence[Effect], new: Effect) -> list[Effect]:
-    """A new chain with ``new`` at its place in :data:`HARDWARE_ORDER`.
-
-    Any effect of the same name is dropped (``new`` replaces it); ``new`` then goes before the
-    first effect that the hardware applies after it, or at the end. Effects whose names are not
-    in :data:`HARDWARE_ORDER` (user-registered ones) keep their place and never count as later.
+    """A new chain with ``new`` at its place in :data:`HARDWARE_ORDER`, replacing any effect of its name.
 
     Args:
-        effects: the current chain (not modified).
+        effects: the current chain (not modified); effects not in :data:`HARDWARE_ORDER` keep their place.
         new: the effect to add.
 
     Returns:
-        The new list (the effect objects themselves are shared, not copied).
+        The new list (the effect objects are shared, not copied).
     """
     if not isinstance(new, Effect):
         raise ConfigError(f"insert_in_order needs an Effect, got {type(new).__name__}")
@@ -256,11 +226,7 @@ def insert_in_order(effects: Sequence[Effect], new: Effect) -> list[Effect]:
 
 
 def hardware_position(names: Sequence[str], name: str) -> int:
-    """Where effect ``name`` goes in a chain whose effects are called ``names``.
-
-    Before the first one the hardware applies after it (:data:`HARDWARE_ORDER`; names not in it never
-    count as later), or at the end. The one ordering rule behind :func:`insert_in_order` and the
-    calibration loop's chains of effect dicts.
+    """Index where effect ``name`` goes among ``names``: before the first later one in hardware order, else the end.
 
     Raises:
         ConfigError: ``name`` has no place in :data:`HARDWARE_ORDER`.
@@ -275,8 +241,7 @@ def hardware_position(names: Sequence[str], name: str) -> int:
 def tone_amplitude(state: ChainState, level_dB: torch.Tensor) -> torch.Tensor:
     """Peak ADC-float amplitude of a path whose RX-port power is ``level_dB`` relative to P_tx.
 
-    ``sqrt(2 P_tx 10**(level/10)) * G_fe``, written as a product so the gradient stays finite
-    with the TX off. Shared by the leakage and the clutter effects.
+    ``sqrt(2 P_tx 10**(level/10)) G_fe``, a product so the gradient stays finite with the TX off.
     """
     return math.sqrt(2 * state.tx_power_W) * state.front_end_gain * torch.pow(10.0, level_dB / 20)
 
@@ -317,9 +282,7 @@ def scatterer_count(effect: Effect, *names: str) -> int:
 def modulate_strongest_paths(state: ChainState, k: int, multiplier: torch.Tensor) -> None:
     """Add the LO-borne copies ``j 2 pi tau C`` of the ``k`` paths with the largest ``|C| tau``, times ``multiplier``.
 
-    Strongest over RX, chosen per frame: the paths whose LO-borne modulation (phase noise, ramp ripple,
-    both proportional to the delay) is largest. Each copy follows its path's intra-frame motion too
-    (per-chirp delay, gain: :meth:`ChainState.chirp_terms`).
+    Chosen per frame over RX; each copy follows its path's per-chirp delay and gain.
     """
     strength = (state.coef.abs() * state.delay_s.abs()).amax(dim=-2)  # (…, P)
     idx = torch.topk(strength, k, dim=-1).indices[..., None, :].expand(*state.batch_shape, state.num_rx, k)

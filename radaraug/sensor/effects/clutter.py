@@ -1,10 +1,8 @@
-"""Clutter added at the antenna: static scatterers, a vibrating scatterer, and multipath ghosts.
+"""Clutter added at the antenna: static scatterers, vibrating scatterers and multipath ghosts.
 
-These stand in for what a scene description lacks (an unmodelled wall, a fan, a reflection
-between the target and a wall) when a twin is calibrated against a capture. Levels are given
-like ``tx_rx_leakage``'s coupling: received power at the RX port relative to the TX power, so
-no antenna pattern or RCS has to be assumed. A scatterer is seen identically by every RX
-(broadside), as one path per scatterer.
+Stand-ins for what a scene description lacks (an unmodelled wall, a fan, a wall bounce) when a twin is
+calibrated against a capture. Levels are RX-port power relative to the TX power (no antenna or RCS
+assumed); every RX sees a scatterer identically (broadside). See ``docs/receiver.md``, "The effect catalog".
 """
 
 from __future__ import annotations
@@ -41,22 +39,15 @@ _LEVEL_PRIOR = Prior(-140.0, -30.0)
 
 @register
 class StaticClutter(Effect):
-    """``K`` static point scatterers (paths with zero delay rate).
+    """``K`` static point scatterers, as paths of delay ``2 range_m / c``, the same on every RX.
 
-    Each is a path of delay ``2 range_m / c`` and beat-tone amplitude
-    ``sqrt(2 P_tx 10**(level_dB / 10)) * G_fe`` (``G_fe`` the front-end gain) with phase
-    ``phase_rad``, the same on every RX. Being paths they go through every later stage like the
-    scene's targets (the IF high-pass attenuates the near ones). Place it right after
-    ``tx_rx_leakage``.
+    Later stages act on them like on scene targets. Place it right after ``tx_rx_leakage``.
 
     Args:
         range_m: one-way range of each scatterer, m (scalar or ``(K,)``). Default 1 m.
-        level_dB: received power at the RX port relative to the TX power, dB (scalar or
-            ``(K,)``). Default -80 dB, about a 1 m^2 target at 1 m with isotropic antennas.
+        level_dB: RX-port power relative to the TX power, dB (scalar or ``(K,)``). Default -80 dB, about a
+            1 m^2 target at 1 m with isotropic antennas.
         phase_rad: phase of each beat tone, rad (scalar or ``(K,)``).
-
-    Priors (each scatterer, linear): ``range_m`` in [0.05, ``config.max_range_m``],
-    ``level_dB`` in [-140, -30] dB, ``phase_rad`` in [-pi, pi].
     """
 
     name = "static_clutter"
@@ -89,45 +80,22 @@ class StaticClutter(Effect):
 class VibratingClutter(Effect):
     """Scatterers whose range oscillates: ``R + displacement_m sin(2 pi vibration_Hz t + phase_rad)``.
 
-    A fan blade, a pump or a monitor's case: the oscillation phase-modulates the return,
-    ``exp(j beta sin(w t + phi))`` with ``beta = 4 pi displacement_m / lambda``
-    (``lambda = config.wavelength_m``). By the Jacobi-Anger expansion
-    ``exp(j beta sin x) = sum_k J_k(beta) exp(j k x)`` the range-Doppler map shows, at the
-    scatterer's range, lines at Doppler ``k * vibration_Hz`` with amplitudes ``|J_k(beta)|``
-    relative to the scatterer's (wrapping past the Doppler Nyquist ``1 / (2 PRT)`` like any
-    Doppler).
-
-    It is computed without truncating that series: the return is one static path (the carrier,
-    at delay ``2 R / c``, amplitude as :class:`StaticClutter`) plus the same path modulated sample
-    by sample by the real multipliers ``cos(psi) - 1`` and ``sin(psi)`` (two modulated copies,
-    the second with coefficient ``j C``), ``psi = beta sin(w t + phi)``. That is
-    ``Re{C exp(j Phi) exp(j psi)}`` exactly, and it keeps every harmonic at the scatterer's
-    range: as separate paths with delay rates ``k vibration_Hz / f0``, harmonic ``k`` would drift
-    in range by ``k vibration_Hz lambda / 2`` per second (centimetres per frame at 1 kHz),
-    which the vibrating scatterer does not. ``t`` is the absolute sample time
-    ``frame_start_s + m PRT + adc_delay + n / fs`` (as ``spur_tone``), so consecutive frames
-    continue the oscillation; in a batch each frame uses its own ``frame_start_s``. The in-chirp
-    range change ``+- displacement_m`` (sub-millimetre to millimetres, far below a range bin)
-    is not modelled, only its phase. The carrier phase is 0 (a point scatterer). The
-    modulation is common to all RX. Place it after ``static_clutter``.
+    A fan blade, a pump or a monitor's case: Doppler lines at ``k vibration_Hz`` with amplitudes ``|J_k(beta)|``,
+    ``beta = 4 pi displacement_m / lambda``, all at the scatterer's range; computed exactly on the absolute sample
+    time, so frames continue the oscillation (``docs/receiver.md``). Common to all RX; place it after
+    ``static_clutter``.
 
     Args:
         range_m: mean one-way range, m (scalar or ``(K,)`` for K scatterers). Default 1 m.
-        level_dB: received power at the RX port relative to the TX power, dB (scalar or
-            ``(K,)``). Default -80 dB.
+        level_dB: RX-port power relative to the TX power, dB (scalar or ``(K,)``). Default -80 dB.
         displacement_m: peak displacement, m (scalar or ``(K,)``, >= 0). Default 0.5 mm.
         vibration_Hz: vibration frequency, Hz (scalar or ``(K,)``, > 0). Default 50 Hz.
         phase_rad: vibration phase at absolute time 0, rad (scalar or ``(K,)``).
-        carrier: 1 (default) for the whole return; 0 to leave out its mean over time
-            (``J_0(beta)`` times the static return), i.e. only what the vibration adds: for a twin
-            whose static scene already holds the object (the calibration loop's scene estimated
-            from a capture). Not searched.
+        carrier: 1 (default) for the whole return; 0 for only what the vibration adds (its time mean
+            ``J_0(beta)`` left out), for a twin whose static scene already holds the object. Not searched.
 
-    Priors (each scatterer): ``range_m`` in [0.05, ``config.max_range_m``], ``level_dB`` in
-    [-140, -30] dB, ``displacement_m`` in [10 um, 3 cm] (log; at centimetres the unmodelled in-chirp
-    range change starts to smear the return over a range bin), ``vibration_Hz`` in [0.5 Hz,
-    ``1 / (2 PRT)``] (log; above the Doppler Nyquist the lines alias), ``phase_rad`` in
-    [-pi, pi].
+    Raises:
+        ConfigError: ``carrier`` not 0 or 1, a negative range or displacement, a frequency <= 0, unequal lengths.
     """
 
     name = "vibrating_clutter"
@@ -206,23 +174,15 @@ class VibratingClutter(Effect):
 class Multipath(Effect):
     """A ghost of every path present: the same return again, ``extra_range_m`` farther.
 
-    Models a bounce the scene lacks (target -> wall -> radar): each path present when the stage
-    runs gets a copy with delay ``+ 2 extra_range_m / c`` (it appears ``extra_range_m`` farther
-    in range), the same delay rate, and beat-tone coefficient multiplied by
-    ``10**(level_dB / 20) exp(j phase_rad)``. With ``K`` values each path gets ``K`` ghosts. It is
-    linear in the signal (``kind = "linear"``), so :meth:`FMCWReceiver.static_signal` ghosts a
-    static room too. Place it first in the chain, so that the on-chip leakage and the clutter
-    effects (added after it) get no ghost; modulated copies and additive signals already present
-    are not ghosted.
+    A bounce the scene lacks (target -> wall -> radar): each path present gets copies delayed by
+    ``2 extra_range_m / c``, same delay rate, coefficient times ``10**(level_dB / 20) exp(j phase_rad)``. It is
+    linear, so :meth:`FMCWReceiver.static_signal` ghosts a static room too. Place it first, so the leakage and
+    clutter added later get no ghost (modulated copies and additive signals are not ghosted).
 
     Args:
-        extra_range_m: extra one-way range of the ghost, m (scalar or ``(K,)``, >= 0).
-            Default 0.5 m.
+        extra_range_m: extra one-way range of the ghost, m (scalar or ``(K,)`` for K ghosts, >= 0). Default 0.5 m.
         level_dB: ghost power relative to its path, dB (scalar or ``(K,)``). Default -10 dB.
         phase_rad: extra phase of the ghost's beat tone, rad (scalar or ``(K,)``).
-
-    Priors (each ghost, linear): ``extra_range_m`` in [0.05, 5] m, ``level_dB`` in [-40, 0] dB,
-    ``phase_rad`` in [-pi, pi].
     """
 
     name = "multipath"

@@ -1,9 +1,7 @@
 """Frame-to-frame drift: a random gain and per-RX DC shift, constant within each frame.
 
-Real captures show more noise measured frame to frame (the same range-Doppler cell across
-frames) than within a frame (across chirps): the receiver's gain and the DC level wander slowly
-(temperature, supply, the AGC-less VGA settling). Within one frame (~25 ms) the wander is
-negligible, so it is drawn once per frame.
+Real captures are noisier frame to frame than across the chirps of a frame: gain and DC level wander
+slowly (temperature, supply), negligibly within one frame, so they are drawn once per frame.
 """
 
 from __future__ import annotations
@@ -20,20 +18,14 @@ from radaraug.sensor.effects.base import Effect, Prior, check_params, per_rx, re
 class FrameDrift(Effect):
     """Per-frame random gain (common to all RX) and per-RX DC shift.
 
-    Each leading batch element of the call is one frame (an unbatched call is one frame). The
-    samples present at this point (signal, noise and any precomputed static signal) are
-    multiplied by ``10 ** (g / 20)`` with ``g ~ Normal(0, gain_rms_dB)``, one draw per frame for
-    all RX (one VGA bias network), and each RX gets a DC shift ``~ Normal(0, dc_rms_counts)``
-    counts. Both are reparameterised (``scale * standard normal``), so gradients reach the two
-    RMS values. The stage acts on samples (``kind = "nonlinear"``): place it after
+    Each leading batch element is one frame. Everything present (signal, noise, static signal) is multiplied
+    by ``10 ** (g / 20)``, ``g ~ Normal(0, gain_rms_dB)``, and each RX gets a DC shift ``~ Normal(0, dc_rms_counts)``
+    counts; both are reparameterised, so gradients reach the RMS values. It acts on samples: place it after
     ``anti_alias_lowpass`` and before ``dc_offset``.
 
     Args:
         gain_rms_dB: RMS of the per-frame gain, dB. Default 0.1 dB (*assumed*).
-        dc_rms_counts: per-RX (or scalar) RMS of the per-frame DC shift, ADC counts. Default
-            0.5 counts (*assumed*).
-
-    Priors (linear): ``gain_rms_dB`` in [0, 3] dB, ``dc_rms_counts`` in [0, 20] counts (each RX).
+        dc_rms_counts: per-RX (or scalar) RMS of the per-frame DC shift, ADC counts. Default 0.5 (*assumed*).
     """
 
     name = "frame_drift"

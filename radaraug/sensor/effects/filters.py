@@ -1,12 +1,4 @@
-"""IF filters: the high-pass after the mixer and the anti-alias low-pass before the ADC.
-
-Both are modelled as ``order`` cascaded first-order RC sections (order 1 by default; the BGT60's
-filter order is not public, and the first-order high-pass reproduces the measured power losses
-listed in ``docs/receiver.md``, "Defaults": -16.9 dB at 0.5 m, -11.2 dB at 1 m, -6.0 dB at 2 m,
--1.7 dB at 5 m for an 80 kHz cutoff and 22.99 kHz/m). Paths get the exact response at their beat frequency
-(a tone through an LTI filter, the start-up transient of each chirp ignored); additive signals
-(noise) are filtered per chirp in the frequency domain (circular).
-"""
+"""IF filters: ``order`` cascaded first-order sections (the BGT60's order is not public; 1 by default)."""
 
 from __future__ import annotations
 
@@ -28,9 +20,7 @@ def highpass_response(freq_Hz: torch.Tensor, cutoff_Hz: torch.Tensor, order: int
 def section_cutoff(cutoff_3db_Hz: float, order: int) -> float:
     """Cutoff of each of ``order`` cascaded first-order sections whose cascade is -3 dB at ``cutoff_3db_Hz``.
 
-    ``(x^2 / (1 + x^2))^n = 1/2`` at ``x^2 = 1 / (2^(1/n) - 1)``: a cascade's -3 dB point lies
-    ``1 / sqrt(2^(1/n) - 1)`` times above its sections' (1.55x for two). A filter measured by its
-    -3 dB point (a Butterworth fit) is set here by its sections' cutoff.
+    The cascade's -3 dB point is ``1 / sqrt(2^(1/n) - 1)`` times its sections' (1.55x for two).
     """
     return float(cutoff_3db_Hz) * (2 ** (1 / int(order)) - 1) ** 0.5
 
@@ -78,12 +68,8 @@ class IFHighPass(_FirstOrderFilter):
     """IF high-pass (BGT60: 20/45/70/80 kHz options).
 
     Args:
-        cutoff_Hz: -3 dB frequency of each section; ``None`` takes
-            ``config.effective_hp_cutoff_Hz`` (80 kHz SDK default).
+        cutoff_Hz: -3 dB frequency of each section; ``None`` takes ``config.effective_hp_cutoff_Hz``.
         order: number of cascaded first-order sections.
-
-    Priors: ``cutoff_Hz`` in [5 kHz, 300 kHz] (log), around the BGT60's 20-80 kHz options.
-    ``order`` is structural, not searched.
     """
 
     name = "if_highpass"
@@ -97,11 +83,8 @@ class AntiAliasLowPass(_FirstOrderFilter):
     """Anti-alias low-pass before the ADC (BGT60: 500 kHz).
 
     Args:
-        cutoff_Hz: -3 dB frequency of each section; ``None`` takes
-            ``config.effective_aaf_cutoff_Hz``.
+        cutoff_Hz: -3 dB frequency of each section; ``None`` takes ``config.effective_aaf_cutoff_Hz``.
         order: number of cascaded first-order sections.
-
-    Priors: ``cutoff_Hz`` in [50 kHz, ``config.sample_rate_Hz``] (log). ``order`` is not searched.
     """
 
     name = "anti_alias_lowpass"

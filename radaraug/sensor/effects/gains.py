@@ -17,16 +17,10 @@ def db_to_amplitude(db: torch.Tensor) -> torch.Tensor:
 
 @register
 class SystemGain(Effect):
-    """A flat gain on everything present at this point (signal and noise), in dB.
-
-    The receiver's fixed front-end conversion (RX port sqrt(W) -> ADC floats at 0 dB IF gain) is
-    pinned from measured noise; this stage is the residual the calibration loop fits
-    (default 0 dB). Placed after the thermal noise, it scales signal and noise together.
+    """A flat gain on everything present (signal and noise), in dB: the residual a calibration fits.
 
     Args:
         gain_dB: scalar gain in dB.
-
-    Priors: ``gain_dB`` in [-30, 30] dB (linear): a residual around the pinned front-end gain.
     """
 
     name = "system_gain"
@@ -49,10 +43,7 @@ class IFGain(Effect):
     """The IF gain (BGT60: high-pass stage 18/30 dB + VGA 0..30 dB), applied after the high-pass.
 
     Args:
-        gain_dB: gain in dB; ``None`` takes ``config.if_gain_dB`` at call time.
-
-    Priors: none. The IF gain is a recorded setting of the capture, not searched (the residual
-    goes to ``system_gain``).
+        gain_dB: gain in dB; ``None`` takes ``config.if_gain_dB`` at call time (a recorded setting, not searched).
     """
 
     name = "if_gain"
@@ -77,14 +68,11 @@ class IFGain(Effect):
 class RxGainPhaseMismatch(Effect):
     """Per-RX complex gain ``10**(gain_dB/20) * exp(j phase_rad)`` (channel imbalance).
 
-    The phase adds to the phase of each real IF tone (it multiplies the positive-frequency
-    component).
+    The phase adds to each real IF tone's phase.
 
     Args:
         gain_dB: per-RX (or scalar) gain offsets in dB.
         phase_rad: per-RX (or scalar) phase offsets in radians.
-
-    Priors (each RX): ``gain_dB`` in [-6, 6] dB, ``phase_rad`` in [-pi, pi] (linear).
     """
 
     name = "rx_gain_phase_mismatch"

@@ -1,8 +1,7 @@
 """Mutual interference: another FMCW radar's ramps crossing ours.
 
-When an interferer's ramp crosses our ramp, their difference frequency sweeps through the IF
-band for a few microseconds: a short chirp-like burst in the samples, at an uncorrelated time
-in each chirp. In the range-Doppler map it raises a broadband floor in the chirps it hits.
+At a crossing the difference frequency sweeps through the IF band for a few microseconds: a short
+chirp-like burst at an uncorrelated time in each chirp, which raises a broadband floor in the RD map.
 """
 
 from __future__ import annotations
@@ -20,31 +19,16 @@ from radaraug.sensor.effects.base import Effect, Prior, check_params, register
 class Interference(Effect):
     """Random IF bursts of a crossing FMCW interferer, at most one per chirp.
 
-    Each chirp of each frame independently gets a burst with probability ``probability``::
-
-        x(t) = A w(t - t0) cos(2 pi (f_a (t - t0) + k (t - t0)^2 / 2) + phi)
-
-    with ``w`` a Hann window of length ``duration_s``, ``f_a = -fs/2`` and
-    ``k = fs / duration_s``: the instantaneous frequency sweeps from ``-fs/2`` through zero (the
-    crossing, at the burst's centre) to ``+fs/2``, so the real burst covers the IF band twice.
-    The crossing time (burst centre ``t0 + duration_s / 2``) is uniform over the chirp's ADC
-    window; a burst near either end is cut by the window. The waveform is common to all RX (one
-    interferer, one crossing time), with an independent uniform phase ``phi`` per RX and chirp
-    (the RX see the interferer from one direction, but its carrier phase is unknown). All draws
-    come from the call's generator. Expected burst energy over the phase: ``A^2 / 2 * sum w^2``,
-    ``sum w^2 ~= 3/8 duration_s fs`` for a burst inside the window. Place it after ``if_gain``
-    (the burst's level is given at that point) and before ``adc_noise``; the anti-alias filter
-    then shapes it. Gradients reach ``amplitude_counts`` and ``duration_s``, not the
-    probability (a Bernoulli draw).
+    Each chirp independently gets, with probability ``probability``, a Hann-windowed sweep from ``-fs/2`` to
+    ``+fs/2`` of length ``duration_s``, centred uniformly over the ADC window; same waveform on all RX, random
+    phase per RX and chirp (waveform and energy: ``docs/receiver.md``, "The effect catalog"). Place it after
+    ``if_gain`` and before ``adc_noise``. Gradients reach ``amplitude_counts`` and ``duration_s``, not the
+    probability.
 
     Args:
         probability: chance that a chirp gets a burst, in [0, 1]. Default 0.05 (*assumed*).
         amplitude_counts: peak burst amplitude ``A`` in ADC counts. Default 100 (*assumed*).
-        duration_s: burst length, s (> 0). Default 5 us (*assumed*: the time the difference
-            frequency takes to cross the IF band depends on both radars' slopes).
-
-    Priors: ``probability`` in [0, 1] (linear), ``amplitude_counts`` in [1, 2000] counts (log),
-    ``duration_s`` in [0.2, 30] us (log).
+        duration_s: burst length, s (> 0). Default 5 us (*assumed*: it depends on both radars' slopes).
     """
 
     name = "interference"

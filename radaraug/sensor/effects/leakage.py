@@ -13,18 +13,12 @@ from radaraug.sensor.effects.base import Effect, Prior, per_rx, register, tone_a
 
 @register
 class TxRxLeakage(Effect):
-    """A static path at the RX port with power ``coupling * P_tx``.
-
-    Being a path, it goes through every later stage like a target would (the IF high-pass
-    removes most of it: at 4 cm its beat frequency is ~1 kHz in the paper's chirp).
+    """A static path at the RX port with power ``coupling * P_tx``, through every later stage like a target.
 
     Args:
         coupling_dB: per-RX (or scalar) power at the RX port relative to the TX power, dB.
         range_m: equivalent one-way range of the coupling (delay ``2 * range_m / c``).
         phase_rad: per-RX (or scalar) phase of the beat tone, radians.
-
-    Priors (linear): ``coupling_dB`` in [-100, -20] dB (each RX), ``range_m`` in [0.005, 0.3] m
-    (on-chip to in-housing coupling), ``phase_rad`` in [-pi, pi].
     """
 
     name = "tx_rx_leakage"

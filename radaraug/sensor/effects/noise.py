@@ -1,14 +1,4 @@
-"""Receiver noise: thermal noise referred to the RX port, and noise referred to the ADC.
-
-Thermal noise: the noise power in the ADC's Nyquist band ``fs / 2`` is ``k T0 F fs/2`` (-117 dBm for
-``fs`` = 1 MHz before the noise figure), white, independent per RX, chirp and sample. It enters
-at the front of the chain, so every later gain and filter shapes it. Noise above Nyquist that
-the anti-alias filter lets through and the ADC folds back is not modelled (the noise figure
-absorbs it when calibrated).
-
-ADC-referred noise (:class:`ADCNoise`) is the VGA-output / ADC-driver floor: white, in ADC
-counts, added after the IF gain so it does not scale with it.
-"""
+"""Receiver noise: thermal noise at the RX port (shaped by every later stage) and noise referred to the ADC."""
 
 from __future__ import annotations
 
@@ -30,14 +20,11 @@ def thermal_noise_power_W(noise_figure_dB: float, sample_rate_Hz: float, tempera
 
 @register
 class ThermalNoise(Effect):
-    """White Gaussian receiver noise, input-referred.
+    """White Gaussian receiver noise, input-referred, independent per RX, chirp and sample.
 
     Args:
         noise_figure_dB: receiver noise figure F.
         temperature_K: noise temperature of the source (290 K for the standard noise figure).
-
-    Priors: ``noise_figure_dB`` in [0, 45] dB (linear; the top end absorbs noise the model
-    refers to the wrong place). ``temperature_K`` is not searched: it trades exactly with F.
     """
 
     name = "thermal_noise"
@@ -61,19 +48,13 @@ class ThermalNoise(Effect):
 
 @register
 class ADCNoise(Effect):
-    """White Gaussian noise referred to the ADC side of the IF gain (VGA output / ADC driver).
+    """White Gaussian noise on the ADC side of the IF gain (VGA output / ADC driver), independent per sample.
 
-    Real receivers have a noise floor that does not scale with the IF gain: at low gain it is
-    what the ADC sees. This stage adds it after ``if_gain`` and before ``anti_alias_lowpass``, so
-    the IF gain and high-pass do not touch it and the anti-alias filter shapes it. Independent per
-    RX, chirp and sample.
+    A floor that does not scale with the IF gain: place it after ``if_gain`` and before ``anti_alias_lowpass``.
 
     Args:
-        rms_counts: per-RX (or scalar) RMS in ADC counts of the white noise over the Nyquist
-            band, *before* the anti-alias filter that follows it (so the RMS at the ADC is this
-            times the filter's noise-bandwidth factor). Default 0.5 counts (*assumed*).
-
-    Priors: ``rms_counts`` in [0.01, 50] counts (log, each RX).
+        rms_counts: per-RX (or scalar) RMS in ADC counts over the Nyquist band, *before* the anti-alias
+            filter. Default 0.5 counts (*assumed*).
     """
 
     name = "adc_noise"

@@ -1,12 +1,8 @@
 """Chirp non-linearity: a periodic ripple of the ramp's instantaneous frequency.
 
-The PLL that generates the ramp does not follow a perfect line: its frequency error
-``dF(t)`` (loop settling, reference spurs) repeats in every chirp. Mixing the TX with its copy
-delayed by ``tau`` leaves the beat phase error ``2 pi [Phi(t) - Phi(t - tau)] ~= 2 pi tau dF(t)``
-(linearised like the phase noise: exact while ``tau`` is much shorter than the ripple period).
-A sinusoidal ripple turns every strong return into *paired echoes*: weak copies at beat
-frequency ``+-ripple_Hz`` around it, with amplitude ``pi tau deviation_Hz`` relative to the
-return (the first Bessel sidebands of the phase modulation, to first order).
+The PLL's frequency error ``dF(t)`` repeats in every chirp and leaves the beat phase error
+``~= 2 pi tau dF(t)`` (linearised like the phase noise): a sinusoidal ripple gives every strong return
+*paired echoes* at ``+-ripple_Hz``, ``pi tau deviation_Hz`` relative to it.
 """
 
 from __future__ import annotations
@@ -24,23 +20,16 @@ from radaraug.sensor.effects.base import Effect, Prior, check_params, modulate_s
 class ChirpNonlinearity(Effect):
     """Sinusoidal ramp-frequency ripple ``dF(t) = deviation_Hz sin(2 pi ripple_Hz t + phase_rad)``.
 
-    ``t`` is the fast time from the first ADC sample, the same in every chirp (the ripple is
-    locked to the ramp). Each of the ``num_paths`` paths with the largest ``|C| tau`` gains the
-    linearised term ``Re{j 2 pi tau C exp(j Phi)} dF(t)`` (a modulated copy, like
-    ``phase_noise``). Weaker paths' echoes would sit below the noise. The echo at
-    ``beat + ripple_Hz`` has complex ratio ``pi tau deviation_Hz exp(j phase_rad)`` to the main
-    tone, the one at ``beat - ripple_Hz`` ``-pi tau deviation_Hz exp(-j phase_rad)``. The LO is
-    common to all RX. Place it right after ``phase_noise``.
+    ``t`` is the fast time from the first ADC sample, the same in every chirp. The ``num_paths`` paths with the
+    largest ``|C| tau`` gain ``Re{j 2 pi tau C exp(j Phi)} dF(t)``; the echo at ``beat + ripple_Hz`` has the
+    ratio ``pi tau deviation_Hz exp(j phase_rad)`` to the tone, the one at ``beat - ripple_Hz``
+    ``-pi tau deviation_Hz exp(-j phase_rad)``. Common to all RX. Place it right after ``phase_noise``.
 
     Args:
         deviation_Hz: peak frequency deviation of the ramp, Hz. Default 20 kHz (*assumed*).
         ripple_Hz: ripple frequency, Hz. Default 100 kHz (*assumed*).
         phase_rad: ripple phase at the first ADC sample.
-        num_paths: how many of the strongest paths (by ``|C| tau``) get the echoes.
-
-    Priors: ``deviation_Hz`` in [1 kHz, 5 MHz] (log), ``ripple_Hz`` in [1 kHz,
-    ``config.sample_rate_Hz / 2``] (log), ``phase_rad`` in [-pi, pi]. ``num_paths`` is a cost
-    knob, not searched.
+        num_paths: how many of the strongest paths (by ``|C| tau``) get the echoes (a cost knob).
     """
 
     name = "chirp_nonlinearity"

@@ -1,15 +1,8 @@
 """LO phase noise, decorrelated by each path's delay (the FMCW range-correlation effect).
 
-The mixer multiplies the received copy of the LO, delayed by ``tau``, with the LO itself, so
-the residual phase noise of a path is ``phi(t) - phi(t - tau) ~= 2 pi tau nu(t)``, with
-``nu`` the LO's instantaneous frequency noise (linearised: valid while ``nu``'s bandwidth is
-well below ``1 / tau``, i.e. always indoors). Each affected path gains the term
-``Re{j 2 pi tau C exp(j Phi)} * nu(m, n)``: a noise skirt around strong returns, growing with
-their delay. ``nu`` is Gaussian with a Lorentzian spectrum (corner ``corner_Hz``) along fast
-time, independent between chirps, and common to all RX (one LO).
-
-For speed only the ``num_paths`` paths with the largest ``|C| tau`` (per frame) carry the skirt;
-weaker ones would be buried in the thermal noise.
+A path's residual phase noise is ``phi(t) - phi(t - tau) ~= 2 pi tau nu(t)``, ``nu`` the LO's frequency noise
+(linearised, valid indoors): a skirt around strong returns, growing with their delay. ``nu`` is Gaussian with
+a Lorentzian spectrum along fast time, independent between chirps and common to all RX.
 """
 
 from __future__ import annotations
@@ -22,15 +15,12 @@ from radaraug.sensor.effects.base import Effect, Prior, modulate_strongest_paths
 
 @register
 class PhaseNoise(Effect):
-    """Residual LO phase noise on the strongest paths.
+    """Residual LO phase noise on the ``num_paths`` strongest paths (by ``|C| tau``, per frame).
 
     Args:
         freq_noise_rms_Hz: RMS of the LO frequency noise ``nu``.
         corner_Hz: corner of its Lorentzian spectrum ``1 / (1 + (f / corner)^2)``.
-        num_paths: how many of the strongest paths (by ``|C| tau``) get the skirt.
-
-    Priors (log): ``freq_noise_rms_Hz`` in [1 kHz, 3 MHz], ``corner_Hz`` in [1 kHz, 1 MHz].
-    ``num_paths`` is a cost knob, not searched.
+        num_paths: how many of the strongest paths get the skirt (a cost knob; weaker ones sit under the noise).
     """
 
     name = "phase_noise"

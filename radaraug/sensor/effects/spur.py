@@ -14,24 +14,15 @@ from radaraug.sensor.effects.base import Effect, Prior, per_rx, register
 class SpurTone(Effect):
     """``A cos(2 pi f t + phi)`` added where the effect sits, ``t`` the absolute sample time.
 
-    ``t = frame_start_s + m * PRT + adc_delay + n / fs``, so the spur keeps its phase from frame
-    to frame like a free-running interferer (it is not coherent with the chirps). In a batch,
-    each frame uses its own start when ``frame_start_s`` is a tensor over the batch.
-
-    A tone whose source is not locked to the chirp timing (a free-running regulator whose phase
-    wanders between chirps) gets a random phase per chirp, the same on every RX: a Gaussian of RMS
-    ``phase_jitter_rad``. The Doppler line then keeps ``exp(-phase_jitter_rad**2)`` of its power and
-    the rest spreads evenly over the Doppler bins of its range bin: a ridge, not a line.
+    ``t = frame_start_s + m PRT + adc_delay + n / fs``: the spur keeps its phase from frame to frame and is not
+    coherent with the chirps. An unlocked source gets a Gaussian random phase per chirp (same on every RX):
+    its Doppler line keeps ``exp(-phase_jitter_rad**2)`` of the power, the rest a ridge over the Doppler bins.
 
     Args:
         freq_Hz: spur frequency.
         amplitude_counts: per-RX (or scalar) peak amplitude in ADC counts at this point.
         phase_rad: phase at ``t = 0``.
         phase_jitter_rad: RMS of the per-chirp random phase (0: locked to absolute time).
-
-    Priors: ``freq_Hz`` in [0, ``config.sample_rate_Hz / 2``] (linear: a spur is located to a
-    fraction of a bin), ``amplitude_counts`` in [0.05, 200] counts (log, each RX),
-    ``phase_rad`` in [-pi, pi], ``phase_jitter_rad`` in [0, pi].
     """
 
     name = "spur_tone"
