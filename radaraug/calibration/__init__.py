@@ -1,12 +1,9 @@
 """Closing the loop with measured data: residual views, the effect catalog, the search, twin profiles.
 
-``radaraug diagnose CAPTURE [--scene SCENE] -o REPORT_DIR`` (or :func:`diagnose` +
-:func:`write_report`) compares a capture with the twin, adds the sensor effects that explain the
-residual with fitted parameters, and writes a report and a fitted :class:`TwinProfile` that the
-simulator and the recipes load. What one empty-room capture calibrates (CalibratedDR's floor, the
-twin profile, the noise fit, the persistent cells) is one :class:`CalibrationRecord`, fitted by
-:func:`radaraug.calibration.record.fit_record`, saved as one versioned file and read by
-:func:`load_record`. See ``docs/calibration.md``.
+``radaraug diagnose`` (or :func:`diagnose` + :func:`write_report`) compares a capture with the twin,
+adds the sensor effects that explain the residual and writes a report and a fitted
+:class:`TwinProfile`. What one empty-room capture calibrates is one :class:`CalibrationRecord`
+(:func:`radaraug.calibration.record.fit_record`, :func:`load_record`). See ``docs/calibration.md``.
 """
 
 from radaraug.calibration.catalog import CATALOG_NAMES, Candidate, ParamSpec, catalog

@@ -1,11 +1,8 @@
 """Physical bounds on the base refit, and the check that says when a diagnosis leaned on them.
 
-The base refit moves the receiver's noise stages to match the capture's floor. Left free, it
-absorbs power the catalog does not explain into noise (a noise figure of 19 dB, ten times the
-declared ADC-side noise) and every error still falls, so a failed diagnosis looks like a good one.
-The bounds are what a radar engineer would sign for a BGT60TR13C (docs/calibration.md, "Base stages"):
-the noise figure within 6 dB of the assumed 12 dB, the ADC-side noise between 0.5 and 4 counts RMS
-(1.28-1.75 counts fitted on the public recordings at every IF gain).
+Left free, the base refit absorbs power the catalog does not explain into noise (every error still
+falls), so a failed diagnosis would look like a good one. The bounds are a BGT60TR13C's
+(``docs/calibration.md``, "Base stages stay physical").
 """
 
 from __future__ import annotations
@@ -54,9 +51,9 @@ def _rise_db(effect: str, before: float, after: float) -> float:
 def check_base(before: Chain, after: Chain, unexplained: Sequence[dict[str, Any]]) -> list[dict[str, Any]]:
     """One entry per bounded base parameter: declared and final value, and what is wrong with it.
 
-    ``at_bound``: the refit stopped at a bound (it wanted more); ``global_for_local``: the stage's
-    noise rose by more than :data:`NOISE_RISE_DB` while a localized residual (an RD-map item of
-    ``unexplained``) remains. ``ok`` is False when either holds; ``text`` says it in one line.
+    ``at_bound``: the refit stopped at a bound; ``global_for_local``: the stage's noise rose by more than
+    :data:`NOISE_RISE_DB` while a localized residual (an RD-map item of ``unexplained``) remains. ``ok`` is
+    False when either holds; ``text`` says it in one line.
     """
     local = [u for u in unexplained if u.get("view") == "rd_map" and u.get("kind") == "excess"]
     out = []

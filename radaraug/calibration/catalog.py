@@ -1,15 +1,9 @@
 """The effect catalog the loop searches: which parameters of each effect it fits, and where to start.
 
-A :class:`Candidate` names a registered receiver effect (:data:`radaraug.sensor.EFFECTS`), the
-parameters the search moves (:class:`ParamSpec`, each with a prior range: the effect's own
-:meth:`~radaraug.sensor.effects.Effect.priors`, or a narrower one around a start read off the
-residual) and its starting points. Starts come from the residual where the residual says
-something (a spur's range *and* Doppler bin give its frequency in closed form; a static line's
-range bin gives a scatterer's range; paired echoes around the strongest return give a chirp
-ripple), and from a coarse grid where it does not (noise levels). A candidate whose effect is
-already in the chain is a *refit* of that effect.
-
-Every candidate is a stage of the hardware chain: it is inserted at its place in
+A :class:`Candidate` names a registered receiver effect (:data:`radaraug.sensor.EFFECTS`), its searched
+parameters (:class:`ParamSpec`, each with a prior range) and its starts: read off the residual where
+it says something (a spur's range and Doppler bin give its frequency), a coarse grid where it does
+not. A candidate already in the chain is a refit; each is inserted at its place in
 :data:`radaraug.sensor.effects.HARDWARE_ORDER`.
 """
 
@@ -99,11 +93,7 @@ def require(chain: Chain, name: str) -> dict[str, Any]:
 
 
 def with_effect(chain: Chain, name: str, params: Mapping[str, Any]) -> Chain:
-    """A copy of ``chain`` with effect ``name`` set to ``params``.
-
-    The parameters are merged into an existing effect of that name, or the effect is inserted at its place
-    in the hardware order.
-    """
+    """A copy of ``chain`` with effect ``name`` set to ``params`` (merged, or inserted in hardware order)."""
     out = copy.deepcopy(chain)
     cur = find(out, name)
     if cur is not None:
@@ -173,8 +163,7 @@ def _plain_specs(name: str, *pnames: str) -> Callable[[Context, dict[str, Any]],
 def _line_peaks(excess: torch.Tensor, k: int, min_db: float) -> list[tuple[int, int, float]]:
     """Up to ``k`` (row, col, dB) local maxima of ``excess`` off zero Doppler and range bin 0, at least ``min_db``.
 
-    Lines a few Doppler bins from zero count: the static scene is matched in the excess map, so what is
-    left there is not static.
+    Lines a few Doppler bins from zero count: the static scene is matched in the excess map.
     """
     e = excess.clone()
     e[:, e.shape[1] // 2] = -math.inf
@@ -196,10 +185,7 @@ def _line_peaks(excess: torch.Tensor, k: int, min_db: float) -> list[tuple[int, 
 
 
 def _sub_bin(power: torch.Tensor, r: int, d: int) -> float:
-    """Fractional range bin of a peak at row ``r`` (column ``d``), clipped to +-0.5.
-
-    A parabola through the log power of the row's neighbours (Hann peaks are close to Gaussian).
-    """
+    """Fractional range bin of a peak at row ``r`` (column ``d``), clipped to +-0.5, from a parabola in log power."""
     if not 0 < r < power.shape[0] - 1:
         return float(r)
     a, b, c = (math.log(max(float(power[k, d]), 1e-30)) for k in (r - 1, r, r + 1))
@@ -226,8 +212,7 @@ def _level_probe(ctx: Context, name: str, params: dict[str, Any], r: int, col: i
 def _static_excess(ctx: Context, *masked: slice) -> tuple[int, float, float] | None:
     """The zero-Doppler range bin where the capture most exceeds the twin, outside the ``masked`` bins.
 
-    Returns the bin, the excess (dB) and the capture's frame-averaged power there; None when the
-    excess is under 3 dB.
+    Returns the bin, the excess (dB) and the capture's frame-averaged power there; None under 3 dB.
     """
     ex = ctx.excess_db()
     prof = ex[:, ex.shape[1] // 2].clone()
@@ -241,10 +226,7 @@ def _static_excess(ctx: Context, *masked: slice) -> tuple[int, float, float] | N
 
 # --------------------------------------------------------------------------- candidates
 def _range_level_specs(name: str, range_key: str) -> Callable[[Context, dict[str, Any]], list[ParamSpec]]:
-    """Specs of a scatterer-like effect: a range and a level.
-
-    The range stays within one range bin of its start, the level within 6 dB of it.
-    """
+    """Specs of a scatterer-like effect: a range within one range bin of its start, a level within 6 dB."""
 
     def specs(ctx: Context, start: dict[str, Any]) -> list[ParamSpec]:
         return [_narrow(ctx, name, start, range_key, half=ctx.config.range_resolution_m),
@@ -305,9 +287,8 @@ def _ridge_start(ctx: Context, ex: torch.Tensor, cap: torch.Tensor, bin_hz: floa
                  min_db: float = 6.0) -> list[dict[str, Any]]:
     """An unlocked spur's start from a ridge: one range row raised over every Doppler bin.
 
-    The row's median excess over Doppler (zero Doppler left out) must stand ``min_db`` over the twin
-    and 4 dB over the rows 3 bins away. Its tone power is the row's excess summed over Doppler over
-    the Hann window's noise bandwidth (1.5 bins): a tone with a random phase per chirp spreads evenly.
+    The row's median excess must stand ``min_db`` over the twin and 4 dB over the rows 3 bins away; its
+    tone power is the row's excess summed over Doppler over the Hann noise bandwidth (1.5 bins).
     """
     K, M = ex.shape
     if K < 8:
@@ -373,9 +354,8 @@ def _vibrating() -> Candidate:
 def _band_starts(ctx: Context, ex: torch.Tensor, min_db: float = 6.0, min_bins: int = 3) -> list[dict[str, Any]]:
     """Starts of a large vibration from a Doppler band: a row raised from zero Doppler out to +-v_max.
 
-    Frames sample the motion too slowly to separate the vibration's frequency from its
-    displacement (only ``2 pi f_v d = v_max`` shows), so the starts span ``f_v`` of 0.3, 1 and 3
-    Doppler bins with ``d = v_max / (2 pi f_v)``; the search refines both.
+    Only ``2 pi f_v d = v_max`` is identified, so the starts span ``f_v`` of 0.3, 1 and 3 Doppler bins
+    with ``d = v_max / (2 pi f_v)``; the search refines both.
     """
     cfg = ctx.config
     K, M = ex.shape

@@ -1,10 +1,8 @@
 """`radaraug diagnose`: twin vs capture, the effect search, the report and the fitted twin profile.
 
-:func:`diagnose` reads a capture (radaraug HDF5 or Infineon recording), simulates its scene with
-the capture's radar config (or, without a scene, takes the static scene from the capture itself),
-runs the search of :mod:`radaraug.calibration.search` and locates what is left unexplained.
-:func:`write_report` writes ``report.json``, ``summary.md``, one figure per view and the
-fitted twin profile (``profile.json``).
+:func:`diagnose` simulates the capture's scene (or estimates its static scene), runs the search and
+locates what is left unexplained; :func:`write_report` writes ``report.json``, ``summary.md``, the
+figures and ``profile.json``. See ``docs/calibration.md``.
 """
 
 from __future__ import annotations
@@ -218,10 +216,8 @@ _NEAREST: dict[str, tuple[str, ...]] = {
 def closest_effects(items: list[dict[str, Any]], evidence: dict[str, Any] | None) -> list[dict[str, Any]]:
     """``items`` with ``closest``: the catalog effects that could make each, and the measurement that ruled them out.
 
-    An RD-map item off zero Doppler could be a spur, a vibration, interference, phase noise or drift;
-    one at zero Doppler a static stage; a noise-floor item a filter or a noise-like effect. Each comes
-    with its signature's verdict (``present`` and the detector's one-line measurement), so a user
-    sees why nothing was named.
+    Each candidate comes with its signature's verdict (``present`` and the detector's one-line
+    measurement), so a user sees why nothing was named.
     """
     out = []
     for it in items:

@@ -1,26 +1,10 @@
 """Evidence for undeclared effects: the capture's signatures against the declared chain's.
 
-:mod:`radaraug.calibration.signatures` says whether a capture *shows* an effect's signature. Some
-effects are part of every sensor and of the declared receiver chain (TX->RX leakage, LO phase
-noise, the IF high-pass, the board's channel balance); what the loop must find is where the
-capture departs from the declaration. So each signature is read one of two ways:
-
-* **intrinsic** (``adc_clipping``, ``spur_tone``, ``interference``, ``vibrating_clutter``,
-  ``frame_drift``): the declared chain makes none of these, so the capture's signature is the
-  evidence. ``tx_rx_leakage`` and ``phase_noise`` are read the same way because their detectors
-  already compare with the declared chain in closed form (a visible near-DC return more than 15 dB
-  from the declared leakage's level, a skirt 3 dB over the declared LO noise's:
-  :mod:`radaraug.calibration.signatures`); an estimated static scene copies the capture's leakage,
-  so a twin run could not serve as the reference there. ``rx_gain_phase_mismatch`` too: the declared
-  chain has none, and its detector already asks for the same per-RX gain in the static returns *and*
-  in the noise (an estimated static scene copies the capture's static gains, so again no twin run).
-* **relative** (``if_highpass``): the same detector runs on frames the declared chain makes (the
-  twin with the base chain), and the effect is undeclared only when the capture departs from them
-  by more than a physical margin: a cutoff off by a factor of 1.3, or another order.
-
-:func:`assess` returns one :class:`Evidence` per effect with a detector. The search uses it to
-decide which catalog candidates may be added (:mod:`radaraug.calibration.search`) and the report
-states it per effect.
+Leakage, LO phase noise and the IF high-pass are in every sensor and in the declared chain, so what
+counts is where the capture departs from the declaration. A signature is **intrinsic** (the capture's
+signature is the evidence: the declared chain makes none, or the detector compares with it in closed
+form) or **relative** (``if_highpass``: undeclared when the cutoff is off by 1.3x from the declared
+chain's, or the order differs). See ``docs/calibration.md``, "The effect catalog and the search".
 """
 
 from __future__ import annotations
@@ -78,7 +62,7 @@ def _sig_dict(s: Signature) -> dict[str, Any]:
 
 
 def _highpass_relative(cap: Signature, twin: Signature) -> tuple[bool, str]:
-    """Is the capture's high-pass beyond the declared chain's (the one :data:`RELATIVE` effect)? ``(undeclared, reason)``."""
+    """``(undeclared, reason)``: is the capture's high-pass beyond the declared chain's?"""
     if "cutoff_Hz" not in cap.params or "cutoff_Hz" not in twin.params:
         return False, "noise floor too flat to fit a high-pass"
     ratio = float(cap.params["cutoff_Hz"]) / max(float(twin.params["cutoff_Hz"]), 1.0)

@@ -1,17 +1,10 @@
 """The fit behind the default chain's noise constants, reproducible on any set of recordings.
 
-Two noise sources set a BGT60TR13C's RD noise floor: thermal noise referred to the RX port
-(``thermal_noise``, amplified by the IF gain) and noise on the ADC side of the IF gain
-(``adc_noise``). Their levels in ADC units are fixed by two constants, the front-end gain
-(SDK floats per sqrt(W) at 0 dB IF gain; the noise figure stays at its assumed 12 dB, so the
-front-end gain carries the thermal level) and the ADC-side RMS. Recordings at different IF gains
-separate them: where the floor follows the gain, thermal noise dominates; where it does not, the
-ADC side does. :func:`fit_noise_defaults` grid-searches both so that the default twin's floor
-(:func:`radaraug.io.summary.noise_floor_db`, the statistic ``radaraug info`` prints) matches every
-recording's at its own config, minimizing the worst difference. The TX->RX leakage coupling is
-moved with the front-end gain so that the leakage's level at the ADC stays pinned.
-
-:func:`check_defaults` reports, per recording, capture floor vs default-twin floor.
+Thermal noise (amplified by the IF gain) and ADC-side noise (not) set the RD floor; recordings at
+several IF gains separate them. :func:`fit_noise_defaults` grid-searches the front-end gain and the
+ADC-side RMS so that the default twin's floor matches every recording's, minimizing the worst
+difference; :func:`check_defaults` reports the floors per recording. Results:
+``docs/calibration.md``, "Default constants".
 """
 
 from __future__ import annotations

@@ -1,20 +1,9 @@
 """Calibrate the twin's noise level on an empty-room capture: one offset on both noise sources.
 
-The one thing an empty-room capture pins is the noise floor. The twin's floor is its two noise
-sources through the receiver chain: thermal noise (``thermal_noise``, before the IF gain) and
-the noise on the ADC side of the IF gain (``adc_noise``, which dominates at low IF gain, see
-:mod:`radaraug.sensor.defaults`). The fit moves both by one offset ``d`` (noise figure
-``+d`` dB, ADC-side RMS ``x 10**(d/20)``), so the floor follows ``d`` dB for dB at any IF gain
-while their ratio stays the fitted default's. It is a fixed-point iteration on that one number:
-simulate empty frames, measure the RD noise floor with the same statistic as ``radaraug info``
-(:func:`radaraug.io.summary.noise_floor_db`), move the offset by the difference, repeat.
-
-Why it matters for training: CalibratedDR raises the simulated floor with *independent* draws
-per RD cell, but a real floor is noise seen through the range and Doppler windows, correlated
-between neighbouring cells. When the twin's own noise sits well below the calibrated floor, the
-network trains on the i.i.d. texture only and meets a blotchy one in the capture (measured on the
-quick held-out proxy run, occupancy with CDR: balanced accuracy 0.50 with the default 12 dB
-twin, whose floor was 5 dB below the capture's, 0.92 with the twin's noise raised to it).
+The fit moves the noise figure by ``d`` dB and the ADC-side RMS by ``10**(d/20)``, so the floor
+follows ``d`` at any IF gain, and iterates on ``d`` until the empty twin's RD noise floor
+(:func:`radaraug.io.summary.noise_floor_db`) equals the capture's. Why it matters for training:
+``docs/calibration.md``, "The calibration record".
 """
 
 from __future__ import annotations
@@ -69,7 +58,7 @@ def fit_noise_figure(
         config: the radar config to simulate (the capture's).
         target_floor_db: the capture's floor (:func:`capture_noise_floor_db`).
         frames: empty frames simulated per iteration.
-        iterations: most fixed-point steps (each moves the offset by the floor difference).
+        iterations: most fixed-point steps.
         tol_db: stop when the floors agree this well.
         seed: noise seed.
         tracer_options: the room trace's options (e.g. ``{"method": "sbr", "rays": 128}``).
@@ -77,12 +66,12 @@ def fit_noise_figure(
 
     Returns:
         ``{"noise_figure_dB", "adc_noise_rms_counts", "noise_offset_dB", "target_floor_db",
-        "twin_floor_db", "history"}`` (build the receiver with :func:`noise_fit_receiver`);
-        ``history`` lists ``(noise_figure_dB, floor_db)`` per step.
+        "twin_floor_db", "history"}`` (``history``: ``(noise_figure_dB, floor_db)`` per step); build the
+        receiver with :func:`noise_fit_receiver`.
 
     Raises:
-        CalibrationError: the floor does not move with the noise figure (quantization or another
-            stage dominates), or the fit leaves :data:`NOISE_FIGURE_LIMITS_DB`.
+        CalibrationError: the floor does not move with the noise figure, or the fit leaves
+            :data:`NOISE_FIGURE_LIMITS_DB`.
     """
     if twin is None:
         twin = DigitalTwin(scene, config=config, tracer_options=tracer_options)

@@ -1,28 +1,9 @@
 """People's level against a real capture: the signal side of the twin, as the noise side was fitted.
 
-The receiver's noise constants are fitted on empty-room floors (:mod:`radaraug.calibration.noise_defaults`);
-they pin the product ``front-end gain^2 x noise figure``, not the signal gain. What a person adds above
-that floor depends on the TX power, the antenna gains, the receiver gain *and* the body's reflectivity,
-which no empty room measures. :func:`fit_people_level` measures it on a capture with a moving person:
-
-1. both the capture and the twin go through the same chain, ``RangeDoppler(static_clutter=True)`` (MTI:
-   the mean over chirps removed) -> :class:`~radaraug.transforms.ToDecibels`, in dBFS
-   (:data:`radaraug.units.DB_CONVENTION`), one RX (the first);
-2. per frame, the strongest cell off the first ``min_range_bin`` range bins and its range bin; a capture
-   frame counts as holding a moving target when that peak is ``min_snr_dB`` above the capture's noise
-   floor (or above the empty-room capture's strongest MTI cell in the same range bin, when one is given);
-3. the twin simulates, at the capture's config (IF gain included) in ``scene``, a walker crossing the
-   same ranges along the radar's boresight (three speeds, both directions, on and off the axis);
-4. the levels are compared **at matched range bin** (the IF high-pass and the radar equation's ``R^-4``
-   both depend on range, so peaks at different ranges say nothing): each capture frame's peak minus the
-   twin's median peak in the same range bin. The offset is the median of those differences (capture
-   minus twin: positive means real people are stronger than the twin's), the spread half their
-   interquartile range.
-
-Both noise floors are reported (:func:`radaraug.io.summary.noise_floor_db`): the comparison is of the
-signal side only where they agree (they do, within 0.5 dB, on the public recordings with the default
-receiver). The result is a :class:`PeopleLevelFit`; ``docs/receiver.md`` ("The signal side") gives the
-numbers for the public recordings.
+Empty-room floors pin the noise, not the signal gain. :func:`fit_people_level` compares a moving
+person's MTI range-Doppler peak in a capture with the twin's walkers crossing the same ranges, at
+matched range bin (the IF high-pass and ``R^-4`` both depend on range). Method and numbers for the
+public recordings: ``docs/receiver.md``, "The signal side".
 """
 
 from __future__ import annotations
@@ -56,12 +37,10 @@ class PeopleLevelFit:
             same range bin). Positive: the real person is stronger than the twin's walker.
         spread_dB: half the interquartile range of those differences.
         ranges_m: centres of the range bins used (both sides have frames there).
-        capture_dBFS: per range bin, the capture's median MTI peak.
-        twin_dBFS: per range bin, the twin's median MTI peak.
+        capture_dBFS, twin_dBFS: per range bin, the capture's and the twin's median MTI peak.
         capture_frames: capture frames used (moving target in a shared range bin).
         twin_frames: twin frames simulated.
-        capture_floor_dBFS: the capture's RD noise floor (no MTI).
-        twin_floor_dBFS: the twin's RD noise floor at the same config.
+        capture_floor_dBFS, twin_floor_dBFS: RD noise floors (no MTI) at the same config.
         rcs_scale_dB: the people RCS scale the twin was simulated with.
         db_convention: :data:`radaraug.units.DB_CONVENTION`.
     """
@@ -120,11 +99,9 @@ def twin_walks(
 ) -> torch.Tensor:
     """Twin frames ``(F, rx, chirps, samples)`` of single walkers crossing ``ranges_m`` at ``config``.
 
-    One walk per speed (:data:`WALK_SPEEDS_M_S`), direction (toward and away from the radar) and
-    lateral offset (:data:`WALK_OFFSETS_M`), along the radar's horizontal boresight in ``scene`` (a
-    :class:`~radaraug.scene.Scene`, a scene file or a built-in name), with frames spaced about one
-    range bin apart. ``rcs_scale_dB`` scales the walker's paths (amplitude ``10**(dB/20)``), as a
-    :class:`~radaraug.sim.randomization.ItemDraw` does.
+    One walk per speed (:data:`WALK_SPEEDS_M_S`), direction and lateral offset (:data:`WALK_OFFSETS_M`)
+    along the boresight in ``scene`` (a scene, a scene file or a built-in name), frames about one range
+    bin apart; ``rcs_scale_dB`` scales the walker's paths by ``10**(dB/20)``.
     """
     from radaraug.scene.people import Walker
     from radaraug.scene.scene import Scene
@@ -196,24 +173,21 @@ def fit_people_level(
     """Fit the level of a moving person in ``capture`` against the twin's walker, at matched range.
 
     Args:
-        capture: a capture with a moving person: a path (:func:`radaraug.io.open_capture`), an open
-            reader, or raw frames ``(F, rx, chirps, samples)`` in SDK floats (then give ``config``).
-        config: the config of a tensor ``capture`` (a reader's own otherwise).
-        empty: optionally the same sensor's empty-room capture (same kinds as ``capture``, same
-            config): a frame then counts as moving when its peak beats the empty room's strongest
-            MTI cell in the same range bin by ``min_snr_dB``.
+        capture: a capture path, an open reader, or raw frames ``(F, rx, chirps, samples)`` in SDK
+            floats (then give ``config``).
+        config: the config of a tensor ``capture``.
+        empty: optionally the same sensor's empty-room capture: a frame then counts as moving when its
+            peak beats the empty room's strongest MTI cell in that range bin by ``min_snr_dB``.
         scene: the twin's scene for the walks (:func:`twin_walks`).
         rcs_scale_dB: people RCS scale of the twin (0: its default).
         min_snr_dB: how far above the floor (or the empty room) a frame's MTI peak must be.
-        min_range_m: peaks nearer than this are left out (a walker's whole body does not fit there;
-            what moves that close to a sensor is rarely a walking person).
+        min_range_m: peaks nearer than this are left out (rarely a walking person).
         min_frames: fewest moving frames (in range bins the twin also covers) the fit accepts.
         max_frames: read at most this many frames of a capture.
         seed: seed of the twin's walks (phases and noise).
 
     Raises:
-        CalibrationError: no moving target (fewer than ``min_frames`` frames pass), a bad source, or a
-            tensor without a config.
+        CalibrationError: fewer than ``min_frames`` moving frames, a bad source, or a tensor without a config.
     """
     frames, cfg, name = _frames_and_config(capture, config, max_frames, "capture")
     peaks, bins, floor = mti_peaks(frames)

@@ -1,18 +1,9 @@
 """Priors of the twin's effect catalog from what ``diagnose`` measured on the calibration capture.
 
-The training twin's randomization draws the effect catalog (spur, interference, a vibrating
-scatterer, RX mismatch, frame drift) from physics-wide ranges
-(:class:`~radaraug.sim.randomization.TwinRandomization`). The calibration capture, recorded by
-the user's sensor in the user's room, says more: if ``diagnose`` finds a spur at 212 kHz, the
-test captures will most likely carry that spur too. :func:`calibration_priors` moves the catalog's
-draws there: each effect that diagnose *added* to the chain gets a higher probability and ranges
-around its fitted values (a factor of two, or +-1 m / +-0.5 dB / +-10 deg), the others keep
-their physics priors (an effect absent from an empty room may still appear later: a fan switched on).
-
-Why ranges and not the fitted values: diagnose names the effect that explains the residual best,
-which need not be the one present (docs/calibration.md lists the known confusions), and the
-test captures are recorded later than the calibration; training on a band keeps a wrong or
-drifted estimate from becoming the only thing the network has seen.
+:func:`calibration_priors` gives each effect diagnose added a higher probability and ranges around
+its fitted values; the others keep their physics priors. Bands rather than the fitted values, since
+diagnose may name the wrong effect and test captures come later (``docs/simulation.md``, "Catalog
+priors from the calibration capture").
 """
 
 from __future__ import annotations
@@ -80,12 +71,10 @@ def calibration_priors(profile: TwinProfile, base: TwinRandomization, config: Ra
         profile: the twin profile ``diagnose`` fitted on the calibration capture (no scene).
         base: the randomization to start from (its physics priors).
         config: the radar config of the calibration capture (and the twin).
-        probability: the per-item probability of each effect found (the catalog's other
-            probabilities are kept).
+        probability: the per-item probability of each effect found.
 
     Returns:
-        The new randomization and a record of what changed (effect -> fields -> new values), for
-        the run's files.
+        The new randomization and a record of what changed (effect -> fields -> new values).
     """
     found = added_effects(profile)
     changes: dict[str, dict[str, Any]] = {}

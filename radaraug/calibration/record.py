@@ -1,25 +1,10 @@
 """What an empty-room capture calibrates: every fit on it, and the one record that holds them.
 
-:func:`fit_record` fits a :class:`~radaraug.transforms.record_file.CalibrationRecord` on an
-empty-room capture (CalibratedDR's floor, and on request the twin profile, the twin's noise fit and
-the persistent cells); :meth:`CalibrationRecord.save` writes it as one versioned file and
-:func:`load_record` reads it back (or an older CalibratedDR JSON, twin profile or noise fit, as a
-partial record). ``CalibratedDR.from_record(record)`` makes the clamp.
-
-The recipes also calibrate the training twin on the capture in three ways, each a fit that belongs
-to the calibration layer, not to the Lightning DataModule that asks for it:
-
-* :func:`cached_noise_fit`: the twin's noise figure (and ADC-side noise, moved together) whose
-  empty-room floor equals the capture's (:func:`radaraug.calibration.noise_fit.fit_noise_figure`);
-* :func:`cached_profile_fit`: the twin profile ``radaraug diagnose`` fits on the capture without a
-  scene (``cdr_profile``, ``catalog_priors: calibration``);
-* :func:`persistent_cells_of`: the cells of the capture's range-Doppler maps that stand above their
-  row in every frame (spur and fan lines), excised from every training and test map.
-
-The cached files carry ``{"format", "version"}`` and are read through
-:func:`radaraug.files.load_json`; a file of another format or version, or one that cannot be
-read, is fitted again and replaced (never trusted). Keys cover what the fit depends on, so a cache
-shared by runs is safe.
+:func:`fit_record` fits a :class:`~radaraug.transforms.record_file.CalibrationRecord` (CalibratedDR's
+floor and, on request, the twin profile, the noise fit and the persistent cells); :func:`load_record`
+reads it back. The recipes' cached fits (:func:`cached_noise_fit`, :func:`cached_profile_fit`,
+:func:`persistent_cells_of`) are refitted whenever a cache file is unreadable or of another format or
+version. See ``docs/calibration.md``, "The calibration record".
 """
 
 from __future__ import annotations
@@ -73,8 +58,8 @@ def cached_noise_fit(calibration: str, *, scene: str, config: RadarConfig, cache
         tracer_rays: SBR rays of the room trace (None: the tracer's default method).
 
     Returns:
-        :func:`~radaraug.calibration.noise_fit.fit_noise_figure`'s dict plus ``calibration``, ``format`` and
-        ``version``.
+        :func:`~radaraug.calibration.noise_fit.fit_noise_figure`'s dict plus ``calibration``,
+        ``format`` and ``version``.
     """
     from radaraug.calibration.noise_fit import capture_noise_floor_db
     from radaraug.files import load_json
@@ -100,8 +85,8 @@ def cached_profile_fit(calibration: str, path: str | Path, *, max_frames: int,
                        progress: bool = False) -> TwinProfile:
     """The twin profile ``diagnose`` fits on ``calibration`` (no scene), from ``path`` when fitted before.
 
-    ``path`` is the caller's cache file (its key must cover the capture's content and ``max_frames``);
-    a file that does not load as a profile is fitted again and replaced.
+    ``path``'s key must cover the capture's content and ``max_frames``; a file that does not load as a
+    profile is fitted again.
     """
     path = Path(path)
     if path.is_file():
@@ -119,10 +104,10 @@ def persistent_cells_of(calibration: str, threshold_db: float, rd_db: Callable[[
                         frames: int = PERSISTENT_FRAMES) -> torch.Tensor:
     """The calibration capture's persistent lines as a ``(range, doppler)`` mask of its RD maps.
 
-    Cells that stand more than ``threshold_db`` above their row's floor in every one of the first
-    ``frames`` frames (``rd_db``'s per-RX dB maps, RX power-combined): what every frame of the empty
-    room shows (a spur's line, a fan's Doppler lines). ``rd_db`` is the caller's map chain (the
-    recipes': :func:`radaraug.training.pipeline.rd_db_chain`), so the mask lines up with its maps.
+    Cells more than ``threshold_db`` above their row's floor in every one of the first ``frames`` frames
+    of ``rd_db``'s maps (RX power-combined): a spur's line, a fan's Doppler lines. ``rd_db`` is the
+    caller's map chain (the recipes': :func:`radaraug.training.pipeline.rd_db_chain`), so the mask lines
+    up with its maps.
 
     Raises:
         ConfigError: fewer than 3 frames.
@@ -158,21 +143,19 @@ def fit_record(
     Args:
         capture: the empty-room capture (radaraug ``.h5`` or Infineon recording folder).
         floor: CalibratedDR's floor distribution, ``"normal"`` or ``"empirical"``.
-        pipeline: raw cube -> dB map chain of the floor (and of the persistent cells); default
+        pipeline: raw cube -> dB map chain of the floor and the persistent cells; default
             ``RangeDoppler() -> ToDecibels()``.
         max_frames: frames the floor is fitted on (default: all).
-        motion_threshold_db: threshold of the motion check (warns ``MotionWarning``, as
-            :meth:`CalibratedDR.fit <radaraug.transforms.CalibratedDR.fit>`).
+        motion_threshold_db: threshold of the motion check (warns ``MotionWarning``).
         profile_frames: also fit the twin profile (``diagnose`` without a scene) on this many frames.
-        noise_scene: also fit the twin's noise to the capture's floor, simulating this scene
-            (:func:`~radaraug.calibration.noise_fit.fit_noise_figure`).
+        noise_scene: also fit the twin's noise to the capture's floor, simulating this scene.
         tracer_rays: SBR rays of the noise fit's room trace (None: the tracer's default method).
         persistent_db: also record the persistent cells at this threshold (:func:`persistent_cells_of`).
         progress: progress bars.
 
     Returns:
-        The record (``file`` None until saved and read back); the capture's identity holds its name,
-        content digest and frame count.
+        The record (``file`` None until saved and read back), with the capture's name, content digest
+        and frame count.
 
     Raises:
         CalibrationError, CaptureError: as the fits they come from.

@@ -1,22 +1,9 @@
 """Room parameters the calibration loop fits: properties of the traced room, not receiver effects.
 
-In scene mode the loop can also fit how strongly the room scatters diffusely
-(:mod:`radaraug.raytrace.diffuse`): one power gain ``diffuse_gain_dB`` on every diffuse path,
-the :class:`~radaraug.raytrace.RayTracer` option of the same name. It is not a stage of the
-receiver, so it does not go into the effect chain: the search carries a separate ``room`` dict
-next to the chain, and its parameter lists name it with the pseudo-stage :data:`ROOM_STAGE`.
-:class:`~radaraug.calibration.twin_source.TwinSource` applies a candidate value without tracing
-again (the diffuse and specular paths are synthesized apart, the diffuse signal scaled by
-``10**(g/20)``). The fitted values land in the twin profile's ``room`` section
-(:class:`~radaraug.sensor.profile.TwinProfile`).
-
-Why only a gain and not the scattering coefficient ``S`` itself: a diffuse path's field is
-proportional to ``S`` (``sigma0`` goes as ``S^2`` for both patterns), but the specular part keeps
-``sqrt(1 - S^2)`` of the field *per bounce* and per material (a three-bounce path carries three
-factors, glass and metal have their own ``S``), and the merge of the image method's paths mixes
-them: no single factor on the traced specular paths is exact for a change of ``S``. A pure gain
-on the diffuse power is exact (it is what the tracer's ``diffuse_gain_dB`` does: the specular
-part is left as traced), so that is what is fitted.
+Today one: ``diffuse_gain_dB``, a power gain on every diffuse path (the
+:class:`~radaraug.raytrace.RayTracer` option of that name). It is not in the effect chain: the search
+carries a ``room`` dict beside it and names it with the pseudo-stage :data:`ROOM_STAGE`. Why a gain and
+not the scattering coefficient: ``docs/calibration.md``, "The room's diffuse gain".
 """
 
 from __future__ import annotations

@@ -1,36 +1,11 @@
 """The search: refit the base chain, then add catalog effects while they beat it on held-out frames.
 
-The capture's frames are split in two contiguous halves: parameters are fitted on the first
-(``fit``) and every decision is scored on the second (``held-out``). The objective is the overall
-view error (:func:`radaraug.calibration.views.overall_error`, dB). Twin frames for the fit use
-one fixed seed and those for scoring another, so two candidates are compared on the same noise
-(common random numbers) and the objective is a smooth function of the parameters.
-
-The optimizer is SciPy's bounded Nelder-Mead simplex (``scipy.optimize.minimize``; it replaced a
-hand-written one) in the parameters' prior ranges (linear or log scale), from starts the catalog
-reads off the residual; noise sources trade off against each
-other along valleys (more ADC-side noise, lower noise figure), which a simplex follows and a
-one-parameter-at-a-time search does not.
-Gradients through the receiver would work for a few parameters, but half the views are order
-statistics (quantiles, medians, peaks) and a spur's frequency objective is a comb of local
-minima; a start in closed form plus a short local search is both faster and more reliable here.
-
-Room parameters: in scene mode, when the room has diffuse scattering, the base refit also fits
-the room's diffuse power gain (:mod:`radaraug.calibration.room`). It is not a receiver effect, so
-it is not in the chain: every method carries a ``room`` dict beside the chain, and parameter lists
-name it with the pseudo-stage :data:`~radaraug.calibration.room.ROOM_STAGE`.
-
-Decision rule (documented margin): identifiability first. When the capture's signatures are given
-(:mod:`radaraug.calibration.evidence`), an effect with a detector is a candidate only when its
-signature says the capture carries it beyond the declared chain; effects without a detector stay
-candidates. Candidates are ranked by held-out error plus ``per_param_db`` per fitted parameter, and
-the best is added when it lowers the held-out overall error by at least ``min_gain_db +
-per_param_db * k`` with its signature, ``max(min_gain_db, min_gain_rel * current) + per_param_db * k``
-without one (``k`` its parameter count); the search stops when none does. Alternatives within
-the ambiguity band are recorded with their scores. Effects whose signature is present but that the
-chain already holds (ADC clipping; in estimated mode the leakage, copied by the static scene) are
-reported from their signature, and a high-pass whose signature departs from the config's is refitted
-(cutoff and order) with the base.
+The capture is split in two contiguous halves: parameters are fitted on the first and every
+decision is scored on the second, by the overall view error (dB). Twin noise uses fixed seeds, so
+candidates are compared on the same noise and the objective is smooth. Parameters move by SciPy's
+bounded Nelder-Mead in their prior ranges from starts the catalog reads off the residual. An effect
+with a detector is a candidate only when its signature is present beyond the declared chain.
+Decision rule and margins: ``docs/calibration.md``, "The effect catalog and the search".
 """
 
 from __future__ import annotations
@@ -77,16 +52,15 @@ class SearchSettings:
         evals_per_param: Nelder-Mead evaluations per searched parameter (plus 4).
         screen_top: candidates refined after screening their starts.
         max_steps: most effects added.
-        min_gain_rel: relative held-out improvement an effect must bring (5 %).
+        min_gain_rel: relative held-out improvement an effect must bring without its signature (5 %).
         min_gain_db: absolute held-out improvement it must bring (dB).
-        per_param_db: held-out improvement each fitted parameter must pay for (dB): candidates
-            are ranked by held-out error plus this times their parameter count (an information
-            criterion's penalty in the view error's units), and the margin grows by it too.
-        ambiguity_db: alternatives whose penalized held-out error is within this of the chosen
-            one's are listed as ambiguous with it (dB; at least ``ambiguity_rel`` of the step's gain).
+        per_param_db: held-out improvement each fitted parameter must pay for (dB); candidates are
+            ranked by held-out error plus this times their parameter count.
+        ambiguity_db: alternatives whose penalized held-out error is within this of the chosen one's
+            are listed as ambiguous (dB; at least ``ambiguity_rel`` of the step's gain).
         ambiguity_rel: relative part of the ambiguity band.
-        use_signatures: let :func:`~radaraug.calibration.diagnose` read the capture's signatures
-            first (False: every candidate competes on the error alone, as before the signatures).
+        use_signatures: read the capture's signatures first (False: every candidate competes on the
+            error alone).
         seed: seed of the twin's noise.
     """
 
@@ -237,11 +211,7 @@ class Search:
         return chain
 
     def base_specs(self, chain: Chain) -> list[tuple[str, ParamSpec]]:
-        """The base parameters present in ``chain`` that the search refits, then the room's.
-
-        The source's room parameters have stage :data:`~radaraug.calibration.room.ROOM_STAGE` (the diffuse
-        gain in scene mode when the room scatters diffusely).
-        """
+        """The base parameters present in ``chain`` that the search refits, then the room's (stage ``ROOM_STAGE``)."""
         names = [("thermal_noise", "noise_figure_dB"), ("adc_noise", "rms_counts"), ("anti_alias_lowpass", "cutoff_Hz")]
         if self.source.mode == "scene":
             # With an estimated static scene the high-pass only shapes the thermal noise (weak at
@@ -267,9 +237,8 @@ class Search:
                    room: Room | None = None) -> tuple[Chain, Room]:
         """Refit the base stages present in ``chain``, the room and the DC offsets, with ``extra``.
 
-        The base stages are the noise figure, anti-alias cutoff and ADC-side noise (high-pass cutoff and
-        system gain in scene mode). ``extra`` are the parameters of the effect just added: the base was
-        bent to imitate it before.
+        The base is the noise figure, anti-alias cutoff and ADC-side noise (plus high-pass cutoff and system
+        gain in scene mode); ``extra`` are the just-added effect's parameters, which the base had imitated.
         """
         chain = self.dc_closed_form(chain, room=room)
         chain, room, _ = self.optimize(chain, self.base_specs(chain) + list(extra), room)
@@ -278,14 +247,11 @@ class Search:
 
     def uncertainty(self, chain: Chain, specs: Sequence[tuple[str, ParamSpec]], room: Room | None,
                     noise_db: float) -> dict[str, list[float] | None]:
-        """A +-1 sigma interval per fitted parameter from the fit objective's curvature.
+        """A +-1 sigma interval per fitted parameter from the fit objective's curvature (two evaluations each).
 
-        The objective (mean view error, dB) is not a likelihood; its noise scale is taken as the
-        gap between the fitting and the held-out half's error (at least 0.01 dB), and a parameter's
-        sigma is where a parabola through the optimum and two probes 2 % of the prior range away
-        rises by that much: ``sigma = sqrt(2 noise / curvature)`` (in the prior's scale: a factor for
-        log parameters). None when the objective does not curve there (the parameter is not
-        identified by the views). Two evaluations per parameter.
+        The objective's noise is the gap between the fitting and held-out errors (at least 0.01 dB); sigma is
+        ``sqrt(2 noise / curvature)`` from a parabola through the optimum and two probes 2 % of the prior range
+        away (a factor for log parameters). None where the views do not constrain the parameter.
         """
         R = self.config.num_rx
         f0 = self.fit_score(chain, room).overall
@@ -315,13 +281,9 @@ class Search:
                          steps: list[dict[str, Any]], added: set[str]) -> tuple[Chain, Room, Score]:
         """Effects the chain already holds whose signature departs from the declaration.
 
-        * ``if_highpass``: the stage takes the cutoff and order the noise floor shows, then the
-          base is refitted with the cutoff free (kept when the held-out error does not grow by more
-          than ``min_gain_db``: the signature is direct evidence, the error a summary of nine views).
-        * ``adc_clipping``: always in the chain (the twin clips at the same rails); reported from
-          its signature with the clipped fraction.
-        * ``tx_rx_leakage`` in estimated mode: the static scene copies the capture's leakage, so it
-          is reported from its signature (its level over the declared one); the profile carries it.
+        ``if_highpass`` takes the detected cutoff and order and the base is refitted (kept unless the
+        held-out error rises by more than ``min_gain_db``); ``adc_clipping`` and, in estimated mode,
+        ``tx_rx_leakage`` are reported from their signature.
         """
         hp = ev.get("if_highpass")
         if hp is not None and hp.present and find(chain, "if_highpass") is not None:
@@ -521,10 +483,8 @@ def nelder_mead(f: Callable[[list[float]], float], x0: Sequence[float], step: Se
                 lo: Sequence[float], hi: Sequence[float], max_evals: int) -> tuple[list[float], float]:
     """Minimize ``f`` from ``x0`` with SciPy's bounded Nelder-Mead simplex in ``[lo, hi]``.
 
-    The first simplex is ``x0`` plus one ``step`` along each axis (away from a bound it would
-    cross), as a radar engineer would bracket each parameter; at most ``max_evals`` evaluations.
-    Why a simplex and not a gradient method: half the views are order statistics (quantiles,
-    medians, peaks) and a spur's frequency objective is a comb of local minima (module docstring).
+    The first simplex is ``x0`` plus one ``step`` along each axis (away from a bound it would cross);
+    at most ``max_evals`` evaluations.
     """
     import numpy as np
     from scipy.optimize import minimize

@@ -1,52 +1,10 @@
-"""Effect signatures: one detector per catalog effect, looking for what identifies that effect.
+"""Effect signatures: one detector per catalog effect, testing what sets that effect apart.
 
-The search (:mod:`radaraug.calibration.search`) adds whichever effect lowers the residual error the
-most, which finds *a* chain that explains the capture, not necessarily the chain that is there
-(clipping taken for interference, a steeper IF high-pass for a higher noise figure, a spur for a
-vibrating object). Each detector here tests the one property that sets its effect apart from the
-others, directly on the capture's raw frames, without a twin and without a scene:
-
-=========================  ========================================================================
-effect                     signature tested
-=========================  ========================================================================
-``adc_clipping``           ADC codes pile up on the rails (0 and ``2**bits - 1``): far more samples
-                           on a rail code than on its neighbour codes; compared with what a Gaussian
-                           of the measured (robust) spread would put beyond the rails
-``phase_noise``            a noise skirt around the strongest static return, common to every RX with
-                           the carrier's inter-RX phase (one LO), white over chirps, over range bins
-                           5..40 bins away from the carrier; its level in dBc
-``spur_tone``              one narrow line off zero Doppler, in every frame and every RX, with a
-                           constant amplitude and no mirror line (a vibration makes a pair); or,
-                           unlocked (a new phase every chirp), one range bin raised evenly over
-                           every Doppler bin: a ridge
-``if_highpass``            the shape of the noise floor at low IF frequency, from chirp-to-chirp
-                           differences (static returns cancel): a Butterworth
-                           ``|H|^2 = (f/fc)^2n / (1 + (f/fc)^2n)`` fitted and compared with the
-                           nominal first-order high-pass at the config's cutoff
-``rx_gain_phase_mismatch`` per-RX gain relative to RX1, constant over the static returns *and* the
-                           same in the noise (both go through the RX channel)
-``tx_rx_leakage``          a coherent (every chirp, every frame) return at near-zero beat frequency
-                           (range bins 1..2, DC removed, low-sidelobe window), strong enough to see in
-                           a single chirp
-``interference``           chirps whose power (static part removed) stands far above their frame's
-                           median chirp, wideband
-``vibrating_clutter``      a symmetric pair of Doppler lines at +-f_vib at the range bin of a static
-                           return; level ``(J1(beta) / J0(beta))^2``, ``beta = 4 pi d / lambda``
-``frame_drift``            frame-to-frame wander of the DC level (per RX) or the gain (common) beyond
-                           what the within-frame noise explains
-=========================  ========================================================================
-
-Every detector takes raw frames ``(F, rx, chirps, samples)`` in Infineon SDK floats
-(``x = 2 * counts / (2**bits - 1) - 1``, :data:`radaraug.units.FLOAT_CONVENTION`) and the capture's
-:class:`~radaraug.config.RadarConfig`, and returns a :class:`Signature`. Work is in float64 ADC counts
-on the frames' device (CPU or CUDA). Range spectra are FFTs over samples divided by their window sum,
-so a tone of amplitude ``A`` counts shows ``A / 2`` at its bin; dBFS values follow the library's
-convention (``20 log10 |X|`` of the same spectrum in SDK float units, :data:`radaraug.units.DB_CONVENTION`).
-
-Limits (documented in ``docs/calibration.md``, "Signatures"): the leakage test needs the room's
-nearest static return beyond about 6 range bins (~1 m at the paper's config, a low-sidelobe window's
-main lobe); a spur whose frequency is a whole multiple of the chirp rate sits at zero Doppler and is
-not tested; the phase-noise and mismatch tests need at least two RX channels.
+The search finds *a* chain that explains the capture, not necessarily the one that is there (a spur
+taken for a vibrating object); each detector reads the capture's raw frames ``(F, rx, chirps,
+samples)`` (SDK floats) and its config, without a twin or a scene, and returns a :class:`Signature`.
+Work is in float64 ADC counts on the frames' device. What each detector tests, its thresholds,
+conventions and limits: ``docs/calibration.md``, "Signatures".
 """
 
 from __future__ import annotations
@@ -87,11 +45,9 @@ class Signature:
 
 # --------------------------------------------------------------------------- windows, spectra
 def _window(kind: str, n: int, device: torch.device) -> torch.Tensor:
-    """Periodic window of length ``n`` (float64).
+    """Periodic window of length ``n`` (float64): ``hann`` (the RD window) or ``bh4`` (4-term Blackman-Harris).
 
-    ``hann``: the library's RD window (main lobe +-2 bins, sidelobes -31 dB). ``bh4``: 4-term
-    Blackman-Harris (main lobe +-4 bins, sidelobes -92 dB), where a strong line must not leak
-    into bins far from it (noise-floor shape, skirts, near-DC content).
+    ``bh4``'s -92 dB sidelobes keep a strong line out of bins far from it (floor shape, skirts, near DC).
     """
     t = 2 * math.pi * torch.arange(n, dtype=torch.float64, device=device) / n
     if kind == "hann":
@@ -113,11 +69,10 @@ def _rspec(x: torch.Tensor, w: torch.Tensor) -> torch.Tensor:
 
 
 def _remove_dc(x: torch.Tensor, w: torch.Tensor) -> torch.Tensor:
-    """``x`` minus its *window-weighted* mean: bin 0 of the windowed spectrum becomes exactly 0.
+    """``x`` minus its window-weighted mean, so bin 0 of the windowed spectrum is exactly 0.
 
-    Subtracting the plain mean would add a constant (the mean of every return that is not a
-    whole number of cycles), and a constant fills the window's main lobe around DC, where the
-    leakage is looked for.
+    A plain mean would leave a constant (from every return that is not a whole number of cycles) in
+    the window's main lobe around DC, where the leakage is looked for.
     """
     return x - (x * w).sum(dim=-1, keepdim=True) / w.sum()
 
@@ -186,10 +141,10 @@ class Prepared:
 
     @cached_property
     def doppler(self) -> tuple[torch.Tensor, torch.Tensor, torch.Tensor]:
-        """Range-Doppler spectra of :attr:`moving_hann`, their mean power and its Doppler floor.
+        """Range-Doppler spectra ``(F, R, M, K)`` of :attr:`moving_hann`, their power ``(K, M)``, its floor ``(K, 1)``.
 
-        The spectra ``(F, R, M, K)`` (Hann over chirps, zero Doppler at ``M // 2``), their power
-        averaged over frames and RX ``(K, M)``, and its median per range bin ``(K, 1)``.
+        Hann over chirps, zero Doppler at ``M // 2``; the power is averaged over frames and RX, the floor is
+        its median per range bin.
         """
         wd = _window("hann", self.shape[2], self.device)
         X = torch.fft.fftshift(torch.fft.fft(self.moving_hann * wd[:, None], dim=2), dim=2) / wd.sum()
@@ -200,10 +155,9 @@ class Prepared:
     def doppler_rows(self) -> tuple[torch.Tensor, torch.Tensor, torch.Tensor]:
         """Each range bin's Doppler row off zero Doppler, and what it stands on.
 
-        The mask of Doppler bins off zero Doppler (+-1 left out) ``(M,)``, each range bin's median
-        power over them ``(K,)``, and its reference ``(K,)``: the median of that median over the bins
-        3..10 away. A bin's own median is raised by what fills its row (a ridge, a band); its
-        neighbours' is not.
+        Returns the mask of Doppler bins off zero Doppler (+-1 left out) ``(M,)``, each range bin's median
+        power over them ``(K,)`` and its reference ``(K,)``, the median of that median over the bins 3..10
+        away (a ridge or band raises a bin's own median, not its neighbours').
         """
         _, pm, _ = self.doppler
         K, M = pm.shape
@@ -223,10 +177,7 @@ class Prepared:
     def chirp_wideband(self) -> torch.Tensor:
         """Each chirp's median over range bins of its power over its frame's median chirp, ``(F, M)``.
 
-        A burst raises most range bins of its chirp; a moving or vibrating object raises a few
-        bins in many chirps, so the median over range bins ignores it. The Hann window hides a
-        burst that lies entirely within the first or last ~5 % of the chirp (a window that does
-        not taper there spreads every strong return over all range bins instead).
+        A burst raises most range bins of its chirp; a moving object raises a few bins, which the median ignores.
         """
         pw = self.moving_hann.abs().square().sum(dim=1)  # (F, M, K)
         ref = pw.median(dim=1, keepdim=True).values.clamp_min(_TINY)
@@ -252,9 +203,8 @@ class Prepared:
     def clipped_at_chirp_start(self) -> bool:
         """Every clipped sample lies in the first 1/32 of its chirp (at least 4 samples).
 
-        A strong near-DC path (the TX->RX leakage) rings through the IF high-pass's start-up at the
-        ramp start and clips there, in every chirp alike; a return or noise pushed over a rail by
-        the gain clips all through the chirp.
+        That is a strong near-DC path ringing through the IF high-pass's start-up, not the ADC's range
+        (which clips all through the chirp).
         """
         n = self.shape[-1]
         edge = max(4, n // 32)
@@ -262,10 +212,9 @@ class Prepared:
 
     @cached_property
     def floor_hann(self) -> torch.Tensor:
-        """Per-RX noise power per range bin ``(R, K)``: median over frames and chirps of ``|X|^2`` / ln 2.
+        """Per-RX noise power per range bin ``(R, K)``: median over frames and chirps of ``|X|^2``, over ``ln 2``.
 
-        The median of an exponential variable is ``ln 2`` times its mean; the median ignores
-        the few chirps a burst hits.
+        The median (``ln 2`` times an exponential variable's mean) ignores the few chirps a burst hits.
         """
         p = self.moving_hann.abs().square()
         F, R, M, K = p.shape
@@ -313,13 +262,10 @@ def _detector(effect: str, min_rx: int = 1, min_chirps: int = 1, min_frames: int
 
 
 def _burst_flags(r: torch.Tensor, min_db: float = 3.0, n_sigma: float = 8.0) -> tuple[torch.Tensor, torch.Tensor, float]:
-    """Chirps far above their frame's other chirps.
+    """Chirps far above their frame's other chirps, from ``r`` ``(F, M)`` (:attr:`Prepared.chirp_wideband`).
 
-    ``r`` is ``(F, M)``: each chirp's power relative to its own frame's median chirp, per range
-    bin, medianed over range bins (:attr:`Prepared.chirp_wideband`; a gain that wanders from frame
-    to frame moves every chirp of the frame, not a few). On a log scale whose spread is the robust
-    (MAD) spread of all chirps, a chirp is a burst when it stands ``max(min_db, n_sigma * spread)``
-    dB above. Returns the flags, the excess in dB and the spread.
+    A chirp is a burst when it stands ``max(min_db, n_sigma * spread)`` dB above its frame's median,
+    ``spread`` the robust (MAD) spread of all chirps in dB. Returns the flags, the excess (dB) and the spread.
     """
     ratio_db = 10 * torch.log10(r.clamp_min(_TINY) / r.median(dim=1, keepdim=True).values.clamp_min(_TINY))
     mad = float((ratio_db - ratio_db.median()).abs().median()) * 1.4826
@@ -333,10 +279,9 @@ def _per_rx(name: str, values: Sequence[float] | torch.Tensor) -> dict[str, floa
 
 
 def _peaks(v: torch.Tensor, lo: int = 0, above: float = -math.inf) -> list[int]:
-    """Flat indices of the local maxima of a 1-D or 2-D ``v``, strongest first.
+    """Flat indices of the local maxima (each at least its neighbours) of a 1-D or 2-D ``v``, strongest first.
 
-    A local maximum is at least its 2 (1-D) or 8 (2-D) neighbours; only those over ``above`` and
-    from row ``lo`` on count.
+    Only those over ``above`` and from row ``lo`` on count.
     """
     v2 = v.reshape(v.shape[0], -1)  # a 1-D v as one column
     pool = torch.nn.functional.max_pool2d(v2[None, None], 3, stride=1, padding=1)[0, 0]
@@ -351,11 +296,8 @@ def detect_adc_clipping(p: Prepared, config: RadarConfig,
                         min_fraction: float = 1e-4, min_pileup: float = 4.0) -> Signature:
     """Samples piled up on the ADC rails.
 
-    A clipped ADC maps the whole tail beyond a rail onto the rail code, so the rail code holds far
-    more samples than the codes just inside it; an unclipped signal's histogram is smooth there.
-    The observed fraction on the rails is also compared with a Gaussian of each RX's robust spread
-    (median, IQR / 1.349: both unaffected while less than a quarter of the samples clip), which is
-    what Gaussian noise clipped at the rails gives.
+    A clipped ADC maps the whole tail beyond a rail onto the rail code, so that code holds far more
+    samples than the codes just inside it; an unclipped histogram is smooth there.
 
     Args:
         p: ``frames`` as called: the capture's raw frames (SDK floats) or a :class:`Prepared` of them.
@@ -364,11 +306,10 @@ def detect_adc_clipping(p: Prepared, config: RadarConfig,
         min_pileup: smallest ratio of rail-code count to the mean count of the 4 codes inside it.
 
     Returns:
-        A :class:`Signature`; ``score`` is the clipped fraction in percent; ``params``:
-        ``fraction``, ``fraction_low``, ``fraction_high``, ``gaussian_fraction`` (the Gaussian's
-        prediction), ``pileup`` (rail code over neighbour codes, the larger rail), ``at_chirp_start``
-        (1: every clipped sample lies at the chirp start, the start-up transient of a strong near-DC
-        path, not the ADC's range: then not present).
+        A :class:`Signature`; ``score`` is the clipped fraction in percent; ``params``: ``fraction``,
+        ``fraction_low``, ``fraction_high``, ``gaussian_fraction`` (what a Gaussian of each RX's robust
+        spread would clip), ``pileup`` (larger rail), ``at_chirp_start`` (1: every clipped sample is at
+        the chirp start, a near-DC path's start-up transient; then not present).
     """
     c = torch.round(p.counts).clamp(0, p.full).transpose(0, 1).reshape(p.shape[1], -1)  # (R, n)
     n = c.shape[1]
@@ -405,18 +346,10 @@ def detect_phase_noise(p: Prepared, config: RadarConfig, guard: int = 5,
                        min_excess_db: float | None = 3.0) -> Signature:
     """A noise skirt around the strongest static return, common to all RX (one LO).
 
-    Residual LO phase noise multiplies a return by ``exp(j 2 pi tau nu(t))``: a skirt around its
-    range bin whose power follows the return's power times ``(2 pi tau)^2`` (range correlation), new
-    in every chirp (white over Doppler), and identical in every RX up to the return's own
-    inter-RX phase. Thermal noise is independent between RX, so the *cross*-RX range-Doppler
-    spectrum of the moving part (frames' mean chirp removed, burst chirps zeroed), projected on the
-    carrier's inter-RX phase, measures the skirt without the thermal floor. Narrow Doppler lines
-    (a spur, a vibration's sidebands: cells ``line_db`` over their range bin's median) are left
-    out and the remaining cells scaled up to the full Doppler band. The skirt is summed over range
-    bins ``guard .. width`` away on both sides (Blackman-Harris range window: the carrier's own
-    main lobe stays out) and divided by the carrier's power; range bins holding a strong line
-    (20 dB over the median, with the window's main lobe) are left out of the band and the sum
-    scaled back to the band's width.
+    Residual LO phase noise puts a skirt around a return, white over Doppler and identical in every
+    RX up to the return's inter-RX phase; thermal noise is independent between RX. So the cross-RX
+    range-Doppler spectrum of the moving part, projected on the carrier's inter-RX phase and summed
+    ``guard .. width`` range bins from it, measures the skirt without the thermal floor.
 
     Args:
         p: ``frames`` as called: the capture's raw frames (SDK floats) or a :class:`Prepared` of them.
@@ -424,27 +357,16 @@ def detect_phase_noise(p: Prepared, config: RadarConfig, guard: int = 5,
         guard: nearest range-bin offset from the carrier counted in the skirt.
         width: farthest range-bin offset counted.
         min_z: smallest significance (skirt over its thermal-noise standard deviation).
-        min_snr_db: smallest static-return power over the per-chirp noise floor (dB) to test. Low:
-            the cross-RX sum over frames, chirps and the band finds a skirt far under the floor of
-            one cell (a carrier 15 dB over the floor, its skirt 18 dB under it per cell).
-        line_db: RD cells this far over their range bin's median Doppler power are lines.
-        min_alignment: smallest cosine between the skirt's inter-RX phase and the carrier's
-            (something common to the RX from another direction, an interferer, has another phase).
-        min_excess_db: the library's default receiver declares LO phase noise
-            (:class:`~radaraug.sensor.effects.PhaseNoise` defaults, 100 kHz RMS, 200 kHz corner):
-            its skirt is reported only when it stands this far (dB) over the declared one's,
-            ``(2 pi tau)^2`` times the declared Lorentzian's power in the same range-bin band
-            (:func:`declared_skirt_dBc`). None: any significant skirt is reported.
+        min_snr_db: smallest static-return power over the per-chirp noise floor (dB) to test.
+        line_db: RD cells this far over their range bin's median Doppler power are lines, left out.
+        min_alignment: smallest cosine between the skirt's inter-RX phase and the carrier's.
+        min_excess_db: report the skirt only this far (dB) over the declared LO noise's
+            (:func:`declared_skirt_dBc`); None: any significant skirt.
 
     Returns:
-        A :class:`Signature`; ``score`` is the significance ``z``; ``params``: ``skirt_dBc``
-        (skirt over carrier power, bins ``guard..width`` both sides), ``range_m`` and ``range_bin``
-        of the carrier, ``carrier_snr_dB``, ``whiteness`` (twice the skirt's share in the outer
-        half of the Doppler band: 1 for noise new in every chirp, << 1 for a slow modulation),
-        ``alignment`` (cosine of the skirt's inter-RX phase to the carrier's),
-        ``freq_noise_rms_Hz_lower`` (``sqrt(skirt) / (2 pi tau)``: a lower bound, the band misses
-        the skirt's core and far tail), ``declared_skirt_dBc``, ``excess_dB`` (skirt over the
-        declared one).
+        A :class:`Signature`; ``score`` is ``z``; ``params``: ``skirt_dBc`` (over the carrier's power),
+        ``range_m``, ``range_bin``, ``carrier_snr_dB``, ``whiteness`` (~1 for noise new every chirp),
+        ``alignment``, ``freq_noise_rms_Hz_lower`` (a lower bound), ``declared_skirt_dBc``, ``excess_dB``.
     """
     F, R, M, N = p.shape
     keep = (~p.burst_mask).to(torch.float64)  # (F, M)
@@ -531,11 +453,8 @@ def detect_phase_noise(p: Prepared, config: RadarConfig, guard: int = 5,
 def declared_skirt_dBc(config: RadarConfig, tau_s: float, offsets: torch.Tensor) -> float:
     """Skirt (dBc) of the declared LO phase noise over range-bin ``offsets`` from a carrier of delay ``tau_s``.
 
-    The default receiver's :class:`~radaraug.sensor.effects.PhaseNoise`: frequency noise of RMS
-    ``sigma`` with a Lorentzian spectrum of corner ``fc`` over ``0 .. fs/2``,
-    ``S(f) = sigma^2 / (fc atan(fs / 2 fc)) / (1 + (f/fc)^2)``; a path of delay ``tau`` gets the
-    phase ``2 pi tau nu(t)``, whose sidebands put ``(2 pi tau)^2 S(f) df / 2`` on each side. Each
-    range bin offset ``k`` counts ``(2 pi tau)^2 S(k fs / N) (fs / N) / 2``.
+    The default :class:`~radaraug.sensor.effects.PhaseNoise` in closed form (``docs/calibration.md``,
+    "Signatures").
     """
     from radaraug.sensor.effects import PhaseNoise
 
@@ -550,7 +469,7 @@ def declared_skirt_dBc(config: RadarConfig, tau_s: float, offsets: torch.Tensor)
 
 # --------------------------------------------------------------------------- spur tone
 def _fine_dft(p: Prepared, k: int) -> tuple[torch.Tensor, torch.Tensor, int]:
-    """A fine DFT over fast time around range bin ``k``: frequency to 1/40 bin, amplitude free of scalloping.
+    """A fine DFT over fast time around range bin ``k`` (1/40 bin steps, no scalloping loss).
 
     Returns the grid of fractional bins ``(G,)``, the moving part's Hann-weighted DFT on it
     ``(F, R, M, G)`` and the grid index of the largest mean power.
@@ -569,12 +488,10 @@ def detect_spur_tone(p: Prepared, config: RadarConfig, min_db: float = 15.0,
                      max_migration_bins: float = 0.3, min_ridge_db: float = 8.0) -> Signature:
     """A single persistent line off zero Doppler with a constant amplitude, or an unlocked spur's ridge.
 
-    A spur (clock, regulator) is a tone at the ADC input locked to absolute time: in each chirp a
-    line at its frequency, advancing by ``2 pi f PRT`` from chirp to chirp, i.e. one Doppler line
-    at ``frac(f PRT)`` in every frame and every RX, with the same amplitude in all of them. A
-    moving target's line moves, a vibrating object's lines come in a symmetric pair around zero
-    Doppler, noise-like effects make no line. The frequency comes from a fine DFT over fast time
-    (1/40 bin), the aliasing fixed by the Doppler bin; the amplitude from the same DFT.
+    A spur locked to absolute time advances by ``2 pi f PRT`` per chirp: one Doppler line at
+    ``frac(f PRT)``, steady in every frame and RX. A moving target's line migrates, a vibration makes
+    a mirrored pair, noise-like effects make no line. The frequency comes from a fine DFT over fast
+    time, its alias fixed by the Doppler bin.
 
     Args:
         p: ``frames`` as called: the capture's raw frames (SDK floats) or a :class:`Prepared` of them.
@@ -583,17 +500,14 @@ def detect_spur_tone(p: Prepared, config: RadarConfig, min_db: float = 15.0,
         min_frames: share of frames in which the line must stand 6 dB over the floor.
         max_cv: largest coefficient of variation of the per-frame amplitude.
         mirror_db: a line at the mirrored Doppler bin within this many dB makes a pair (not a spur).
-        max_migration_bins: largest spread (10th..90th percentile, range bins) of the line's
-            per-frame fine frequency: a spur stays put, a target moving at a constant speed (one
-            Doppler line too, in every frame) migrates in range.
-        min_ridge_db: without a line, the smallest height of an unlocked spur's ridge (one range
-            bin raised over all Doppler bins) over its neighbouring range bins (:func:`_spur_ridge`).
+        max_migration_bins: largest spread (10th..90th percentile, range bins) of the line's per-frame
+            frequency.
+        min_ridge_db: without a line, smallest height of an unlocked spur's ridge (:func:`_spur_ridge`).
 
     Returns:
         A :class:`Signature`; ``score`` is the line height in dB; ``params``: ``freq_Hz``,
-        ``amplitude_counts`` (peak amplitude, RX mean), ``level_dBFS`` (RD level, library
-        convention), ``range_bin``, ``doppler_bin`` (centred), ``frames_fraction``, ``cv``,
-        ``mirror_dB`` (mirror line height), ``rx_spread_dB``, ``migration_bins``.
+        ``amplitude_counts`` (RX mean), ``level_dBFS``, ``range_bin``, ``doppler_bin`` (centred),
+        ``frames_fraction``, ``cv``, ``mirror_dB``, ``rx_spread_dB``, ``migration_bins``.
     """
     F, R, M, N = p.shape
     X, Pm, floor = p.doppler
@@ -658,12 +572,8 @@ def _spur_ridge(p: Prepared, config: RadarConfig, min_db: float = 8.0, max_flat_
                 neighbour_db: float = 6.0, min_frames: float = 0.9, max_cv: float = 0.25) -> Signature:
     """An unlocked spur: one range bin raised evenly over every Doppler bin, in every frame.
 
-    A tone not locked to the chirp timing has a new phase every chirp, so its power spreads over
-    Doppler instead of forming a line. Its range bin's median over Doppler (zero Doppler left out)
-    stands over the median of its neighbours 3..10 bins away; it is flat over Doppler (10th to 90th
-    percentile), narrow in range (a Hann main lobe: the bins 3 away are not raised) and steady over
-    frames. Phase noise raises many range bins, a burst a few chirps of all of them, a large
-    vibration a band of Doppler bins: none of them passes all three.
+    A tone with a new phase every chirp spreads over Doppler: its row is raised over the rows 3..10
+    bins away, flat over Doppler, narrow in range and steady over frames.
     """
     F, N = p.shape[0], p.shape[3]
     X, Pm, _ = p.doppler
@@ -714,10 +624,7 @@ def _hp_fit(f: torch.Tensor, psd: torch.Tensor, fcs: torch.Tensor, orders: torch
     """Weighted least squares of ``psd ~ H(f; fc, n) (a + c f/fs) + b`` for every ``(fc, n)``.
 
     Returns the misfits (RMS dB, ``(len(fcs), len(orders))``) and the coefficients ``(a, c, b)``.
-    Linear in ``(a, c, b)`` for a given shape, so the whole grid is one batched solve; the
-    weights ``1 / psd`` make it a relative (log-like) fit. ``b`` is the floor that does not go
-    through the high-pass (ADC-side noise, quantization); the tilt ``c`` takes up the anti-alias
-    filter and aliasing, which are not the high-pass's business.
+    ``b`` is the floor that bypasses the high-pass, ``c`` a tilt for the anti-alias filter.
     """
     h = butterworth_highpass_power(f[None, None], fcs[:, None, None], orders[None, :, None])  # (G, O, B)
     x = f / fs
@@ -735,25 +642,21 @@ def detect_if_highpass(p: Prepared, config: RadarConfig, min_gain_db: float = 0.
                        max_fit_Hz: float | None = None) -> Signature:
     """The IF high-pass's cutoff and order, from the shape of the noise floor.
 
-    Chirp-to-chirp differences cancel everything static (returns, leakage, DC), leaving noise:
-    the thermal part went through the high-pass, the ADC-side part did not. Components common to
-    all RX (phase-noise skirts, spurs, interference) are removed with the cross-RX spectrum,
-    burst chirps are left out (median). A Butterworth ``|H|^2`` (free cutoff and order 1..4) plus a
-    flat floor is fitted to the floor's power spectrum up to ``max_fit_Hz`` and compared with the
-    nominal high-pass (first order at ``config.effective_hp_cutoff_Hz``, the library's twin). The
-    effect is present when the free fit beats the nominal one by ``min_gain_db`` (RMS dB) and its
-    cutoff or order differs.
+    Chirp-to-chirp differences cancel everything static; the thermal part of the noise left went
+    through the high-pass, the ADC-side part did not. A Butterworth ``|H|^2`` plus a flat floor is
+    fitted to the floor's spectrum and compared with the nominal first-order high-pass at
+    ``config.effective_hp_cutoff_Hz``.
 
     Args:
         p: ``frames`` as called: the capture's raw frames (SDK floats) or a :class:`Prepared` of them.
         config: the capture's config.
-        min_gain_db: smallest RMS improvement of the free fit over the nominal one.
+        min_gain_db: smallest RMS improvement (dB) of the free fit over the nominal one.
         max_fit_Hz: top of the fitted band (default ``min(0.3 fs, 6 x nominal cutoff)``).
 
     Returns:
         A :class:`Signature`; ``score`` is the RMS improvement (dB); ``params``: ``cutoff_Hz``,
-        ``order``, ``misfit_dB``, ``nominal_misfit_dB``, ``hp_over_floor_dB`` (high-passed noise
-        over the flat floor at the top of the band: the high-pass is only visible when > 0).
+        ``order``, ``misfit_dB``, ``nominal_misfit_dB``, ``hp_over_floor_dB`` (high-passed noise over
+        the flat floor at the top of the band: the high-pass is only visible when > 0).
     """
     F, R, M, N = p.shape
     keep = ~p.burst_mask
@@ -810,9 +713,7 @@ def _mismatch_in_noise(floor: torch.Tensor, g_noise: torch.Tensor, params: dict[
                        min_gain_db: float, max_spread_db: float = 0.5) -> Signature:
     """Without a static return: a receiver several dB off in its noise, evenly over range.
 
-    The floor's per-RX ratio to RX1 must be at least ``min_gain_db`` on some RX and steady over the
-    range bins (MAD x 1.48 at most ``max_spread_db``): a gain in the channel scales its thermal
-    noise at every range alike, while a local feature (a return, a skirt) raises a few bins.
+    A channel gain scales its thermal noise at every range alike; a local feature raises a few bins.
     """
     ratio = 10 * torch.log10(floor / floor[:1])  # (R, bins)
     spread = float(((ratio - g_noise[:, None]).abs().median(dim=1).values * 1.4826).max())
@@ -835,12 +736,9 @@ def detect_rx_gain_phase_mismatch(p: Prepared, config: RadarConfig,
                                   min_noise_gain_db: float = 1.5) -> Signature:
     """A per-RX gain that scales the static returns and the noise alike (or, with no return, the noise).
 
-    A gain mismatch sits in the RX channel, so every static return *and* the channel's noise are
-    scaled by it: the same ratio to RX1 at every static return (a return's angle of arrival
-    changes its phase, not its level; two returns in one bin change the level differently in each
-    bin) and in the noise floor (its thermal part; an ADC-side floor dilutes it, hence
-    ``min_noise_share``). Phases relative to RX1 are reported for the strongest return but not
-    tested: without a scene they cannot be told from the angle of arrival.
+    A gain in the RX channel gives the same ratio to RX1 at every static return and in the noise
+    floor (its thermal part; an ADC-side floor dilutes it). Phases are reported, not tested: without
+    a scene they cannot be told from the angle of arrival.
 
     Args:
         p: ``frames`` as called: the capture's raw frames (SDK floats) or a :class:`Prepared` of them.
@@ -849,14 +747,12 @@ def detect_rx_gain_phase_mismatch(p: Prepared, config: RadarConfig,
         max_spread_db: largest spread of the ratio over the static returns (MAD x 1.48).
         min_noise_share: the noise's ratio must carry at least this share of the returns' (same sign).
         min_snr_db: static returns used must stand this far over the per-chirp floor (dB).
-        min_noise_gain_db: with no static return that strong, the smallest |gain| of the noise
-            alone, steady over range (:func:`_mismatch_in_noise`).
+        min_noise_gain_db: with no such return, the smallest |gain| of the noise alone.
 
     Returns:
         A :class:`Signature`; ``score`` is the largest |gain| (dB) when the two agree, else 0;
-        ``params``: ``gain_dB_rx{i}`` (from the static returns, else the noise),
-        ``static_gain_dB_rx{i}``, ``noise_gain_dB_rx{i}``, ``phase_rad_rx{i}``, ``spread_dB``,
-        ``num_returns``.
+        ``params``: ``gain_dB_rx{i}`` (static returns, else noise), ``static_gain_dB_rx{i}``,
+        ``noise_gain_dB_rx{i}``, ``phase_rad_rx{i}``, ``spread_dB``, ``num_returns``.
     """
     F, R, M, N = p.shape
     floor = p.floor_hann  # (R, K)
@@ -904,10 +800,8 @@ _DECLARED_LEAKAGE_STAGES = ("tx_rx_leakage", "system_gain", "if_highpass", "if_g
 def declared_leakage_dBFS(config: RadarConfig, bins: int = 3) -> tuple[float, ...]:
     """Near-DC level (dBFS per RX, as :func:`detect_tx_rx_leakage` measures it) of the declared leakage.
 
-    The library's default receiver (:func:`radaraug.sensor.defaults.default_effects`) carries a
-    TX->RX leakage path; its level after the IF high-pass depends on the chirp (beat frequency
-    ``2 R S / c`` against the cutoff) and the IF gain. One noiseless chirp of the default chain's
-    deterministic stages (leakage, gains, filters) on an empty scene, analysed like a capture.
+    One noiseless chirp of the default receiver's deterministic stages on an empty scene: the level
+    after the IF high-pass depends on the chirp and the IF gain.
     """
     from radaraug.sensor import FMCWReceiver, Paths
     from radaraug.sensor.defaults import default_effects
@@ -930,16 +824,10 @@ def detect_tx_rx_leakage(p: Prepared, config: RadarConfig, bins: int = 3,
                          max_clipped: float = 1e-3, max_declared_db: float | None = 15.0) -> Signature:
     """A coherent return at near-zero beat frequency: the on-chip/in-package TX->RX coupling.
 
-    Leakage is a path a few millimetres to centimetres long: its beat frequency is far below one
-    range bin, and after the IF high-pass (and its start-up at the ramp start) it is a slow
-    curve in every chirp, identical from chirp to chirp and frame to frame. The mean chirp over
-    the whole capture (its mean, the DC offset, removed) is analysed with a Blackman-Harris window
-    (sidelobes -92 dB, so returns beyond ~6 bins do not leak into bins 0..2) after removing its
-    window-weighted mean (the DC offset; bin 0 is then empty): the power in range bins
-    ``1 .. bins - 1`` must reach ``min_chirp_snr_db`` over the *per-chirp* noise of those bins
-    (visible in a single chirp, not just in the average of thousands), with the same complex
-    value in every frame (coherence over frames, magnitudes ignored so that a wandering gain does
-    not matter).
+    The leakage path is millimetres to centimetres long: after the IF high-pass it is a slow curve,
+    the same in every chirp and frame. The capture's mean chirp (window-weighted DC removed,
+    Blackman-Harris) must hold power in range bins ``1 .. bins - 1`` visible in a single chirp, with
+    the same phase in every frame.
 
     Args:
         p: ``frames`` as called: the capture's raw frames (SDK floats) or a :class:`Prepared` of them.
@@ -947,23 +835,16 @@ def detect_tx_rx_leakage(p: Prepared, config: RadarConfig, bins: int = 3,
         bins: near-DC range bins counted.
         min_chirp_snr_db: smallest near-DC power over the per-chirp noise in those bins (dB).
         min_coherence: smallest frame-to-frame phase coherence.
-        max_clipped: above this share of clipped samples the test is not made (the clipping's
-            intermodulation products of the static returns land near DC too), unless every
-            clipped sample lies at the chirp start (:attr:`Prepared.clipped_at_chirp_start`): a
-            leakage strong enough to clip through the high-pass's start-up.
-        max_declared_db: every real BGT60 has this leakage and the library's default receiver
-            declares it (:func:`declared_leakage_dBFS`): a visible leakage is reported only when
-            on some RX where it is visible (``min_chirp_snr_db``) it differs from the declared
-            level by more than this (dB). The five public recordings sit within 12.4 dB of it (the
-            twin's 4 cm path underestimates RX1 by ~11 dB at their 1 GHz / 64 us chirp). None:
-            any visible leakage is reported (the detector alone, no declared chain).
+        max_clipped: above this clipped share the test is not made (clipping intermodulation lands near
+            DC too), unless the clipping is at the chirp start (:attr:`Prepared.clipped_at_chirp_start`).
+        max_declared_db: report the leakage only when it differs from the declared one
+            (:func:`declared_leakage_dBFS`) by more than this (dB) on some RX; None: any visible leakage.
 
     Returns:
         A :class:`Signature`; ``score`` is the near-DC power over the per-chirp noise (dB, best RX);
-        ``params``: ``level_dBFS_rx{i}`` (near-DC power, dBFS), ``declared_dBFS_rx{i}``,
-        ``excess_dB`` (largest |level - declared| over the RX where it is visible),
-        ``chirp_snr_dB``, ``coherence``, ``clipped_fraction``, ``clipped_at_chirp_start`` (1: the
-        clipping is this path's start-up transient).
+        ``params``: ``level_dBFS_rx{i}``, ``declared_dBFS_rx{i}``, ``excess_dB`` (largest
+        |level - declared| where visible), ``chirp_snr_dB``, ``coherence``, ``clipped_fraction``,
+        ``clipped_at_chirp_start``; ``within_declared`` 1 when it matches the declared leakage.
     """
     F, R, M, N = p.shape
     S = p.static_bh4[..., 1:bins]  # (F, R, bins - 1); bin 0 is the DC, removed
@@ -1016,14 +897,8 @@ def detect_interference(p: Prepared, config: RadarConfig, min_bursts: int = 2,
                         min_wideband: float = 0.2) -> Signature:
     """Bursts: a few chirps whose power (static part removed) stands far above their frame's other chirps.
 
-    A crossing FMCW interferer adds a short chirp-like burst to the chirps it hits; the rest are
-    untouched. With the static scene removed (each frame's mean chirp), the power of a chirp in a
-    range bin relative to the frame's median chirp in that bin is noise-like; its median over the
-    range bins barely varies from chirp to chirp (a fraction of a dB), and a burst, which sweeps
-    the IF band, lifts it by many dB. A vibrating or moving object lifts a few range bins in many
-    chirps and leaves that median alone; a gain that wanders from frame to frame lifts whole
-    frames, not single chirps. The threshold is 8 robust standard deviations and at least 3 dB;
-    the share of range bins a flagged chirp raises by 3 dB is reported (``min_wideband``).
+    A crossing FMCW interferer sweeps the IF band in the chirps it hits, raising most range bins; a
+    moving object raises a few bins in many chirps, a drifting gain whole frames.
 
     Args:
         p: ``frames`` as called: the capture's raw frames (SDK floats) or a :class:`Prepared` of them.
@@ -1032,10 +907,10 @@ def detect_interference(p: Prepared, config: RadarConfig, min_bursts: int = 2,
         min_wideband: smallest median share of range bins raised by 3 dB in flagged chirps.
 
     Returns:
-        A :class:`Signature`; ``score`` is the median excess (dB) of the flagged chirps;
-        ``params``: ``probability`` (share of chirps hit), ``num_bursts``, ``excess_dB``,
-        ``wideband`` (share of range bins raised), ``amplitude_counts`` and ``duration_s``
-        (Hann-burst equivalents: energy ``A^2 / 2 * 3/8 * duration * fs``).
+        A :class:`Signature`; ``score`` is the median excess (dB) of the flagged chirps; ``params``:
+        ``probability`` (share of chirps hit), ``num_bursts``, ``excess_dB``, ``wideband``,
+        ``amplitude_counts`` and ``duration_s`` (Hann-burst equivalents: energy
+        ``A^2 / 2 * 3/8 * duration * fs``).
     """
     F, R, M, N = p.shape
     flags, ex_db, mad = _burst_flags(p.chirp_wideband)
@@ -1077,10 +952,10 @@ def _beta_from_ratio(r: float) -> float:
 
 
 def doppler_band_widths(hot: torch.Tensor) -> tuple[torch.Tensor, torch.Tensor]:
-    """Per range bin, how many Doppler bins in a row are ``hot`` from the zero-Doppler guard outwards.
+    """Per range bin, how many Doppler bins in a row are ``hot`` from the zero-Doppler guard (+-1) outwards.
 
-    ``hot`` is ``(K, M)`` with zero Doppler at ``M // 2``; the guard is zero Doppler +-1. Returns the
-    widths ``(K,)`` towards positive and towards negative Doppler.
+    ``hot`` is ``(K, M)`` with zero Doppler at ``M // 2``; returns the widths ``(K,)`` towards positive
+    and towards negative Doppler.
     """
     c = hot.shape[1] // 2
     up = torch.cumprod(hot[:, c + 2:].int(), dim=1).sum(dim=1)
@@ -1092,14 +967,8 @@ def _vibration_band(p: Prepared, config: RadarConfig, min_db: float = 10.0, min_
                     max_asym_bins: int = 2) -> Signature | None:
     """A large vibration: a Doppler band, symmetric about zero, at one range bin (None: no band).
 
-    An object moving centimetres (a fan blade, a swinging lamp) has ``beta = 4 pi d / lambda >> 1``:
-    its Bessel lines reach out to ``+-beta f_v``, i.e. a radial speed ``+-2 pi f_v d``; slower than a
-    frame, each frame holds one Doppler line that sweeps the band from frame to frame. Either way,
-    averaged over frames, a contiguous band of cells ``min_db`` over the row's reference
-    (:attr:`Prepared.doppler_rows`) from the zero-Doppler guard out to ``+-v_max``, with an edge (an unlocked
-    spur fills every Doppler bin), on both sides alike, in one range bin (the bins 3 away hold no band).
-    Only the product ``f_v d = v_max / (2 pi)`` is measured: frames sample the motion too slowly to tell
-    the two apart.
+    With ``beta >> 1`` the Bessel lines reach ``+-v_max = +-2 pi f_v d``; only that product is
+    measurable (frames sample the motion too slowly to separate ``f_v`` and ``d``).
     """
     F, R, M, N = p.shape
     X, Pm, _ = p.doppler
@@ -1153,13 +1022,10 @@ def detect_vibrating_clutter(p: Prepared, config: RadarConfig, min_db: float = 1
                              min_lock: float = 0.5) -> Signature:
     """A symmetric pair of Doppler lines around a static return, or a Doppler band: a vibrating object.
 
-    A return whose range oscillates, ``R + d sin(2 pi f_v t)``, is phase-modulated by
-    ``beta sin(2 pi f_v t)``, ``beta = 4 pi d / lambda``; by Jacobi-Anger its range bin shows
-    lines at Doppler ``k f_v`` with amplitudes ``|J_k(beta)|``: a carrier ``J0`` at zero Doppler
-    and a pair ``J1`` at ``+-f_v`` of equal height. A spur or a moving target makes one line, not
-    a pair. The pair must be phase-locked to the carrier (``X+ X- / C^2`` the same in every frame).
-    The sidebands' power (5x5 RD cells, floor removed) over the carrier's (the frames' mean chirp,
-    +-2 range bins), both with Hann windows, gives ``(J1/J0)^2`` and hence ``beta``.
+    A return at ``R + d sin(2 pi f_v t)`` is phase-modulated with ``beta = 4 pi d / lambda``: lines
+    ``J_k(beta)`` at Doppler ``k f_v``, a pair ``J1`` at ``+-f_v`` of equal height, phase-locked to the
+    carrier ``J0``. A spur or a moving target makes one line. The sidebands over the carrier give
+    ``(J1/J0)^2`` and hence ``beta``.
 
     Args:
         p: ``frames`` as called: the capture's raw frames (SDK floats) or a :class:`Prepared` of them.
@@ -1167,15 +1033,13 @@ def detect_vibrating_clutter(p: Prepared, config: RadarConfig, min_db: float = 1
         min_db: both lines this far over their range bin's median Doppler power.
         max_asym_db: largest level difference of the two lines.
         min_carrier_db: the static return at that range this far over the per-chirp floor.
-        min_lock: smallest frame-to-frame coherence of ``X+ X- / C^2`` (1 for a phase-modulated
-            return, whatever its vibration phase; ~0 for two unrelated lines).
+        min_lock: smallest frame-to-frame coherence of ``X+ X- / C^2`` (1 for a vibration).
 
     Returns:
-        A :class:`Signature`; ``score`` is the weaker line's height (dB); ``params``:
-        ``vibration_Hz``, ``displacement_m``, ``beta``, ``sideband_dBc`` (one line over the carrier),
-        ``range_m``, ``range_bin``, ``doppler_bin``, ``asymmetry_dB``, ``phase_lock``. A large
-        vibration's band (:func:`_vibration_band`, tried first) gives ``v_max_m_s`` and
-        ``velocity_displacement_m_Hz`` instead, with ``variant`` 1.
+        A :class:`Signature`; ``score`` is the weaker line's height (dB); ``params``: ``vibration_Hz``,
+        ``displacement_m``, ``beta``, ``sideband_dBc``, ``range_m``, ``range_bin``, ``doppler_bin``,
+        ``asymmetry_dB``, ``phase_lock``. A band (:func:`_vibration_band`, tried first) gives
+        ``v_max_m_s`` and ``velocity_displacement_m_Hz`` instead, with ``variant`` 1.
     """
     band = _vibration_band(p, config, min_db=min_db)
     if band is not None:
@@ -1244,13 +1108,9 @@ def detect_frame_drift(p: Prepared, config: RadarConfig, min_dc_counts: float = 
                        max_returns: int = 4, min_gain_z: float = 3.0) -> Signature:
     """The DC level (per RX) or the gain (common to the RX) wandering from frame to frame.
 
-    Within a frame the chirps' means scatter only by noise; from frame to frame the frame means
-    scatter by noise / sqrt(M) *plus* any drift: the excess variance is the drift's (a variance
-    ratio, ``min_f``); the chirp means are Blackman-Harris weighted, so that returns beyond ~4 range
-    bins do not enter them. The gain is read from the level of each of the strongest static
-    returns (the near-DC leakage included) in each frame, RX-averaged: a common gain moves every
-    one of them alike, so its variance is their mutual covariance (a person moving or breathing in
-    front of the radar moves only their own return; noise is independent between returns).
+    Frame means scatter by the within-frame noise over ``sqrt(M)``; a drift adds to that variance.
+    The gain is read from the strongest static returns' levels per frame: a common gain moves them
+    all alike, so its variance is their mutual covariance (a moving person moves only their own return).
 
     Args:
         p: ``frames`` as called: the capture's raw frames (SDK floats) or a :class:`Prepared` of them.
@@ -1258,11 +1118,10 @@ def detect_frame_drift(p: Prepared, config: RadarConfig, min_dc_counts: float = 
         min_dc_counts: smallest DC drift RMS (counts) reported.
         min_gain_db: smallest gain drift RMS (dB) reported.
         min_f: smallest ratio of observed to noise-explained frame-mean variance.
-        min_snr_db: static returns (near-DC leakage included) used for the gain stand this far
-            over the per-chirp floor.
+        min_snr_db: static returns used for the gain stand this far over the per-chirp floor.
         max_returns: strongest static returns used for the gain.
-        min_gain_z: with two or more returns, the gain variance (their mean mutual covariance)
-            must stand this many standard errors above zero.
+        min_gain_z: with two or more returns, the gain variance must stand this many standard errors
+            above zero.
 
     Returns:
         A :class:`Signature`; ``score`` is the larger variance ratio; ``params``: ``dc_rms_counts``,
@@ -1331,9 +1190,8 @@ SIGNATURE_EFFECTS = tuple(DETECTORS)
 def detect_all(frames: torch.Tensor, config: RadarConfig) -> list[Signature]:
     """Every detector on raw frames ``(F, rx, chirps, samples)`` (SDK floats), shared work done once.
 
-    Returns one :class:`Signature` per effect of :data:`SIGNATURE_EFFECTS`, in that order. One
-    joint rule: on a clipping capture with a spur, a Doppler pair at the spur's Doppler offset is
-    the spur's intermodulation with a static return, not a vibration.
+    Returns one :class:`Signature` per effect of :data:`SIGNATURE_EFFECTS`, in that order. On a clipping
+    capture with a spur, a Doppler pair at the spur's Doppler offset is intermodulation, not a vibration.
     """
     p = Prepared(frames, config)
     sigs = {name: DETECTORS[name](p, config) for name in SIGNATURE_EFFECTS}

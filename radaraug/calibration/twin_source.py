@@ -1,22 +1,9 @@
 """What the calibration loop simulates: the capture's scene through a candidate receiver chain.
 
-Two modes (:attr:`TwinSource.mode`):
-
-* ``"scene"``: a scene is given. Its room is ray-traced once with the capture's radar config;
-  the room's static paths go through each candidate chain's linear stages
-  (:meth:`FMCWReceiver.static_signal`, recomputed only when a linear stage changes) and the
-  scene's people, if any, are traced once for the simulated frame times. The room's diffuse
-  paths are kept apart from its specular ones and synthesized separately, so a candidate
-  diffuse gain ``g`` (a room parameter, :mod:`radaraug.calibration.room`) gives the static
-  signal ``S_spec + 10**((g - g_traced)/20) S_diff`` without tracing again: exact, because the
-  linear stages are linear in the paths' amplitudes and the tracer's own ``diffuse_gain_dB``
-  only scales the diffuse paths' amplitudes (the specular part does not change with it).
-* ``"estimated"``: no scene. An empty room is static, so the static scene *is* the capture's
-  mean chirp (per RX, over the fitting frames, its own mean over samples removed: the DC
-  offset is a separate, fitted stage), made into one static path per range bin (see
-  :meth:`TwinSource._estimated_paths`) so that the phase-noise stage can act on it; everything static
-  (room, TX->RX leakage, the IF filters' effect on them) is then taken as measured, and the
-  loop diagnoses what varies: noise, its range shape, spurs, drift, interference, ADC.
+In ``"scene"`` mode the room is ray-traced once and its static paths (specular and diffuse apart,
+so a candidate diffuse gain needs no retrace) go through each chain's linear stages, recomputed only
+when one changes; people are traced once. In ``"estimated"`` mode (no scene) the static scene is
+the capture's mean chirp, so only what varies is diagnosed. See ``docs/calibration.md``, "Two modes".
 """
 
 from __future__ import annotations
@@ -58,14 +45,13 @@ class TwinSource:
 
     Args:
         config: the capture's radar config.
-        static_paths: the room's paths ``(P, RX)`` (scene mode): all of them, or only the
-            specular ones when ``diffuse_paths`` is given.
-        diffuse_paths: the room's diffuse scattering paths ``(P_d, RX)`` (scene mode), traced
-            with the power gain ``diffuse_gain_dB``: the room parameter ``diffuse_gain_dB`` can
-            then be fitted (:attr:`room_params`).
+        static_paths: the room's paths ``(P, RX)`` (scene mode): all of them, or only the specular ones
+            when ``diffuse_paths`` is given.
+        diffuse_paths: the room's diffuse paths ``(P_d, RX)`` (scene mode), traced with
+            ``diffuse_gain_dB``; the room's diffuse gain can then be fitted (:attr:`room_params`).
         diffuse_gain_dB: the diffuse gain ``diffuse_paths`` were traced with (the start value).
-        mean_chirp: the capture's mean chirp ``(rx, samples)`` in SDK floats (estimated mode;
-            its mean over samples is the DC stage's and is left out).
+        mean_chirp: the capture's mean chirp ``(rx, samples)`` in SDK floats (estimated mode; its
+            mean over samples belongs to the DC stage and is left out).
         moving: people's paths per simulated frame ``(T, P, RX)`` (scene mode with people).
         tx_power_dBm, front_end_gain_dB: receiver constants (default: the library's).
     """
@@ -108,10 +94,7 @@ class TwinSource:
 
     @property
     def room_params(self) -> tuple[str, ...]:
-        """Room parameters this source can vary.
-
-        ``("diffuse_gain_dB",)`` when the room has diffuse paths, else empty.
-        """
+        """Room parameters this source can vary: ``("diffuse_gain_dB",)`` with diffuse paths, else empty."""
         return ("diffuse_gain_dB",) if self.diffuse_paths is not None else ()
 
     def room_start(self) -> Room:
@@ -121,8 +104,8 @@ class TwinSource:
     def check_room(self, room: Mapping[str, float] | None) -> Room:
         """``room`` completed with the traced values.
 
-        Raises :class:`CalibrationError` for a parameter this source cannot vary or a value outside its
-        prior.
+        Raises:
+            CalibrationError: a parameter this source cannot vary, or a value outside its prior.
         """
         out = self.room_start()
         for k, v in (room or {}).items():
@@ -142,11 +125,10 @@ class TwinSource:
     def _estimated_paths(self, rx: FMCWReceiver, chain: Sequence[Mapping[str, Any]]) -> Paths:
         """The estimated static scene as paths ``(K, RX)`` at the receiver's input.
 
-        The mean chirp is exactly a sum of tones at the DFT bins ``k fs / N`` (``0 < k <= N/2``; its
-        mean is the DC stage's). Each becomes a static path of delay ``f_k / S`` whose input
-        amplitude is the tone divided by the chain's linear response at ``f_k`` and by the synthesis
-        phase ``f0 tau - S tau^2 / 2``: through the chain it gives back the measured chirp, and being
-        a path, the phase-noise stage can put its skirt on it (the leakage's and the clutter's).
+        The mean chirp is a sum of tones at the DFT bins ``k fs / N`` (``0 < k <= N/2``). Each becomes a
+        static path of delay ``f_k / S`` whose amplitude is the tone divided by the chain's linear response
+        at ``f_k`` and by the synthesis phase ``f0 tau - S tau^2 / 2``: the chain gives the measured chirp
+        back, and the phase-noise stage can act on it.
         """
         key = "estimated:" + _linear_key(rx, chain)
         if key not in self._tone_paths:

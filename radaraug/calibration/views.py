@@ -1,34 +1,9 @@
 """Residual views: the statistics of raw frames in which twin and capture are compared.
 
-Each view reduces a set of raw frames ``(F, rx, chirps, samples)`` (SDK floats) to a small vector
-that a radar engineer would look at, and :func:`view_errors` turns a twin-vs-capture pair into one
-error per view, **every error in dB** so that they can be averaged:
-
-==================  ==========================================================================
-view                what, and how its error is measured
-==================  ==========================================================================
-``rd_histogram``    quantiles (0.5 %..99.9 %) of all RD cells in dBFS; RMS dB difference
-``noise_floor``     per range bin, median RD power off zero Doppler (+-1 bin); RMS dB
-``range_profile``   mean zero-Doppler power per range bin (dB of the mean); RMS dB
-``doppler_profile`` mean power per Doppler bin over range bins 2..; RMS dB
-``lines``           persistent narrow lines: per range row (off zero Doppler) and per Doppler
-                    column of the frame-averaged power map, peak over median (dB); RMS dB
-``rx_balance``      per RX: noise floor and static level (range bins 2..) relative to the RX
-                    mean (dB), phase (range bins 3..)
-                    of the strongest static return relative to RX1; RMS dB, a phase error
-                    ``d`` counting as ``20 log10(1 + 2|sin(d/2)|)`` dB (the vector error)
-``adc_histogram``   per RX, quantiles of the ADC codes (0.1 %..99.9 %) and the clipped
-                    fraction; ``20 log10(1 + rms(d quantile) / spread)`` dB with ``spread`` the
-                    capture's robust code spread (IQR / 1.349) of that RX
-``frame_power``     median frame power, its spread over frames, chirp-to-chirp and
-                    frame-to-frame sample noise, and the upper tail of the chirp power
-                    (90/97/99/99.9 % quantiles over the median, static part removed: bursts
-                    of interference); all dB; RMS dB
-``static_ratio``    per range bin, zero-Doppler over total power (dB); RMS dB
-==================  ==========================================================================
-
-The overall error is the mean of the view errors (dB). The dB convention of the RD maps is the
-library's (:data:`radaraug.units.DB_CONVENTION`).
+:func:`compute_views` reduces raw frames ``(F, rx, chirps, samples)`` (SDK floats) to nine small
+vectors; :func:`view_errors` gives one error per view, every error in dB so that they can be
+averaged (:func:`overall_error`). RD maps follow :data:`radaraug.units.DB_CONVENTION`. What each view
+holds and how its error is measured: ``docs/calibration.md``, "Residual views".
 """
 
 from __future__ import annotations
@@ -58,9 +33,7 @@ def _db(p: torch.Tensor) -> torch.Tensor:
 
 
 def rd_noise_floor_db(frames: torch.Tensor, where: str = "") -> float:
-    """The RD noise floor (dBFS) of raw frames: :func:`radaraug.io.summary.noise_floor_db` of their dB maps.
-
-    The statistic ``radaraug info`` prints, for captures and twin frames alike.
+    """The RD noise floor (dBFS) of raw frames, the statistic ``radaraug info`` prints.
 
     Raises:
         CalibrationError: too few chirps (<= 4) to leave zero Doppler out; ``where`` starts the message.
@@ -159,7 +132,7 @@ def frame_stats(frames: torch.Tensor, config: RadarConfig, chunk: int = 32) -> F
 
 @dataclass
 class Views:
-    """The view vectors of one set of frames (see the module table); ``dict`` of name -> tensor."""
+    """The view vectors of one set of frames, name -> tensor (``docs/calibration.md``, "Residual views")."""
 
     values: dict[str, torch.Tensor]
     stats: FrameStats
@@ -219,7 +192,7 @@ def _rms(d: torch.Tensor) -> float:
 
 
 def view_errors(twin: Views, capture: Views) -> dict[str, float]:
-    """One error per view (dB, see the module table) between twin and capture views."""
+    """One error per view (dB, ``docs/calibration.md``, "Residual views") between twin and capture views."""
     out: dict[str, float] = {}
     for name in ("rd_histogram", "noise_floor", "range_profile", "doppler_profile", "lines", "static_ratio"):
         out[name] = _rms(twin[name] - capture[name])

@@ -1,17 +1,9 @@
 """A person changes the room's static return: a zero-Doppler change detector fitted on an empty room.
 
-A range-Doppler map blanks zero Doppler (the static room's skirt), and with it everyone whose radial
-speed is under a Doppler bin: a walker crossing the beam, a slow one at a coarse velocity resolution,
-a person standing. They still add a return (and shadow others) at zero Doppler, where the empty room
-is stable from frame to frame. :class:`StaticChangeDetector` compares each frame's zero-Doppler range
-profile (the mean over its chirps) with the empty-room capture's, per receiver and range bin, in units
-of the empty room's own frame-to-frame spread, and fires when the largest change over range exceeds
-what the empty room itself shows. Nothing is trained: it needs only the calibration capture that CDR
-and the excision already take, and it is causal (one frame at a time), so it also runs live.
-
-The threshold is the largest leave-one-out score of the calibration frames plus a margin: for
-exchangeable empty frames, a new one exceeds the largest of ``n`` with probability ``1 / (n + 1)``
-(tested). Docs: docs/static_change.md.
+People slower than a Doppler bin vanish with the blanked zero Doppler of an RD map, but they change
+the zero-Doppler range profile, which is stable in an empty room. :class:`StaticChangeDetector` scores
+that change in units of the empty room's own spread; nothing is trained and it runs one frame at a
+time. See ``docs/static_change.md``.
 """
 
 from __future__ import annotations
@@ -41,14 +33,14 @@ CHUNK_FRAMES = 256
 def zero_doppler_profile(frames: torch.Tensor) -> torch.Tensor:
     """Complex zero-Doppler range profile of raw frames: the mean over chirps, DC removed, Hann range FFT.
 
-    The range FFT is :func:`radaraug.transforms.functional.range_fft` (divided by the window sum); the
-    detector's scores are ratios, so that scale cancels.
-
     Args:
         frames: ``(frames, rx, chirps, samples)`` raw samples (counts or SDK floats).
 
     Returns:
-        ``(frames, rx, samples // 2)`` complex128.
+        ``(frames, rx, samples // 2)`` complex128 (range FFT divided by the window sum).
+
+    Raises:
+        ConfigError: ``frames`` is not 4-D.
     """
     if frames.ndim != 4:
         raise ConfigError(f"zero_doppler_profile: frames must be (frames, rx, chirps, samples), got {tuple(frames.shape)}")
