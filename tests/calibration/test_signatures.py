@@ -364,13 +364,23 @@ def test_single_doppler_line_is_a_spur_not_a_vibration(cfg):
 
 
 # --------------------------------------------------------------------------- leakage
+def _near_dc_level_db(curve: np.ndarray) -> float:
+    """Power (dBFS) of a noiseless curve in the Blackman-Harris range bins 1..2, window-weighted mean removed."""
+    N = curve.shape[-1]
+    n = np.arange(N)
+    w = 0.35875 - 0.48829 * np.cos(2 * np.pi * n / N) + 0.14128 * np.cos(4 * np.pi * n / N) \
+        - 0.01168 * np.cos(6 * np.pi * n / N)
+    spec = np.fft.rfft((curve - np.sum(curve * w) / w.sum()) * w)[1:3] / w.sum()
+    return float(10 * np.log10(np.sum(np.abs(spec) ** 2) * (2 / FULL) ** 2))
+
+
 def test_leakage_near_dc_level(cfg):
     """A slow near-DC curve in every chirp (a 4 cm path after the high-pass).
 
     Its level is the power of the noiseless curve in the Blackman-Harris bins 1..2 (window-weighted
     mean removed, so bin 0 is empty).
     """
-    F, N = 12, cfg.num_samples_per_chirp
+    F = 12
     t = fast_time(cfg)
     f_leak = 2 * 0.04 * cfg.slope_Hz_per_s / C  # ~0.9 kHz
     fc = cfg.effective_hp_cutoff_Hz
@@ -381,11 +391,7 @@ def test_leakage_near_dc_level(cfg):
     # About the default receiver's own (declared) leakage: the level is tested alone.
     s = detect_tx_rx_leakage(to_frames(x), cfg, max_declared_db=None)
     assert s.present, s.detail
-    n = np.arange(N)
-    w = 0.35875 - 0.48829 * np.cos(2 * np.pi * n / N) + 0.14128 * np.cos(4 * np.pi * n / N) \
-        - 0.01168 * np.cos(6 * np.pi * n / N)
-    spec = np.fft.rfft((leak - np.sum(leak * w) / w.sum()) * w)[1:3] / w.sum()
-    expect_db = 10 * np.log10(np.sum(np.abs(spec) ** 2) * (2 / FULL) ** 2)
+    expect_db = _near_dc_level_db(leak)
     for r in (1, 2, 3):
         assert abs(s.params[f"level_dBFS_rx{r}"] - expect_db) < 0.5
 
@@ -399,7 +405,7 @@ def test_leakage_that_clips_at_the_chirp_start(cfg):
     above); the ADC's range is not what clips, so ``adc_clipping`` is not present. The same
     leakage with the room pushed over the rails by the gain all through the chirp is clipping.
     """
-    F, N = 12, cfg.num_samples_per_chirp
+    F = 12
     t = fast_time(cfg)
     f_leak = 2 * 0.04 * cfg.slope_Hz_per_s / C
     fc = cfg.effective_hp_cutoff_Hz
@@ -410,11 +416,7 @@ def test_leakage_that_clips_at_the_chirp_start(cfg):
     s = detect_tx_rx_leakage(to_frames(x), cfg, max_declared_db=None)
     assert s.present and s.params["clipped_at_chirp_start"] == 1.0, s.detail
     assert s.params["clipped_fraction"] > 1e-3
-    n = np.arange(N)
-    w = 0.35875 - 0.48829 * np.cos(2 * np.pi * n / N) + 0.14128 * np.cos(4 * np.pi * n / N) \
-        - 0.01168 * np.cos(6 * np.pi * n / N)
-    spec = np.fft.rfft((leak - np.sum(leak * w) / w.sum()) * w)[1:3] / w.sum()
-    expect_db = 10 * np.log10(np.sum(np.abs(spec) ** 2) * (2 / FULL) ** 2)
+    expect_db = _near_dc_level_db(leak)
     for r in (1, 2, 3):
         assert abs(s.params[f"level_dBFS_rx{r}"] - expect_db) < 1.0
     clip = detect_adc_clipping(to_frames(x), cfg)
