@@ -1,10 +1,8 @@
 """Per-item reproducible augmentation: the random draws of item ``i`` from ``(seed, i, epoch)``.
 
-A low-level module below ``io``, ``sim`` and ``transforms``: the datasets (``radaraug.io``,
-``radaraug.sim``) scope their transform call with :func:`transform_item`, and the random transforms
-(``radaraug.transforms._rng``) read the scoped generator with :func:`scoped_generator`; neither
-side imports the other. The public names live in :mod:`radaraug.transforms.per_item` (and
-:func:`radaraug.transforms.use_generator`), where the two modes are described.
+A low-level module below ``io``, ``sim`` and ``transforms``: datasets scope their transform call with
+:func:`transform_item`, random transforms read :func:`scoped_generator`. The public names and the two
+modes are in :mod:`radaraug.transforms.per_item`.
 """
 
 from __future__ import annotations
@@ -30,9 +28,8 @@ _SCOPED: ContextVar[torch.Generator | None] = ContextVar("radaraug_scoped_genera
 def use_generator(generator: torch.Generator) -> Iterator[torch.Generator]:
     """Inside the block, every random radaraug transform draws from ``generator``.
 
-    It takes precedence over a transform's own ``generator``/``seed`` and over the global RNG,
-    for any nesting of transforms (RadarCompose, torchvision Compose, nn.Sequential), and only in
-    the current thread / context.
+    It takes precedence over a transform's own ``generator``/``seed`` and the global RNG, for any nesting
+    of transforms, in the current thread / context only.
 
     Example:
         >>> with use_generator(torch.Generator().manual_seed(7)):  # doctest: +SKIP
@@ -67,10 +64,9 @@ def check_epoch(epoch: Any, where: str) -> int:
 
 
 def augmentation_seed(seed: int, index: int, epoch: int = 0) -> int:
-    """The 63-bit seed of item ``index``'s augmentation in ``epoch`` (a pure function of the three).
+    """The 63-bit seed of item ``index``'s augmentation in ``epoch``: :func:`radaraug._seeding.mix` of the three.
 
-    :func:`radaraug._seeding.mix` of ``(seed, index, epoch, tag)``: the same SplitMix64 mixer as the
-    simulated items' seeds, with a fourth word so that the two never coincide.
+    A fourth, tag word keeps it apart from the simulated items' seeds.
     """
     return mix(seed, index, epoch, _TAG)
 

@@ -17,11 +17,9 @@ def cache_key(spec: dict[str, Any] | list[Any]) -> str:
 
 
 def content_digest(path: str | os.PathLike) -> str:
-    """SHA-256 of a file's bytes, or of a folder's files.
+    """SHA-256 of a file's bytes, or of a folder's files (relative names and bytes, sorted).
 
-    A folder (an Infineon recording folder) is hashed as its files' relative names and bytes, in sorted
-    order. The name and modification time of ``path`` do not count, so a copied or renamed capture keeps
-    its digest and an edited one does not.
+    The name and modification time of ``path`` do not count: a copied capture keeps its digest.
 
     Raises:
         CaptureError: ``path`` does not exist.

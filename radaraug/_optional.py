@@ -1,15 +1,9 @@
 """Imports of third-party packages that only some features need, with one clear error.
 
-Every third-party package radaraug imports inside a function (so that ``import radaraug`` and
-the transforms stay light) goes through :func:`lazy_import`. When the package is missing, the
-feature raises :class:`~radaraug.errors.DependencyNotFoundError` naming the package, the feature
-and the ``pip`` command, instead of a bare ``ModuleNotFoundError`` from deep inside a call, or a
-silently slower fallback.
-
-All packages listed in :data:`PACKAGES` are runtime dependencies of radaraug (``pip install
-radaraug`` installs them); they go missing only in a partial environment (``pip install
---no-deps``, a hand-made conda environment). ``extra`` names the ``pip`` extra for a package that
-is optional.
+Packages imported inside a function (so that ``import radaraug`` stays light) go through :func:`lazy_import`:
+a missing one raises :class:`~radaraug.errors.DependencyNotFoundError` naming the package, the feature
+and the ``pip`` command. All of :data:`PACKAGES` are runtime dependencies; they go missing only in a
+partial environment (``pip install --no-deps``).
 """
 
 from __future__ import annotations
@@ -77,9 +71,7 @@ def lazy_import(name: str, *, feature: str) -> ModuleType:
 
 
 def missing_dependency(err: ModuleNotFoundError, feature: str) -> DependencyNotFoundError:
-    """The clear error for a package that a third-party library found missing.
-
-    The library (trimesh reading a format...) imported the package on its own.
+    """The clear error for a package that a third-party library (trimesh reading a format...) found missing.
 
     Example:
         >>> missing_dependency(ModuleNotFoundError("no", name="lxml"), "reading x.dae").name

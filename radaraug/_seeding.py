@@ -1,9 +1,7 @@
 """The one seed mixer of radaraug: SplitMix64 over a sequence of 64-bit words.
 
-Every derived seed -- a simulated item's (``radaraug.sim.seeding``), a transform's per-worker
-re-seed and a per-item augmentation's (``radaraug.transforms``) -- is :func:`mix` of a few
-integers, so nearby inputs give unrelated ``torch.Generator`` streams. A low-level module that
-``sim`` and ``transforms`` both import (neither imports the other).
+Every derived seed (a simulated item's, a transform's per-worker re-seed, a per-item augmentation's) is
+:func:`mix` of a few integers, so nearby inputs give unrelated streams. Imported by ``sim`` and ``transforms``.
 """
 
 from __future__ import annotations

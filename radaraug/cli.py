@@ -1,57 +1,9 @@
 """The `radaraug` command line.
 
-Sub-commands::
-
-    radaraug info PATH [--json]                 config, shape, duration, labels, plausibility
-    radaraug fit-cdr PATH -o cdr.json [--floor F] [--overwrite] [--json]  fit CalibratedDR on an empty-room capture
-    radaraug bench transforms [--accelerator A] [--json]   RD+CDR+clip+colormap chain vs NumPy
-    radaraug bench twin [--accelerator A] [--json]         digital-twin throughput vs real time and baselines
-    radaraug bench training [--accelerator A] [--json]     recipe training step vs a bare ResNet18 step
-    radaraug bench diagnose [--json]            diagnose a 100-frame paper-config capture vs simulating it
-    radaraug bench static-room [--json]         room trace: image method vs SBR ray counts, convergence
-    radaraug bench micro-doppler --out PNG      a walker's micro-Doppler: one snapshot vs motion in the frame
-    radaraug bench people-level --capture PATH  a moving person's level in captures vs the twin's walker
-    radaraug trace SCENE [--time T] [--json]    the propagation paths of one instant
-    radaraug simulate SCENE --frames N --seed S -o out.h5 [--shard i/n] [--profile P] [--accelerator A] [--resume|--overwrite] [--json]
-    radaraug demo [-o DIR] [--overwrite] [--json]   capture walkthrough: the bundled recording, a fitted CalibratedDR
-    radaraug recipes [NAME] [--json]            list the installed training recipes, or print one
-    radaraug train fit --config RECIPE [--key value ...]   LightningCLI recipes (RECIPE: a name or a YAML file)
-    radaraug reproduce [--quick] [--seeds N] [--calibration C --test PATH[:COUNT] ...] [--test-sets S] [--worlds N] [--methods M] [--representation R] [--cdr-floor F] [--ablations A] [--test-dr] [--accelerator A] -o OUT [--resume|--overwrite] [--json]
-    radaraug make-proxy -o DIR [--frames-per-count N] [--resume|--overwrite] [--json]   the held-out proxy test set
-    radaraug diagnose CAPTURE [--scene SCENE] -o REPORT_DIR [--overwrite] [--json]   twin vs capture, fitted twin profile
-    radaraug devices [--json] [--udev-rule]     Infineon radar boards on USB
-    radaraug capture --device auto|virtual|SERIAL [--radar-config C] --seconds S -o out.h5 [--label N] [--overwrite] [--json]
-    radaraug calibrate --device auto|virtual|SERIAL -o cdr.json [--keep-recording PATH] [--overwrite] [--json]
-
-One vocabulary (docs/cli.md, "Conventions"): ``--accelerator {auto,cpu,cuda}`` picks the torch device
-(Lightning's word), ``--device`` only a radar board; ``--config`` is only a recipe YAML (``train``), a
-radar JSON is ``--radar-config``; a command refuses an output that exists unless ``--overwrite``
-(replace) or, where it can continue one, ``--resume``; ``--json`` names the main file written
-``output``. The old spellings (``--device`` for a torch device, ``--config`` for a radar JSON, the
-``path`` key) still work for one release and say so on stderr.
-
-``radaraug train --config NAME`` takes a recipe installed with the package by its name
-(``occupancy_randomdr``; ``radaraug recipes`` lists them) wherever no file of that name exists;
-``recipes/NAME.yaml``, the recipes' place before they moved into the package, is read the same way.
-
-``--json`` (every command but ``train``): one JSON object on stdout, snake_case keys, paths as
-strings, units in the key names (``_s``, ``_db``, ``_m``); anything else the command prints
-(progress, Lightning's logs) goes to stderr.
-
-Exit status (never a traceback for any of these):
-
-====  ======================================================================================
-0     success
-2     usage error: unknown command or option, missing or malformed argument (argparse)
-3     bad input or unwritable output: a :class:`~radaraug.errors.RadarAugError` (a file that is
-      missing, truncated or not what it claims, a config that does not fit, no space left...) or
-      an ``OSError`` of the file system; one line ``error: <message>`` on stderr
-4     a package a feature needs is not installed
-      (:class:`~radaraug.errors.DependencyNotFoundError`); one line ``error: <message>`` on
-      stderr naming the package and the ``pip`` command that installs it
-130   interrupted (Ctrl-C); ``capture`` first closes its file cleanly with every frame so far
-141   stdout was closed early (``radaraug trace --json | head -1``): the output stops quietly
-====  ======================================================================================
+Sub-commands, their shared conventions (``--accelerator``, ``--radar-config``, ``--overwrite`` /
+``--resume``, ``--json``) and exit statuses are described in docs/cli.md. Exit status: 0 success, 2 usage
+error, 3 bad input or unwritable output (one ``error:`` line), 4 missing package, 130 interrupted,
+141 stdout closed early.
 """
 
 from __future__ import annotations
@@ -120,8 +72,7 @@ def _check_output(args: argparse.Namespace, path: str | os.PathLike, *, folder: 
                   owned: Sequence[str] = ()) -> bool:
     """Refuse an existing output unless ``--overwrite`` (or ``--resume``, where the command has it).
 
-    With ``--overwrite``, the entries ``owned`` of the folder ``path`` (what the command writes
-    there) are removed first; other files stay.
+    With ``--overwrite``, the entries ``owned`` of the folder ``path`` are removed first; other files stay.
 
     Returns:
         True when ``path`` exists and is to be replaced or continued (False: a new output).
@@ -146,10 +97,7 @@ def _check_output(args: argparse.Namespace, path: str | os.PathLike, *, folder: 
 
 def _output_args(parser: argparse.ArgumentParser, output_help: str, *, default: str | None = None,
                  resume: str | None = None) -> None:
-    """``-o/--output`` (required unless it has a default) with the one rule for existing outputs.
-
-    ``--overwrite``, and ``--resume`` with what it does where the command can continue an output.
-    """
+    """``-o/--output`` (required unless it has a default), ``--overwrite`` and, where it applies, ``--resume``."""
     parser.add_argument("-o", "--output", required=default is None, default=default, help=output_help)
     if resume is None:
         parser.add_argument("--overwrite", action="store_true", help="replace an existing output (else it is refused)")
@@ -354,8 +302,7 @@ def _train_configs(value: str) -> list[str]:
 def resolve_train_args(argv: Sequence[str]) -> list[str]:
     """``radaraug train`` arguments with every ``--config NAME`` / ``-c NAME`` of a recipe made its files.
 
-    A recipe name stands for its base + task + method files (:mod:`radaraug.recipes`), passed as that
-    many ``--config`` files, which LightningCLI merges in order.
+    A recipe name becomes its base + task + method files (:mod:`radaraug.recipes`), one ``--config`` each.
     """
     out: list[str] = []
     it = iter(argv)
@@ -774,7 +721,7 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def _run(func: Callable[..., Result], *args: Any) -> int:
-    """Call a command and map how it ends to the documented exit status (module docstring)."""
+    """Call a command and map how it ends to the documented exit status (docs/cli.md)."""
     try:
         result = func(*args)
         if isinstance(result, dict):
@@ -805,7 +752,7 @@ def _run(func: Callable[..., Result], *args: Any) -> int:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    """Entry point of the `radaraug` script; returns the exit status (module docstring)."""
+    """Entry point of the `radaraug` script; returns the exit status (docs/cli.md)."""
     argv = list(sys.argv[1:] if argv is None else argv)
     if argv[:1] == ["train"]:
         return _run(_cmd_train, argv[1:])

@@ -1,19 +1,7 @@
 """`RadarConfig`: one validated, immutable description of an FMCW radar and its chirp.
 
-The field names follow Infineon's ``fmcw_single_shape`` keys (``config.json`` of an ifxdaq /
-Radar Fusion GUI recording), so a config read from a real recording round-trips exactly. A few
-fields the recording does not carry (RX positions, ADC delay, ADC bits) have documented defaults.
-
-Timing model (Infineon BGT60 "single shape" chirp): the TX ramp sweeps ``start -> end`` over
-``adc_delay_s + T_adc`` where ``T_adc = num_samples_per_chirp / sample_rate_Hz``; the ADC samples
-only the last ``T_adc`` of it. Hence
-
-* ``slope_Hz_per_s = (end - start) / (adc_delay_s + T_adc)``
-* ``sampled_bandwidth_Hz = slope * T_adc`` (a little less than the nominal bandwidth)
-* range bin spacing ``c / (2 * sampled_bandwidth)``; a target at range ``R`` beats at
-  ``f_b = 2 R slope / c``.
-
-With ``adc_delay_s = 0`` every quantity reduces to the textbook nominal value.
+Field names follow Infineon's ``fmcw_single_shape`` keys, so a recording's ``config.json`` round-trips
+exactly. Fields, accepted ranges and the timing model of the derived values: docs/radar_config.md.
 """
 
 from __future__ import annotations
@@ -74,11 +62,9 @@ ADC_BITS_RANGE = (8, 16)
 
 
 def _default_rx_positions(n_rx: int, wavelength: float) -> tuple[tuple[float, float, float], ...]:
-    """L-shaped BGT60TR13C array: RX1-RX3 horizontal, RX2-RX3 vertical, lambda/2 apart.
+    """L-shaped BGT60TR13C array: RX1-RX3 horizontal, RX2-RX3 vertical, lambda/2 apart (the datasheet drawing).
 
-    Coordinates are metres in the antenna frame: x to the sensor's right, y up, z along
-    boresight. The exact positions in mm are not public; lambda/2 at 60 GHz is what the
-    datasheet drawing implies.
+    Metres in the antenna frame: x to the sensor's right, y up, z along boresight.
     """
     d = wavelength / 2
     table = {1: (-d, 0.0, 0.0), 2: (0.0, d, 0.0), 3: (0.0, 0.0, 0.0)}
@@ -100,7 +86,7 @@ class RadarConfig:
         rx_antennas: 1-based RX antenna numbers, in the order of the data's RX axis.
         tx_antennas: 1-based TX antenna numbers.
         tx_power_level: Infineon TX power level 0..31.
-        if_gain_dB: total IF gain, 18..60 dB.
+        if_gain_dB: total IF gain (18..60 dB on the BGT60TR13C).
         hp_cutoff_Hz: IF high-pass cutoff; ``None`` when the recording does not state it
             (then :attr:`effective_hp_cutoff_Hz` uses the SDK default 80 kHz).
         aaf_cutoff_Hz: anti-alias low-pass cutoff; ``None`` as above (default 500 kHz).
@@ -255,16 +241,10 @@ class RadarConfig:
     # ------------------------------------------------------------------ presets
     @classmethod
     def bgt60tr13c(cls, **overrides: Any) -> RadarConfig:
-        """The paper's BGT60TR13C setting.
+        """The paper's BGT60TR13C setting: 60 GHz, 882.35 MHz, 1 MHz ADC, 256 samples, 3 RX.
 
-        60 GHz centre, 882.35 MHz nominal bandwidth, 1 MHz ADC, 256 samples (0.256 ms of ADC
-        time), 3 RX. Chirps per frame and chirp repetition time are not in the paper: these are
-        Infineon's people-tracking defaults (64 chirps at 391.55 us, 10 frames/s). IF gain 33 dB
-        and the SDK's default 80 kHz high-pass / 500 kHz anti-alias filters.
-
-        Nominal (ADC delay ignored, as the paper does): slope 3.4467e12 Hz/s, range resolution
-        0.170 m, max range 21.7 m. With the BGT60's 3.1 us ADC delay (the default here) the
-        ramp is slower: slope 3.405e12 Hz/s, sampled bandwidth 871.8 MHz, 0.172 m, 22.0 m.
+        Chirps per frame and chirp repetition time, which the paper does not give, are Infineon's
+        people-tracking defaults (64 chirps at 391.55 us, 10 frames/s); docs/radar_config.md.
         """
         bandwidth = 882.35e6
         params: dict[str, Any] = dict(
@@ -488,13 +468,10 @@ class RadarConfig:
     def from_infineon(
         cls, data: Mapping[str, Any] | str | os.PathLike, *, source: str | None = None, **extra: Any
     ) -> RadarConfig:
-        """Read an Infineon ``config.json`` (dict or path).
+        """Read an Infineon ``config.json`` (dict or path): the full ``device_config`` form or the bare dict.
 
-        Accepts the full ``{"device_config": {"fmcw_single_shape": {...}}}`` form or the bare
-        ``fmcw_single_shape`` dict, with numbers spelt as integers (``63500000000``) or in
-        exponent form (``60.5e9``); values are kept exactly as read so that
-        :meth:`to_infineon` returns an equal dict. ``extra`` sets radaraug-only fields
-        (e.g. ``rx_positions_m``).
+        Values are kept exactly as read, so :meth:`to_infineon` returns an equal dict. ``extra`` sets
+        radaraug-only fields (e.g. ``rx_positions_m``).
         """
         if not isinstance(data, Mapping):
             source = str(data)

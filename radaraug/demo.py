@@ -1,12 +1,7 @@
 """`radaraug demo`: a walkthrough of one capture through the paper's chain (the main job is `make demo`).
 
-Processes the bundled BGT60TR13C recording (MIT-licensed, see ``data_cards/zharfanw_breathing.md``)
-with the paper's chain, fits CalibratedDR on it, and writes:
-
-* ``rd_frame*.png`` - viridis RD images of a few frames (RX combined), as the network would see them;
-* ``noise_floor_histogram.png`` - the capture's RD dB histogram against the fitted noise model;
-* ``cdr.json`` - the fitted calibration (reusable with ``CalibratedDR.load``);
-* ``summary.json`` - the `radaraug info` summary and the figures above.
+Writes RD images of the bundled recording, its noise-floor histogram against the fitted CalibratedDR,
+``cdr.json`` and ``summary.json`` (docs/cli.md).
 """
 
 from __future__ import annotations

@@ -1,49 +1,10 @@
-"""File helpers below every other layer: whole-file writes made atomic, temporary names, safe reads.
+"""File helpers below every other layer: atomic whole-file writes, temporary names, safe reads.
 
-This module imports nothing of radaraug but :mod:`radaraug.errors`, so that any layer (scenes,
-the ray tracer, the receiver, captures, transforms, training) can write and read its files
-without importing another layer (``tests/io/test_layering.py`` checks it).
-
-**Atomic writes.** Every file radaraug writes in one piece (calibration and profile JSON, reports, figures, caches,
-Infineon recording files) goes through :func:`atomic_open`. A reader, a crash or a full disk then
-sees either the old file (or none) or the complete new one, never a half-written or 0-byte file:
-the data is written under a hidden temporary name (``.<name>.<pid>.<random>.tmp``) in the target's
-folder, flushed to disk, and only then renamed over the target (``os.replace``, atomic on one
-filesystem). If anything fails, the temporary file is removed and the error propagates (an
-``OSError`` such as ``ENOSPC``; callers turn it into their :class:`~radaraug.errors.RadarAugError`
-where the file is a documented output). A process killed mid-write leaves its temporary file.
-
-Temporary files, one convention (:func:`temporary_name`): ``.<name>.<pid>.<random>.<suffix>`` in
-the target's folder -- hidden, unique per writer, never mistaken for the target, and found again
-by the target's name (:func:`temporaries_of`), so that the next writer of the same target removes
-what a killed writer left (:func:`remove_stale_temporaries`). The suffix says what the file is:
-
-* ``tmp`` (:data:`TMP_SUFFIX`): a whole-file output in the making (:func:`atomic_open`). It is
-  only ever renamed over the target once complete.
-* ``partial`` (:data:`PARTIAL_SUFFIX`): a radaraug HDF5 capture in the making
-  (:class:`radaraug.io.CaptureWriter`). It differs from ``tmp`` in one way that is needed: a
-  recording is SWMR and must stay readable (and keep its flushed frames after a kill) *while* it
-  grows, so the writer renames it to the target at its first frame, not at the end; only a
-  capture with no frame yet (or one written with ``publish="close"``, such as the held-out
-  proxy's files, which appear under their name only once complete) is ever left under this name.
-  Its writer holds a lock on it, so a stale one is told from a live one by the lock, not only by
-  its age.
-
-**Safe reads.** Every JSON document radaraug reads (an Infineon ``config.json`` and ``meta.json``, the HDF5
-``radar_config`` and ``labels`` attributes, a ``CalibratedDR`` file, a twin profile) goes through
-:func:`parse_json` / :func:`load_json`, and every small text file (timestamps, ``format.version``)
-through :func:`read_bytes`. They turn hostile input into one :class:`~radaraug.errors.RadarAugError`
-subclass (chosen by the caller) that names the file:
-
-* only regular files are opened: a FIFO would block ``open()`` forever, a character device such
-  as ``/dev/zero`` would be read without end; the check is made on the path and again on the
-  open descriptor, which is opened with ``O_NONBLOCK`` so a file swapped for a FIFO in between
-  cannot block either;
-* at most ``limit`` bytes are read (:data:`MAX_JSON_BYTES` for JSON), whatever the file claims;
-* JSON nesting deeper than :data:`MAX_JSON_DEPTH` and integers longer than
-  :data:`MAX_JSON_INT_DIGITS` digits are refused (100,000 nested brackets overflow Python's
-  recursion; a 5,000-digit integer exceeds Python's int-to-text limit; a 401-digit one overflows
-  a float), as is anything that is not UTF-8.
+Imports nothing of radaraug but :mod:`radaraug.errors`, so that every layer can use it. Whole-file outputs
+go through :func:`atomic_open` (a hidden ``.<name>.<pid>.<random>.tmp`` file, flushed, then renamed over the
+target); captures in the making use the ``.partial`` suffix. JSON and small text files are read through
+:func:`parse_json` / :func:`load_json` / :func:`read_bytes`, which refuse non-regular files, oversized input
+and hostile JSON with the caller's error type. Details: docs/captures.md and docs/radar_config.md.
 """
 
 from __future__ import annotations
@@ -87,10 +48,8 @@ def remove_stale_temporaries(
 ) -> list[Path]:
     """Remove the temporaries matching ``pattern`` in ``folder`` that killed writers left; the removed paths.
 
-    A temporary is stale when it was last written at least ``older_than_s`` ago (so that a writer
-    that has just created its file is never hit) and ``in_use`` (when given, e.g. "a process holds
-    a lock on it") says it is not in use. Files that cannot be checked or removed are left alone
-    (another process may be replacing or removing them).
+    Stale: last written at least ``older_than_s`` ago and not ``in_use`` (when given, e.g. a lock check).
+    Files that cannot be checked or removed are left alone.
     """
     removed = []
     now = time.time()
@@ -165,11 +124,7 @@ def atomic_write_bytes(path: str | os.PathLike, data: bytes) -> Path:
 
 
 def atomic_write_json(path: str | os.PathLike, obj: Any, *, newline: bool = True, **dumps: Any) -> Path:
-    """Write ``json.dumps(obj, **dumps)`` to ``path`` atomically and return the path.
-
-    The object is serialised before the file is created, so an object that is not JSON leaves nothing
-    behind.
-    """
+    """Write ``json.dumps(obj, **dumps)`` to ``path`` atomically (serialised first) and return the path."""
     text = json.dumps(obj, **dumps) + ("\n" if newline else "")
     return atomic_write_text(path, text)
 
@@ -241,10 +196,7 @@ def _kind(mode: int) -> str:
 
 
 def open_regular(path: str | os.PathLike, *, error: type[RadarAugError], what: str = "file") -> int:
-    """A read-only descriptor of the regular file ``path``; the caller closes it.
-
-    Opened with ``O_NONBLOCK`` and checked again on the descriptor.
-    """
+    """A read-only descriptor of the regular file ``path`` (``O_NONBLOCK``, checked again); the caller closes it."""
     regular_file_size(path, error=error, what=what)
     try:
         fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK | getattr(os, "O_CLOEXEC", 0))
@@ -358,10 +310,7 @@ def load_json(
 
 
 def safe_repr(value: Any, width: int = 60) -> str:
-    """``repr(value)`` cut to ``width`` characters, safe for values whose repr fails.
-
-    E.g. a 5,000-digit integer exceeds Python's int-to-text limit.
-    """
+    """``repr(value)`` cut to ``width`` characters, safe for values whose repr fails (a 5,000-digit int)."""
     try:
         text = repr(value)
     except (ValueError, RecursionError):

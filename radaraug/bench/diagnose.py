@@ -1,10 +1,6 @@
-"""`radaraug bench diagnose`: `radaraug diagnose` on a 100-frame capture at the paper's config.
+"""`radaraug bench diagnose`: `radaraug diagnose` on a 100-frame paper-config capture vs simulating it.
 
-The capture is made in the same process by the library's receiver (default BGT60TR13C chain plus
-two undeclared effects, a spur tone and frame drift, on three static point scatterers), written as
-a radaraug HDF5 file and diagnosed without a scene (static scene estimated from the capture). The
-baseline is simulating that capture (100 frames through the receiver): the ratio says how many
-"captures' worth" of simulation the diagnosis costs. Target: at most 2 minutes on a 2-core CPU.
+The capture is made in the same process by the library's receiver; see docs/benchmarks.md.
 """
 
 from __future__ import annotations
@@ -40,10 +36,7 @@ def _capture_frames(cfg: RadarConfig, frames: int) -> torch.Tensor:
 
 
 def run_diagnose_benchmark(*, frames: int = 100, out: str | Path | None = None) -> dict[str, Any]:
-    """Seconds to diagnose a ``frames``-frame capture at the paper's config.
-
-    Also the ratio to simulating the capture itself (same process).
-    """
+    """Seconds to diagnose a ``frames``-frame capture at the paper's config, and the ratio to simulating it."""
     from radaraug.calibration import diagnose
     from radaraug.io import write_capture
 

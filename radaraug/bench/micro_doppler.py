@@ -1,13 +1,6 @@
 """`radaraug bench micro-doppler`: a walker's micro-Doppler as a PNG.
 
-One snapshot per frame vs motion inside the frame (:mod:`radaraug.sim.intra_frame`).
-
-A walker comes towards the radar down the built-in corridor (ideal receiver, no multipath, so
-only the body's own echo is drawn). Each column is the Doppler spectrum of one frame-long window
-(64 chirps, Hann window, range FFT power summed over range), windows one frame duration apart,
-so the spectrogram covers the walk without gaps. With one snapshot per frame every body segment
-is a single line per window; with sub-frame snapshots the limbs sweep through their velocities
-inside each window.
+One snapshot per frame vs motion inside the frame (:mod:`radaraug.sim.intra_frame`); docs/benchmarks.md.
 """
 
 from __future__ import annotations

@@ -1,10 +1,7 @@
 """A straightforward NumPy implementation of the paper's RD chain: the benchmark baseline.
 
-Same steps and conventions as the torch transforms (mean removal, Hann windows divided by their
-sums, real range FFT keeping N//2 bins, Doppler FFT + fftshift, 20log10, CDR clamp, RX combining on power, clip/normalize,
-viridis LUT), written the way one would without radaraug: float64, one frame at a time is *not*
-assumed - it is vectorized over the batch like the torch version, so the ratio measures the
-library, not a Python loop.
+Same steps and conventions as the torch transforms, float64, vectorized over the batch like the torch
+version, so that the ratio measures the library, not a Python loop.
 """
 
 from __future__ import annotations

@@ -1,9 +1,7 @@
 """`radaraug bench people-level`: a moving person's level in captures against the twin's walker.
 
-The signal side of the twin measured as its noise side was (issue 22, item 3): for each capture with a
-moving person, :func:`radaraug.calibration.people_level.fit_people_level` (capture-minus-twin MTI peak
-at matched range bin, in dBFS). The baseline is the twin itself, simulated in the same process at each
-capture's config and IF gain. ``benchmarks/people_level_cpu.json`` holds the public recordings' fits.
+Fits :func:`radaraug.calibration.people_level.fit_people_level` per capture, the twin simulated in the
+same process at its config and IF gain; see docs/benchmarks.md.
 """
 
 from __future__ import annotations
@@ -20,9 +18,7 @@ from radaraug.bench import write_figures
 def run_people_level_benchmark(
     captures: Sequence[str | os.PathLike], *, out: str | os.PathLike | None = None,
 ) -> dict[str, Any]:
-    """Fit every capture (radaraug .h5 or Infineon recording folder) and return the figures.
-
-    Each is keyed by its file or folder name. Also written as JSON to ``out``.
+    """Fit every capture (radaraug .h5 or Infineon folder); figures keyed by file name, also written to ``out``.
 
     Raises:
         ConfigError: no captures given.

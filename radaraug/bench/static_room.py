@@ -1,16 +1,7 @@
 """`radaraug bench static-room`: the room trace's cost and convergence, image method vs SBR rays.
 
-Scene: the paper's corridor (``corridor``) at the paper's config, and a furnished mesh room (a
-15 m box room with a radiator, a door frame and a cabinet as small faces). Figures:
-
-* ``image_trace_s`` and, per SBR ray count, ``sbr_trace_s`` with the ratio ``sbr / image`` (the
-  baseline is the image-method trace in the same process);
-* the static range profile's error against a reference (ideal receiver, Hann, mean chirp,
-  :mod:`radaraug.raytrace.convergence`): SBR at each ray count against the image method's
-  specular part (the end wall and the RMS over 2-19.5 m), the default trace (with diffuse
-  clutter) and the specular image method against themselves at ``density=4`` (the "4x denser
-  trace" criterion), and the furnished room's small-face PO at ``density=1`` vs ``4``;
-* optionally a figure of the corridor's static range profile for every trace.
+The paper's corridor and a furnished mesh room; the baseline is the image-method trace in the same
+process. The figures are described in docs/benchmarks.md.
 """
 
 from __future__ import annotations
@@ -59,7 +50,7 @@ def _timed_trace(**kw: Any) -> tuple[Any, float, torch.Tensor, torch.Tensor]:
 def run_static_room_benchmark(
     *, rays: tuple[int, ...] = SBR_RAYS, out: str | Path | None = None, figure: str | Path | None = None,
 ) -> dict[str, Any]:
-    """Run the benchmark (module docstring); write JSON to ``out`` and a PNG to ``figure``."""
+    """Run the benchmark (docs/benchmarks.md); write JSON to ``out`` and a PNG to ``figure``."""
     from radaraug.raytrace.convergence import compare_profiles
     from radaraug.scene.scene import Scene
 

@@ -1,9 +1,6 @@
 """`radaraug bench training`: one training step of the recipe pipeline vs a bare ResNet18 step.
 
-Both run in the same process on the same batch size and image size: the baseline trains
-ResNet18 on ready-made images; the pipeline starts from cached per-RX dB maps and applies the
-recipe's on-device chain (CalibratedDR -> CombineRx -> ClipNormalize -> viridis -> Resize) before
-the same step. The ratio says what the radar chain costs on top of the network.
+Same process, batch and image size; the ratio says what the radar chain costs on top of the network.
 """
 
 from __future__ import annotations
@@ -44,8 +41,7 @@ def _amp_channels_last(dev: torch.device, net: torch.nn.Module, opt: torch.optim
                        ready: torch.Tensor, images: Any, steps: int) -> dict[str, float]:
     """Steps/s of the same steps under bf16 autocast with a channels-last network and input (CUDA).
 
-    bf16 keeps float32's exponent range, so no loss scaler is needed; channels-last lets cuDNN
-    pick its tensor-core convolution kernels without transposes.
+    bf16 needs no loss scaler; channels-last lets cuDNN use tensor-core kernels without transposes.
     """
     net = net.to(memory_format=torch.channels_last)
 

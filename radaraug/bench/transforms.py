@@ -1,8 +1,7 @@
 """`radaraug bench transforms`: the paper's RD chain in torch vs a straightforward NumPy version.
 
-Both run in the same process on the same batch of paper-size frames (3 RX x 64 chirps x 256
-samples): RangeDoppler -> ToDecibels -> CalibratedDR -> CombineRx(mean_power) -> ClipNormalize -> Colormap. The figure
-that matters is the ratio torch/NumPy frames per second (target >= 5 on CPU).
+Same process, same batch of paper-size frames; the figure is the torch/NumPy frames/s ratio
+(docs/benchmarks.md).
 """
 
 from __future__ import annotations

@@ -1,18 +1,7 @@
 """`radaraug bench twin`: end-to-end simulation throughput of the paper's scene, with baselines.
 
-Scene: the built-in corridor with two walkers (``corridor_two_walkers``) at the paper's config
-(3 RX x 64 chirps x 256 samples), people's multipath on (first order and wall-person-same-wall),
-motion inside the frame on (automatic sub-frame snapshots), the default BGT60TR13C receiver.
-Figures (each against a baseline measured in the same process):
-
-* ``frames_per_s_1proc``: one process, one torch thread, blocks of 16 frames; as a ratio to the
-  sensor's own frame rate (10 frames/s: real time); ``frames_per_s_1proc_one_snapshot``: the
-  same with one snapshot per frame (``intra_frame=0``), and the cost ratio of intra-frame motion;
-* ``frames_per_s_workers``: the same work spread over ``workers`` DataLoader processes (the
-  on-the-fly training case on a 2-core machine), ratio to real time;
-* ``receiver_speedup_fast_vs_exact``: the fast (GEMM) IF synthesis against the exact sum of
-  complex exponentials on the twin's own paths (and their agreement);
-* ray-triangle tests/s of the intersection kernel, eager and ``torch.compile``-d.
+The corridor with two walkers at the paper's config; each figure against a baseline measured in the same
+process (docs/benchmarks.md).
 """
 
 from __future__ import annotations
@@ -38,9 +27,7 @@ BLOCK = 16
 class _Blocks(Dataset):
     """Blocks of consecutive frames of one scene (module level: picklable for workers).
 
-    Item ``i`` is block ``i % wrap``: the workers simulate the same frames as the one-process
-    measurement (later blocks are cheaper: the walkers leave the corridor after ~10 s, which
-    once made the worker figure look faster than the work it did).
+    Item ``i`` is block ``i % wrap``, so the workers simulate the frames the one-process figure does.
     """
 
     def __init__(self, scene_name: str, n: int, device: str, static: torch.Tensor | None, wrap: int) -> None:
@@ -211,13 +198,10 @@ CUDA_TARGET_FRAMES_PER_S = 2000.0
 
 def _frames_per_s(twin: DigitalTwin, per_call: int, calls: int, sync: Any, *, wrap: int | None = None,
                   budget_s: float | None = None) -> float:
-    """Frames/s of ``calls`` calls of ``per_call`` frames of the scene's people, after a warm-up call.
+    """Frames/s of ``calls`` calls of ``per_call`` frames of the scene's people, after a warm-up call (call 0).
 
-    Call ``i`` simulates frames ``i * per_call ...`` with the generator of item ``(0, i)``; the
-    warm-up is call 0. ``wrap``: frame indices modulo ``wrap`` (128 = 12.8 s, while the walkers are
-    in the corridor), so that large batches simulate the same kind of frames, not frames after the
-    people left. With ``budget_s``, fewer calls are timed when the warm-up call shows that
-    ``calls`` would take longer (at least one).
+    Frame indices wrap modulo ``wrap`` (128 = 12.8 s, while the walkers are in the corridor). With
+    ``budget_s``, fewer calls (at least one) are timed when the warm-up shows ``calls`` would take longer.
     """
     from radaraug.sim.seeding import item_generator
 
@@ -244,11 +228,9 @@ def run_twin_benchmark_cuda(
 ) -> dict[str, Any]:
     """The twin's throughput on a GPU, against the CPU in the same process.
 
-    Figures: ``cpu_frames_per_s_1proc`` (one torch thread, blocks of 16: the CPU benchmark's
-    definition); ``frames_per_s_by_frames_per_call`` on the GPU for each of
-    :data:`CUDA_FRAMES_PER_CALL` (a batch that does not fit reads ``"out of memory"``);
-    ``speedup_vs_cpu_1proc`` of the best; the cost of ``shadow_intervals=2`` at 256 frames per
-    call; the intersection kernel on the GPU.
+    Figures: ``cpu_frames_per_s_1proc``; ``frames_per_s_by_frames_per_call`` for each of
+    :data:`CUDA_FRAMES_PER_CALL` (``"out of memory"`` where a batch does not fit);
+    ``speedup_vs_cpu_1proc`` of the best; the cost of ``shadow_intervals=2``; the intersection kernel.
     """
     from radaraug.bench.intersection import benchmark_intersection
     from radaraug.scene.scene import Scene

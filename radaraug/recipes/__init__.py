@@ -1,18 +1,8 @@
-"""The training recipes: one base recipe and small per-task, per-method and ablation overrides.
+"""The training recipes: one base recipe and small per-task, per-method and ablation overrides (YAML).
 
-The recipes are YAML files installed with the package (LightningCLI configs of ``radaraug train``)::
-
-    base.yaml              what every run shares (trainer, model, data)
-    task/TASK.yaml         occupancy | counting
-    method/METHOD.yaml     rt | randomdr | cdr | cdr_profile (and what the method needs)
-    ablation/NAME.yaml     one change to a method's run (the ablation rows of ``radaraug reproduce``)
-
-A recipe *name* ``TASK_METHOD`` (``occupancy_randomdr``) is ``base.yaml`` + ``task/TASK.yaml`` +
-``method/METHOD.yaml``, merged in that order the way LightningCLI merges several ``--config`` files
-(mappings key by key, anything else replaced): ``radaraug train fit --config occupancy_randomdr`` passes
-the three files, ``radaraug recipes occupancy_randomdr`` prints the merged recipe, and
-``radaraug reproduce`` builds each of its runs from the same files (:func:`compose`), so the
-hyperparameters are written once. This module reads only YAML: no torch, no Lightning.
+A recipe name ``TASK_METHOD`` is ``base.yaml`` + ``task/TASK.yaml`` + ``method/METHOD.yaml``, merged as
+LightningCLI merges several ``--config`` files; ``radaraug reproduce`` composes its runs from the same
+files (docs/training.md, "Recipes"). This module reads only YAML: no torch, no Lightning.
 """
 
 from __future__ import annotations
@@ -54,8 +44,8 @@ def recipe_names() -> list[str]:
 def _parts(text: str) -> list[Path] | None:
     """The files that ``text`` names, or None.
 
-    ``TASK_METHOD`` (also with ``.yaml`` or ``recipes/`` before it, the recipes' old place in the
-    checkout) names three files; ``base``, ``task/T``, ``method/M`` and ``ablation/A`` name one.
+    ``TASK_METHOD`` (also with ``.yaml`` or a ``recipes/`` prefix) names three files; ``base``, ``task/T``,
+    ``method/M`` and ``ablation/A`` name one.
     """
     p = PurePosixPath(text.replace("\\", "/"))
     if p.suffix not in ("", ".yaml", ".yml"):
@@ -135,10 +125,7 @@ def compose(*names: str) -> dict[str, Any]:
 
 
 def ablation(name: str) -> tuple[str, dict[str, Any]]:
-    """``(method, changes)`` of an ablation override.
-
-    The method its run changes (its ``data.method``) and the data keys it changes.
-    """
+    """``(method, changes)`` of an ablation override: its ``data.method`` and the data keys it changes."""
     data = dict(compose(f"ablation/{name}").get("data", {}))
     method = data.pop("method", None)
     if method not in methods():

@@ -1,11 +1,7 @@
-"""Training from the twin and testing on captures: Lightning recipes, metrics, the reproduce report.
+"""Training from the twin and testing on captures: Lightning data module and classifier, metrics, reports.
 
-* :class:`RadarDataModule` -- simulated train/val (cached once), captures for test, the paper's chain;
-* :class:`RDClassifier` -- occupancy / counting classifier (default ResNet18, random init; any backbone:
-  :mod:`.models`);
-* :mod:`.metrics` -- balanced accuracy from the confusion matrix, JSON + PNG reports;
-* :mod:`.testset` -- the test set and calibration checked before training (:class:`TestSetWarning`);
-* ``radaraug train`` (LightningCLI, :mod:`.cli`) and ``radaraug reproduce`` (:mod:`.reproduce`).
+``radaraug train`` (:mod:`.cli`) runs the recipes, ``radaraug reproduce`` (:mod:`.reproduce`) the paper's
+experiment; see docs/training.md.
 """
 
 from radaraug.training.data import RadarDataModule

@@ -1,16 +1,7 @@
 """Simulate once: per-RX RD dB maps of simulated items, cached on disk (HDF5) under a content key.
 
-The runs of an experiment (2 tasks x the DR methods) and every seed of them train on the same
-simulated items; only the DR differs, and DR acts on dB maps. (``cdr_profile`` simulates with
-another receiver, the fitted twin profile's: its set has its own key.) So the twin's output is stored
-*before* DR as ``(rx, range, doppler)`` dB maps (float16: 0.06 dB steps at -100 dB, half the
-size) with the people count of each item. The file name carries a hash of everything the maps
-depend on -- scene, radar config, receiver, scenario sampler, twin randomization, seed, the item
-indices, the RD chain and the twin's physics version (``TWIN_MODEL_VERSION``) -- so a change of any of them re-simulates and an unchanged one does not.
-
-A file is written under a temporary name (the package's one convention, :mod:`radaraug.files`) and
-renamed when complete: a killed run leaves no half-written cache that a later run would trust, and
-the next build of the same key removes what a dead process left.
+Stored before DR, so every DR method and seed shares one simulated set; the key covers everything the
+maps depend on, so any change re-simulates (docs/training.md, "Simulate once").
 """
 
 from __future__ import annotations
@@ -122,11 +113,9 @@ def build_map_caches(
     num_workers: int = 0,
     progress: bool = True,
 ) -> dict[str, Path]:
-    """One cache file per split (``{name: indices}``), the missing ones simulated in one pass.
+    """One cache file per split (``{name: indices}``), as :func:`build_map_cache`, the missing ones in one pass.
 
-    As :func:`build_map_cache` for each split (same file names and keys), but the splits that are not
-    cached yet are simulated by one DataLoader: its workers set up each room variant once for all of
-    them instead of once per split.
+    One DataLoader simulates every missing split, so its workers set up each room variant once.
     """
     cache_dir = Path(cache_dir)
     paths = {name: cache_dir / f"{name}-{cache_key(cache_spec(dataset, idx))}.h5" for name, idx in splits.items()}

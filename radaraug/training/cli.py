@@ -1,12 +1,6 @@
 """`radaraug train`: the recipes through LightningCLI (``fit``, ``validate``, ``test``, ``predict``).
 
-Example::
-
-    radaraug train fit --config recipes/occupancy_cdr.yaml --trainer.max_epochs 3
-
-``data.task`` is linked to ``model.task``. After ``fit``, the test captures of the config are
-scored with the trained weights (``test_metrics.json`` / ``test_confusion.png`` in the log dir).
-Checkpoints keep ``last.ckpt`` (for ``radaraug train test --ckpt_path``).
+``fit`` also tests on the config's captures and keeps ``last.ckpt``; see docs/training.md.
 """
 
 from __future__ import annotations
@@ -34,9 +28,7 @@ class RadarCLI(LightningCLI):
     def instantiate_trainer(self, **kwargs: Any) -> Trainer:
         """The trainer, whose checkpoint callback also keeps ``last.ckpt`` unless told otherwise.
 
-        Done here, not as a callback in the recipes, so that ``--trainer.enable_checkpointing false``
-        still works (Lightning refuses a ModelCheckpoint beside it) and a ``save_last`` the user set
-        is kept.
+        Not a recipe callback, so that ``--trainer.enable_checkpointing false`` and a user's ``save_last`` still work.
         """
         trainer = super().instantiate_trainer(**kwargs)
         checkpoint = trainer.checkpoint_callback

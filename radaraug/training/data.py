@@ -1,24 +1,8 @@
 """`RadarDataModule`: train on the twin, validate on held-out simulation, test on captures.
 
-* **train / val**: items ``[0, train_items)`` and ``[train_items, train_items + val_items)`` of
-  one :class:`~radaraug.sim.dataset.SimulatedRadarDataset` (twin randomization on by default),
-  simulated once into the map cache (:mod:`radaraug.training.cache`) and reused by every DR
-  method and seed. Under DDP each rank simulates and trains on its own shard (item ``i`` goes to
-  rank ``i % world_size``; the last ``train_items % world_size`` items are left out so that every
-  rank runs the same number of steps); nothing is simulated twice.
-* **test**: captures named in the config (radaraug HDF5 or Infineon folders), each with a
-  people count for the whole file or per-frame ``count`` labels from the file; without any,
-  the held-out proxy (:mod:`radaraug.sim.proxy`) is generated and used, and so is its
-  empty-room capture for CDR.
-* **the twin's receiver**: the default chain with its noise figure fitted to the calibration
-  capture's floor (``calibrate_noise``), or a twin profile (:mod:`radaraug.sensor.profile`):
-  the one named by ``profile``, or, for ``cdr_profile``, the one ``radaraug diagnose`` fits on
-  the calibration capture (cached in ``cache_dir`` as ``profile-<key>.json``). A profile replaces
-  the noise-figure fit; the simulated set of a profile twin has its own cache key.
-* the chain (:mod:`radaraug.training.pipeline`): per-RX dB maps arrive on the device; on the
-  simulated splits (train and val) the run's DR is applied there, per sample, from its own seeded
-  generator (captures never get DR); then RX combination,
-  clip to ``[vmin, vmax]``, normalize, viridis and resize, for every split.
+The train and val items are simulated once into the map cache (:mod:`radaraug.training.cache`) and get
+the run's DR on the device; captures never get DR. Both go through the same image chain
+(:mod:`radaraug.training.pipeline`). See docs/training.md.
 """
 
 from __future__ import annotations
@@ -80,10 +64,7 @@ class _Labelled(Dataset):
 
 
 def _recording_starts(tests: Sequence[RadarCaptureDataset]) -> torch.Tensor:
-    """``(frames,)`` bool over the concatenated test captures: True at each recording's first frame.
-
-    A dataset over several files (or one) counts each file as a recording.
-    """
+    """``(frames,)`` bool over the concatenated test captures: True at each file's first frame."""
     flags = []
     for t in tests:
         for n in t.items_per_file:
@@ -101,90 +82,55 @@ def _rank_world(trainer: Any) -> tuple[int, int]:
 
 
 class RadarDataModule(L.LightningDataModule):
-    """The paper's data side as a LightningDataModule (every argument is a YAML key).
+    """The paper's data side as a LightningDataModule (every argument is a YAML key; docs/training.md).
 
     Args:
         task: ``occupancy`` (2 classes) or ``counting`` (0/1/2 people).
-        method: ``rt``, ``randomdr`` (default: it wins on held-out data, docs/training.md) or ``cdr``
-            (noise-floor randomization in training), or
-            ``cdr_profile``: ``cdr``'s DR on a twin whose receiver is the twin profile fitted
-            (:func:`radaraug.calibration.diagnose`, no scene) on the calibration capture.
-        scene: training scene: built-in name or scene file (default: the paper's corridor).
-        calibration: empty-room capture (or a CalibratedDR JSON) for ``cdr`` / ``cdr_profile``;
-            its radar config is the one simulated. None with no ``test``: the held-out proxy's.
-            ``cdr_profile`` fits its profile on it, so it must be a capture (or give ``profile``).
-        test: test captures, each ``{"path": ..., "count": N}`` or ``"PATH:N"`` (whole file has N
-            people) or ``{"path": ...}`` / ``"PATH"`` (per-frame ``count`` labels in the file), or a
-            :class:`~radaraug.io.RadarCaptureDataset` whose label is the people count (in a recipe:
-            ``class_path: radaraug.io.RadarCaptureDataset`` with ``init_args``; no transform of its
-            own: the module applies its RD chain, see :func:`~radaraug.training.testset.dataset_entries`).
-            None: the held-out proxy.
-        proxy_dir: where the held-out proxy is generated (and reused) when it is needed (None:
-            ``cache_dir/proxy``).
+        method: ``rt``, ``randomdr`` (default: it wins on held-out data), ``cdr``, or ``cdr_profile``
+            (``cdr``'s DR on a twin whose receiver is the twin profile fitted on the calibration capture).
+        scene: training scene: built-in name or scene file.
+        calibration: empty-room capture (or a CalibratedDR JSON) whose radar config the twin simulates;
+            ``cdr_profile`` needs a capture (or ``profile``). None with no ``test``: the held-out proxy's.
+        test: test captures: ``"PATH:N"`` / ``{"path", "count": N}`` (N people in the whole file),
+            ``"PATH"`` / ``{"path"}`` (the file's per-frame ``count`` labels), or a
+            :class:`~radaraug.io.RadarCaptureDataset` labelled with people counts and without a transform
+            (:func:`~radaraug.training.testset.dataset_entries`). None: the held-out proxy.
+        proxy_dir: where the held-out proxy is generated and reused (None: ``cache_dir/proxy``).
         proxy_frames_per_count: test frames per people count of a generated proxy.
         train_items, val_items: simulated items for training and validation.
         sim_seed: seed of the simulated set (item ``i`` is a function of ``(sim_seed, i)``).
         randomization: twin randomization: True (defaults), False/None (off), or a dict of
             :class:`~radaraug.sim.randomization.TwinRandomization` fields.
-        catalog_priors: where the randomization's effect catalog draws from: ``"physics"`` (its
-            own ranges) or ``"calibration"`` (each effect that ``diagnose`` adds on the calibration
-            capture, no scene, ``profile_max_frames`` frames, cached like ``cdr_profile``'s fit, is
-            drawn more often and around its fitted values: :mod:`radaraug.calibration.priors`).
-        calibrate_noise: fit the twin's noise figure so that its empty-room RD noise floor equals
-            the calibration capture's (:mod:`radaraug.calibration.noise_fit`); twin randomization then
-            draws around the fitted value. Applies to every method that simulates with the default
-            receiver (they share one simulated set); skipped when the receiver is a profile.
-        profile: a twin profile JSON (``radaraug diagnose CAPTURE -o DIR`` writes
-            ``DIR/profile.json``), any method: the twin's receiver is built from it (the noise
-            fit is skipped; twin randomization draws its gain / noise-figure offsets around the
-            profile's values). For ``cdr_profile`` it is used instead of fitting one.
+        catalog_priors: ``"physics"`` (the effect catalog's own ranges) or ``"calibration"`` (centred on the
+            effects ``diagnose`` adds on the calibration capture: :mod:`radaraug.calibration.priors`).
+        calibrate_noise: fit the twin's noise figure to the calibration capture's empty-room floor
+            (:mod:`radaraug.calibration.noise_fit`); skipped when the receiver is a profile.
+        profile: a twin profile JSON (``radaraug diagnose`` writes one) the twin's receiver is built from,
+            any method; for ``cdr_profile`` it replaces the fitted one.
         profile_max_frames: frames of the calibration capture that ``cdr_profile``'s diagnose reads.
-        tracer_rays: trace the room with SBR at this many rays per axis (None: the twin's default
-            image method, which has no ray count).
+        tracer_rays: trace the room with SBR at this many rays per axis (None: the image method).
         cache_dir: folder of the simulate-once cache and the cached fits (None: the user's cache folder,
-            :func:`radaraug.raytrace.cache.default_cache_dir`, not the working folder).
+            :func:`radaraug.raytrace.cache.default_cache_dir`).
         image_size: network input ``[H, W]`` (None: the RD map's own size).
-        representation: the network input: ``"floor_relative"`` (default: each range row referenced to
-            its Doppler median, zero Doppler blanked, the calibration's persistent lines excised:
-            :class:`~radaraug.transforms.FloorRelative`) or ``"paper"`` (the RX-combined dBFS map,
-            clipped); see docs/training.md.
-        blank_zero_doppler: with ``floor_relative``: Doppler bins blanked on each side of zero
-            (the static room's skirt; a standing person lies there too).
-        excise_persistent_db: with ``floor_relative``: RD cells whose median over the calibration
-            capture's frames stands more than this many dB above their row's floor (a spur's line, a
-            fan's Doppler lines: what is in every frame of the empty room) are set to the floor in
-            every map, simulated and captured alike (a CFAR-style clutter map; ``null``: none).
+        representation: ``"floor_relative"`` (default: :class:`~radaraug.transforms.FloorRelative`) or
+            ``"paper"`` (the RX-combined dBFS map, clipped).
+        blank_zero_doppler: with ``floor_relative``: Doppler bins blanked on each side of zero.
+        excise_persistent_db: with ``floor_relative``: cells whose median over the calibration capture
+            stands this many dB above their row's floor are set to the floor in every map (None: none).
         clip_percentiles: percentiles of simulated (post-DR) maps that give ``[vmin, vmax]``.
         clip_range: a fixed ``[vmin, vmax]`` instead of the estimate.
         randomdr_mean_db, randomdr_std_db: RandomDR ranges (None: radaraug's defaults).
-        cdr_floor: CalibratedDR's floor distribution for ``cdr`` / ``cdr_profile``: ``"normal"``
-            (the paper's), ``"empirical"`` (the calibration capture's measured distribution, see
-            docs/transforms.md), ``"matched"`` (the empirical distribution deconvolved against the
-            training twin's own empty-room floor so that ``max(S, N)`` has the capture's
-            distribution: the clamp adds only what the twin lacks; needs empty items in the
-            training split), or None (the calibration's own: ``"normal"`` for a capture).
-        cdr_twin_noise_offset_db: for ``cdr``: lower the twin's noise (thermal and ADC-side, from the noise
-            fit or the default receiver) by this many dB (e.g. ``-15``), so that the twin's own floor
-            sits well below the capture's and CalibratedDR's clamp supplies it, as in the paper (whose
-            twin had no noise); the CDR runs then train on a simulated set of their own. None: ``cdr``
-            shares the other methods' twin (docs/training.md, "CDR on a twin with noise").
-        test_dr: also pass the test captures through the run's DR (drawn from the DR's own seeded
-            generator). Not the paper's protocol, which leaves real maps untouched: with a twin whose
-            floor already sits at the capture's, CDR's clamp raises the training floor ~3 dB above
-            the capture's, and a network learns the raised floor as "empty" (docs/training.md).
-        simulated: the training twin's dataset as an object (in a recipe a ``class_path:
-            radaraug.sim.SimulatedRadarDataset`` with its ``init_args``), used as given for the train and
-            val items instead of the one built from ``scene``, ``sim_seed``, ``randomization``,
-            ``tracer_rays`` and the fitted receiver (``calibrate_noise``, ``profile``, ``cdr_profile``,
-            ``catalog_priors``, ``cdr_twin_noise_offset_db``: those are then not applied, and a warning
-            names the ones set). Its radar config must be the test captures' (ConfigError), its target
-            ``count`` and its length at least ``train_items + val_items``. Cached like the built one.
-        dr: the run's noise-floor randomization as an object (in a recipe a ``class_path``, e.g.
-            :class:`~radaraug.transforms.RandomDR` with its ranges, or any ``nn.Module`` acting on
-            per-RX dB maps ``(B, rx, range, doppler)``), used instead of the one ``method`` builds;
-            ``method`` still picks the twin (``cdr``: the quiet twin, ``cdr_profile``: the profile twin).
-            Under DDP every rank applies its own copy: one with a seeded generator draws the same
-            sequence on every rank (on other items). None: ``method``'s.
+        cdr_floor: CalibratedDR's floor: ``"normal"`` (the paper's), ``"empirical"`` (the capture's
+            distribution), ``"matched"`` (so that ``max(S, N)`` on the twin has the capture's
+            distribution; needs empty training items), or None (the calibration's own).
+        cdr_twin_noise_offset_db: ``cdr`` only: lower the twin's noise by this many dB so that the clamp
+            supplies the floor, as in the paper (None: ``cdr`` shares the other methods' twin).
+        test_dr: also pass the test captures through the run's DR (not the paper's protocol).
+        simulated: the training twin's dataset, used as given instead of the built one (the fitted-receiver
+            options are then not applied; a warning names them). It needs the test captures' radar
+            config, target ``count`` and at least ``train_items + val_items`` items.
+        dr: the run's DR as a module on per-RX dB maps ``(B, rx, range, doppler)``, instead of the one
+            ``method`` builds (``method`` still picks the twin). None: ``method``'s.
         dr_seed: seed of the DR draws (rank ``r`` uses ``dr_seed + 1000 r``).
         batch_size: training batch size.
         num_workers: DataLoader workers for training and test reads.
@@ -456,11 +402,7 @@ class RadarDataModule(L.LightningDataModule):
         self._write_run_files()
 
     def _resolve_receiver(self, calibration: str | None, has_capture: bool, rank: int) -> None:
-        """Set :attr:`twin_profile` (and :attr:`profile_info`).
-
-        ``data.profile``, or for ``cdr_profile`` the profile fitted on the calibration capture; None
-        otherwise.
-        """
+        """Set :attr:`twin_profile` and :attr:`profile_info`: ``data.profile``, ``cdr_profile``'s fit, or None."""
         self.twin_profile, self.profile_info = None, None
         if self.hparams["profile"] is not None:
             path = str(self.hparams["profile"])
@@ -512,10 +454,7 @@ class RadarDataModule(L.LightningDataModule):
         return TwinProfile.from_dict(data, source=path_fitted), path_fitted
 
     def profile_cache_path(self, calibration: str) -> Path:
-        """``cache_dir/profile-<key>.json`` of ``calibration``.
-
-        The key covers the capture's bytes (not its name), the frames read and the fit's version.
-        """
+        """``cache_dir/profile-<key>.json`` of ``calibration`` (keyed by its bytes, frames read, fit version)."""
         key = cache_key({"format": PROFILE_FIT_FORMAT, "version": PROFILE_FIT_VERSION,
                          "profile_version": PROFILE_VERSION, "capture_sha256": content_digest(calibration),
                          "scene": None, "max_frames": int(self.hparams["profile_max_frames"])})

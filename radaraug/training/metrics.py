@@ -1,10 +1,7 @@
-"""Classification metrics from the confusion matrix: balanced accuracy, accuracy, per-class recall.
+"""Classification metrics from the confusion matrix, frame context and operating points.
 
-Balanced accuracy is the mean recall over the classes *present* in the labels. It is computed
-from the confusion matrix here rather than with torchmetrics' ``MulticlassAccuracy(average=
-"macro")``, which averages over every class and so differs when a class is absent from a test
-split (0.417 vs 0.625 in one measured case): a test file of 0 and 1 people scored by a 3-class
-counting model must not be penalised for the absent class 2.
+Balanced accuracy is the mean recall over the classes *present* in the labels, so a test split without
+one class (no 2-person frames) is not penalised for it (docs/training.md, "Metrics").
 """
 
 from __future__ import annotations
@@ -79,8 +76,7 @@ def classification_report(cm: torch.Tensor, class_names: Sequence[str] | None = 
 def causal_context(probs: torch.Tensor, starts: torch.Tensor, frames: int) -> torch.Tensor:
     """Each frame's class probabilities averaged with those of the ``frames - 1`` frames before it.
 
-    Causal (a frame sees only itself and earlier frames of its recording), so it works on a live
-    stream too; it never reaches across the start of a recording.
+    Causal, so it works on a live stream; it never reaches across the start of a recording.
 
     Args:
         probs: ``(N, classes)`` per-frame probabilities, frames in recording order.
@@ -109,22 +105,17 @@ def causal_context(probs: torch.Tensor, starts: torch.Tensor, frames: int) -> to
 
 
 def context_predictions(probs: torch.Tensor, starts: torch.Tensor | None, frames: int) -> torch.Tensor:
-    """Predicted classes ``(N,)``: the argmax of :func:`causal_context`.
-
-    Of ``probs`` alone when ``frames`` is 1 or there are no recording starts to keep the context inside.
-    """
+    """Predicted classes ``(N,)``: the argmax of :func:`causal_context` (of ``probs`` alone without context)."""
     if frames <= 1 or starts is None:
         return probs.argmax(dim=1)
     return causal_context(probs, starts, frames).argmax(dim=1)
 
 
 def empty_room_threshold(calibration_probs: torch.Tensor, frames: int) -> float:
-    """The classifier's largest "somebody" score on an empty-room capture: its operating point there.
+    """The classifier's largest "somebody" score ``1 - P(class 0)`` (in context) on an empty-room capture.
 
-    The score of a frame is ``1 - P(class 0)`` after :func:`causal_context` (the capture is one
-    recording). A test frame whose score exceeds the largest of ``n`` empty-room frames' is, when
-    empty and scored like them, a false alarm with probability ``1 / (n + 1)``: the threshold sets the
-    false-alarm rate in the user's own room, whatever the network learned in the twin's.
+    Used as the operating point, it sets the false-alarm rate in the user's own room: an empty frame
+    scored like the ``n`` calibration frames exceeds it with probability ``1 / (n + 1)``.
 
     Args:
         calibration_probs: ``(n, classes)`` probabilities of the empty-room frames, in recording order.
@@ -144,9 +135,8 @@ def operating_point_predictions(probs: torch.Tensor, starts: torch.Tensor | None
                                 threshold: float) -> torch.Tensor:
     """Class predictions ``(N,)`` at an operating point: nobody unless the "somebody" score exceeds it.
 
-    In context (:func:`causal_context`), a frame is class 0 when ``1 - P(class 0) <= threshold``
-    and otherwise the most probable of the other classes (for counting: how many). At ``threshold``
-    0.5 this is the two-class argmax; :func:`empty_room_threshold` sets it from the empty room.
+    In context, a frame is class 0 when ``1 - P(class 0) <= threshold``, else the most probable other
+    class. At 0.5 this is the two-class argmax; :func:`empty_room_threshold` sets it from the empty room.
 
     Args:
         probs: ``(N, classes)`` per-frame probabilities, in recording order.
@@ -163,10 +153,8 @@ def gated_predictions(preds: torch.Tensor, gate: torch.Tensor, starts: torch.Ten
                       frames: int) -> torch.Tensor:
     """Class predictions ``(N,)`` raised to at least one person where a presence gate fires.
 
-    The gate (e.g. :class:`~radaraug.detection.StaticChangeDetector`'s per-frame decisions) gets the
-    classifier's causal context: it fires on a frame when it fired on more than half of that frame and
-    the ``frames - 1`` before it in its recording. Where it fires, class 0 (empty) becomes 1 (one
-    person, or occupied); every other prediction stays, so the gate can only find people, never count.
+    The gate (e.g. :class:`~radaraug.detection.StaticChangeDetector`'s decisions) fires on a frame when
+    it fired on more than half of the frame's causal context; there class 0 becomes 1, other classes stay.
 
     Args:
         preds: ``(N,)`` predicted classes (0 = nobody).
@@ -184,10 +172,7 @@ def gated_predictions(preds: torch.Tensor, gate: torch.Tensor, starts: torch.Ten
 
 def draw_confusion(ax: Any, cm: torch.Tensor, class_names: Sequence[str], *, with_counts: bool = False,
                    text_size: float = 8, label_size: float | None = 8) -> None:
-    """Draw ``cm`` on the matplotlib axes ``ax``: row-normalised recall as colour and text (+ the counts).
-
-    ``label_size`` None: matplotlib's default size for the ticks and axis labels.
-    """
+    """Draw ``cm`` on the matplotlib axes ``ax``: row-normalised recall as colour and text (+ the counts)."""
     cm = torch.as_tensor(cm, dtype=torch.float64)
     rows = cm.sum(dim=1, keepdim=True)
     frac = torch.where(rows > 0, cm / rows.clamp_min(1), torch.zeros_like(cm))

@@ -1,13 +1,7 @@
 """Classifier backbones for :class:`~radaraug.training.RDClassifier` (``model.backbone`` in a recipe).
 
-A backbone is anything that, called with the number of classes, returns a module mapping
-``(B, 3, H, W)`` images to ``(B, classes)`` logits: the task knows the class count, the recipe the
-network. In a recipe it is a LightningCLI ``class_path`` whose first argument is the class count::
-
-    model:
-      backbone:
-        class_path: radaraug.training.TorchvisionClassifier
-        init_args: {arch: resnet34}
+A backbone is a callable taking the class count and returning a module from ``(B, 3, H, W)`` images
+to ``(B, classes)`` logits; docs/training.md shows it in a recipe.
 """
 
 from __future__ import annotations
@@ -29,8 +23,7 @@ class TorchvisionClassifier(nn.Module):
 
     Args:
         num_classes: outputs (given by the task).
-        arch: a name of ``torchvision.models.list_models(torchvision.models)`` (``resnet34``,
-            ``efficientnet_b0``, ``mobilenet_v3_small`` ...).
+        arch: a name of ``torchvision.models.list_models(torchvision.models)`` (``resnet34``, ``efficientnet_b0``...).
     """
 
     def __init__(self, num_classes: int, arch: str = "resnet18") -> None:

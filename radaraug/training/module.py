@@ -1,4 +1,4 @@
-"""`RDClassifier`: a classifier of viridis RD images (default: torchvision ResNet18, random init), as a LightningModule."""
+"""`RDClassifier`: a classifier of viridis RD images, as a LightningModule."""
 
 from __future__ import annotations
 
@@ -22,34 +22,26 @@ from radaraug.training.pipeline import check_task
 
 
 class RDClassifier(L.LightningModule):
-    """ResNet18 with a task-specific head (paper Sec. 2.2: random initialization).
+    """A classifier of viridis RD images (default ResNet18, random init: paper Sec. 2.2) as a LightningModule.
 
-    Validation and test accumulate a confusion matrix (summed over DDP ranks) and log balanced
-    accuracy (mean recall over the classes present, see :mod:`radaraug.training.metrics`). At
-    the end of a test, ``test_metrics.json`` and ``test_confusion.png`` go to ``out_dir`` (default:
-    the trainer's log dir).
+    Validation and test log balanced accuracy over DDP ranks; a test writes ``test_metrics.json`` and
+    ``test_confusion.png`` to ``out_dir`` (default: the trainer's log dir).
 
     Args:
         task: ``occupancy`` (2 classes) or ``counting`` (3).
         lr: AdamW learning rate.
         weight_decay: AdamW weight decay.
-        balance_classes: weight the loss by inverse class frequency of the training set (the
-            simulated set has 1/3 empty items: occupancy would otherwise lean to "occupied").
-        precise_bn_batches: before each evaluation, recompute the BatchNorm statistics from the
-            last this-many training batches with the final weights (0: off). Why: with a few
-            hundred steps the running averages lag the fast-moving weights; measured on the quick
-            counting run, eval-mode accuracy was 0.29-0.35 on both the training and the validation
-            set while train-mode (batch statistics) accuracy was 0.99 / 0.94.
+        balance_classes: weight the loss by inverse class frequency of the training set (1/3 is empty).
+        precise_bn_batches: before each evaluation, recompute the BatchNorm statistics from the last this
+            many training batches with the final weights (0: off): short runs leave the running averages
+            behind the weights (docs/training.md).
         out_dir: where test metrics are written.
-        context_frames: at test, also classify each frame from its class probabilities averaged with
-            those of the frames before it in its recording (causal, so it works live), this many
-            frames in all; the report's ``context`` section (1: single frames only). Needs the
-            data module's ``test_recording_starts`` (one process: DDP shards break the order).
-        backbone: the network, as a callable taking the class count (None: the paper's ResNet18,
-            :func:`radaraug.training.models.resnet18`); in a recipe a ``class_path`` such as
-            :class:`radaraug.training.TorchvisionClassifier` (docs/training.md, "Another network").
-            Not saved in the checkpoint's hyperparameters: give it again to
-            ``RDClassifier.load_from_checkpoint(path, backbone=...)`` (the recipe's saved config has it).
+        context_frames: at test, also classify each frame from the mean class probabilities of itself and
+            the frames before it in its recording, this many in all (the report's ``context``; 1: off).
+            Needs the data module's ``test_recording_starts`` (one process).
+        backbone: a callable taking the class count and returning the network (None: ResNet18;
+            e.g. :class:`radaraug.training.TorchvisionClassifier`). Not saved in the checkpoint's
+            hyperparameters: pass it again to ``RDClassifier.load_from_checkpoint(path, backbone=...)``.
     """
 
     # The constructor's arguments are read from ``self.hparams`` (Lightning's record of them,

@@ -1,15 +1,7 @@
 """The paper's processing chain, split where the simulate-once cache sits.
 
-::
-
-    raw frames -> RangeDoppler -> ToDecibels               (rd_db_chain: cached for simulation)
-      -> RandomDR | CalibratedDR | nothing                 (make_dr: training only, per method)
-      -> CombineRx(mean power) -> ClipNormalize(vmin, vmax) -> Colormap(viridis) -> Resize
-                                                           (image_chain: train, val and test)
-
-Real test captures take the same chain without DR (paper Sec. 2.2, Fig. 3). ``[vmin, vmax]`` is
-estimated once on simulated maps of the run (after the run's DR, so that the clip sees the
-floor the network is trained on) and saved with the run.
+:func:`rd_db_chain` (raw frames to per-RX dB maps, cached), :func:`make_dr` (training only) and
+:func:`image_chain` (every split; captures skip the DR). The chain is drawn in docs/training.md.
 """
 
 from __future__ import annotations
@@ -91,19 +83,13 @@ def make_dr(
     """The training-time noise-floor randomization of ``method`` (None for ``rt``).
 
     Args:
-        method: ``rt`` (no randomization), ``randomdr``, ``cdr`` or ``cdr_profile`` (the same
-            CalibratedDR as ``cdr``: the method differs in the twin's receiver, not in the DR).
-        calibration: for ``cdr`` / ``cdr_profile``: a fitted :class:`CalibratedDR`, its JSON, or
-            an empty-room capture to fit it on.
+        method: ``rt`` (no randomization), ``randomdr``, ``cdr`` or ``cdr_profile`` (``cdr``'s DR).
+        calibration: for the CDR methods: a fitted :class:`CalibratedDR`, its JSON, or an empty-room capture.
         seed: seed of the transform's own generator (per-sample draws).
-        randomdr_mean_db: RandomDR's range of the floor mean in dB (default: radaraug's
-            documented default, see ``docs/transforms.md``).
-        randomdr_std_db: RandomDR's range of the floor standard deviation in dB (default: the
-            documented default).
-        cdr_floor: CalibratedDR's floor distribution, ``"normal"`` (the paper's) or ``"empirical"``
-            (the capture's measured one; ``"matched"`` gives the empirical one here too: the data
-            module replaces its quantiles once the twin's own floor is known); None: the calibration's own (``"normal"`` when fitted
-            here from a capture).
+        randomdr_mean_db: RandomDR's range of the floor mean in dB (None: the default, docs/transforms.md).
+        randomdr_std_db: RandomDR's range of the floor standard deviation in dB (None: the default).
+        cdr_floor: ``"normal"``, ``"empirical"`` or ``"matched"`` (empirical here; the data module then
+            matches its quantiles to the twin's floor); None: the calibration's own.
     """
     if method not in METHODS:
         raise ConfigError(f"method must be one of {METHODS}, got {method!r}")
@@ -135,9 +121,7 @@ def level_chain(representation: str = "paper", excise: torch.Tensor | None = Non
                 blank_zero_doppler: int = 1) -> nn.Sequential:
     """Per-RX dB maps -> the one-channel dB map that is clipped: RX combination (+ floor referencing).
 
-    ``"paper"``: the RX-combined map in dBFS; ``"floor_relative"``: each range row referenced to its
-    Doppler median, zero Doppler ± ``blank_zero_doppler`` bins blanked, and the ``excise`` cells (the
-    calibration capture's persistent lines) set to the floor (:class:`~radaraug.transforms.FloorRelative`).
+    ``"floor_relative"`` adds :class:`~radaraug.transforms.FloorRelative` with ``blank_zero_doppler`` and ``excise``.
     """
     steps: list[nn.Module] = [CombineRx("mean_power", db=True)]
     if check_representation(representation) == "floor_relative":
@@ -148,11 +132,7 @@ def level_chain(representation: str = "paper", excise: torch.Tensor | None = Non
 def image_chain(vmin: float, vmax: float, size: Sequence[int] | None = None,
                 representation: str = "paper", excise: torch.Tensor | None = None,
                 blank_zero_doppler: int = 1) -> nn.Sequential:
-    """Per-RX dB maps -> ``(3, H, W)`` viridis images in [0, 1] (the network input).
-
-    ``representation`` (with ``excise`` and ``blank_zero_doppler``) picks the level chain before the
-    clip (:func:`level_chain`).
-    """
+    """Per-RX dB maps -> ``(3, H, W)`` viridis images in [0, 1] (the network input; levels: :func:`level_chain`)."""
     steps: list[nn.Module] = [*level_chain(representation, excise, blank_zero_doppler), ClipNormalize(vmin, vmax),
                               Colormap("viridis")]
     if size is not None:
@@ -167,11 +147,9 @@ def estimate_clip_range(
     db_maps: torch.Tensor, dr: nn.Module | None = None, *, percentiles: tuple[float, float] = (1.0, 99.9),
     representation: str = "paper", excise: torch.Tensor | None = None, blank_zero_doppler: int = 1,
 ) -> tuple[float, float]:
-    """``[vmin, vmax]`` from simulated per-RX dB maps ``(N, rx, range, doppler)``.
+    """``[vmin, vmax]``: percentiles of simulated per-RX dB maps ``(N, rx, range, doppler)``.
 
-    The maps go through ``dr`` (if any) and the RX combination first, so the range covers what
-    the network will see (and the ``representation``'s level chain); ``vmin``/``vmax`` are the given
-    percentiles of all cells.
+    Taken after ``dr`` and :func:`level_chain`, so that the clip covers what the network sees.
     """
     x = db_maps.float()
     if dr is not None:

@@ -1,15 +1,7 @@
 """`radaraug reproduce`: the paper's experiment (Sec. 2.2-3) end to end, with a report.
 
-2 tasks (occupancy, counting) x 4 methods (RT, RandomDR, CDR, and CDR on the twin profile fitted on
-the calibration capture: ``cdr_profile``) x N seeds, tested on the same captures. RT, RandomDR and
-CDR train on one simulated set (simulated once, :mod:`radaraug.training.cache`); ``cdr_profile``
-on a second one, simulated with the profile's receiver. Plus an ablation (CDR without twin
-randomization). Writes ``OUT/report.md``, ``OUT/report.json``
-(``results[task][method]["balanced_accuracy"] = {"mean", "std", "per_seed"}``), per-run metrics
-under ``OUT/runs/`` and the paper's figures under ``OUT/figures/``.
-
-Seeds change the network initialization, the DR draws and the batch order, not the simulated
-set: the spread reported is that of training, for a fixed twin sample.
+2 tasks x the methods x N seeds per test set, plus ablations; writes ``OUT/report.md``, ``OUT/report.json``,
+per-run metrics and the paper's figures (docs/training.md, "radaraug reproduce").
 """
 
 from __future__ import annotations
@@ -101,11 +93,7 @@ class ReproduceSettings:
 
     @classmethod
     def quick(cls) -> ReproduceSettings:
-        """Minutes on a 2-core CPU: fewer items and epochs, half-size images.
-
-        And a 40-frame diagnose for ``cdr_profile`` (the room: the twin's default image-method trace,
-        faster than a coarse SBR trace and converged).
-        """
+        """Minutes on a 2-core CPU: fewer items and epochs, half-size images, a 40-frame ``cdr_profile`` diagnose."""
         return cls(train_items=800, val_items=90, epochs=4, image_size=(64, 32), batch_size=32,
                    proxy_frames_per_count=60, num_workers=0, sim_workers=2, profile_max_frames=40,
                    methods=("rt", "randomdr", "cdr"), ablations=(), test_sets=("independent",))
@@ -374,10 +362,8 @@ def reproduce(
         out: output folder.
         quick: the quick settings (:meth:`ReproduceSettings.quick`) instead of the full ones.
         seeds: seeds per task x method (0 .. seeds-1).
-        calibration: empty-room capture of the test captures, for CDR, the twin's noise fit and
-            ``cdr_profile``'s twin profile; required with ``test``, refused without it (the
-            generated test sets bring their own). A CalibratedDR JSON serves CDR but not
-            ``cdr_profile``.
+        calibration: empty-room capture of the test captures (CDR, noise fit, ``cdr_profile``'s profile);
+            required with ``test``, refused without it. A CalibratedDR JSON serves CDR but not ``cdr_profile``.
         test: test entries ``{"path", "count"?}`` (None: the generated ``test_sets``).
         tasks: subset of ``occupancy``/``counting``.
         methods: subset of ``rt``/``randomdr``/``cdr``/``cdr_profile`` (None: the settings').
@@ -388,11 +374,9 @@ def reproduce(
         accelerator: Lightning accelerator (``auto`` uses a GPU when there is one).
         progress: progress bars.
         settings: explicit sizes (overrides ``quick``).
-        cdr_floor: CalibratedDR's floor for the CDR methods (None: the settings'): ``"matched"``
-            (the capture's distribution deconvolved against the twin's own floor), ``"normal"``
-            (the paper's) or ``"empirical"`` (the capture's measured distribution).
-        test_dr: pass the test captures through each run's DR too (not the paper's protocol; see
-            :class:`~radaraug.training.data.RadarDataModule`).
+        cdr_floor: CalibratedDR's floor for the CDR methods, ``"matched"``, ``"normal"`` or ``"empirical"``
+            (None: the settings'; :class:`~radaraug.training.data.RadarDataModule`).
+        test_dr: pass the test captures through each run's DR too (not the paper's protocol).
         worlds: worlds per held-out suite (``design``/``report`` in ``test_sets``; None: the settings').
     """
     if seeds < 1:
@@ -557,12 +541,7 @@ def reproduce(
 
 
 def _headline(rep: dict[str, Any]) -> dict[str, Any]:
-    """A run's test report with the context's figures as its headline, the single frame's beside them.
-
-    With ``context_frames`` > 1 (its ``context`` section) each frame is classified from itself and the
-    frames before it; ``single_frame`` keeps the paper's one-frame protocol. Both are balanced
-    accuracies over test frames.
-    """
+    """A run's test report with the context's figures as its headline, the single frame's under ``single_frame``."""
     ctx = rep.get("context")
     keys = ("balanced_accuracy", "accuracy", "recall", "support", "confusion_matrix")
     if not ctx:
@@ -586,11 +565,7 @@ def _save_scores(run_dir: Path, model: Any, dm: Any,
 
 def _calibration_scores(model: Any, test_dm: Any, ts: TestSet, data_kw: dict[str, Any], run_dir: Path,
                         test_dr: bool, limit: int = 4096) -> torch.Tensor | None:
-    """The network's class probabilities on the test set's empty-room capture, in frame order (or None).
-
-    The capture goes through the test chain (the run's clip range and excision), so its frames
-    are scored exactly as an empty test capture recorded like it would be.
-    """
+    """The network's class probabilities on the test set's empty-room capture (test chain), in frame order, or None."""
     if ts.calibration is None or is_calibration_json(ts.calibration):
         return None
     cal = replace(ts, tests=[{"path": ts.calibration, "count": 0}])
@@ -643,10 +618,7 @@ def _gated(scores: tuple[Any, Any, Any], gate: dict[str, Any] | None, context_fr
 
 def _ensemble(scores: Sequence[tuple[Any, Any, Any]], context_frames: int,
               classes: Sequence[str]) -> dict[str, Any] | None:
-    """Balanced accuracy of the seeds' mean probabilities (one network per seed, averaged), or None.
-
-    ``balanced_accuracy`` with the runs' frame context, ``single_frame_balanced_accuracy`` without.
-    """
+    """Balanced accuracy of the seeds' mean probabilities (with and without frame context), or None."""
     from radaraug.training.metrics import balanced_accuracy, confusion_matrix, context_predictions
 
     if len(scores) < 2 or any(p is None for p, _, _ in scores):
@@ -662,11 +634,7 @@ def _ensemble(scores: Sequence[tuple[Any, Any, Any]], context_frames: int,
 
 
 def _suite_summary(sets: Sequence[TestSet], results: dict[str, dict[str, dict[str, Any]]]) -> dict[str, Any]:
-    """Per held-out suite, task and variant: the mean over worlds and the worst world.
-
-    Each world's value is its balanced accuracy averaged over seeds (and its simulated validation
-    beside it); ``worst`` is the world with the lowest.
-    """
+    """Per held-out suite, task and variant: the mean over worlds and the worst world (seed-averaged values)."""
     out: dict[str, Any] = {}
     for suite in SUITE_TEST_SETS:
         worlds = [ts.name for ts in sets if ts.suite == suite]
@@ -723,11 +691,7 @@ def _shared_info(keep: dict, attr: str) -> dict[str, Any] | None:
 
 
 def _profile_of(keep: dict, out: Path) -> dict[str, Any] | None:
-    """The twin profile of the ``cdr_profile`` runs (they share it).
-
-    Where it came from, the effects the fit added and the diagnose error before / after
-    (``profile.fitted_on``).
-    """
+    """The twin profile of the ``cdr_profile`` runs (they share it): source, added effects, errors."""
     info = _shared_info(keep, "profile_info")
     if info is None:
         return None

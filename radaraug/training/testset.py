@@ -1,24 +1,7 @@
 """Checks of the test captures and the calibration, run before anything is simulated or trained.
 
-A test set that cannot measure the task, or a calibration that cannot do what the method asks of
-it, used to show up only after training (a count outside the task's classes broke the scoring) or
-never (a test set of one class scores 1.0 for a net that always answers that class). These checks
-read only the files' metadata and labels (no frames), so they cost a fraction of a second:
-
-* :func:`read_test_counts` -- the people counts of the test entries, frames per count, from the
-  entry's ``count`` (the whole file) or the file's per-frame ``count`` labels;
-* :func:`check_test_set` -- refuses a count outside the task's classes (:class:`ConfigError`
-  naming the file) and warns (:class:`TestSetWarning`) when the test set holds one class only;
-* :func:`check_calibration` -- refuses ``cdr_profile`` on a CalibratedDR JSON (it fits a twin
-  profile on the capture's frames) and warns (:class:`CalibrationWarning`) when the twin's noise
-  fit is asked for but the calibration is a JSON (the twin then runs on the default receiver);
-* :func:`check_inputs` -- both, as :class:`~radaraug.training.data.RadarDataModule` runs them at
-  the start of ``setup``.
-
-Why one class is not enough: balanced accuracy is the mean recall over the classes *present* in
-the test labels (:mod:`radaraug.training.metrics`), so with one class it is that class's recall, and
-a net that always answers it scores 1.0. An empty-room capture (count 0) must be part of the test set
-for the score to say anything about telling people from an empty room.
+They read only metadata and labels (no frames). A count outside the task's classes is refused; a test
+set of one class only warns (:class:`TestSetWarning`): a constant network scores 1.0 on it.
 """
 
 from __future__ import annotations
@@ -53,9 +36,7 @@ class CalibrationWarning(UserWarning):
 def parse_test_entry(entry: Any, where: str = "test") -> dict[str, Any]:
     """One test entry as ``{"path", "count"?}``: from that mapping or the string ``PATH[:COUNT]``.
 
-    ``count`` absent: the file carries per-frame ``count`` labels. The string form is the one
-    ``radaraug reproduce --test`` takes, so the recipes' ``data.test`` and the command line spell a
-    test capture the same way.
+    ``count`` absent: the file's per-frame ``count`` labels. The string is ``radaraug reproduce --test``'s form.
     """
     if isinstance(entry, (str, PathLike)):
         text = str(entry)
@@ -72,10 +53,8 @@ def parse_test_entry(entry: Any, where: str = "test") -> dict[str, Any]:
 def dataset_entries(dataset: Any, where: str = "test") -> list[dict[str, Any]]:
     """The test entries ``{"path", "count"?}`` of a :class:`~radaraug.io.RadarCaptureDataset` given as a test set.
 
-    Its frames must carry people counts: the whole files' count (``label=N``), the files' per-frame
-    ``count`` labels (``label="count"``) or a count per file (``label={path: N}``). One frame per
-    item and no transform of its own: the data module applies its RD chain, as to the simulated
-    maps, so that both go through the same one.
+    Its label must be a people count: ``label=N``, ``label="count"`` or ``label={path: N}``; one frame per
+    item and no transform (the data module applies its RD chain, the simulated maps' one).
 
     Raises:
         ConfigError: another kind of dataset or label, several frames per item, or a transform
@@ -120,9 +99,7 @@ def _whole_count(value: Any, where: str) -> int:
 def read_test_counts(test: Sequence[Mapping[str, Any]]) -> list[tuple[str, dict[int, int]]]:
     """The people counts of test entries: ``[(path, {count: frames})]``, one per entry.
 
-    An entry ``{"path": P, "count": N}`` is N people in every frame of P; ``{"path": P}`` reads the
-    per-frame ``count`` labels stored in P (``radaraug capture --label N`` writes them). Opens each
-    file for its metadata and labels only.
+    ``{"path": P, "count": N}``: N people in every frame; ``{"path": P}``: P's per-frame ``count`` labels.
 
     Raises:
         ConfigError: an entry without a ``path``, a count that is not a whole number, or a file
@@ -159,12 +136,11 @@ def read_test_counts(test: Sequence[Mapping[str, Any]]) -> list[tuple[str, dict[
 def check_test_set(test: Sequence[Mapping[str, Any]], task: str) -> dict[str, int]:
     """Check that the test entries can score ``task``; return the test frames per class name.
 
-    Refuses a people count outside the task's classes (counting: 0, 1, 2; occupancy: any count
-    >= 0); warns with :class:`TestSetWarning` when only one of the task's classes is present.
+    Warns with :class:`TestSetWarning` when only one of the task's classes is present.
 
     Raises:
-        ConfigError: an unknown task, a count the task cannot score (naming the file, the count
-            and its frames), or any error of :func:`read_test_counts`.
+        ConfigError: an unknown task, a count the task cannot score (negative; for counting, not 0, 1
+            or 2), or any error of :func:`read_test_counts`.
     """
     names = check_task(task)
     per_class = dict.fromkeys(names, 0)
@@ -201,11 +177,8 @@ def check_calibration(calibration: str | None, method: str, *, profile: str | No
                       calibrate_noise: bool = True) -> None:
     """Check that ``calibration`` can serve what ``method`` and the noise fit ask of it.
 
-    * ``cdr_profile`` fits a twin profile on the empty-room capture's frames: a CalibratedDR JSON
-      holds none, so it is refused unless ``profile`` names a fitted profile.
-    * The twin's noise fit (``calibrate_noise``) measures the capture's noise floor: from a JSON it
-      cannot, and the twin simulates with the default receiver; a :class:`CalibrationWarning` says so
-      (not for ``cdr_profile`` or a given ``profile``, which replace the noise fit).
+    A CalibratedDR JSON has no frames: ``cdr_profile`` cannot fit on it (unless ``profile`` is given), and the
+    noise fit is skipped with a :class:`CalibrationWarning`.
 
     Raises:
         ConfigError: ``cdr_profile`` with a CalibratedDR JSON and no ``profile``.
