@@ -7,7 +7,7 @@ radaraug ships no default floor; ``CalibratedDR()`` without ``mean_db``/``std_db
 import pytest
 import torch
 
-from radaraug.calibration import floor_fit
+from radaraug.transforms import floor_fit
 from radaraug.errors import CalibrationError, ConfigError
 from radaraug.transforms import CalibratedDR, RadarCompose, RangeDoppler, ToDecibels
 from radaraug.transforms import dr as dr_module
