@@ -7,9 +7,8 @@ radaraug ships no default floor; ``CalibratedDR()`` without ``mean_db``/``std_db
 import pytest
 import torch
 
-from radaraug.transforms import floor_fit
 from radaraug.errors import CalibrationError, ConfigError
-from radaraug.transforms import CalibratedDR, RadarCompose, RangeDoppler, ToDecibels
+from radaraug.transforms import CalibratedDR, RadarCompose, RangeDoppler, ToDecibels, floor_fit
 from radaraug.transforms import dr as dr_module
 
 from .conftest import beat_cube
