@@ -432,8 +432,16 @@ def detect_phase_noise(p: Prepared, config: RadarConfig, guard: int = 5,
     pn_rms = math.sqrt(max(ratio, 0.0)) / (2 * math.pi * tau)
     present = z >= min_z and 0.6 < whiteness < 1.5 and alignment >= min_alignment
     # The declared skirt over the same band (before the strong-line bins were left out: the sum
-    # was scaled back to the band's full width).
-    decl = declared_skirt_dBc(config, tau, offs[band0].abs().double().cpu())
+    # was scaled back to the band's full width), from every static return 10 dB over the floor:
+    # a farther return's skirt (larger delay) reaches into this carrier's band.
+    fl = floor.mean(dim=0).median().clamp_min(_TINY)
+    bins = torch.nonzero(band0).flatten().cpu()
+    decl_lin = 0.0
+    for kj in (k for k in _peaks(pc, lo=3) if float(pc[k]) > 10 * float(fl)):
+        off = (bins - kj).abs()
+        tau_j = 2 * kj * config.range_resolution_m / 299_792_458.0
+        decl_lin += float(pc[kj] / pc[k0]) * 10 ** (declared_skirt_dBc(config, tau_j, off[off > 0].double()) / 10)
+    decl = _db(decl_lin)
     excess = _db(ratio) - decl
     params = {"skirt_dBc": _db(ratio), "range_bin": float(k0), "range_m": k0 * config.range_resolution_m,
               "carrier_snr_dB": snr, "whiteness": whiteness, "alignment": alignment, "z": z,
