@@ -36,7 +36,7 @@ def row(case: Case, seed: int) -> dict:
         write_capture(path, float_to_counts(x), case.config)
         diag = diagnose(path, max_frames=40)
     steps = diag.result.steps
-    named = [s["effect"] for s in steps] + [r["effect"] for r in diag.refitted_declared]
+    named = diag.named_effects
     return {"case": case.name, "expected": sorted(case.expected), "named": named,
             "ok": sorted(named) == sorted(case.expected), "verdicts": [s["verdict"] for s in steps],
             "error_before_dB": round(diag.result.before.overall, 3), "error_after_dB": round(diag.result.after.overall, 3),

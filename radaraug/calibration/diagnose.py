@@ -65,6 +65,11 @@ class Diagnosis:
     ``params_before``, ``params_after``, ``measured``."""
 
     @property
+    def named_effects(self) -> list[str]:
+        """Every effect the diagnosis names: the search's steps, then declared stages refitted at other parameters."""
+        return [s["effect"] for s in self.result.steps] + [r["effect"] for r in self.refitted_declared]
+
+    @property
     def base_check(self) -> list[dict[str, Any]]:
         """The base refit against its physical bounds (:func:`~radaraug.calibration.base_bounds.check_base`)."""
         return check_base(self.result.chain_before, self.result.chain_after, self.unexplained)

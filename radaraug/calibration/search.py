@@ -291,8 +291,8 @@ class Search:
             order = int(round(float(p["order"])))
             # The signature's cutoff is the -3 dB point of a Butterworth fit; the twin's stage is
             # ``order`` cascaded first-order sections, each with its own (lower) cutoff.
-            start = {**require(chain, "if_highpass")["params"], "cutoff_Hz": section_cutoff(float(p["cutoff_Hz"]), order),
-                     "order": order}
+            declared = require(chain, "if_highpass")["params"]
+            start = {**declared, "cutoff_Hz": section_cutoff(float(p["cutoff_Hz"]), order), "order": order}
             cand = with_effect(chain, "if_highpass", start)
             prior = EFFECTS["if_highpass"].priors(self.config)["cutoff_Hz"]
             # The floor's shape measures the cutoff to a few per cent (closed-form tests: 5 %); the
@@ -305,7 +305,7 @@ class Search:
             # A declared stage at other parameters: the report gives them before and after.
             steps.append(_step("if_highpass", True, require(fitted if keep else chain, "if_highpass")["params"], held,
                                new_held if keep else held, "clear" if keep else "signature only", hp.reason,
-                               source="signature", params_before=dict(require(chain, "if_highpass")["params"])))
+                               source="signature", params_before=dict(declared)))
             self.progress(f"refit if_highpass from its signature ({hp.reason}): held-out {held.overall:.3f} -> "
                           f"{new_held.overall:.3f} dB{'' if keep else ' (not kept)'}")
             added.add("if_highpass")

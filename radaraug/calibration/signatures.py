@@ -383,10 +383,12 @@ def detect_phase_noise(p: Prepared, config: RadarConfig, guard: int = 5,
         Dm = _rspec(p.counts - clean, p.bh4)
     floor = (Dm.abs().square() * keep[:, None, :, None]).sum(dim=(0, 2)) / max(n_keep, 1.0)  # (R, K)
     # Strongest static return past the near-DC bins (leakage, DC) with room for the skirt band.
-    k0 = next((k for k in _peaks(pc, lo=3) if k + guard < K), None)
+    peaks = _peaks(pc, lo=3)
+    k0 = next((k for k in peaks if k + guard < K), None)
     if k0 is None:
         return Signature("phase_noise", 0.0, False, {}, "no static return")
-    snr = _db(pc[k0] / floor.mean(dim=0).median().clamp_min(_TINY))
+    fl = floor.mean(dim=0).median().clamp_min(_TINY)  # the per-chirp floor of one cell
+    snr = _db(pc[k0] / fl)
     if snr < min_snr_db:
         return Signature("phase_noise", 0.0, False, {"carrier_snr_dB": snr},
                          f"strongest static return only {snr:.1f} dB over the floor")
@@ -434,10 +436,9 @@ def detect_phase_noise(p: Prepared, config: RadarConfig, guard: int = 5,
     # The declared skirt over the same band (before the strong-line bins were left out: the sum
     # was scaled back to the band's full width), from every static return 10 dB over the floor:
     # a farther return's skirt (larger delay) reaches into this carrier's band.
-    fl = floor.mean(dim=0).median().clamp_min(_TINY)
     bins = torch.nonzero(band0).flatten().cpu()
     decl_lin = 0.0
-    for kj in (k for k in _peaks(pc, lo=3) if float(pc[k]) > 10 * float(fl)):
+    for kj in (k for k in peaks if float(pc[k]) > 10 * float(fl)):
         off = (bins - kj).abs()
         tau_j = 2 * kj * config.range_resolution_m / 299_792_458.0
         decl_lin += float(pc[kj] / pc[k0]) * 10 ** (declared_skirt_dBc(config, tau_j, off[off > 0].double()) / 10)

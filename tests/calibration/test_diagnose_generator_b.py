@@ -31,7 +31,7 @@ def _named(tmp_path, name: str, seed: int = 1):
     write_capture(path, float_to_counts(x) if x.is_floating_point() else x, cfg)
     diag = diagnose(path, max_frames=40)
     # named: added by the search, or declared and refitted at the parameters the capture shows
-    named = [s["effect"] for s in diag.result.steps] + [r["effect"] for r in diag.refitted_declared]
+    named = diag.named_effects
     return diag, sorted(named), sorted(expected)
 
 
