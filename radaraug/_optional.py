@@ -2,8 +2,8 @@
 
 Packages imported inside a function (so that ``import radaraug`` stays light) go through :func:`lazy_import`:
 a missing one raises :class:`~radaraug.errors.DependencyNotFoundError` naming the package, the feature
-and the ``pip`` command. All of :data:`PACKAGES` are runtime dependencies; they go missing only in a
-partial environment (``pip install --no-deps``).
+and the ``pip`` command. :data:`PACKAGES` are runtime dependencies (missing only in a partial environment, ``pip install
+--no-deps``) except those of an extra (``radaraug[export]``: ONNX export).
 """
 
 from __future__ import annotations
@@ -26,6 +26,9 @@ class Package(NamedTuple):
 
 PACKAGES: dict[str, Package] = {
     "matplotlib": Package("matplotlib"),
+    "onnx": Package("onnx", "export"),
+    "onnxruntime": Package("onnxruntime", "export"),
+    "onnxscript": Package("onnxscript", "export"),
     "pymeshlab": Package("pymeshlab"),
     "scipy": Package("scipy"),
     "tqdm": Package("tqdm"),

@@ -533,6 +533,84 @@ def _cmd_calibrate(args: argparse.Namespace) -> Result:
     return 0
 
 
+def _classifier(args: argparse.Namespace) -> Any:
+    """The classifier file of ``predict`` / ``export`` (and, with ``--calibration``, its gate refitted)."""
+    from radaraug.inference import RadarClassifier
+
+    clf = RadarClassifier.load(args.classifier)
+    if getattr(args, "calibration", None):
+        clf = clf.with_gate(args.calibration)
+    return clf
+
+
+def _cmd_predict(args: argparse.Namespace) -> Result:
+    from radaraug.inference.predict import RowWriter, follow_capture, predict_captures, predict_device
+
+    if bool(args.sources) == (args.device is not None):
+        raise ConfigError("predict needs capture paths or --device (a board, or 'virtual'), not both")
+    if args.follow and (args.device is not None or len(args.sources) != 1):
+        raise ConfigError("--follow reads one capture while it is recorded: give exactly one path")
+    if args.json and args.output == "-":
+        raise ConfigError("--json prints a summary on stdout: write the rows to a file with -o")
+    if args.output != "-":
+        _check_output(args, args.output)
+    clf = _classifier(args)
+    gate = not args.no_gate
+    if args.device is not None:
+        from radaraug.capture import open_device
+        from radaraug.config import RadarConfig
+
+        config = RadarConfig.from_json(args.radar_config) if args.radar_config else clf.config
+        device = open_device(args.device, config, scene=args.scene, profile=args.profile, seed=args.seed,
+                             realtime=args.realtime)
+        chunks: Any = predict_device(clf, device, seconds=args.seconds, max_frames=args.max_frames,
+                                     window=args.window, gate=gate)
+    elif args.follow:
+        chunks = follow_capture(clf, args.sources[0], window=args.window, gate=gate, idle_timeout_s=args.idle_timeout)
+    else:
+        chunks = predict_captures(clf, args.sources, window=args.window, gate=gate,
+                                  progress=not args.no_progress and args.output != "-")
+    with (contextlib.nullcontext(sys.stdout) if args.output == "-"
+          else open(args.output, "w", encoding="utf-8", newline="")) as fh:
+        writer = RowWriter(fh, args.format)
+        try:
+            for source, first, preds in chunks:
+                writer.write(source, first, preds)
+        except KeyboardInterrupt:  # a live run ends with Ctrl-C: the rows written so far stay
+            print(f"interrupted after {writer.rows} frames", file=sys.stderr)
+            return EXIT_INTERRUPTED
+    summary = {"output": args.output, "frames": writer.rows, "decisions": writer.decisions, "task": clf.task,
+               "window": clf.context_frames if args.window is None else args.window,
+               "gate": gate and clf.gate is not None}
+    if args.json:
+        return summary
+    if args.output != "-":
+        print(f"{args.output}: {writer.rows} frames; decisions {writer.decisions}")
+    return 0
+
+
+def _cmd_export(args: argparse.Namespace) -> Result:
+    from radaraug.inference.export import FILES, export
+
+    _check_output(args, args.output, folder=True, owned=[*FILES.values(), "export.json"])
+    clf = _classifier(args)
+    frames = None
+    if args.check_capture:
+        from radaraug.io import open_capture
+
+        with open_capture(args.check_capture) as cap:
+            clf.check_config(cap.config, args.check_capture)
+            frames = cap.read(0, min(len(cap), 32))
+    rec = export(clf, args.output, formats=args.format.split(","), frames=frames, overwrite=True)
+    if args.json:
+        return {"output": args.output, **rec["exports"]}
+    for fmt, r in rec["exports"].items():
+        print(f"{Path(args.output) / r['file']}: {fmt}, largest probability difference from the eager classifier "
+              f"{r['max_abs_prob_diff']:.2g} on {rec['check_frames']} frames, classes agree on "
+              f"{100 * r['class_agreement']:.0f} %")
+    return 0
+
+
 class _DefaultsShown(argparse.ArgumentDefaultsHelpFormatter):
     """Help with "(default: X)" for options that have a default (not for None or flags)."""
 
@@ -706,6 +784,47 @@ def build_parser() -> argparse.ArgumentParser:
         _output_args(parser, output)
         parser.add_argument("--no-progress", action="store_true", help="no progress bar")
         parser.add_argument("--json", action="store_true", help="print the result as one JSON object")
+
+    pred = command("predict", _cmd_predict, help="run a classifier file (reproduce's runs/.../classifier.pt) on "
+                   "captures, a recording in progress, a board or the virtual sensor (docs/predict.md)")
+    pred.add_argument("classifier", help="classifier file (classifier.pt)")
+    pred.add_argument("sources", nargs="*", help="captures: .h5 files, Infineon recording folders, or folders of them")
+    pred.add_argument("-o", "--output", default="-", help="rows to write (- : stdout)")
+    pred.add_argument("--overwrite", action="store_true", help="replace an existing output (else it is refused)")
+    pred.add_argument("--format", choices=("jsonl", "csv"), default="jsonl", help="one row per frame")
+    pred.add_argument("--window", type=int, default=None,
+                      help="frames of the causal smoothing of the decision (default: the classifier's context)")
+    pred.add_argument("--no-gate", action="store_true", help="do not fuse the static-change gate into the decision")
+    pred.add_argument("--calibration", default=None,
+                      help="an empty-room capture of the room predicted in: refits the static-change gate on it "
+                      "(the classifier file carries the gate of the room it was tested in)")
+    pred.add_argument("--follow", action="store_true",
+                      help="one radaraug capture still being recorded: classify frames as they are flushed")
+    pred.add_argument("--idle-timeout", type=float, default=60.0,
+                      help="--follow: stop after this many seconds without a new frame")
+    pred.add_argument("--device", default=None,
+                      help="live: 'auto' (first board), 'virtual' (the digital twin) or a board's serial")
+    pred.add_argument("--radar-config", default=None, help="live: radar config JSON (default: the classifier's)")
+    pred.add_argument("--seconds", type=float, default=None, help="live: stop after this long (default: Ctrl-C)")
+    pred.add_argument("--max-frames", type=int, default=None, help="live: stop after this many frames")
+    pred.add_argument("--scene", default=None, help="virtual: scene file or built-in scene name (default: corridor)")
+    pred.add_argument("--profile", default=None, help="virtual: twin profile JSON (from radaraug diagnose)")
+    pred.add_argument("--seed", type=int, default=None, help="virtual: noise seed (default: 0)")
+    pred.add_argument("--realtime", action=argparse.BooleanOptionalAction, default=None,
+                      help="virtual: frames at the config's frame rate (default: --realtime)")
+    pred.add_argument("--no-progress", action="store_true", help="no progress bar")
+    pred.add_argument("--json", action="store_true",
+                      help="print a summary (frames, decisions per class) as one JSON object (rows need -o)")
+
+    exp = command("export", _cmd_export, help="export a classifier file with its chain to TorchScript, ONNX and "
+                  "torch.export, each checked against the eager classifier (docs/predict.md)")
+    exp.add_argument("classifier", help="classifier file (classifier.pt)")
+    _output_args(exp, "output folder")
+    exp.add_argument("--format", default="torchscript,onnx,torch_export",
+                     help="comma-separated: torchscript, onnx (needs radaraug[export]), torch_export")
+    exp.add_argument("--check-capture", default=None,
+                     help="check the exports on this capture's first 32 frames (default: synthetic frames)")
+    exp.add_argument("--json", action="store_true", help="print the exports and their differences as one JSON object")
 
     cap = command("capture", _cmd_capture, help="record a board or the virtual sensor into a radaraug HDF5 capture")
     live(cap, "radaraug HDF5 capture to write")

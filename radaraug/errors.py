@@ -41,3 +41,7 @@ class DependencyNotFoundError(ModuleNotFoundError):
 
 class DeviceError(RadarAugError):
     """A radar board cannot be found, opened, configured or read (no USB backend or permission, unplugged)."""
+
+
+class CheckpointError(RadarAugError):
+    """A classifier file is missing, truncated, foreign, unsafe to load, or does not match the data given to it."""

@@ -52,7 +52,7 @@ def _reached(*args, **kwargs):
 
 # --------------------------------------------------------------------------- 1. --accelerator / --device
 TORCH_COMMANDS = {"simulate": ["corridor", "--frames", "1", "-o", "x.h5"], "bench": ["transforms"]}
-BOARD_COMMANDS = ("capture", "calibrate")
+BOARD_COMMANDS = ("capture", "calibrate", "predict")
 
 
 @pytest.mark.parametrize("name", sorted(_subparsers()))
@@ -110,6 +110,18 @@ def test_config_is_a_recipe_and_radar_config_a_radar_json(name) -> None:
         assert config is None and radar is None, name
 
 
+def _classifier_file(tmp_path: Path) -> Path:
+    """A small untrained classifier file at the config of :func:`_capture`."""
+    from radaraug.inference import ChainSpec, RadarClassifier
+    from radaraug.training.models import resnet18
+
+    cfg = RadarConfig.bgt60tr13c(num_samples_per_chirp=64, num_chirps_per_frame=16, sample_rate_Hz=2e6,
+                                 chirp_repetition_time_s=100e-6, frame_repetition_time_s=0.05)
+    chain = ChainSpec({}, "floor_relative", 1, (-5.0, 30.0), (16, 8))
+    clf = RadarClassifier(resnet18(2), arch="resnet18", task="occupancy", config=cfg, chain=chain)
+    return clf.save(tmp_path / "classifier.pt")
+
+
 @pytest.mark.parametrize("name", BOARD_COMMANDS)
 def test_radar_config_reaches_the_device(name, tmp_path, monkeypatch, capsys) -> None:
     import radaraug.capture as capture
@@ -118,7 +130,8 @@ def test_radar_config_reaches_the_device(name, tmp_path, monkeypatch, capsys) ->
     cfg.to_json(tmp_path / "radar.json")
     got = []
     monkeypatch.setattr(capture, "open_device", lambda spec, config, **kw: got.append((spec, config)) or _reached())
-    argv = [name, "--device", "virtual", "--radar-config", str(tmp_path / "radar.json"), "-o", str(tmp_path / "out")]
+    head = [name] if name != "predict" else [name, str(_classifier_file(tmp_path))]
+    argv = [*head, "--device", "virtual", "--radar-config", str(tmp_path / "radar.json"), "-o", str(tmp_path / "out")]
     assert main(argv) == 3
     assert got == [("virtual", cfg)]
     assert "reached the work" in capsys.readouterr().err
@@ -217,9 +230,23 @@ def _live(name):
     return setup
 
 
+def _predict(tmp_path, monkeypatch):
+    import radaraug.inference.predict as predict
+
+    monkeypatch.setattr(predict, "predict_captures", _reached)
+    return ["predict", str(_classifier_file(tmp_path)), str(_capture(tmp_path / "walk.h5"))], False
+
+
+def _export(tmp_path, monkeypatch):
+    import radaraug.inference.export as export
+
+    monkeypatch.setattr(export, "export", _reached)
+    return ["export", str(_classifier_file(tmp_path))], True
+
+
 WRITERS = {"fit-cdr": _fit_cdr, "simulate": _simulate, "demo": _demo, "make-proxy": _make_proxy,
            "reproduce": _reproduce, "diagnose": _diagnose, "capture": _live("capture"),
-           "calibrate": _live("calibrate")}
+           "calibrate": _live("calibrate"), "predict": _predict, "export": _export}
 RESUMABLE = {"simulate", "make-proxy", "reproduce"}
 
 

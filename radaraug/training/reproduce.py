@@ -25,12 +25,15 @@ from radaraug import recipes
 from radaraug._optional import lazy_import
 from radaraug.errors import ConfigError
 from radaraug.files import atomic_write_json, atomic_write_text
+from radaraug.training.classifier_file import classifier_record, save_checkpoint
 from radaraug.training.pipeline import CDR_METHODS, METHODS, PROFILE_METHODS, TASKS, is_calibration_json
 from radaraug.units import DB_CONVENTION
 
 #: A :class:`ReproduceSettings` field left to the recipes (``radaraug.recipes``): the run takes the value
 #: of its recipe (base + task + method [+ ablation]).
 RECIPE = "recipe"
+#: Each run's classifier file in its run folder (radaraug predict runs it; docs/predict.md).
+CLASSIFIER_FILE = "classifier.pt"
 
 
 @dataclass(frozen=True)
@@ -68,6 +71,8 @@ class ReproduceSettings:
     #: margin of the zero-Doppler change gate fused beside every run (:class:`radaraug.detection.StaticChangeDetector`,
     #: fitted on each test set's empty-room capture; None: no gate)
     static_gate_margin_db: float | None = 3.0
+    #: write each run's classifier file (``runs/.../classifier.pt``, ~45 MB for a ResNet18; docs/predict.md)
+    keep_classifiers: bool = True
     #: methods run unless ``reproduce(methods=...)`` names them
     methods: tuple[str, ...] = METHODS
     #: generated test sets used when no test captures are given (:data:`DEFAULT_TEST_SETS`)
@@ -461,6 +466,12 @@ def reproduce(
                                 "clip_range_db": None if dm.clip is None else list(dm.clip),
                                 "val_balanced_accuracy": val_bacc, "test_set": ts.name,
                                 "trained_for": trained_on or ts.calibration})
+                    if settings.keep_classifiers:  # with the gate of the room it was tested in (docs/predict.md)
+                        _keep_classifier(out, run_dir, rep, classifier_record(
+                        model, dm, gate=(gates[ts.name] or {}).get("detector"),
+                            provenance={"variant": name, "seed": seed, "test_set": ts.name,
+                                        "val_balanced_accuracy": val_bacc,
+                                        "calibration": Path(ts.calibration).name if ts.calibration else None}))
                     atomic_write_json(run_dir / "run.json", rep, newline=False, indent=2)
                     bar.update(1)
                     bar.write(f"{ts.name:11s} {task:9s} {name:26s} seed {seed}: balanced accuracy "
@@ -468,6 +479,7 @@ def reproduce(
                     runs.append({k: rep[k] for k in ("task", "method", "seed", "balanced_accuracy", "accuracy",
                                                      "fit_seconds", "clip_range_db", "val_balanced_accuracy",
                                                      "protocol")}
+                                | {"classifier": rep.get("classifier")}
                                 | {"variant": name, "test_set": ts.name, "shared_training": trained_on is not None})
                     seed_reps.append(rep)
                     if seed == 0:
@@ -518,6 +530,7 @@ def reproduce(
                                 "static_gate": (gates[ts.name] or {}).get("info"),
                                 "ablation_table": _ablation_table(results[ts.name])} for ts in sets},
         "suites": _suite_summary(sets, results),
+        "classifiers": _best_classifiers(runs, results[primary.name], primary.name, methods),
         "runs": runs,
         "settings": effective_settings(settings) | {"seeds": seeds, "quick": quick, "mode": mode, "tasks": list(tasks), "methods": list(methods),
                                         "ablations": names, "cdr_floor": _cdr_floor_of(keep, settings),
@@ -538,6 +551,34 @@ def reproduce(
     atomic_write_json(out / "report.json", report, newline=False, indent=2)
     atomic_write_text(out / "report.md", _markdown(report))
     return report
+
+
+def _keep_classifier(out: Path, run_dir: Path, rep: dict[str, Any], record: dict[str, Any]) -> None:
+    """Write a run's classifier file and name it (relative to ``out``) in the run's report ``rep``."""
+    save_checkpoint(record, run_dir / CLASSIFIER_FILE)
+    rep["classifier"] = str((run_dir / CLASSIFIER_FILE).relative_to(out))
+
+
+def _best_classifiers(runs: Sequence[dict[str, Any]], results: dict[str, dict[str, Any]], test_set: str,
+                      methods: Sequence[str]) -> dict[str, dict[str, Any]]:
+    """Per task, the classifier file a user runs: the best method's (mean test score), its seed by simulated val.
+
+    The seed is chosen on simulated validation, not on the test set, so the test score stays a test score
+    for the method; the method itself is the report's best row, as the tables show it.
+    """
+    out: dict[str, dict[str, Any]] = {}
+    for task, by in results.items():
+        rows = [m for m in methods if m in by]
+        if not rows or not any(r.get("classifier") for r in runs):
+            continue
+        best = max(rows, key=lambda m: by[m]["balanced_accuracy"]["mean"])
+        cand = [r for r in runs if r["task"] == task and r["variant"] == best and r["test_set"] == test_set]
+        run = max(cand, key=lambda r: (r["val_balanced_accuracy"] if r["val_balanced_accuracy"] is not None else -1.0,
+                                       -r["seed"]))
+        out[task] = {"method": best, "seed": run["seed"], "path": run["classifier"],
+                     "balanced_accuracy": run["balanced_accuracy"], "val_balanced_accuracy": run["val_balanced_accuracy"],
+                     "method_balanced_accuracy": by[best]["balanced_accuracy"]}
+    return out
 
 
 def _headline(rep: dict[str, Any]) -> dict[str, Any]:
@@ -590,7 +631,7 @@ def _static_gate(ts: TestSet, margin_db: float | None) -> dict[str, Any] | None:
 
     det = StaticChangeDetector.from_capture(ts.calibration, margin_db=margin_db)
     detections = torch.cat([det.detect_capture(e["path"]) for e in ts.tests])
-    return {"detections": detections,
+    return {"detections": detections, "detector": det,
             "info": {"threshold_db": det.threshold_db, "margin_db": det.margin_db,
                      "calibration_frames": len(det.calibration_scores_db),
                      "calibration_max_db": float(det.calibration_scores_db.max()),
@@ -873,6 +914,11 @@ def _markdown(rep: dict[str, Any]) -> str:
                  if st.get("test_dr") else ""), ""]
     if st["mode"] == "quick":
         lines += [QUICK_TRADES, ""]
+    if rep.get("classifiers"):
+        lines += ["**Classifiers to use** (the best method's, its seed chosen on simulated validation): "
+                  + "; ".join(f"{task}: `{c['path']}` ({c['method']}, seed {c['seed']}, balanced accuracy "
+                              f"{c['balanced_accuracy']:.3f})" for task, c in rep["classifiers"].items())
+                  + ". Run one with `radaraug predict CLASSIFIER CAPTURE` (docs/predict.md).", ""]
     if rep["kind"] == "sim-to-generated":
         lines += ["**These are sim-to-generated numbers, not sim-to-real.** The test captures come from generators "
                   "that training was not made with, each with its own empty-room capture (CDR and the twin's noise "

@@ -14,7 +14,8 @@ from radaraug.training.reproduce import ReproduceSettings, parse_test_arg, repro
 
 TINY = ReproduceSettings(train_items=9, val_items=3, epochs=1, image_size=(32, 16), batch_size=6, tracer_rays=16,
                          num_workers=0, sim_workers=0, randomization=False, profile_max_frames=10,
-                         proxy_frames_per_count=4, ablations=(), calibrate_noise=True)
+                         proxy_frames_per_count=4, ablations=(), calibrate_noise=True,
+                         keep_classifiers=False)
 
 
 def test_parse_test_arg():
@@ -25,8 +26,8 @@ def test_parse_test_arg():
 
 def test_report_on_a_tiny_run(tmp_path, captures):
     cal, tests = captures
-    rep = reproduce(tmp_path / "out", seeds=2, calibration=str(cal), settings=TINY, progress=False,
-                    accelerator="cpu", test=[{"path": str(p), "count": c} for p, c in tests],
+    rep = reproduce(tmp_path / "out", seeds=2, calibration=str(cal), settings=dataclasses.replace(TINY, keep_classifiers=True),
+                    progress=False, accelerator="cpu", test=[{"path": str(p), "count": c} for p, c in tests],
                     ablations=["cdr_normal_floor", "rt_paper_image"])
     out = tmp_path / "out"
     data = json.loads((out / "report.json").read_text())
@@ -73,6 +74,23 @@ def test_report_on_a_tiny_run(tmp_path, captures):
     # (cdr_twin_noise_offset_db) and cdr_profile on the profile's receiver: a set each
     assert len(list((out / "cache").glob("train-*.h5"))) == 3
     assert len(list((out / "cache").glob("profile-*.json"))) == 1
+    # every run kept its classifier; the report names the best method's, which predicts what the run scored
+    assert all((out / r["classifier"]).is_file() for r in data["runs"])
+    from radaraug.inference import RadarClassifier
+    from radaraug.io import open_capture
+
+    for task, chosen in data["classifiers"].items():
+        best = max(("rt", "randomdr", "cdr", "cdr_profile"), key=lambda m: data["results"][task][m]["balanced_accuracy"]["mean"])
+        assert chosen["method"] == best and chosen["path"].endswith("classifier.pt")
+        clf = RadarClassifier.load(out / chosen["path"])
+        assert clf.task == task and clf.gate is not None and clf.provenance["seed"] == chosen["seed"]
+        frames = []
+        for p, _ in tests:
+            with open_capture(p) as capture:
+                frames.append(capture.read())
+        scored = torch.load((out / chosen["path"]).parent / "test_scores.pt", weights_only=True)
+        assert torch.allclose(clf.probabilities(torch.cat(frames)), scored["probs"], atol=1e-5)
+    assert "Classifiers to use" in md
 
 
 def test_generated_test_sets_at_a_non_paper_config_and_shared_training(tmp_path):

@@ -1,0 +1,169 @@
+"""A classifier's test chain: raw frames to network images, as trained, and as plain matrix products.
+
+:class:`ChainSpec` is what a checkpoint records of the chain (docs/predict.md). :meth:`ChainSpec.eager`
+builds it from the library's transforms (what training and ``reproduce`` test with);
+:class:`MatmulChain` computes the same images with matrix products, a sort and a table lookup only,
+so that TorchScript and ONNX export it (the FFTs as DFT matrices, the anti-aliased resize as the two
+matrices it applies).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from typing import Any
+
+import torch
+from torch import nn
+from torch.nn import functional as nnf
+
+from radaraug.errors import CheckpointError
+from radaraug.training.pipeline import image_chain, rd_db_chain
+from radaraug.transforms import RadarCompose, RangeDoppler, ToDecibels
+from radaraug.transforms.functional._image import colormap_lut
+from radaraug.transforms.windows import normalized_window, shifted_doppler_window
+
+#: ToDecibels' default magnitude floor (-240 dB): the chain's dB maps stay finite on exact zeros.
+_MAG_FLOOR = 1e-12
+
+
+@dataclasses.dataclass(frozen=True)
+class ChainSpec:
+    """What a classifier's test chain is, in plain values (a checkpoint stores it).
+
+    Attributes:
+        range_doppler: :class:`~radaraug.transforms.RangeDoppler`'s arguments.
+        representation: ``"floor_relative"`` or ``"paper"`` (:data:`radaraug.training.pipeline.REPRESENTATIONS`).
+        blank_zero_doppler: Doppler bins blanked on each side of zero (floor-relative maps).
+        clip_range_db: the ``[vmin, vmax]`` the training maps were clipped to.
+        image_size: the network input ``(H, W)``, or None for the RD map's own size.
+        excise: bool ``(range, doppler)`` mask of the calibration's persistent cells, or None.
+    """
+
+    range_doppler: dict[str, Any]
+    representation: str
+    blank_zero_doppler: int
+    clip_range_db: tuple[float, float]
+    image_size: tuple[int, int] | None
+    excise: torch.Tensor | None = None
+
+    def eager(self) -> nn.Sequential:
+        """The chain from the library's transforms: raw frames ``(B, rx, chirps, samples)`` -> ``(B, 3, H, W)``."""
+        rd: RadarCompose = rd_db_chain() if not self.range_doppler else RadarCompose(
+            [RangeDoppler(**self.range_doppler), ToDecibels()])
+        return nn.Sequential(rd, *image_chain(*self.clip_range_db, self.image_size, self.representation, self.excise,
+                                              self.blank_zero_doppler))
+
+    def to_dict(self) -> dict[str, Any]:
+        """Plain values and tensors only (what a weights-only load accepts)."""
+        return {"range_doppler": dict(self.range_doppler), "representation": self.representation,
+                "blank_zero_doppler": int(self.blank_zero_doppler), "clip_range_db": [float(v) for v in self.clip_range_db],
+                "image_size": None if self.image_size is None else [int(v) for v in self.image_size],
+                "excise": None if self.excise is None else self.excise.to(torch.bool).cpu()}
+
+    @classmethod
+    def from_dict(cls, data: dict[str, Any], *, source: str) -> ChainSpec:
+        """The spec a checkpoint stored (CheckpointError naming ``source`` for a missing or bad field)."""
+        try:
+            size = data["image_size"]
+            excise = data["excise"]
+            spec = cls(dict(data["range_doppler"]), str(data["representation"]), int(data["blank_zero_doppler"]),
+                       (float(data["clip_range_db"][0]), float(data["clip_range_db"][1])),
+                       None if size is None else (int(size[0]), int(size[1])),
+                       None if excise is None else torch.as_tensor(excise, dtype=torch.bool))
+        except (KeyError, TypeError, ValueError, IndexError) as e:
+            raise CheckpointError(f"{source}: the test chain it records is incomplete or malformed ({e!r})") from None
+        return spec
+
+
+def _dft_matrices(n: int, m: int, rd: dict[str, Any]) -> tuple[torch.Tensor, torch.Tensor, torch.Tensor, torch.Tensor]:
+    """Real and imaginary parts of the range ``(n // 2, n)`` and Doppler ``(m, m)`` operators (float64).
+
+    The range operator folds in the mean removal and the normalized window, the Doppler operator the
+    window and the fftshift, exactly as :func:`~radaraug.transforms.functional.range_doppler` applies them.
+    """
+    if rd.get("static_clutter", False):
+        raise CheckpointError("export: static-clutter removal (MTI) is not in the matrix chain; export the network alone")
+    f64 = torch.float64
+    t = torch.arange(n, dtype=f64)
+    r = torch.arange(n // 2, dtype=f64)
+    wr = normalized_window(rd.get("range_window", "hann"), n, f64, torch.device("cpu"))
+    ang = -2 * math.pi * torch.outer(r, t) / n
+    rng = torch.complex(torch.cos(ang), torch.sin(ang)) * wr
+    if rd.get("remove_mean", True):  # x - mean(x) is the linear map I - 1/n
+        rng = rng - rng.sum(dim=1, keepdim=True) / n
+    c = torch.arange(m, dtype=f64)
+    wd = shifted_doppler_window(rd.get("doppler_window", "hann"), m, f64, torch.device("cpu")).to(torch.complex128)
+    ang = -2 * math.pi * torch.outer(c, c) / m
+    dop = torch.complex(torch.cos(ang), torch.sin(ang)) * wd
+    return rng.real, rng.imag, dop.real, dop.imag
+
+
+def _resize_matrix(n_in: int, n_out: int) -> torch.Tensor:
+    """The ``(n_out, n_in)`` matrix that the chain's anti-aliased bilinear resize applies along one axis."""
+    # Two columns, not one: the anti-aliased kernel treats a width-1 image differently.
+    eye = torch.eye(n_in, dtype=torch.float64).reshape(n_in, 1, n_in, 1).expand(n_in, 1, n_in, 2)
+    cols = nnf.interpolate(eye, size=(n_out, 2), mode="bilinear", align_corners=False, antialias=True)
+    return cols[..., 0].reshape(n_in, n_out).T.contiguous()
+
+
+class MatmulChain(nn.Module):
+    """:class:`ChainSpec`'s images from raw frames with matrix products, one sort and a table lookup.
+
+    Equal to :meth:`ChainSpec.eager` within float32 rounding (tests/inference/test_export.py states
+    the tolerance); it exists so that exporters that lack complex FFTs or the anti-aliased resize
+    (ONNX) still get the whole chain.
+
+    Args:
+        spec: the chain.
+        samples, chirps: the radar config's samples per chirp and chirps per frame.
+    """
+
+    # buffers (registered in __init__)
+    rng_re: torch.Tensor
+    rng_im: torch.Tensor
+    dop_re: torch.Tensor
+    dop_im: torch.Tensor
+    keep: torch.Tensor
+    lut: torch.Tensor
+    resize_h: torch.Tensor
+    resize_w: torch.Tensor
+
+    def __init__(self, spec: ChainSpec, samples: int, chirps: int) -> None:
+        super().__init__()
+        rr, ri, dr, di = _dft_matrices(samples, chirps, spec.range_doppler)
+        for name, value in (("rng_re", rr), ("rng_im", ri), ("dop_re", dr), ("dop_im", di)):
+            self.register_buffer(name, value.float().contiguous())
+        bins = spec.blank_zero_doppler if spec.representation == "floor_relative" else 0
+        keep = torch.ones(samples // 2, chirps, dtype=torch.bool)
+        if bins:
+            centre = chirps // 2
+            keep[:, max(centre - bins, 0):min(centre + bins + 1, chirps)] = False
+        if spec.excise is not None and spec.representation == "floor_relative":
+            keep &= ~spec.excise
+        self.register_buffer("keep", keep.float())
+        self.floor_relative = spec.representation == "floor_relative"
+        self.vmin, self.vmax = float(spec.clip_range_db[0]), float(spec.clip_range_db[1])
+        self.register_buffer("lut", colormap_lut("viridis").float())
+        size = spec.image_size or (samples // 2, chirps)
+        self.register_buffer("resize_h", _resize_matrix(samples // 2, int(size[0])).float())
+        self.register_buffer("resize_w", _resize_matrix(chirps, int(size[1])).float())
+        self.median_index = (chirps - 1) // 2  # torch's lower median
+
+    def forward(self, frames: torch.Tensor) -> torch.Tensor:
+        """Raw frames ``(B, rx, chirps, samples)`` float32 -> viridis images ``(B, 3, H, W)`` in [0, 1]."""
+        x = frames.float()
+        a_re = x @ self.rng_re.T  # (B, rx, chirps, range)
+        a_im = x @ self.rng_im.T
+        o_re = self.dop_re @ a_re - self.dop_im @ a_im  # (B, rx, doppler, range)
+        o_im = self.dop_re @ a_im + self.dop_im @ a_re
+        power = (o_re * o_re + o_im * o_im).clamp_min(_MAG_FLOOR * _MAG_FLOOR)
+        level = 10.0 * torch.log10(power.mean(dim=1)).transpose(-1, -2)  # RX mean power in dB: (B, range, doppler)
+        if self.floor_relative:
+            median = torch.sort(level, dim=-1).values[..., self.median_index:self.median_index + 1]
+            level = (level - median) * self.keep
+        u = (level.clamp(self.vmin, self.vmax) - self.vmin) * (1.0 / (self.vmax - self.vmin))
+        n = self.lut.shape[0]
+        idx = (u * n).long().clamp(0, n - 1)
+        img = self.lut[idx].permute(0, 3, 1, 2)  # (B, 3, range, doppler)
+        return self.resize_h @ img @ self.resize_w.T
