@@ -269,7 +269,7 @@ class PredictionStream:
             gate_out = det
             self._gate = all_gate[-(self.window - 1):] if self.window > 1 else all_gate[:0]
         keep = self.window - 1
-        self._probs = all_probs[len(all_probs) - keep:] if keep else all_probs[:0]
+        self._probs = all_probs[-keep:] if keep else all_probs[:0]
         self.frames_seen += n
         return Predictions(probs, smoothed[h:], decisions[h:], gate_out, c.class_names, self.window)
 

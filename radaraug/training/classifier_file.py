@@ -134,7 +134,7 @@ def load_checkpoint(path: str | os.PathLike) -> dict[str, Any]:
         raise CheckpointError(f"{path}: damaged or truncated classifier file ({type(e).__name__}: {e})") from None
     if not isinstance(data, dict) or data.get("format") != FORMAT:
         what = data.get("format") if isinstance(data, dict) else type(data).__name__
-        hint = " (a Lightning checkpoint: convert it with radaraug.inference.RadarClassifier.from_lightning)" \
+        hint = " (a Lightning checkpoint: `radaraug train fit` writes classifier.pt beside it)" \
             if isinstance(data, dict) and "pytorch-lightning_version" in data else ""
         raise CheckpointError(f"{path}: not a radaraug classifier (format {what!r}){hint}")
     version = data.get("format_version")

@@ -1,6 +1,7 @@
-"""`radaraug train`: the recipes through LightningCLI (``fit``, ``validate``, ``test``, ``predict``).
+"""`radaraug train`: the recipes through LightningCLI (``fit``, ``validate``, ``test``).
 
-``fit`` also tests on the config's captures and keeps ``last.ckpt``; see docs/training.md.
+``fit`` also tests on the config's captures and keeps ``last.ckpt`` and ``classifier.pt`` (what
+``radaraug predict`` runs); see docs/training.md. Predictions are ``radaraug predict``'s, not LightningCLI's.
 """
 
 from __future__ import annotations
@@ -8,14 +9,17 @@ from __future__ import annotations
 import sys
 import warnings
 from collections.abc import Sequence
+from pathlib import Path
 from typing import Any
 
 from lightning.pytorch import Trainer
 from lightning.pytorch.callbacks import ModelCheckpoint
 from lightning.pytorch.cli import LightningCLI
 
+from radaraug.training.classifier_file import classifier_record, save_checkpoint
 from radaraug.training.data import RadarDataModule
 from radaraug.training.module import RDClassifier
+from radaraug.training.reproduce import CLASSIFIER_FILE
 
 
 class RadarCLI(LightningCLI):
@@ -36,9 +40,30 @@ class RadarCLI(LightningCLI):
             checkpoint.save_last = True
         return trainer
 
+    @staticmethod
+    def subcommands() -> dict[str, set[str]]:
+        """LightningCLI's subcommands but ``predict`` (``radaraug predict`` runs the classifier file)."""
+        return {k: v for k, v in LightningCLI.subcommands().items() if k != "predict"}
+
     def after_fit(self) -> None:
-        """Test the fitted model on the datamodule's test split."""
+        """Write ``classifier.pt`` into the log folder, then test the fitted model on the test split."""
+        folder = self.datamodule.hparams["out_dir"] or self.trainer.log_dir
+        if self.trainer.global_rank == 0 and folder is not None:
+            save_checkpoint(classifier_record(self.model, self.datamodule, gate=_gate_of(self.datamodule),
+                                              provenance={"recipe": "radaraug train fit"}),
+                            Path(folder) / CLASSIFIER_FILE)
         self.trainer.test(self.model, datamodule=self.datamodule)
+
+
+def _gate_of(datamodule: RadarDataModule) -> Any:
+    """The static-change gate fitted on the data module's empty-room capture, or None (a JSON or none)."""
+    from radaraug.detection import StaticChangeDetector
+    from radaraug.training.pipeline import is_calibration_json
+
+    calibration = datamodule.resolved_captures()[0]
+    if calibration is None or is_calibration_json(calibration):
+        return None
+    return StaticChangeDetector.from_capture(calibration)
 
 
 def main(argv: Sequence[str] | None = None) -> int:

@@ -52,6 +52,15 @@ def test_fit_then_test_from_the_checkpoint_the_docs_name(tmp_path, captures, mon
     assert main(["train", "fit", "--config", recipe, "--trainer.max_epochs", "1", *args]) == 0
     run = tmp_path / "lightning_logs" / "version_0"
     assert (run / "checkpoints" / "last.ckpt").is_file() and (run / "metrics.csv").is_file()
+    # fit also wrote the classifier file that radaraug predict runs, with the calibration room's gate
+    from radaraug.inference import RadarClassifier
+
+    clf = RadarClassifier.load(run / "classifier.pt")
+    assert clf.task == "occupancy" and clf.gate is not None and clf.provenance["method"] == "rt"
+    assert main(["predict", str(run / "classifier.pt"), str(captures[1][0][0]), "-o", str(tmp_path / "rows.jsonl")]) == 0
+    assert len((tmp_path / "rows.jsonl").read_text().splitlines()) == 6
+    with pytest.raises(SystemExit):  # radaraug predict, not LightningCLI's: a usage error
+        main(["train", "predict", "--config", recipe])
     assert main(["train", "test", "--config", recipe, "--ckpt_path", str(run / "checkpoints" / "last.ckpt"), *args]) == 0
     assert (tmp_path / "lightning_logs" / "version_1" / "test_metrics.json").is_file()
 
