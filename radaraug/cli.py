@@ -211,6 +211,10 @@ def _cmd_bench(args: argparse.Namespace) -> Result:
         from radaraug.bench.people_level import run_people_level_benchmark
 
         result = run_people_level_benchmark(args.capture or [], out=args.out)
+    elif args.what == "predict":
+        from radaraug.bench.predict import run_predict_benchmark
+
+        result = run_predict_benchmark(batch=args.batch, repeats=args.repeats, device=device, out=args.out)
     elif args.what == "training":
         from radaraug.bench.training import run_training_benchmark
 
@@ -650,12 +654,12 @@ def build_parser() -> argparse.ArgumentParser:
     fit.add_argument("--json", action="store_true", help="print the calibration record (with the output path) as one JSON object")
 
     bench = command("bench", _cmd_bench, help="benchmarks (figures as ratios against a same-process baseline)")
-    bench.add_argument("what", choices=["transforms", "twin", "training", "diagnose", "static-room",
+    bench.add_argument("what", choices=["transforms", "twin", "training", "predict", "diagnose", "static-room",
                                         "micro-doppler", "people-level"], help="which benchmark (docs/benchmarks.md)")
     bench.add_argument("--capture", action="append", default=None,
                        help="people-level: a capture with a moving person (.h5 or Infineon folder); repeat for more")
-    bench.add_argument("--batch", type=int, default=32, help="transforms, training: frames per batch")
-    bench.add_argument("--repeats", type=int, default=5, help="transforms: timed repetitions; training: steps")
+    bench.add_argument("--batch", type=int, default=32, help="transforms, training, predict: frames per batch")
+    bench.add_argument("--repeats", type=int, default=5, help="transforms, predict: timed repetitions; training: steps")
     bench.add_argument("--blocks", type=int, default=8, help="twin: 16-frame blocks per process")
     bench.add_argument("--workers", type=int, default=2, help="twin: DataLoader worker processes")
     bench.add_argument("--no-compile", action="store_true", help="twin: skip the torch.compile kernel")
