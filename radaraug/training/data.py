@@ -89,8 +89,10 @@ class RadarDataModule(L.LightningDataModule):
         method: ``rt``, ``randomdr`` (default: it wins on held-out data), ``cdr``, or ``cdr_profile``
             (``cdr``'s DR on a twin whose receiver is the twin profile fitted on the calibration capture).
         scene: training scene: built-in name or scene file.
-        calibration: empty-room capture (or a CalibratedDR JSON) whose radar config the twin simulates;
-            ``cdr_profile`` needs a capture (or ``profile``). None with no ``test``: the held-out proxy's.
+        calibration: the empty-room capture recorded like the test captures: the twin simulates its radar
+            config, its persistent lines are excised, CDR's floor (and ``cdr_profile``'s profile) is fitted on
+            it. A CalibratedDR JSON serves CDR only (a warning names what is left out). None with no ``test``:
+            the held-out proxy's.
         test: test captures: ``"PATH:N"`` / ``{"path", "count": N}`` (N people in the whole file),
             ``"PATH"`` / ``{"path"}`` (the file's per-frame ``count`` labels), or a
             :class:`~radaraug.io.RadarCaptureDataset` labelled with people counts and without a transform
@@ -325,8 +327,10 @@ class RadarDataModule(L.LightningDataModule):
         calibration, test = self.resolved_captures()
         # Before any simulation: a test set that cannot score the task, or a calibration that cannot
         # serve the method, is refused (or warned about) now, not after training.
+        excise = self.hparams["representation"] == "floor_relative" and self.hparams["excise_persistent_db"] is not None
         check_inputs(test, self.task, calibration=calibration, method=self.method, profile=self.hparams["profile"],
-                     calibrate_noise=self.hparams["calibrate_noise"])
+                     calibrate_noise=self.hparams["calibrate_noise"], excise=excise and self.excise is None,
+                     cdr_floor=self.hparams["cdr_floor"])
         has_capture = calibration is not None and not is_calibration_json(calibration)
         source = calibration if calibration is not None and has_capture else test[0]["path"]
         with open_capture(source) as cap:

@@ -17,7 +17,7 @@ import numpy as np
 
 from radaraug.errors import ConfigError
 from radaraug.io import open_capture
-from radaraug.training.pipeline import PROFILE_METHODS, check_task, is_calibration_json, label_of
+from radaraug.training.pipeline import CDR_METHODS, PROFILE_METHODS, check_task, is_calibration_json, label_of
 
 #: The people counts each task accepts: counting's classes, or any count >= 0 for occupancy.
 COUNTING_COUNTS = (0, 1, 2)
@@ -173,17 +173,53 @@ def check_test_set(test: Sequence[Mapping[str, Any]], task: str) -> dict[str, in
     return per_class
 
 
-def check_calibration(calibration: str | None, method: str, *, profile: str | None = None,
-                      calibrate_noise: bool = True) -> None:
-    """Check that ``calibration`` can serve what ``method`` and the noise fit ask of it.
+#: What leaving out the excision cost on the independent set (docs/training.md, ablation ``rt_no_excision``).
+NO_EXCISION_COST = "-0.08 occupancy, -0.17 counting balanced accuracy on the independent set without it"
 
-    A CalibratedDR JSON has no frames: ``cdr_profile`` cannot fit on it (unless ``profile`` is given), and the
-    noise fit is skipped with a :class:`CalibrationWarning`.
+
+def check_calibration(calibration: str | None, method: str, *, profile: str | None = None,
+                      calibrate_noise: bool = True, excise: bool = False, cdr_floor: str | None = None) -> None:
+    """Check that ``calibration`` can serve what ``method``, the excision and the noise fit ask of it.
+
+    The empty-room capture is where the run learns the user's room: its persistent lines are excised
+    from every map, CDR's floor and the static-change gate are fitted on it. A step it cannot serve is
+    left out with a :class:`CalibrationWarning` naming it; ``cdr_profile`` without frames is refused.
+
+    Args:
+        calibration: the empty-room capture, a CalibratedDR JSON, or None.
+        method: the run's method.
+        profile: a given twin profile (``cdr_profile`` then needs no frames).
+        calibrate_noise: whether the run fits the twin's noise to the capture.
+        excise: whether the run excises the capture's persistent lines (floor-relative maps).
+        cdr_floor: the CDR floor the run asks for (None: the calibration's own).
 
     Raises:
         ConfigError: ``cdr_profile`` with a CalibratedDR JSON and no ``profile``.
     """
-    if calibration is None or not is_calibration_json(calibration) or profile is not None:
+    if calibration is None:
+        if excise:
+            warnings.warn("no data.calibration: the empty room's persistent lines are not excised from the maps "
+                          f"({NO_EXCISION_COST}) and no static-change gate goes into the classifier file; give "
+                          "the empty-room capture recorded like the test captures (radaraug calibrate "
+                          "--keep-recording PATH)", CalibrationWarning, stacklevel=2)
+        return
+    if not is_calibration_json(calibration):
+        return
+    if excise:
+        warnings.warn(f"data.calibration {calibration} is a CalibratedDR JSON: it holds no frames, so the empty "
+                      f"room's persistent lines are not excised ({NO_EXCISION_COST}) and no static-change gate "
+                      "goes into the classifier file; give the empty-room capture itself (radaraug calibrate "
+                      "--keep-recording PATH keeps it)", CalibrationWarning, stacklevel=2)
+    if cdr_floor is not None and method in CDR_METHODS:
+        from radaraug.transforms import CalibratedDR
+
+        own = CalibratedDR.load(calibration).floor
+        used = "empirical" if cdr_floor == "matched" else cdr_floor
+        if own != used:
+            warnings.warn(f"data.calibration {calibration} was fitted with floor {own!r}; this run draws CDR's floor "
+                          f"as {cdr_floor!r} (data.cdr_floor) from the quantiles it recorded", CalibrationWarning,
+                          stacklevel=2)
+    if profile is not None:
         return
     if method in PROFILE_METHODS:
         raise ConfigError(
@@ -201,7 +237,9 @@ def check_calibration(calibration: str | None, method: str, *, profile: str | No
 
 
 def check_inputs(test: Sequence[Mapping[str, Any]], task: str, *, calibration: str | None, method: str,
-                 profile: str | None = None, calibrate_noise: bool = True) -> dict[str, int]:
+                 profile: str | None = None, calibrate_noise: bool = True, excise: bool = False,
+                 cdr_floor: str | None = None) -> dict[str, int]:
     """:func:`check_calibration` then :func:`check_test_set`; returns the test frames per class name."""
-    check_calibration(calibration, method, profile=profile, calibrate_noise=calibrate_noise)
+    check_calibration(calibration, method, profile=profile, calibrate_noise=calibrate_noise, excise=excise,
+                      cdr_floor=cdr_floor)
     return check_test_set(test, task)

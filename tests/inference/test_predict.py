@@ -17,7 +17,13 @@ import torch
 from radaraug.capture import VirtualSensor
 from radaraug.cli import main
 from radaraug.errors import CaptureError, ConfigError
-from radaraug.inference.predict import expand_sources, follow_capture, predict_captures, predict_device, rows_text
+from radaraug.inference.predict import (
+    expand_sources,
+    follow_capture,
+    predict_captures,
+    predict_device,
+    rows_text,
+)
 from tests.inference.conftest import room_frames, small_config, write_frames
 
 REPO = Path(__file__).resolve().parents[2]

@@ -91,6 +91,24 @@ def test_a_calibration_json_cannot_serve_the_noise_fit_or_cdr_profile(captures, 
         check_calibration(None, "rt")
 
 
+def test_a_lever_left_out_for_want_of_the_capture_is_named(captures, tmp_path):
+    # the excision and the gate need the empty room's frames; CDR's floor from the JSON is said when it differs
+    cal, _ = captures
+    js = tmp_path / "cdr.json"
+    CalibratedDR.fit(str(cal), progress=False).save(js)  # the paper's normal floor
+    with pytest.warns(CalibrationWarning, match=r"cdr\.json is a CalibratedDR JSON: it holds no frames, so the empty "
+                                                r"room's persistent lines are not excised \(-0\.08 occupancy"):
+        check_calibration(str(js), "randomdr", calibrate_noise=False, excise=True)
+    with pytest.warns(CalibrationWarning, match="no data.calibration: the empty room's persistent lines are not excised"):
+        check_calibration(None, "randomdr", excise=True)
+    with pytest.warns(CalibrationWarning, match=r"fitted with floor 'normal'; this run draws CDR's floor as 'matched'"):
+        check_calibration(str(js), "cdr", calibrate_noise=False, cdr_floor="matched")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        check_calibration(str(cal), "randomdr", excise=True)  # the capture serves everything
+        check_calibration(str(js), "cdr", calibrate_noise=False, cdr_floor="normal")
+
+
 def test_the_data_module_checks_before_simulating(captures, tmp_path):
     cal, tests = captures
     js = tmp_path / "cdr.json"
