@@ -5,6 +5,7 @@ experiment; see docs/training.md.
 """
 
 from radaraug.training.data import RadarDataModule
+from radaraug.training.dropin import TrainingChains, training_chains
 from radaraug.training.metrics import (
     accuracy,
     balanced_accuracy,
@@ -21,6 +22,8 @@ __all__ = [
     "TASKS",
     "METHODS",
     "RadarDataModule",
+    "TrainingChains",
+    "training_chains",
     "RDClassifier",
     "TorchvisionClassifier",
     "rd_db_chain",

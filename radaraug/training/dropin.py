@@ -1,0 +1,117 @@
+"""The measured chain for your own training loop: train and test transforms and the twin that goes with them.
+
+:func:`training_chains` builds, from the empty-room capture, what the recipes train and test with
+(floor-relative maps, the capture's persistent lines excised, the method's DR with CDR's matched floor
+on a quiet twin, the clip range estimated on the twin, twin randomization on), as plain transforms and
+a simulated dataset, in the spirit of torchvision's ``weights.transforms()``. docs/training.md,
+"In your own loop".
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import os
+import warnings
+from collections.abc import Sequence
+from typing import Any
+
+import torch
+from torch import nn
+
+from radaraug import recipes
+from radaraug.config import RadarConfig
+from radaraug.errors import ConfigError
+from radaraug.training.pipeline import rd_db_chain
+
+
+@dataclasses.dataclass
+class TrainingChains:
+    """Transforms and twin of the measured chain (built by :func:`training_chains`).
+
+    Attributes:
+        train: raw frames ``(..., rx, chirps, samples)`` -> the method's DR -> images ``(..., 3, H, W)``.
+        test: raw frames -> images, no DR (captures, and simulated validation as the recipes score it).
+        config: the radar config (the calibration capture's).
+        clip_range_db: the ``[vmin, vmax]`` both chains clip to (estimated on the twin after the DR).
+        excise: the calibration capture's persistent cells, or None.
+        dr: the method's DR on per-RX dB maps (None for ``rt``).
+        method: the method.
+    """
+
+    train: nn.Module
+    test: nn.Module
+    config: RadarConfig
+    clip_range_db: tuple[float, float]
+    excise: torch.Tensor | None
+    dr: nn.Module | None
+    method: str
+    _datamodule: Any = dataclasses.field(repr=False, default=None)
+
+    def simulated(self, length: int, *, seed: int = 0, transform: nn.Module | None = None) -> Any:
+        """The twin's dataset at this config: ``length`` items ``(image, people count)``, item ``i`` a function of ``(seed, i)``.
+
+        Args:
+            length: items.
+            seed: the simulated set's seed.
+            transform: applied to each item's raw frames (default: :attr:`train`). Its random draws are a
+                function of ``(seed, i, epoch)``: call the dataset's ``set_epoch(epoch)`` before each epoch.
+        """
+        dm = self._datamodule
+        old = {k: dm.hparams[k] for k in ("train_items", "val_items", "sim_seed")}
+        dm.hparams.update(train_items=int(length), val_items=0, sim_seed=int(seed))
+        try:
+            ds = dm.simulated_dataset()
+        finally:
+            dm.hparams.update(old)
+        ds.transform = self.train if transform is None else transform
+        ds.augmentation = "per_item"  # the DR's draws of item i from (seed, i, epoch): call set_epoch each epoch
+        return ds
+
+
+def training_chains(calibration: str | os.PathLike, method: str = "randomdr", *, task: str = "occupancy",
+                    image_size: Sequence[int] | None = (64, 32), estimate_items: int = 256, seed: int = 0,
+                    cache_dir: str | os.PathLike | None = None, progress: bool = False,
+                    **data: Any) -> TrainingChains:
+    """The recipes' measured chain as transforms, from the empty-room capture recorded like your test captures.
+
+    Simulates ``estimate_items`` twin items (cached) to estimate the clip range (and CDR's matched floor).
+
+    Args:
+        calibration: the empty-room capture (radaraug HDF5 or Infineon recording): its config, excision mask
+            and CDR's floor come from it.
+        method: ``rt``, ``randomdr`` (default) or ``cdr``.
+        task: ``occupancy`` or ``counting`` (the recipe whose settings are taken).
+        image_size: network input ``(H, W)`` (None: the RD map's size).
+        estimate_items: twin items that estimate the clip range.
+        seed: seed of the DR draws and the estimation items.
+        cache_dir: where those items are cached (None: the user cache folder).
+        progress: progress bars while simulating.
+        **data: any other ``RadarDataModule`` key, overriding the recipe's (e.g. ``representation="paper"``).
+
+    Raises:
+        ConfigError: a CalibratedDR JSON (the chain needs the capture's frames), or an unknown method/key.
+        CaptureError: the capture cannot be read.
+    """
+    from radaraug.training.data import RadarDataModule
+    from radaraug.training.pipeline import is_calibration_json
+    from radaraug.training.testset import TestSetWarning
+
+    if is_calibration_json(calibration):
+        raise ConfigError(f"{calibration}: a CalibratedDR JSON has no frames; training_chains needs the empty-room "
+                          "capture itself (its persistent lines are excised, the floor is fitted on it)")
+    if method == "cdr_profile":
+        raise ConfigError("training_chains: cdr_profile's twin is fitted by radaraug diagnose; use the recipes")
+    recipe = dict(recipes.compose(f"{task}_{method}").get("data", {}))
+    kw = recipe | {"calibration": str(calibration), "test": [{"path": str(calibration), "count": 0}],
+                   "train_items": int(estimate_items), "val_items": 0, "sim_seed": int(seed), "dr_seed": int(seed),
+                   "image_size": None if image_size is None else [int(v) for v in image_size],
+                   "cache_dir": None if cache_dir is None else str(cache_dir), "progress": progress} | data
+    dm = RadarDataModule(**kw)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", TestSetWarning)  # the calibration stands in as the test set: one class
+        dm.setup("fit")
+    assert dm.image is not None and dm.config is not None and dm.clip is not None
+    rd = rd_db_chain()
+    train: list[nn.Module] = [rd, *([dm.dr] if dm.dr is not None else []), *dm.image]
+    return TrainingChains(train=nn.Sequential(*train), test=nn.Sequential(rd, *dm.image), config=dm.config,
+                          clip_range_db=dm.clip, excise=dm.excise, dr=dm.dr, method=method, _datamodule=dm)

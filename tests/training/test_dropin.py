@@ -1,0 +1,48 @@
+"""training_chains: the recipes' measured chain as transforms, and the twin that goes with them."""
+
+from __future__ import annotations
+
+import pytest
+import torch
+
+from radaraug.errors import ConfigError
+from radaraug.io import RadarCaptureDataset
+from radaraug.training import RadarDataModule, training_chains
+from radaraug.transforms import CalibratedDR, FloorRelative, RandomDR
+
+SMALL = {"estimate_items": 8, "tracer_rays": 16, "randomization": False, "image_size": (32, 16)}
+
+
+def test_the_chains_are_the_recipes_chains(captures, tmp_path) -> None:
+    cal, tests = captures
+    ch = training_chains(cal, "randomdr", cache_dir=tmp_path, **SMALL)
+    assert isinstance(ch.dr, RandomDR) and ch.excise is not None and ch.config.num_chirps_per_frame > 0
+    assert any(isinstance(m, FloorRelative) for m in ch.test.modules())
+    real = RadarCaptureDataset(tests[1][0], label="count", transform=ch.test)
+    image, label = real[0]
+    assert image.shape == (3, 32, 16) and 0 <= float(image.min()) and float(image.max()) <= 1 and label == 1
+    # the same clip range and excision as the data module of the recipe (its estimate on the same items)
+    dm = RadarDataModule(calibration=str(cal), test=[{"path": str(cal), "count": 0}], train_items=8, val_items=0,
+                         cache_dir=str(tmp_path), tracer_rays=16, randomization=False, image_size=[32, 16],
+                         progress=False, blank_zero_doppler=1)
+    with pytest.warns(UserWarning):
+        dm.setup("fit")
+    assert dm.clip == ch.clip_range_db and torch.equal(dm.excise, ch.excise)
+    sim = ch.simulated(4, seed=3)
+    x, count = sim[2]
+    assert len(sim) == 4 and x.shape == (3, 32, 16) and count in (0, 1, 2)
+    assert torch.equal(ch.simulated(4, seed=3)[2][0], x)  # a pure function of (seed, index)
+    assert len(ch.simulated(5, seed=3)) == 5 and len(sim) == 4
+
+
+def test_cdr_gets_the_matched_floor_and_json_is_refused(captures, tmp_path) -> None:
+    cal, _ = captures
+    ch = training_chains(cal, "cdr", cache_dir=tmp_path, **SMALL)
+    assert isinstance(ch.dr, CalibratedDR) and ch.dr.floor == "empirical"  # matched: quantiles against the twin
+    js = tmp_path / "cdr.json"
+    CalibratedDR.fit(str(cal), progress=False).save(js)
+    with pytest.raises(ConfigError, match="cdr.json: a CalibratedDR JSON has no frames"):
+        training_chains(js)
+    paper = training_chains(cal, "cdr", cache_dir=tmp_path, representation="paper", cdr_floor="normal",
+                            clip_range=[-110.0, -40.0], excise_persistent_db=None, **SMALL)
+    assert paper.clip_range_db == (-110.0, -40.0) and paper.excise is None and paper.dr.floor == "normal"
