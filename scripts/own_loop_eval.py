@@ -42,13 +42,17 @@ def block() -> str:
 
 
 def run(code: str, room: Path) -> float:
+    """The balanced accuracy the block prints, run in a fresh interpreter in an empty folder."""
     with tempfile.TemporaryDirectory() as tmp:
         env = {**os.environ, "PYTHONPATH": str(ROOT)}
         r = subprocess.run([sys.executable, "-c", code.replace('"room"', repr(str(room)))], cwd=tmp, env=env,
                            capture_output=True, text=True)
     if r.returncode != 0:
         raise RuntimeError(r.stderr[-3000:])
-    return float(re.search(r"balanced accuracy ([0-9.]+)", r.stdout).group(1))
+    m = re.search(r"balanced accuracy ([0-9.]+)", r.stdout)
+    if m is None:
+        raise RuntimeError(f"the block printed no score: {r.stdout[-500:]}")
+    return float(m.group(1))
 
 
 def main() -> None:
