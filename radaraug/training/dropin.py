@@ -112,6 +112,7 @@ def training_chains(calibration: str | os.PathLike, method: str = "randomdr", *,
         dm.setup("fit")
     assert dm.image is not None and dm.config is not None and dm.clip is not None
     rd = rd_db_chain()
-    train: list[nn.Module] = [rd, *([dm.dr] if dm.dr is not None else []), *dm.image]
-    return TrainingChains(train=nn.Sequential(*train), test=nn.Sequential(rd, *dm.image), config=dm.config,
+    image: list[nn.Module] = list(dm.image.children())
+    train: list[nn.Module] = [rd, *([dm.dr] if dm.dr is not None else []), *image]
+    return TrainingChains(train=nn.Sequential(*train), test=nn.Sequential(rd, *image), config=dm.config,
                           clip_range_db=dm.clip, excise=dm.excise, dr=dm.dr, method=method, _datamodule=dm)
