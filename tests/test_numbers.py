@@ -58,6 +58,12 @@ _TWIN_K = "frames_per_s_by_frames_per_call"
 _SEED_STDS = tuple(f"{_QUICK}/{t}/{m}/{_SD}" for t in ("occupancy", "counting") for m in ("rt", "randomdr", "cdr"))
 
 FIGURES: list[Figure] = [
+    Figure("benchmarks/README.md", "**824.3 vs 908.8 frames/s = 0.907**", "predict_cpu.json",
+           ("predict_frames_per_s", "network_alone_frames_per_s", "predict_vs_network_alone"),
+           "**{:.1f} vs {:.1f} frames/s = {:.3f}**"),
+    Figure("docs/predict.md", "| one frame at a time through `stream()`, as live | 85.2 | 8.52× the sensor's",
+           "predict_cpu.json", ("live_one_frame_at_a_time_frames_per_s", "live_vs_sensor_frame_rate"),
+           "| one frame at a time through `stream()`, as live | {:.1f} | {:.2f}× the sensor's"),
     Figure("benchmarks/README.md", "**94.2 frames/s** (9.42× real time", "twin_cpu.json",
            ("frames_per_s_workers", "realtime_ratio_workers"), "**{:.1f} frames/s** ({:.2f}× real time"),
     Figure("benchmarks/README.md", "same, one process, one thread | 48.1 frames/s (4.81× real time)", "twin_cpu.json",
