@@ -25,7 +25,6 @@ ROOT = Path(__file__).resolve().parents[1]
 CALL = 'chains = training_chains(room.calibration, "randomdr", task=TASK, seed=SEED)'
 VARIANTS = {
     "randomdr (the measured chain, default)": CALL,
-    "cdr, matched floor on a quiet twin": 'chains = training_chains(room.calibration, "cdr", task=TASK, seed=SEED)',
     "the paper's chain (cdr, normal floor, noisy twin, dBFS image clipped to [-110, -40])":
         'chains = training_chains(room.calibration, "cdr", task=TASK, seed=SEED, representation="paper", '
         'cdr_floor="normal", cdr_twin_noise_offset_db=None, clip_range=[-110.0, -40.0], excise_persistent_db=None)',
