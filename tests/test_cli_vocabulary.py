@@ -418,3 +418,20 @@ def test_each_reproduce_flag_reaches_its_recipe_key(flag, tmp_path, monkeypatch)
     elif flag == "--test":
         expected = [{"path": str(cal), "count": 0}, {"path": str(test), "count": 1}]
     assert got[key] == expected
+
+
+# --------------------------------------------------------------------------- 5. --seed, --max-frames
+def test_seed_is_one_idea_with_the_documented_defaults() -> None:
+    # docs/cli.md: 0 unless given (None: the virtual sensor's 0, refused for a board), make-proxy's 1234
+    for name, parser in _subparsers().items():
+        seed = _option(parser, "--seed")
+        if seed is not None:
+            assert seed.type is int and seed.default in ((1234,) if name == "make-proxy" else (0, None)), name
+        assert _option(parser, "--seeds") is None or name == "reproduce"
+    text = (ROOT / "docs" / "cli.md").read_text(encoding="utf-8")
+    assert "| a random seed |" in text and "| frames read |" in text and "| floor distributions |" in text
+
+
+def test_max_frames_defaults_are_the_documented_ones() -> None:
+    defaults = {n: _option(p, "--max-frames").default for n, p in _subparsers().items() if _option(p, "--max-frames")}
+    assert defaults == {"info": 256, "fit-cdr": None, "diagnose": 100, "predict": None}
