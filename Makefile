@@ -42,11 +42,11 @@ lint: $(STAMP)
 	$(VENV)/bin/ruff check radaraug tests
 
 bench: $(STAMP)
-	$(VENV)/bin/radaraug bench transforms --out benchmarks/transforms_cpu.json
-	$(VENV)/bin/radaraug bench twin --out benchmarks/twin_cpu.json
-	$(VENV)/bin/radaraug bench training --out benchmarks/training_cpu.json
-	$(VENV)/bin/radaraug bench diagnose --out benchmarks/diagnose_cpu.json
-	$(VENV)/bin/radaraug bench static-room --out benchmarks/static_room_cpu.json --figure docs/img/twin/static_profile_vs_density.png
+	$(VENV)/bin/radaraug bench transforms -o benchmarks/transforms_cpu.json --overwrite
+	$(VENV)/bin/radaraug bench twin -o benchmarks/twin_cpu.json --overwrite
+	$(VENV)/bin/radaraug bench training -o benchmarks/training_cpu.json --overwrite
+	$(VENV)/bin/radaraug bench diagnose -o benchmarks/diagnose_cpu.json --overwrite
+	$(VENV)/bin/radaraug bench static-room -o benchmarks/static_room_cpu.json --overwrite --figure docs/img/twin/static_profile_vs_density.png
 
 # GPU checks (docs/gpu.md). `make gpu-wheels` (a machine with internet) downloads the wheels a GPU
 # machine with Python 3.12, PyTorch, torchvision, Lightning, h5py, matplotlib, scipy and tqdm lacks;

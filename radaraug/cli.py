@@ -189,41 +189,50 @@ def _torch_device(args: argparse.Namespace) -> str:
     return _device_arg(args.accelerator, "--accelerator")
 
 
+MICRO_DOPPLER_PNG = "micro_doppler_before_after.png"
+"""Where ``bench micro-doppler`` draws its figure without ``-o``."""
+
+
 def _cmd_bench(args: argparse.Namespace) -> Result:
     device = _torch_device(args)
+    if args.what == "micro-doppler" and args.output is None:
+        args.output = MICRO_DOPPLER_PNG
+    for path in (args.output, args.figure):  # every file it writes: refused if it exists, unless --overwrite
+        if path is not None:
+            _check_output(args, path)
     if args.what == "transforms":
         from radaraug.bench.transforms import run_transforms_benchmark
 
-        result = run_transforms_benchmark(batch=args.batch, repeats=args.repeats, device=device, out=args.out)
+        result = run_transforms_benchmark(batch=args.batch, repeats=args.repeats, device=device, out=args.output)
     elif args.what == "diagnose":
         from radaraug.bench.diagnose import run_diagnose_benchmark
 
-        result = run_diagnose_benchmark(out=args.out)
+        result = run_diagnose_benchmark(out=args.output)
     elif args.what == "static-room":
         from radaraug.bench.static_room import run_static_room_benchmark
 
-        result = run_static_room_benchmark(out=args.out, figure=args.figure)
+        result = run_static_room_benchmark(out=args.output, figure=args.figure)
     elif args.what == "micro-doppler":
         from radaraug.bench.micro_doppler import micro_doppler_before_after
 
-        result = micro_doppler_before_after(args.out or "micro_doppler_before_after.png")
+        result = micro_doppler_before_after(args.output)
     elif args.what == "people-level":
         from radaraug.bench.people_level import run_people_level_benchmark
 
-        result = run_people_level_benchmark(args.capture or [], out=args.out)
+        result = run_people_level_benchmark(args.capture or [], out=args.output)
     elif args.what == "predict":
         from radaraug.bench.predict import run_predict_benchmark
 
-        result = run_predict_benchmark(batch=args.batch, repeats=args.repeats, device=device, out=args.out)
+        result = run_predict_benchmark(batch=args.batch, repeats=args.repeats, device=device, out=args.output)
     elif args.what == "training":
         from radaraug.bench.training import run_training_benchmark
 
-        result = run_training_benchmark(batch=args.batch, steps=args.repeats, device=device, out=args.out)
+        result = run_training_benchmark(batch=args.batch, steps=args.repeats, device=device, out=args.output)
     else:
         from radaraug.bench.twin import run_twin_benchmark
 
         result = run_twin_benchmark(blocks=args.blocks, workers=args.workers, device=device,
-                                    compiled=not args.no_compile, out=args.out)
+                                    compiled=not args.no_compile, out=args.output)
     if args.json:
         return result
     for key, value in result.items():
@@ -665,7 +674,9 @@ def build_parser() -> argparse.ArgumentParser:
     bench.add_argument("--no-compile", action="store_true", help="twin: skip the torch.compile kernel")
     _accelerator_args(bench, "cpu")
     bench.add_argument("--json", action="store_true", help="print the figures as one JSON object")
-    bench.add_argument("--out", default=None, help="also write the JSON figures to this file (micro-doppler: the PNG)")
+    bench.add_argument("-o", "--output", default=None,
+                       help=f"also write the JSON figures to this file (micro-doppler: the PNG, default {MICRO_DOPPLER_PNG})")
+    bench.add_argument("--overwrite", action="store_true", help="replace an existing output (re-recording a benchmark)")
     bench.add_argument("--figure", default=None, help="static-room: write the range-profile figure (PNG) here")
 
     trace = command("trace", _cmd_trace, help="ray-trace one instant of a scene and print its paths")

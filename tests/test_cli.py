@@ -71,7 +71,7 @@ def test_bad_input_is_one_line_error(tmp_path, capsys) -> None:
 
 def test_bench_transforms_json(tmp_path, capsys) -> None:
     out = tmp_path / "b.json"
-    assert main(["bench", "transforms", "--batch", "2", "--repeats", "1", "--json", "--out", str(out)]) == 0
+    assert main(["bench", "transforms", "--batch", "2", "--repeats", "1", "--json", "-o", str(out)]) == 0
     result = json.loads(capsys.readouterr().out)
     assert result == json.loads(out.read_text())
     assert result["torch_frames_per_s"] > 0 and result["numpy_frames_per_s"] > 0

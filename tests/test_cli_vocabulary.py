@@ -244,7 +244,14 @@ def _export(tmp_path, monkeypatch):
     return ["export", str(_classifier_file(tmp_path))], True
 
 
-WRITERS = {"fit-cdr": _fit_cdr, "simulate": _simulate, "demo": _demo, "make-proxy": _make_proxy,
+def _bench(tmp_path, monkeypatch):
+    import radaraug.bench.transforms as transforms
+
+    monkeypatch.setattr(transforms, "run_transforms_benchmark", _reached)
+    return ["bench", "transforms"], False
+
+
+WRITERS = {"bench": _bench, "fit-cdr": _fit_cdr, "simulate": _simulate, "demo": _demo, "make-proxy": _make_proxy,
            "reproduce": _reproduce, "diagnose": _diagnose, "capture": _live("capture"),
            "calibrate": _live("calibrate"), "predict": _predict, "export": _export}
 RESUMABLE = {"simulate", "make-proxy", "reproduce"}

@@ -24,7 +24,7 @@ def test_people_level_bench_fits_a_capture_file(tmp_path, capsys):
         frames = twin_walks(CONFIG, SPAN, rcs_scale_dB=6.0, seed=1)
         path = write_capture(tmp_path / "walk.h5", float_to_counts(frames).numpy().astype("uint16"), CONFIG)
         out = tmp_path / "people_level.json"
-        assert main(["bench", "people-level", "--capture", str(path), "--json", "--out", str(out)]) == 0
+        assert main(["bench", "people-level", "--capture", str(path), "--json", "-o", str(out)]) == 0
     finally:
         torch.set_num_threads(threads)
     printed = json.loads(capsys.readouterr().out)
