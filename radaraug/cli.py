@@ -721,8 +721,9 @@ def build_parser() -> argparse.ArgumentParser:
     rep.add_argument("--quick", action="store_true", help="minutes on a 2-core CPU (what `make demo` runs)")
     rep.add_argument("--seeds", type=int, default=3, help="training seeds per method")
     rep.add_argument("--calibration", default=None,
-                     help="empty-room capture recorded like the --test captures (required with --test; the "
-                     "generated test sets bring their own)")
+                     help="empty-room capture recorded like the --test captures: the twin simulates its config, its "
+                     "persistent lines are excised, CDR's floor and each classifier's static-change gate are "
+                     "fitted on it (required with --test; the generated test sets bring their own)")
     rep.add_argument("--test", action="append", default=None, metavar="PATH[:COUNT]",
                      help="test capture; COUNT labels the whole file, else per-frame 'count' labels (repeatable)")
     rep.add_argument("--cdr-floor", choices=("matched", "normal", "empirical"), default=None,
