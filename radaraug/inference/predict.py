@@ -87,11 +87,12 @@ def follow_capture(classifier: RadarClassifier, path: str | os.PathLike, *, wind
                    sleep: Callable[[float], None] = time.sleep) -> Iterator[tuple[Path, int, Predictions]]:
     """Predictions of a radaraug capture while it is recorded: new flushed frames as they appear.
 
-    Ends when the writer has closed the file and every frame is read, or after ``idle_timeout_s``
-    seconds without a new frame.
+    Waits for the file to appear (the recorder may start later), then ends when the writer has closed
+    it and every frame is read, or after ``idle_timeout_s`` seconds without a new frame.
 
     Raises:
-        CaptureError: the capture cannot be read (named). ConfigError: another radar config.
+        CaptureError: the capture cannot be read, or did not appear in time (named). ConfigError: another
+            radar config.
     """
     from radaraug.io import open_capture
     from radaraug.io.hdf5_recovery import writer_is_alive
@@ -99,6 +100,10 @@ def follow_capture(classifier: RadarClassifier, path: str | os.PathLike, *, wind
     p = Path(path)
     stream = classifier.stream(window=window, gate=gate)
     done, idle_since = 0, time.monotonic()
+    while not p.exists():  # started before the recorder: its file appears at the first flushed frame
+        if idle_timeout_s is not None and time.monotonic() - idle_since > idle_timeout_s:
+            raise CaptureError(f"{p}: no capture appeared within {idle_timeout_s:g} s")
+        sleep(poll_s)
     while True:
         writing = p.is_file() and writer_is_alive(p)  # asked before reading: frames flushed after it are read next
         with open_capture(p) as reader:  # reopened: the frame count a reader sees is fixed when it opens

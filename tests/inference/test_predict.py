@@ -8,7 +8,6 @@ import json
 import os
 import subprocess
 import sys
-import time
 from pathlib import Path
 
 import pytest
@@ -106,12 +105,8 @@ def test_follow_reads_a_recording_while_another_process_writes_it(tmp_path, clf)
     path = tmp_path / "live.h5"
     proc = subprocess.Popen([sys.executable, "-c", RECORDER, str(tmp_path / "frames.pt"), str(path)], cwd=REPO,
                             env={**os.environ, "PYTHONPATH": str(REPO)})
-    try:
-        deadline = time.monotonic() + 60
-        while not path.exists():  # the name appears at the first flushed frame
-            assert time.monotonic() < deadline and proc.poll() is None
-            time.sleep(0.02)
-        chunks = list(follow_capture(clf, path, window=2, poll_s=0.05, idle_timeout_s=30))
+    try:  # started before the recorder's file exists: it waits for the first flushed frame
+        chunks = list(follow_capture(clf, path, window=2, poll_s=0.05, idle_timeout_s=60))
     finally:
         proc.wait(timeout=60)
     assert proc.returncode == 0
@@ -119,6 +114,8 @@ def test_follow_reads_a_recording_while_another_process_writes_it(tmp_path, clf)
     assert firsts == sorted(firsts) and len(chunks) > 1  # frames arrived over several reads
     got = torch.cat([c.decisions for _, _, c in chunks])
     assert len(got) == 9 and torch.equal(got, clf.predict(_reread(path), window=2).decisions)
+    with pytest.raises(CaptureError, match="never.h5: no capture appeared within 0.1 s"):
+        next(follow_capture(clf, tmp_path / "never.h5", poll_s=0.02, idle_timeout_s=0.1))
 
 
 def test_live_virtual_sensor_is_a_pure_function_of_its_seed(tmp_path, clf, capsys) -> None:
