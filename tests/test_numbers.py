@@ -58,6 +58,20 @@ _TWIN_K = "frames_per_s_by_frames_per_call"
 _SEED_STDS = tuple(f"{_QUICK}/{t}/{m}/{_SD}" for t in ("occupancy", "counting") for m in ("rt", "randomdr", "cdr"))
 
 FIGURES: list[Figure] = [
+    Figure("docs/your_sensor.md", "| 397.7 s (`reproduce_quick_cpu.json`) | full mode projected 1,342-6,024 s from an H200 "
+           "run of 88.0 s", "reproduce_quick_cpu.json", ("wall_seconds",),
+           "| {:.1f} s (`reproduce_quick_cpu.json`) | full mode projected 1,342-6,024 s from an H200 run of 88.0 s"),
+    Figure("docs/your_sensor.md", "full mode projected 1,342-6,024 s from an H200 run of 88.0 s", "reproduce_cuda.json",
+           ("full_mode_projected_seconds_lower_bound", "full_mode_projected_seconds_linear_upper_bound", "wall_seconds"),
+           "full mode projected {:,}-{:,} s from an H200 run of {:.1f} s"),
+    Figure("docs/your_sensor.md", "| 74.6 images/s (`training_cpu.json`) | 15,503.7 images/s", "training_cpu.json",
+           ("pipeline_images_per_s",), "| {:.1f} images/s (`training_cpu.json`) | 15,503.7 images/s"),
+    Figure("docs/your_sensor.md", "15,503.7 images/s on an H200", "training_cuda.json", ("pipeline_images_per_s",),
+           "{:,.1f} images/s on an H200"),
+    Figure("docs/your_sensor.md", "| 824.3 frames/s on a file, 85.2 frames/s live", "predict_cpu.json",
+           ("predict_frames_per_s", "live_one_frame_at_a_time_frames_per_s"), "| {:.1f} frames/s on a file, {:.1f} frames/s live"),
+    Figure("docs/your_sensor.md", "| 58.62 s (`diagnose_cpu.json`)", "diagnose_cpu.json", ("diagnose_s",),
+           "| {:.2f} s (`diagnose_cpu.json`)"),
     Figure("docs/your_sensor.md", "runs 824.3 frames/s on a file (in batches) and 85.2 frames/s one frame at a time as "
            "live, 8.52× the sensor's", "predict_cpu.json",
            ("predict_frames_per_s", "live_one_frame_at_a_time_frames_per_s", "live_vs_sensor_frame_rate"),
