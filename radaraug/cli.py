@@ -473,12 +473,15 @@ def _cmd_diagnose(args: argparse.Namespace) -> Result:
     return 0
 
 
-def _live_device(args: argparse.Namespace):
-    """The device of ``capture`` / ``calibrate`` from their arguments (nothing opened yet)."""
+def _live_device(args: argparse.Namespace, default_config: Any = None):
+    """The device of ``capture`` / ``calibrate`` / ``predict`` from their arguments (nothing opened yet).
+
+    ``default_config``: the radar config without ``--radar-config`` (None: the device's own default).
+    """
     from radaraug.capture import open_device
     from radaraug.config import RadarConfig
 
-    config = RadarConfig.from_json(args.radar_config) if args.radar_config else None
+    config = RadarConfig.from_json(args.radar_config) if args.radar_config else default_config
     # The virtual-only options default to None so that one given with a board is refused, not ignored.
     return open_device(args.device, config, scene=args.scene, profile=args.profile, seed=args.seed,
                        realtime=args.realtime)
@@ -570,14 +573,8 @@ def _cmd_predict(args: argparse.Namespace) -> Result:
     clf = _classifier(args)
     gate = not args.no_gate
     if args.device is not None:
-        from radaraug.capture import open_device
-        from radaraug.config import RadarConfig
-
-        config = RadarConfig.from_json(args.radar_config) if args.radar_config else clf.config
-        device = open_device(args.device, config, scene=args.scene, profile=args.profile, seed=args.seed,
-                             realtime=args.realtime)
-        chunks: Any = predict_device(clf, device, seconds=args.seconds, max_frames=args.max_frames,
-                                     window=args.window, gate=gate)
+        chunks: Any = predict_device(clf, _live_device(args, clf.config), seconds=args.seconds,
+                                     max_frames=args.max_frames, window=args.window, gate=gate)
     elif args.follow:
         chunks = follow_capture(clf, args.sources[0], window=args.window, gate=gate, idle_timeout_s=args.idle_timeout)
     else:
@@ -587,8 +584,7 @@ def _cmd_predict(args: argparse.Namespace) -> Result:
           else open(args.output, "w", encoding="utf-8", newline="")) as fh:
         writer = RowWriter(fh, args.format)
         try:
-            for source, first, preds in chunks:
-                writer.write(source, first, preds)
+            writer.write_all(chunks)
         except KeyboardInterrupt:  # a live run ends with Ctrl-C: the rows written so far stay
             print(f"interrupted after {writer.rows} frames", file=sys.stderr)
             return EXIT_INTERRUPTED

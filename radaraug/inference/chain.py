@@ -1,15 +1,13 @@
-"""A classifier's test chain: raw frames to network images, as trained, and as plain matrix products.
+"""A classifier's test chain as plain matrix products, for export.
 
-:class:`ChainSpec` is what a checkpoint records of the chain (docs/predict.md). :meth:`ChainSpec.eager`
-builds it from the library's transforms (what training and ``reproduce`` test with);
-:class:`MatmulChain` computes the same images with matrix products, a sort and a table lookup only,
-so that TorchScript and ONNX export it (the FFTs as DFT matrices, the anti-aliased resize as the two
-matrices it applies).
+:class:`MatmulChain` computes the images of a :class:`~radaraug.training.classifier_file.ChainSpec` (what a
+classifier file records; its ``eager()`` is the library's transforms) with matrix products, a sort and
+a table lookup only, so that TorchScript and ONNX export it (the FFTs as DFT matrices, the
+anti-aliased resize as the two matrices it applies). docs/predict.md.
 """
 
 from __future__ import annotations
 
-import dataclasses
 import math
 from typing import Any
 
@@ -18,62 +16,14 @@ from torch import nn
 from torch.nn import functional as nnf
 
 from radaraug.errors import CheckpointError
-from radaraug.training.pipeline import image_chain, rd_db_chain
-from radaraug.transforms import RadarCompose, RangeDoppler, ToDecibels
+from radaraug.training.classifier_file import ChainSpec
+from radaraug.transforms import ToDecibels
+from radaraug.transforms.functional._floor import zero_doppler_bins
 from radaraug.transforms.functional._image import colormap_lut
 from radaraug.transforms.windows import normalized_window, shifted_doppler_window
 
-#: ToDecibels' default magnitude floor (-240 dB): the chain's dB maps stay finite on exact zeros.
-_MAG_FLOOR = 1e-12
-
-
-@dataclasses.dataclass(frozen=True)
-class ChainSpec:
-    """What a classifier's test chain is, in plain values (a checkpoint stores it).
-
-    Attributes:
-        range_doppler: :class:`~radaraug.transforms.RangeDoppler`'s arguments.
-        representation: ``"floor_relative"`` or ``"paper"`` (:data:`radaraug.training.pipeline.REPRESENTATIONS`).
-        blank_zero_doppler: Doppler bins blanked on each side of zero (floor-relative maps).
-        clip_range_db: the ``[vmin, vmax]`` the training maps were clipped to.
-        image_size: the network input ``(H, W)``, or None for the RD map's own size.
-        excise: bool ``(range, doppler)`` mask of the calibration's persistent cells, or None.
-    """
-
-    range_doppler: dict[str, Any]
-    representation: str
-    blank_zero_doppler: int
-    clip_range_db: tuple[float, float]
-    image_size: tuple[int, int] | None
-    excise: torch.Tensor | None = None
-
-    def eager(self) -> nn.Sequential:
-        """The chain from the library's transforms: raw frames ``(B, rx, chirps, samples)`` -> ``(B, 3, H, W)``."""
-        rd: RadarCompose = rd_db_chain() if not self.range_doppler else RadarCompose(
-            [RangeDoppler(**self.range_doppler), ToDecibels()])
-        return nn.Sequential(rd, *image_chain(*self.clip_range_db, self.image_size, self.representation, self.excise,
-                                              self.blank_zero_doppler))
-
-    def to_dict(self) -> dict[str, Any]:
-        """Plain values and tensors only (what a weights-only load accepts)."""
-        return {"range_doppler": dict(self.range_doppler), "representation": self.representation,
-                "blank_zero_doppler": int(self.blank_zero_doppler), "clip_range_db": [float(v) for v in self.clip_range_db],
-                "image_size": None if self.image_size is None else [int(v) for v in self.image_size],
-                "excise": None if self.excise is None else self.excise.to(torch.bool).cpu()}
-
-    @classmethod
-    def from_dict(cls, data: dict[str, Any], *, source: str) -> ChainSpec:
-        """The spec a checkpoint stored (CheckpointError naming ``source`` for a missing or bad field)."""
-        try:
-            size = data["image_size"]
-            excise = data["excise"]
-            spec = cls(dict(data["range_doppler"]), str(data["representation"]), int(data["blank_zero_doppler"]),
-                       (float(data["clip_range_db"][0]), float(data["clip_range_db"][1])),
-                       None if size is None else (int(size[0]), int(size[1])),
-                       None if excise is None else torch.as_tensor(excise, dtype=torch.bool))
-        except (KeyError, TypeError, ValueError, IndexError) as e:
-            raise CheckpointError(f"{source}: the test chain it records is incomplete or malformed ({e!r})") from None
-        return spec
+#: ToDecibels' default magnitude floor (the eager chain's): its dB maps stay finite on exact zeros.
+_MAG_FLOOR = ToDecibels().floor
 
 
 def _dft_matrices(n: int, m: int, rd: dict[str, Any]) -> tuple[torch.Tensor, torch.Tensor, torch.Tensor, torch.Tensor]:
@@ -110,7 +60,7 @@ def _resize_matrix(n_in: int, n_out: int) -> torch.Tensor:
 class MatmulChain(nn.Module):
     """:class:`ChainSpec`'s images from raw frames with matrix products, one sort and a table lookup.
 
-    Equal to :meth:`ChainSpec.eager` within float32 rounding (tests/inference/test_export.py states
+    Equal to :meth:`ChainSpec.eager` within float32 rounding (tests/inference/test_chain.py states
     the tolerance); it exists so that exporters that lack complex FFTs or the anti-aliased resize
     (ONNX) still get the whole chain.
 
@@ -137,8 +87,7 @@ class MatmulChain(nn.Module):
         bins = spec.blank_zero_doppler if spec.representation == "floor_relative" else 0
         keep = torch.ones(samples // 2, chirps, dtype=torch.bool)
         if bins:
-            centre = chirps // 2
-            keep[:, max(centre - bins, 0):min(centre + bins + 1, chirps)] = False
+            keep[:, zero_doppler_bins(chirps, bins)] = False
         if spec.excise is not None and spec.representation == "floor_relative":
             keep &= ~spec.excise
         self.register_buffer("keep", keep.float())

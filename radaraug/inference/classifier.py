@@ -19,8 +19,13 @@ from torch import nn
 from radaraug.config import RadarConfig
 from radaraug.detection import StaticChangeDetector
 from radaraug.errors import CheckpointError, ConfigError, InputTensorError
-from radaraug.inference.chain import ChainSpec
-from radaraug.training.classifier_file import classifier_record, load_checkpoint, save_checkpoint
+from radaraug.training.classifier_file import (
+    ChainSpec,
+    classifier_record,
+    file_record,
+    load_checkpoint,
+    save_checkpoint,
+)
 from radaraug.training.metrics import causal_context, gated_predictions
 from radaraug.training.pipeline import TASKS
 
@@ -130,16 +135,8 @@ class RadarClassifier(nn.Module):
 
     def record(self) -> dict[str, Any]:
         """The classifier file's dict (tensors and plain values)."""
-        from radaraug import __version__
-
-        g = self.gate
-        gate = None if g is None else {
-            "reference": g.reference, "spread": g.spread, "first_bin": g.first_bin, "threshold_db": g.threshold_db,
-            "calibration_scores_db": g.calibration_scores_db, "margin_db": g.margin_db}
-        return {"radaraug_version": __version__, "task": self.task, "classes": list(self.class_names), "arch": self.arch,
-                "state_dict": {k: v.detach().cpu() for k, v in self.net.state_dict().items()},
-                "config": self.config.to_dict(), "chain": self.chain.to_dict(), "context_frames": self.context_frames,
-                "gate": gate, "provenance": self.provenance}
+        return file_record(task=self.task, arch=self.arch, net=self.net, config=self.config, chain=self.chain,
+                           context_frames=self.context_frames, gate=self.gate, provenance=self.provenance)
 
     def save(self, path: str | os.PathLike) -> Path:
         """Write the classifier file (tensors and plain values; docs/predict.md); atomic."""
@@ -201,24 +198,30 @@ class RadarClassifier(nn.Module):
 
     def forward(self, frames: torch.Tensor) -> torch.Tensor:
         """Logits ``(B, classes)`` of raw frames ``(B, rx, chirps, samples)`` (SDK floats)."""
-        x = self._checked(frames)
-        return self.net(self._chain.to(x.device)(x))
+        return self.net(self._chain(self._checked(frames)))
 
-    @torch.no_grad()
     def probabilities(self, frames: torch.Tensor, batch_size: int = DEFAULT_BATCH) -> torch.Tensor:
         """``(N, classes)`` class probabilities of each frame alone (float32, CPU)."""
-        x = self._checked(frames)
-        dev = next(self.net.parameters()).device
-        out = [torch.softmax(self.forward(x[i:i + batch_size].to(dev)).float(), dim=1).cpu()
-               for i in range(0, len(x), batch_size)]
-        return torch.cat(out) if out else torch.zeros(0, len(self.class_names))
+        return self._probabilities(self._checked(frames), batch_size)
 
     def gate_detections(self, frames: torch.Tensor) -> torch.Tensor | None:
         """``(N,)`` bool static-change detections of raw frames (SDK floats), or None without a gate."""
+        return self._gate_detections(self._checked(frames))
+
+    @torch.no_grad()
+    def _probabilities(self, x: torch.Tensor, batch_size: int = DEFAULT_BATCH) -> torch.Tensor:
+        """:meth:`probabilities` of frames :meth:`_checked` already passed."""
+        dev = next(self.net.parameters()).device
+        out = [torch.softmax(self.net(self._chain(x[i:i + batch_size].to(dev))).float(), dim=1).cpu()
+               for i in range(0, len(x), batch_size)]
+        return torch.cat(out) if out else torch.zeros(0, len(self.class_names))
+
+    def _gate_detections(self, x: torch.Tensor) -> torch.Tensor | None:
+        """:meth:`gate_detections` of frames :meth:`_checked` already passed."""
         if self.gate is None:
             return None
         # The gate was fitted on ADC counts; the chirp-mean removal drops the float offset, this the scale.
-        return self.gate.detect(self._checked(frames).double() * (self.config.adc_full_scale_counts / 2))
+        return self.gate.detect(x.double() * (self.config.adc_full_scale_counts / 2))
 
     def predict(self, frames: torch.Tensor, *, window: int | None = None, gate: bool = True) -> Predictions:
         """Predictions for consecutive frames of one recording (the first frame starts the context).
@@ -245,33 +248,29 @@ class PredictionStream:
         if window < 1:
             raise ConfigError(f"smoothing window must be >= 1 frame, got {window}")
         self.classifier, self.window, self.use_gate = classifier, window, gate
-        k = len(classifier.class_names)
-        self._probs = torch.zeros(0, k)
+        # the last window - 1 frames' probabilities and gate decisions: what the next frames' windows reach
+        self._probs = torch.zeros(0, len(classifier.class_names))
         self._gate = torch.zeros(0, dtype=torch.bool)
-        self.frames_seen = 0
 
     def push(self, frames: torch.Tensor) -> Predictions:
         """Predictions of the next frames ``(N, rx, chirps, samples)`` (or one frame ``(rx, chirps, samples)``)."""
         c = self.classifier
-        probs = c.probabilities(frames)
-        det = c.gate_detections(frames) if self.use_gate else None
-        n, h = len(probs), len(self._probs)
+        x = c._checked(frames)
+        probs = c._probabilities(x)
+        det = c._gate_detections(x) if self.use_gate else None
+        h, keep = len(self._probs), self.window - 1
         all_probs = torch.cat([self._probs, probs])
         # The carried frames are at most window - 1: no window reaches past them, so one start suffices.
         starts = torch.zeros(len(all_probs), dtype=torch.bool)
         starts[:1] = True
         smoothed = causal_context(all_probs, starts, self.window)
         decisions = smoothed.argmax(dim=1)
-        gate_out = None
         if det is not None:
             all_gate = torch.cat([self._gate, det])
             decisions = gated_predictions(decisions, all_gate, starts, self.window)
-            gate_out = det
-            self._gate = all_gate[-(self.window - 1):] if self.window > 1 else all_gate[:0]
-        keep = self.window - 1
-        self._probs = all_probs[-keep:] if keep else all_probs[:0]
-        self.frames_seen += n
-        return Predictions(probs, smoothed[h:], decisions[h:], gate_out, c.class_names, self.window)
+            self._gate = all_gate[len(all_gate) - min(keep, len(all_gate)):]
+        self._probs = all_probs[len(all_probs) - min(keep, len(all_probs)):]
+        return Predictions(probs, smoothed[h:], decisions[h:], det, c.class_names, self.window)
 
 
 def _build_net(arch: str, num_classes: int, source: str) -> nn.Module:

@@ -88,15 +88,13 @@ def export(classifier: RadarClassifier, out_dir: str | os.PathLike, *, formats: 
     if unknown or not formats:
         raise ConfigError(f"export formats must be among {FORMATS}, got {list(formats)}")
     out = Path(out_dir)
-    names = FILES
     for f in formats:
-        if (out / names[f]).exists() and not overwrite:
-            raise ConfigError(f"{out / names[f]}: exists; pass overwrite=True (--overwrite) to replace it")
+        if (out / FILES[f]).exists() and not overwrite:
+            raise ConfigError(f"{out / FILES[f]}: exists; pass overwrite=True (--overwrite) to replace it")
     out.mkdir(parents=True, exist_ok=True)
     x = check_frames(classifier) if frames is None else frames.float()
     model = ExportedClassifier(classifier)
-    with torch.no_grad():
-        eager = classifier.probabilities(x)
+    eager = classifier.probabilities(x)
     cfg = classifier.config
     record: dict[str, Any] = {
         "input": {"name": "frames", "layout": "(batch, rx, chirps, samples)", "dtype": "float32",
@@ -110,7 +108,7 @@ def export(classifier: RadarClassifier, out_dir: str | os.PathLike, *, formats: 
         "context_frames": classifier.context_frames, "config": cfg.to_dict(), "check_frames": len(x),
         "tolerance": PROB_TOLERANCE, "exports": {}}
     for f in formats:
-        path = out / names[f]
+        path = out / FILES[f]
         probs = {"torchscript": _torchscript, "onnx": _onnx, "torch_export": _torch_export}[f](model, x, path)
         diff = float((probs - eager).abs().max())
         agree = float((probs.argmax(1) == eager.argmax(1)).double().mean())

@@ -17,12 +17,12 @@ from typing import IO, Any
 
 from radaraug.errors import CaptureError, ConfigError
 from radaraug.inference.classifier import Predictions, RadarClassifier
+from radaraug.io.hdf5_format import HDF5_SUFFIXES
+from radaraug.io.infineon import find_device_folder
 
 CHUNK_FRAMES = 64
 """Frames read and classified at a time (a long recording is never held whole)."""
 OUTPUT_FORMATS = ("jsonl", "csv")
-_RECORDING_MARKERS = ("RadarIfxAvian_00", "radar.npy", "config.json")
-_HDF5_SUFFIXES = (".h5", ".hdf5")
 
 
 def expand_sources(paths: Sequence[str | os.PathLike]) -> list[Path]:
@@ -39,7 +39,7 @@ def expand_sources(paths: Sequence[str | os.PathLike]) -> list[Path]:
         if not p.is_dir() or _is_recording(p):
             out.append(p)
             continue
-        found = sorted(c for c in p.iterdir() if (c.is_file() and c.suffix.lower() in _HDF5_SUFFIXES
+        found = sorted(c for c in p.iterdir() if (c.is_file() and c.suffix.lower() in HDF5_SUFFIXES
                                                   and not c.name.startswith(".")) or (c.is_dir() and _is_recording(c)))
         if not found:
             raise CaptureError(f"{p}: folder holds no capture (.h5/.hdf5 files or Infineon recording folders)")
@@ -48,7 +48,12 @@ def expand_sources(paths: Sequence[str | os.PathLike]) -> list[Path]:
 
 
 def _is_recording(folder: Path) -> bool:
-    return any((folder / m).exists() for m in _RECORDING_MARKERS)
+    """Whether ``open_capture`` reads ``folder`` as an Infineon recording."""
+    try:
+        find_device_folder(folder)
+    except CaptureError:
+        return False
+    return True
 
 
 def predict_captures(classifier: RadarClassifier, paths: Sequence[str | os.PathLike], *, window: int | None = None,
@@ -62,24 +67,20 @@ def predict_captures(classifier: RadarClassifier, paths: Sequence[str | os.PathL
     from radaraug.io import open_capture
 
     sources = expand_sources(paths)
-    readers = []
-    for p in sources:  # every config is checked before the first prediction
-        reader = open_capture(p)
-        readers.append(reader)
-        classifier.check_config(reader.config, str(p))
+    total = 0
+    for p in sources:  # every config is checked before the first prediction; one file open at a time
+        with open_capture(p) as reader:
+            classifier.check_config(reader.config, str(p))
+            total += len(reader)
     tqdm = lazy_import("tqdm.auto", feature="progress bars").tqdm
-    bar = tqdm(total=sum(len(r) for r in readers), unit="frame", desc="predict", disable=not progress)
-    try:
-        for p, reader in zip(sources, readers):
+    with tqdm(total=total, unit="frame", desc="predict", disable=not progress) as bar:
+        for p in sources:
             stream = classifier.stream(window=window, gate=gate)
-            for start in range(0, len(reader), CHUNK_FRAMES):
-                stop = min(start + CHUNK_FRAMES, len(reader))
-                yield p, start, stream.push(reader.read(start, stop))
-                bar.update(stop - start)
-    finally:
-        bar.close()
-        for reader in readers:
-            reader.close()
+            with open_capture(p) as reader:
+                for start in range(0, len(reader), CHUNK_FRAMES):
+                    stop = min(start + CHUNK_FRAMES, len(reader))
+                    yield p, start, stream.push(reader.read(start, stop))
+                    bar.update(stop - start)
 
 
 def follow_capture(classifier: RadarClassifier, path: str | os.PathLike, *, window: int | None = None,
@@ -131,9 +132,9 @@ def predict_device(classifier: RadarClassifier, device: Any, *, seconds: float |
     Raises:
         ConfigError: the device's radar config is not the classifier's. DeviceError: the device fails.
     """
-    classifier.check_config(device.config, str(device.info.get("name", "the device")))
+    name = str(device.info.get("name", "the device"))
+    classifier.check_config(device.config, name)
     stream = classifier.stream(window=window, gate=gate)
-    name = str(device.info.get("name", "device"))
     t0, n = time.monotonic(), 0
     with device:
         while (seconds is None or time.monotonic() - t0 < seconds) and (max_frames is None or n < max_frames):
@@ -167,17 +168,14 @@ class RowWriter:
             self.rows += 1
         self.out.flush()
 
-
-def write_rows(chunks: Iterable[tuple[Any, int, Predictions]], out: IO[str], fmt: str = "jsonl") -> RowWriter:
-    """Write every chunk's rows; returns the writer (row count, decisions per class)."""
-    writer = RowWriter(out, fmt)
-    for source, first, preds in chunks:
-        writer.write(source, first, preds)
-    return writer
+    def write_all(self, chunks: Iterable[tuple[Any, int, Predictions]]) -> None:
+        """:meth:`write` every ``(source, first frame, predictions)`` chunk, in order."""
+        for source, first, preds in chunks:
+            self.write(source, first, preds)
 
 
 def rows_text(chunks: Iterable[tuple[Any, int, Predictions]], fmt: str = "jsonl") -> str:
     """All rows as one string (tests, notebooks)."""
     buf = io.StringIO()
-    write_rows(chunks, buf, fmt)
+    RowWriter(buf, fmt).write_all(chunks)
     return buf.getvalue()

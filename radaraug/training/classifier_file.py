@@ -1,13 +1,14 @@
 """A trained classifier's file: the network and its test chain, as tensors and plain values only.
 
-:func:`classifier_record` gathers what a prediction needs from a trained run; :class:`radaraug.inference.RadarClassifier`
-runs it. The layout is in docs/predict.md ("The classifier file"). Loading uses torch's weights-only
+:func:`classifier_record` gathers what a prediction needs from a trained run (the test chain as a
+:class:`ChainSpec`); :class:`radaraug.inference.RadarClassifier` runs it. The layout is in docs/predict.md ("The classifier file"). Loading uses torch's weights-only
 unpickler, which refuses any object but tensors, numbers, strings, lists and dicts: a file that
 holds anything else is refused before it could run code.
 """
 
 from __future__ import annotations
 
+import dataclasses
 import os
 import pickle
 import zipfile
@@ -27,7 +28,60 @@ FORMAT_VERSION = 1
 """Bumped when the layout changes; a file of a newer version is refused."""
 
 if TYPE_CHECKING:
+    from radaraug.config import RadarConfig
     from radaraug.detection import StaticChangeDetector
+
+
+@dataclasses.dataclass(frozen=True)
+class ChainSpec:
+    """What a classifier's test chain is, in plain values (a checkpoint stores it).
+
+    Attributes:
+        range_doppler: :class:`~radaraug.transforms.RangeDoppler`'s arguments.
+        representation: ``"floor_relative"`` or ``"paper"`` (:data:`radaraug.training.pipeline.REPRESENTATIONS`).
+        blank_zero_doppler: Doppler bins blanked on each side of zero (floor-relative maps).
+        clip_range_db: the ``[vmin, vmax]`` the training maps were clipped to.
+        image_size: the network input ``(H, W)``, or None for the RD map's own size.
+        excise: bool ``(range, doppler)`` mask of the calibration's persistent cells, or None.
+    """
+
+    range_doppler: dict[str, Any]
+    representation: str
+    blank_zero_doppler: int
+    clip_range_db: tuple[float, float]
+    image_size: tuple[int, int] | None
+    excise: torch.Tensor | None = None
+
+    def eager(self) -> nn.Sequential:
+        """The chain from the library's transforms: raw frames ``(B, rx, chirps, samples)`` -> ``(B, 3, H, W)``."""
+        from radaraug.training.pipeline import image_chain
+        from radaraug.transforms import RadarCompose, RangeDoppler, ToDecibels
+
+        rd = RadarCompose([RangeDoppler(**self.range_doppler), ToDecibels()])  # rd_db_chain() with these windows
+        return nn.Sequential(rd, *image_chain(*self.clip_range_db, self.image_size, self.representation, self.excise,
+                                              self.blank_zero_doppler))
+
+    def to_dict(self) -> dict[str, Any]:
+        """Plain values and tensors only (what a weights-only load accepts)."""
+        return {"range_doppler": dict(self.range_doppler), "representation": self.representation,
+                "blank_zero_doppler": int(self.blank_zero_doppler), "clip_range_db": [float(v) for v in self.clip_range_db],
+                "image_size": None if self.image_size is None else [int(v) for v in self.image_size],
+                "excise": None if self.excise is None else self.excise.to(torch.bool).cpu()}
+
+    @classmethod
+    def from_dict(cls, data: dict[str, Any], *, source: str) -> ChainSpec:
+        """The spec a checkpoint stored (CheckpointError naming ``source`` for a missing or bad field)."""
+        try:
+            size = data["image_size"]
+            excise = data["excise"]
+            spec = cls(dict(data["range_doppler"]), str(data["representation"]), int(data["blank_zero_doppler"]),
+                       (float(data["clip_range_db"][0]), float(data["clip_range_db"][1])),
+                       None if size is None else (int(size[0]), int(size[1])),
+                       None if excise is None else torch.as_tensor(excise, dtype=torch.bool))
+        except (KeyError, TypeError, ValueError, IndexError) as e:
+            raise CheckpointError(f"{source}: the test chain it records is incomplete or malformed ({e!r})") from None
+        return spec
+
 
 
 def classifier_record(model: Any, datamodule: Any, *, gate: StaticChangeDetector | None = None,
@@ -43,30 +97,34 @@ def classifier_record(model: Any, datamodule: Any, *, gate: StaticChangeDetector
     Raises:
         CheckpointError: a backbone that is not a torchvision model, or a data module not set up.
     """
-    from radaraug import __version__
     from radaraug.transforms import RangeDoppler
 
     if datamodule.clip is None or datamodule.config is None:
         raise CheckpointError("the data module has not been set up (no clip range or radar config)")
     net, arch = torchvision_net(model.net)
     hp = datamodule.hparams
-    rd = RangeDoppler()  # the chain rd_db_chain() builds
-    chain = {"range_doppler": rd.extra_spec(), "representation": str(hp["representation"]),
-             "blank_zero_doppler": int(hp.get("blank_zero_doppler", 1)),
-             "clip_range_db": [float(v) for v in datamodule.clip],
-             "image_size": None if hp["image_size"] is None else [int(v) for v in hp["image_size"]],
-             "excise": None if datamodule.excise is None else datamodule.excise.to(torch.bool).cpu()}
-    gate_record = None if gate is None else {
-        "reference": gate.reference, "spread": gate.spread, "first_bin": int(gate.first_bin),
-        "threshold_db": float(gate.threshold_db), "calibration_scores_db": gate.calibration_scores_db,
-        "margin_db": float(gate.margin_db)}
+    size = hp["image_size"]
+    chain = ChainSpec(RangeDoppler().extra_spec(),  # the chain rd_db_chain() builds
+                      str(hp["representation"]), int(hp.get("blank_zero_doppler", 1)),
+                      (float(datamodule.clip[0]), float(datamodule.clip[1])),
+                      None if size is None else (int(size[0]), int(size[1])), datamodule.excise)
     info = {"method": datamodule.method, "train_items": int(hp["train_items"]), "sim_seed": int(hp["sim_seed"]),
             "dr_seed": int(hp["dr_seed"]), **(provenance or {})}
-    task = str(model.hparams["task"])
-    return {"radaraug_version": __version__, "task": task, "classes": list(model.class_names), "arch": arch,
+    return file_record(task=str(model.hparams["task"]), arch=arch, net=net, config=datamodule.config, chain=chain,
+                       context_frames=int(model.hparams.get("context_frames", 1)), gate=gate, provenance=info)
+
+
+def file_record(*, task: str, arch: str, net: nn.Module, config: RadarConfig, chain: ChainSpec, context_frames: int,
+                gate: StaticChangeDetector | None, provenance: dict[str, Any]) -> dict[str, Any]:
+    """The classifier file's dict (tensors and plain values only) of its parts (layout: docs/predict.md)."""
+    from radaraug import __version__
+    from radaraug.training.pipeline import TASKS
+
+    return {"radaraug_version": __version__, "task": task, "classes": list(TASKS[task]), "arch": arch,
             "state_dict": {k: v.detach().cpu().clone() for k, v in net.state_dict().items()},
-            "config": datamodule.config.to_dict(), "chain": chain,
-            "context_frames": int(model.hparams.get("context_frames", 1)), "gate": gate_record, "provenance": info}
+            "config": config.to_dict(), "chain": chain.to_dict(), "context_frames": int(context_frames),
+            # the detector's fields as they are: StaticChangeDetector(**record["gate"]) rebuilds it
+            "gate": None if gate is None else dataclasses.asdict(gate), "provenance": dict(provenance)}
 
 
 def torchvision_net(net: nn.Module) -> tuple[nn.Module, str]:

@@ -259,8 +259,13 @@ class RadarDataModule(L.LightningDataModule):
         if self.hparams["test"] is None:
             self._proxy()
 
-    def simulated_dataset(self) -> SimulatedRadarDataset:
-        """The training twin's dataset (train + val items), in the test captures' radar config."""
+    def simulated_dataset(self, length: int | None = None, seed: int | None = None) -> SimulatedRadarDataset:
+        """The training twin's dataset in the test captures' radar config.
+
+        Args:
+            length: items (None: ``train_items + val_items``).
+            seed: the set's seed (None: ``sim_seed``).
+        """
         if self._given_simulated is not None:
             return self._checked_given_simulated()
         r = self.hparams["randomization"]
@@ -294,8 +299,9 @@ class RadarDataModule(L.LightningDataModule):
             # Both noise sources moved by the fitted offset (noise figure and ADC-side noise).
             twin_options["receiver"] = noise_fit_receiver(self._setup_config(), fit)
         return SimulatedRadarDataset(
-            self.hparams["scene"], length=self.hparams["train_items"] + self.hparams["val_items"],
-            seed=self.hparams["sim_seed"], config=self.config, target="count", twin_options=twin_options, **extra,
+            self.hparams["scene"], length=self.hparams["train_items"] + self.hparams["val_items"] if length is None
+            else int(length), seed=self.hparams["sim_seed"] if seed is None else int(seed), config=self.config,
+            target="count", twin_options=twin_options, **extra,
         )
 
     def _checked_given_simulated(self) -> SimulatedRadarDataset:

@@ -56,13 +56,7 @@ class TrainingChains:
             transform: applied to each item's raw frames (default: :attr:`train`). Its random draws are a
                 function of ``(seed, i, epoch)``: call the dataset's ``set_epoch(epoch)`` before each epoch.
         """
-        dm = self._datamodule
-        old = {k: dm.hparams[k] for k in ("train_items", "val_items", "sim_seed")}
-        dm.hparams.update(train_items=int(length), val_items=0, sim_seed=int(seed))
-        try:
-            ds = dm.simulated_dataset()
-        finally:
-            dm.hparams.update(old)
+        ds = self._datamodule.simulated_dataset(length, seed)
         ds.transform = self.train if transform is None else transform
         ds.augmentation = "per_item"  # the DR's draws of item i from (seed, i, epoch): call set_epoch each epoch
         return ds

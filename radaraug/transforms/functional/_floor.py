@@ -8,6 +8,12 @@ from radaraug.errors import ConfigError
 from radaraug.transforms._checks import check_tensor
 
 
+def zero_doppler_bins(doppler: int, bins: int) -> slice:
+    """The Doppler bins within ``bins`` of zero Doppler (centred axis, zero at ``doppler // 2``) that are blanked."""
+    centre = doppler // 2
+    return slice(max(centre - bins, 0), min(centre + bins + 1, doppler))
+
+
 def check_blank_bins(bins: int) -> int:
     """``bins`` as an int >= 0 (ConfigError otherwise)."""
     if isinstance(bins, bool) or not isinstance(bins, int) or bins < 0:
@@ -35,9 +41,7 @@ def floor_relative(x: torch.Tensor, blank_zero_doppler: int = 1, excise: torch.T
     # Lower median (torch's): for an even Doppler count it is the lower of the two middle values.
     out = x - x.median(dim=-1, keepdim=True).values
     if bins:
-        centre = x.shape[-1] // 2
-        lo, hi = max(centre - bins, 0), min(centre + bins + 1, x.shape[-1])
-        out[..., lo:hi] = 0.0
+        out[..., zero_doppler_bins(x.shape[-1], bins)] = 0.0
     if excise is not None:
         if excise.shape != x.shape[-2:] or excise.dtype != torch.bool:
             raise ConfigError(f"floor_relative: excise must be a bool mask of shape {tuple(x.shape[-2:])}, got "
