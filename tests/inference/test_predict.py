@@ -134,3 +134,30 @@ def test_live_virtual_sensor_is_a_pure_function_of_its_seed(tmp_path, clf, capsy
     with pytest.raises(ConfigError, match="trained for"):
         next(predict_device(clf, VirtualSensor("corridor", config=cfg.replace(num_chirps_per_frame=32),
                                                realtime=False), max_frames=1))
+
+
+def test_follow_ends_with_every_flushed_frame_when_the_recorder_is_killed(tmp_path, clf) -> None:
+    # radaraug capture in another process, SIGKILLed mid-recording: follow reads what was flushed and
+    # stops once the writer's lock is gone (not after the idle timeout)
+    import signal
+
+    small_config().to_json(tmp_path / "cfg.json")
+    path = tmp_path / "live.h5"
+    cli = "import sys; from radaraug.cli import main; sys.exit(main(sys.argv[1:]))"
+    proc = subprocess.Popen([sys.executable, "-c", cli, "capture", "--device", "virtual", "--radar-config",
+                             str(tmp_path / "cfg.json"), "--seconds", "60", "--realtime", "--no-progress", "-o", str(path)],
+                            cwd=REPO, env={**os.environ, "PYTHONPATH": str(REPO)})
+    chunks = []
+    try:
+        for chunk in follow_capture(clf, path, window=2, poll_s=0.05, idle_timeout_s=60):
+            chunks.append(chunk)
+            if sum(len(c.probs) for _, _, c in chunks) >= 10 and proc.poll() is None:
+                os.kill(proc.pid, signal.SIGKILL)
+    finally:
+        proc.kill()
+        proc.wait(timeout=60)
+    assert proc.returncode == -signal.SIGKILL
+    got = torch.cat([c.decisions for _, _, c in chunks])
+    frames = _reread(path)
+    assert len(got) == len(frames) >= 10  # every flushed frame, none twice
+    assert torch.equal(got, clf.predict(frames, window=2).decisions)
