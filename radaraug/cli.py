@@ -313,24 +313,47 @@ def _train_configs(value: str) -> list[str]:
 
 
 def resolve_train_args(argv: Sequence[str]) -> list[str]:
-    """``radaraug train`` arguments with every ``--config NAME`` / ``-c NAME`` of a recipe made its files.
+    """``radaraug train`` arguments with each run of ``--config`` / ``-c`` values merged into one.
 
-    A recipe name becomes its base + task + method files (:mod:`radaraug.recipes`), one ``--config`` each.
+    A recipe name stands for its base + task + method files (:mod:`radaraug.recipes`). Consecutive
+    config files are merged as :func:`radaraug.recipes.compose` merges them (mappings key by key, at
+    every depth) and given to LightningCLI as one inline YAML: LightningCLI alone would replace a
+    mapping value such as ``data.randomization`` whole when a later file sets one of its keys.
     """
+    import yaml
+
+    from radaraug import recipes
+
     out: list[str] = []
+    group: list[str] = []
+    flag = "--config"
+
+    def flush() -> None:
+        files = [p for p in group if os.path.lexists(p)]
+        if len(files) > 1 and len(files) == len(group):
+            out.extend([flag, yaml.safe_dump(recipes.compose(*files), default_flow_style=True, width=1 << 30)])
+        else:
+            for p in group:
+                out.extend([flag, p])
+        group.clear()
+
     it = iter(argv)
     for arg in it:
         if arg in ("--config", "-c"):
             value = next(it, None)
             if value is None:
+                flush()
                 out.append(arg)
             else:
-                for path in _train_configs(value):
-                    out += [arg, path]
+                flag = flag if group else arg
+                group.extend(_train_configs(value))
         elif arg.startswith("--config="):
-            out += [f"--config={p}" for p in _train_configs(arg.split("=", 1)[1])]
+            flag = flag if group else "--config"
+            group.extend(_train_configs(arg.split("=", 1)[1]))
         else:
+            flush()
             out.append(arg)
+    flush()
     return out
 
 

@@ -40,22 +40,13 @@ import torch
 from tqdm import tqdm
 
 from radaraug.config import RadarConfig
+from radaraug.sim.catalog import BY_NAME as CATALOG_BY_NAME
 from radaraug.sim.dataset import SimulatedRadarDataset
 from radaraug.sim.randomization import ItemDraw, TwinRandomization
 from radaraug.sim.seeding import Stream, item_generator
 from radaraug.training.pipeline import level_chain, rd_db_chain
 from radaraug.transforms import functional as F
 
-#: catalog effects as named by ItemDraw.effects_dict, and the ItemDraw fields each one sets
-CATALOG_FIELDS: dict[str, tuple[str, ...]] = {
-    "spur_tone": ("spur_tone",),
-    "interference": ("interference",),
-    "vibrating_clutter": ("vibrating_clutter",),
-    "rx_gain_phase_mismatch": ("rx_mismatch",),
-    "frame_drift": ("frame_drift",),
-    "wide_levels": ("wide_levels", "system_gain_offset_dB", "noise_figure_offset_dB", "adc_noise_offset_dB"),
-    "static_phase_noise": ("static_phase_noise_paths",),
-}
 SHORT = {"spur_tone": "spur", "interference": "interf", "vibrating_clutter": "vib", "rx_gain_phase_mismatch": "rxmm",
          "frame_drift": "drift", "wide_levels": "wide", "static_phase_noise": "spn"}
 #: effects that can put energy off zero Doppler in an empty room (the others only change levels)
@@ -80,8 +71,13 @@ def quick_calibration_excise(threshold_db: float) -> tuple[torch.Tensor, dict[st
 
 
 def with_fields(base: ItemDraw, source: ItemDraw, effects: list[str]) -> ItemDraw:
-    """``base`` with the catalog fields of ``effects`` taken from ``source``."""
-    kw = {f: getattr(source, f) for e in effects for f in CATALOG_FIELDS[e]}
+    """``base`` with the catalog draws of ``effects`` taken from ``source`` (the wide levels' offsets too)."""
+    catalog = {n: v for n, v in base.catalog.items() if n not in effects}
+    catalog.update({n: source.catalog[n] for n in effects if n in source.catalog})
+    kw: dict[str, Any] = {"catalog": catalog}
+    if "wide_levels" in effects:
+        kw.update(system_gain_offset_dB=source.system_gain_offset_dB,
+                  noise_figure_offset_dB=source.noise_figure_offset_dB)
     return dataclasses.replace(base, **kw)
 
 
@@ -122,7 +118,7 @@ class Analyzer:
         self.config = RadarConfig.bgt60tr13c()
         n = args.start + args.items
         self.rz_on = TwinRandomization()
-        self.rz_off = TwinRandomization(effects_probability=0.0)
+        self.rz_off = TwinRandomization(catalog={"scale": 0.0})
         self.ds_on = SimulatedRadarDataset("corridor", length=n, seed=args.seed, config=self.config, target="count",
                                            randomization=self.rz_on)
         self.ds_off = SimulatedRadarDataset("corridor", length=n, seed=args.seed, config=self.config, target="count",
@@ -265,10 +261,9 @@ class Analyzer:
                 only[e], only_blank2[e] = alone["excess_db"], alone["excess_blank2_db"]
                 without[e] = self.peak(self.level_map(self.simulate(self.ds_on, index, d_wo, None)[0]))["excess_db"]
             rec["only"], rec["only_blank2"], rec["without"] = only, only_blank2, without
-            rec["spur_range_bin"] = (None if draw_on.spur_tone is None
-                                     else int(round(draw_on.spur_tone[0] * self.n_range)))
-            rec["vib_range_bin"] = (None if draw_on.vibrating_clutter is None
-                                    else int(round(draw_on.vibrating_clutter[0] / self.range_res)))
+            spur, vib = draw_on.catalog.get("spur_tone"), draw_on.catalog.get("vibrating_clutter")
+            rec["spur_range_bin"] = None if spur is None else int(round(spur["freq_nyquist"] * self.n_range))
+            rec["vib_range_bin"] = None if vib is None else int(round(vib["range_m"] / self.range_res))
         return rec
 
     def check_reproduces(self, index: int) -> bool:
@@ -314,7 +309,7 @@ def summarize(records: list[dict[str, Any]]) -> dict[str, Any]:
             "self_excised_frac_over_17db": frac([r["self_excised"]["excess_db"] > 17 for r in rs])}
         for g, rs in sorted(groups.items(), key=lambda kv: -len(kv[1]))}
     per_effect = {}
-    for e in CATALOG_FIELDS:
+    for e in CATALOG_BY_NAME:
         has = [r for r in empty if e in r["effects"]]
         only = [r["only"][e] for r in has]
         without = [r["without"][e] for r in has]
@@ -420,7 +415,7 @@ def summarize(records: list[dict[str, Any]]) -> dict[str, Any]:
     }
     # what the catalog does to people: their window excess on vs off
     drop = {}
-    for e in CATALOG_FIELDS:
+    for e in CATALOG_BY_NAME:
         for has in (True, False):
             d = [p["excess_on_db"] - p["excess_off_db"] for r in occ if (e in r["effects"]) == has for p in r["people"]]
             drop[f"{e}:{'with' if has else 'without'}"] = {
@@ -541,7 +536,7 @@ def main() -> None:
     summary = summarize(records)
     out = {
         "settings": {**{k: v for k, v in vars(args).items()}, "config": "RadarConfig.bgt60tr13c()", "scene": "corridor",
-                     "randomization": "TwinRandomization() (defaults) vs TwinRandomization(effects_probability=0)",
+                     "randomization": "TwinRandomization() (defaults) vs TwinRandomization(catalog={'scale': 0})",
                      "receiver": "default (the quick run's rt / randomdr twin; cdr's quieter twin not simulated)",
                      "frames_per_item": 1, "chain": "rd_db_chain() -> level_chain('floor_relative', excise)",
                      "calibration_excise": an.excise_info, "statistic": (

@@ -325,12 +325,17 @@ def test_recipes_are_installed_listed_printed_and_taken_by_name(tmp_path, capsys
     assert "no recipe named 'occupancy_nope'" in capsys.readouterr().err
 
     monkeypatch.chdir(tmp_path)  # no recipes/ folder here: names resolve to the installed recipes
-    installed = [str(p) for p in recipes.recipe_files("counting_rt")]  # base + task + method
-    as_args = [a for p in installed for a in ("--config", p)]
-    for given in ("counting_rt", "counting_rt.yaml", "recipes/counting_rt.yaml"):
-        assert resolve_train_args(["fit", "--config", given, "--trainer.max_epochs", "1"]) == [
-            "fit", *as_args, "--trainer.max_epochs", "1"]
-    assert resolve_train_args(["fit", f"--config={'counting_rt'}"]) == ["fit", *[f"--config={p}" for p in installed]]
+    # A recipe name is its base + task + method files, merged into one config as `radaraug recipes` merges them.
+    for given in ("counting_rt", "counting_rt.yaml", "recipes/counting_rt.yaml", "--config=counting_rt"):
+        argv = ["fit", given] if given.startswith("--") else ["fit", "--config", given]
+        args = resolve_train_args([*argv, "--trainer.max_epochs", "1"])
+        assert args[:2] == ["fit", "--config"] and args[3:] == ["--trainer.max_epochs", "1"]
+        assert yaml.safe_load(args[2]) == recipes.compose("counting_rt")
+    # Consecutive files merge mappings at every depth (LightningCLI alone replaces data.randomization whole).
+    args = resolve_train_args(["fit", "-c", "occupancy_rt", "-c", "ablation/rt_narrow_people"])
+    merged = yaml.safe_load(args[2])["data"]["randomization"]
+    assert args[1] == "-c" and set(merged) == {"catalog", "people"}
+    assert merged == recipes.compose("occupancy_rt", "ablation/rt_narrow_people")["data"]["randomization"]
     assert resolve_train_args(["fit", "-c", "ablation/rt_paper_image"]) == [
         "fit", "-c", str(recipes.RECIPES_DIR / "ablation" / "rt_paper_image.yaml")]
     (tmp_path / "counting_rt.yaml").write_text("seed_everything: 1\n")  # a file of that name wins

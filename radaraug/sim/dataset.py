@@ -122,7 +122,7 @@ class SimulatedRadarDataset(Dataset):
         if rz is not None:
             # Fail now, not in a DataLoader worker: a non-corridor scene, a radar outside a drawn
             # room, or a receiver without the stages the offsets act on.
-            self._rooms = [rz.room(self.seed, k) for k in range(rz.room_variants)]
+            self._rooms = [rz.room_draw(self.seed, k) for k in range(rz.room.variants)]
             for room in self._rooms:
                 room.scene(self.scene, self.config)
             check_receiver(self._reference_receiver(), rz)

@@ -137,7 +137,7 @@ def proxy_receiver(config: RadarConfig | None = None) -> FMCWReceiver:
 def proxy_draw() -> ItemDraw:
     """What the proxy changes in :meth:`DigitalTwin.simulate`: phase noise on the room's strongest returns."""
     return ItemDraw(variant=0, system_gain_offset_dB=0.0, noise_figure_offset_dB=0.0, rcs_scale_dB=(),
-                    static_phase_noise_paths=int(SPEC["receiver"]["static_phase_noise_paths"]))
+                    catalog={"static_phase_noise": {"paths": int(SPEC["receiver"]["static_phase_noise_paths"])}})
 
 
 # ------------------------------------------------------------------------------------ labelling

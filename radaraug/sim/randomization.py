@@ -1,17 +1,16 @@
 """Twin randomization: per-item draws of what one empty-room calibration cannot pin down.
 
-:class:`TwinRandomization` draws per item each person's RCS, the people, the room and mounting (from
-a pool of room variants), receiver offsets, static scatterers, phase noise and an effect catalog, from
-generators seeded by ``(seed, index)``; the order of the draws is part of the contract. See
-docs/simulation.md ("Twin randomization").
+:class:`TwinRandomization` has four sections: the room (a pool of corridors, the radar's mounting,
+static scatterers), the people, the receiver levels and the effect catalog (:mod:`radaraug.sim.catalog`).
+Every draw comes from a generator seeded by ``(seed, index)``; the order of the draws is part of the
+contract. See docs/simulation.md ("Twin randomization").
 """
 
 from __future__ import annotations
 
 import dataclasses
-import json
 import math
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -19,19 +18,15 @@ import torch
 
 from radaraug.config import RadarConfig
 from radaraug.errors import ConfigError, SceneError
-from radaraug.scene.materials import get_material
 from radaraug.scene.room import CORRIDOR_SURFACES, box, merge
 from radaraug.scene.scene import Scene
 from radaraug.scene.scene_file import _yaw_pitch_roll
-from radaraug.sensor.effects import (
-    Effect,
-    FrameDrift,
-    Interference,
-    RxGainPhaseMismatch,
-    SpurTone,
-    VibratingClutter,
-)
+from radaraug.sensor.effects import Effect
 from radaraug.sensor.receiver import FMCWReceiver
+from radaraug.sim.catalog import Catalog
+from radaraug.sim.catalog import record as catalog_record
+from radaraug.sim.catalog import stages as catalog_stages
+from radaraug.sim.catalog.wide_levels import WideLevelsPrior
 from radaraug.sim.item_signal import (
     SCATTERER_ANTENNA_GAIN_DBI,
     item_receiver,
@@ -41,20 +36,9 @@ from radaraug.sim.item_signal import (
     static_scatterer_paths,
     strongest_room_paths,
 )
-from radaraug.sim.scenarios import ScenarioSampler, _uniform
+from radaraug.sim.priors import Section, material_list, span, uniform
+from radaraug.sim.scenarios import ScenarioSampler
 from radaraug.sim.seeding import Stream, item_generator
-
-ITEM_STREAM = Stream.ITEM_DRAWS
-"""Generator stream of the per-item draws (room variant, gain, noise figure, RCS per person)."""
-ROOM_STREAM = Stream.ROOM_POOL
-"""Generator stream of the room pool (``index`` = variant number)."""
-SCATTERER_STREAM = Stream.SCATTERERS
-"""Generator stream of the per-item static scatterers."""
-EFFECTS_STREAM = Stream.EFFECTS
-"""Generator stream of the per-item effect catalog (spur, interference, fan, mismatch, drift, levels)."""
-MISMATCH_ANTENNAS = 16
-"""RX gain/phase mismatch is drawn for antenna numbers 1..16 (``radaraug.config.MAX_ANTENNAS``), whatever
-the config, so that the draws do not depend on it; a config's RX channels take their antennas' values."""
 
 RADAR_CEILING_MARGIN_M = 0.15
 """The radar's drawn height is clipped to at most the drawn room height minus this."""
@@ -81,139 +65,146 @@ CLUTTER_HEIGHT_M = (0.4, 2.0)
 CLUTTER_START_M = 1.0
 """Clutter stands at least this far along the corridor from its near end (the radar's side)."""
 
-# Every field is checked by its annotation (:data:`_FIELD_CHECKS`); these add the bounds of some.
-_POSITIVE_RANGES = ("length_m", "width_m", "height_m", "radar_height_m", "person_height_m", "speed_m_s", "range_m",
-                    "static_scatterer_range_m", "vibrating_clutter_range_m",
-                    # drawn log-uniformly
-                    "spur_tone_amplitude_counts", "interference_amplitude_counts", "interference_duration_s",
-                    "vibrating_clutter_displacement_m", "vibrating_clutter_Hz")
-_BOUNDED_RANGES = {"spur_tone_freq_nyquist": (0.0, 1.0), "interference_chirp_probability": (0.0, 1.0),
-                   "rx_mismatch_phase_deg": (-180.0, 180.0), "frame_drift_gain_rms_dB": (0.0, math.inf),
-                   "frame_drift_dc_rms_counts": (0.0, math.inf), "phase_noise_rms_Hz": (0.0, math.inf)}
-
 
 def _materials_default() -> dict[str, tuple[str, ...]]:
     return dict(DEFAULT_MATERIALS)
 
 
 @dataclass
-class TwinRandomization:
-    """What the twin draws per item, and from which ranges (``(lo, hi)``: uniform; "log": in the logarithm).
-
-    Every field is a plain type (bool, int, float, a pair, lists of material names), so a YAML/JSON
-    mapping of the same keys configures it (:meth:`from_dict`; lists are accepted for pairs). Why
-    each default: docs/simulation.md ("Twin randomization"), which also lists every prior.
+class RoomPriors(Section):
+    """The ``room`` section: the pool of corridors, the radar's mounting in them, static scatterers.
 
     Args:
-        enabled: False gives the twin without randomization (see :meth:`off`).
-        rcs_scale_dB: per-person RCS scale, dB (amplitude x ``10**(dB/20)``, direct and multipath paths).
-        room_variants: size of the room pool (one room trace each, by ``prepare()``, cached on disk).
+        variants: size of the room pool (one room trace each, by ``prepare()``, cached on disk).
         length_m, width_m, height_m: corridor size, m.
         materials: per corridor surface, the P.2040 material names drawn from; surfaces not named
             keep :data:`DEFAULT_MATERIALS`.
         radar_height_m: radar height above the floor, m (at most the drawn ceiling minus 0.15 m).
         radar_pitch_deg, radar_yaw_deg: added to the scene's radar pose, degrees.
-        person_height_m, speed_m_s: people's body height (m) and walking speed (m/s).
+        clutter_objects: clutter boxes per room variant, ``[lo, hi]`` inclusive, against a side wall
+            (:data:`CLUTTER_LENGTH_M` x :data:`CLUTTER_DEPTH_M` x :data:`CLUTTER_HEIGHT_M`).
+        clutter_materials: materials drawn for each clutter box.
+        scatterers: static point scatterers per item, ``[lo, hi]`` inclusive (no tracing cost; they
+            reach the receiver with the people, so the strongest get its phase noise).
+        scatterer_range_m, scatterer_rcs_dBsm: a scatterer's range (m) and RCS (dBsm).
+        scatterer_azimuth_deg: its azimuth off boresight, deg (elevation: +-20 deg).
+    """
+
+    where = "room"
+    variants: int = 8
+    length_m: tuple[float, float] = span(8.0, 25.0, positive=True)
+    width_m: tuple[float, float] = span(1.5, 3.5, positive=True)
+    height_m: tuple[float, float] = span(2.4, 3.5, positive=True)
+    materials: dict[str, tuple[str, ...]] = field(default_factory=_materials_default)
+    radar_height_m: tuple[float, float] = span(0.8, 2.0, positive=True)
+    radar_pitch_deg: tuple[float, float] = span(-10.0, 10.0)
+    radar_yaw_deg: tuple[float, float] = span(-5.0, 5.0)
+    clutter_objects: tuple[int, int] = (0, 6)
+    clutter_materials: tuple[str, ...] = DEFAULT_CLUTTER_MATERIALS
+    scatterers: tuple[int, int] = (0, 8)
+    scatterer_range_m: tuple[float, float] = span(0.5, 20.0, positive=True)
+    scatterer_rcs_dBsm: tuple[float, float] = span(-20.0, 10.0)
+    scatterer_azimuth_deg: tuple[float, float] = span(-45.0, 45.0)
+
+    def check_field(self, f: dataclasses.Field, value: Any) -> Any:
+        """``materials`` per surface (the unnamed surfaces keep their defaults); the rest as every section."""
+        if f.name != "materials":
+            return super().check_field(f, value)
+        if not isinstance(value, Mapping):
+            raise ConfigError(f"twin randomization: room.materials must be a mapping surface -> list of names, "
+                              f"got {value!r}")
+        unknown = sorted(str(k) for k in value if k not in CORRIDOR_SURFACES)
+        if unknown:
+            raise ConfigError(f"twin randomization: room.materials: unknown surface(s) {unknown}; "
+                              f"surfaces are {list(CORRIDOR_SURFACES)}")
+        out = dict(DEFAULT_MATERIALS)
+        for surface, names in value.items():
+            out[surface] = material_list(names, f"room.materials.{surface}")
+        return out
+
+
+@dataclass
+class PeoplePriors(Section):
+    """The ``people`` section: who walks, how strong, how fast, where.
+
+    Args:
+        rcs_scale_dB: per-person RCS scale, dB (amplitude x ``10**(dB/20)``, direct and multipath paths).
+        height_m, speed_m_s: body height (m) and walking speed (m/s).
         range_m: start distance along the corridor, m (at most the drawn length minus ``wall_margin_m``).
         heading_jitter_deg: heading spread around straight toward/away, degrees.
         crossing_probability, standing_probability: chance that a walker crosses the room, and that a
             person stands (they count), passed to the :class:`ScenarioSampler` (0 draws nothing extra).
         wall_margin_m: lateral positions are drawn within +-(width / 2 - margin), m.
-        system_gain_offset_dB, noise_figure_offset_dB: added to the receiver's ``system_gain`` and
-            ``thermal_noise`` noise figure, dB.
-        clutter_objects: clutter boxes per room variant, ``[lo, hi]`` inclusive, against a side wall
-            (:data:`CLUTTER_LENGTH_M` x :data:`CLUTTER_DEPTH_M` x :data:`CLUTTER_HEIGHT_M`).
-        clutter_materials: materials drawn for each clutter box.
-        static_scatterers: static point scatterers per item, ``[lo, hi]`` inclusive (no tracing cost;
-            they reach the receiver with the people, so the strongest get its phase noise).
-        static_scatterer_range_m, static_scatterer_rcs_dBsm: a scatterer's range (m) and RCS (dBsm).
-        static_scatterer_azimuth_deg: its azimuth off boresight, deg (elevation: +-20 deg).
-        phase_noise_rms_Hz: RMS LO frequency noise of the ``phase_noise`` stage, Hz.
-        phase_noise_paths: how many of the strongest per-item paths (by amplitude x delay) get it.
-        effects_probability: factor on every catalog probability below (0: the catalog off).
-        spur_tone_probability, spur_tone_freq_nyquist, spur_tone_amplitude_counts: chance of a
-            :class:`~radaraug.sensor.effects.SpurTone`, its frequency (fraction of Nyquist) and
-            peak amplitude at the ADC (counts, log).
-        interference_probability, interference_chirp_probability: chance of another radar's
-            :class:`~radaraug.sensor.effects.Interference` and the fraction of chirps it hits.
-        interference_amplitude_counts, interference_duration_s: peak burst amplitude after the IF
-            gain (counts, log) and burst length (s, log).
-        vibrating_clutter_probability, vibrating_clutter_range_m: chance of a
-            :class:`~radaraug.sensor.effects.VibratingClutter` (a fan, a pump) and its range (m).
-        vibrating_clutter_rcs_dBsm, vibrating_clutter_displacement_m, vibrating_clutter_Hz: its RCS
-            (dBsm, radar equation with 6 dBi antennas), peak displacement (m, log) and frequency (Hz, log).
-        rx_mismatch_probability, rx_mismatch_gain_dB, rx_mismatch_phase_deg: chance of an
-            :class:`~radaraug.sensor.effects.RxGainPhaseMismatch` on top of the receiver's own, and
-            its per-RX gain (dB) and phase (deg).
-        frame_drift_probability, frame_drift_gain_rms_dB, frame_drift_dc_rms_counts: chance of a
-            :class:`~radaraug.sensor.effects.FrameDrift`, its per-frame gain RMS (dB) and per-RX DC
-            shift RMS (counts).
-        wide_levels_probability: chance that the item's gain and noise come from the wide ranges below
-            instead of ``system_gain_offset_dB`` / ``noise_figure_offset_dB``.
-        wide_system_gain_offset_dB, wide_noise_figure_offset_dB: the wide ranges, dB.
-        adc_noise_offset_dB: offset on the ``adc_noise`` stage's RMS, drawn with the wide levels, dB.
-        static_phase_noise_probability, static_phase_noise_paths: chance that the room's strongest
-            returns get the item's phase noise (passed to the receiver as paths), and how many.
     """
 
-    enabled: bool = True
-    rcs_scale_dB: tuple[float, float] = (-20.0, 10.0)
-    room_variants: int = 8
-    length_m: tuple[float, float] = (8.0, 25.0)
-    width_m: tuple[float, float] = (1.5, 3.5)
-    height_m: tuple[float, float] = (2.4, 3.5)
-    materials: dict[str, tuple[str, ...]] = field(default_factory=_materials_default)
-    radar_height_m: tuple[float, float] = (0.8, 2.0)
-    radar_pitch_deg: tuple[float, float] = (-10.0, 10.0)
-    radar_yaw_deg: tuple[float, float] = (-5.0, 5.0)
-    person_height_m: tuple[float, float] = (1.45, 2.0)
-    speed_m_s: tuple[float, float] = (0.4, 2.0)
-    range_m: tuple[float, float] = (0.8, 15.0)
+    where = "people"
+    rcs_scale_dB: tuple[float, float] = span(-20.0, 10.0)
+    height_m: tuple[float, float] = span(1.45, 2.0, positive=True)
+    speed_m_s: tuple[float, float] = span(0.4, 2.0, positive=True)
+    range_m: tuple[float, float] = span(0.8, 15.0, positive=True)
     heading_jitter_deg: float = 30.0
     crossing_probability: float = 0.0
-    wall_margin_m: float = 0.35
     standing_probability: float = 0.0
-    system_gain_offset_dB: tuple[float, float] = (-6.0, 6.0)
-    noise_figure_offset_dB: tuple[float, float] = (-3.0, 3.0)
-    clutter_objects: tuple[int, int] = (0, 6)
-    clutter_materials: tuple[str, ...] = DEFAULT_CLUTTER_MATERIALS
-    static_scatterers: tuple[int, int] = (0, 8)
-    static_scatterer_range_m: tuple[float, float] = (0.5, 20.0)
-    static_scatterer_rcs_dBsm: tuple[float, float] = (-20.0, 10.0)
-    static_scatterer_azimuth_deg: tuple[float, float] = (-45.0, 45.0)
-    phase_noise_rms_Hz: tuple[float, float] = (30e3, 400e3)
-    phase_noise_paths: int = 16
-    # ---- the effect catalog (per-item probabilities; the ranges' sources: docs/simulation.md)
-    effects_probability: float = 1.0
-    spur_tone_probability: float = 0.3
-    spur_tone_freq_nyquist: tuple[float, float] = (0.01, 0.99)
-    spur_tone_amplitude_counts: tuple[float, float] = (0.3, 5.0)
-    interference_probability: float = 0.3
-    interference_chirp_probability: tuple[float, float] = (0.01, 0.3)
-    interference_amplitude_counts: tuple[float, float] = (5.0, 1000.0)
-    interference_duration_s: tuple[float, float] = (0.5e-6, 20e-6)
-    vibrating_clutter_probability: float = 0.3
-    vibrating_clutter_range_m: tuple[float, float] = (0.5, 10.0)
-    vibrating_clutter_rcs_dBsm: tuple[float, float] = (-20.0, 5.0)
-    vibrating_clutter_displacement_m: tuple[float, float] = (0.1e-3, 3e-3)
-    vibrating_clutter_Hz: tuple[float, float] = (5.0, 60.0)
-    rx_mismatch_probability: float = 0.3
-    rx_mismatch_gain_dB: tuple[float, float] = (-1.5, 1.5)
-    rx_mismatch_phase_deg: tuple[float, float] = (-30.0, 30.0)
-    frame_drift_probability: float = 0.3
-    frame_drift_gain_rms_dB: tuple[float, float] = (0.1, 1.0)
-    frame_drift_dc_rms_counts: tuple[float, float] = (0.2, 4.0)
-    wide_levels_probability: float = 0.3
-    wide_system_gain_offset_dB: tuple[float, float] = (-12.0, 12.0)
-    wide_noise_figure_offset_dB: tuple[float, float] = (-4.0, 8.0)
-    adc_noise_offset_dB: tuple[float, float] = (-3.0, 3.0)
-    static_phase_noise_probability: float = 0.5
-    static_phase_noise_paths: int = 4
+    wall_margin_m: float = 0.35
 
-    def __post_init__(self) -> None:
-        # Normalise YAML-ish input (lists, ints) and fail early, naming the field.
-        for f in dataclasses.fields(self):
-            setattr(self, f.name, _FIELD_CHECKS[str(f.type)](getattr(self, f.name), f.name))
+
+@dataclass
+class LevelPriors(Section):
+    """The ``levels`` section: receiver offsets and phase noise every item draws.
+
+    Args:
+        system_gain_offset_dB, noise_figure_offset_dB: added to the receiver's ``system_gain`` and
+            ``thermal_noise`` noise figure, dB (the catalog's ``wide_levels`` replaces them in some items).
+        phase_noise_rms_Hz: RMS LO frequency noise of the ``phase_noise`` stage, Hz.
+        phase_noise_paths: how many of the strongest per-item paths (by amplitude x delay) get it.
+    """
+
+    where = "levels"
+    system_gain_offset_dB: tuple[float, float] = span(-6.0, 6.0)
+    noise_figure_offset_dB: tuple[float, float] = span(-3.0, 3.0)
+    phase_noise_rms_Hz: tuple[float, float] = span(30e3, 400e3, bounds=(0.0, math.inf))
+    phase_noise_paths: int = 16
+
+
+_SECTIONS = ("room", "people", "levels", "catalog")
+
+
+@dataclass(init=False)
+class TwinRandomization:
+    """What the twin draws per item, in four sections: room, people, levels and the effect catalog.
+
+    Each section takes its object or a mapping of its fields, so a YAML/JSON mapping of the same
+    keys configures it (:meth:`from_dict`; lists are accepted for pairs). Why each default:
+    docs/simulation.md ("Twin randomization"), which also lists every prior.
+
+    Args:
+        enabled: False gives the twin without randomization (see :meth:`off`).
+        room: :class:`RoomPriors` (None: its defaults).
+        people: :class:`PeoplePriors`.
+        levels: :class:`LevelPriors`.
+        catalog: :class:`~radaraug.sim.catalog.Catalog`, keyed by effect name.
+
+    Raises:
+        ConfigError: a bad value or an unknown key, named with its section.
+    """
+
+    enabled: bool
+    room: RoomPriors
+    people: PeoplePriors
+    levels: LevelPriors
+    catalog: Catalog
+
+    def __init__(self, enabled: bool = True, room: RoomPriors | Mapping[str, Any] | None = None,
+                 people: PeoplePriors | Mapping[str, Any] | None = None,
+                 levels: LevelPriors | Mapping[str, Any] | None = None,
+                 catalog: Catalog | Mapping[str, Any] | None = None) -> None:
+        if not isinstance(enabled, bool):
+            raise ConfigError(f"twin randomization: enabled must be true or false, got {enabled!r}")
+        self.enabled = enabled
+        self.room = RoomPriors.from_dict({} if room is None else room)
+        self.people = PeoplePriors.from_dict({} if people is None else people)
+        self.levels = LevelPriors.from_dict({} if levels is None else levels)
+        self.catalog = Catalog.from_dict({} if catalog is None else catalog)
 
     @classmethod
     def off(cls) -> TwinRandomization:
@@ -221,8 +212,8 @@ class TwinRandomization:
         return cls(enabled=False)
 
     def to_dict(self) -> dict[str, Any]:
-        """Plain JSON/YAML types (pairs and material choices as lists)."""
-        return json.loads(json.dumps(dataclasses.asdict(self)))  # tuples -> lists; floats round-trip exactly
+        """Plain JSON/YAML types, a mapping per section."""
+        return {"enabled": self.enabled, **{name: getattr(self, name).to_dict() for name in _SECTIONS}}
 
     @classmethod
     def from_dict(cls, data: Mapping[str, Any]) -> TwinRandomization:
@@ -233,37 +224,52 @@ class TwinRandomization:
         """
         if not isinstance(data, Mapping):
             raise ConfigError(f"twin randomization must be a mapping, got {type(data).__name__}")
-        known = {f.name for f in dataclasses.fields(cls)}
+        known = ["enabled", *_SECTIONS]
         unknown = sorted(str(k) for k in data if k not in known)
         if unknown:
-            raise ConfigError(f"twin randomization: unknown key(s) {unknown}; known: {sorted(known)}")
+            raise ConfigError(f"twin randomization: unknown key(s) {unknown}; known: {known} "
+                              "(sections of fields: docs/simulation.md, 'Twin randomization')")
         return cls(**dict(data))
 
+    def replace(self, **sections: Mapping[str, Any]) -> TwinRandomization:
+        """A copy with some fields of some sections changed, e.g. ``replace(people={"speed_m_s": (1, 2)})``."""
+        out = {name: getattr(self, name).to_dict() for name in _SECTIONS}
+        for name, changes in sections.items():
+            if name not in _SECTIONS:
+                raise ConfigError(f"twin randomization has no section {name!r}; sections: {list(_SECTIONS)}")
+            for key, value in changes.items():
+                if name == "catalog" and isinstance(value, Mapping):
+                    out[name][key] = {**out[name].get(key, {}), **value}
+                else:
+                    out[name][key] = value
+        return TwinRandomization(enabled=self.enabled, **out)
+
     # ------------------------------------------------------------------ draws
-    def room(self, seed: int, k: int) -> RoomDraw:
+    def room_draw(self, seed: int, k: int) -> RoomDraw:
         """Room variant ``k`` of the pool of a dataset seeded ``seed`` (a pure function of both)."""
-        if not 0 <= k < self.room_variants:
-            raise ConfigError(f"room variant {k} out of range: the pool has {self.room_variants}")
+        r = self.room
+        if not 0 <= k < r.variants:
+            raise ConfigError(f"room variant {k} out of range: the pool has {r.variants}")
         g = item_generator(seed, k, stream=Stream.ROOM_POOL)
-        length = _uniform(self.length_m, g)
-        width = _uniform(self.width_m, g)
-        height = _uniform(self.height_m, g)
+        length = uniform(r.length_m, g)
+        width = uniform(r.width_m, g)
+        height = uniform(r.height_m, g)
         # Every surface draws (in CORRIDOR_SURFACES order), even ones a room without end walls
         # lacks, so the other draws do not depend on that setting.
-        mats = {s: self.materials[s][int(torch.randint(len(self.materials[s]), (), generator=g))]
+        mats = {s: r.materials[s][int(torch.randint(len(r.materials[s]), (), generator=g))]
                 for s in CORRIDOR_SURFACES}
-        radar_height = min(_uniform(self.radar_height_m, g), height - RADAR_CEILING_MARGIN_M)
-        pitch = _uniform(self.radar_pitch_deg, g)
-        yaw = _uniform(self.radar_yaw_deg, g)
-        lo_n, hi_n = self.clutter_objects
+        radar_height = min(uniform(r.radar_height_m, g), height - RADAR_CEILING_MARGIN_M)
+        pitch = uniform(r.radar_pitch_deg, g)
+        yaw = uniform(r.radar_yaw_deg, g)
+        lo_n, hi_n = r.clutter_objects
         clutter = []
         for _ in range(int(torch.randint(lo_n, hi_n + 1, (), generator=g))):
-            along = _uniform(CLUTTER_LENGTH_M, g)
-            depth = min(_uniform(CLUTTER_DEPTH_M, g), width / 3)
-            tall = min(_uniform(CLUTTER_HEIGHT_M, g), height - 0.1)
-            x0 = _uniform((CLUTTER_START_M, max(CLUTTER_START_M, length - 0.2 - along)), g)
+            along = uniform(CLUTTER_LENGTH_M, g)
+            depth = min(uniform(CLUTTER_DEPTH_M, g), width / 3)
+            tall = min(uniform(CLUTTER_HEIGHT_M, g), height - 0.1)
+            x0 = uniform((CLUTTER_START_M, max(CLUTTER_START_M, length - 0.2 - along)), g)
             side = 1.0 if bool(torch.rand((), generator=g) < 0.5) else -1.0
-            mat = self.clutter_materials[int(torch.randint(len(self.clutter_materials), (), generator=g))]
+            mat = r.clutter_materials[int(torch.randint(len(r.clutter_materials), (), generator=g))]
             y_wall, y_in = side * width / 2, side * (width / 2 - depth)
             clutter.append({"min": [x0, min(y_wall, y_in), 0.0], "max": [x0 + along, max(y_wall, y_in), tall],
                             "material": mat})
@@ -272,7 +278,7 @@ class TwinRandomization:
     def variant_of(self, seed: int, index: int) -> int:
         """Which room variant item ``index`` uses (the first draw of its stream)."""
         g = item_generator(seed, index, stream=Stream.ITEM_DRAWS)
-        return int(torch.randint(self.room_variants, (), generator=g))
+        return int(torch.randint(self.room.variants, (), generator=g))
 
     def item(self, seed: int, index: int, num_people: int) -> ItemDraw:
         """The per-item draws of item ``index`` with ``num_people`` people.
@@ -280,68 +286,29 @@ class TwinRandomization:
         Person ``j``'s RCS scale does not depend on how many people follow it.
         """
         g = item_generator(seed, index, stream=Stream.ITEM_DRAWS)
-        variant = int(torch.randint(self.room_variants, (), generator=g))
-        gain = _uniform(self.system_gain_offset_dB, g)
-        nf = _uniform(self.noise_figure_offset_dB, g)
-        rcs = tuple(_uniform(self.rcs_scale_dB, g) for _ in range(num_people))
+        variant = int(torch.randint(self.room.variants, (), generator=g))
+        gain = uniform(self.levels.system_gain_offset_dB, g)
+        nf = uniform(self.levels.noise_figure_offset_dB, g)
+        rcs = tuple(uniform(self.people.rcs_scale_dB, g) for _ in range(num_people))
         # Own stream: the scatterers do not depend on the number of people (or vice versa).
         gs = item_generator(seed, index, stream=Stream.SCATTERERS)
-        lo_n, hi_n = self.static_scatterers
+        lo_n, hi_n = self.room.scatterers
         scatterers = tuple(
-            (_uniform(self.static_scatterer_range_m, gs), _uniform(self.static_scatterer_azimuth_deg, gs),
-             _uniform((-20.0, 20.0), gs), _uniform(self.static_scatterer_rcs_dBsm, gs))
+            (uniform(self.room.scatterer_range_m, gs), uniform(self.room.scatterer_azimuth_deg, gs),
+             uniform((-20.0, 20.0), gs), uniform(self.room.scatterer_rcs_dBsm, gs))
             for _ in range(int(torch.randint(lo_n, hi_n + 1, (), generator=gs)))
         )
-        phase_noise = _uniform(self.phase_noise_rms_Hz, gs)
+        phase_noise = uniform(self.levels.phase_noise_rms_Hz, gs)
         catalog = self.effects(seed, index)
-        if catalog.pop("wide_levels"):
-            gain, nf = catalog.pop("wide_system_gain_offset_dB"), catalog.pop("wide_noise_figure_offset_dB")
-            catalog["wide_levels"] = True
-        else:
-            for key in ("wide_system_gain_offset_dB", "wide_noise_figure_offset_dB", "adc_noise_offset_dB"):
-                catalog.pop(key)
-        return ItemDraw(variant, gain, nf, rcs, scatterers, phase_noise, **catalog,
-                        phase_noise_paths=self.phase_noise_paths)
+        if "wide_levels" in catalog:
+            gain = catalog["wide_levels"]["system_gain_offset_dB"]
+            nf = catalog["wide_levels"]["noise_figure_offset_dB"]
+        return ItemDraw(variant, gain, nf, rcs, scatterers, phase_noise, catalog,
+                        phase_noise_paths=self.levels.phase_noise_paths)
 
-    def effects(self, seed: int, index: int) -> dict[str, Any]:
-        """The effect-catalog draws of item ``index`` (its own stream, :data:`EFFECTS_STREAM`).
-
-        Every effect draws all its values whether it hits or not (one probability shifts no other draw).
-        Returns the :class:`ItemDraw` fields plus ``wide_levels`` (bool) and the wide levels' values.
-        """
-        g = item_generator(seed, index, stream=Stream.EFFECTS)
-        scale = self.effects_probability
-
-        def hit(p: float) -> bool:
-            return bool(torch.rand((), generator=g, dtype=torch.float64) < scale * p)
-
-        out: dict[str, Any] = {}
-        on = hit(self.spur_tone_probability)
-        spur = (_uniform(self.spur_tone_freq_nyquist, g), _log_uniform(self.spur_tone_amplitude_counts, g),
-                _uniform((-math.pi, math.pi), g))
-        out["spur_tone"] = spur if on else None
-        on = hit(self.interference_probability)
-        inter = (_uniform(self.interference_chirp_probability, g), _log_uniform(self.interference_amplitude_counts, g),
-                 _log_uniform(self.interference_duration_s, g))
-        out["interference"] = inter if on else None
-        on = hit(self.vibrating_clutter_probability)
-        vib = (_uniform(self.vibrating_clutter_range_m, g), _uniform(self.vibrating_clutter_rcs_dBsm, g),
-               _log_uniform(self.vibrating_clutter_displacement_m, g), _log_uniform(self.vibrating_clutter_Hz, g),
-               _uniform((-math.pi, math.pi), g))
-        out["vibrating_clutter"] = vib if on else None
-        on = hit(self.rx_mismatch_probability)
-        gains = tuple(_uniform(self.rx_mismatch_gain_dB, g) for _ in range(MISMATCH_ANTENNAS))
-        phases = tuple(_uniform(self.rx_mismatch_phase_deg, g) for _ in range(MISMATCH_ANTENNAS))
-        out["rx_mismatch"] = (gains, phases) if on else None
-        on = hit(self.frame_drift_probability)
-        drift = (_uniform(self.frame_drift_gain_rms_dB, g), _uniform(self.frame_drift_dc_rms_counts, g))
-        out["frame_drift"] = drift if on else None
-        out["wide_levels"] = hit(self.wide_levels_probability)
-        out["wide_system_gain_offset_dB"] = _uniform(self.wide_system_gain_offset_dB, g)
-        out["wide_noise_figure_offset_dB"] = _uniform(self.wide_noise_figure_offset_dB, g)
-        out["adc_noise_offset_dB"] = _uniform(self.adc_noise_offset_dB, g)
-        out["static_phase_noise_paths"] = self.static_phase_noise_paths if hit(self.static_phase_noise_probability) else 0
-        return out
+    def effects(self, seed: int, index: int) -> dict[str, dict[str, Any]]:
+        """The effect-catalog draws of item ``index``, ``{name: values}`` (its own stream, ``Stream.EFFECTS``)."""
+        return self.catalog.draw(item_generator(seed, index, stream=Stream.EFFECTS))
 
     def sampler(self, base: ScenarioSampler, room: RoomDraw, radar_x_m: float) -> ScenarioSampler:
         """``base`` with this randomization's people ranges, fitted inside ``room``.
@@ -349,15 +316,16 @@ class TwinRandomization:
         Counts and their weights, toward/away and speed spacing are kept; the radar is at
         ``x = radar_x_m``.
         """
-        lateral = max(0.0, room.width_m / 2 - self.wall_margin_m)
-        far = max(0.0, room.length_m - radar_x_m - self.wall_margin_m)
-        hi = min(self.range_m[1], far)
-        lo = min(self.range_m[0], hi)
+        p = self.people
+        lateral = max(0.0, room.width_m / 2 - p.wall_margin_m)
+        far = max(0.0, room.length_m - radar_x_m - p.wall_margin_m)
+        hi = min(p.range_m[1], far)
+        lo = min(p.range_m[0], hi)
         return dataclasses.replace(
-            base, speed_m_s=self.speed_m_s, height_m=self.person_height_m, range_m=(lo, hi),
-            lateral_m=(-lateral, lateral), heading_jitter_deg=self.heading_jitter_deg,
-            crossing_probability=max(base.crossing_probability, self.crossing_probability),
-            standing_probability=max(base.standing_probability, self.standing_probability),
+            base, speed_m_s=p.speed_m_s, height_m=p.height_m, range_m=(lo, hi),
+            lateral_m=(-lateral, lateral), heading_jitter_deg=p.heading_jitter_deg,
+            crossing_probability=max(base.crossing_probability, p.crossing_probability),
+            standing_probability=max(base.standing_probability, p.standing_probability),
         )
 
 
@@ -440,20 +408,11 @@ class RoomDraw:
 
 @dataclass(frozen=True)
 class ItemDraw:
-    """The per-item draws: room variant, receiver offsets, each person's RCS scale, static scatterers.
+    """The per-item draws: room variant, receiver offsets, each person's RCS scale, static scatterers, effects.
 
-    The scatterers are ``(range_m, azimuth_deg, elevation_deg, rcs_dBsm)``. The effect catalog's
-    fields are None (0, False) where the item does not carry the effect:
-
-    * ``spur_tone``: ``(frequency / Nyquist, amplitude_counts, phase_rad)``;
-    * ``interference``: ``(chirp_probability, amplitude_counts, duration_s)``;
-    * ``vibrating_clutter``: ``(range_m, rcs_dBsm, displacement_m, vibration_Hz, phase_rad)``;
-    * ``rx_mismatch``: ``(gain_dB, phase_deg)``, each a value per antenna number 1..16;
-    * ``frame_drift``: ``(gain_rms_dB, dc_rms_counts)``;
-    * ``wide_levels``: the offsets came from the wide ranges (``adc_noise_offset_dB`` applies);
-    * ``static_phase_noise_paths``: how many of the room's strongest returns carry the phase noise.
-
-    ``phase_noise_paths`` is carried (:attr:`TwinRandomization.phase_noise_paths`), not drawn.
+    The scatterers are ``(range_m, azimuth_deg, elevation_deg, rcs_dBsm)``. ``catalog`` holds the
+    effects the item carries, ``{name: values}`` as each :class:`~radaraug.sim.catalog.CatalogEffect`
+    drew them; ``phase_noise_paths`` is carried (:attr:`LevelPriors.phase_noise_paths`), not drawn.
     """
 
     variant: int
@@ -462,202 +421,62 @@ class ItemDraw:
     rcs_scale_dB: tuple[float, ...]
     scatterers: tuple[tuple[float, float, float, float], ...] = ()
     phase_noise_rms_Hz: float | None = None
-    spur_tone: tuple[float, float, float] | None = None
-    interference: tuple[float, float, float] | None = None
-    vibrating_clutter: tuple[float, float, float, float, float] | None = None
-    rx_mismatch: tuple[tuple[float, ...], tuple[float, ...]] | None = None
-    frame_drift: tuple[float, float] | None = None
-    wide_levels: bool = False
-    adc_noise_offset_dB: float = 0.0
-    static_phase_noise_paths: int = 0
+    catalog: Mapping[str, Mapping[str, Any]] = field(default_factory=dict)
     phase_noise_paths: int = 16
+
+    @property
+    def adc_noise_offset_dB(self) -> float:
+        """Offset on the ``adc_noise`` stage's RMS (the catalog's ``wide_levels``; else 0), dB."""
+        return float(self.catalog.get("wide_levels", {}).get("adc_noise_offset_dB", 0.0))
+
+    @property
+    def static_phase_noise_paths(self) -> int:
+        """How many of the room's strongest returns carry the phase noise (the catalog's ``static_phase_noise``)."""
+        return int(self.catalog.get("static_phase_noise", {}).get("paths", 0))
 
     def effects_dict(self, config: RadarConfig) -> dict[str, Any]:
         """The catalog effects this item carries, ``{name: {parameter: value}}`` (JSON-able)."""
-        out: dict[str, Any] = {}
-        if self.spur_tone is not None:
-            frac, amp, phase = self.spur_tone
-            out["spur_tone"] = {"freq_Hz": frac * float(config.sample_rate_Hz) / 2, "amplitude_counts": amp,
-                                "phase_rad": phase}
-        if self.interference is not None:
-            out["interference"] = dict(zip(("probability", "amplitude_counts", "duration_s"), self.interference))
-        if self.vibrating_clutter is not None:
-            out["vibrating_clutter"] = dict(zip(("range_m", "rcs_dBsm", "displacement_m", "vibration_Hz", "phase_rad"),
-                                                self.vibrating_clutter))
-        if self.rx_mismatch is not None:
-            gains, phases = self.rx_mismatch
-            out["rx_gain_phase_mismatch"] = {"gain_dB": [gains[a - 1] for a in config.rx_antennas],
-                                             "phase_deg": [phases[a - 1] for a in config.rx_antennas]}
-        if self.frame_drift is not None:
-            out["frame_drift"] = dict(zip(("gain_rms_dB", "dc_rms_counts"), self.frame_drift))
-        if self.wide_levels:
-            out["wide_levels"] = {"system_gain_offset_dB": self.system_gain_offset_dB,
-                                  "noise_figure_offset_dB": self.noise_figure_offset_dB,
-                                  "adc_noise_offset_dB": self.adc_noise_offset_dB}
-        if self.static_phase_noise_paths:
-            out["static_phase_noise"] = {"paths": self.static_phase_noise_paths}
-        return out
+        return catalog_record(self.catalog, config)
 
     def catalog_effects(self, config: RadarConfig) -> list[Effect]:
         """The receiver stages of the catalog effects this item carries (to insert at their place)."""
-        drawn = self.effects_dict(config)
-        effects: list[Effect] = []
-        if "vibrating_clutter" in drawn:
-            vib = dict(drawn["vibrating_clutter"])
-            level = _radar_equation_dB(config, vib["range_m"], vib.pop("rcs_dBsm"))
-            effects.append(VibratingClutter(level_dB=level, **vib))
-        if "rx_gain_phase_mismatch" in drawn:
-            mismatch = drawn["rx_gain_phase_mismatch"]
-            effects.append(RxGainPhaseMismatch(gain_dB=mismatch["gain_dB"],
-                                               phase_rad=[math.radians(p) for p in mismatch["phase_deg"]]))
-        # The others take the parameters effects_dict names.
-        for name, stage in (("interference", Interference), ("frame_drift", FrameDrift), ("spur_tone", SpurTone)):
-            if name in drawn:
-                effects.append(stage(**drawn[name]))
-        return effects
-
-
-def _radar_equation_dB(config: RadarConfig, range_m: float, rcs_dBsm: float) -> float:
-    """Received over transmitted power of a point scatterer, dB: ``G^2 lambda^2 sigma / ((4 pi)^3 R^4)``.
-
-    With the static scatterers' antenna gain (:data:`SCATTERER_ANTENNA_GAIN_DBI`), as
-    :func:`~radaraug.sensor.point_target.point_target_paths` gives them.
-    """
-    lam = float(config.wavelength_m)
-    return (2 * SCATTERER_ANTENNA_GAIN_DBI + rcs_dBsm + 20 * math.log10(lam) - 30 * math.log10(4 * math.pi)
-            - 40 * math.log10(range_m))
+        return catalog_stages(self.catalog, config)
 
 
 def check_receiver(receiver: FMCWReceiver, randomization: TwinRandomization) -> None:
     """Raise ConfigError when ``receiver`` cannot take the randomization's gain / noise offsets."""
     names = [e.name for e in receiver.effects]
     first_nonlinear = next((i for i, e in enumerate(receiver.effects) if e.kind == "nonlinear"), len(names))
-    r = randomization
-    wide = r.effects_probability * r.wide_levels_probability > 0
+    levels, catalog = randomization.levels, randomization.catalog
+    wide = catalog["wide_levels"]
+    assert isinstance(wide, WideLevelsPrior)
+    wide_on = catalog.scale * wide.probability > 0
     zero = (0.0, 0.0)
-    if r.system_gain_offset_dB != zero or (wide and r.wide_system_gain_offset_dB != zero):
+    if levels.system_gain_offset_dB != zero or (wide_on and wide.system_gain_offset_dB != zero):
         if "system_gain" not in names:
             raise ConfigError("twin randomization: the receiver has no system_gain stage; add one or set "
-                              "system_gain_offset_dB (and wide_system_gain_offset_dB) to [0, 0]")
+                              "levels.system_gain_offset_dB (and catalog.wide_levels.system_gain_offset_dB) to [0, 0]")
         # The room's cached signal went through the linear stages before the first non-linear
         # one; only there does scaling it by the gain equal applying the gain.
         if names.index("system_gain") > first_nonlinear:
             raise ConfigError("twin randomization: the receiver's system_gain comes after a non-linear stage")
-    nf_used = r.noise_figure_offset_dB != zero or (wide and r.wide_noise_figure_offset_dB != zero)
+    nf_used = levels.noise_figure_offset_dB != zero or (wide_on and wide.noise_figure_offset_dB != zero)
     if nf_used and "thermal_noise" not in names:
         raise ConfigError("twin randomization: the receiver has no thermal_noise stage; add one or set "
-                          "noise_figure_offset_dB (and wide_noise_figure_offset_dB) to [0, 0]")
-    if wide and r.adc_noise_offset_dB != zero and "adc_noise" not in names:
+                          "levels.noise_figure_offset_dB (and catalog.wide_levels.noise_figure_offset_dB) to [0, 0]")
+    if wide_on and wide.adc_noise_offset_dB != zero and "adc_noise" not in names:
         raise ConfigError("twin randomization: the receiver has no adc_noise stage; add one or set "
-                          "adc_noise_offset_dB to [0, 0] (or wide_levels_probability to 0)")
-    if r.phase_noise_rms_Hz != zero and "phase_noise" not in names:
+                          "catalog.wide_levels.adc_noise_offset_dB to [0, 0] (or its probability to 0)")
+    if levels.phase_noise_rms_Hz != zero and "phase_noise" not in names:
         raise ConfigError("twin randomization: the receiver has no phase_noise stage; add one or set "
-                          "phase_noise_rms_Hz to [0, 0]")
-    if r.effects_probability * r.static_phase_noise_probability > 0 and "phase_noise" not in names:
+                          "levels.phase_noise_rms_Hz to [0, 0]")
+    if catalog.scale * catalog["static_phase_noise"].probability > 0 and "phase_noise" not in names:
         raise ConfigError("twin randomization: the receiver has no phase_noise stage for the room's strongest "
-                          "returns; add one or set static_phase_noise_probability to 0")
-
-
-# ---------------------------------------------------------------------------- validation
-def _flag(value: Any, name: str) -> bool:
-    if not isinstance(value, bool):
-        raise ConfigError(f"twin randomization: {name} must be true or false, got {value!r}")
-    return value
-
-
-def _number(value: Any, name: str, *, minimum: float | None = None) -> float:
-    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
-        raise ConfigError(f"twin randomization: {name} must be a finite number, got {value!r}")
-    if minimum is not None and value < minimum:
-        raise ConfigError(f"twin randomization: {name} must be >= {minimum}, got {value!r}")
-    return float(value)
-
-
-def _nonnegative(value: Any, name: str) -> float:
-    """A float field: a number >= 0, and a probability in [0, 1] where the name says so."""
-    value = _number(value, name, minimum=0.0)
-    if name.endswith("_probability") and value > 1.0:
-        raise ConfigError(f"twin randomization: {name} must be a probability in [0, 1], got {value!r}")
-    return value
-
-
-def _count(value: Any, name: str) -> int:
-    if isinstance(value, bool) or not isinstance(value, int) or value < 1:
-        raise ConfigError(f"twin randomization: {name} must be an integer >= 1, got {value!r}")
-    return value
-
-
-def _pair(value: Any, name: str) -> tuple[float, float]:
-    """A range ``(lo, hi)``, positive where :data:`_POSITIVE_RANGES` and inside :data:`_BOUNDED_RANGES`."""
-    if isinstance(value, (str, bytes)) or not isinstance(value, Sequence) or len(value) != 2:
-        raise ConfigError(f"twin randomization: {name} must be a pair [lo, hi], got {value!r}")
-    lo, hi = (_number(v, name) for v in value)
-    if lo > hi:
-        raise ConfigError(f"twin randomization: {name} must have lo <= hi, got {[lo, hi]}")
-    if name in _POSITIVE_RANGES and lo <= 0:
-        raise ConfigError(f"twin randomization: {name} must be positive, got {[lo, hi]}")
-    bound_lo, bound_hi = _BOUNDED_RANGES.get(name, (-math.inf, math.inf))
-    if lo < bound_lo or hi > bound_hi:
-        raise ConfigError(f"twin randomization: {name} must lie in [{bound_lo}, {bound_hi}], got {[lo, hi]}")
-    return (lo, hi)
-
-
-def _log_uniform(lo_hi: tuple[float, float], g: torch.Generator) -> float:
-    """Uniform in the logarithm over ``[lo, hi]`` (both > 0), one draw from ``g``."""
-    lo, hi = lo_hi
-    return math.exp(_uniform((math.log(lo), math.log(hi)), g))
-
-
-def _count_pair(value: Any, name: str) -> tuple[int, int]:
-    if isinstance(value, (str, bytes)) or not isinstance(value, Sequence) or len(value) != 2 or any(
-            isinstance(v, bool) or not isinstance(v, int) for v in value):
-        raise ConfigError(f"twin randomization: {name} must be a pair of integers [lo, hi], got {value!r}")
-    lo, hi = int(value[0]), int(value[1])
-    if not 0 <= lo <= hi:
-        raise ConfigError(f"twin randomization: {name} must have 0 <= lo <= hi, got {[lo, hi]}")
-    return (lo, hi)
-
-
-def _material_list(value: Any, name: str) -> tuple[str, ...]:
-    if isinstance(value, str):
-        value = [value]
-    if not isinstance(value, Sequence) or not value:
-        raise ConfigError(f"twin randomization: {name} must be a non-empty list of material names, got {value!r}")
-    for n in value:
-        try:
-            get_material(n)
-        except SceneError as err:
-            raise ConfigError(f"twin randomization: {name}: {err}") from None
-    return tuple(str(n) for n in value)
-
-
-def _materials(value: Any, name: str) -> dict[str, tuple[str, ...]]:
-    if not isinstance(value, Mapping):
-        raise ConfigError(f"twin randomization: {name} must be a mapping surface -> list of names, got {value!r}")
-    unknown = sorted(str(k) for k in value if k not in CORRIDOR_SURFACES)
-    if unknown:
-        raise ConfigError(f"twin randomization: {name}: unknown surface(s) {unknown}; "
-                          f"surfaces are {list(CORRIDOR_SURFACES)}")
-    out = dict(DEFAULT_MATERIALS)
-    for surface, names in value.items():
-        out[surface] = _material_list(names, f"{name}.{surface}")
-    return out
-
-
-# The check (and normalisation) of a TwinRandomization field, by its annotation.
-_FIELD_CHECKS: dict[str, Callable[[Any, str], Any]] = {
-    "bool": _flag,
-    "int": _count,
-    "float": _nonnegative,
-    "tuple[float, float]": _pair,
-    "tuple[int, int]": _count_pair,
-    "tuple[str, ...]": _material_list,
-    "dict[str, tuple[str, ...]]": _materials,
-}
+                          "returns; add one or set catalog.static_phase_noise.probability to 0")
 
 
 __all__ = [
-    "DEFAULT_MATERIALS", "EFFECTS_STREAM", "ITEM_STREAM", "ROOM_STREAM", "ItemDraw", "RoomDraw", "TwinRandomization",
+    "DEFAULT_MATERIALS", "ItemDraw", "LevelPriors", "PeoplePriors", "RoomDraw", "RoomPriors", "TwinRandomization",
     "SCATTERER_ANTENNA_GAIN_DBI", "check_receiver", "item_receiver", "people_paths", "room_quadrature",
     "scale_people_paths", "static_scatterer_paths", "strongest_room_paths",
 ]

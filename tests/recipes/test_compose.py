@@ -24,7 +24,8 @@ def test_a_name_is_base_task_and_method_merged(name):
     assert name == f"{task}_{method}"
     assert cfg["data"]["task"] == task and cfg["data"]["method"] == method
     # twin randomization on by default, its catalog without the persistent effects (spur, fan)
-    assert cfg["data"]["randomization"] == {"spur_tone_probability": 0.0, "vibrating_clutter_probability": 0.0}
+    assert cfg["data"]["randomization"] == {"catalog": {"spur_tone": {"probability": 0.0},
+                                                        "vibrating_clutter": {"probability": 0.0}}}
     # the base's keys are all there, the method's added: nothing of the base lost in the merge
     base = yaml.safe_load((recipes.RECIPES_DIR / "base.yaml").read_text())
     for section in ("trainer", "model", "data"):

@@ -3,6 +3,7 @@ are applied exactly (closed forms), YAML round trip, and ``off()`` is the plain 
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import pickle
 
@@ -29,7 +30,7 @@ from radaraug.sim.twin import DigitalTwin
 # The image-method room without diffuse clutter keeps the tests quick; no shadowing, so that
 # "frame - room signal" is the people's own signal (what the RCS scaling acts on).
 FAST = {"tracer_options": {"diffuse": False}, "shadowing": False}
-SMALL = {"room_variants": 2}
+SMALL = {"room": {"variants": 2}}
 
 
 @pytest.fixture(scope="module")
@@ -53,21 +54,27 @@ def _linear_chain(config, *, noise: bool) -> list:
 
 # ------------------------------------------------------------------------------ configuration
 def test_dict_round_trip_yaml_and_errors() -> None:
-    r = TwinRandomization(rcs_scale_dB=[-12, 3], room_variants=3, materials={"floor": ["concrete"]})
-    assert r.rcs_scale_dB == (-12.0, 3.0)  # lists accepted, stored as pairs
-    assert r.materials["floor"] == ("concrete",) and r.materials["ceiling"] == DEFAULT_MATERIALS["ceiling"]
+    r = TwinRandomization(people={"rcs_scale_dB": [-12, 3]}, room={"variants": 3, "materials": {"floor": ["concrete"]}})
+    assert r.people.rcs_scale_dB == (-12.0, 3.0)  # lists accepted, stored as pairs
+    assert r.room.materials["floor"] == ("concrete",) and r.room.materials["ceiling"] == DEFAULT_MATERIALS["ceiling"]
+    assert r.replace(people={"speed_m_s": [1, 2]}).people == dataclasses.replace(r.people, speed_m_s=(1.0, 2.0))
     text = yaml.safe_dump(r.to_dict())
     assert TwinRandomization.from_dict(yaml.safe_load(text)) == r
     assert TwinRandomization.from_dict({}) == TwinRandomization()
     with pytest.raises(ConfigError, match="rcs_scale_db"):
-        TwinRandomization.from_dict({"rcs_scale_db": [0, 1]})
-    for bad in ({"width_m": [3, 2]}, {"room_variants": 0}, {"enabled": "yes"}, {"gain": 1},
-                {"materials": {"floor": ["unobtainium"]}}, {"materials": {"roof": ["wood"]}},
-                {"noise_figure_offset_dB": [0, math.inf]}, {"length_m": 5.0}):
-        with pytest.raises(ConfigError):
+        TwinRandomization.from_dict({"people": {"rcs_scale_db": [0, 1]}})
+    with pytest.raises(ConfigError, match="sections"):  # a field outside its section
+        TwinRandomization.from_dict({"rcs_scale_dB": [0, 1]})
+    for bad, name in (({"room": {"width_m": [3, 2]}}, "room.width_m"), ({"room": {"variants": 0}}, "room.variants"),
+                      ({"enabled": "yes"}, "enabled"), ({"gain": 1}, "gain"),
+                      ({"room": {"materials": {"floor": ["unobtainium"]}}}, "room.materials.floor"),
+                      ({"room": {"materials": {"roof": ["wood"]}}}, "roof"),
+                      ({"levels": {"noise_figure_offset_dB": [0, math.inf]}}, "levels.noise_figure_offset_dB"),
+                      ({"room": {"length_m": 5.0}}, "room.length_m"), ({"people": []}, "people")):
+        with pytest.raises(ConfigError, match=name):
             TwinRandomization.from_dict(bad)
     defaults = TwinRandomization()
-    lo, hi = defaults.rcs_scale_dB
+    lo, hi = defaults.people.rcs_scale_dB
     assert lo <= -10 and hi >= 10  # covers +-10 dB around the twin's own walker
 
 
@@ -84,13 +91,13 @@ def test_scene_and_receiver_are_checked() -> None:
         SimulatedRadarDataset("corridor", length=2, twin_options={**FAST, "receiver": no_gain},
                               randomization=TwinRandomization(**SMALL))
     # The effect catalog's wide levels offset the gain too.
-    with pytest.raises(ConfigError, match="wide_system_gain_offset_dB"):
+    with pytest.raises(ConfigError, match="wide_levels.system_gain_offset_dB"):
         SimulatedRadarDataset("corridor", length=2, twin_options={**FAST, "receiver": no_gain},
-                              randomization=TwinRandomization(system_gain_offset_dB=(0, 0), **SMALL))
+                              randomization=TwinRandomization(levels={"system_gain_offset_dB": (0, 0)}, **SMALL))
     # Without gain offsets such a receiver is fine.
     SimulatedRadarDataset("corridor", length=2, twin_options={**FAST, "receiver": no_gain},
-                          randomization=TwinRandomization(system_gain_offset_dB=(0, 0), wide_levels_probability=0,
-                                                          **SMALL))
+                          randomization=TwinRandomization(levels={"system_gain_offset_dB": (0, 0)},
+                                                          catalog={"wide_levels": {"probability": 0}}, **SMALL))
     no_pn = FMCWReceiver(cfg, effects=[e for e in default_effects(cfg) if e.name != "phase_noise"])
     with pytest.raises(ConfigError, match="phase_noise"):
         SimulatedRadarDataset("corridor", length=2, twin_options={**FAST, "receiver": no_pn},
@@ -105,17 +112,18 @@ def test_every_drawn_quantity_varies() -> None:
     assert rcs.max() - rcs.min() >= 20 and rcs.min() >= -20 and rcs.max() <= 10
     assert np.ptp([d.system_gain_offset_dB for d in draws]) > 8
     assert np.ptp([d.noise_figure_offset_dB for d in draws]) > 5  # of the 6 dB range
-    assert set(d.variant for d in draws) == set(range(r.room_variants))
+    assert set(d.variant for d in draws) == set(range(r.room.variants))
     # The room pool: a pure function of (seed, k), different across seeds and variants.
-    rooms = [r.room(s, k) for s in range(40) for k in range(r.room_variants)]
-    assert r.room(3, 1) == r.room(3, 1) and r.room(3, 1) != r.room(4, 1)
-    for name, (lo, hi) in (("length_m", r.length_m), ("width_m", r.width_m), ("height_m", r.height_m),
-                           ("radar_pitch_deg", r.radar_pitch_deg), ("radar_yaw_deg", r.radar_yaw_deg)):
+    rooms = [r.room_draw(s, k) for s in range(40) for k in range(r.room.variants)]
+    assert r.room_draw(3, 1) == r.room_draw(3, 1) and r.room_draw(3, 1) != r.room_draw(4, 1)
+    p = r.room
+    for name, (lo, hi) in (("length_m", p.length_m), ("width_m", p.width_m), ("height_m", p.height_m),
+                           ("radar_pitch_deg", p.radar_pitch_deg), ("radar_yaw_deg", p.radar_yaw_deg)):
         v = np.array([getattr(room, name) for room in rooms])
         assert v.min() >= lo and v.max() <= hi and np.ptp(v) > 0.6 * (hi - lo), name
     heights = np.array([room.radar_height_m for room in rooms])
     assert np.ptp(heights) > 0.8 and all(room.radar_height_m <= room.height_m - 0.15 for room in rooms)
-    for surface, choices in r.materials.items():
+    for surface, choices in r.room.materials.items():
         assert {room.materials[surface] for room in rooms} == set(choices), surface
 
 
@@ -125,7 +133,7 @@ def test_item_params_people_inside_the_drawn_room(dataset) -> None:
     counts = np.bincount([p["count"] for p in params], minlength=3)
     assert counts.min() >= 8  # 0/1/2 stay balanced (expected ~13 each)
     people = [(p, q) for p in params for q in p["people"]]
-    r = dataset.randomization
+    r = dataset.randomization.people
     for p, q in people:
         room = p["room"]
         assert abs(q["lateral_m"]) <= room["width_m"] / 2 - r.wall_margin_m + 1e-9
@@ -245,10 +253,10 @@ def test_gain_offset_scales_room_people_and_noise_alike() -> None:
     base = dict(length=8, seed=1, twin_options={**FAST, "receiver": FMCWReceiver(
         scene.config, effects=_linear_chain(scene.config, noise=True))})
     # The effect catalog off: its stages (spur, drift...) do not scale with the gain.
-    r0 = TwinRandomization(system_gain_offset_dB=(0, 0), room_variants=1, phase_noise_rms_Hz=(0, 0),
-                           effects_probability=0)
-    rg = TwinRandomization(system_gain_offset_dB=(g, g), room_variants=1, phase_noise_rms_Hz=(0, 0),
-                           effects_probability=0)
+    r0 = TwinRandomization(levels={"system_gain_offset_dB": (0, 0), "phase_noise_rms_Hz": (0, 0)},
+                           room={"variants": 1}, catalog={"scale": 0})
+    rg = TwinRandomization(levels={"system_gain_offset_dB": (g, g), "phase_noise_rms_Hz": (0, 0)},
+                           room={"variants": 1}, catalog={"scale": 0})
     ds0 = SimulatedRadarDataset(scene, randomization=r0, **base)
     dsg = SimulatedRadarDataset(scene, randomization=rg, **base)
     dsg._variant_static = {0: ds0.prepare().variant_twin(0).static_signal()}  # one room trace
@@ -282,12 +290,12 @@ def test_gain_offset_scales_room_people_and_noise_alike() -> None:
 
 
 def test_variant_pose_keeps_the_mounting_and_applies_tilt() -> None:
-    r = TwinRandomization(radar_pitch_deg=(7, 7), radar_yaw_deg=(-3, -3), room_variants=1)
+    r = TwinRandomization(room={"radar_pitch_deg": (7, 7), "radar_yaw_deg": (-3, -3), "variants": 1})
     for mounting in ("landscape", "portrait"):
         data = Scene.builtin("corridor").to_dict()
         data["radar"] = {"position": [0.1, 0.0, 1.2], "look_at": [10.0, 0.0, 1.2], "mounting": mounting}
         base = Scene.from_dict(data)
-        room = r.room(0, 0)
+        room = r.room_draw(0, 0)
         rot = room.scene(base).radar.rotation
         b = rot[:, 2]
         assert math.degrees(math.asin(float(b[2]))) == pytest.approx(7.0, abs=1e-6)
@@ -295,7 +303,7 @@ def test_variant_pose_keeps_the_mounting_and_applies_tilt() -> None:
         # The sensor's own x axis stays horizontal (landscape) or in the vertical plane (portrait).
         x_axis_z = float(rot[2, 0])
         assert (abs(x_axis_z) < 1e-9) if mounting == "landscape" else (abs(x_axis_z) > 0.99)
-        level = TwinRandomization(radar_pitch_deg=(0, 0), radar_yaw_deg=(0, 0), room_variants=1).room(0, 0)
+        level = TwinRandomization(room={"radar_pitch_deg": (0, 0), "radar_yaw_deg": (0, 0), "variants": 1}).room_draw(0, 0)
         assert torch.allclose(level.scene(base).radar.rotation, base.radar.rotation, atol=1e-12)
         assert float(room.scene(base).radar.position[2]) == pytest.approx(room.radar_height_m)
 
@@ -330,22 +338,22 @@ def test_scatterers_and_clutter_vary_and_are_reproducible(dataset) -> None:
     assert a == b  # independent of the number of people
     params = dataset.item_params(3)
     assert len(params["static_scatterers"]) == len(a)
-    rooms = [r.room(5, k) for k in range(r.room_variants)]
-    big = TwinRandomization(room_variants=12)
-    n_obj = [len(big.room(0, k).clutter) for k in range(12)]
+    rooms = [r.room_draw(5, k) for k in range(r.room.variants)]
+    big = TwinRandomization(room={"variants": 12})
+    n_obj = [len(big.room_draw(0, k).clutter) for k in range(12)]
     assert min(n_obj) < max(n_obj) <= 6
-    with_clutter = next(room for room in [big.room(0, k) for k in range(12)] if room.clutter)
+    with_clutter = next(room for room in [big.room_draw(0, k) for k in range(12)] if room.clutter)
     plain = Scene.builtin("corridor")
     scene = with_clutter.scene(plain)
     c = with_clutter.clutter[0]
     assert c["material"] in scene.room.materials or any(m.startswith(c["material"]) for m in scene.room.materials)
     assert int(scene.room.object_id.max()) == len(with_clutter.clutter)  # walls 0, one id per object
     assert with_clutter.to_dict()["clutter"][0]["max"][2] <= with_clutter.height_m
-    assert rooms == [r.room(5, k) for k in range(r.room_variants)]
-    with pytest.raises(ConfigError, match="static_scatterers"):
-        TwinRandomization(static_scatterers=(3, 1))
+    assert rooms == [r.room_draw(5, k) for k in range(r.room.variants)]
+    with pytest.raises(ConfigError, match="room.scatterers"):
+        TwinRandomization(room={"scatterers": (3, 1)})
     with pytest.raises(ConfigError, match="clutter_materials"):
-        TwinRandomization(clutter_materials=["unobtainium"])
+        TwinRandomization(room={"clutter_materials": ["unobtainium"]})
 
 
 def test_drawn_phase_noise_skirts_a_strong_static_scatterer() -> None:

@@ -31,6 +31,7 @@ from radaraug.sensor.effects import (
 from radaraug.sensor.effects.base import insert_in_order
 from radaraug.sensor.paths import Paths
 from radaraug.sensor.receiver import FMCWReceiver
+from radaraug.sim.catalog import BY_NAME
 from radaraug.sim.dataset import SimulatedRadarDataset
 from radaraug.sim.randomization import (
     ItemDraw,
@@ -43,12 +44,23 @@ from radaraug.sim.seeding import item_generator
 from radaraug.sim.twin import DigitalTwin
 
 FAST = {"tracer_options": {"diffuse": False}, "shadowing": False}
-PROBABILITIES = ("spur_tone_probability", "interference_probability", "vibrating_clutter_probability",
-                 "rx_mismatch_probability", "frame_drift_probability", "wide_levels_probability",
-                 "static_phase_noise_probability")
-ALL_ON = {p: 1.0 for p in PROBABILITIES}
+ALL_ON = {"catalog": {name: {"probability": 1.0} for name in BY_NAME}}
 COUNTS = 4095 / 2  # ADC counts per SDK float unit
 BASE = ItemDraw(0, 0.0, 0.0, ())  # empty scene, no offsets, no catalog effect
+
+
+def _with(draw: ItemDraw, **effects: dict | None) -> ItemDraw:
+    """``draw`` carrying ``effects`` (``{name: values}`` as the catalog entries draw them; None removes one)."""
+    catalog = {**draw.catalog, **effects}
+    return dataclasses.replace(draw, catalog={k: v for k, v in catalog.items() if v is not None})
+
+
+def _spur(frac: float, amp: float, phase: float) -> dict:
+    return {"freq_nyquist": frac, "amplitude_counts": amp, "phase_rad": phase}
+
+
+def _mismatch(gains: tuple, phases: tuple) -> dict:
+    return {"gain_dB": gains, "phase_deg": phases}
 
 
 @pytest.fixture(scope="module")
@@ -89,27 +101,29 @@ def _range_bin(config, range_m: float) -> int:
 
 # ------------------------------------------------------------------------------ configuration
 def test_catalog_round_trip_and_errors() -> None:
-    r = TwinRandomization(effects_probability=0.5, spur_tone_probability=1, interference_duration_s=[1e-6, 2e-6],
-                          static_phase_noise_paths=2)
-    assert r.interference_duration_s == (1e-6, 2e-6) and r.spur_tone_probability == 1.0
+    r = TwinRandomization(catalog={"scale": 0.5, "spur_tone": {"probability": 1}, "interference": {
+        "duration_s": [1e-6, 2e-6]}, "static_phase_noise": {"paths": 2}})
+    assert r.catalog["interference"].duration_s == (1e-6, 2e-6) and r.catalog["spur_tone"].probability == 1.0
     d = r.to_dict()
-    assert d["effects_probability"] == 0.5 and d["interference_duration_s"] == [1e-6, 2e-6]
+    assert d["catalog"]["scale"] == 0.5 and d["catalog"]["interference"]["duration_s"] == [1e-6, 2e-6]
+    assert list(d["catalog"]) == ["scale", *BY_NAME]  # keyed by effect name, in draw order
     assert TwinRandomization.from_dict(yaml.safe_load(yaml.safe_dump(d))) == r
     assert TwinRandomization.from_dict(TwinRandomization().to_dict()) == TwinRandomization()
     assert not TwinRandomization.off().enabled
-    for bad, name in (({"effects_probability": 1.5}, "effects_probability"),
-                      ({"spur_tone_probability": -0.1}, "spur_tone_probability"),
-                      ({"interference_probability": "often"}, "interference_probability"),
-                      ({"spur_tone_freq_nyquist": [0.5, 1.2]}, "spur_tone_freq_nyquist"),
-                      ({"spur_tone_amplitude_counts": [0, 5]}, "spur_tone_amplitude_counts"),  # log range
-                      ({"interference_chirp_probability": [0.1, 2]}, "interference_chirp_probability"),
-                      ({"vibrating_clutter_Hz": [60, 5]}, "vibrating_clutter_Hz"),
-                      ({"rx_mismatch_phase_deg": [-200, 30]}, "rx_mismatch_phase_deg"),
-                      ({"frame_drift_dc_rms_counts": [-1, 2]}, "frame_drift_dc_rms_counts"),
-                      ({"static_phase_noise_paths": 0}, "static_phase_noise_paths"),
-                      ({"spur_probability": 0.3}, "spur_probability")):
+    for bad, name in (({"scale": 1.5}, "catalog.scale"),
+                      ({"spur_tone": {"probability": -0.1}}, "catalog.spur_tone.probability"),
+                      ({"interference": {"probability": "often"}}, "catalog.interference.probability"),
+                      ({"spur_tone": {"freq_nyquist": [0.5, 1.2]}}, "catalog.spur_tone.freq_nyquist"),
+                      ({"spur_tone": {"amplitude_counts": [0, 5]}}, "catalog.spur_tone.amplitude_counts"),  # log
+                      ({"interference": {"chirp_probability": [0.1, 2]}}, "interference.chirp_probability"),
+                      ({"vibrating_clutter": {"vibration_Hz": [60, 5]}}, "vibrating_clutter.vibration_Hz"),
+                      ({"rx_gain_phase_mismatch": {"phase_deg": [-200, 30]}}, "rx_gain_phase_mismatch.phase_deg"),
+                      ({"frame_drift": {"dc_rms_counts": [-1, 2]}}, "frame_drift.dc_rms_counts"),
+                      ({"static_phase_noise": {"paths": 0}}, "static_phase_noise.paths"),
+                      ({"spur": {"probability": 0.3}}, "spur"),
+                      ({"spur_tone": {"freq_Hz": [1, 2]}}, "freq_Hz")):
         with pytest.raises(ConfigError, match=name):
-            TwinRandomization.from_dict(bad)
+            TwinRandomization.from_dict({"catalog": bad})
 
 
 def test_receiver_checks_for_the_catalog() -> None:
@@ -117,16 +131,18 @@ def test_receiver_checks_for_the_catalog() -> None:
     no_adc = FMCWReceiver(cfg, effects=[e for e in default_effects(cfg) if e.name != "adc_noise"])
     with pytest.raises(ConfigError, match="adc_noise"):
         SimulatedRadarDataset("corridor", length=2, twin_options={**FAST, "receiver": no_adc},
-                              randomization=TwinRandomization(room_variants=1))
+                              randomization=TwinRandomization(room={"variants": 1}))
     SimulatedRadarDataset("corridor", length=2, twin_options={**FAST, "receiver": no_adc},
-                          randomization=TwinRandomization(room_variants=1, adc_noise_offset_dB=(0, 0)))
+                          randomization=TwinRandomization(room={"variants": 1},
+                                                          catalog={"wide_levels": {"adc_noise_offset_dB": (0, 0)}}))
     no_pn = FMCWReceiver(cfg, effects=[e for e in default_effects(cfg) if e.name != "phase_noise"])
-    with pytest.raises(ConfigError, match="static_phase_noise_probability"):
+    with pytest.raises(ConfigError, match="static_phase_noise.probability"):
         SimulatedRadarDataset("corridor", length=2, twin_options={**FAST, "receiver": no_pn},
-                              randomization=TwinRandomization(room_variants=1, phase_noise_rms_Hz=(0, 0)))
+                              randomization=TwinRandomization(room={"variants": 1},
+                                                              levels={"phase_noise_rms_Hz": (0, 0)}))
     SimulatedRadarDataset("corridor", length=2, twin_options={**FAST, "receiver": no_pn},
-                          randomization=TwinRandomization(room_variants=1, phase_noise_rms_Hz=(0, 0),
-                                                          effects_probability=0))
+                          randomization=TwinRandomization(room={"variants": 1}, levels={"phase_noise_rms_Hz": (0, 0)},
+                                                          catalog={"scale": 0}))
 
 
 # ------------------------------------------------------------------------------ draws
@@ -134,64 +150,64 @@ def test_catalog_draws_probabilities_ranges_and_independence() -> None:
     r = TwinRandomization()
     n = 600
     draws = [r.item(7, i, 1) for i in range(n)]
-    rates = {
-        "spur_tone": np.mean([d.spur_tone is not None for d in draws]),
-        "interference": np.mean([d.interference is not None for d in draws]),
-        "vibrating_clutter": np.mean([d.vibrating_clutter is not None for d in draws]),
-        "rx_mismatch": np.mean([d.rx_mismatch is not None for d in draws]),
-        "frame_drift": np.mean([d.frame_drift is not None for d in draws]),
-        "wide_levels": np.mean([d.wide_levels for d in draws]),
-    }
-    for name, rate in rates.items():
-        assert abs(rate - 0.3) < 0.07, (name, rate)  # 4.5 sigma at n = 600
-    assert abs(np.mean([d.static_phase_noise_paths > 0 for d in draws]) - 0.5) < 0.08
+    for name in BY_NAME:
+        rate = np.mean([name in d.catalog for d in draws])
+        assert abs(rate - (0.5 if name == "static_phase_noise" else 0.3)) < 0.08, (name, rate)  # 4.5 sigma
+    assert all((d.static_phase_noise_paths > 0) == ("static_phase_noise" in d.catalog) for d in draws)
+
+    def drawn(name: str) -> np.ndarray:
+        return np.array([list(d.catalog[name].values()) for d in draws if name in d.catalog], dtype=object)
+
     assert max(len(d.effects_dict(Scene.builtin("corridor").config)) for d in draws) >= 4  # several per item
     # Every draw inside its range (log ranges too).
-    spur = np.array([d.spur_tone for d in draws if d.spur_tone is not None])
+    spur = drawn("spur_tone").astype(float)
     assert spur[:, 0].min() >= 0.01 and spur[:, 0].max() <= 0.99 and np.ptp(spur[:, 0]) > 0.8
     assert spur[:, 1].min() >= 0.3 and spur[:, 1].max() <= 5.0 and np.median(spur[:, 1]) < 2.0  # log-uniform
-    inter = np.array([d.interference for d in draws if d.interference is not None])
+    inter = drawn("interference").astype(float)
     assert inter[:, 0].min() >= 0.01 and inter[:, 0].max() <= 0.3
     assert inter[:, 1].min() >= 5 and inter[:, 1].max() <= 1000 and inter[:, 2].max() <= 20e-6
-    vib = np.array([d.vibrating_clutter for d in draws if d.vibrating_clutter is not None])
+    vib = drawn("vibrating_clutter").astype(float)
     assert vib[:, 0].min() >= 0.5 and vib[:, 0].max() <= 10 and vib[:, 3].min() >= 5 and vib[:, 3].max() <= 60
     assert 1e-4 <= vib[:, 2].min() and vib[:, 2].max() <= 3e-3
-    mis = [d.rx_mismatch for d in draws if d.rx_mismatch is not None]
+    mis = drawn("rx_gain_phase_mismatch")
     assert max(abs(g) for m in mis for g in m[0]) <= 1.5 and max(abs(p) for m in mis for p in m[1]) <= 30
-    drift = np.array([d.frame_drift for d in draws if d.frame_drift is not None])
+    drift = drawn("frame_drift").astype(float)
     assert drift[:, 0].min() >= 0.1 and drift[:, 0].max() <= 1.0 and drift[:, 1].max() <= 4.0
-    wide = [d for d in draws if d.wide_levels]
+    wide = [d for d in draws if "wide_levels" in d.catalog]
     assert max(abs(d.system_gain_offset_dB) for d in wide) > 9 and max(d.noise_figure_offset_dB for d in wide) > 6
-    assert all(d.adc_noise_offset_dB == 0.0 for d in draws if not d.wide_levels)
-    assert all(abs(d.system_gain_offset_dB) <= 6 for d in draws if not d.wide_levels)
+    assert all(d.adc_noise_offset_dB == 0.0 for d in draws if d not in wide)
+    assert all(abs(d.system_gain_offset_dB) <= 6 for d in draws if d not in wide)
 
     # Reproducible per (seed, index); another index or seed differs.
     assert r.item(7, 11, 1) == draws[11] and r.effects(7, 11) == r.effects(7, 11)
     assert r.effects(7, 12) != r.effects(7, 11) and r.effects(8, 11) != r.effects(7, 11)
 
     # Probability 0 turns the catalog off and leaves the older draws where they were.
-    off = TwinRandomization(effects_probability=0)
+    off = TwinRandomization(catalog={"scale": 0})
     legacy = ("variant", "rcs_scale_dB", "scatterers", "phase_noise_rms_Hz")
     for i, d in enumerate(draws[:100]):
         o = off.item(7, i, 1)
         assert o.effects_dict(Scene.builtin("corridor").config) == {} and o.static_phase_noise_paths == 0
         assert all(getattr(o, f) == getattr(d, f) for f in legacy)
-        if not d.wide_levels:
+        if "wide_levels" not in d.catalog:
             assert (o.system_gain_offset_dB, o.noise_figure_offset_dB) == (d.system_gain_offset_dB,
                                                                            d.noise_figure_offset_dB)
     # One effect's probability does not shift another's draws.
-    no_spur = TwinRandomization(spur_tone_probability=0)
+    no_spur = r.replace(catalog={"spur_tone": {"probability": 0}})
     for i, d in enumerate(draws[:100]):
         o = no_spur.item(7, i, 1)
-        assert o.spur_tone is None and dataclasses.replace(o, spur_tone=d.spur_tone) == d
+        assert "spur_tone" not in o.catalog and _with(o, spur_tone=d.catalog.get("spur_tone")) == d
 
 
 def test_catalog_effects_sit_at_their_hardware_position() -> None:
     cfg = Scene.builtin("corridor").config
-    draw = ItemDraw(0, 0.0, 0.0, (), spur_tone=(0.5, 1.0, 0.0), interference=(0.1, 50.0, 5e-6),
-                    vibrating_clutter=(2.0, 0.0, 1e-3, 20.0, 0.0),
-                    rx_mismatch=(tuple(float(a) for a in range(16)), tuple(float(-a) for a in range(16))),
-                    frame_drift=(0.5, 1.0))
+    draw = _with(BASE, spur_tone=_spur(0.5, 1.0, 0.0),
+                 interference={"probability": 0.1, "amplitude_counts": 50.0, "duration_s": 5e-6},
+                 vibrating_clutter={"range_m": 2.0, "rcs_dBsm": 0.0, "displacement_m": 1e-3, "vibration_Hz": 20.0,
+                                    "phase_rad": 0.0},
+                 rx_gain_phase_mismatch=_mismatch(tuple(float(a) for a in range(16)),
+                                                  tuple(float(-a) for a in range(16))),
+                 frame_drift={"gain_rms_dB": 0.5, "dc_rms_counts": 1.0})
     base = FMCWReceiver(cfg)
     names = [e.name for e in item_receiver(base, 0.0, 0.0, extra_effects=draw.catalog_effects(cfg)).effects]
     assert names == ["tx_rx_leakage", "vibrating_clutter", "phase_noise", "thermal_noise", "system_gain",
@@ -225,7 +241,7 @@ def test_spur_is_a_narrow_line_at_its_beat_frequency(twin) -> None:
     cfg = twin.config
     frac = 0.95
     plain = _sim(twin, BASE)
-    spur = _sim(twin, dataclasses.replace(BASE, spur_tone=(frac, 2.0, 0.3)))
+    spur = _sim(twin, _with(BASE, spur_tone=_spur(frac, 2.0, 0.3)))
     n = cfg.num_samples_per_chirp
     w = torch.hann_window(n, periodic=False, dtype=plain.dtype)
 
@@ -244,7 +260,8 @@ def test_interference_raises_the_floor_of_the_chirps_it_hits(twin) -> None:
         return (x - x.median(-2, keepdim=True).values).pow(2).sum(dim=(0, 1, 3))
 
     plain = chirp_energy(_sim(twin, BASE))
-    hit = chirp_energy(_sim(twin, dataclasses.replace(BASE, interference=(0.3, 300.0, 5e-6))))
+    hit = chirp_energy(_sim(twin, _with(BASE, interference={"probability": 0.3, "amplitude_counts": 300.0,
+                                                            "duration_s": 5e-6})))
     floor = float(plain.median())
     assert int((plain > 3 * floor).sum()) == 0
     n_hit = int((hit > 3 * floor).sum())
@@ -261,10 +278,10 @@ def test_rx_mismatch_is_exact_on_the_cached_room_and_changes_the_rx_power_ratio(
     gains = (1.5, -1.5, 0.5) + (0.0,) * 13
     phases = (20.0, -30.0, 5.0) + (0.0,) * 13
     scatterer = ((7.0, 10.0, 0.0, 5.0),)
-    draw = ItemDraw(0, 0.0, 0.0, (), scatterer, rx_mismatch=(gains, phases))
+    draw = _with(ItemDraw(0, 0.0, 0.0, (), scatterer), rx_gain_phase_mismatch=_mismatch(gains, phases))
     times = quiet.frame_times([0])
     got = quiet.simulate([], times, draw=draw)
-    plain = quiet.simulate([], times, draw=dataclasses.replace(draw, rx_mismatch=None))
+    plain = quiet.simulate([], times, draw=_with(draw, rx_gain_phase_mismatch=None))
     chain = insert_in_order(_quiet_chain(cfg), RxGainPhaseMismatch(
         gain_dB=list(gains[:3]), phase_rad=[math.radians(p) for p in phases[:3]]))
     room = quiet.tracer.static_paths().map(lambda t: t.expand(1, *t.shape))
@@ -309,7 +326,7 @@ def test_frame_drift_changes_frame_to_frame_power(twin) -> None:
         return 10 * torch.log10(ac), dc * COUNTS
 
     p0, dc0 = per_frame(_sim(twin, BASE, frames=6))
-    p1, dc1 = per_frame(_sim(twin, dataclasses.replace(BASE, frame_drift=(1.0, 4.0)), frames=6))
+    p1, dc1 = per_frame(_sim(twin, _with(BASE, frame_drift={"gain_rms_dB": 1.0, "dc_rms_counts": 4.0}), frames=6))
     assert float(p0.std()) < 0.05 and float(p1.std()) > 0.3
     assert float(dc0.std(0).max()) < 0.3 and float(dc1.std(0).mean()) > 1.0
 
@@ -317,7 +334,8 @@ def test_frame_drift_changes_frame_to_frame_power(twin) -> None:
 def test_vibrating_clutter_puts_energy_off_zero_doppler_at_its_range(twin) -> None:
     cfg = twin.config
     plain = _rd_db(_sim(twin, BASE))[0].amax(0)  # (range, doppler), strongest RX
-    fan = _rd_db(_sim(twin, dataclasses.replace(BASE, vibrating_clutter=(3.0, 5.0, 2e-3, 50.0, 0.4))))[0].amax(0)
+    fan = _rd_db(_sim(twin, _with(BASE, vibrating_clutter={"range_m": 3.0, "rcs_dBsm": 5.0, "displacement_m": 2e-3,
+                                                           "vibration_Hz": 50.0, "phase_rad": 0.4})))[0].amax(0)
     r = _range_bin(cfg, 3.0)
     m = cfg.num_chirps_per_frame
     off = [*range(m // 2 - 8, m // 2 - 1), *range(m // 2 + 2, m // 2 + 9)]  # +-2..8 bins: 80-320 Hz
@@ -338,7 +356,7 @@ def test_room_returns_carry_the_phase_noise_skirt(twin) -> None:
     assert wall > 15.0
     draw = dataclasses.replace(BASE, phase_noise_rms_Hz=1e6)
     without = _rd_db(_sim(twin, draw))[0].amax(0)
-    with_skirt = _rd_db(_sim(twin, dataclasses.replace(draw, static_phase_noise_paths=4)))[0].amax(0)
+    with_skirt = _rd_db(_sim(twin, _with(draw, static_phase_noise={"paths": 4})))[0].amax(0)
     m = cfg.num_chirps_per_frame
     off = torch.cat([torch.arange(0, m // 2 - 3), torch.arange(m // 2 + 4, m)])
     axis = torch.as_tensor(cfg.range_axis_m())
@@ -359,10 +377,10 @@ def test_moving_room_paths_out_of_the_cache_changes_nothing_else() -> None:
     cfg = scene.config
     quiet = DigitalTwin(scene, receiver=FMCWReceiver(cfg, effects=_quiet_chain(cfg, phase_noise=True)), **FAST)
     mismatch = ((1.0, -0.5, 0.2) + (0.0,) * 13, (25.0, -10.0, 3.0) + (0.0,) * 13)
-    for extra in ({}, {"rx_mismatch": mismatch}):
-        draw = ItemDraw(0, 0.0, 0.0, (), **extra)
+    for extra in ({}, {"rx_gain_phase_mismatch": _mismatch(*mismatch)}):
+        draw = _with(BASE, **extra)
         a = quiet.simulate([], quiet.frame_times([0]), draw=draw)
-        b = quiet.simulate([], quiet.frame_times([0]), draw=dataclasses.replace(draw, static_phase_noise_paths=4))
+        b = quiet.simulate([], quiet.frame_times([0]), draw=_with(draw, static_phase_noise={"paths": 4}))
         assert torch.allclose(a, b, rtol=1e-4, atol=1e-5 * float(a.abs().max()))
 
 
@@ -370,12 +388,13 @@ def test_adc_noise_offset_raises_the_floor(twin) -> None:
     def floor(x: torch.Tensor) -> float:
         return float((x - x.mean(-2, keepdim=True)).std())
 
-    assert floor(_sim(twin, dataclasses.replace(BASE, adc_noise_offset_dB=6.0))) > 1.5 * floor(_sim(twin, BASE))
+    wide = {"system_gain_offset_dB": 0.0, "noise_figure_offset_dB": 0.0, "adc_noise_offset_dB": 6.0}
+    assert floor(_sim(twin, _with(BASE, wide_levels=wide))) > 1.5 * floor(_sim(twin, BASE))
 
 
 # ------------------------------------------------------------------------------ dataset
 def test_items_with_every_effect_are_reproducible_and_reported() -> None:
-    r = TwinRandomization(room_variants=1, **ALL_ON)
+    r = TwinRandomization(room={"variants": 1}, **ALL_ON)
     ds = SimulatedRadarDataset("corridor", length=4, seed=3, twin_options=FAST, randomization=r).prepare()
     x1, y1 = ds[1]
     assert torch.isfinite(x1).all()
@@ -392,11 +411,11 @@ def test_items_with_every_effect_are_reproducible_and_reported() -> None:
 
 
 def test_probability_zero_gives_the_items_without_the_catalog() -> None:
-    """``effects_probability=0`` items are the randomized twin's items before the catalog existed (the
+    """``catalog.scale = 0`` items are the randomized twin's items before the catalog existed (the
     older draws are untouched, no stage is added); so is any default item that draws no effect."""
-    base = {"room_variants": 1}
+    base = {"room": {"variants": 1}}
     off = SimulatedRadarDataset("corridor", length=200, seed=4, twin_options=FAST,
-                                randomization=TwinRandomization(effects_probability=0, **base)).prepare()
+                                randomization=TwinRandomization(catalog={"scale": 0}, **base)).prepare()
     on = SimulatedRadarDataset("corridor", length=200, seed=4, twin_options=FAST,
                                randomization=TwinRandomization(**base))
     on._variant_static = {0: off.variant_twin(0).static_signal()}

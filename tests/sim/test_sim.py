@@ -235,8 +235,8 @@ def test_sampler_crossing_walkers() -> None:
     mixed = ScenarioSampler(crossing_probability=0.5, counts=(2,))
     kinds = {"crossing" in par for s in range(20) for par in mixed.sample(torch.Generator().manual_seed(s)).params}
     assert kinds == {True, False}
-    twin_sampler = TwinRandomization(crossing_probability=0.4).sampler(
-        ScenarioSampler(), TwinRandomization().room(0, 0), radar_x_m=0.1)
+    twin_sampler = TwinRandomization(people={"crossing_probability": 0.4}).sampler(
+        ScenarioSampler(), TwinRandomization().room_draw(0, 0), radar_x_m=0.1)
     assert twin_sampler.crossing_probability == 0.4
     with pytest.raises(ConfigError, match="crossing_probability"):
         ScenarioSampler(crossing_probability=-0.1)

@@ -34,7 +34,7 @@ ITEMS = {
 }
 
 # The same for randomized items: SimulatedRadarDataset("corridor", length=4, seed=3,
-# randomization=TwinRandomization(room_variants=1), twin_options={"tracer_options": {"rays": 16}})[i],
+# randomization=TwinRandomization(room={"variants": 1}), twin_options={"tracer_options": {"rays": 16}})[i],
 # recorded (torch 2.14.1, CPU) before the dataset's two simulation branches became one
 # (`DigitalTwin.simulate(..., draw=...)`). Between them the items draw the effect catalog's spur tone,
 # vibrating clutter, RX gain/phase mismatch (with people shadowing the room), frame drift, wide levels
@@ -122,7 +122,7 @@ def test_known_items_are_bit_identical(index: int, model: str) -> None:
 def randomized_dataset() -> SimulatedRadarDataset:
     from radaraug.sim.randomization import TwinRandomization
 
-    return SimulatedRadarDataset("corridor", length=4, seed=3, randomization=TwinRandomization(room_variants=1),
+    return SimulatedRadarDataset("corridor", length=4, seed=3, randomization=TwinRandomization(room={"variants": 1}),
                                  twin_options={"tracer_options": {"rays": 16}})
 
 

@@ -157,8 +157,8 @@ def test_twin_randomization_draws_around_a_profile_receiver():
     cfg = small_config()
     prof = _profile(noise_figure_dB=25.0)
     ds = SimulatedRadarDataset("corridor", length=2, seed=0, config=cfg, twin_options=dict(TWIN), profile=prof,
-                               randomization=TwinRandomization(room_variants=1))
-    lo, hi = TwinRandomization().noise_figure_offset_dB
+                               randomization=TwinRandomization(room={"variants": 1}))
+    lo, hi = TwinRandomization().levels.noise_figure_offset_dB
     nf = ds.item_params(0)["noise_figure_dB"]
     assert 25.0 + lo <= nf <= 25.0 + hi
     x, _ = ds[0]
@@ -169,7 +169,7 @@ def test_twin_randomization_draws_around_a_profile_receiver():
 def test_cdr_profile_end_to_end_with_the_real_diagnose(tmp_path, captures):
     cal, _ = captures
     # twin randomization on: its gain / noise-figure / phase-noise draws act on the fitted chain's stages
-    dm = _dm(tmp_path, captures, method="cdr_profile", randomization={"room_variants": 1})
+    dm = _dm(tmp_path, captures, method="cdr_profile", randomization={"room": {"variants": 1}})
     dm.setup("fit")
     cached = list((tmp_path / "c").glob("profile-*.json"))
     assert len(cached) == 1
@@ -196,16 +196,17 @@ def test_catalog_priors_from_the_calibrations_diagnosis(tmp_path, captures, monk
         return SimpleNamespace(profile=TwinProfile(rx.to_dict(), {"capture": str(capture), "effects_added": ["spur_tone"]}))
 
     monkeypatch.setattr(calibration_mod, "diagnose", diagnose)
-    kw = {"randomization": {"room_variants": 1}, "calibrate_noise": False, "train_items": 3}
+    kw = {"randomization": {"room": {"variants": 1}}, "calibrate_noise": False, "train_items": 3}
     dm = _dm(tmp_path, captures, method="rt", catalog_priors="calibration", **kw)
     dm.setup("fit")
     assert len(calls) == 1 and dm.twin_profile is None and dm.receiver_kind() == "default"
     rz = dm.simulated_dataset().randomization
     frac = 150e3 / (small_config().sample_rate_Hz / 2)
-    assert rz.spur_tone_freq_nyquist[0] < frac < rz.spur_tone_freq_nyquist[1] and rz.spur_tone_probability == 0.7
+    spur = rz.catalog["spur_tone"]
+    assert spur.freq_nyquist[0] < frac < spur.freq_nyquist[1] and spur.probability == 0.7
     info = json.loads((tmp_path / "run" / "clip_range.json").read_text())["catalog_priors"]
     assert info["found"] == ["spur_tone"] and "spur_tone" in info["changes"]
     plain = _dm(tmp_path, captures, method="rt", out_dir=None, **kw)
     plain.setup("fit")
-    assert plain.simulated_dataset().randomization.spur_tone_freq_nyquist == (0.01, 0.99)
+    assert plain.simulated_dataset().randomization.catalog["spur_tone"].freq_nyquist == (0.01, 0.99)
     assert len(calls) == 1 and plain.catalog_prior_info is None

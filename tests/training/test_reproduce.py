@@ -186,7 +186,7 @@ def test_the_runs_take_their_hyperparameters_from_the_recipes():
     # the values the experiment's reports were measured with, now written once, in the recipes
     eff = R.effective_settings(R.ReproduceSettings.quick())
     assert {k: eff[k] for k in R.RECIPE_KEYS} == {
-        "randomization": {"spur_tone_probability": 0.0, "vibrating_clutter_probability": 0.0},
+        "randomization": {"catalog": {"spur_tone": {"probability": 0.0}, "vibrating_clutter": {"probability": 0.0}}},
         "representation": "floor_relative", "excise_persistent_db": 3.0,
         "calibrate_noise": False, "cdr_twin_noise_offset_db": -15.0, "cdr_floor": "matched", "lr": 0.001,
         "context_frames": 8, "blank_zero_doppler": 1}
