@@ -224,6 +224,10 @@ def _cmd_bench(args: argparse.Namespace) -> Result:
         from radaraug.bench.predict import run_predict_benchmark
 
         result = run_predict_benchmark(batch=args.batch, repeats=args.repeats, device=device, out=args.output)
+    elif args.what == "contract":
+        from radaraug.bench.contract import run_contract_benchmark
+
+        result = run_contract_benchmark(out=args.output)
     elif args.what == "training":
         from radaraug.bench.training import run_training_benchmark
 
@@ -595,6 +599,10 @@ def _cmd_predict(args: argparse.Namespace) -> Result:
         _check_output(args, args.output)
     clf = _classifier(args)
     gate = not args.no_gate
+    if gate and clf.gate is None:  # the decision then is the network's alone: say so where a user looks
+        print(f"{args.classifier}: the classifier file carries no static-change gate (it was trained without an "
+              "empty-room capture); decisions are the network's alone. --calibration EMPTY fits one for this room",
+              file=sys.stderr)
     if args.device is not None:
         chunks: Any = predict_device(clf, _live_device(args, clf.config), seconds=args.seconds,
                                      max_frames=args.max_frames, window=args.window, gate=gate)
@@ -672,9 +680,11 @@ def build_parser() -> argparse.ArgumentParser:
     info.add_argument("--json", action="store_true", help="print one JSON object")
     info.add_argument("--max-frames", type=int, default=256, help="frames used for the statistics")
 
-    fit = command("fit-cdr", _cmd_fit_cdr, help="fit CalibratedDR on an empty-room capture")
-    fit.add_argument("path", help="empty-room capture (radaraug .h5 or Infineon recording folder)")
-    _output_args(fit, "calibration JSON to write")
+    fit = command("fit-cdr", _cmd_fit_cdr, help="fit CalibratedDR's floor on an empty-room capture (the JSON "
+                  "serves CDR only: training and reproduce want the capture itself)")
+    fit.add_argument("path", help="empty-room capture (radaraug .h5 or Infineon recording folder), recorded "
+                     "like the test captures")
+    _output_args(fit, "calibration JSON to write (CDR's floor only: no frames, so no excision, gate or profile)")
     fit.add_argument("--max-frames", type=int, default=None, help="frames read (default: all)")
     fit.add_argument("--floor", choices=("normal", "empirical"), default="normal",
                      help="the floor distribution the calibration draws from: normal (the paper's CDR) or empirical "
@@ -683,7 +693,8 @@ def build_parser() -> argparse.ArgumentParser:
 
     bench = command("bench", _cmd_bench, help="benchmarks (figures as ratios against a same-process baseline)")
     bench.add_argument("what", choices=["transforms", "twin", "training", "predict", "diagnose", "static-room",
-                                        "micro-doppler", "people-level"], help="which benchmark (docs/benchmarks.md)")
+                                        "micro-doppler", "people-level", "contract"],
+                       help="which benchmark (docs/benchmarks.md)")
     bench.add_argument("--capture", action="append", default=None,
                        help="people-level: a capture with a moving person (.h5 or Infineon folder); repeat for more")
     bench.add_argument("--batch", type=int, default=32, help="transforms, training, predict: frames per batch")
@@ -742,7 +753,8 @@ def build_parser() -> argparse.ArgumentParser:
     rep.add_argument("--calibration", default=None,
                      help="empty-room capture recorded like the --test captures: the twin simulates its config, its "
                      "persistent lines are excised, CDR's floor and each classifier's static-change gate are "
-                     "fitted on it (required with --test; the generated test sets bring their own)")
+                     "fitted on it, cdr_profile fits its profile on it (required with --test; the generated test "
+                     "sets bring their own; a CalibratedDR JSON serves CDR only, with a warning)")
     rep.add_argument("--test", action="append", default=None, metavar="PATH[:COUNT]",
                      help="test capture; COUNT labels the whole file, else per-frame 'count' labels (repeatable)")
     rep.add_argument("--cdr-floor", choices=("matched", "normal", "empirical"), default=None,
@@ -783,7 +795,8 @@ def build_parser() -> argparse.ArgumentParser:
     proxy.add_argument("--json", action="store_true", help="print the calibration and test capture paths as one JSON object")
 
     dia = command("diagnose", _cmd_diagnose, help="compare a capture with the twin, fit the missing effects (docs/calibration.md)")
-    dia.add_argument("capture", help="radaraug .h5 capture or Infineon recording folder")
+    dia.add_argument("capture", help="radaraug .h5 capture or Infineon recording folder (for a sensor "
+                     "profile: the empty-room capture, as cdr_profile and catalog_priors: calibration use it)")
     dia.add_argument("--scene", default=None, help="the capture's scene (file or built-in name); "
                      "default: estimate the static scene from the capture")
     _output_args(dia, "report folder")
@@ -831,8 +844,9 @@ def build_parser() -> argparse.ArgumentParser:
                       help="frames of the causal smoothing of the decision (default: the classifier's context)")
     pred.add_argument("--no-gate", action="store_true", help="do not fuse the static-change gate into the decision")
     pred.add_argument("--calibration", default=None,
-                      help="an empty-room capture of the room predicted in: refits the static-change gate on it "
-                      "(the classifier file carries the gate of the room it was tested in)")
+                      help="an empty-room capture (.h5 or Infineon folder, not a JSON) of the room predicted in: "
+                      "refits the static-change gate on it (the classifier file carries the gate of the room it "
+                      "was tested in, or none)")
     pred.add_argument("--follow", action="store_true",
                       help="one radaraug capture still being recorded: classify frames as they are flushed")
     pred.add_argument("--idle-timeout", type=float, default=60.0,
@@ -866,9 +880,13 @@ def build_parser() -> argparse.ArgumentParser:
     cap.add_argument("--label", type=int, default=None,
                      help="people count of the whole recording (per-frame 'count' and 'occupancy' labels)")
 
-    cal = command("calibrate", _cmd_calibrate, help="record the empty room and fit CalibratedDR in one step")
-    live(cal, "calibration JSON to write")
-    cal.add_argument("--keep-recording", default=None, metavar="PATH", help="also keep the recording here (.h5)")
+    cal = command("calibrate", _cmd_calibrate, help="record the empty room and fit CalibratedDR in one step "
+                  "(--keep-recording keeps the capture training needs)")
+    live(cal, "calibration JSON to write (CDR's floor only: no frames, so no excision, gate or profile)")
+    cal.add_argument("--keep-recording", default=None, metavar="PATH",
+                     help="also keep the empty-room recording here (.h5): the capture to give as data.calibration "
+                     "or reproduce --calibration (the twin's config, excision, CDR floor, static-change gate, "
+                     "cdr_profile)")
     cal.add_argument("--floor", choices=("normal", "empirical"), default="normal",
                      help="the floor distribution the calibration draws from (as fit-cdr --floor)")
     return p

@@ -67,7 +67,7 @@ def run_twin_benchmark(
     from radaraug.bench.intersection import benchmark_intersection
     from radaraug.scene.scene import Scene
     from radaraug.sensor.receiver import FMCWReceiver
-    from radaraug.sensor.synthesis import ChirpTiming, per_channel_synthesis, synthesize, taylor_coupling
+    from radaraug.sensor.synthesis import ChirpTiming, synthesize
     from radaraug.sim.twin import DigitalTwin
 
     with torch_threads(1):
@@ -86,14 +86,7 @@ def run_twin_benchmark(
         knots = float(twin.last_intervals.double().mean())
         # The same blocks with one snapshot per frame (the cost of motion inside the frame).
         fps_one = frames_per_s(DigitalTwin(scene, device=device, static_signal=static, intra_frame=0))
-        # The same twin with a fast-time factor per RX channel (the synthesis before they shared one),
-        # and with the people's shadow moving inside the frame (shadow_intervals=2).
-        with per_channel_synthesis():
-            fps_per_channel = frames_per_s(DigitalTwin(scene, device=device, static_signal=static))
-        # The same twin with the coupling's Taylor series and one set of orders per block (before the
-        # Chebyshev series with orders per frame).
-        with taylor_coupling():
-            fps_taylor = frames_per_s(DigitalTwin(scene, device=device, static_signal=static))
+        # The same twin with the people's shadow moving inside the frame (shadow_intervals=2).
         fps_shadow_moving = frames_per_s(DigitalTwin(scene, device=device, static_signal=static, shadow_intervals=2))
 
         # The cost of each of the twin's fidelity additions, added one at a time to the issue-7
@@ -166,10 +159,6 @@ def run_twin_benchmark(
         "frames_per_s_1proc_additions": {k: round(v, 1) for k, v in ladder.items()},
         "additions_note": "second-order people multipath (wall-person-wall) is in every rung: it has no switch",
         "intra_frame_cost_ratio": round(fps_one / fps_1, 3),
-        "frames_per_s_1proc_per_channel_synthesis": round(fps_per_channel, 1),
-        "rx_shared_synthesis_speedup": round(fps_1 / fps_per_channel, 3),
-        "frames_per_s_1proc_taylor_coupling": round(fps_taylor, 1),
-        "coupling_speedup": round(fps_1 / fps_taylor, 3),
         "frames_per_s_1proc_shadow_intervals_2": round(fps_shadow_moving, 1),
         "shadow_intervals_2_cost_ratio": round(fps_1 / fps_shadow_moving, 3),
         "intra_frame_knot_intervals_mean": round(knots, 2),

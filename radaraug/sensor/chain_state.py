@@ -63,6 +63,7 @@ class ChainState:
     front_end_gain: float
     method: str
     taylor_tol: float
+    noise_tol: float | None = None
     chirp_delay: torch.Tensor | None = None
     chirp_gain: torch.Tensor | None = None
     modulated: list[ModulatedPaths] = field(default_factory=list, init=False)
@@ -236,15 +237,28 @@ class ChainState:
         return pick(self.chirp_delay), pick(self.chirp_gain)
 
     # ------------------------------------------------------------------ samples
+    def _noise_abs_tol(self) -> float | None:
+        """``noise_tol`` times the RMS per sample of the noise added so far (None: orders relative to the strongest path).
+
+        The noise is read from the added signals' spectrum at this point of the chain (filtered like the
+        paths): the median bin power over the non-DC bins, so that a DC offset or a spur does not count.
+        """
+        if self.noise_tol is None or self.spectrum is None or self.spectrum.shape[-1] < 2:
+            return None
+        power = self.spectrum[..., 1:].detach().abs().square().double()
+        sigma = math.sqrt(float(power.median()) / self.timing.num_samples)
+        return None if sigma <= 0 else self.noise_tol * sigma
+
     def materialize(self) -> torch.Tensor:
         """Synthesize the samples ``(…, RX, M, N)`` (idempotent)."""
         if self.samples is not None:
             return self.samples
-        def synth(p: ChainState | ModulatedPaths) -> torch.Tensor:
+        def synth(p: ChainState | ModulatedPaths, abs_tol: float | None = None) -> torch.Tensor:
             return synthesize(p.coef, p.delay_s, p.delay_rate, self.timing, dtype=self.dtype, method=self.method,
-                              taylor_tol=self.taylor_tol, chirp_delay=p.chirp_delay, chirp_gain=p.chirp_gain)
+                              taylor_tol=self.taylor_tol, chirp_delay=p.chirp_delay, chirp_gain=p.chirp_gain,
+                              abs_tol=abs_tol)
 
-        x = synth(self)
+        x = synth(self, self._noise_abs_tol())
         for mod in self.modulated:
             x = x + mod.multiplier * synth(mod)
         if self.spectrum is not None:

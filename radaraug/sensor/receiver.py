@@ -41,7 +41,9 @@ class FMCWReceiver(nn.Module):
         synthesis: ``"fast"`` (separable GEMM, default) or ``"exact"`` (direct sum, reference).
         front_end_gain_dB: ADC float units per sqrt(W) at the RX port at 0 dB IF gain
             (:data:`~radaraug.sensor.defaults.FRONT_END_GAIN_DB`).
-        taylor_tol: truncation bound of the fast synthesis' coupling expansion.
+        taylor_tol: truncation bound of the fast synthesis' coupling expansion, relative to the strongest path.
+        noise_tol: the bound relative to the RMS per sample of the noise the chain has added before the
+            synthesis instead (None: ``taylor_tol``); docs/simulation.md, "The synthesis' error contract".
         adc_noise_rms_counts: RMS of the default chain's ``adc_noise`` stage (None: the fitted
             :data:`~radaraug.sensor.defaults.ADC_NOISE_RMS_COUNTS`). Only with ``effects=None``.
     """
@@ -60,6 +62,7 @@ class FMCWReceiver(nn.Module):
         front_end_gain_dB: float = FRONT_END_GAIN_DB,
         taylor_tol: float = DEFAULT_TAYLOR_TOL,
         adc_noise_rms_counts: float | None = None,
+        noise_tol: float | None = None,
     ) -> None:
         super().__init__()
         if not isinstance(config, RadarConfig):
@@ -71,6 +74,9 @@ class FMCWReceiver(nn.Module):
         self.config = config
         self.synthesis = synthesis
         self.taylor_tol = float(taylor_tol)
+        if noise_tol is not None and not (noise_tol > 0 and math.isfinite(noise_tol)):
+            raise ConfigError(f"noise_tol must be positive or None, got {noise_tol!r}")
+        self.noise_tol = None if noise_tol is None else float(noise_tol)
         self.tx_power_dBm = _tx_power(config, tx_power_dBm)
         self.front_end_gain_dB = float(front_end_gain_dB)
         if effects is None:
@@ -212,6 +218,7 @@ class FMCWReceiver(nn.Module):
             "tx_power_dBm": None if self.tx_power_dBm == -math.inf else self.tx_power_dBm,
             "front_end_gain_dB": self.front_end_gain_dB,
             "taylor_tol": self.taylor_tol,
+            "noise_tol": self.noise_tol,
             "effects": [e.to_dict() for e in self.effects],
             "units": FLOAT_CONVENTION,
         }
@@ -229,6 +236,7 @@ class FMCWReceiver(nn.Module):
                 synthesis=data.get("synthesis", "fast"),
                 front_end_gain_dB=float(data.get("front_end_gain_dB", FRONT_END_GAIN_DB)),
                 taylor_tol=float(data.get("taylor_tol", DEFAULT_TAYLOR_TOL)),
+                noise_tol=None if data.get("noise_tol") is None else float(data["noise_tol"]),
             )
         except (KeyError, TypeError) as e:
             raise ConfigError(f"invalid receiver description: {e}") from None
@@ -273,6 +281,7 @@ class FMCWReceiver(nn.Module):
             front_end_gain=self.front_end_gain,
             method=self.synthesis,
             taylor_tol=self.taylor_tol,
+            noise_tol=self.noise_tol,
         )
 
 

@@ -9,9 +9,8 @@ before the trig. Phase model, accuracy and speed: ``docs/receiver.md``, "How it 
 
 from __future__ import annotations
 
-import contextlib
 import math
-from collections.abc import Callable, Iterator
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import torch
@@ -31,10 +30,8 @@ _FAST_CHUNK_ELEMENTS = 1 << 19  # fast-time factors per chunk of rows (2 MiB in 
 # GPU work (H200 profile). 256 MiB of fast-time factors per chunk takes ~200 paper-config frames
 # per launch and keeps the chunk's temporaries within a few GiB.
 _FAST_CHUNK_ELEMENTS_GPU = 1 << 26
-_MAX_TAYLOR_ORDERS = 60
+_MAX_ORDERS = 60
 _PER_FRAME_TOL = 0.25  # the share of ``taylor_tol`` each path's orders are chosen for, per frame (see synthesize_fast)
-_COUPLING = "chebyshev"  # the coupling's expansion (:func:`taylor_coupling` restores "taylor")
-_SHARE_RX = True  # the RX channels share the fast-time factor where exact (:func:`per_channel_synthesis`)
 
 
 @dataclass(frozen=True)
@@ -163,6 +160,7 @@ def synthesize_fast(
     taylor_tol: float = DEFAULT_TAYLOR_TOL,
     chirp_delay: torch.Tensor | None = None,
     chirp_gain: torch.Tensor | None = None,
+    abs_tol: float | None = None,
 ) -> torch.Tensor:
     """Separable (GEMM) synthesis of ``sum_p Re{C_p g_pm exp(j Phi_p[m, n])}``.
 
@@ -175,6 +173,8 @@ def synthesize_fast(
         taylor_tol: largest neglected term of the coupling's expansion (:data:`DEFAULT_TAYLOR_TOL`).
         chirp_delay: optional ``(…, 1 or RX, P, M)`` extra delay ``d_m`` per chirp (motion beyond ``tau0 + r t``), s.
         chirp_gain: optional ``(…, 1 or RX, P, M)`` real amplitude factor ``g_pm`` per chirp.
+        abs_tol: the largest neglected term in the samples' own units, instead of ``taylor_tol`` times the
+            strongest path (the receiver sets it from its noise: ``FMCWReceiver(noise_tol=...)``).
 
     Returns:
         ``(…, RX, M, N)`` real samples.
@@ -190,16 +190,16 @@ def synthesize_fast(
         mag = mag * chirp_gain.abs().reshape(-1, P, chirp_gain.shape[-1]).amax(dim=(0, 2)).double()
     top = mag.max().clamp_min(1e-300)
     rel = mag / top
+    tol = taylor_tol if abs_tol is None else max(float(abs_tol) / float(top), 1e-300)  # relative to ``top``
     # The RX channels of a frame see each path at delays a few picoseconds apart. Their fast-time
     # rates differ by a few mHz (a phase linear in the sample index: ~0.04 rad over a chirp) and
     # their in-chirp quadratic terms by ~1e-5 rad: the channels share one fast-time factor (its
     # trig and one GEMM whose slow side stacks the channels) and the linear difference joins the
     # coupling's expansion (``theta w_m v_n + phi v_n`` has the same form). Shared only where the
     # neglected quadratic difference is below the tolerance.
-    theta_rows, shared_rows = _coupling_phase(delay_s, delay_rate, timing, chirp_delay, rel, taylor_tol)
-    theta_p = theta_rows.reshape(-1, P).amax(dim=0)
+    theta_rows, shared_rows = _coupling_phase(delay_s, delay_rate, timing, chirp_delay, rel, tol)
+    still = theta_rows.reshape(-1, P).amax(dim=0) == 0
     shared = None if shared_rows is None else shared_rows.reshape(-1, P).amax(dim=0)
-    still = theta_p == 0
     if shared is not None and bool(still.any()) and not bool(still.all()):
         # Static paths need no expansion term on their own channel; shared, the channels' linear
         # difference would give them some, whose truncation errors add up over a room's thousands
@@ -207,13 +207,11 @@ def synthesize_fast(
         def part(idx: torch.Tensor) -> torch.Tensor:
             return synthesize_fast(
                 coef.index_select(-1, idx), delay_s.index_select(-1, idx), delay_rate.index_select(-1, idx), timing,
-                dtype=dtype, taylor_tol=taylor_tol,
+                dtype=dtype, taylor_tol=taylor_tol, abs_tol=abs_tol,
                 chirp_delay=None if chirp_delay is None else chirp_delay.index_select(-2, idx),
                 chirp_gain=None if chirp_gain is None else chirp_gain.index_select(-2, idx))
         return part(still.nonzero()[:, 0]) + part((~still).nonzero()[:, 0])
     share = shared is not None and not bool(still.all())
-    if share and shared is not None:
-        theta_p = shared
     # Orders per path: term k of a path is at most its bound (:func:`chebyshev_orders_needed`) times
     # its amplitude; it is kept while that is at least ``taylor_tol`` times the strongest path of
     # the call (so weak multipath needs fewer orders than the torso for the same error bound on the
@@ -221,23 +219,13 @@ def synthesize_fast(
     # swings fast in one frame of the batch does not cost its orders in the others), and the
     # chunk's paths sorted by them, so those that need order k form a prefix: each order is one
     # pair of GEMMs on a view, and static clutter (theta = 0) costs one pair in all.
-    if _COUPLING == "taylor":  # the rule before TWIN_MODEL_VERSION 4: Taylor orders for the whole call
-        coef, delay_s, delay_rate, chirp_delay, chirp_gain, counts = _sorted_by_orders(
-            coef, delay_s, delay_rate, chirp_delay, chirp_gain, taylor_orders_needed(theta_p, rel, taylor_tol))
-        K = len(counts) + 1
-        v = torch.linspace(-1, 1, N, dtype=dtype, device=dev)
-        v_pow = [v.pow(k) for k in range(1, K)]
-    else:
-        cheb = _chebyshev_polynomials(N, dtype, dev)
-        if share and shared_rows is not None:
-            theta_rows = shared_rows
-        amp_rows = coef.abs() if chirp_gain is None else coef.abs() * chirp_gain.abs().amax(dim=-1)
-        # Every row's own orders, for a quarter of the tolerance: per frame, more paths sit near the
-        # bound than with one set of orders per batch, and their errors add up (fast float32 vs exact
-        # on the bench's first two-walker block: relative RMS error 9.5e-6 at half the tolerance,
-        # 4.7e-6 at a quarter, 5.1e-6 for the Taylor series at the full one; walkers with motion
-        # inside the frame: 1.2e-5 / 2.9e-6 / 6.1e-6). A quarter keeps a frame's error where it was.
-        need_rows = chebyshev_orders_needed(theta_rows, amp_rows / top, taylor_tol * _PER_FRAME_TOL)
+    cheb = _chebyshev_polynomials(N, dtype, dev)
+    if share and shared_rows is not None:
+        theta_rows = shared_rows
+    amp_rows = coef.abs() if chirp_gain is None else coef.abs() * chirp_gain.abs().amax(dim=-1)
+    # Every row's own orders, for a quarter of the tolerance: per frame, more paths sit near the
+    # bound than with one set of orders per batch, and their errors add up (docs/receiver.md).
+    need_rows = chebyshev_orders_needed(theta_rows, amp_rows / top, tol * _PER_FRAME_TOL)
     # Rows are the frames when the RX channels share the fast-time factor, else (frame, RX) pairs.
     # They are done in chunks whose per-path work (phases, slow factors P x M, fast-time factors
     # 2P x N per row) stays in the CPU's cache: the trig, the GEMMs and the expansion's updates then run
@@ -260,9 +248,8 @@ def synthesize_fast(
         d, r = pick(delay_s, 1), pick(delay_rate, 1)
         cd, g = (None if t is None else pick(t, 2) for t in (chirp_delay, chirp_gain))
         c = pick(coef, 1)
-        if _COUPLING != "taylor":
-            c, d, r, cd, g, counts = _sorted_by_orders(c, d, r, cd, g, pick(need_rows, 1).reshape(-1, P).amax(dim=0))
-            K = len(counts) + 1
+        c, d, r, cd, g, counts = _sorted_by_orders(c, d, r, cd, g, pick(need_rows, 1).reshape(-1, P).amax(dim=0))
+        K = len(counts) + 1
         slow, per_sample, theta, quad, w = _phase_terms(d, r, timing, cd)
         # The coupling theta w_m (c, R, P, M), rad, on the slow side of the expansion's terms.
         if R > 1:
@@ -284,35 +271,10 @@ def synthesize_fast(
             """(c, R, P, M) -> (c, P, R M): the channels side by side on the GEMM's slow side."""
             return t.transpose(1, 2).reshape(t.shape[0], P, R * M)
 
-        # Slow side: Re, Im of C e^{j slow} (c, P, R M); fast side: cos, sin (:func:`_fast_rows`).
+        # Slow side: Re, Im of C e^{j slow} (c, P, R M); fast side: cos, sin (:func:`_fast_time_cos_sin`).
         ar, ai, z = stack(cr * cs - ci * ss), stack(cr * ss + ci * cs), None if tw is None else stack(tw)
-        if _COUPLING == "taylor":
-            out[r0:r0 + step] = _fast_rows(ar, ai, per_sample[:, 0], quad[:, 0], z, counts, v_pow, N, dtype)
-        else:
-            out[r0:r0 + step] = _fast_rows_chebyshev(ar, ai, per_sample[:, 0], quad[:, 0], z, counts, cheb, dtype)
+        out[r0:r0 + step] = _fast_rows_chebyshev(ar, ai, per_sample[:, 0], quad[:, 0], z, counts, cheb, dtype)
     return out.reshape(*batch, M, N)
-
-
-@contextlib.contextmanager
-def per_channel_synthesis() -> Iterator[None]:
-    """Context in which every RX channel gets its own fast-time factor (reference rule, ``docs/receiver.md``)."""
-    global _SHARE_RX
-    before, _SHARE_RX = _SHARE_RX, False
-    try:
-        yield
-    finally:
-        _SHARE_RX = before
-
-
-@contextlib.contextmanager
-def taylor_coupling() -> Iterator[None]:
-    """Context in which the coupling uses a Taylor series, one set of orders per call (``docs/receiver.md``)."""
-    global _COUPLING
-    before, _COUPLING = _COUPLING, "taylor"
-    try:
-        yield
-    finally:
-        _COUPLING = before
 
 
 def _unravel(flat: torch.Tensor, shape: tuple[int, ...]) -> tuple[torch.Tensor, ...]:
@@ -349,7 +311,7 @@ def _coupling_phase(
     k = timing.slope * (1 - r) / timing.fs
     theta = 2 * math.pi * (k * span / 2) * nc
     P = delay_s.shape[-1]
-    if not _SHARE_RX or delay_s.dim() < 2 or delay_s.shape[-2] < 2:
+    if delay_s.dim() < 2 or delay_s.shape[-2] < 2:
         return theta, None
     rate, quad = _fast_time_rate(delay_s.double(), r, k * mid, timing)  # as _phase_terms gives them
     d_rate = (rate - rate.mean(dim=-2, keepdim=True)).abs()
@@ -358,33 +320,6 @@ def _coupling_phase(
     if bool((quad_err * rel_amplitude > tol).any()):
         return theta, None
     return theta, theta + 2 * math.pi * nc * d_rate
-
-
-def _fast_rows(
-    ar: torch.Tensor, ai: torch.Tensor, per_sample: torch.Tensor, quad: torch.Tensor, tw: torch.Tensor | None,
-    counts: list[int], v_pow: list[torch.Tensor], num_samples: int, dtype: torch.dtype,
-) -> torch.Tensor:
-    """Taylor-series :func:`synthesize_fast` of a chunk of rows.
-
-    ``ar, ai`` ``(c, P, M)``: Re and Im of ``C e^{j slow}``, paths sorted by order (``counts[k - 1]`` need order
-    ``k``); ``tw``: the coupling ``theta w_m``. Each order is a pair of GEMMs on a prefix of the paths.
-    """
-    cos_sin = _fast_time_cos_sin(per_sample, quad, num_samples, dtype)  # (c, 2, P, N)
-    cos, sin = cos_sin[:, 0], cos_sin[:, 1]
-    out = torch.bmm(ar.transpose(-1, -2), cos).baddbmm_(ai.transpose(-1, -2), sin, alpha=-1)
-    if tw is None:  # no path needs a Taylor term (``counts`` is empty)
-        return out
-    tr, ti = ar, ai
-    for k, pk in enumerate(counts, start=1):
-        if pk == 0:
-            break
-        # Term k of exp(j theta w v): (j theta w)^k / k! on the slow side, v^k on the fast side.
-        # Multiplying by j swaps (re, im) -> (-im, re).
-        scale = tw[:, :pk, :] / k
-        tr, ti = -ti[:, :pk, :] * scale, tr[:, :pk, :] * scale
-        term = torch.bmm(tr.transpose(-1, -2), cos[:, :pk]).baddbmm_(ti.transpose(-1, -2), sin[:, :pk], alpha=-1)
-        out.addcmul_(term, v_pow[k - 1])
-    return out
 
 
 def _chebyshev_polynomials(num_samples: int, dtype: torch.dtype, device: torch.device) -> Callable[[int], torch.Tensor]:
@@ -494,22 +429,13 @@ def chebyshev_orders_needed(theta: torch.Tensor, rel_amplitude: torch.Tensor, to
                        device=theta.device)
     half_max = float(theta.amax()) / 2 if theta.numel() else 0.0
     log_fact = 0.0
-    for k in range(1, _MAX_TAYLOR_ORDERS):
+    for k in range(1, _MAX_ORDERS):
         log_fact += math.log(k)
         kept = active & (excess + k * log_half - log_fact >= 0)
         if k > half_max and not bool(kept.any()):
             break
         need = torch.where(kept, k, need)
     return need
-
-
-def taylor_orders_needed(theta: torch.Tensor, rel_amplitude: torch.Tensor, tol: float) -> torch.Tensor:
-    """Highest Taylor order ``k`` (0 = none) with ``rel_amplitude * theta^k / k! >= tol``, per path ``(P,)``."""
-    ks = torch.arange(1, _MAX_TAYLOR_ORDERS, device=theta.device, dtype=torch.float64)
-    log_term = (ks[:, None] * torch.log(theta.double().clamp_min(1e-300))[None] - torch.lgamma(ks + 1)[:, None]
-                + torch.log(rel_amplitude.double().clamp_min(1e-300))[None])
-    needs = (log_term >= math.log(tol)) & (theta > 0)[None] & (rel_amplitude > 0)[None]  # (K-1, P)
-    return torch.where(needs, ks[:, None].long(), 0).amax(dim=0)
 
 
 def synthesize_exact(
@@ -568,10 +494,11 @@ def synthesize(
     taylor_tol: float = DEFAULT_TAYLOR_TOL,
     chirp_delay: torch.Tensor | None = None,
     chirp_gain: torch.Tensor | None = None,
+    abs_tol: float | None = None,
 ) -> torch.Tensor:
     """Dispatch to :func:`synthesize_fast` or :func:`synthesize_exact` (``method``)."""
     if method == "fast":
         return synthesize_fast(coef, delay_s, delay_rate, timing, dtype=dtype, taylor_tol=taylor_tol,
-                               chirp_delay=chirp_delay, chirp_gain=chirp_gain)
+                               chirp_delay=chirp_delay, chirp_gain=chirp_gain, abs_tol=abs_tol)
     return synthesize_exact(coef, delay_s, delay_rate, timing, dtype=dtype, chirp_delay=chirp_delay,
                             chirp_gain=chirp_gain)

@@ -113,7 +113,7 @@ def item_receiver(receiver: FMCWReceiver, system_gain_offset_dB: float, noise_fi
         effects.insert(hardware_position([e.name for e in effects], new.name), new)
     return FMCWReceiver(receiver.config, effects=effects, tx_power_dBm=receiver.tx_power_dBm,
                         synthesis=receiver.synthesis, front_end_gain_dB=receiver.front_end_gain_dB,
-                        taylor_tol=receiver.taylor_tol)
+                        taylor_tol=receiver.taylor_tol, noise_tol=receiver.noise_tol)
 
 
 # Per twin (weakly keyed: a twin's cache goes with it), what the catalog needs of its room: the

@@ -88,3 +88,19 @@ def test_benchmark_reports_agreement(small_cfg):
     res = benchmark_receiver(small_cfg, num_paths=40, num_frames=2, device="cpu", exact_frames=1)
     assert res["fast_frames_per_s"] > 0 and res["exact_frames_per_s"] > 0
     assert res["rel_rms_error"] < 1e-4
+
+
+def test_noise_referenced_orders_round_trip_and_stay_under_the_noise(cfg, make_paths):
+    from radaraug.errors import ConfigError
+
+    rx = FMCWReceiver(cfg, noise_tol=3e-3)
+    back = FMCWReceiver.from_dict(cfg, rx.to_dict())
+    assert back.noise_tol == 3e-3 and FMCWReceiver.from_dict(cfg, FMCWReceiver(cfg).to_dict()).noise_tol is None
+    with pytest.raises(ConfigError, match="noise_tol"):
+        FMCWReceiver(cfg, noise_tol=0.0)
+    # A fast walker: the frame with noise-referenced orders differs from the default's by far less than the noise.
+    paths = make_paths(cfg, [3.0], [4.0], [1e-3])
+    a = rx(paths, generator=torch.Generator().manual_seed(1))
+    b = FMCWReceiver(cfg)(paths, generator=torch.Generator().manual_seed(1))
+    noise = FMCWReceiver(cfg)(make_paths(cfg, [3.0], [4.0], [0.0]), generator=torch.Generator().manual_seed(2))
+    assert float((a - b).std()) < 0.05 * float((noise - noise.mean(dim=-1, keepdim=True)).std())
