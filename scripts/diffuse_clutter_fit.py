@@ -1,7 +1,7 @@
 """Twin vs recording: the room's zero-Doppler clutter with and without diffuse scattering.
 
-Used to fit :data:`radaraug.scene.scattering.DIFFUSE_DEFAULTS` and to draw its figure
-(docs/diffuse_clutter.md). Profiles are the mean over frames and RX of the zero-Doppler power per
+The fitting script of :data:`radaraug.scene.scattering.DIFFUSE_DEFAULTS` and its figure
+(docs/diffuse_clutter.md); its functions are imported from this file (``sys.path`` to ``scripts/``). Profiles are the mean over frames and RX of the zero-Doppler power per
 range bin, in dBFS (:data:`radaraug.units.DB_CONVENTION`), as the calibration's ``range_profile``.
 """
 

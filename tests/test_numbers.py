@@ -10,6 +10,9 @@ lines anywhere).
 A key path is the keys from the record's root joined by ``/`` (a list index is a number; a key that
 itself holds a ``/``, e.g. ``occupancy/randomdr``, is matched whole). ``fmt`` is a format string filled
 with the values in order (each multiplied by ``scale`` first), or a function of the values.
+
+:data:`NOTED` lists the few figures a page quotes from a record's note (a string, e.g. a profile's launch count):
+each of an entry's texts must be in the quote and in that note.
 """
 
 from __future__ import annotations
@@ -45,6 +48,44 @@ def _range3(*values: float) -> str:
     return f"{min(values):.3f}–{max(values):.3f}"
 
 
+def _range(fmt: str) -> Callable[..., str]:
+    """The smallest and the largest value, each written with ``fmt``, as ``lo-hi``."""
+    return lambda *values: f"{fmt.format(min(values))}-{fmt.format(max(values))}"
+
+
+def _ranges(fmt: str, size: int, sep: str) -> Callable[..., str]:
+    """:func:`_range` of each run of ``size`` values (one record's runs), joined by ``sep``."""
+    return lambda *values: sep.join(_range(fmt)(*values[i:i + size]) for i in range(0, len(values), size))
+
+
+def _sorted(fmt: str, sep: str = " / ") -> Callable[..., str]:
+    return lambda *values: sep.join(fmt.format(v) for v in sorted(values))
+
+
+def _signed(value: float) -> str:
+    text = f"{abs(value):.2f}"
+    return text if text == "0.00" else ("−" if value < 0 else "+") + text
+
+
+def _deltas(*values: float) -> str:
+    """A range of changes as the pages write it: ``−0.11…−0.46`` (losses by size), ``0.00…+0.04``."""
+    lo, hi = min(values), max(values)
+    return f"{_signed(hi)}…{_signed(lo)}" if hi < 0 else f"{_signed(lo)}…{_signed(hi)}"
+
+
+def _largest_change(*values: float) -> str:
+    """The largest change of a mean between two records (the first half of the values against the second)."""
+    half = len(values) // 2
+    return f"{max(abs(a - b) for a, b in zip(values[:half], values[half:])):.3f}"
+
+
+def _moved(*values: float) -> str:
+    """The smallest and the largest change of a mean from one record (the second half of the values) to the next."""
+    half = len(values) // 2
+    changes = [a - b for a, b in zip(values[:half], values[half:])]
+    return f"moved by {min(changes):+.3f} to {max(changes):+.3f}"
+
+
 def _passed_skipped(tests: int, failures: int, errors: int, skipped: int, seconds: float) -> str:
     return f"{tests - failures - errors - skipped} passed, {skipped} skipped in {seconds:.0f} s"
 
@@ -55,63 +96,57 @@ _SD = "balanced_accuracy/std"
 _SF = "single_frame_balanced_accuracy/mean"
 _R2 = "suite_mean_over_seeds"
 _TWIN_K = "frames_per_s_by_frames_per_call"
-_SEED_STDS = tuple(f"{_QUICK}/{t}/{m}/{_SD}" for t in ("occupancy", "counting") for m in ("rt", "randomdr", "cdr"))
+_METHODS = ("rt", "randomdr", "cdr")
+_TASKS = ("occupancy", "counting")
+_SEED_STDS = tuple(f"{_QUICK}/{t}/{m}/{_SD}" for t in _TASKS for m in _METHODS)
+_P1, _P2, _P3, _P4 = ("previous_run/" * n for n in (1, 2, 3, 4))
+_OWN = "results/randomdr (the measured chain, default)"
+_OWN_PAPER = "results/the paper's chain (cdr, normal floor, noisy twin, dBFS image clipped to [-110, -40])"
+_ABL = "test_sets/{}/ablation_table/{}/delta"
+_LADDER = ("specular room, one snapshot, no shadowing", "+ diffuse clutter", "+ shadowing",
+           "+ motion inside the frame (the default twin)")
+_LEVERS = "runs/floor_relative_with_excision/results"
+_MEDIUM = "results/cdr (paper: normal floor, real test maps untouched)"
+_DIAG = "diagnosis_occupancy_cdr_seed0"
+_OP = ("suites/design (8 worlds; validation)/table/tasks", "suites/report-2 (spent report suite, 4 worlds; validation)/table/tasks")
+_OBS = "summary/empty_peak_{}/frac_over_17db"
+_PEOPLE = "recordings/recording_2022_05_25_18_{}/"
+
+
+def _quick_means(prefix: str, key: str = _BA, tasks: Sequence[str] = _TASKS) -> tuple[str, ...]:
+    return tuple(f"{prefix}{_QUICK}/{t}/{m}/{key}" for t in tasks for m in _METHODS)
+
+
+def _with_std(*keys: str) -> tuple[str, ...]:
+    """Each mean key followed by its std key."""
+    return tuple(k for key in keys for k in (key, key.removesuffix("mean") + "std"))
+
+
+_CONTRACT_COLS = ("paper", "128x32", "200 samples", "IF 18 dB", "IF 60 dB", "paper, near walker", "IF 60 dB, near walker")
+
+
+def _contract_row(label: str) -> Callable[..., str]:
+    """A row of docs/simulation.md's contract table: margins (bold under 30 dB), then the speed ratio."""
+    def fmt(*v: float) -> str:
+        cells = [f"**{x:.1f}**" if x < 30 else f"{x:.1f}" for x in v[:-1]]
+        return f"| {label} | " + " | ".join(cells) + f" | {v[-1]:.3f} |"
+    return fmt
+
 
 FIGURES: list[Figure] = [
-    Figure("docs/your_sensor.md", "| 397.7 s (`reproduce_quick_cpu.json`) | full mode projected 1,342-6,024 s from an H200 "
-           "run of 88.0 s", "reproduce_quick_cpu.json", ("wall_seconds",),
-           "| {:.1f} s (`reproduce_quick_cpu.json`) | full mode projected 1,342-6,024 s from an H200 run of 88.0 s"),
-    Figure("docs/your_sensor.md", "full mode projected 1,342-6,024 s from an H200 run of 88.0 s", "reproduce_cuda.json",
-           ("full_mode_projected_seconds_lower_bound", "full_mode_projected_seconds_linear_upper_bound", "wall_seconds"),
-           "full mode projected {:,}-{:,} s from an H200 run of {:.1f} s"),
-    Figure("docs/your_sensor.md", "| 74.6 images/s (`training_cpu.json`) | 15,503.7 images/s", "training_cpu.json",
-           ("pipeline_images_per_s",), "| {:.1f} images/s (`training_cpu.json`) | 15,503.7 images/s"),
-    Figure("docs/your_sensor.md", "15,503.7 images/s on an H200", "training_cuda.json", ("pipeline_images_per_s",),
-           "{:,.1f} images/s on an H200"),
-    Figure("docs/your_sensor.md", "| 824.3 frames/s on a file, 85.2 frames/s live", "predict_cpu.json",
-           ("predict_frames_per_s", "live_one_frame_at_a_time_frames_per_s"), "| {:.1f} frames/s on a file, {:.1f} frames/s live"),
-    Figure("docs/your_sensor.md", "| 58.62 s (`diagnose_cpu.json`)", "diagnose_cpu.json", ("diagnose_s",),
-           "| {:.2f} s (`diagnose_cpu.json`)"),
-    Figure("docs/your_sensor.md", "runs 824.3 frames/s on a file (in batches) and 85.2 frames/s one frame at a time as "
-           "live, 8.52× the sensor's", "predict_cpu.json",
-           ("predict_frames_per_s", "live_one_frame_at_a_time_frames_per_s", "live_vs_sensor_frame_rate"),
-           "runs {:.1f} frames/s on a file (in batches) and {:.1f} frames/s one frame at a time as live, {:.2f}× the "
-           "sensor's"),
-    Figure("benchmarks/README.md", "measured chain occupancy **0.927 ± 0.095**, counting **0.859 ± 0.100**",
-           "own_loop_cpu.json", ("results/randomdr (the measured chain, default)/occupancy/mean",
-                                 "results/randomdr (the measured chain, default)/occupancy/std",
-                                 "results/randomdr (the measured chain, default)/counting/mean",
-                                 "results/randomdr (the measured chain, default)/counting/std"),
-           "measured chain occupancy **{:.3f} ± {:.3f}**, counting **{:.3f} ± {:.3f}**"),
-    Figure("README.md", "balanced accuracy 0.927 occupancy and 0.859 counting", "own_loop_cpu.json",
-           ("results/randomdr (the measured chain, default)/occupancy/mean",
-            "results/randomdr (the measured chain, default)/counting/mean"),
-           "balanced accuracy {:.3f} occupancy and {:.3f} counting"),
-    Figure("benchmarks/README.md", "**824.3 vs 908.8 frames/s = 0.907**", "predict_cpu.json",
-           ("predict_frames_per_s", "network_alone_frames_per_s", "predict_vs_network_alone"),
-           "**{:.1f} vs {:.1f} frames/s = {:.3f}**"),
-    Figure("docs/predict.md", "| one frame at a time through `stream()`, as live | 85.2 | 8.52× the sensor's",
-           "predict_cpu.json", ("live_one_frame_at_a_time_frames_per_s", "live_vs_sensor_frame_rate"),
-           "| one frame at a time through `stream()`, as live | {:.1f} | {:.2f}× the sensor's"),
-    Figure("benchmarks/README.md", "**94.2 frames/s** (9.42× real time", "twin_cpu.json",
-           ("frames_per_s_workers", "realtime_ratio_workers"), "**{:.1f} frames/s** ({:.2f}× real time"),
-    Figure("benchmarks/README.md", "same, one process, one thread | 48.1 frames/s (4.81× real time)", "twin_cpu.json",
-           ("frames_per_s_1proc", "realtime_ratio_1proc"), "{:.1f} frames/s ({:.2f}× real time)"),
-    Figure("benchmarks/README.md", "**1.20 G** vs 0.110 G tests/s (10.9×)", "twin_cpu.json",
-           ("intersection/compiled_tests_per_s", "intersection/eager_tests_per_s", "intersection/speedup"),
-           "**{:.2f} G** vs {:.3f} G tests/s ({:.1f}×)", (1e-9, 1e-9, 1.0)),
-    # README.md: the quick-mode headline (make demo) and the held-out report suite
+    # README.md: the quick-mode headline (make demo), the held-out report suite, the plain loop
+    Figure("README.md", "in about 7 minutes on a 2-core CPU", "reproduce_quick_cpu.json", "wall_seconds",
+           "about {:.0f} minutes", 1 / 60),
     Figure("README.md", "occupancy RT 0.992 ± 0.012, RandomDR **1.000 ± 0.000**, CDR 1.000 ± 0.000",
            "reproduce_quick_cpu.json",
-           tuple(f"{_QUICK}/occupancy/{m}/{k}" for m in ("rt", "randomdr", "cdr") for k in (_BA, _SD)),
+           tuple(f"{_QUICK}/occupancy/{m}/{k}" for m in _METHODS for k in (_BA, _SD)),
            "occupancy RT {:.3f} ± {:.3f}, RandomDR **{:.3f} ± {:.3f}**, CDR {:.3f} ± {:.3f}"),
     Figure("README.md", "counting RT **0.954 ± 0.023**, RandomDR 0.848 ± 0.069, CDR 0.783 ± 0.047",
            "reproduce_quick_cpu.json",
-           tuple(f"{_QUICK}/counting/{m}/{k}" for m in ("rt", "randomdr", "cdr") for k in (_BA, _SD)),
+           tuple(f"{_QUICK}/counting/{m}/{k}" for m in _METHODS for k in (_BA, _SD)),
            "counting RT **{:.3f} ± {:.3f}**, RandomDR {:.3f} ± {:.3f}, CDR {:.3f} ± {:.3f}"),
     Figure("README.md", "occupancy 0.943 / 0.974 / 0.946, counting 0.809 / 0.820 / 0.709",
-           "reproduce_quick_cpu.json",
-           tuple(f"{_QUICK}/{t}/{m}/{_SF}" for t in ("occupancy", "counting") for m in ("rt", "randomdr", "cdr")),
+           "reproduce_quick_cpu.json", _quick_means("", _SF),
            "occupancy {:.3f} / {:.3f} / {:.3f}, counting {:.3f} / {:.3f} / {:.3f}"),
     Figure("README.md", "Recorded (`benchmarks/reproduce_quick_cpu.json`, 6.6 min;", "reproduce_quick_cpu.json",
            "wall_seconds", "{:.1f} min", 1 / 60),
@@ -133,52 +168,545 @@ FIGURES: list[Figure] = [
     Figure("README.md", "on an H200 it projects to 22-100 min", "reproduce_cuda.json",
            ("full_mode_projected_seconds_lower_bound", "full_mode_projected_seconds_linear_upper_bound"),
            "{:.0f}-{:.0f} min", 1 / 60),
+    Figure("README.md", "balanced accuracy 0.927 occupancy and 0.859 counting", "own_loop_cpu.json",
+           (f"{_OWN}/occupancy/mean", f"{_OWN}/counting/mean"), "balanced accuracy {:.3f} occupancy and {:.3f} counting"),
+    Figure("README.md", "where the paper's chain below scores 0.500 / 0.457", "own_loop_cpu.json",
+           (f"{_OWN_PAPER}/occupancy/mean", f"{_OWN_PAPER}/counting/mean"), "scores {:.3f} / {:.3f}"),
+    Figure("README.md", "in the same plain loop 0.500 occupancy and 0.457 counting", "own_loop_cpu.json",
+           (f"{_OWN_PAPER}/occupancy/mean", f"{_OWN_PAPER}/counting/mean"), "{:.3f} occupancy and {:.3f} counting"),
+    Figure("README.md", "in the recipes the paper's image −0.11…−0.46", "reproduce_ablations_cpu.json",
+           tuple(_ABL.format(s, i) for s in ("independent", "proxy") for i in (0, 5)), _deltas),
     Figure("README.md", "the twin at 3,274 frames/s on an H100", "twin_cuda.json", "frames_per_s_best",
            "{:,.0f} frames/s"),
-    # benchmarks/README.md: the table of records
+    # benchmarks/README.md: the table of records, row by row, and the paragraphs under it
     Figure("benchmarks/README.md", "4730 vs 495 frames/s = **9.56×**", "transforms_cpu.json",
            ("torch_frames_per_s", "numpy_frames_per_s", "speedup_vs_numpy"), "{:.0f} vs {:.0f} frames/s = **{:.2f}×**"),
     Figure("benchmarks/README.md", "same, torch single-threaded | 3109 frames/s = 6.28×", "transforms_cpu.json",
            ("torch_frames_per_s_by_threads/1", "speedup_vs_numpy_by_threads/1"), "{:.0f} frames/s = {:.2f}×"),
-    Figure("benchmarks/README.md", "**58.6 s** (323 twin evaluations) = 47.0x the simulation", "diagnose_cpu.json",
-           ("diagnose_s", "evaluations", "ratio_diagnose_to_simulate"),
-           "**{:.1f} s** ({:d} twin evaluations) = {:.1f}x the simulation"),
-    Figure("benchmarks/README.md", "held-out error 2.57 -> 0.54 dB", "diagnose_cpu.json",
-           ("error_before_dB", "error_after_dB"), "{:.2f} -> {:.2f} dB"),
+    Figure("benchmarks/README.md", "**94.2 frames/s** (9.42× real time", "twin_cpu.json",
+           ("frames_per_s_workers", "realtime_ratio_workers"), "**{:.1f} frames/s** ({:.2f}× real time"),
+    Figure("benchmarks/README.md", "3 runs 87.8-94.2 in a quiet hour; the records before: 64.5-84.7 and 70.2-83.5",
+           "twin_cpu.json", tuple(f"{p}runs/frames_per_s_workers/{i}" for p in ("", _P1, _P2) for i in range(3)),
+           lambda *v: f"3 runs {_range('{:.1f}')(*v[:3])} in a quiet hour; the records before: "
+                      f"{_ranges('{:.1f}', 3, ' and ')(*v[3:])}"),
+    Figure("benchmarks/README.md", "same, one process, one thread | 48.1 frames/s (4.81× real time)", "twin_cpu.json",
+           ("frames_per_s_1proc", "realtime_ratio_1proc"), "{:.1f} frames/s ({:.2f}× real time)"),
+    Figure("benchmarks/README.md",
+           "ladder: specular room 94.8 → + diffuse 92.7 → + shadowing 66.8 → + motion inside the frame 48.1; RX-shared "
+           "synthesis vs per channel 1.052× (runs 1.001-1.061), shadow inside the frame (`shadow_intervals=2`) costs 1.56×",
+           "twin_cpu.json",
+           (*(f"frames_per_s_1proc_additions/{r}" for r in _LADDER), "rx_shared_synthesis_speedup",
+            *(f"runs/rx_shared_synthesis_speedup/{i}" for i in range(3)), "shadow_intervals_2_cost_ratio"),
+           lambda a, b, c, d, rx, r0, r1, r2, sh: f"ladder: specular room {a:.1f} → + diffuse {b:.1f} → + shadowing "
+           f"{c:.1f} → + motion inside the frame {d:.1f}; RX-shared synthesis vs per channel {rx:.3f}× (runs "
+           f"{_range('{:.3f}')(r0, r1, r2)}), shadow inside the frame (`shadow_intervals=2`) costs {sh:.2f}×"),
+    Figure("benchmarks/README.md", "64.5× faster (9.7 ms per frame), relative RMS error 4.7e-06", "twin_cpu.json",
+           ("receiver_speedup_fast_vs_exact", "receiver_synthesis_fast_s_per_frame", "receiver_fast_vs_exact_rel_rms_error"),
+           "{:.1f}× faster ({:.1f} ms per frame), relative RMS error {:.1e}", (1.0, 1e3, 1.0)),
+    Figure("benchmarks/README.md", "**1.20 G** vs 0.110 G tests/s (10.9×)", "twin_cpu.json",
+           ("intersection/compiled_tests_per_s", "intersection/eager_tests_per_s", "intersection/speedup"),
+           "**{:.2f} G** vs {:.3f} G tests/s ({:.1f}×)", (1e-9, 1e-9, 1.0)),
+    Figure("benchmarks/README.md", "| 0.88 s (6600 static paths) |", "twin_cpu.json",
+           ("room_trace_and_synthesis_s", "room_static_paths"), "| {:.2f} s ({:d} static paths) |"),
     Figure("benchmarks/README.md", "**397.7 s** (6.6 min;", "reproduce_quick_cpu.json",
            ("wall_seconds", "wall_seconds"), "**{:.1f} s** ({:.1f} min", (1.0, 1 / 60)),
+    Figure("benchmarks/README.md", "`make demo` on a fresh clone 7:51 with set-up; the records before 418.9 s and 487.1 s",
+           "reproduce_quick_cpu.json", ("make_demo_on_a_fresh_clone_s", f"{_P1}wall_seconds", f"{_P2}wall_seconds"),
+           lambda clone, a, b: f"{_min_sec(clone)} with set-up; the records before {a:.1f} s and {b:.1f} s"),
     Figure("benchmarks/README.md", "RT 0.992 ± 0.012 (0.943), RandomDR **1.000 ± 0.000** (0.974), CDR 1.000 ± 0.000 (0.946)",
            "reproduce_quick_cpu.json",
-           tuple(f"{_QUICK}/occupancy/{m}/{k}" for m in ("rt", "randomdr", "cdr") for k in (_BA, _SD, _SF)),
+           tuple(f"{_QUICK}/occupancy/{m}/{k}" for m in _METHODS for k in (_BA, _SD, _SF)),
            "RT {:.3f} ± {:.3f} ({:.3f}), RandomDR **{:.3f} ± {:.3f}** ({:.3f}), CDR {:.3f} ± {:.3f} ({:.3f})"),
+    Figure("benchmarks/README.md", "the record before, single frames: 0.938 / 0.979 / 0.962", "reproduce_quick_cpu.json",
+           _quick_means(_P2, tasks=("occupancy",)), "single frames: {:.3f} / {:.3f} / {:.3f}"),
+    Figure("benchmarks/README.md", "RT **0.954 ± 0.023** (0.809), RandomDR 0.848 ± 0.069 (0.820), CDR 0.783 ± 0.047 "
+           "(0.709); the record before: 0.793 / 0.807 / 0.765", "reproduce_quick_cpu.json",
+           (*(f"{_QUICK}/counting/{m}/{k}" for m in _METHODS for k in (_BA, _SD, _SF)),
+            *_quick_means(_P2, tasks=("counting",))),
+           "RT **{:.3f} ± {:.3f}** ({:.3f}), RandomDR {:.3f} ± {:.3f} ({:.3f}), CDR {:.3f} ± {:.3f} ({:.3f}); the record "
+           "before: {:.3f} / {:.3f} / {:.3f}"),
+    Figure("benchmarks/README.md", "occupancy RT 0.657 / RandomDR 0.769 / CDR 0.556, counting 0.530 / 0.606 / 0.335",
+           "reproduce_quick_empirical_cpu.json",
+           tuple(f"normal_floor_for_comparison/{t}/{m}/mean" for t in _TASKS for m in _METHODS),
+           "occupancy RT {:.3f} / RandomDR {:.3f} / CDR {:.3f}, counting {:.3f} / {:.3f} / {:.3f}"),
+    Figure("benchmarks/README.md",
+           "with excision: proxy occupancy RT 0.893 ± 0.032 / RandomDR **0.929 ± 0.006**, counting 0.763 ± 0.025 / "
+           "0.752 ± 0.018; independent occupancy 0.910 ± 0.004 / **0.940 ± 0.018**, counting 0.809 ± 0.022 / "
+           "**0.835 ± 0.046**. Without excision, independent occupancy 0.772 / 0.850", "reproduce_levers_cpu.json",
+           (*_with_std(*(f"{_LEVERS}/{s}/{t}/{m}/mean" for s in ("proxy", "independent") for t in _TASKS
+                         for m in ("rt", "randomdr"))),
+            "runs/floor_relative_no_excision/results/independent/occupancy/rt/mean",
+            "runs/floor_relative_no_excision/results/independent/occupancy/randomdr/mean"),
+           "with excision: proxy occupancy RT {:.3f} ± {:.3f} / RandomDR **{:.3f} ± {:.3f}**, counting {:.3f} ± {:.3f} / "
+           "{:.3f} ± {:.3f}; independent occupancy {:.3f} ± {:.3f} / **{:.3f} ± {:.3f}**, counting {:.3f} ± {:.3f} / "
+           "**{:.3f} ± {:.3f}**. Without excision, independent occupancy {:.3f} / {:.3f}"),
+    Figure("benchmarks/README.md", "RT / RandomDR / CDR / `cdr_profile` + 5 ablations, 2 seeds (2705 s)",
+           "reproduce_ablations_cpu.json", "wall_seconds", "2 seeds ({:.0f} s)"),
+    Figure("benchmarks/README.md",
+           "independent occupancy RT 0.948 / RandomDR 0.977 / CDR 0.962 / `cdr_profile` 0.935, counting 0.833 / 0.797 / "
+           "0.778 / 0.811; proxy occupancy 0.906 / 0.944 / 0.935 / 0.860, counting 0.753 / 0.703 / 0.725 / 0.725",
+           "reproduce_ablations_cpu.json",
+           tuple(f"test_sets/{s}/results/{t}/{m}/{_BA}" for s in ("independent", "proxy") for t in _TASKS
+                 for m in (*_METHODS, "cdr_profile")),
+           "independent occupancy RT {:.3f} / RandomDR {:.3f} / CDR {:.3f} / `cdr_profile` {:.3f}, counting {:.3f} / "
+           "{:.3f} / {:.3f} / {:.3f}; proxy occupancy {:.3f} / {:.3f} / {:.3f} / {:.3f}, counting {:.3f} / {:.3f} / "
+           "{:.3f} / {:.3f}"),
+    Figure("benchmarks/README.md", "Ablations: the paper's image −0.11…−0.46", "reproduce_ablations_cpu.json",
+           tuple(_ABL.format(s, i) for s in ("independent", "proxy") for i in (0, 5)), _deltas),
+    Figure("benchmarks/README.md", "no excision −0.08 / −0.17 (independent)", "reproduce_ablations_cpu.json",
+           (_ABL.format("independent", 4), _ABL.format("independent", 9)), "−{:.2f} / −{:.2f} (independent)", -1.0),
+    Figure("benchmarks/README.md", "no effect catalog 0.00…+0.04 (no gain)", "reproduce_ablations_cpu.json",
+           tuple(_ABL.format(s, i) for s in ("independent", "proxy") for i in (3, 8)), _deltas),
+    Figure("benchmarks/README.md", "CDR normal / empirical floor on the quiet twin −0.01…+0.08 against matched",
+           "reproduce_ablations_cpu.json",
+           tuple(_ABL.format(s, i) for s in ("independent", "proxy") for i in (1, 2, 6, 7)), _deltas),
+    Figure("benchmarks/README.md",
+           "occupancy RT 0.892 ± 0.033, RandomDR **0.912 ± 0.004**, CDR 0.850 ± 0.004; counting 0.817 ± 0.028, "
+           "**0.856 ± 0.022**, 0.789 ± 0.006; 1258 s wall (fit 66.5 s per run)", "reproduce_medium_v2_cpu.json",
+           (*(f"{_QUICK}/{t}/{m}/{k}" for t in _TASKS for m in _METHODS for k in (_BA, _SD)),
+            "wall_seconds", "fit_seconds_per_run_median"),
+           "occupancy RT {:.3f} ± {:.3f}, RandomDR **{:.3f} ± {:.3f}**, CDR {:.3f} ± {:.3f}; counting {:.3f} ± {:.3f}, "
+           "**{:.3f} ± {:.3f}**, {:.3f} ± {:.3f}; {:.0f} s wall (fit {:.1f} s per run)"),
     Figure("benchmarks/README.md",
            "H100 **3,273.9 frames/s** at 4,096 frames per call (2,528.1 at 1,024; 152.5 at 16), 97.6× the CPU's 33.5",
            "twin_cuda.json",
            (f"{_TWIN_K}/4096", f"{_TWIN_K}/1024", f"{_TWIN_K}/16", "speedup_vs_cpu_1proc", "cpu_frames_per_s_1proc"),
            "H100 **{:,.1f} frames/s** at 4,096 frames per call ({:,.1f} at 1,024; {:.1f} at 16), {:.1f}× the CPU's {:.1f}"),
+    Figure("benchmarks/README.md", "H200 2,662.6 (1,913.0 with the synthesis chunk only); 138.9 before both GPU chunks "
+           "(`previous_run`) | ≥ 2,000 (H100): met |", "twin_cuda.json",
+           ("h200_runs/both_chunks/frames_per_s_best", "h200_runs/synthesis_chunk_only/frames_per_s_best",
+            f"{_P1}frames_per_s_best", "target_frames_per_s", "frames_per_s_best"),
+           lambda a, b, c, target, best: f"H200 {a:,.1f} ({b:,.1f} with the synthesis chunk only); {c:.1f} before both GPU "
+           f"chunks (`previous_run`) | ≥ {target:,.0f} (H100): {'met' if best >= target else 'not met'} |"),
+    Figure("benchmarks/README.md", "| 202,215 vs 252 frames/s (804×; the previous H200 run: 278,813 vs 393) |",
+           "transforms_cuda.json",
+           ("torch_frames_per_s", "numpy_frames_per_s", "speedup_vs_numpy", f"{_P1}torch_frames_per_s",
+            f"{_P1}numpy_frames_per_s"),
+           "| {:,.0f} vs {:.0f} frames/s ({:.0f}×; the previous H200 run: {:,.0f} vs {:.0f}) |"),
+    Figure("benchmarks/README.md", "| 15,504 vs 17,756 images/s (0.87); bf16 + channels-last 15,544 (1.003× the fp32 "
+           "pipeline); the previous H200 run: 19,879 vs 22,794 |", "training_cuda.json",
+           ("pipeline_images_per_s", "bare_resnet18_images_per_s", "pipeline_vs_bare",
+            "amp_channels_last/pipeline_images_per_s", "amp_channels_last/pipeline_vs_fp32_pipeline",
+            f"{_P1}pipeline_images_per_s", f"{_P1}bare_resnet18_images_per_s"),
+           "| {:,.0f} vs {:,.0f} images/s ({:.2f}); bf16 + channels-last {:,.0f} ({:.3f}× the fp32 pipeline); the "
+           "previous H200 run: {:,.0f} vs {:,.0f} |"),
+    Figure("benchmarks/README.md", "**88.0 s** wall", "reproduce_cuda.json", "wall_seconds", "**{:.1f} s** wall"),
+    Figure("benchmarks/README.md", "simulation 0.0165 s per item (0.091 in the previous run), fit 2.9-4.5 s per run in "
+           "four of the six runs (22.9 and 27.2 s in the other two); full mode projected 1,342-6,024 s", "reproduce_cuda.json",
+           ("simulation_seconds_per_item", f"{_P1}simulation_seconds_per_item",
+            *(f"fit_seconds_per_run/{i}" for i in range(6)),
+            "full_mode_projected_seconds_lower_bound", "full_mode_projected_seconds_linear_upper_bound"),
+           lambda sim, prev, f0, f1, f2, f3, f4, f5, lo, hi: f"simulation {sim:.4f} s per item ({prev:.3f} in the previous "
+           f"run), fit {min(f0, f1, f2, f3):.1f}-{max(f0, f1, f2, f3):.1f} s per run in four of the six runs ({f4:.1f} and "
+           f"{f5:.1f} s in the other two); full mode projected {lo:,}-{hi:,} s"),
+    Figure("benchmarks/README.md", "| 83 passed, 2 skipped, 46 s (the previous run: 80 passed, 1 failed", "cuda_tests.json",
+           ("tests", "failures", "errors", "skipped", "seconds", f"{_P1}tests", f"{_P1}failures", f"{_P1}errors",
+            f"{_P1}skipped"),
+           lambda n, f, e, s, sec, pn, pf, pe, ps: f"| {n - f - e - s} passed, {s} skipped, {sec:.0f} s (the previous run: "
+           f"{pn - pf - pe - ps} passed, {pf} failed"),
+    Figure("benchmarks/README.md",
+           "occupancy RT 0.910 ± 0.005, RandomDR **0.944 ± 0.010**, CDR 0.904 ± 0.028; counting 0.756 ± 0.021, "
+           "**0.859 ± 0.017**, 0.787 ± 0.031; 1000 s wall", "reproduce_nonpaper_cpu.json",
+           (*(f"test_sets/captures/results/{t}/{m}/{k}" for t in _TASKS for m in _METHODS for k in (_BA, _SD)),
+            "wall_seconds"),
+           "occupancy RT {:.3f} ± {:.3f}, RandomDR **{:.3f} ± {:.3f}**, CDR {:.3f} ± {:.3f}; counting {:.3f} ± {:.3f}, "
+           "**{:.3f} ± {:.3f}**, {:.3f} ± {:.3f}; {:.0f} s wall"),
+    Figure("benchmarks/README.md", "(30 % standing people) sets; 2759 s on a loaded machine",
+           "reproduce_standing_priors_cpu.json", "wall_seconds", "sets; {:.0f} s on a loaded machine"),
+    Figure("benchmarks/README.md", "independent occupancy RT 0.948 / RandomDR **0.977**, counting **0.833** / 0.797; "
+           "standing occupancy 0.906 / **0.938**, counting 0.608 / 0.636", "reproduce_standing_priors_cpu.json",
+           tuple(f"test_sets/{s}/results/{t}/{m}/{_BA}" for s in ("independent", "standing") for t in _TASKS
+                 for m in ("rt", "randomdr")),
+           "independent occupancy RT {:.3f} / RandomDR **{:.3f}**, counting **{:.3f}** / {:.3f}; standing occupancy "
+           "{:.3f} / **{:.3f}**, counting {:.3f} / {:.3f}"),
+    Figure("benchmarks/README.md", "standing people in training +0.06 counting on the standing set, −0.05…−0.13 "
+           "elsewhere; calibration priors −0.04…−0.07", "reproduce_standing_priors_cpu.json",
+           (_ABL.format("standing", 6), _ABL.format("independent", 2), _ABL.format("independent", 6),
+            _ABL.format("standing", 2), *(_ABL.format(s, i) for s in ("independent", "standing") for i in (1, 5))),
+           lambda gain, *v: f"standing people in training {_signed(gain)} counting on the standing set, "
+           f"{_deltas(*v[:3])} elsewhere; calibration priors {_deltas(*v[3:])}"),
+    Figure("benchmarks/README.md", "CDR 0.694 ± 0.020 occupancy, 0.509 ± 0.135 counting (normal floor: 0.556, 0.335); "
+           "515.8 s wall", "reproduce_quick_empirical_cpu.json",
+           (*_with_std(f"results/occupancy/cdr/{_BA}", f"results/counting/cdr/{_BA}"),
+            "normal_floor_for_comparison/occupancy/cdr/mean", "normal_floor_for_comparison/counting/cdr/mean",
+            "wall_seconds"),
+           "CDR {:.3f} ± {:.3f} occupancy, {:.3f} ± {:.3f} counting (normal floor: {:.3f}, {:.3f}); {:.1f} s wall"),
+    Figure("benchmarks/README.md", "occupancy RandomDR 0.785 ± 0.030, CDR **0.824 ± 0.059**, `cdr_profile` **0.874 ± "
+           "0.009**; counting RandomDR 0.565 ± 0.007, CDR 0.556 ± 0.105, `cdr_profile` 0.617 ± 0.039; 500.7 s wall",
+           "reproduce_quick_test_dr_cpu.json",
+           (*_with_std(*(f"results/{t}/{m}/{_BA}" for t in _TASKS for m in ("randomdr", "cdr", "cdr_profile"))),
+            "wall_seconds"),
+           "occupancy RandomDR {:.3f} ± {:.3f}, CDR **{:.3f} ± {:.3f}**, `cdr_profile` **{:.3f} ± {:.3f}**; counting "
+           "RandomDR {:.3f} ± {:.3f}, CDR {:.3f} ± {:.3f}, `cdr_profile` {:.3f} ± {:.3f}; {:.1f} s wall"),
+    Figure("benchmarks/README.md", "| 958.7 s wall (RT + RandomDR + CDR incl. simulating the set); CDR alone on the "
+           "cached set 253.6 s |", "reproduce_medium_cpu.json",
+           ("wall_seconds/rt+randomdr+cdr (incl. simulating the set)", "wall_seconds/cdr only (set cached)"),
+           "| {:.1f} s wall (RT + RandomDR + CDR incl. simulating the set); CDR alone on the cached set {:.1f} s |"),
+    Figure("benchmarks/README.md", "| RT 0.919 ± 0.031, RandomDR **0.938 ± 0.017**, CDR 0.500 ± 0.000 (empirical floor "
+           "0.500; no noise fit 0.733), CDR with `--test-dr` **0.925 ± 0.046** |", "reproduce_medium_cpu.json",
+           (*_with_std("results/rt/occupancy/mean", "results/randomdr/occupancy/mean", f"{_MEDIUM}/occupancy/mean"),
+            "results/cdr, empirical floor/occupancy/mean",
+            "results/cdr, twin without noise fit (calibrate_noise=False)/occupancy/mean",
+            *_with_std("results/cdr + test_dr (test captures through the same clamp)/occupancy/mean")),
+           "| RT {:.3f} ± {:.3f}, RandomDR **{:.3f} ± {:.3f}**, CDR {:.3f} ± {:.3f} (empirical floor {:.3f}; no noise "
+           "fit {:.3f}), CDR with `--test-dr` **{:.3f} ± {:.3f}** |"),
+    Figure("benchmarks/README.md", "| RT 0.764 ± 0.042, RandomDR **0.858 ± 0.014**, CDR 0.333 ± 0.000 (empirical floor "
+           "0.333; no noise fit 0.333), CDR with `--test-dr` **0.847 ± 0.019** |", "reproduce_medium_cpu.json",
+           (*_with_std("results/rt/counting/mean", "results/randomdr/counting/mean", f"{_MEDIUM}/counting/mean"),
+            "results/cdr, empirical floor/counting/mean",
+            "results/cdr, twin without noise fit (calibrate_noise=False)/counting/mean",
+            *_with_std("results/cdr + test_dr (test captures through the same clamp)/counting/mean")),
+           "| RT {:.3f} ± {:.3f}, RandomDR **{:.3f} ± {:.3f}**, CDR {:.3f} ± {:.3f} (empirical floor {:.3f}; no noise "
+           "fit {:.3f}), CDR with `--test-dr` **{:.3f} ± {:.3f}** |"),
+    Figure("benchmarks/README.md", "proxy captures as recorded 0.500, through the same CDR clamp 0.971; simulated "
+           "validation with CDR 0.904, without 0.500", "reproduce_medium_cpu.json",
+           (f"{_DIAG}/test captures as recorded", f"{_DIAG}/test captures through the run's CDR clamp",
+            f"{_DIAG}/simulated validation maps with CDR", f"{_DIAG}/simulated validation maps without CDR"),
+           "proxy captures as recorded {:.3f}, through the same CDR clamp {:.3f}; simulated validation with CDR {:.3f}, "
+           "without {:.3f}"),
+    Figure("benchmarks/README.md", "occupancy RT 0.971 / RandomDR 0.992 / CDR 0.800; counting 0.775 / 0.828 / 0.419",
+           "reproduce_medium_cpu.json",
+           tuple(f"{_P1}results/{t}/{m}/{_BA}" for t in _TASKS for m in _METHODS),
+           "occupancy RT {:.3f} / RandomDR {:.3f} / CDR {:.3f}; counting {:.3f} / {:.3f} / {:.3f}"),
+    Figure("benchmarks/README.md", "occupancy **0.905** (worst world 0.892), counting **0.622** (0.594); the catalog as "
+           "it was 0.899 / 0.595; single frames 0.836 / 0.593; CDR on the same twin 0.765 / 0.508",
+           "heldout_design_cpu.json",
+           ("variants/nopersist/context_sweep/occupancy/randomdr/K8/mean",
+            "variants/nopersist/context_sweep/occupancy/randomdr/K8/worst",
+            "variants/nopersist/context_sweep/counting/randomdr/K8/mean",
+            "variants/nopersist/context_sweep/counting/randomdr/K8/worst",
+            "variants/base/context_sweep/occupancy/randomdr/K8/mean", "variants/base/context_sweep/counting/randomdr/K8/mean",
+            "variants/nopersist/suite/occupancy/randomdr/mean", "variants/nopersist/suite/counting/randomdr/mean",
+            "variants/v2cdr/context_sweep/occupancy/cdr/K8/mean", "variants/v2cdr/context_sweep/counting/cdr/K8/mean"),
+           "occupancy **{:.3f}** (worst world {:.3f}), counting **{:.3f}** ({:.3f}); the catalog as it was {:.3f} / "
+           "{:.3f}; single frames {:.3f} / {:.3f}; CDR on the same twin {:.3f} / {:.3f}"),
+    Figure("benchmarks/README.md", "`reproduce --quick --test-sets report --ablations cdr_normal_floor`, 3 seeds, 2,147 s |",
+           "heldout_report_cpu.json", "wall_seconds", "3 seeds, {:,.0f} s |"),
+    Figure("benchmarks/README.md", "occupancy RT 0.660 / RandomDR 0.660 / CDR 0.634 / CDR normal floor 0.662 (worst world "
+           "0.48-0.58), counting 0.438 / 0.450 / 0.435 / 0.432 (worst 0.32-0.39)", "heldout_report_cpu.json",
+           tuple(f"suite/results/{t}/{m}/{k}" for t in _TASKS for k in ("mean", "worst")
+                 for m in (*_METHODS, "cdr_normal_floor")),
+           lambda *v: "occupancy RT {:.3f} / RandomDR {:.3f} / CDR {:.3f} / CDR normal floor {:.3f}".format(*v[:4])
+           + f" (worst world {_range('{:.2f}')(*v[4:8])}), counting "
+           + "{:.3f} / {:.3f} / {:.3f} / {:.3f}".format(*v[8:12]) + f" (worst {_range('{:.2f}')(*v[12:])})"),
+    Figure("benchmarks/README.md", "defaults occupancy **0.894 ± 0.007** (worst 0.801), counting **0.578 ± 0.011** "
+           "(0.476); + static gate **0.965 ± 0.007 (0.900)** / **0.645 ± 0.008** (0.500); early stopping 0.857 / 0.556; "
+           "crossing walkers 0.887 / 0.578", "heldout_design2_cpu.json",
+           (*(f"variants/base/results/{t}/randomdr/{k}" for t in _TASKS for k in ("mean", "std", "worst")),
+            *(f"variants/base/results/{t}/randomdr/gated_{k}" for t in _TASKS for k in ("mean", "std", "worst")),
+            *(f"variants/{v}/results/{t}/randomdr/mean" for v in ("es", "cross") for t in _TASKS)),
+           "defaults occupancy **{:.3f} ± {:.3f}** (worst {:.3f}), counting **{:.3f} ± {:.3f}** ({:.3f}); + static gate "
+           "**{:.3f} ± {:.3f} ({:.3f})** / **{:.3f} ± {:.3f}** ({:.3f}); early stopping {:.3f} / {:.3f}; crossing "
+           "walkers {:.3f} / {:.3f}"),
+    Figure("benchmarks/README.md", "empty frames fired: 0 of 360", "static_change_design_cpu.json",
+           tuple(f"worlds/design-w0{w}/{k}" for w in range(6) for k in ("fired_empty", "frames_empty")),
+           lambda *v: f"empty frames fired: {sum(f * n for f, n in zip(v[::2], v[1::2])):.0f} of {sum(v[1::2]):d}"),
+    Figure("benchmarks/README.md", "standing people 100 %; walkers under 1.5 Doppler bins 70-87 %",
+           "static_change_design_cpu.json",
+           ("worlds/design-w02/fired_standing", "worlds/design-w04/fired_standing",
+            *(f"worlds/design-w0{w}/fired_slow" for w in (0, 3, 4))),
+           lambda s2, s4, *slow: f"standing people {100 * min(s2, s4):.0f} %; walkers under 1.5 Doppler bins "
+           f"{_range('{:.0f}')(*(100 * s for s in slow))} %"),
+    Figure("benchmarks/README.md", "nothing fires in `design-w01` (interference + drift: threshold 15.2 dB)",
+           "static_change_design_cpu.json",
+           ("worlds/design-w01/fired_walking", "worlds/design-w01/fired_empty", "worlds/design-w01/threshold_db"),
+           lambda walking, empty, threshold: f"{'nothing' if walking == empty == 0 else 'something'} fires in "
+           f"`design-w01` (interference + drift: threshold {threshold:.1f} dB)"),
+    Figure("benchmarks/README.md", "`reproduce --quick --test-sets report --ablations cdr_normal_floor`, 3 seeds, 2,011 s;",
+           "heldout_report2_cpu.json", "wall_seconds", "3 seeds, {:,.0f} s;"),
+    Figure("benchmarks/README.md", "occupancy RT 0.685 / RandomDR 0.691 / CDR 0.579 / CDR normal floor 0.693 (worst world "
+           "0.50 each); + gate 0.805 / 0.823 / 0.697 / **0.835**; counting 0.525 / 0.524 / 0.451 / 0.523, + gate 0.598 / "
+           "**0.605** / 0.510 / 0.605", "heldout_report2_cpu.json",
+           tuple(f"suite/results/{t}/{m}/{k}" for t in _TASKS for k in ("mean", "worst", "gated_mean")
+                 for m in (*_METHODS, "cdr_normal_floor")),
+           lambda *v: "occupancy RT {:.3f} / RandomDR {:.3f} / CDR {:.3f} / CDR normal floor {:.3f}".format(*v[:4])
+           + " (worst world {} each)".format(" / ".join(sorted({f"{w:.2f}" for w in v[4:8]})))
+           + "; + gate {:.3f} / {:.3f} / {:.3f} / **{:.3f}**; counting {:.3f} / {:.3f} / {:.3f} / {:.3f}".format(*v[8:16])
+           + ", + gate {:.3f} / **{:.3f}** / {:.3f} / {:.3f}".format(*v[20:])),
+    Figure("benchmarks/README.md", "design, + gate: occupancy 0.949 / 0.934 / 0.952, counting 0.692 / 0.678 / 0.691; "
+           "report-2: 0.823 / 0.819 / 0.837 and 0.605 / 0.593 / 0.593", "operating_point_cpu.json",
+           tuple(f"{s}/{t}/randomdr/{p}+gate/mean" for s in _OP for t in _TASKS
+                 for p in ("argmax", "empty_room", "empty_room_at_least_half")),
+           "design, + gate: occupancy {:.3f} / {:.3f} / {:.3f}, counting {:.3f} / {:.3f} / {:.3f}; report-2: {:.3f} / "
+           "{:.3f} / {:.3f} and {:.3f} / {:.3f} / {:.3f}"),
+    Figure("benchmarks/README.md", "empty items over 17 dB 40.6 % / 3.4 % / 2.9 %; invisible people 9.8 % / 6.6 %; best "
+           "single-threshold occupancy 0.715 / 0.893 / 0.883", "twin_observability_cpu.json",
+           (*(_OBS.format(c) for c in ("on", "off", "self_excised")),
+            "summary/person_visibility/frac_invisible_on", "summary/person_visibility/frac_invisible_off",
+            *(f"summary/occupancy_threshold_balanced_accuracy/{c}/balanced_accuracy" for c in ("on", "off", "self_excised"))),
+           "empty items over 17 dB {:.1f} % / {:.1f} % / {:.1f} %; invisible people {:.1f} % / {:.1f} %; best "
+           "single-threshold occupancy {:.3f} / {:.3f} / {:.3f}", (100.0,) * 5 + (1.0,) * 3),
+    Figure("benchmarks/README.md", "**58.6 s** (323 twin evaluations) = 47.0x the simulation", "diagnose_cpu.json",
+           ("diagnose_s", "evaluations", "ratio_diagnose_to_simulate"),
+           "**{:.1f} s** ({:d} twin evaluations) = {:.1f}x the simulation"),
+    Figure("benchmarks/README.md", "held-out error 2.57 -> 0.54 dB", "diagnose_cpu.json",
+           ("error_before_dB", "error_after_dB"), "{:.2f} -> {:.2f} dB"),
+    Figure("benchmarks/README.md", "**36 of 36 exactly** at seed 1 (the cases' times summed: 875 s) and seed 2 (718 s); "
+           "seed 3 with the physical base bounds: **42 of 42**", "diagnose_generator_b_cpu.json",
+           ("seeds/1/correct", "seeds/1/cases", "seeds/2/correct", "seeds/2/cases", "seeds/3/correct", "seeds/3/cases",
+            *(f"seeds/{s}/rows/{i}/seconds" for s in (1, 2) for i in range(36))),
+           lambda c1, n1, c2, n2, c3, n3, *t: f"**{c1:d} of {n1:d} exactly** at seed 1 (the cases' times summed: "
+           f"{sum(t[:36]):.0f} s) and seed 2 ({sum(t[36:]):.0f} s); seed 3 with the physical base bounds: **{c3:d} of "
+           f"{n3:d}**" if c2 == c1 and n2 == n1 else "seeds 1 and 2 differ"),
+    Figure("benchmarks/README.md", "**27 of 27 named, 27 of 27 errors at least halved**", "diagnose_generator_b_cpu.json",
+           ("variants/correct", "variants/cases", "variants/halved", "variants/cases"),
+           "**{:d} of {:d} named, {:d} of {:d} errors at least halved**"),
+    Figure("benchmarks/README.md", "27 of the 36 run before the session ended, 27 of 27 named",
+           "diagnose_generator_b_cpu.json",
+           tuple(f"seeds_final_code/{s}/{k}" for s in (1, 2) for k in ("cases_run", "cases_in_table", "correct")),
+           lambda r1, t1, c1, r2, t2, c2: f"{r1:d} of the {t1:d} run before the session ended, {c1:d} of {r1:d} named"
+           if (r1, t1, c1) == (r2, t2, c2) else "seeds 1 and 2 differ"),
+    Figure("benchmarks/README.md", "(4.4 -> 3.5 dB at A:", "diagnose_generator_b_cpu.json",
+           ("seeds_final_code/1/rows/3/error_before_dB", "seeds_final_code/1/rows/3/error_after_dB"),
+           "({:.1f} -> {:.1f} dB at A:"),
+    Figure("benchmarks/README.md", "**the widened table (51 cases, `widened_table`): 51 of 51 at seed 3**",
+           "diagnose_generator_b_cpu.json", ("widened_table/seed_3/cases", "widened_table/seed_3/correct",
+                                             "widened_table/seed_3/cases"),
+           "**the widened table ({:d} cases, `widened_table`): {:d} of {:d} at seed 3**"),
+    Figure("benchmarks/README.md", "6 of 6 at seeds 1 and 2; errors halved in 37 of 48", "diagnose_generator_b_cpu.json",
+           ("widened_table/new_variants_seed_1/correct", "widened_table/new_variants_seed_1/cases",
+            "widened_table/new_variants_seed_2/correct", "widened_table/new_variants_seed_2/cases",
+            "widened_table/seed_3/error_halved", "widened_table/seed_3/cases"),
+           lambda c1, n1, c2, n2, halved, cases: f"{c1:d} of {n1:d} at seeds 1 and 2; errors halved in {halved:d} of "
+           f"{cases - 3:d}" if (c1, n1) == (c2, n2) else "seeds 1 and 2 differ"),
+    Figure("benchmarks/README.md", "18_48_07 (48 dB): **-5.55 dB** (spread 3.6); 18_52_43: -6.35 dB (2.9); noise floors "
+           "0.02 and 0.44 dB apart", "people_level_cpu.json",
+           tuple(_PEOPLE.format(r) + k for r in ("48_07", "52_43")
+                 for k in ("offset_dB", "spread_dB", "capture_floor_dBFS", "twin_floor_dBFS")),
+           lambda o1, s1, c1, t1, o2, s2, c2, t2: f"18_48_07 (48 dB): **{o1:.2f} dB** (spread {s1:.1f}); 18_52_43: "
+           f"{o2:.2f} dB ({s2:.1f}); noise floors {abs(c1 - t1):.2f} and {abs(c2 - t2):.2f} dB apart"),
+    Figure("benchmarks/README.md", "measured chain occupancy **0.927 ± 0.095**, counting **0.859 ± 0.100**",
+           "own_loop_cpu.json", _with_std(f"{_OWN}/occupancy/mean", f"{_OWN}/counting/mean"),
+           "measured chain occupancy **{:.3f} ± {:.3f}**, counting **{:.3f} ± {:.3f}**"),
+    Figure("benchmarks/README.md", "the paper's chain 0.500 ± 0.000 / 0.457 ± 0.174; 754.1 s for 12 runs",
+           "own_loop_cpu.json", (*_with_std(f"{_OWN_PAPER}/occupancy/mean", f"{_OWN_PAPER}/counting/mean"),
+                                 "wall_seconds", "seeds"),
+           lambda a, sa, b, sb, wall, seeds: f"the paper's chain {a:.3f} ± {sa:.3f} / {b:.3f} ± {sb:.3f}; {wall:.1f} s "
+           f"for {2 * 2 * seeds:d} runs"),
+    Figure("benchmarks/README.md", "**824.3 vs 908.8 frames/s = 0.907**", "predict_cpu.json",
+           ("predict_frames_per_s", "network_alone_frames_per_s", "predict_vs_network_alone"),
+           "**{:.1f} vs {:.1f} frames/s = {:.3f}**"),
+    Figure("benchmarks/README.md", "the export's matrix chain 0.617; one frame at a time (live) 85.2 frames/s = 8.52× the "
+           "sensor's rate | live ≥ 1× |", "predict_cpu.json",
+           ("export_module_vs_network_alone", "live_one_frame_at_a_time_frames_per_s", "live_vs_sensor_frame_rate"),
+           lambda chain, live, ratio: f"the export's matrix chain {chain:.3f}; one frame at a time (live) {live:.1f} "
+           f"frames/s = {ratio:.2f}× the sensor's rate | live ≥ 1× |" if ratio >= 1 else "live below the sensor's rate"),
     Figure("benchmarks/README.md", "74.6 vs 80.0 images/s = **0.933**", "training_cpu.json",
            ("pipeline_images_per_s", "bare_resnet18_images_per_s", "pipeline_vs_bare"), "{:.1f} vs {:.1f} images/s = **{:.3f}**"),
-    Figure("benchmarks/README.md", "**88.0 s** wall", "reproduce_cuda.json", "wall_seconds", "**{:.1f} s** wall"),
-    # docs/your_sensor.md
-    Figure("docs/your_sensor.md", "the recorded figure on a 2-core CPU is 58.6 s (`benchmarks/diagnose_cpu.json`)",
-           "diagnose_cpu.json", "diagnose_s", "is {:.1f} s"),
-    Figure("docs/your_sensor.md", "48.1 frames/s of the two-walker corridor in one process, 94.2 with 2 workers",
-           "twin_cpu.json", ("frames_per_s_1proc", "frames_per_s_workers", "workers"),
-           "{:.1f} frames/s of the two-walker corridor in one process, {:.1f} with {:d} workers"),
-    Figure("docs/your_sensor.md", "the std over 3 seeds is 0.000–0.069 per method and task", "reproduce_quick_cpu.json",
+    Figure("benchmarks/README.md", "best method at 1.000 occupancy and 0.954 counting on the independent set in the "
+           "current record", "reproduce_quick_cpu.json", _quick_means(""),
+           lambda *v: f"best method at {max(v[:3]):.3f} occupancy and {max(v[3:]):.3f} counting"),
+    Figure("benchmarks/README.md", "(0.979-0.989 and 0.807-0.831 in the single-frame records before issue 34's defaults;",
+           "reproduce_quick_cpu.json", tuple(k for t in _TASKS for p in (_P2, _P3, _P4) for k in _quick_means(p, tasks=(t,))),
+           lambda *v: f"({_range('{:.3f}')(*(max(v[i:i + 3]) for i in (0, 3, 6)))} and "
+           f"{_range('{:.3f}')(*(max(v[i:i + 3]) for i in (9, 12, 15)))} in the single-frame records before"),
+    Figure("benchmarks/README.md", "the held-out report suites give 0.660 / 0.450 and", "heldout_report_cpu.json",
+           ("suite/results/occupancy/randomdr/mean", "suite/results/counting/randomdr/mean"), "give {:.3f} / {:.3f} and"),
+    Figure("benchmarks/README.md", "0.660 / 0.450 and 0.691 / 0.524, `heldout_report_cpu.json`", "heldout_report2_cpu.json",
+           ("suite/results/occupancy/randomdr/mean", "suite/results/counting/randomdr/mean"), "and {:.3f} / {:.3f},"),
+    Figure("benchmarks/README.md", "seed spreads of 0.000–0.069 in the current record", "reproduce_quick_cpu.json",
            _SEED_STDS, _range3),
+    Figure("benchmarks/README.md", "moved a method's mean by up to 0.056)", "reproduce_quick_cpu.json",
+           (*_quick_means(_P3), *_quick_means(_P4)), _largest_change),
+    # docs/benchmarks.md: the twin's rounds (twin_cpu.json and its previous_run chain), the quick run's records, the rest
+    Figure("docs/benchmarks.md", "the default twin **48.1 frames/s in one process (46.4-49.7), 94.2 with 2 workers "
+           "(87.8-94.2): the >= 100 frames/s target is not met in any run**", "twin_cpu.json",
+           ("frames_per_s_1proc", *(f"runs/frames_per_s_1proc/{i}" for i in range(3)),
+            "frames_per_s_workers", *(f"runs/frames_per_s_workers/{i}" for i in range(3))),
+           lambda a, a0, a1, a2, b, b0, b1, b2: f"**{a:.1f} frames/s in one process ({_range('{:.1f}')(a0, a1, a2)}), "
+           f"{b:.1f} with 2 workers ({_range('{:.1f}')(b0, b1, b2)}): the >= 100 frames/s target is "
+           f"{'not met in any run' if max(b0, b1, b2) < 100 else 'met'}**"),
+    Figure("docs/benchmarks.md", "The unchanged first rung of the ladder made 88.0-94.8 frames/s (76.0-97.1 in the noisy "
+           "hour below)", "twin_cpu.json", tuple(f"{p}runs/first_rung_specular_one_snapshot/{i}" for p in ("", _P1)
+                                                 for i in range(3)),
+           lambda *v: f"made {_range('{:.1f}')(*v[:3])} frames/s ({_range('{:.1f}')(*v[3:])} in the noisy hour below)"),
+    Figure("docs/benchmarks.md", "(`intra_frame_cost_ratio` 1.36, `shadow_intervals_2_cost_ratio` 1.56)", "twin_cpu.json",
+           ("intra_frame_cost_ratio", "shadow_intervals_2_cost_ratio"),
+           "(`intra_frame_cost_ratio` {:.2f}, `shadow_intervals_2_cost_ratio` {:.2f})"),
+    Figure("docs/benchmarks.md", "The same code has made 64.5-94.2 frames/s with 2 workers over the recorded hours",
+           "twin_cpu.json", tuple(f"{p}runs/frames_per_s_workers/{i}" for p in ("", _P1) for i in range(3)),
+           _range("{:.1f}")),
+    Figure("docs/benchmarks.md", "the default twin **42.5 frames/s in one process (42.2-44.7), 64.5 with 2 workers "
+           "(64.5-84.7): the >= 100 frames/s target is not met**", "twin_cpu.json",
+           (f"{_P1}frames_per_s_1proc", *(f"{_P1}runs/frames_per_s_1proc/{i}" for i in range(3)),
+            f"{_P1}frames_per_s_workers", *(f"{_P1}runs/frames_per_s_workers/{i}" for i in range(3))),
+           lambda a, a0, a1, a2, b, b0, b1, b2: f"**{a:.1f} frames/s in one process ({_range('{:.1f}')(a0, a1, a2)}), "
+           f"{b:.1f} with 2 workers ({_range('{:.1f}')(b0, b1, b2)})"),
+    Figure("docs/benchmarks.md", "unchanged first rung of the ladder made 76.0-97.1 frames/s in those runs (90.0 on the "
+           "quietest recorded day)", "twin_cpu.json",
+           (*(f"{_P1}runs/first_rung_specular_one_snapshot/{i}" for i in range(3)),
+            f"{_P3}frames_per_s_1proc_additions/{_LADDER[0]}"),
+           lambda r0, r1, r2, quiet: f"made {_range('{:.1f}')(r0, r1, r2)} frames/s in those runs ({quiet:.1f} on the"),
+    Figure("docs/benchmarks.md", "`coupling_speedup` end to end is 0.985-1.055 over the three runs", "twin_cpu.json",
+           tuple(f"{_P1}runs/coupling_speedup/{i}" for i in range(3)), _range("{:.3f}")),
+    Figure("docs/benchmarks.md", "the default twin **38.8 frames/s in one process (38.4-43.6), 83.5 with 2 workers "
+           "(70.2-83.5)", "twin_cpu.json",
+           (f"{_P2}frames_per_s_1proc", *(f"{_P2}runs/frames_per_s_1proc/{i}" for i in range(3)),
+            f"{_P2}frames_per_s_workers", *(f"{_P2}runs/frames_per_s_workers/{i}" for i in range(3))),
+           lambda a, a0, a1, a2, b, b0, b1, b2: f"**{a:.1f} frames/s in one process ({_range('{:.1f}')(a0, a1, a2)}), "
+           f"{b:.1f} with 2 workers ({_range('{:.1f}')(b0, b1, b2)})"),
+    Figure("docs/benchmarks.md", "made 76.1 frames/s in the median run against 90.0 then", "twin_cpu.json",
+           (f"{_P2}frames_per_s_1proc_additions/{_LADDER[0]}", f"{_P3}frames_per_s_1proc_additions/{_LADDER[0]}"),
+           "made {:.1f} frames/s in the median run against {:.1f} then"),
+    Figure("docs/benchmarks.md", "per channel (the rule since retired): 0.91 / 1.03 / 1.07 over the three runs",
+           "twin_cpu.json", tuple(f"{_P2}runs/rx_shared_synthesis_speedup/{i}" for i in range(3)), _sorted("{:.2f}")),
+    Figure("docs/benchmarks.md", "costs 1.41-1.59x the default's time", "twin_cpu.json",
+           tuple(f"{_P2}runs/shadow_intervals_2_cost_ratio/{i}" for i in range(3)), _range("{:.2f}")),
+    Figure("docs/benchmarks.md", "default twin **47.9 frames/s in one process (4.8x real time), 94.7 frames/s with 2 "
+           "workers (9.5x)", "twin_cpu.json",
+           tuple(f"{_P3}{k}" for k in ("frames_per_s_1proc", "realtime_ratio_1proc", "frames_per_s_workers",
+                                       "realtime_ratio_workers")),
+           "**{:.1f} frames/s in one process ({:.1f}x real time), {:.1f} frames/s with 2 workers ({:.1f}x)"),
+    Figure("docs/benchmarks.md", "no shadowing 90.0 -> + diffuse clutter 87.3 (static: no cost per frame) -> + shadowing "
+           "62.6 -> + motion inside the frame 47.9. Per frame that is ~11 ms for the people's paths and synthesis, +4.5 ms "
+           "for shadowing and +4.9 ms for the sub-frame snapshots (5.25 knot intervals", "twin_cpu.json",
+           (*(f"{_P3}frames_per_s_1proc_additions/{r}" for r in _LADDER), f"{_P3}intra_frame_knot_intervals_mean"),
+           lambda a, b, c, d, knots: f"no shadowing {a:.1f} -> + diffuse clutter {b:.1f} (static: no cost per frame) -> + "
+           f"shadowing {c:.1f} -> + motion inside the frame {d:.1f}. Per frame that is ~{1e3 / b:.0f} ms for the "
+           f"people's paths and synthesis, +{1e3 / c - 1e3 / b:.1f} ms for shadowing and +{1e3 / d - 1e3 / c:.1f} ms for "
+           f"the sub-frame snapshots ({knots:.2f} knot intervals"),
+    Figure("docs/benchmarks.md", "takes 13.1 ms per frame for ~600 path slots (49.7x faster than the exact sum, relative "
+           "RMS error 6e-6)", "twin_cpu.json",
+           tuple(f"{_P3}{k}" for k in ("receiver_synthesis_fast_s_per_frame", "receiver_speedup_fast_vs_exact",
+                                       "receiver_fast_vs_exact_rel_rms_error")),
+           lambda t, speedup, err: f"takes {1e3 * t:.1f} ms per frame for ~600 path slots ({speedup:.1f}x faster than the "
+           f"exact sum, relative RMS error {err:.0e})".replace("e-0", "e-")),
+    Figure("docs/benchmarks.md", "**397.7 s (6.6 min)**, 16.9 s of fit per run (median of 18)", "reproduce_quick_cpu.json",
+           ("wall_seconds", "wall_seconds", "fit_seconds_per_run_median"), "**{:.1f} s ({:.1f} min)**, {:.1f} s of fit",
+           (1.0, 1 / 60, 1.0)),
+    Figure("docs/benchmarks.md", "`make demo` on a fresh clone took 7:51 with the virtualenv's set-up. The record before "
+           "it (`previous_run`, the same code but the gate): 418.9 s, fresh clone 8:22", "reproduce_quick_cpu.json",
+           ("make_demo_on_a_fresh_clone_s", f"{_P1}wall_seconds", f"{_P1}make_demo_on_a_fresh_clone_s"),
+           lambda clone, wall, prev_clone: f"took {_min_sec(clone)} with the virtualenv's set-up. The record before it "
+           f"(`previous_run`, the same code but the gate): {wall:.1f} s, fresh clone {_min_sec(prev_clone)}"),
+    Figure("docs/benchmarks.md", "occupancy RT 0.992 ± 0.012 (0.943), RandomDR 1.000 ± 0.000 (0.974), CDR 1.000 ± 0.000 "
+           "(0.946); counting RT 0.954 ± 0.023 (0.809), RandomDR 0.848 ± 0.069 (0.820), CDR 0.783 ± 0.047 (0.709)",
+           "reproduce_quick_cpu.json",
+           tuple(f"{_QUICK}/{t}/{m}/{k}" for t in _TASKS for m in _METHODS for k in (_BA, _SD, _SF)),
+           "occupancy RT {:.3f} ± {:.3f} ({:.3f}), RandomDR {:.3f} ± {:.3f} ({:.3f}), CDR {:.3f} ± {:.3f} ({:.3f}); "
+           "counting RT {:.3f} ± {:.3f} ({:.3f}), RandomDR {:.3f} ± {:.3f} ({:.3f}), CDR {:.3f} ± {:.3f} ({:.3f})"),
+    Figure("docs/benchmarks.md", "**487.1 s (8.1 min)** for `radaraug reproduce --quick` on a 2-core x86-64 CPU without a "
+           "GPU, 20.3 s of fit per run", "reproduce_quick_cpu.json",
+           (f"{_P2}wall_seconds", f"{_P2}wall_seconds", f"{_P2}fit_seconds_per_run_median"),
+           "**{:.1f} s ({:.1f} min)** for `radaraug reproduce --quick` on a 2-core x86-64 CPU without a GPU, {:.1f} s of "
+           "fit per run", (1.0, 1 / 60, 1.0)),
+    Figure("docs/benchmarks.md", "the record before it made 446.2 s (20.0 s per fit)", "reproduce_quick_cpu.json",
+           (f"{_P3}wall_seconds", f"{_P3}fit_seconds_per_run_median"), "made {:.1f} s ({:.1f} s per fit)"),
+    Figure("docs/benchmarks.md", "the same run took 605.6 s; between that change and the BVH's coefficient-first plane "
+           "gather, 557.4 s; before the BVH's `any_hit`, leaf size and slab-test changes, 513.7 s",
+           "reproduce_quick_cpu.json",
+           tuple(f"{_P3}wall_seconds_before_{k}" for k in ("one_chirp_static_basis", "bvh_gather",
+                                                           "bvh_any_hit_leaves_slabs")),
+           "the same run took {:.1f} s; between that change and the BVH's coefficient-first plane gather, {:.1f} s; "
+           "before the BVH's `any_hit`, leaf size and slab-test changes, {:.1f} s"),
+    Figure("docs/benchmarks.md", "| occupancy | 0.938 ± 0.026 | **0.979 ± 0.003** | 0.962 ± 0.003 |",
+           "reproduce_quick_cpu.json", _with_std(*_quick_means(_P2, tasks=("occupancy",))),
+           "| occupancy | {:.3f} ± {:.3f} | **{:.3f} ± {:.3f}** | {:.3f} ± {:.3f} |"),
+    Figure("docs/benchmarks.md", "| counting | 0.793 ± 0.023 | **0.807 ± 0.039** | 0.765 ± 0.054 |",
+           "reproduce_quick_cpu.json", _with_std(*_quick_means(_P2, tasks=("counting",))),
+           "| counting | {:.3f} ± {:.3f} | **{:.3f} ± {:.3f}** | {:.3f} ± {:.3f} |"),
+    Figure("docs/benchmarks.md", "446.2 s): occupancy 0.974 ± 0.007 / **0.989 ± 0.002** / 0.946 ± 0.036, counting "
+           "0.787 ± 0.026 / **0.831 ± 0.043** / 0.765 ± 0.032", "reproduce_quick_cpu.json",
+           (f"{_P3}wall_seconds", *_with_std(*_quick_means(_P3))),
+           "{:.1f} s): occupancy {:.3f} ± {:.3f} / **{:.3f} ± {:.3f}** / {:.3f} ± {:.3f}, counting {:.3f} ± {:.3f} / "
+           "**{:.3f} ± {:.3f}** / {:.3f} ± {:.3f}"),
+    Figure("docs/benchmarks.md", "the methods' means moved by -0.036 to +0.017", "reproduce_quick_cpu.json",
+           (*_quick_means(_P2), *_quick_means(_P3)),
+           _moved),
+    Figure("docs/benchmarks.md", "584.6 s): occupancy 0.978 ± 0.017 / **0.986 ± 0.005** / 0.974 ± 0.011, counting "
+           "0.754 ± 0.037 / 0.791 ± 0.074 / **0.820 ± 0.016**", "reproduce_quick_cpu.json",
+           (f"{_P4}wall_seconds", *_with_std(*_quick_means(_P4))),
+           "{:.1f} s): occupancy {:.3f} ± {:.3f} / **{:.3f} ± {:.3f}** / {:.3f} ± {:.3f}, counting {:.3f} ± {:.3f} / "
+           "{:.3f} ± {:.3f} / **{:.3f} ± {:.3f}**"),
+    Figure("docs/benchmarks.md", "moves a method's mean by up to 0.056 (CDR counting)", "reproduce_quick_cpu.json",
+           (*_quick_means(_P3), *_quick_means(_P4)), _largest_change),
+    Figure("docs/benchmarks.md", "gave occupancy 0.657 / 0.769 / 0.556 and counting 0.530 / 0.606 / 0.335",
+           "reproduce_quick_empirical_cpu.json",
+           tuple(f"normal_floor_for_comparison/{t}/{m}/mean" for t in _TASKS for m in _METHODS),
+           "gave occupancy {:.3f} / {:.3f} / {:.3f} and counting {:.3f} / {:.3f} / {:.3f}"),
+    Figure("docs/benchmarks.md", "5 ablations, 2 seeds, 45 min", "reproduce_ablations_cpu.json", "wall_seconds",
+           "2 seeds, {:.0f} min", 1 / 60),
+    Figure("docs/benchmarks.md", "(2,147 s on the 2-core CPU: 4 worlds × 2 tasks × 4 variants × 3 seeds = 96 runs, median "
+           "fit 18.6 s", "heldout_report_cpu.json",
+           ("wall_seconds", "settings/worlds", "settings/seeds", "fit_seconds_per_run_median"),
+           lambda wall, worlds, seeds, fit: f"({wall:,.0f} s on the 2-core CPU: {worlds:d} worlds × 2 tasks × 4 variants × "
+           f"{seeds:d} seeds = {worlds * 2 * 4 * seeds:d} runs, median fit {fit:.1f} s"),
+    Figure("docs/benchmarks.md", "the training twin's label observability (108 s, one thread)", "twin_observability_cpu.json",
+           "settings/seconds", "({:.0f} s, one thread)"),
+    Figure("docs/benchmarks.md", "(the round-1 defaults 1,144 s, early stopping 1,410 s", "heldout_design2_cpu.json",
+           ("variants/base/wall_seconds", "variants/es/wall_seconds"), "defaults {:,.0f} s, early stopping {:,.0f} s"),
+    Figure("docs/benchmarks.md", "(the twin: 3,273.9 frames/s on an H100 at 4,096 frames per call, 97.6x one CPU thread",
+           "twin_cuda.json", (f"{_TWIN_K}/4096", "speedup_vs_cpu_1proc"),
+           "(the twin: {:,.1f} frames/s on an H100 at 4,096 frames per call, {:.1f}x one CPU thread"),
+    Figure("docs/benchmarks.md", "-5.55 dB (spread 3.6) and -6.35 dB (2.9), noise floors 0.02 and 0.44 dB apart",
+           "people_level_cpu.json",
+           tuple(_PEOPLE.format(r) + k for r in ("48_07", "52_43")
+                 for k in ("offset_dB", "spread_dB", "capture_floor_dBFS", "twin_floor_dBFS")),
+           lambda o1, s1, c1, t1, o2, s2, c2, t2: f"{o1:.2f} dB (spread {s1:.1f}) and {o2:.2f} dB ({s2:.1f}), noise floors "
+           f"{abs(c1 - t1):.2f} and {abs(c2 - t2):.2f} dB apart"),
+    # docs/your_sensor.md: the table of steps, the training and diagnose times, reading the scores
+    Figure("docs/your_sensor.md", "| 397.7 s (`reproduce_quick_cpu.json`) | full mode projected 1,342-6,024 s from an H200 "
+           "run of 88.0 s", "reproduce_quick_cpu.json", ("wall_seconds",),
+           "| {:.1f} s (`reproduce_quick_cpu.json`) | full mode projected 1,342-6,024 s from an H200 run of 88.0 s"),
+    Figure("docs/your_sensor.md", "full mode projected 1,342-6,024 s from an H200 run of 88.0 s", "reproduce_cuda.json",
+           ("full_mode_projected_seconds_lower_bound", "full_mode_projected_seconds_linear_upper_bound", "wall_seconds"),
+           "full mode projected {:,}-{:,} s from an H200 run of {:.1f} s"),
+    Figure("docs/your_sensor.md", "| 74.6 images/s (`training_cpu.json`) | 15,503.7 images/s", "training_cpu.json",
+           ("pipeline_images_per_s",), "| {:.1f} images/s (`training_cpu.json`) | 15,503.7 images/s"),
+    Figure("docs/your_sensor.md", "15,503.7 images/s on an H200", "training_cuda.json", ("pipeline_images_per_s",),
+           "{:,.1f} images/s on an H200"),
+    Figure("docs/your_sensor.md", "| 824.3 frames/s on a file, 85.2 frames/s live", "predict_cpu.json",
+           ("predict_frames_per_s", "live_one_frame_at_a_time_frames_per_s"), "| {:.1f} frames/s on a file, {:.1f} frames/s live"),
+    Figure("docs/your_sensor.md", "| 58.62 s (`diagnose_cpu.json`)", "diagnose_cpu.json", ("diagnose_s",),
+           "| {:.2f} s (`diagnose_cpu.json`)"),
+    Figure("docs/your_sensor.md", "(without: −0.08 occupancy and −0.17 counting on the independent set",
+           "reproduce_ablations_cpu.json", (_ABL.format("independent", 4), _ABL.format("independent", 9)),
+           "−{:.2f} occupancy and −{:.2f} counting", -1.0),
     Figure("docs/your_sensor.md", "its best method reached 1.000 occupancy and 0.954 counting", "reproduce_quick_cpu.json",
            (f"{_QUICK}/occupancy/randomdr/{_BA}", f"{_QUICK}/counting/rt/{_BA}"), "{:.3f} occupancy and {:.3f} counting"),
     Figure("docs/your_sensor.md", "held-out report suite 0.691 / 0.524 (RandomDR", "heldout_report2_cpu.json",
            (f"{_R2}/occupancy/randomdr/{_BA}", f"{_R2}/counting/randomdr/{_BA}"), "{:.3f} / {:.3f}"),
     Figure("docs/your_sensor.md", "a recipe training step (74.6 images/s,", "training_cpu.json",
            "pipeline_images_per_s", "({:.1f} images/s"),
+    Figure("docs/your_sensor.md", "one full-mode run is 90 000 images, about 20 minutes of steps, and the 66 runs about 22 "
+           "hours", "training_cpu.json", "pipeline_images_per_s",
+           lambda rate: f"90 000 images, about {90_000 / rate / 60:.0f} minutes of steps, and the 66 runs about "
+           f"{66 * 90_000 / rate / 3600:.0f} hours"),
     Figure("docs/your_sensor.md", "took 88.0 s on an H200 and projects full mode to 1,342-6,024 s", "reproduce_cuda.json",
            ("wall_seconds", "full_mode_projected_seconds_lower_bound", "full_mode_projected_seconds_linear_upper_bound"),
            "took {:.1f} s on an H200 and projects full mode to {:,d}-{:,d} s"),
     Figure("docs/your_sensor.md", "the twin makes 3,273.9 frames/s on one H100", "twin_cuda.json", "frames_per_s_best",
            "{:,.1f} frames/s"),
-    # docs/gpu.md
+    Figure("docs/your_sensor.md", "9600 training images, about 2 minutes of steps at the recorded CPU rate",
+           "training_cpu.json", "pipeline_images_per_s", lambda rate: f"about {9600 / rate / 60:.0f} minutes of steps"),
+    Figure("docs/your_sensor.md", "48.1 frames/s of the two-walker corridor in one process, 94.2 with 2 workers",
+           "twin_cpu.json", ("frames_per_s_1proc", "frames_per_s_workers", "workers"),
+           "{:.1f} frames/s of the two-walker corridor in one process, {:.1f} with {:d} workers"),
+    Figure("docs/your_sensor.md", "runs 824.3 frames/s on a file (in batches) and 85.2 frames/s one frame at a time as "
+           "live, 8.52× the sensor's", "predict_cpu.json",
+           ("predict_frames_per_s", "live_one_frame_at_a_time_frames_per_s", "live_vs_sensor_frame_rate"),
+           "runs {:.1f} frames/s on a file (in batches) and {:.1f} frames/s one frame at a time as live, {:.2f}× the "
+           "sensor's"),
+    Figure("docs/your_sensor.md", "the recorded figure on a 2-core CPU is 58.6 s (`benchmarks/diagnose_cpu.json`)",
+           "diagnose_cpu.json", "diagnose_s", "is {:.1f} s"),
+    Figure("docs/your_sensor.md", "the std over 3 seeds is 0.000–0.069 per method and task", "reproduce_quick_cpu.json",
+           _SEED_STDS, _range3),
+    # docs/predict.md: the demo classifier's scores, the speed table
+    Figure("docs/predict.md", "balanced accuracy 0.950 from the decisions (8-frame window + gate) and 0.833 from the "
+           "single-frame classes", "reproduce_quick_cpu.json",
+           (f"{_QUICK}/counting/rt/static_gate_balanced_accuracy/per_seed/2",
+            f"{_QUICK}/counting/rt/single_frame_balanced_accuracy/per_seed/2"),
+           "{:.3f} from the decisions (8-frame window + gate) and {:.3f} from the single-frame classes"),
+    Figure("docs/predict.md", "| the network alone on ready images (baseline) | 908.8 | 1 |", "predict_cpu.json",
+           "network_alone_frames_per_s", "| {:.1f} | 1 |"),
+    Figure("docs/predict.md", "| `RadarClassifier.probabilities` (chain + network) | 824.3 | 0.907 |", "predict_cpu.json",
+           ("predict_frames_per_s", "predict_vs_network_alone"), "| {:.1f} | {:.3f} |"),
+    Figure("docs/predict.md", "| the export module (matrix chain + network, eager) | 560.9 | 0.617 |", "predict_cpu.json",
+           ("export_module_frames_per_s", "export_module_vs_network_alone"), "| {:.1f} | {:.3f} |"),
+    Figure("docs/predict.md", "| one frame at a time through `stream()`, as live | 85.2 | 8.52× the sensor's",
+           "predict_cpu.json", ("live_one_frame_at_a_time_frames_per_s", "live_vs_sensor_frame_rate"),
+           "| one frame at a time through `stream()`, as live | {:.1f} | {:.2f}× the sensor's"),
+    # docs/gpu.md: the table, the twin's GPU chunks, the GPU reproduce and its projection
     Figure("docs/gpu.md", "| **3,273.9 frames/s** | one CPU thread 33.5 frames/s (97.6x) |", "twin_cuda.json",
            ("frames_per_s_best", "cpu_frames_per_s_1proc", "speedup_vs_cpu_1proc"),
            "| **{:,.1f} frames/s** | one CPU thread {:.1f} frames/s ({:.1f}x) |"),
@@ -188,21 +716,51 @@ FIGURES: list[Figure] = [
            ("h200_runs/both_chunks/frames_per_s_best", "h200_runs/both_chunks/cpu_frames_per_s_1proc",
             "h200_runs/both_chunks/speedup_vs_cpu_1proc"),
            "| {:,.1f} frames/s | one CPU thread {:.1f} frames/s ({:.1f}x) |"),
-    Figure("docs/gpu.md", "1,913.0 frames/s on the H200", "twin_cuda.json",
-           "h200_runs/synthesis_chunk_only/frames_per_s_best", "{:,.1f} frames/s"),
     Figure("docs/gpu.md", "| 202,215 frames/s | NumPy 252 frames/s (804x) |", "transforms_cuda.json",
            ("torch_frames_per_s", "numpy_frames_per_s", "speedup_vs_numpy"), "| {:,.0f} frames/s | NumPy {:.0f} frames/s ({:.0f}x) |"),
     Figure("docs/gpu.md", "| 15,504 images/s | bare ResNet18 17,756 images/s (0.87) |", "training_cuda.json",
            ("pipeline_images_per_s", "bare_resnet18_images_per_s", "pipeline_vs_bare"),
            "| {:,.0f} images/s | bare ResNet18 {:,.0f} images/s ({:.2f}) |"),
+    Figure("docs/gpu.md", "| 15,544 images/s | fp32 pipeline (1.003x: no gain at this size) |", "training_cuda.json",
+           ("amp_channels_last/pipeline_images_per_s", "amp_channels_last/pipeline_vs_fp32_pipeline"),
+           "| {:,.0f} images/s | fp32 pipeline ({:.3f}x:"),
+    Figure("docs/gpu.md", "| ray-triangle tests (brute-force kernel, eager, H100) | 5.5e9 tests/s |", "twin_cuda.json",
+           "intersection/eager_tests_per_s", "| {:.1f}e9 tests/s |", 1e-9),
     Figure("docs/gpu.md", "| 83 passed, 2 skipped in 46 s |", "cuda_tests.json",
-           ("tests", "failures", "errors", "skipped", "seconds"),
-           _passed_skipped),
+           ("tests", "failures", "errors", "skipped", "seconds"), _passed_skipped),
+    Figure("docs/gpu.md", "**The twin meets its target (2,000 frames/s on one H100) from 1,024 frames per call on.**",
+           "twin_cuda.json", ("target_frames_per_s", f"{_TWIN_K}/256", f"{_TWIN_K}/1024"),
+           lambda target, f256, f1024: f"**The twin meets its target ({target:,.0f} frames/s on one H100) from 1,024 "
+           f"frames per call on.**" if f256 < target <= f1024 else "the target is met elsewhere"),
+    Figure("docs/gpu.md", "The first GPU run had given 138.9 frames/s", "twin_cuda.json", f"{_P1}frames_per_s_best",
+           "had given {:.1f} frames/s"),
+    Figure("docs/gpu.md", "1,913.0 frames/s on the H200", "twin_cuda.json",
+           "h200_runs/synthesis_chunk_only/frames_per_s_best", "{:,.1f} frames/s"),
+    Figure("docs/gpu.md", "0.078 s, and 2,662.6 frames/s on the H200", "twin_cuda.json",
+           "h200_runs/both_chunks/frames_per_s_best", "and {:,.1f} frames/s on the H200"),
+    Figure("docs/gpu.md", "now costs 1.05-1.17x at 256 frames, against 1.94x with the synthesis chunk alone",
+           "twin_cuda.json",
+           ("h200_runs/both_chunks/shadow_intervals_2_cost_ratio_at_256", "shadow_intervals_2_cost_ratio_at_256",
+            "h200_runs/synthesis_chunk_only/shadow_intervals_2_cost_ratio_at_256"),
+           "costs {:.2f}-{:.2f}x at 256 frames, against {:.2f}x"),
+    Figure("docs/gpu.md", "16 frames per call give only 136.9-152.5 frames/s", "twin_cuda.json",
+           (f"h200_runs/both_chunks/{_TWIN_K}/16", f"{_TWIN_K}/16"), "give only {:.1f}-{:.1f} frames/s"),
+    Figure("docs/gpu.md", "ran in 88 s (148.7 s for 600 items before the CPU-side changes below). Simulation now costs "
+           "0.0165 s per item (0.091 before) with the twin per item in 14 CPU DataLoader workers", "reproduce_cuda.json",
+           ("wall_seconds", f"{_P1}wall_seconds", f"{_P1}size/train_items", "simulation_seconds_per_item",
+            f"{_P1}simulation_seconds_per_item", "size/sim_workers"),
+           "ran in {:.0f} s ({:.1f} s for {:d} items before the CPU-side changes below). Simulation now costs {:.4f} s per "
+           "item ({:.3f} before) with the twin per item in {:d} CPU DataLoader workers"),
     Figure("docs/gpu.md", "projects to 1,342-6,024 s (22-100 min;", "reproduce_cuda.json",
            ("full_mode_projected_seconds_lower_bound", "full_mode_projected_seconds_linear_upper_bound",
             "full_mode_projected_seconds_lower_bound", "full_mode_projected_seconds_linear_upper_bound"),
            "{:,.0f}-{:,.0f} s ({:.0f}-{:.0f} min", (1.0, 1.0, 1 / 60, 1 / 60)),
     Figure("docs/gpu.md", "The projection counts 66 runs", "reproduce_cuda.json", "full_mode_runs", "counts {:d} runs"),
+    Figure("docs/gpu.md", "no ablations) projects to ~4 min", "reproduce_cuda.json", "medium_projection/projected_seconds",
+           "projects to ~{:.0f} min", 1 / 60),
+    Figure("docs/gpu.md", "the recorded `reproduce --quick` went from 605.6 s to 446.2 s with these changes",
+           "reproduce_quick_cpu.json", (f"{_P3}wall_seconds_before_one_chirp_static_basis", f"{_P3}wall_seconds"),
+           "went from {:.1f} s to {:.1f} s"),
     # the other pages
     Figure("docs/simulation.md", "`intra_frame_cost_ratio` (1.359 in `benchmarks/twin_cpu.json`)", "twin_cpu.json",
            "intra_frame_cost_ratio", "({:.3f} in"),
@@ -255,10 +813,91 @@ FIGURES: list[Figure] = [
     Figure("docs/twin_observability.md", "| on | 11.7 | 32.9 | 45.1 | 40.6 % |", "twin_observability_cpu.json",
            tuple(f"summary/empty_peak_on/{k}" for k in ("median", "p90", "max", "frac_over_17db")),
            "| on | {:.1f} | {:.1f} | {:.1f} | {:.1f} % |", (1.0, 1.0, 1.0, 100.0)),
+    Figure("docs/simulation.md", "| `taylor_tol` 1e-05 (default) | 79.6 | 83.9 | 78.7 | 87.2 | 65.4 | 71.4 | 57.9 | 1.000 |",
+           "synthesis_contract_cpu.json",
+           (*(f"margin_dB/1e-05/{c}/margin_dB" for c in _CONTRACT_COLS), "speed_ratio_vs_default/1e-05"),
+           _contract_row("`taylor_tol` 1e-05 (default)")),
+    Figure("docs/simulation.md", "| `taylor_tol` 0.0001 | 69.5 | 75.6 | 70.1 | 83.5 | 56.0 | 61.0 | 47.6 | 1.052 |",
+           "synthesis_contract_cpu.json",
+           (*(f"margin_dB/0.0001/{c}/margin_dB" for c in _CONTRACT_COLS), "speed_ratio_vs_default/0.0001"),
+           _contract_row("`taylor_tol` 0.0001")),
+    Figure("docs/simulation.md", "| `taylor_tol` 0.001 | 48.2 | 50.7 | 47.5 | 63.0 | 34.7 | **29.9** | **16.5** | 1.100 |",
+           "synthesis_contract_cpu.json",
+           (*(f"margin_dB/0.001/{c}/margin_dB" for c in _CONTRACT_COLS), "speed_ratio_vs_default/0.001"),
+           _contract_row("`taylor_tol` 0.001")),
+    Figure("docs/simulation.md", "| `taylor_tol` 0.003 | 32.1 | 41.2 | 35.2 | 46.9 | **18.7** | **23.6** | **10.2** | 1.128 |",
+           "synthesis_contract_cpu.json",
+           (*(f"margin_dB/0.003/{c}/margin_dB" for c in _CONTRACT_COLS), "speed_ratio_vs_default/0.003"),
+           _contract_row("`taylor_tol` 0.003")),
+    Figure("docs/simulation.md", "| `taylor_tol` 0.01 | **26.2** | 31.6 | **27.1** | 41.1 | **12.8** | **17.5** | **4.0** | 1.163 |",
+           "synthesis_contract_cpu.json",
+           (*(f"margin_dB/0.01/{c}/margin_dB" for c in _CONTRACT_COLS), "speed_ratio_vs_default/0.01"),
+           _contract_row("`taylor_tol` 0.01")),
+    Figure("docs/simulation.md", "| `noise_tol` 0.001 | 49.3 | 54.5 | 54.3 | 46.2 | 49.5 | 50.1 | 51.5 | 1.078 |",
+           "synthesis_contract_cpu.json",
+           (*(f"noise_tol_margin_dB/0.001/{c}/margin_dB" for c in _CONTRACT_COLS), "speed_ratio_vs_default/noise 0.001"),
+           _contract_row("`noise_tol` 0.001")),
+    Figure("docs/simulation.md", "| `noise_tol` 0.003 | 34.1 | 43.1 | 34.9 | 39.5 | 41.7 | 41.1 | 39.5 | 1.086 |",
+           "synthesis_contract_cpu.json",
+           (*(f"noise_tol_margin_dB/0.003/{c}/margin_dB" for c in _CONTRACT_COLS), "speed_ratio_vs_default/noise 0.003"),
+           _contract_row("`noise_tol` 0.003")),
+    Figure("docs/simulation.md", "| `noise_tol` 0.01 | **28.2** | 33.4 | **29.0** | **25.3** | **29.0** | **29.8** | **28.6** | 1.121 |",
+           "synthesis_contract_cpu.json",
+           (*(f"noise_tol_margin_dB/0.01/{c}/margin_dB" for c in _CONTRACT_COLS), "speed_ratio_vs_default/noise 0.01"),
+           _contract_row("`noise_tol` 0.01")),
+    Figure("docs/simulation.md", "1.086× the default's frames/s with `noise_tol` 3e-3, 1.052× with `taylor_tol` 1e-4, "
+           "and even 1e-2, which breaks the contract, gives 1.163×", "synthesis_contract_cpu.json",
+           ("speed_ratio_vs_default/noise 0.003", "speed_ratio_vs_default/0.0001", "speed_ratio_vs_default/0.01"),
+           "{:.3f}× the default's frames/s with `noise_tol` 3e-3, {:.3f}× with `taylor_tol` 1e-4, and even 1e-2, which "
+           "breaks the contract, gives {:.3f}×"),
+    Figure("benchmarks/README.md", "default 1e-5: worst 57.9 dB (a near walker at IF 60 dB); 1e-4: 47.6 dB, 1.052×; "
+           "1e-3: 16.5 dB, 1.100×; `noise_tol` 3e-3: 34.1 dB, 1.086×", "synthesis_contract_cpu.json",
+           ("worst_margin_dB/1e-05", "worst_margin_dB/0.0001", "speed_ratio_vs_default/0.0001",
+            "worst_margin_dB/0.001", "speed_ratio_vs_default/0.001", "noise_tol_worst_margin_dB/0.003",
+            "speed_ratio_vs_default/noise 0.003"),
+           "default 1e-5: worst {:.1f} dB (a near walker at IF 60 dB); 1e-4: {:.1f} dB, {:.3f}×; 1e-3: {:.1f} dB, "
+           "{:.3f}×; `noise_tol` 3e-3: {:.1f} dB, {:.3f}×"),
+    Figure("docs/training.md", "counting + gate 0.692 → 0.695, worst world 0.500 → 0.531",
+           "heldout_design_two_step_counting_cpu.json",
+           tuple(f"variants/{v}/{k}" for k in ("mean", "worst") for v in ("counting+gate", "two_step")),
+           "counting + gate {:.3f} → {:.3f}, worst world {:.3f} → {:.3f}"),
 ]
 
-#: Figures a page quotes from an older record than the one it names (its ``previous_run`` chain): each is
-#: expected to fail until the page is updated; then move it to FIGURES with the page's new text.
+
+
+class Noted(NamedTuple):
+    """A figure a page quotes from a record's note (text, not a number): each of ``texts`` is in the quote and the note."""
+
+    page: str
+    quote: str
+    record: str
+    key: str                 # key path of the note, "previous_run/note"
+    texts: tuple[str, ...]
+
+
+NOTED: list[Noted] = [
+    # docs/gpu.md: the GPU profiles and the projection's parts, held in the records' notes
+    Noted("docs/gpu.md", "106,799 launches and 2.78 s of CPU time for 0.222 s of GPU work at 256 frames", "twin_cuda.json",
+          "previous_run/note", ("106,799", "2.78 s of CPU time", "0.222 s of GPU work")),
+    Noted("docs/gpu.md", "~860 chunks of 2^18 (segment, leg) pairs per 1,024 frames", "twin_cuda.json", "note",
+          ("~860 chunks of 2", "(segment, leg) pairs per 1,024 frames")),
+    Noted("docs/gpu.md", "the people's paths 0.339 s, the shadow 0.078 s, the receiver 0.087 s. The paths' ~20,700 torch "
+          "ops per call do not grow with the frames", "twin_cuda.json", "note",
+          ("paths 0.339 s", "shadow 0.078 s", "receiver 0.087 s", "~20,700 torch ops per call do not grow with the frames")),
+    Noted("docs/gpu.md", "0.19 % of the samples differ, RMS 0.044 codes", "cuda_tests.json", "previous_run/note",
+          ("0.19 %", "RMS 0.044 codes")),
+    Noted("docs/gpu.md", "simulation 5.4 min, 66 runs' training >= 10.3 min, the two test sets ~4.9 min",
+          "reproduce_cuda.json", "projection_note", ("5.4 min", "66 runs", "10.3 min", "the two test sets", "~4.9 min")),
+    # docs/benchmarks.md and benchmarks/README.md: the quick records' notes
+    Noted("docs/benchmarks.md", "a fresh clone of that earlier code: 11:51 including the virtualenv's set-up",
+          "reproduce_quick_cpu.json", "previous_run/previous_run/previous_run/note", ("11:51 including the virtualenv",)),
+    Noted("docs/benchmarks.md", "one ADC code in ~5e-6 of the samples with people moves", "reproduce_quick_cpu.json",
+          "previous_run/previous_run/note", ("one ADC code in ~5e-6 of the samples with people moves",)),
+    Noted("docs/benchmarks.md", "(`make demo` on a fresh clone: 8:16 for the command)", "reproduce_quick_cpu.json",
+          "previous_run/previous_run/note", ("8:16 for the command",)),
+    Noted("benchmarks/README.md", "a change of one ADC code in ~5e-4 of the items' samples", "reproduce_quick_cpu.json",
+          "previous_run/previous_run/previous_run/note", ("one ADC code in ~5e-4",)),
+]
 
 
 def normalize(text: str) -> str:
@@ -316,7 +955,24 @@ def _load_record(name: str) -> Any:
     return json.loads((BENCHMARKS / name).read_text(encoding="utf-8"))
 
 
-def _id(figure: Figure) -> str:
+def check_noted(noted: Noted, page_text: str, record: Any) -> list[str]:
+    """What is wrong with one figure quoted from a record's note (empty: quote, page and note agree)."""
+    note = lookup(record, noted.key)
+    if not isinstance(note, str):
+        raise TypeError(f"{noted.record}: {noted.key!r} is {note!r}, not a note")
+    quote, problems = normalize(noted.quote), []
+    for text in map(normalize, noted.texts):
+        if text not in quote:
+            problems.append(f"{noted.page}: {text!r} is not in the quote {noted.quote!r}")
+        if text not in normalize(note):
+            problems.append(f"{noted.page}: {text!r} is not in benchmarks/{noted.record} ({noted.key})")
+    if quote not in normalize(page_text):
+        problems.append(f"{noted.page}: the quoted text {noted.quote!r} is not on the page (edited? then update "
+                        f"the entry in tests/test_numbers.py to the page's new text)")
+    return problems
+
+
+def _id(figure: Figure | Noted) -> str:
     return f"{figure.page}:{figure.quote[:40]}"
 
 
@@ -326,12 +982,20 @@ def test_quoted_figure_matches_its_record(figure: Figure) -> None:
     assert not problems, "\n".join(problems)
 
 
+@pytest.mark.parametrize("noted", NOTED, ids=_id)
+def test_figure_quoted_from_a_note_matches_it(noted: Noted) -> None:
+    problems = check_noted(noted, (ROOT / noted.page).read_text(encoding="utf-8"), _load_record(noted.record))
+    assert not problems, "\n".join(problems)
+
+
 def test_the_table_covers_the_headline_pages() -> None:
     pages = {f.page for f in FIGURES}
-    assert {"README.md", "benchmarks/README.md", "docs/your_sensor.md", "docs/gpu.md"} <= pages
-    assert len(FIGURES) >= 12
+    assert {"README.md", "benchmarks/README.md", "docs/benchmarks.md", "docs/your_sensor.md", "docs/predict.md",
+            "docs/gpu.md"} <= pages
+    assert len(FIGURES) >= 150
     assert len({(f.page, f.quote) for f in FIGURES}) == len(FIGURES), "a quote is listed twice"
-    for f in FIGURES:
+    assert len({(n.page, n.quote) for n in NOTED}) == len(NOTED), "a quote is listed twice"
+    for f in [*FIGURES, *NOTED]:
         assert (ROOT / f.page).is_file(), f.page
         assert (BENCHMARKS / f.record).is_file(), f.record
 
@@ -388,3 +1052,14 @@ def test_lookup_reads_list_indices_and_keys_with_a_slash() -> None:
     assert lookup(_RECORD, "twin/runs/0") == 88.0
     assert lookup(_RECORD, "occupancy/rt/std") == 0.01179
     assert lookup({"a": {"b/c": 1}}, "a/b/c") == 1
+
+
+def test_check_noted_reads_the_note() -> None:
+    record = {"note": "profile: 2.78 s of CPU time (106,799 launches)", "wall": 1.0}
+    page = "The synthesis took 106,799 launches and\n2.78 s of CPU time."
+    noted = Noted("p.md", "106,799 launches and 2.78 s of CPU time", "r.json", "note", ("106,799", "2.78 s of CPU time"))
+    assert check_noted(noted, page, record) == []
+    assert any("not in benchmarks/r.json" in p for p in check_noted(noted, page, {"note": "2.78 s of CPU time"}))
+    assert any("not on the page" in p for p in check_noted(noted, page.replace("2.78", "2.80"), record))
+    with pytest.raises(TypeError, match="not a note"):
+        check_noted(noted._replace(key="wall"), page, record)

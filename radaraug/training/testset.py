@@ -196,20 +196,20 @@ def check_calibration(calibration: str | None, method: str, *, profile: str | No
     Raises:
         ConfigError: ``cdr_profile`` with a CalibratedDR JSON and no ``profile``.
     """
+    # Every lever the missing frames turn off is named (the excision only where the run excises).
+    lost = (f"the empty room's persistent lines are not excised from the maps ({NO_EXCISION_COST}) and "
+            if excise else "")
+    lost += "no static-change gate goes into the classifier file"
     if calibration is None:
-        if excise:
-            warnings.warn("no data.calibration: the empty room's persistent lines are not excised from the maps "
-                          f"({NO_EXCISION_COST}) and no static-change gate goes into the classifier file; give "
-                          "the empty-room capture recorded like the test captures (radaraug calibrate "
-                          "--keep-recording PATH)", CalibrationWarning, stacklevel=2)
+        lost += "" if not calibrate_noise else ", and the twin's noise is not fitted to your sensor"
+        warnings.warn(f"no data.calibration: {lost}; give the empty-room capture recorded like the test captures "
+                      "(radaraug calibrate --keep-recording PATH)", CalibrationWarning, stacklevel=2)
         return
     if not is_calibration_json(calibration):
         return
-    if excise:
-        warnings.warn(f"data.calibration {calibration} is a CalibratedDR JSON: it holds no frames, so the empty "
-                      f"room's persistent lines are not excised ({NO_EXCISION_COST}) and no static-change gate "
-                      "goes into the classifier file; give the empty-room capture itself (radaraug calibrate "
-                      "--keep-recording PATH keeps it)", CalibrationWarning, stacklevel=2)
+    warnings.warn(f"data.calibration {calibration} is a CalibratedDR JSON: it holds no frames, so {lost}; give "
+                  "the empty-room capture itself (radaraug calibrate --keep-recording PATH keeps it)",
+                  CalibrationWarning, stacklevel=2)
     if cdr_floor is not None and method in CDR_METHODS:
         from radaraug.transforms import CalibratedDR
 

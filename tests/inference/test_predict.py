@@ -73,7 +73,9 @@ def test_cli_rows_as_jsonl_or_csv_and_a_summary(tmp_path, clf, capsys) -> None:
     write_frames(tmp_path / "walk.h5", room_frames(7))
     clf.save(tmp_path / "c.pt")
     assert main(["predict", str(tmp_path / "c.pt"), str(tmp_path / "walk.h5"), "--window", "2"]) == 0
-    rows = [json.loads(line) for line in capsys.readouterr().out.splitlines()]
+    captured = capsys.readouterr()
+    rows = [json.loads(line) for line in captured.out.splitlines()]
+    assert clf.gate is None and "carries no static-change gate" in captured.err  # the lost lever is said
     assert [r["frame"] for r in rows] == list(range(7)) and {r["decision"] for r in rows} <= {"empty", "occupied"}
     assert main(["predict", str(tmp_path / "c.pt"), str(tmp_path / "walk.h5"), "--format", "csv",
                  "-o", str(tmp_path / "rows.csv"), "--json", "--no-progress"]) == 0

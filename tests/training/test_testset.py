@@ -83,12 +83,14 @@ def test_a_calibration_json_cannot_serve_the_noise_fit_or_cdr_profile(captures, 
     with pytest.warns(CalibrationWarning, match=r"cdr\.json is a CalibratedDR JSON: the twin's noise figure cannot be "
                                                 r"fitted from it.*default receiver"):
         check_calibration(str(js), "cdr")
+    for args, kw in (((str(js), "randomdr"), {"calibrate_noise": False}),  # no noise fit asked for
+                     ((str(js), "cdr_profile"), {"profile": "fitted/profile.json"})):  # the profile replaces both
+        with pytest.warns(CalibrationWarning) as caught:  # only the gate is left out
+            check_calibration(*args, **kw)
+        assert [str(w.message).split("so ")[1][:30] for w in caught] == ["no static-change gate goes int"]
     with warnings.catch_warnings():
         warnings.simplefilter("error")
-        check_calibration(str(js), "randomdr", calibrate_noise=False)  # no noise fit asked for
-        check_calibration(str(js), "cdr_profile", profile="fitted/profile.json")  # the profile replaces both
         check_calibration(str(cal), "cdr_profile")  # a capture serves both
-        check_calibration(None, "rt")
 
 
 def test_a_lever_left_out_for_want_of_the_capture_is_named(captures, tmp_path):
@@ -97,16 +99,23 @@ def test_a_lever_left_out_for_want_of_the_capture_is_named(captures, tmp_path):
     js = tmp_path / "cdr.json"
     CalibratedDR.fit(str(cal), progress=False).save(js)  # the paper's normal floor
     with pytest.warns(CalibrationWarning, match=r"cdr\.json is a CalibratedDR JSON: it holds no frames, so the empty "
-                                                r"room's persistent lines are not excised \(-0\.08 occupancy"):
+                                                r"room's persistent lines are not excised from the maps \(-0\.08 occupancy"):
         check_calibration(str(js), "randomdr", calibrate_noise=False, excise=True)
     with pytest.warns(CalibrationWarning, match="no data.calibration: the empty room's persistent lines are not excised"):
         check_calibration(None, "randomdr", excise=True)
     with pytest.warns(CalibrationWarning, match=r"fitted with floor 'normal'; this run draws CDR's floor as 'matched'"):
         check_calibration(str(js), "cdr", calibrate_noise=False, cdr_floor="matched")
+    # Without excision the lost gate (and, with no calibration at all, the noise fit) is still named.
+    with pytest.warns(CalibrationWarning, match="no data.calibration: no static-change gate goes into the classifier "
+                                                "file, and the twin's noise is not fitted"):
+        check_calibration(None, "randomdr", excise=False)
+    with pytest.warns(CalibrationWarning, match=r"cdr\.json is a CalibratedDR JSON: it holds no frames, so no "
+                                                "static-change gate") as caught:
+        check_calibration(str(js), "cdr", calibrate_noise=False, cdr_floor="normal")
+    assert not any("fitted with floor" in str(w.message) for w in caught)  # the floor asked for is the JSON's own
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         check_calibration(str(cal), "randomdr", excise=True)  # the capture serves everything
-        check_calibration(str(js), "cdr", calibrate_noise=False, cdr_floor="normal")
 
 
 def test_the_data_module_checks_before_simulating(captures, tmp_path):
