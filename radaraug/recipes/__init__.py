@@ -8,13 +8,24 @@ files (docs/training.md, "Recipes"). This module reads only YAML: no torch, no L
 from __future__ import annotations
 
 import copy
+import importlib.util
 from pathlib import Path, PurePosixPath
 from typing import Any
 
 from radaraug.errors import ConfigError
 
-RECIPES_DIR = Path(__file__).resolve().parent
-"""The folder of the installed recipe files (package data)."""
+
+def _recipes_dir() -> Path:
+    """The recipe files' folder: the checkout's top-level ``recipes/``, installed as ``radaraug.recipe_files``."""
+    spec = importlib.util.find_spec("radaraug.recipe_files")
+    if spec is None or spec.origin is None:
+        raise ConfigError("radaraug's recipe files are not installed (package radaraug.recipe_files); reinstall "
+                          "radaraug (pip install radaraug, or pip install -e . in a checkout)")
+    return Path(spec.origin).resolve().parent
+
+
+RECIPES_DIR = _recipes_dir()
+"""The folder of the installed recipe files (the checkout's top-level ``recipes/``)."""
 
 
 def _stems(kind: str) -> list[str]:

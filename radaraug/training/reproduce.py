@@ -87,7 +87,7 @@ class ReproduceSettings:
     cdr_twin_noise_offset_db: float | None | str = RECIPE
     #: CalibratedDR floor of the CDR methods (``RadarDataModule.cdr_floor``)
     cdr_floor: str | None = RECIPE
-    #: ablation variants (``radaraug/recipes/ablation/NAME.yaml``) run unless ``reproduce(ablation=False)``
+    #: ablation variants (``recipes/ablation/NAME.yaml``) run unless ``reproduce(ablation=False)``
     ablations: tuple[str, ...] = ("rt_paper_image", "randomdr_paper_image", "cdr_paper_image", "cdr_normal_floor",
                                   "cdr_empirical_floor", "rt_no_twin_randomization", "rt_noise_fit")
 
@@ -156,7 +156,7 @@ GENERATED_TEST_SETS = (*DEFAULT_TEST_SETS, "standing", *SUITE_TEST_SETS)
 STANDING_SEED, STANDING_PROBABILITY = 2025, 0.3
 
 #: Ablation variants: name -> (the method whose run it changes, the data keys it changes). Each is a
-#: recipe override (``radaraug/recipes/ablation/NAME.yaml``) that changes one thing of the method's
+#: recipe override (``recipes/ablation/NAME.yaml``) that changes one thing of the method's
 #: run, so its row of the report measures it.
 ABLATIONS: dict[str, tuple[str, dict[str, Any]]] = {name: recipes.ablation(name) for name in recipes.ablations()}
 
