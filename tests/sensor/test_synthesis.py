@@ -51,15 +51,21 @@ def test_single_path_matches_closed_form(small_cfg, method, speed):
     assert np.abs(x - ref).max() < 2e-5
 
 
+def _walker_paths(g: torch.Generator, P: int, RX: int, max_range_m: float) -> tuple[torch.Tensor, torch.Tensor]:
+    """Delays ``(RX, P)`` of targets at 0.5 m to ``max_range_m`` (an antenna spacing apart per RX) and
+    their delay rates at up to 5 m/s, drawn from ``g`` (range first, then speed)."""
+    r = 0.5 + (max_range_m - 0.5) * torch.rand(P, generator=g, dtype=torch.float64)
+    v = (torch.rand(P, generator=g, dtype=torch.float64) * 2 - 1) * 5.0
+    tau = (2 * r / SPEED_OF_LIGHT)[None, :] + 1e-12 * torch.arange(RX, dtype=torch.float64)[:, None]
+    return tau, (2 * v / SPEED_OF_LIGHT)[None, :].expand(RX, P)
+
+
 def test_fast_agrees_with_exact_at_walker_speeds(cfg):
     """Documented tolerance: relative RMS error < 1e-5 and max abs error < 1e-5 of the peak
     signal (float64), targets at 0.5-20 m moving at up to 5 m/s."""
     g = torch.Generator().manual_seed(1)
     P, RX = 60, 3
-    r = 0.5 + 19.5 * torch.rand(P, generator=g, dtype=torch.float64)
-    v = (torch.rand(P, generator=g, dtype=torch.float64) * 2 - 1) * 5.0
-    tau = (2 * r / SPEED_OF_LIGHT)[None, :] + 1e-12 * torch.arange(RX, dtype=torch.float64)[:, None]
-    rate = (2 * v / SPEED_OF_LIGHT)[None, :].expand(RX, P)
+    tau, rate = _walker_paths(g, P, RX, 20.0)
     coef = torch.polar(torch.rand(RX, P, generator=g, dtype=torch.float64),
                        2 * math.pi * torch.rand(RX, P, generator=g, dtype=torch.float64))
     timing = ChirpTiming.from_config(cfg)
@@ -196,10 +202,7 @@ def test_an_absolute_bound_holds_whatever_the_strongest_path(cfg):
     stronger in the call, where the relative ``taylor_tol`` would loosen by 60 dB."""
     g = torch.Generator().manual_seed(3)
     P, RX = 30, 3
-    r = 0.5 + 9.5 * torch.rand(P, generator=g, dtype=torch.float64)
-    v = (torch.rand(P, generator=g, dtype=torch.float64) * 2 - 1) * 5.0
-    tau = (2 * r / SPEED_OF_LIGHT)[None, :] + 1e-12 * torch.arange(RX, dtype=torch.float64)[:, None]
-    rate = (2 * v / SPEED_OF_LIGHT)[None, :].expand(RX, P)
+    tau, rate = _walker_paths(g, P, RX, 10.0)
     coef = torch.polar(torch.full((RX, P), 1e-3, dtype=torch.float64),
                        2 * math.pi * torch.rand(RX, P, generator=g, dtype=torch.float64))
     timing = ChirpTiming.from_config(cfg)
