@@ -99,7 +99,8 @@ def training_chains(calibration: str | os.PathLike, method: str = "randomdr", *,
     kw = recipe | {"calibration": str(calibration), "test": [{"path": str(calibration), "count": 0}],
                    "train_items": int(estimate_items), "val_items": 0, "sim_seed": int(seed), "dr_seed": int(seed),
                    "image_size": None if image_size is None else [int(v) for v in image_size],
-                   "cache_dir": None if cache_dir is None else str(cache_dir), "progress": progress} | data
+                   "cache_dir": None if cache_dir is None else str(cache_dir), "progress": progress}
+    kw = recipes.merge(kw, data)  # key by key: randomization={"people": ...} keeps the recipe's catalog settings
     dm = RadarDataModule(**kw)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", TestSetWarning)  # the calibration stands in as the test set: one class

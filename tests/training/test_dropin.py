@@ -46,3 +46,12 @@ def test_cdr_gets_the_matched_floor_and_json_is_refused(captures, tmp_path) -> N
     paper = training_chains(cal, "cdr", cache_dir=tmp_path, representation="paper", cdr_floor="normal",
                             clip_range=[-110.0, -40.0], excise_persistent_db=None, **SMALL)
     assert paper.clip_range_db == (-110.0, -40.0) and paper.excise is None and paper.dr.floor == "normal"
+
+
+def test_a_randomization_override_keeps_the_recipes_other_keys(captures, tmp_path) -> None:
+    cal, _ = captures
+    ch = training_chains(cal, "rt", cache_dir=tmp_path, estimate_items=4, tracer_rays=16, image_size=(32, 16),
+                         randomization={"room": {"variants": 1}})
+    rz = ch._datamodule.simulated_dataset().randomization
+    assert rz.room.variants == 1  # the override
+    assert rz.catalog["spur_tone"].probability == 0 == rz.catalog["vibrating_clutter"].probability  # the recipe's
