@@ -205,6 +205,32 @@ def _report1_world_fmt(text: str) -> Callable[..., str]:
     return lambda ba, missed, hit, count: f"| {ba:.3f}: {text} ({missed} of {missed + hit}) | {count:.3f} |"
 
 
+def _span(fmt: str, sep: str = "–") -> Callable[..., str]:
+    """Like :func:`_range`, but one value where the smallest and the largest are written alike (``1.6``)."""
+    def span(*values: float) -> str:
+        lo, hi = fmt.format(min(values)), fmt.format(max(values))
+        return lo if lo == hi else f"{lo}{sep}{hi}"
+    return span
+
+
+def _before_after(sep: str = "–") -> Callable[..., str]:
+    """Held-out errors before (the first half of the values) and after (the second), each a :func:`_span`: ``4.7 → 0.9–1.0``."""
+    def fmt(*values: float) -> str:
+        half = len(values) // 2
+        return f"{_span('{:.1f}', sep)(*values[:half])} → {_span('{:.1f}', sep)(*values[half:])}"
+    return fmt
+
+
+_GB = "diagnose_generator_b_cpu.json"
+_WIDE = "widened_table/seed_3/rows/{}/"
+_VARIANT = "variants/rows/{}/"
+
+
+def _errors(prefix: str, *rows: int) -> tuple[str, ...]:
+    """The held-out errors before, then after, of rows of a generator-B table."""
+    return (*(f"{prefix.format(r)}error_before_dB" for r in rows), *(f"{prefix.format(r)}error_after_dB" for r in rows))
+
+
 FIGURES: list[Figure] = [
     # README.md: the quick-mode headline (make demo), the held-out report suite, the plain loop
     Figure("README.md", "in about 7 minutes on a 2-core CPU", "reproduce_quick_cpu.json", "wall_seconds",
@@ -845,6 +871,75 @@ FIGURES: list[Figure] = [
            ("diagnose_s", "target_s", "evaluations", "ratio_diagnose_to_simulate", "simulate_capture_s"),
            "**{:.1f} s** on a 2-core CPU (target: at most {:.0f} minutes), {:d} twin evaluations, {:.1f}x the time of "
            "simulating the capture itself ({:.2f} s)", (1.0, 1 / 60, 1, 1.0, 1.0)),
+    Figure("docs/calibration.md", "found, held-out error 2.57 -> 0.54 dB (`benchmarks/diagnose_cpu.json`",
+           "diagnose_cpu.json", ("error_before_dB", "error_after_dB"), "held-out error {:.2f} -> {:.2f} dB"),
+    # docs/calibration.md: generator B's tables (diagnose_generator_b_cpu.json)
+    Figure("docs/calibration.md", "**36 of 36 at two seeds**", _GB,
+           ("seeds/1/correct", "seeds/1/cases", "seeds/2/correct", "seeds/2/cases"),
+           lambda c1, n1, c2, n2: f"**{c1} of {n1} at two seeds**" if (c1, n1) == (c2, n2) else f"{c1}/{n1} vs {c2}/{n2}"),
+    Figure("docs/calibration.md", "At seed 3, with the base bounds: 42 of 42", _GB, ("seeds/3/correct", "seeds/3/cases"),
+           "with the base bounds: {:d} of {:d}"),
+    Figure("docs/calibration.md", "the 9 variant cases at seeds 1–3 with the final code: 27 of 27 named, every "
+           "held-out error at least halved", _GB, ("variants/correct", "variants/cases", "variants/halved"),
+           lambda c, n, h: f"{c} of {n} named, " + ("every held-out error at least halved" if h == n else f"{h} halved")),
+    Figure("docs/calibration.md", "unlocked spur 4.7 → 0.9–1.0 dB at the paper's config", _GB,
+           _errors(_VARIANT, 0, 9, 18), lambda *v: f"unlocked spur {_before_after()(*v)} dB"),
+    Figure("docs/calibration.md", "three interferer slopes 8.2–10.6 → 1.8–3.7 dB", _GB,
+           _errors(_VARIANT, 3, 4, 5, 12, 13, 14, 21, 22, 23), lambda *v: f"slopes {_before_after()(*v)} dB"),
+    Figure("docs/calibration.md", "the 6 mm vibration 5.4–7.1 → 1.1–1.8 dB", _GB,
+           _errors(_VARIANT, 6, 7, 8, 15, 16, 17, 24, 25, 26), lambda *v: f"vibration {_before_after()(*v)} dB"),
+    Figure("docs/calibration.md", "amplitude 5.8–8.3 counts (6.1 put in)", _GB,
+           tuple(f"{_VARIANT.format(r)}params/0/amplitude_counts" for r in (0, 1, 2, 9, 10, 11, 18, 19, 20)),
+           lambda *v: f"amplitude {_range('{:.1f}')(*v).replace('-', '–')} counts"),
+    Figure("docs/calibration.md", "`f_v d` within 3.3 % of the 0.150 m·Hz put in at both paper-config gains", _GB,
+           tuple(f"{_VARIANT.format(r)}params/0/{k}" for r in (6, 7, 15, 16, 24, 25) for k in ("displacement_m", "vibration_Hz")),
+           lambda *v: f"within {100 * max(abs(d * f / 0.150 - 1) for d, f in zip(v[::2], v[1::2])):.1f} % of the 0.150"),
+    Figure("docs/calibration.md", "error 5.4–5.5 → 1.6 dB, but `f_v d` 3.8-4.7x low", _GB,
+           (*_errors(_VARIANT, 8, 17, 26),
+            *(f"{_VARIANT.format(r)}params/0/{k}" for r in (8, 17, 26) for k in ("displacement_m", "vibration_Hz"))),
+           lambda *v: f"error {_before_after()(*v[:6])} dB, but `f_v d` "
+                      f"{_range('{:.1f}')(*(0.150 / (d * f) for d, f in zip(v[6::2], v[7::2])))}x low"),
+    Figure("docs/calibration.md", "the held-out error then stays 1.6 dB (0.8 without the bounds)", _GB,
+           ("seeds/3/rows/1/error_after_dB", "seeds/1/rows/1/error_after_dB", "seeds/2/rows/1/error_after_dB"),
+           lambda a, *b: f"stays {a:.1f} dB ({_span('{:.1f}')(*b)} without the bounds)"),
+    Figure("docs/calibration.md", "**51 of 51 named exactly at seed 3**, and the 6 new variant cases 6 of 6 at seeds 1 "
+           "and 2. The held-out error halves in 37 of the 48 cases with an effect", _GB,
+           tuple(f"widened_table/{s}/{k}" for s in ("seed_3", "new_variants_seed_1", "new_variants_seed_2")
+                 for k in ("correct", "cases")) + ("widened_table/seed_3/error_halved",),
+           lambda c3, n3, c1, n1, c2, n2, h: f"**{c3} of {n3} named exactly at seed 3**, and the {n1} new variant cases "
+           + (f"{c1} of {n1} at seeds 1 and 2" if (c1, n1) == (c2, n2) else f"{c1}/{n1}, {c2}/{n2}")
+           + f". The held-out error halves in {h} of the {n3 - 3} cases with an effect"),
+    Figure("docs/calibration.md", "(3.7 → 3.5 dB at A, 6.6 → 6.6 at 43 dB, 5.5 → 5.3 at 128 × 32; clipping with a spur "
+           "4.8 → 3.4 dB)", _GB, _errors(_WIDE, 3, 4, 5, 35),
+           lambda a, b, c, d, a2, b2, c2, d2: f"({a:.1f} → {a2:.1f} dB at A, {b:.1f} → {b2:.1f} at 43 dB, {c:.1f} → "
+           f"{c2:.1f} at 128 × 32; clipping with a spur {d:.1f} → {d2:.1f} dB)"),
+    Figure("docs/calibration.md", "`leakage_clipping` at 43 dB and 128 × 32 (3.4 → 2.0, 2.6 → 1.4 dB)", _GB,
+           _errors(_WIDE, 49, 50), lambda a, b, a2, b2: f"({a:.1f} → {a2:.1f}, {b:.1f} → {b2:.1f} dB)"),
+    Figure("docs/calibration.md", "(3.1 → 1.6-1.7, 1.9-2.0 → 1.0-1.1 dB): their controls end at 1.6 and 1.0 dB", _GB,
+           (*_errors(_WIDE, 19, 16), *_errors(_WIDE, 20, 17, 32), f"{_WIDE.format(1)}error_after_dB",
+            f"{_WIDE.format(2)}error_after_dB"),
+           lambda *v: f"({_before_after('-')(*v[:4])}, {_before_after('-')(*v[4:10])} dB): their controls end at "
+                      f"{v[10]:.1f} and {v[11]:.1f} dB"),
+    Figure("docs/calibration.md", "is fitted at 2.2-2.3 MHz at 128 × 32 and ends at the prior's 3 MHz bound at 43 dB; at "
+           "the paper's config it is named from the signature alone (`freq_noise_rms_Hz_lower` 1.33 MHz", _GB,
+           (f"{_WIDE.format(47)}params/phase_noise/freq_noise_rms_Hz",
+            "widened_table/new_variants_seed_1/rows/4/params/phase_noise/freq_noise_rms_Hz",
+            "widened_table/new_variants_seed_2/rows/2/params/phase_noise/freq_noise_rms_Hz",
+            f"{_WIDE.format(46)}params/phase_noise/freq_noise_rms_Hz",
+            "widened_table/new_variants_seed_1/rows/2/params/phase_noise/freq_noise_rms_Hz",
+            "widened_table/new_variants_seed_2/rows/1/params/phase_noise/freq_noise_rms_Hz",
+            f"{_WIDE.format(45)}params/phase_noise/freq_noise_rms_Hz_lower"),
+           lambda b1, b2, b3, h1, h2, h3, low: f"fitted at {_span('{:.1f}', '-')(b1, b2, b3)} MHz at 128 × 32 and ends at "
+           f"the prior's {_span('{:.0f}')(h1, h2, h3)} MHz bound at 43 dB; at the paper's config it is named from the "
+           f"signature alone (`freq_noise_rms_Hz_lower` {low:.2f} MHz", 1e-6),
+    Figure("docs/calibration.md", "a section cutoff of 82-105 kHz at seeds 1 and 3, a -3 dB point of 128-162 kHz at "
+           "order 2", _GB,
+           (*(f"{_WIDE.format(r)}params/if_highpass/cutoff_Hz" for r in (12, 14)),
+            *(f"widened_table/highpass_refit_seed_1/rows/{r}/params/if_highpass/cutoff_Hz" for r in (0, 1, 3))),
+           lambda *v: f"a section cutoff of {_range('{:.0f}')(*v)} kHz at seeds 1 and 3, a -3 dB point of "
+                      f"{_range('{:.0f}')(*(c / (2 ** 0.5 - 1) ** 0.5 for c in v))} kHz at order 2", 1e-3),
+    Figure("docs/calibration.md", "with drift at seed 1 it is (88 kHz)", _GB,
+           "widened_table/highpass_refit_seed_1/rows/3/params/if_highpass/cutoff_Hz", "it is ({:.0f} kHz)", 1e-3),
     Figure("docs/transforms.md",
            "4730 frames/s with 2 torch threads against 495 frames/s in NumPy (9.56x), 3109 frames/s with 1 thread (6.28x)",
            "transforms_cpu.json",
@@ -861,6 +956,39 @@ FIGURES: list[Figure] = [
            (1e-9, 1e-9, 1.0, 1.0)),
     Figure("docs/raytracer.md", "512 x 512 rays: 26.5 s, 3720 merged paths", "static_room_cpu.json",
            ("sbr/2/rays", "sbr/2/rays", "sbr/2/trace_s", "sbr/2/paths"), "{:d} x {:d} rays: {:.1f} s, {:d} merged paths"),
+    # docs/raytracer.md: the static room's convergence table and the traces quoted under it (static_room_cpu.json)
+    Figure("docs/raytracer.md", "| image method, specular part | 0.06 s | - | - |", "static_room_cpu.json", "image_trace_s",
+           "| image method, specular part | {:.2f} s |"),
+    Figure("docs/raytracer.md", "| image method, `density=4` | 0.06 s | 0.00 dB | 0.00 dB (nothing in the corridor is "
+           "sampled) |", "static_room_cpu.json",
+           ("image_density4_trace_s", "image_vs_density4/far_peak_error_dB", "image_vs_density4/rms_error_dB"),
+           lambda s, far, rms: f"| {s:.2f} s | {far + 0.0:.2f} dB | {rms + 0.0:.2f} dB"),
+    Figure("docs/raytracer.md", "| default: image method + diffuse clutter | 0.79 s (6,600 paths) | vs its `density=4`: "
+           "0.00 dB | 0.00 dB |", "static_room_cpu.json",
+           ("default_trace_s", "default_static_paths", "default_vs_density4/far_peak_error_dB",
+            "default_vs_density4/rms_error_dB"),
+           lambda s, n, far, rms: f"| {s:.2f} s ({n:,d} paths) | vs its `density=4`: {far + 0.0:.2f} dB | {rms + 0.0:.2f} dB |"),
+    *(Figure("docs/raytracer.md", quote, "static_room_cpu.json",
+             (f"sbr/{i}/rays", f"sbr/{i}/trace_s", f"sbr/{i}/vs_image/far_peak_error_dB", f"sbr/{i}/vs_image/rms_error_dB"),
+             "| SBR {:d}² {}| {:.1f} s | {:+.1f} dB | {:.1f} dB |".replace("{}", note))
+      for i, quote, note in ((0, "| SBR 128² | 1.4 s | -22.4 dB | 28.3 dB |", ""),
+                             (1, "| SBR 256² (the twin's former default) | 6.8 s | -4.1 dB | 24.5 dB |",
+                              "(the twin's former default) "),
+                             (2, "| SBR 512² | 26.5 s | -2.4 dB | 24.7 dB |", ""),
+                             (3, "| SBR 1024² | 89.5 s | +2.6 dB | 25.0 dB |", ""))),
+    Figure("docs/raytracer.md", "SBR's end wall still moves by 5 dB between 512² and 1024² rays", "static_room_cpu.json",
+           ("sbr/2/vs_image/far_peak_error_dB", "sbr/3/vs_image/far_peak_error_dB"),
+           lambda a, b: f"moves by {b - a:.0f} dB between 512² and 1024²"),
+    Figure("docs/raytracer.md", "the specular trace (0.25 s, 2487 paths) is within 0.00 dB at the end wall and 0.37 dB RMS "
+           "(1.15 dB max) over 2-19.5 m", "static_room_cpu.json",
+           ("mesh_room/trace_s", "mesh_room/static_paths", "mesh_room/vs_density4/far_peak_error_dB",
+            "mesh_room/vs_density4/rms_error_dB", "mesh_room/vs_density4/max_error_dB"),
+           lambda s, n, far, rms, mx: f"({s:.2f} s, {n:d} paths) is within {abs(far):.2f} dB at the end wall and {rms:.2f} dB "
+           f"RMS ({mx:.2f} dB max)"),
+    Figure("docs/raytracer.md", "0.79 s once per scene with diffuse clutter (6,600 paths; the specular image paths alone: "
+           "0.06 s, 62 paths)", "static_room_cpu.json",
+           ("default_trace_s", "default_static_paths", "image_trace_s", "image_static_paths"),
+           "{:.2f} s once per scene with diffuse clutter ({:,d} paths; the specular image paths alone: {:.2f} s, {:d} paths)"),
     Figure("docs/receiver.md", "64.5x faster than the exact sum (9.7 ms per frame), relative RMS error 4.7e-06",
            "twin_cpu.json",
            ("receiver_speedup_fast_vs_exact", "receiver_synthesis_fast_s_per_frame", "receiver_fast_vs_exact_rel_rms_error"),
