@@ -948,6 +948,18 @@ FIGURES: list[Figure] = [
            "{:.0f} frames/s with 2 torch threads against {:.0f} frames/s in NumPy ({:.2f}x), {:.0f} frames/s with 1 thread ({:.2f}x)"),
     Figure("docs/transforms.md", "202,215 frames/s against 252 in NumPy (804x)", "transforms_cuda.json",
            ("torch_frames_per_s", "numpy_frames_per_s", "speedup_vs_numpy"), "{:,.0f} frames/s against {:.0f} in NumPy ({:.0f}x)"),
+    Figure("docs/transforms.md", "stacks a second floor on top (+2.7 dB, `benchmarks/reproduce_medium_cpu.json`)",
+           "reproduce_medium_cpu.json", (f"{_DIAG}/median dB: test, simulated, simulated + CDR/1",
+                                         f"{_DIAG}/median dB: test, simulated, simulated + CDR/2"),
+           lambda twin, clamped: f"(+{clamped - twin:.1f} dB,"),
+    # docs/shadowing.md: the corridor's static paths (the cost figures there are one-off, not records)
+    Figure("docs/shadowing.md", "for the corridor's 6,600 paths", "twin_cpu.json", "room_static_paths", "{:,d} paths"),
+    Figure("docs/shadowing.md", "In the two-walker corridor (6,600 static paths", "twin_cpu.json", "room_static_paths",
+           "({:,d} static paths"),
+    # docs/proxy.md: the independent set's empty-room level (the quick record's calibration capture)
+    Figure("docs/proxy.md", "| empty room, median cell (per RX) | −103.0 dB (the calibration capture's, "
+           "`benchmarks/reproduce_quick_cpu.json`;", "reproduce_quick_cpu.json",
+           f"{_QUICK.removesuffix('/results')}/empty_room_median_db/capture", lambda v: f"| −{-v:.1f} dB ("),
     Figure("docs/raytracer.md",
            "eager 0.110 G tests/s, `torch.compile`-d 1.20 G tests/s (10.9x), first-call compilation 4.0 s", "twin_cpu.json",
            ("intersection/eager_tests_per_s", "intersection/compiled_tests_per_s", "intersection/speedup",
