@@ -89,11 +89,6 @@ class Catalog(Mapping[str, CatalogEffect]):
     def __repr__(self) -> str:
         return f"Catalog(scale={self.scale!r}, " + ", ".join(f"{k}={v!r}" for k, v in self._entries.items()) + ")"
 
-    def replace(self, scale: float | None = None, **changes: Mapping[str, Any]) -> Catalog:
-        """A copy with ``scale`` and, per effect name, some of its fields changed."""
-        entries = {n: e.replace(**dict(changes.get(n, {}))) for n, e in self._entries.items()}
-        return Catalog(self.scale if scale is None else scale, **entries)
-
     def draw(self, g: torch.Generator) -> dict[str, dict[str, Any]]:
         """One item's effects, ``{name: values}`` for those it carries, every entry drawing in turn from ``g``."""
         drawn = {name: e.draw(g, self.scale) for name, e in self._entries.items()}
