@@ -60,10 +60,14 @@ def main() -> None:
                            "static_gate_margin_db": args.margin_db, "variants": {}}
     for key, by_set in per.items():
         means = {n: statistics.fmean(v) for n, v in by_set.items()}
+        seeds = min(len(v) for v in by_set.values())
+        suite = [statistics.fmean(by_set[n][i] for n in by_set) for i in range(seeds)]  # the suite mean per seed
         out["variants"][key] = {"mean": round(statistics.fmean(means.values()), 3),
-                                "worst": round(min(means.values()), 3), "seeds": min(len(v) for v in by_set.values()),
+                                "std_over_seeds": round(statistics.pstdev(suite), 3) if seeds > 1 else 0.0,
+                                "worst": round(min(means.values()), 3), "seeds": seeds,
                                 "per_test_set": {n: round(m, 3) for n, m in means.items()}}
-        print(f"{key:14s} {out['variants'][key]['mean']:.3f} (worst {out['variants'][key]['worst']:.3f})")
+        v = out["variants"][key]
+        print(f"{key:14s} {v['mean']:.3f} ± {v['std_over_seeds']:.3f} (worst {v['worst']:.3f})")
     dest = args.out or args.run_dir / "two_step_counting.json"
     dest.write_text(json.dumps(out, indent=1) + "\n")
     print("wrote", dest)
