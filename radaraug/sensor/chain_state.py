@@ -6,10 +6,12 @@ samples once (``docs/receiver.md``, "How it is computed").
 
 from __future__ import annotations
 
+import functools
 import math
 from collections.abc import Callable
 from dataclasses import KW_ONLY, dataclass, field
 
+import numpy as np
 import torch
 
 from radaraug.config import RadarConfig
@@ -31,6 +33,20 @@ class ModulatedPaths:
     multiplier: torch.Tensor
     chirp_delay: torch.Tensor | None = None
     chirp_gain: torch.Tensor | None = None
+
+
+@dataclass
+class StartupTransient:
+    """A high-pass start-up transient: ``Re sum_k weights_k f_k(t)`` with ``f_k = (a t)^(k-1) e^(-a t) / (k-1)!``.
+
+    ``weights`` ``(order, …, RX, M)`` complex; ``lowpass``: the ``(2 pi cutoff, order)`` of the low-pass
+    sections it passed after (applied when rendered).
+    """
+
+    weights: torch.Tensor
+    a: float
+    order: int
+    lowpass: list[tuple[float, int]] = field(default_factory=list)
 
 
 @dataclass(eq=False)
@@ -67,6 +83,7 @@ class ChainState:
     chirp_delay: torch.Tensor | None = None
     chirp_gain: torch.Tensor | None = None
     modulated: list[ModulatedPaths] = field(default_factory=list, init=False)
+    transients: list[StartupTransient] = field(default_factory=list, init=False)
     spectrum: torch.Tensor | None = field(default=None, init=False)
     samples: torch.Tensor | None = field(default=None, init=False)
 
@@ -206,6 +223,9 @@ class ChainState:
         """
         cd = self.complex_dtype
         g = None if rx_gain is None else rx_gain.to(cd)
+        if g is not None:
+            for tr in self.transients:  # a gain per RX turns their analytic signal as it turns the paths'
+                tr.weights = tr.weights * g.to(torch.complex128)[:, None]
         if self.samples is None:
             targets: list[ChainState | ModulatedPaths] = [self, *self.modulated]
             for target in targets:
@@ -226,6 +246,51 @@ class ChainState:
         if g is not None:
             h = g[:, None, None] * h
         return h
+
+    def add_startup_transient(self, cutoff_Hz: torch.Tensor, order: int) -> None:
+        """Add what ``order`` first-order high-pass sections, at rest at each ramp start, add to the paths' steady state.
+
+        Call it with the coefficients before the sections' response. Each path's beat tone runs from the
+        ramp start (``adc_delay`` before the first sample); the sections answer ``z e^{j w t}`` with
+        ``H(jw) z e^{j w t}`` plus ``z sum_k A_k (a t)^(k-1) e^(-a t) / (k-1)!`` (``a = 2 pi cutoff``,
+        :func:`startup_coefficients`). Kept as per-chirp weights of those ``order`` functions: later gains
+        scale them, later anti-alias sections filter them exactly (:meth:`lowpass_transients`), and
+        :meth:`materialize` adds them. Signals added as samples and modulated copies get none.
+        """
+        tm = self.timing
+        a = 2 * math.pi * float(cutoff_Hz.reshape(-1)[0])
+        delay, rate = self.delay_s.double(), self.delay_rate.double()  # (…, RX, P)
+        m = torch.arange(tm.num_chirps, device=self.device, dtype=torch.float64) * tm.prt
+        tau = (delay + rate * tm.adc_delay)[..., None] + rate[..., None] * m  # (…, RX, P, M) at each first sample
+        if self.chirp_delay is not None:
+            tau = tau + self.chirp_delay.double()
+        beat = beat_frequency_Hz(delay, rate, tm)  # (…, RX, P)
+        # The tone's phase at the ramp start: at the first sample, less adc_delay of the beat.
+        cycles = tau * (tm.f0 - 0.5 * tm.slope * tau) - (beat * tm.adc_delay)[..., None]
+        z = self.coef.to(torch.complex128)[..., None] * torch.polar(torch.ones_like(cycles),
+                                                                      2 * math.pi * (cycles - torch.round(cycles)))
+        if self.chirp_gain is not None:
+            z = z * self.chirp_gain.double()
+        coefs = startup_coefficients(1j * 2 * math.pi * beat / a, order)  # (order, …, RX, P)
+        weights = torch.einsum("k...p,...pm->k...m", coefs, z)  # (order, …, RX, M)
+        self.transients.append(StartupTransient(weights, a, order))
+
+    def lowpass_transients(self, cutoff_Hz: float, order: int) -> None:
+        """Pass the start-up transients added so far through ``order`` first-order low-pass sections (exactly)."""
+        for tr in self.transients:
+            tr.lowpass.append((2 * math.pi * float(cutoff_Hz), int(order)))
+
+    def _render_transients(self) -> torch.Tensor | None:
+        """``(…, RX, M, N)`` the sum of the start-up transients at the samples (None: none)."""
+        out = None
+        tm = self.timing
+        for tr in self.transients:
+            basis = torch.as_tensor(_transient_basis(tr.a, tr.order, tuple(tr.lowpass), tm.adc_delay, tm.fs,
+                                                     tm.num_samples), device=self.device)  # (order, N)
+            w = tr.weights[..., :tm.num_chirps]  # a one-chirp synthesis of static paths takes the first
+            x = torch.einsum("k...m,kn->...mn", w, basis.to(torch.complex128)).real.to(self.dtype)
+            out = x if out is None else out + x
+        return out
 
     def chirp_terms(self, idx: torch.Tensor) -> tuple[torch.Tensor | None, torch.Tensor | None]:
         """The per-chirp delay and gain ``(…, 1, k, M)`` of the paths ``idx`` ``(…, RX, k)`` (the same on every RX)."""
@@ -263,5 +328,54 @@ class ChainState:
             x = x + mod.multiplier * synth(mod)
         if self.spectrum is not None:
             x = x + torch.fft.irfft(self.spectrum, n=self.timing.num_samples, dim=-1)
+        transients = self._render_transients()
+        if transients is not None:
+            x = x + transients
         self.samples = x
         return x
+
+
+@functools.lru_cache(maxsize=64)
+def _transient_basis(a: float, order: int, lowpass: tuple[tuple[float, int], ...], adc_delay: float, fs: float,
+                     num_samples: int) -> np.ndarray:
+    """``(order, N)`` the functions ``(a t)^(k-1) e^(-a t) / (k-1)!`` at the samples, through the low-pass sections.
+
+    The sections (``y' = b (x - y)`` each, from rest at the ramp start) are run on a fine grid, exactly for an
+    input linear between its points; without sections, the closed form.
+    """
+    t_s = adc_delay + np.arange(num_samples) / fs
+    if not lowpass:
+        x = a * t_s
+        return np.stack([x**k * np.exp(-x) / math.factorial(k) for k in range(order)])
+    fastest = max([a, *(b for b, _ in lowpass)])
+    dt = min(1 / (16 * fs), 1 / (64 * fastest))
+    steps = int(math.ceil(t_s[-1] / dt))
+    t = np.arange(steps + 1) * dt
+    at = a * t
+    sig: np.ndarray = np.stack([at**k * np.exp(-at) / math.factorial(k) for k in range(order)])  # (order, grid)
+    for b, n in lowpass:
+        e = math.exp(-b * dt)
+        for _ in range(n):
+            y = np.zeros_like(sig)
+            slope = np.diff(sig, axis=1) / dt
+            for i in range(1, sig.shape[1]):
+                y[:, i] = sig[:, i] - slope[:, i - 1] / b + (y[:, i - 1] - sig[:, i - 1] + slope[:, i - 1] / b) * e
+            sig = y
+    return np.stack([np.interp(t_s, t, row) for row in sig])
+
+
+def startup_coefficients(beta: torch.Tensor, order: int) -> torch.Tensor:
+    """``(order, …)`` the start-up terms ``A_1 .. A_n`` of ``n = order`` first-order high-pass sections.
+
+    For ``(s / (s + a))^n`` driven from rest by ``e^{j w t}``, ``beta = j w / a``: the response is
+    ``H e^{j w t} + sum_k A_k (a t)^(k-1) e^(-a t) / (k-1)!``, the partial fractions of
+    ``sigma^n / ((sigma + 1)^n (sigma - beta))`` at ``sigma = -1`` (``A_1 = 1 / (1 + beta)`` for one section;
+    the output starts at the input's value, ``H + sum_k A_k[k=1] = 1``).
+    """
+    b = beta.to(torch.complex128)
+    out = []
+    for k in range(1, order + 1):
+        mm = order - k  # the derivative's order at sigma = -1
+        poly = sum(math.comb(i, mm) * (-1) ** (i - mm) * b ** (order - 1 - i) for i in range(mm, order))
+        out.append(poly + b ** order * (-1) ** mm / (-1 - b) ** (mm + 1))
+    return torch.stack(out)

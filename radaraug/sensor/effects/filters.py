@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from typing import ClassVar
+from typing import Any, ClassVar
 
 import torch
 
@@ -33,7 +33,7 @@ def lowpass_response(freq_Hz: torch.Tensor, cutoff_Hz: torch.Tensor, order: int 
 
 class _FirstOrderFilter(Effect):
     kind = "linear"
-    param_names = ("cutoff_Hz", "order")
+    param_names: ClassVar[tuple[str, ...]] = ("cutoff_Hz", "order")
     cutoff_Hz: torch.Tensor | None
     order: torch.Tensor
 
@@ -70,9 +70,42 @@ class IFHighPass(_FirstOrderFilter):
     Args:
         cutoff_Hz: -3 dB frequency of each section; ``None`` takes ``config.effective_hp_cutoff_Hz``.
         order: number of cascaded first-order sections.
+        startup: 1: the sections start each chirp at rest at the ramp start, so a path's beat tone
+            adds its start-up transient to the first samples (a strong near-DC path's can clip;
+            ``ChainState.startup_transient``, docs/receiver.md); 0 (default): steady state only.
+
+    Raises:
+        ConfigError: a bad cutoff or order, or ``startup`` not 0 or 1.
     """
 
     name = "if_highpass"
+    param_names = ("cutoff_Hz", "order", "startup")
+    startup: torch.Tensor
+
+    def __init__(self, cutoff_Hz: float | torch.Tensor | None = None, order: int = 1, startup: int | bool = 0) -> None:
+        if startup not in (0, 1):
+            raise ConfigError(f"effect {self.name}: startup must be 0 or 1, got {startup!r}")
+        super().__init__(cutoff_Hz=cutoff_Hz, order=order)
+        self._set(startup=int(startup))
+
+    def forward(self, state: ChainState) -> None:
+        """Apply the response; with ``startup``, add the sections' start-up transient of the paths present."""
+        if not bool(self.startup):
+            super().forward(state)
+            return
+        if state.samples is not None:
+            raise ConfigError("effect if_highpass: the start-up transient needs the high-pass before any "
+                              "non-linear stage (the paths are already synthesized)")
+        state.add_startup_transient(self._cutoff(state), int(self.order))
+        super().forward(state)
+
+    def to_dict(self) -> dict[str, Any]:
+        """As :meth:`Effect.to_dict`, without ``startup`` when 0 (descriptions written before it stay the same)."""
+        out = super().to_dict()
+        if not bool(self.startup):
+            del out["params"]["startup"]
+        return out
+
     PRIORS = {"cutoff_Hz": Prior(5e3, 300e3, "log")}
     _response = staticmethod(highpass_response)
     _config_cutoff = "effective_hp_cutoff_Hz"
@@ -88,7 +121,13 @@ class AntiAliasLowPass(_FirstOrderFilter):
     """
 
     name = "anti_alias_lowpass"
+
     # From 50 kHz up to the sample rate (a cutoff above it no longer matters).
     PRIORS = {"cutoff_Hz": lambda config: Prior(50e3, max(float(config.sample_rate_Hz), 100e3), "log")}
     _response = staticmethod(lowpass_response)
     _config_cutoff = "effective_aaf_cutoff_Hz"
+
+    def forward(self, state: ChainState) -> None:
+        """Apply the response; the high-pass start-up transients pass the sections exactly."""
+        state.lowpass_transients(float(self._cutoff(state)), int(self.order))
+        super().forward(state)
