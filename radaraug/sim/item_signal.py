@@ -1,17 +1,16 @@
-"""What a per-item draw changes in the twin's signal: the pieces of ``DigitalTwin.simulate(..., draw=...)``.
+"""What a per-item draw changes in the twin's signal: the pure pieces of ``DigitalTwin.simulate(..., draw=...)``.
 
 Each person's paths scaled by its RCS draw, static point scatterers, the item's receiver (offsets,
-phase noise, catalog effects) and the room's cached signal adjusted to it. The dependency goes one way
-(``twin -> item_signal``; :mod:`~radaraug.sim.randomization` re-exports these names).
+phase noise, catalog effects) and the algebra that turns the room's cached signal by a drawn RX
+mismatch. Functions of data only: the twin calls them (:meth:`DigitalTwin.drawn_signal`), never the
+other way round.
 """
 
 from __future__ import annotations
 
 import dataclasses
-import threading
-import weakref
 from collections.abc import Callable, Sequence
-from typing import TYPE_CHECKING, Any, TypeVar
+from typing import TypeVar
 
 import torch
 
@@ -27,10 +26,6 @@ from radaraug.sensor.effects import (
 from radaraug.sensor.effects.base import hardware_position
 from radaraug.sensor.paths import Paths
 from radaraug.sensor.receiver import FMCWReceiver
-
-if TYPE_CHECKING:
-    from radaraug.sim.randomization import ItemDraw
-    from radaraug.sim.twin import DigitalTwin
 
 _E = TypeVar("_E", bound=Effect)
 
@@ -72,16 +67,6 @@ def scale_people_paths(paths: Paths, segments: Sequence[int], rcs_scale_dB: Sequ
     return dataclasses.replace(paths, amplitude=paths.amplitude * per_path[:, None])
 
 
-def people_paths(twin: DigitalTwin, people: Sequence[Any], times: torch.Tensor,
-                 rcs_scale_dB: Sequence[float]) -> Paths:
-    """The twin's target paths of ``people`` at ``times``, each person's scaled by its RCS scale."""
-    paths = twin.paths(list(people), times)
-    t0 = times[:1].to(torch.float64)
-    segments = [int(p.ellipsoids(t0).centers.shape[-2]) for p in people]
-    return scale_people_paths(paths, segments, rcs_scale_dB)
-
-
-
 def item_receiver(receiver: FMCWReceiver, system_gain_offset_dB: float, noise_figure_offset_dB: float,
                   phase_noise: tuple[float, int] | None = None, *, adc_noise_offset_dB: float = 0.0,
                   extra_effects: Sequence[Effect] = ()) -> FMCWReceiver:
@@ -116,24 +101,7 @@ def item_receiver(receiver: FMCWReceiver, system_gain_offset_dB: float, noise_fi
                         taylor_tol=receiver.taylor_tol, noise_tol=receiver.noise_tol)
 
 
-# Per twin (weakly keyed: a twin's cache goes with it), what the catalog needs of its room: the
-# strongest static paths and their signal, and the quadrature of the room's signal (for the RX phase
-# mismatch). Computed once per twin and process, on first use.
-_ROOM_CACHE: weakref.WeakKeyDictionary[DigitalTwin, dict[Any, Any]] = weakref.WeakKeyDictionary()
-_ROOM_LOCK = threading.Lock()
-
-
-def _room_cached(twin: DigitalTwin, key: Any, make: Any) -> Any:
-    with _ROOM_LOCK:
-        entry = _ROOM_CACHE.setdefault(twin, {})
-        if key in entry:
-            return entry[key]
-    value = make()  # outside the lock: a room synthesis takes a second
-    with _ROOM_LOCK:
-        return _ROOM_CACHE.setdefault(twin, {}).setdefault(key, value)
-
-
-def _quadrature(receiver: FMCWReceiver, paths: Paths) -> torch.Tensor:
+def quadrature(receiver: FMCWReceiver, paths: Paths) -> torch.Tensor:
     """The signal of ``paths`` through the linear stages with every beat tone turned by -90 deg.
 
     A path's amplitude times ``j`` (the receiver conjugates it); a per-RX complex gain ``a exp(j phi)``
@@ -142,54 +110,10 @@ def _quadrature(receiver: FMCWReceiver, paths: Paths) -> torch.Tensor:
     return receiver.static_signal(dataclasses.replace(paths, amplitude=paths.amplitude * 1j))
 
 
-def strongest_room_paths(twin: DigitalTwin, k: int) -> tuple[Paths, torch.Tensor]:
-    """The ``k`` room paths with the largest ``|amplitude| x delay`` and their cached-room signal.
-
-    The ``phase_noise`` stage's ranking (largest skirt); their signal is what leaves the cached room
-    signal when they are passed to the receiver as paths. Cached per twin and ``k``.
-    """
-    def make() -> tuple[Paths, torch.Tensor]:
-        room = twin.tracer.static_paths()
-        strength = (room.amplitude.abs() * room.delay_s).amax(-1)  # (P,)
-        if room.mask is not None:
-            strength = strength * room.mask
-        idx = torch.topk(strength, min(k, room.num_paths)).indices.sort().values
-        picked = Paths(room.delay_s[idx], room.delay_rate[idx], room.amplitude[idx])
-        return picked, twin.receiver.static_signal(picked)
-    return _room_cached(twin, ("strongest", k), make)
-
-
-def room_quadrature(twin: DigitalTwin, k: int = 0) -> torch.Tensor:
-    """:func:`_quadrature` of the twin's room, less that of its ``k`` strongest paths (cached per twin)."""
-    def make() -> torch.Tensor:
-        if k:
-            return room_quadrature(twin) - _quadrature(twin.receiver, strongest_room_paths(twin, k)[0])
-        return _quadrature(twin.receiver, twin.tracer.static_paths())
-    return _room_cached(twin, ("quadrature", k), make)
-
-
-def _rx_gain(mismatch: RxGainPhaseMismatch, like: torch.Tensor) -> tuple[torch.Tensor, torch.Tensor]:
+def rx_gain(mismatch: RxGainPhaseMismatch, like: torch.Tensor) -> tuple[torch.Tensor, torch.Tensor]:
     """``(amplitude, phase)`` of a mismatch stage, ``(RX, 1, 1)`` on ``like``'s device and dtype."""
     amp = torch.pow(10.0, mismatch.gain_dB / 20).to(like)
     return amp[:, None, None], mismatch.phase_rad.to(like)[:, None, None]
-
-
-def _mismatched_shadow(twin: DigitalTwin, people: list[Any], times: torch.Tensor,
-                       mismatch: RxGainPhaseMismatch) -> torch.Tensor | None:
-    """:meth:`DigitalTwin.shadow_signal` through the per-RX complex gain ``g`` of ``mismatch``, exactly.
-
-    The shadow is ``sum_p Re(d_p) b0_p + Im(d_p) b1_p`` over the room's paths (``d = T - 1``, ``b`` the
-    twin's :meth:`~DigitalTwin.static_basis`); the gain turns each path's coefficient, which is the same
-    sum with ``conj(g) d`` per RX: ``Re(g) shadow + Im(g) shadow(-j d)``. Both from one transmission and
-    one product (as the twin computes the shadow). A per-chirp frequency-domain turn would not do: the
-    near-range paths' beat tones hold less than a cycle per chirp.
-    """
-    pair = twin.shadow_signal(people, times, quadrature=True)
-    if pair is None:
-        return None
-    shadow, quad = pair
-    amp, phase = _rx_gain(mismatch, shadow)
-    return amp * (torch.cos(phase) * shadow + torch.sin(phase) * quad)
 
 
 def static_scatterer_paths(config: RadarConfig, scatterers: Sequence[tuple[float, float, float, float]],
@@ -204,48 +128,11 @@ def static_scatterer_paths(config: RadarConfig, scatterers: Sequence[tuple[float
     r, az, el = sc[:, 0], torch.deg2rad(sc[:, 1]), torch.deg2rad(sc[:, 2])
     pos = torch.stack([r * torch.sin(az) * torch.cos(el), r * torch.sin(el), r * torch.cos(az) * torch.cos(el)], -1)
     p = point_target_paths(config, pos, rcs_m2=10 ** (sc[:, 3] / 10), antenna_gain_dBi=SCATTERER_ANTENNA_GAIN_DBI)
-    return _like(p, like)
+    return like_batch(p, like)
 
 
 
-def drawn_signal(twin: DigitalTwin, people: list[Any], times: torch.Tensor, draw: ItemDraw,
-                 paths: Paths, *, shadow: bool = True) -> tuple[FMCWReceiver, Paths, torch.Tensor]:
-    """The item's receiver, all its paths and the room's signal for :meth:`DigitalTwin.simulate` with a draw.
-
-    ``paths`` are the people's (RCS-scaled, negligible ones off). The room's cached signal is adjusted
-    exactly: scaled by the gain offset (by linearity), turned by a drawn RX mismatch as
-    ``a (cos(phi) S - sin(phi) Q)`` (``Q``: :func:`room_quadrature`), less the strongest returns passed
-    as paths for their phase noise (docs/simulation.md, "Twin randomization"). ``shadow=False``: the
-    caller passes the people's shadow in ``paths`` (``DigitalTwin(shadow_method="paths")``).
-    """
-    if draw.scatterers:
-        paths = Paths.cat([paths, static_scatterer_paths(twin.config, draw.scatterers, paths)])
-    pn = None if not draw.phase_noise_rms_Hz else (draw.phase_noise_rms_Hz, draw.phase_noise_paths)
-    extra = draw.catalog_effects(twin.config)
-    receiver = item_receiver(twin.receiver, draw.system_gain_offset_dB, draw.noise_figure_offset_dB, pn,
-                             adc_noise_offset_dB=draw.adc_noise_offset_dB, extra_effects=extra)
-    static = twin.static_signal()
-    k = draw.static_phase_noise_paths if any(isinstance(e, PhaseNoise) for e in receiver.effects) else 0
-    if k:
-        strong, strong_signal = strongest_room_paths(twin, k)
-        paths = Paths.cat([paths, _like(strong, paths)])
-        static = static - strong_signal
-    # The people's shadow on the room is geometry only: the RCS scale does not change it. (Room paths
-    # moved out of the cache for the phase noise keep their shadow here, in the cached part.)
-    mismatch = _static_mismatch(receiver, extra)
-    if mismatch is not None:
-        amp, phase = _rx_gain(mismatch, static)
-        static = amp * (torch.cos(phase) * static - torch.sin(phase) * room_quadrature(twin, k))
-    if shadow:
-        change = (twin.shadow_signal(people, times) if mismatch is None
-                  else _mismatched_shadow(twin, people, times, mismatch))
-        if change is not None:
-            static = static + change
-    if draw.system_gain_offset_dB != 0.0:
-        static = static * 10 ** (draw.system_gain_offset_dB / 20)
-    return receiver, paths, static
-
-def _static_mismatch(receiver: FMCWReceiver, extra: Sequence[Effect]) -> RxGainPhaseMismatch | None:
+def static_mismatch(receiver: FMCWReceiver, extra: Sequence[Effect]) -> RxGainPhaseMismatch | None:
     """The item's drawn mismatch stage (in ``extra``) when the room's cached signal must get it by hand.
 
     That is, when it comes before the receiver's first non-linear stage, where the cached signal is
@@ -260,7 +147,7 @@ def _static_mismatch(receiver: FMCWReceiver, extra: Sequence[Effect]) -> RxGainP
     return drawn if position < first_nonlinear else None
 
 
-def _like(paths: Paths, like: Paths) -> Paths:
+def like_batch(paths: Paths, like: Paths) -> Paths:
     """Static ``paths`` ``(P, RX)`` on ``like``'s device and dtypes, batched like it ``(..., P, RX)``."""
     dt, dev = like.delay_s.dtype, like.delay_s.device
     cdt = like.amplitude.dtype if like.amplitude.is_complex() else None
@@ -271,6 +158,6 @@ def _like(paths: Paths, like: Paths) -> Paths:
 
 
 __all__ = [
-    "SCATTERER_ANTENNA_GAIN_DBI", "drawn_signal", "item_receiver", "people_paths", "room_quadrature",
-    "scale_people_paths", "static_scatterer_paths", "strongest_room_paths",
+    "SCATTERER_ANTENNA_GAIN_DBI", "item_receiver", "quadrature", "rx_gain", "scale_people_paths",
+    "like_batch", "static_mismatch", "static_scatterer_paths",
 ]

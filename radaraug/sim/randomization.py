@@ -27,15 +27,6 @@ from radaraug.sim.catalog import Catalog
 from radaraug.sim.catalog import record as catalog_record
 from radaraug.sim.catalog import stages as catalog_stages
 from radaraug.sim.catalog.wide_levels import WideLevelsPrior
-from radaraug.sim.item_signal import (
-    SCATTERER_ANTENNA_GAIN_DBI,
-    item_receiver,
-    people_paths,
-    room_quadrature,
-    scale_people_paths,
-    static_scatterer_paths,
-    strongest_room_paths,
-)
 from radaraug.sim.priors import Section, material_list, span, uniform
 from radaraug.sim.scenarios import ScenarioSampler
 from radaraug.sim.seeding import Stream, item_generator
@@ -477,6 +468,5 @@ def check_receiver(receiver: FMCWReceiver, randomization: TwinRandomization) -> 
 
 __all__ = [
     "DEFAULT_MATERIALS", "ItemDraw", "LevelPriors", "PeoplePriors", "RoomDraw", "RoomPriors", "TwinRandomization",
-    "SCATTERER_ANTENNA_GAIN_DBI", "check_receiver", "item_receiver", "people_paths", "room_quadrature",
-    "scale_people_paths", "static_scatterer_paths", "strongest_room_paths",
+    "check_receiver",
 ]

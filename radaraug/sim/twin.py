@@ -21,12 +21,21 @@ from radaraug.raytrace.targets import slot_segments
 from radaraug.raytrace.tracer import RayTracer
 from radaraug.scene.geometry import Ellipsoids
 from radaraug.scene.scene import Scene
+from radaraug.sensor.effects import PhaseNoise, RxGainPhaseMismatch
 from radaraug.sensor.paths import Paths
 from radaraug.sensor.profile import as_profile
 from radaraug.sensor.receiver import FMCWReceiver
 from radaraug.sensor.synthesis import ChirpTiming
 from radaraug.sim.intra_frame import DEFAULT_TOL_CYCLES, check_intra_frame, chirp_times, intra_frame_paths
-from radaraug.sim.item_signal import drawn_signal, people_paths
+from radaraug.sim.item_signal import (
+    item_receiver,
+    like_batch,
+    quadrature,
+    rx_gain,
+    scale_people_paths,
+    static_mismatch,
+    static_scatterer_paths,
+)
 
 #: Version of the twin's physics, part of the cache key of every simulated map set
 #: (:func:`radaraug.training.cache.cache_spec`): bumped when a change makes the same inputs simulate
@@ -141,6 +150,9 @@ class DigitalTwin:
         if isinstance(shadow_intervals, bool) or not isinstance(shadow_intervals, int) or shadow_intervals < 0:
             raise ConfigError(f"DigitalTwin: shadow_intervals must be an integer >= 0, got {shadow_intervals!r}")
         self.shadow_intervals = shadow_intervals
+        # What the catalog needs of the room (its strongest paths and their signal, the quadrature of its
+        # signal), computed on first use: dict.setdefault keeps one value when threads race.
+        self._room_cache: dict[tuple[str, int], Any] = {}
         self.last_intervals: torch.Tensor | None = None
         """Knot intervals each frame of the last :meth:`paths` call used (``(T,)``; 0: one snapshot)."""
 
@@ -345,6 +357,98 @@ class DigitalTwin:
         shadow = self.shadow_paths(people, times)
         return paths if shadow is None else Paths.cat([paths, shadow])
 
+    # ------------------------------------------------------------------ a per-item draw
+    def people_paths(self, people: Sequence[Any], times: torch.Tensor, rcs_scale_dB: Sequence[float]) -> Paths:
+        """:meth:`paths` of ``people`` at ``times``, each person's scaled by its RCS scale (dB)."""
+        paths = self.paths(list(people), times)
+        t0 = times[:1].to(torch.float64)
+        segments = [int(p.ellipsoids(t0).centers.shape[-2]) for p in people]
+        return scale_people_paths(paths, segments, rcs_scale_dB)
+
+    def _room_cached(self, key: tuple[str, int], make: Any) -> Any:
+        if key not in self._room_cache:
+            value = make()  # outside any lock: a room synthesis takes a second
+            return self._room_cache.setdefault(key, value)
+        return self._room_cache[key]
+
+    def strongest_room_paths(self, k: int) -> tuple[Paths, torch.Tensor]:
+        """The ``k`` room paths with the largest ``|amplitude| x delay`` and their cached-room signal.
+
+        The ``phase_noise`` stage's ranking (largest skirt); their signal is what leaves the cached room
+        signal when they are passed to the receiver as paths. Cached per ``k``.
+        """
+        def make() -> tuple[Paths, torch.Tensor]:
+            room = self.tracer.static_paths()
+            strength = (room.amplitude.abs() * room.delay_s).amax(-1)  # (P,)
+            if room.mask is not None:
+                strength = strength * room.mask
+            idx = torch.topk(strength, min(k, room.num_paths)).indices.sort().values
+            picked = Paths(room.delay_s[idx], room.delay_rate[idx], room.amplitude[idx])
+            return picked, self.receiver.static_signal(picked)
+        return self._room_cached(("strongest", k), make)
+
+    def room_quadrature(self, k: int = 0) -> torch.Tensor:
+        """:func:`~radaraug.sim.item_signal.quadrature` of the room, less that of its ``k`` strongest paths (cached)."""
+        def make() -> torch.Tensor:
+            if k:
+                return self.room_quadrature() - quadrature(self.receiver, self.strongest_room_paths(k)[0])
+            return quadrature(self.receiver, self.tracer.static_paths())
+        return self._room_cached(("quadrature", k), make)
+
+    def _mismatched_shadow(self, people: list[Any], times: torch.Tensor,
+                           mismatch: RxGainPhaseMismatch) -> torch.Tensor | None:
+        """:meth:`shadow_signal` through the per-RX complex gain ``g`` of ``mismatch``, exactly.
+
+        The shadow is ``sum_p Re(d_p) b0_p + Im(d_p) b1_p`` over the room's paths (``d = T - 1``, ``b`` the
+        :meth:`static_basis`); the gain turns each path's coefficient, which is the same sum with
+        ``conj(g) d`` per RX: ``Re(g) shadow + Im(g) shadow(-j d)``. Both from one transmission and one
+        product. A per-chirp frequency-domain turn would not do: the near-range paths' beat tones hold
+        less than a cycle per chirp.
+        """
+        pair = self.shadow_signal(people, times, quadrature=True)
+        if pair is None:
+            return None
+        shadow, quad = pair
+        amp, phase = rx_gain(mismatch, shadow)
+        return amp * (torch.cos(phase) * shadow + torch.sin(phase) * quad)
+
+    def drawn_signal(self, people: list[Any], times: torch.Tensor, draw: ItemDraw, paths: Paths, *,
+                     shadow: bool = True) -> tuple[FMCWReceiver, Paths, torch.Tensor]:
+        """The item's receiver, all its paths and the room's signal for :meth:`simulate` with a draw.
+
+        ``paths`` are the people's (RCS-scaled, negligible ones off). The room's cached signal is adjusted
+        exactly: scaled by the gain offset (by linearity), turned by a drawn RX mismatch as
+        ``a (cos(phi) S - sin(phi) Q)`` (``Q``: :meth:`room_quadrature`), less the strongest returns passed
+        as paths for their phase noise (docs/simulation.md, "Twin randomization"). ``shadow=False``: the
+        caller passes the people's shadow in ``paths`` (``shadow_method="paths"``).
+        """
+        if draw.scatterers:
+            paths = Paths.cat([paths, static_scatterer_paths(self.config, draw.scatterers, paths)])
+        pn = None if not draw.phase_noise_rms_Hz else (draw.phase_noise_rms_Hz, draw.phase_noise_paths)
+        extra = draw.catalog_effects(self.config)
+        receiver = item_receiver(self.receiver, draw.system_gain_offset_dB, draw.noise_figure_offset_dB, pn,
+                                 adc_noise_offset_dB=draw.adc_noise_offset_dB, extra_effects=extra)
+        static = self.static_signal()
+        k = draw.static_phase_noise_paths if any(isinstance(e, PhaseNoise) for e in receiver.effects) else 0
+        if k:
+            strong, strong_signal = self.strongest_room_paths(k)
+            paths = Paths.cat([paths, like_batch(strong, paths)])
+            static = static - strong_signal
+        # The people's shadow on the room is geometry only: the RCS scale does not change it. (Room paths
+        # moved out of the cache for the phase noise keep their shadow here, in the cached part.)
+        mismatch = static_mismatch(receiver, extra)
+        if mismatch is not None:
+            amp, phase = rx_gain(mismatch, static)
+            static = amp * (torch.cos(phase) * static - torch.sin(phase) * self.room_quadrature(k))
+        if shadow:
+            change = (self.shadow_signal(people, times) if mismatch is None
+                      else self._mismatched_shadow(people, times, mismatch))
+            if change is not None:
+                static = static + change
+        if draw.system_gain_offset_dB != 0.0:
+            static = static * 10 ** (draw.system_gain_offset_dB / 20)
+        return receiver, paths, static
+
     @torch.no_grad()
     def simulate(
         self,
@@ -363,13 +467,13 @@ class DigitalTwin:
             generators: one generator per frame (frame ``k`` then depends only on its seed), one
                 for the batch, or None (global RNG).
             draw: a per-item draw (:meth:`~radaraug.sim.randomization.TwinRandomization.item`) to
-                simulate under (:func:`~radaraug.sim.item_signal.drawn_signal`); its room variant is
+                simulate under (:meth:`drawn_signal`); its room variant is
                 not applied here: simulate with that variant's twin. None (default): the twin as it is.
             t0: the recording's time at ``times == 0``, s: the receiver's time-locked effects (a spur
                 tone) see ``t0 + times``, so that several scenes can be played into one recording.
         """
         people = list(people or [])
-        traced = self.paths(people, times) if draw is None else people_paths(self, people, times, draw.rcs_scale_dB)
+        traced = self.paths(people, times) if draw is None else self.people_paths(people, times, draw.rcs_scale_dB)
         paths = negligible_paths_off(traced)
         as_paths = self.shadow_paths(people, times) if self.shadow_method == "paths" else None
         if as_paths is not None:
@@ -380,8 +484,8 @@ class DigitalTwin:
             if shadow is not None:
                 static = static + shadow  # (T, RX, chirps, samples): the shadowed room per frame
         else:
-            receiver, paths, static = drawn_signal(self, people, times, draw, paths,
-                                                   shadow=self.shadow_method == "signal")
+            receiver, paths, static = self.drawn_signal(people, times, draw, paths,
+                                                        shadow=self.shadow_method == "signal")
         start = times.to(torch.float64) + t0 if t0 else times.to(torch.float64)
         if isinstance(generators, Sequence):
             if len(generators) != times.shape[0]:

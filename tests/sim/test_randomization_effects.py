@@ -33,13 +33,8 @@ from radaraug.sensor.paths import Paths
 from radaraug.sensor.receiver import FMCWReceiver
 from radaraug.sim.catalog import BY_NAME
 from radaraug.sim.dataset import SimulatedRadarDataset
-from radaraug.sim.randomization import (
-    ItemDraw,
-    TwinRandomization,
-    item_receiver,
-    static_scatterer_paths,
-    strongest_room_paths,
-)
+from radaraug.sim.item_signal import item_receiver, static_scatterer_paths
+from radaraug.sim.randomization import ItemDraw, TwinRandomization
 from radaraug.sim.seeding import item_generator
 from radaraug.sim.twin import DigitalTwin
 
@@ -350,7 +345,7 @@ def test_room_returns_carry_the_phase_noise_skirt(twin) -> None:
     skirt. (At the drawn 400 kHz the skirt of this wall is ~3 dB over the floor, as real near-range
     skirts; 1 MHz makes it clear of the noise's spread.)"""
     cfg = twin.config
-    strong, _ = strongest_room_paths(twin, 4)
+    strong, _ = twin.strongest_room_paths(4)
     top = int((strong.amplitude.abs() * strong.delay_s).amax(-1).argmax())
     wall = float(strong.delay_s[top].mean()) * SPEED_OF_LIGHT / 2
     assert wall > 15.0
