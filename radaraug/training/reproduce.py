@@ -406,13 +406,19 @@ def reproduce(
     out.mkdir(parents=True, exist_ok=True)
     t_start = time.perf_counter()
     sets = _test_sets(out, settings, calibration, test, test_sets, progress)
-    from radaraug.training.testset import check_test_set
+    from radaraug.training.testset import CalibrationWarning, check_test_set
 
     for ts in sets:
         for task in tasks:
             check_test_set(ts.tests, task)
 
     gates = {ts.name: _static_gate(ts, settings.static_gate_margin_db) for ts in sets}
+    for ts in sets:
+        if settings.static_gate_margin_db is not None and gates[ts.name] is None:
+            what = "no calibration" if ts.calibration is None else f"calibration {ts.calibration} is a CalibratedDR JSON"
+            warnings.warn(f"test set {ts.name}: {what}, so no static-change gate is fitted: the report has no "
+                          "gated accuracies (+ static gate) and its classifier files no gate; give the empty-room "
+                          "capture itself", CalibrationWarning, stacklevel=2)
     # (row name, method, ablation override or None): every run is its recipe (+ the ablation)
     variants: list[tuple[str, str, str | None]] = [(m, m, None) for m in methods]
     variants += [(n, ABLATIONS[n][0], n) for n in names if ABLATIONS[n][0] in methods]

@@ -264,3 +264,22 @@ def test_early_stopping_tests_the_best_epoch(tmp_path, captures, monkeypatch):
     assert all(torch.equal(v, model.state_dict()[k]) for k, v in weights.items())
     assert trainer.current_epoch <= 4 and rep["settings"]["early_stopping_patience"] == 1
     assert rep["runs"][0]["val_balanced_accuracy"] == pytest.approx(val)
+
+
+def test_a_json_calibration_says_the_report_has_no_gate(tmp_path, captures, monkeypatch):
+    """With a CalibratedDR JSON, reproduce says once per test set that no gated accuracies come (before training)."""
+    import radaraug.training.reproduce as r
+    from radaraug.training.testset import CalibrationWarning
+
+    _, tests = captures
+
+    class Stop(Exception):
+        pass
+
+    def stop(*a, **kw):
+        raise Stop
+
+    monkeypatch.setattr(r, "run_recipe", stop)
+    with pytest.warns(CalibrationWarning, match="no static-change gate.*no\\s+gated accuracies"), pytest.raises(Stop):
+        reproduce(tmp_path, calibration="cdr.json", test=[{"path": str(p), "count": c} for p, c in tests],
+                  settings=TINY, methods=["rt"], progress=False)
