@@ -55,3 +55,19 @@ def test_axis_aligned_rays_and_flat_boxes(device):
 def test_bad_triangles():
     with pytest.raises(InputTensorError):
         TriangleBVH(torch.zeros(4, 3))
+
+
+@pytest.mark.parametrize("budget", [1 << 8, 1 << 12])
+def test_pair_budget_changes_only_the_chunks(budget, monkeypatch):
+    """Any number of tests at once gives the same hits (the budget is a speed setting: docs/simulation.md)."""
+    import radaraug.raytrace.accel as accel
+
+    tri, o, d = _scene(torch.float32, "cpu")
+    bvh = TriangleBVH(tri, leaf_size=8)
+    ref = bvh.intersect(o, d)
+    t_max = torch.full_like(ref.t, 2.0)
+    ref_shadow = bvh.any_hit(o, d, t_max)
+    monkeypatch.setattr(accel, "_PAIR_BUDGET", budget)
+    hit = bvh.intersect(o, d)
+    assert torch.equal(hit.face, ref.face) and torch.equal(hit.t, ref.t)
+    assert torch.equal(bvh.any_hit(o, d, t_max), ref_shadow)
