@@ -203,7 +203,7 @@ def _cmd_bench(args: argparse.Namespace) -> Result:
     if args.what == "transforms":
         from radaraug.bench.transforms import run_transforms_benchmark
 
-        result = run_transforms_benchmark(batch=args.batch, repeats=args.repeats, device=device, out=args.output)
+        result = run_transforms_benchmark(batch=args.batch or 32, repeats=args.repeats, device=device, out=args.output)
     elif args.what == "diagnose":
         from radaraug.bench.diagnose import run_diagnose_benchmark
 
@@ -223,7 +223,11 @@ def _cmd_bench(args: argparse.Namespace) -> Result:
     elif args.what == "predict":
         from radaraug.bench.predict import run_predict_benchmark
 
-        result = run_predict_benchmark(batch=args.batch, repeats=args.repeats, device=device, out=args.output)
+        result = run_predict_benchmark(batch=args.batch or 32, repeats=args.repeats, device=device, out=args.output)
+    elif args.what == "items":
+        from radaraug.bench.items import run_items_benchmark
+
+        result = run_items_benchmark(batch=args.batch or 16, out=args.output)
     elif args.what == "contract":
         from radaraug.bench.contract import run_contract_benchmark
 
@@ -231,7 +235,7 @@ def _cmd_bench(args: argparse.Namespace) -> Result:
     elif args.what == "training":
         from radaraug.bench.training import run_training_benchmark
 
-        result = run_training_benchmark(batch=args.batch, steps=args.repeats, device=device, out=args.output)
+        result = run_training_benchmark(batch=args.batch or 32, steps=args.repeats, device=device, out=args.output)
     else:
         from radaraug.bench.twin import run_twin_benchmark
 
@@ -693,11 +697,13 @@ def build_parser() -> argparse.ArgumentParser:
 
     bench = command("bench", _cmd_bench, help="benchmarks (figures as ratios against a same-process baseline)")
     bench.add_argument("what", choices=["transforms", "twin", "training", "predict", "diagnose", "static-room",
-                                        "micro-doppler", "people-level", "contract"],
+                                        "micro-doppler", "people-level", "contract", "items"],
                        help="which benchmark (docs/benchmarks.md)")
     bench.add_argument("--capture", action="append", default=None,
                        help="people-level: a capture with a moving person (.h5 or Infineon folder); repeat for more")
-    bench.add_argument("--batch", type=int, default=32, help="transforms, training, predict: frames per batch")
+    bench.add_argument("--batch", type=int, default=None,
+                       help="transforms, training, predict: frames per batch (default: 32); items: items per call "
+                       "(default: 16)")
     bench.add_argument("--repeats", type=int, default=5, help="transforms, predict: timed repetitions; training: steps")
     bench.add_argument("--blocks", type=int, default=8, help="twin: 16-frame blocks per process")
     bench.add_argument("--workers", type=int, default=2, help="twin: DataLoader worker processes")

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import math
 import os
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from typing import Any
 
 import torch
@@ -23,7 +23,7 @@ from radaraug.sensor.receiver import FMCWReceiver
 from radaraug.sim.randomization import RoomDraw, TwinRandomization, check_receiver
 from radaraug.sim.scenarios import Scenario, ScenarioSampler
 from radaraug.sim.seeding import Stream, item_generator
-from radaraug.sim.twin import DigitalTwin
+from radaraug.sim.twin import DigitalTwin, TwinItem
 from radaraug.transforms.per_item import check_augmentation, check_epoch, transform_item
 
 TARGETS = ("count", "occupancy", "both", "none")
@@ -55,6 +55,12 @@ class SimulatedRadarDataset(Dataset):
             its fields; then the scene must be a corridor scene); None (default): the scene as it is.
         profile: a fitted twin profile (:class:`~radaraug.sensor.profile.TwinProfile`, its JSON path
             or dict, from ``radaraug diagnose``) for the twin's receiver and room section.
+        batched: a DataLoader's batch (:meth:`__getitems__`) is simulated in one
+            :meth:`~radaraug.sim.twin.DigitalTwin.simulate_items` call per room variant: equal to one item
+            at a time within the synthesis' contract (a sample may land on the neighbouring ADC code), not
+            bit for bit, and no faster on the CPU (``benchmarks/twin_items_cpu.json``): for a GPU, where
+            one call's overhead is what batching amortizes. Default False: every item bit for bit a
+            function of ``(seed, index)``.
 
     Raises:
         ConfigError: a bad target, size, randomization or profile, or a scene or receiver the
@@ -79,8 +85,10 @@ class SimulatedRadarDataset(Dataset):
         randomization: TwinRandomization | dict[str, Any] | None = None,
         profile: Any = None,
         augmentation: str = "stream",
+        batched: bool = False,
     ) -> None:
         self.augmentation = check_augmentation(augmentation, "SimulatedRadarDataset")
+        self.batched = bool(batched)
         self.epoch = 0
         if target not in TARGETS:
             raise ConfigError(f"target must be one of {TARGETS}, got {target!r}")
@@ -191,6 +199,14 @@ class SimulatedRadarDataset(Dataset):
     def __len__(self) -> int:
         return self.length
 
+    def room_variant(self, index: int) -> int | None:
+        """The room variant item ``index`` is simulated in (None without randomization).
+
+        Items of one variant share a twin, so :meth:`__getitems__` simulates them in one call.
+        """
+        rz = self._drawn_randomization
+        return None if rz is None else rz.variant_of(self.seed, self._check_index(index))
+
     def scenario(self, index: int) -> Scenario:
         """The scenario of item ``index`` (people and labels), without simulating it."""
         rz = self._drawn_randomization
@@ -260,6 +276,36 @@ class SimulatedRadarDataset(Dataset):
         draw = None if rz is None else rz.item(self.seed, index, scenario.count)
         twin = self.twin if draw is None else self.variant_twin(draw.variant)
         x = twin.simulate(scenario.people, twin.frame_times(range(self.frames_per_item)), generators=noise, draw=draw)
+        return self._finish(index, scenario, twin, x)
+
+    def __getitems__(self, indices: Sequence[int]) -> list[Any]:
+        """Items ``indices``, simulated together per room variant (:meth:`DigitalTwin.simulate_items`).
+
+        What a ``DataLoader`` calls for a batch: ``[self[i] for i in indices]``, or with ``batched=True``
+        the same within the synthesis' contract (docs/simulation.md, "Many items per call").
+        """
+        if not self.batched:
+            return [self[i] for i in indices]
+        idx = [self._check_index(i) for i in indices]
+        scenarios = [self.scenario(i) for i in idx]
+        rz = self._drawn_randomization
+        draws = [None if rz is None else rz.item(self.seed, i, sc.count) for i, sc in zip(idx, scenarios)]
+        groups: dict[int | None, list[int]] = {}
+        for k, d in enumerate(draws):
+            groups.setdefault(None if d is None else d.variant, []).append(k)
+        out: list[Any] = [None] * len(idx)
+        for variant, ks in groups.items():
+            twin = self.twin if variant is None else self.variant_twin(variant)
+            times = twin.frame_times(range(self.frames_per_item))
+            items = [TwinItem(scenarios[k].people, times, draw=draws[k],
+                              generators=item_generator(self.seed, idx[k], stream=Stream.ITEM_NOISE, device=self.device))
+                     for k in ks]
+            for k, x in zip(ks, twin.simulate_items(items)):
+                out[k] = self._finish(idx[k], scenarios[k], twin, x)
+        return out
+
+    def _finish(self, index: int, scenario: Scenario, twin: DigitalTwin, x: torch.Tensor) -> Any:
+        """Item ``index`` from its simulated frames: counts, one frame's shape, the transform, the label."""
         if self.as_counts:
             x = twin.receiver.to_counts(x)
         if self.frames_per_item == 1:

@@ -136,18 +136,19 @@ def check_intra_frame(intervals: int | str, tol_cycles: float) -> None:
 
 
 def intra_frame_paths(
-    trace: Callable[[torch.Tensor], Paths],
+    trace: Callable[[torch.Tensor, torch.Tensor], Paths],
     times: torch.Tensor,
     timing: ChirpTiming,
     *,
     intervals: int | str = "auto",
     tol_cycles: float = DEFAULT_TOL_CYCLES,
-    trace_slots: Callable[[torch.Tensor, torch.Tensor], Paths] | None = None,
+    trace_slots: Callable[[torch.Tensor, torch.Tensor, torch.Tensor], Paths] | None = None,
 ) -> tuple[Paths, torch.Tensor]:
     """Paths of moving targets over each frame, with per-chirp delays and gains.
 
     Args:
-        trace: maps snapshot times ``(n,)`` (float64, s) to the targets' :class:`Paths`
+        trace: maps snapshot times ``(n,)`` (float64, s) and the frame each belongs to ``(n,)`` (long,
+            an index into ``times``: frames may hold different targets) to the targets' :class:`Paths`
             ``(n, P, RX)`` (same slots at every time).
         times: frame start times ``(T,)``, s.
         timing: the chirp timing (chirp times, carrier frequency).
@@ -155,7 +156,7 @@ def intra_frame_paths(
             is under ``tol_cycles``), or a fixed number of knot intervals per frame (``0``: one
             snapshot, linear model).
         tol_cycles: the automatic refinement's tolerance, carrier cycles.
-        trace_slots: optional ``trace`` of some slots, ``(times, slots (P,) bool) -> Paths (n, P, RX)``
+        trace_slots: optional ``trace`` of some slots, ``(times, slots (P,) bool, frames) -> Paths (n, P, RX)``
             (other slots anything finite): the finer knots are traced only for the slots that need them.
 
     Returns:
@@ -165,12 +166,13 @@ def intra_frame_paths(
     """
     t64 = times.to(torch.float64).reshape(-1)
     n_frames = int(t64.shape[0])
+    every = torch.arange(n_frames)
     if intervals == 0:
-        return trace(t64), torch.zeros(n_frames, dtype=torch.long)
+        return trace(t64, every), torch.zeros(n_frames, dtype=torch.long)
     tc = chirp_times(timing)
     span = float(tc[-1])
     if span <= 0 or timing.num_chirps < 2:
-        return trace(t64), torch.zeros(n_frames, dtype=torch.long)
+        return trace(t64, every), torch.zeros(n_frames, dtype=torch.long)
     max_k = 1
     while max_k < timing.num_chirps - 1:
         max_k *= 2
@@ -183,11 +185,13 @@ def intra_frame_paths(
 
     def traced(t_idx: torch.Tensor, k: int, odd_only: bool = False, slots: torch.Tensor | None = None):
         t = knots_of(t_idx, k, odd_only)
-        p = trace(t) if slots is None or trace_slots is None or bool(slots.all()) else trace_slots(t, slots)
         knots = k // 2 if odd_only else k + 1
+        rows = t_idx.repeat_interleave(knots)  # knots_of's order: frame-major
+        p = (trace(t, rows) if slots is None or trace_slots is None or bool(slots.all())
+             else trace_slots(t, slots, rows))
         return (*_knot_tensors(p, int(t_idx.shape[0]), knots), p)
 
-    all_idx = torch.arange(n_frames)
+    all_idx = every
     first = fixed if fixed is not None else FIRST_INTERVALS
     # The automatic choice always needs the first level's midpoints: trace both levels' knots
     # in one call (one tracer call less per batch) and split them.

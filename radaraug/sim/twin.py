@@ -9,8 +9,8 @@ from __future__ import annotations
 
 import dataclasses
 import functools
-from collections.abc import Sequence
-from typing import TYPE_CHECKING, Any, Literal, overload
+from collections.abc import Callable, Sequence
+from typing import TYPE_CHECKING, Any, Literal, TypeAlias, overload
 
 import torch
 
@@ -44,6 +44,9 @@ TWIN_MODEL_VERSION = 4
 
 if TYPE_CHECKING:
     from radaraug.sim.randomization import ItemDraw
+
+_People: TypeAlias = "Sequence[Any] | _PeopleRows"
+"""One set of people for every frame, or each frame's own (:meth:`DigitalTwin.simulate_items`)."""
 
 WEAK_PATH_DB = 100.0
 """A person's path more than this below its frame's strongest person's path is left out of the
@@ -194,19 +197,35 @@ class DigitalTwin:
         The per-chirp delays and gains ``(T, P, chirps)`` are absent with ``intra_frame=0``.
         """
         if not people:
-            rx = self.config.num_rx
-            z = torch.zeros(int(times.shape[0]), 0, rx, dtype=self.dtype, device=self.device)
-            c = torch.complex64 if self.dtype == torch.float32 else torch.complex128
-            self.last_intervals = torch.zeros(int(times.shape[0]), dtype=torch.long)
-            return Paths(z, z.clone(), z.to(c))
+            return self._no_paths(times)
+        return self._traced(lambda t, rows: self._ellipsoids_at(people, t, rows), times)
 
-        def trace(t: torch.Tensor) -> Paths:
-            return self.tracer.target_paths(ellipsoids=self.ellipsoids(people, t), multipath=self.multipath)
+    def _no_paths(self, times: torch.Tensor) -> Paths:
+        rx = self.config.num_rx
+        z = torch.zeros(int(times.shape[0]), 0, rx, dtype=self.dtype, device=self.device)
+        c = torch.complex64 if self.dtype == torch.float32 else torch.complex128
+        self.last_intervals = torch.zeros(int(times.shape[0]), dtype=torch.long)
+        return Paths(z, z.clone(), z.to(c))
 
-        def trace_slots(t: torch.Tensor, slots: torch.Tensor) -> Paths:
+    def _ellipsoids_at(self, people: _People, t: torch.Tensor, rows: torch.Tensor) -> Ellipsoids:
+        """The segments at times ``t`` ``(n,)`` of frames ``rows``: one set of people, or each frame's own."""
+        if isinstance(people, _PeopleRows):
+            return people.ellipsoids(t, rows)
+        e = self.ellipsoids(people, t)
+        assert e is not None  # people is not empty
+        return e
+
+    def _traced(self, ellipsoids_at: Callable[[torch.Tensor, torch.Tensor], Ellipsoids], times: torch.Tensor,
+                dead: Callable[[Paths, torch.Tensor], Paths] | None = None) -> Paths:
+        """:meth:`paths` of the segments ``ellipsoids_at(t, rows)``; ``dead`` masks the slots a frame lacks."""
+
+        def trace(t: torch.Tensor, rows: torch.Tensor) -> Paths:
+            p = self.tracer.target_paths(ellipsoids=ellipsoids_at(t, rows), multipath=self.multipath)
+            return p if dead is None else dead(p, rows)
+
+        def trace_slots(t: torch.Tensor, slots: torch.Tensor, rows: torch.Tensor) -> Paths:
             """The slots ``slots`` ``(P,)`` of :func:`trace` (the others zero): their segments' paths only."""
-            ell = self.ellipsoids(people, t)
-            assert ell is not None  # people is not empty
+            ell = ellipsoids_at(t, rows)
             s_count, n_slots = ell.centers.shape[-2], slots.shape[0]
             segment = slot_segments(s_count, n_slots, slots.device)
             targets = segment[slots].unique()
@@ -216,9 +235,10 @@ class DigitalTwin:
             def full(x: torch.Tensor, rx: bool) -> torch.Tensor:
                 out = x.new_zeros(*x.shape[:-2], n_slots, x.shape[-1]) if rx else x.new_zeros(*x.shape[:-1], n_slots)
                 return out.index_copy_(-2 if rx else -1, where, x)
-            return Paths(full(part.delay_s, True), full(part.delay_rate, True), full(part.amplitude, True),
-                         None if part.kind is None else full(part.kind, False),
-                         None if part.mask is None else full(part.mask, False))
+            p = Paths(full(part.delay_s, True), full(part.delay_rate, True), full(part.amplitude, True),
+                      None if part.kind is None else full(part.kind, False),
+                      None if part.mask is None else full(part.mask, False))
+            return p if dead is None else dead(p, rows)
 
         paths, self.last_intervals = intra_frame_paths(
             trace, times, ChirpTiming.from_config(self.config), intervals=self.intra_frame,
@@ -226,22 +246,22 @@ class DigitalTwin:
         )
         return paths
 
-    def shadow_transmission(self, people: Sequence[Any], times: torch.Tensor) -> torch.Tensor | None:
+    def shadow_transmission(self, people: _People, times: torch.Tensor,
+                            rows: torch.Tensor | None = None) -> torch.Tensor | None:
         """``(T, P)`` field transmission of the room's paths through the people at ``times``, or None.
 
         None: no people, ``shadowing=False``, or an SBR room (its merged paths have no vertices).
+        ``rows``: the frame of each time when each frame has its own people (:meth:`simulate_items`).
         """
         if not people or not self.shadowing:
             return None
         vertices = self.tracer.static_vertices()
         if vertices is None or vertices.shape[0] == 0:
             return None
-        ellipsoids = self.ellipsoids(people, times)
-        if ellipsoids is None:
-            return None
-        return shadow_transmission(vertices, ellipsoids, self.config.wavelength_m)
+        every = torch.arange(int(times.shape[0])) if rows is None else rows
+        return shadow_transmission(vertices, self._ellipsoids_at(people, times, every), self.config.wavelength_m)
 
-    def shadow_knots(self, people: Sequence[Any], times: torch.Tensor) -> tuple[torch.Tensor, torch.Tensor | None] | None:
+    def shadow_knots(self, people: _People, times: torch.Tensor) -> tuple[torch.Tensor, torch.Tensor | None] | None:
         """The shadow over each frame: transmissions ``(T, J, P)`` at its knots and the chirps' weights ``(M, J)``.
 
         With ``shadow_intervals=K >= 1`` the knots are ``K + 1`` instants from the first chirp's first
@@ -258,7 +278,8 @@ class DigitalTwin:
             x = (tc - tc[0]) / (tc[-1] - tc[0]) * k  # each chirp's position, in knot intervals
             weights = (1 - (x[:, None] - torch.arange(k + 1, dtype=torch.float64)).abs()).clamp(min=0)
         t64 = times.to(torch.float64).reshape(-1)
-        t = self.shadow_transmission(people, (t64[:, None] + offsets[None, :]).reshape(-1))
+        rows = torch.arange(t64.shape[0]).repeat_interleave(offsets.shape[0])
+        t = self.shadow_transmission(people, (t64[:, None] + offsets[None, :]).reshape(-1), rows)
         return None if t is None else (t.reshape(t64.shape[0], offsets.shape[0], -1), weights)
 
     def shadow_paths(self, people: Sequence[Any], times: torch.Tensor) -> Paths | None:
@@ -308,31 +329,43 @@ class DigitalTwin:
         return self._static_basis
 
     @overload
-    def shadow_signal(self, people: Sequence[Any], times: torch.Tensor, *,
-                      quadrature: Literal[False] = False) -> torch.Tensor | None: ...
+    def shadow_signal(self, people: _People, times: torch.Tensor, *,
+                      quadrature: Literal[False] = False, groups: torch.Tensor | None = None) -> torch.Tensor | None: ...
 
     @overload
-    def shadow_signal(self, people: Sequence[Any], times: torch.Tensor, *,
-                      quadrature: Literal[True]) -> tuple[torch.Tensor, torch.Tensor] | None: ...
+    def shadow_signal(self, people: _People, times: torch.Tensor, *,
+                      quadrature: Literal[True], groups: torch.Tensor | None = None
+                      ) -> tuple[torch.Tensor, torch.Tensor] | None: ...
 
     def shadow_signal(
-        self, people: Sequence[Any], times: torch.Tensor, *, quadrature: bool = False,
+        self, people: _People, times: torch.Tensor, *, quadrature: bool = False,
+        groups: torch.Tensor | None = None,
     ) -> torch.Tensor | tuple[torch.Tensor, torch.Tensor] | None:
         """``(T, RX, chirps, N)`` what the people's shadow changes in the room's signal, or None.
 
         ``(T, RX, 1, N)`` where the shadow is held for the frame. One matrix product with the
         :meth:`static_basis` per knot. ``quadrature``: also the change of ``-j (T - 1)`` (to turn it by
-        a per-RX complex gain). None as for :meth:`shadow_transmission`.
+        a per-RX complex gain). ``groups`` ``(T,)``: the item of each frame (:meth:`simulate_items`); a
+        path is kept per item, where that item's people touch it. None as for :meth:`shadow_transmission`.
         """
         knots = self.shadow_knots(people, times)
         if knots is None:
             return None
         t, weights = knots
         d = (t - 1).to(self.device)  # (T, J, P)
-        hit = (d.abs() > SHADOW_TOL).reshape(-1, d.shape[-1]).any(0)  # (P,) the paths some frame's people touch
-        if not bool(hit.any()):
-            return None
-        d = d * hit
+        touched = d.abs() > SHADOW_TOL
+        if groups is None:
+            hit = touched.reshape(-1, d.shape[-1]).any(0)  # (P,) the paths some frame's people touch
+            if not bool(hit.any()):
+                return None
+            d = d * hit
+        else:
+            if not bool(touched.any()):
+                return None
+            g = groups.to(self.device)
+            hits = torch.zeros(int(g.max()) + 1, d.shape[-1], dtype=torch.int32, device=self.device)
+            hits.index_add_(0, g, touched.any(1).to(torch.int32))  # (items, P): as each item alone
+            d = d * (hits[g] > 0)[:, None, :]
         if quadrature:
             d = torch.stack([d, -1j * d])
         basis = self.static_basis()  # (P, 2, RX, N)
@@ -406,22 +439,11 @@ class DigitalTwin:
         less than a cycle per chirp.
         """
         pair = self.shadow_signal(people, times, quadrature=True)
-        if pair is None:
-            return None
-        shadow, quad = pair
-        amp, phase = rx_gain(mismatch, shadow)
-        return amp * (torch.cos(phase) * shadow + torch.sin(phase) * quad)
+        return None if pair is None else _turned(mismatch, *pair)
 
-    def drawn_signal(self, people: list[Any], times: torch.Tensor, draw: ItemDraw, paths: Paths, *,
-                     shadow: bool = True) -> tuple[FMCWReceiver, Paths, torch.Tensor]:
-        """The item's receiver, all its paths and the room's signal for :meth:`simulate` with a draw.
-
-        ``paths`` are the people's (RCS-scaled, negligible ones off). The room's cached signal is adjusted
-        exactly: scaled by the gain offset (by linearity), turned by a drawn RX mismatch as
-        ``a (cos(phi) S - sin(phi) Q)`` (``Q``: :meth:`room_quadrature`), less the strongest returns passed
-        as paths for their phase noise (docs/simulation.md, "Twin randomization"). ``shadow=False``: the
-        caller passes the people's shadow in ``paths`` (``shadow_method="paths"``).
-        """
+    def _drawn_parts(self, draw: ItemDraw, paths: Paths
+                     ) -> tuple[FMCWReceiver, Paths, torch.Tensor, RxGainPhaseMismatch | None]:
+        """:meth:`drawn_signal` before the people's shadow and the gain offset: also the mismatch to turn the shadow by."""
         if draw.scatterers:
             paths = Paths.cat([paths, static_scatterer_paths(self.config, draw.scatterers, paths)])
         pn = None if not draw.phase_noise_rms_Hz else (draw.phase_noise_rms_Hz, draw.phase_noise_paths)
@@ -440,14 +462,25 @@ class DigitalTwin:
         if mismatch is not None:
             amp, phase = rx_gain(mismatch, static)
             static = amp * (torch.cos(phase) * static - torch.sin(phase) * self.room_quadrature(k))
+        return receiver, paths, static, mismatch
+
+    def drawn_signal(self, people: list[Any], times: torch.Tensor, draw: ItemDraw, paths: Paths, *,
+                     shadow: bool = True) -> tuple[FMCWReceiver, Paths, torch.Tensor]:
+        """The item's receiver, all its paths and the room's signal for :meth:`simulate` with a draw.
+
+        ``paths`` are the people's (RCS-scaled, negligible ones off). The room's cached signal is adjusted
+        exactly: scaled by the gain offset (by linearity), turned by a drawn RX mismatch as
+        ``a (cos(phi) S - sin(phi) Q)`` (``Q``: :meth:`room_quadrature`), less the strongest returns passed
+        as paths for their phase noise (docs/simulation.md, "Twin randomization"). ``shadow=False``: the
+        caller passes the people's shadow in ``paths`` (``shadow_method="paths"``).
+        """
+        receiver, paths, static, mismatch = self._drawn_parts(draw, paths)
         if shadow:
             change = (self.shadow_signal(people, times) if mismatch is None
                       else self._mismatched_shadow(people, times, mismatch))
             if change is not None:
                 static = static + change
-        if draw.system_gain_offset_dB != 0.0:
-            static = static * 10 ** (draw.system_gain_offset_dB / 20)
-        return receiver, paths, static
+        return receiver, paths, _gain_offset(static, draw)
 
     @torch.no_grad()
     def simulate(
@@ -486,15 +519,145 @@ class DigitalTwin:
         else:
             receiver, paths, static = self.drawn_signal(people, times, draw, paths,
                                                         shadow=self.shadow_method == "signal")
-        start = times.to(torch.float64) + t0 if t0 else times.to(torch.float64)
-        if isinstance(generators, Sequence):
-            if len(generators) != times.shape[0]:
-                raise InputTensorError(f"need one generator per frame: {len(generators)} for {times.shape[0]} frames")
-            frames = [
-                receiver(paths.select(k), generator=g, frame_start_s=float(start[k]),
-                         static_signal=static[k] if static.dim() == 4 else static)
-                for k, g in enumerate(generators)
-            ]
-            return torch.stack(frames)
-        # Each frame of the batch starts at its own time (time-locked effects such as a spur tone).
-        return receiver(paths, generator=generators, frame_start_s=start, static_signal=static)
+        return _receive(receiver, paths, static, times, generators, t0)
+
+    @torch.no_grad()
+    def simulate_items(self, items: Sequence[TwinItem]) -> list[torch.Tensor]:
+        """:meth:`simulate` of several items at once, each with its own people and draw, in this twin's room.
+
+        The people of every item are traced together (padded to one segment count) and their shadows
+        computed together; each item then gets its own receiver. Equal to one :meth:`simulate` call per
+        item within the synthesis' contract (docs/simulation.md, "Many items per call").
+
+        Returns:
+            each item's frames ``(T_i, rx, chirps, samples)``, in order.
+        """
+        if not items:
+            return []
+        if self.shadow_method != "signal":  # the proxy's path form of the shadow: one item at a time
+            return [self.simulate(it.people, it.times, generators=it.generators, draw=it.draw, t0=it.t0)
+                    for it in items]
+        times = [it.times.to(torch.float64).reshape(-1) for it in items]
+        counts = [int(t.shape[0]) for t in times]
+        all_times = torch.cat(times)
+        who = _PeopleRows(self, [list(it.people or []) for it in items], times)
+        traced = self._traced(who.ellipsoids, all_times, who.dead) if who else self._no_paths(all_times)
+        starts = [sum(counts[:i]) for i in range(len(items) + 1)]
+        parts = []
+        for i, it in enumerate(items):
+            paths = traced.select(slice(starts[i], starts[i + 1]))
+            if it.draw is not None and who.people[i]:
+                pad = who.s_max - sum(who.segments[i])
+                paths = scale_people_paths(paths, who.segments[i] + ([pad] if pad else []),
+                                           [*it.draw.rcs_scale_dB, *([0.0] if pad else [])])
+            paths = negligible_paths_off(paths)
+            parts.append((self.receiver, paths, self.static_signal(), None) if it.draw is None
+                         else self._drawn_parts(it.draw, paths))
+        turned = any(m is not None for *_, m in parts)
+        shadow = self.shadow_signal(who, all_times, quadrature=True, groups=who.row_item) if turned else \
+            self.shadow_signal(who, all_times, groups=who.row_item)
+        out = []
+        for i, (it, (receiver, paths, static, mismatch)) in enumerate(zip(items, parts)):
+            rows = slice(starts[i], starts[i + 1])
+            if shadow is not None and who.people[i]:
+                if isinstance(shadow, tuple):  # some item's mismatch turns its shadow (as _mismatched_shadow)
+                    change = shadow[0][rows] if mismatch is None else _turned(mismatch, shadow[0][rows], shadow[1][rows])
+                else:
+                    change = shadow[rows]
+                static = static + change
+            if it.draw is not None:
+                static = _gain_offset(static, it.draw)
+            out.append(_receive(receiver, paths, static, times[i], it.generators, it.t0))
+        return out
+
+
+@dataclasses.dataclass(frozen=True)
+class TwinItem:
+    """One item of :meth:`DigitalTwin.simulate_items`: the arguments of one :meth:`DigitalTwin.simulate` call."""
+
+    people: Sequence[Any] | None
+    times: torch.Tensor
+    generators: Sequence[torch.Generator] | torch.Generator | None = None
+    draw: ItemDraw | None = None
+    t0: float = 0.0
+
+
+class _PeopleRows:
+    """The people of several items, item ``i`` on its own frames, padded to one segment count for one trace.
+
+    The padding segments sit 1 km behind the radar and are 1 mm across: traced with the rest, they touch
+    nothing, and :meth:`dead` masks their paths.
+    """
+
+    def __init__(self, twin: DigitalTwin, people: list[list[Any]], times: list[torch.Tensor]) -> None:
+        self.twin, self.people = twin, people
+        self.row_item = torch.repeat_interleave(torch.arange(len(people)), torch.tensor([int(t.shape[0]) for t in times]))
+        self.segments = [[int(p.ellipsoids(t[:1]).centers.shape[-2]) for p in ps] for ps, t in zip(people, times)]
+        self.counts = torch.tensor([sum(s) for s in self.segments], dtype=torch.long)
+        self.s_max = int(self.counts.max()) if len(people) else 0
+
+    def __bool__(self) -> bool:
+        return self.s_max > 0
+
+    def ellipsoids(self, t: torch.Tensor, rows: torch.Tensor) -> Ellipsoids:
+        """``(n, S_max)`` segments at times ``t`` of frames ``rows``: each frame's item's, then padding."""
+        tw = self.twin
+        dev, dt, n, s = tw.device, tw.dtype, int(t.shape[0]), self.s_max
+        radar = tw.scene.radar
+        far = (radar.position - 1000.0 * radar.rotation[:, 2]).to(device=dev, dtype=dt)
+        centers = far.expand(n, s, 3).clone()
+        semi = torch.full((n, s, 3), 1e-3, device=dev, dtype=dt)
+        rot = torch.eye(3, device=dev, dtype=dt).expand(n, s, 3, 3).clone()
+        vel = torch.zeros(n, s, 3, device=dev, dtype=dt)
+        omega: torch.Tensor | None = None
+        material = "skin"
+        item_of = self.row_item[rows]
+        for i in torch.unique(item_of).tolist():
+            if not self.people[i]:
+                continue
+            sel = (item_of == i).nonzero()[:, 0].to(dev)
+            e = tw.ellipsoids(self.people[i], t[sel.cpu()])
+            assert e is not None
+            k = e.centers.shape[-2]
+            material = e.material
+            centers[sel, :k], semi[sel, :k], rot[sel, :k], vel[sel, :k] = e.centers, e.semi_axes, e.rotations, e.velocities
+            if e.angular_velocities is not None:
+                omega = torch.zeros_like(vel) if omega is None else omega
+                omega[sel, :k] = e.angular_velocities
+        return Ellipsoids(centers, semi, rot, vel, material, omega)
+
+    def dead(self, p: Paths, rows: torch.Tensor) -> Paths:
+        """``p`` with the padding segments' slots masked and zeroed in frames ``rows``."""
+        dev = p.delay_s.device
+        segment = slot_segments(self.s_max, p.num_paths, dev)
+        live = segment[None, :] < self.counts.to(dev)[self.row_item[rows].to(dev)][:, None]  # (n, P)
+        mask = live if p.mask is None else p.mask & live
+        return dataclasses.replace(p, amplitude=p.amplitude * live[..., None].to(p.amplitude.real.dtype), mask=mask)
+
+
+def _turned(mismatch: RxGainPhaseMismatch, shadow: torch.Tensor, quad: torch.Tensor) -> torch.Tensor:
+    """A shadow change turned by the per-RX complex gain of ``mismatch``, from it and its quadrature."""
+    amp, phase = rx_gain(mismatch, shadow)
+    return amp * (torch.cos(phase) * shadow + torch.sin(phase) * quad)
+
+
+def _gain_offset(static: torch.Tensor, draw: ItemDraw) -> torch.Tensor:
+    """The room's signal scaled by the draw's system-gain offset (by linearity)."""
+    return static * 10 ** (draw.system_gain_offset_dB / 20) if draw.system_gain_offset_dB != 0.0 else static
+
+
+def _receive(receiver: FMCWReceiver, paths: Paths, static: torch.Tensor, times: torch.Tensor,
+             generators: Sequence[torch.Generator] | torch.Generator | None, t0: float) -> torch.Tensor:
+    """The receiver's frames of ``paths`` and the room's ``static`` signal at frame starts ``times`` (+ ``t0``)."""
+    start = times.to(torch.float64) + t0 if t0 else times.to(torch.float64)
+    if isinstance(generators, Sequence):
+        if len(generators) != times.shape[0]:
+            raise InputTensorError(f"need one generator per frame: {len(generators)} for {times.shape[0]} frames")
+        frames = [
+            receiver(paths.select(k), generator=g, frame_start_s=float(start[k]),
+                     static_signal=static[k] if static.dim() == 4 else static)
+            for k, g in enumerate(generators)
+        ]
+        return torch.stack(frames)
+    # Each frame of the batch starts at its own time (time-locked effects such as a spur tone).
+    return receiver(paths, generator=generators, frame_start_s=start, static_signal=static)

@@ -10,7 +10,7 @@ import dataclasses
 import hashlib
 import json
 import os
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -128,8 +128,10 @@ def build_map_caches(
     sim = _RawItems(dataset)
     if num_workers > 0:
         dataset.prepare()
-    # (split, row in the split's file, item) of every item to simulate, in loader order
+    # (split, row in the split's file, item) of every item to simulate, in loader order: grouped by room
+    # variant, so that a batch's items share one twin and are simulated in one call (the rows say where each goes)
     order = [(name, row, i) for name in todo for row, i in enumerate(splits[name])]
+    order.sort(key=lambda o: -1 if (v := dataset.room_variant(o[2])) is None else v)
     loader = DataLoader(Subset(sim, [i for _, _, i in order]), batch_size=batch_size, num_workers=num_workers,
                         persistent_workers=False)
     chain = rd_db_chain()
@@ -199,14 +201,21 @@ class _RawItems(Dataset):
         return len(self.dataset)
 
     def __getitem__(self, index: int) -> tuple[torch.Tensor, int]:
+        return self._raw(lambda ds: [ds[index]])[0]
+
+    def __getitems__(self, indices: Sequence[int]) -> list[tuple[torch.Tensor, int]]:
+        """A batch of items, simulated together (:meth:`SimulatedRadarDataset.__getitems__`)."""
+        return self._raw(lambda ds: ds.__getitems__(indices))
+
+    def _raw(self, get: Callable[[SimulatedRadarDataset], list[Any]]) -> list[tuple[torch.Tensor, int]]:
         ds = self.dataset
         saved = ds.transform, ds.target
         ds.transform, ds.target = None, "count"
         try:
-            x, count = ds[index]
+            items = get(ds)
         finally:
             ds.transform, ds.target = saved
-        return x.float(), int(count)
+        return [(x.float(), int(count)) for x, count in items]
 
 
 class CachedMaps(Dataset):
