@@ -1075,6 +1075,51 @@ FIGURES: list[Figure] = [
             *(f"variants/{v}/worst" for v in ("counting+gate", "two_step"))),
            "counting + gate {:.3f} ± {:.3f} → {:.3f} ± {:.3f} (std over 3 seeds of the suite mean), "
            "worst world {:.3f} → {:.3f}"),
+    Figure("docs/training.md", "occupancy + gate 0.949 ± 0.008 → 0.930 ± 0.011, worst world 0.839 → 0.731; "
+           "counting + gate 0.692 ± 0.006 → 0.719 ± 0.013, worst world 0.500 → 0.441", "heldout_design_adabn_cpu.json",
+           tuple(f"summary/{t}/{v} context+gate/{k}" for t in ("occupancy", "counting")
+                 for k, v in (("mean", "base"), ("std_over_seeds_of_suite_mean", "base"), ("mean", "adabn_test"),
+                              ("std_over_seeds_of_suite_mean", "adabn_test"), ("worst", "base"),
+                              ("worst", "adabn_test"))),
+           "occupancy + gate {:.3f} ± {:.3f} → {:.3f} ± {:.3f}, worst world {:.3f} → {:.3f}; "
+           "counting + gate {:.3f} ± {:.3f} → {:.3f} ± {:.3f}, worst world {:.3f} → {:.3f}"),
+    Figure("docs/training.md", "both collapse (occupancy 0.550, counting 0.428)", "heldout_design_adabn_cpu.json",
+           ("summary/occupancy/adabn_calibration context+gate/mean", "summary/counting/adabn_calibration context+gate/mean"),
+           "both collapse (occupancy {:.3f}, counting {:.3f})"),
+    Figure("benchmarks/README.md", "batched 13.01 vs one by one 13.69 items/s (0.95×): no gain on the CPU; the pair "
+           "budget 2^18 vs 2^22: batched 1.27×, one by one 1.01×", "twin_items_cpu.json",
+           ("items_per_s/batched", "items_per_s/one_by_one", "batched_speedup", "pair_budget/batched_speedup",
+            "pair_budget/one_by_one_speedup"),
+           "batched {:.2f} vs one by one {:.2f} items/s ({:.2f}×): no gain on the CPU; the pair budget 2^18 vs 2^22: "
+           "batched {:.2f}×, one by one {:.2f}×"),
+    Figure("benchmarks/README.md", "2^18 vs 2^22: randomized room 16-frame call 1.47×, its single items 1.02×, the "
+           "two-walker corridor's blocks 0.98×", "bvh_pair_budget_cpu.json",
+           tuple(f"speedup_vs_before/{k}/2^18" for k in (
+               "randomized_room_16_frame_call_s", "randomized_room_8_items_s", "bench_twin_frames_per_s")),
+           "2^18 vs 2^22: randomized room 16-frame call {:.2f}×, its single items {:.2f}×, the two-walker corridor's "
+           "blocks {:.2f}×"),
+    Figure("benchmarks/README.md", "occupancy 0.949 → 0.930 (worst 0.839 → 0.731), counting 0.692 → 0.719 (worst 0.500 → "
+           "0.441); on the empty room alone 0.550 / 0.428", "heldout_design_adabn_cpu.json",
+           (*(f"summary/{t}/{v} context+gate/{k}" for t in ("occupancy", "counting")
+              for k, v in (("mean", "base"), ("mean", "adabn_test"), ("worst", "base"), ("worst", "adabn_test"))),
+            "summary/occupancy/adabn_calibration context+gate/mean", "summary/counting/adabn_calibration context+gate/mean"),
+           "occupancy {:.3f} → {:.3f} (worst {:.3f} → {:.3f}), counting {:.3f} → {:.3f} (worst {:.3f} → {:.3f}); on the "
+           "empty room alone {:.3f} / {:.3f}"),
+    Figure("docs/simulation.md", "13.01 items/s batched against 13.69 one by one (0.95x)", "twin_items_cpu.json",
+           ("items_per_s/batched", "items_per_s/one_by_one", "batched_speedup"),
+           "{:.2f} items/s batched against {:.2f} one by one ({:.2f}x)"),
+    Figure("docs/simulation.md", "and batched items 1.27x (`twin_items_cpu.json`)", "twin_items_cpu.json",
+           "pair_budget/batched_speedup", "and batched items {:.2f}x (`twin_items_cpu.json`)"),
+    Figure("docs/simulation.md", "1.47x faster, its single-frame items 1.02x, the two-walker corridor's blocks 0.98x",
+           "bvh_pair_budget_cpu.json", tuple(f"speedup_vs_before/{k}/2^18" for k in (
+               "randomized_room_16_frame_call_s", "randomized_room_8_items_s", "bench_twin_frames_per_s")),
+           "{:.2f}x faster, its single-frame items {:.2f}x, the two-walker corridor's blocks {:.2f}x"),
+    Figure("radaraug/raytrace/accel.py", "1.47x faster than 2^22 on a randomized room's 16-frame call, 1.02x on its "
+           "single-frame items, 0.98x on the two-walker corridor's blocks", "bvh_pair_budget_cpu.json",
+           tuple(f"speedup_vs_before/{k}/2^18" for k in (
+               "randomized_room_16_frame_call_s", "randomized_room_8_items_s", "bench_twin_frames_per_s")),
+           "{:.2f}x faster than 2^22 on a randomized room's 16-frame call, {:.2f}x on its single-frame items, "
+           "{:.2f}x on the two-walker corridor's blocks"),
     # docs/training.md: issue 34's rounds (report-2, the operating point, design round 2, design, report-1)
     Figure("docs/training.md", "| occupancy | 0.685 ± 0.013 (worst 0.500) | 0.691 ± 0.005 (0.500) | 0.579 ± 0.004 (0.499) | "
            "0.693 ± 0.014 (0.500) |", "heldout_report2_cpu.json", _suite_cells(_R2, "occupancy"),
