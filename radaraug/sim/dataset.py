@@ -192,7 +192,7 @@ class SimulatedRadarDataset(Dataset):
         twins = [self.variant_twin(k) for k in range(len(self._rooms))] if self.randomized else [self.twin]
         for twin in twins:
             twin.static_signal()
-            if twin.shadowing and twin.shadow_method == "signal":
+            if twin.shadowing:
                 twin.static_basis()
         return self
 

@@ -404,10 +404,9 @@ def _generate(out: Path, settings: dict[str, Any], frames_per_count: int, calibr
     motion_dir.mkdir(exist_ok=True)
 
     scene = proxy_scene()
-    # One twin for every file (the room is traced once). The people's shadow on the room goes to the
-    # receiver as paths: the proxy's frames were made so.
+    # One twin for every file (the room is traced once).
     twin = DigitalTwin(scene, receiver=proxy_receiver(scene.config), tracer_options=tracer_options,
-                       device=torch.device(device), shadow_method="paths")
+                       device=torch.device(device))
     config = twin.config
     scene.save(out / ROOM_SCENE_NAME)
     tqdm = lazy_import("tqdm.auto", feature="progress bars").tqdm

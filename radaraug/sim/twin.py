@@ -92,10 +92,6 @@ class DigitalTwin:
             unless ``tracer_options`` sets it. Give ``receiver`` or ``profile``, not both.
         shadowing: the people shadow the room's paths (knife-edge diffraction,
             :mod:`radaraug.raytrace.shadow`; the image method's rooms, not SBR's).
-        shadow_method: how :meth:`simulate` applies that shadow: ``"signal"`` (default) changes the
-            room's cached signal through the static basis (:meth:`shadow_signal`, one small matrix
-            product per batch); ``"paths"`` passes the shadowed room paths' corrections to the
-            receiver as paths (:meth:`shadow_paths`, slower; equal to float rounding).
         intra_frame: motion inside a frame: ``"auto"`` (default, :mod:`radaraug.sim.intra_frame`), a
             fixed number of knot intervals per frame, or ``0`` (one snapshot, delays extrapolated linearly).
         intra_frame_tol_cycles: tolerance of the automatic choice, carrier cycles of delay.
@@ -119,7 +115,6 @@ class DigitalTwin:
         static_signal: torch.Tensor | None = None,
         profile: Any = None,
         shadowing: bool = True,
-        shadow_method: str = "signal",
         intra_frame: int | str = "auto",
         intra_frame_tol_cycles: float = DEFAULT_TOL_CYCLES,
         shadow_intervals: int = 0,
@@ -130,9 +125,6 @@ class DigitalTwin:
         self.dtype = dtype
         self.multipath = multipath
         self.shadowing = shadowing
-        if shadow_method not in ("signal", "paths"):
-            raise ConfigError(f"DigitalTwin: shadow_method must be 'signal' or 'paths', got {shadow_method!r}")
-        self.shadow_method = shadow_method
         profile = as_profile(profile)
         # A profile's room section (its fitted diffuse gain) is a tracer option; the caller's win.
         room = profile.tracer_options() if profile is not None else {}
@@ -464,22 +456,21 @@ class DigitalTwin:
             static = amp * (torch.cos(phase) * static - torch.sin(phase) * self.room_quadrature(k))
         return receiver, paths, static, mismatch
 
-    def drawn_signal(self, people: list[Any], times: torch.Tensor, draw: ItemDraw, paths: Paths, *,
-                     shadow: bool = True) -> tuple[FMCWReceiver, Paths, torch.Tensor]:
+    def drawn_signal(self, people: list[Any], times: torch.Tensor, draw: ItemDraw,
+                     paths: Paths) -> tuple[FMCWReceiver, Paths, torch.Tensor]:
         """The item's receiver, all its paths and the room's signal for :meth:`simulate` with a draw.
 
         ``paths`` are the people's (RCS-scaled, negligible ones off). The room's cached signal is adjusted
         exactly: scaled by the gain offset (by linearity), turned by a drawn RX mismatch as
         ``a (cos(phi) S - sin(phi) Q)`` (``Q``: :meth:`room_quadrature`), less the strongest returns passed
-        as paths for their phase noise (docs/simulation.md, "Twin randomization"). ``shadow=False``: the
-        caller passes the people's shadow in ``paths`` (``shadow_method="paths"``).
+        as paths for their phase noise (docs/simulation.md, "Twin randomization"); the people's shadow
+        changes the room's signal (:meth:`shadow_signal`).
         """
         receiver, paths, static, mismatch = self._drawn_parts(draw, paths)
-        if shadow:
-            change = (self.shadow_signal(people, times) if mismatch is None
-                      else self._mismatched_shadow(people, times, mismatch))
-            if change is not None:
-                static = static + change
+        change = (self.shadow_signal(people, times) if mismatch is None
+                  else self._mismatched_shadow(people, times, mismatch))
+        if change is not None:
+            static = static + change
         return receiver, paths, _gain_offset(static, draw)
 
     @torch.no_grad()
@@ -508,17 +499,13 @@ class DigitalTwin:
         people = list(people or [])
         traced = self.paths(people, times) if draw is None else self.people_paths(people, times, draw.rcs_scale_dB)
         paths = negligible_paths_off(traced)
-        as_paths = self.shadow_paths(people, times) if self.shadow_method == "paths" else None
-        if as_paths is not None:
-            paths = Paths.cat([paths, as_paths])
         if draw is None:
             receiver, static = self.receiver, self.static_signal()
-            shadow = self.shadow_signal(people, times) if self.shadow_method == "signal" else None
+            shadow = self.shadow_signal(people, times)
             if shadow is not None:
                 static = static + shadow  # (T, RX, chirps, samples): the shadowed room per frame
         else:
-            receiver, paths, static = self.drawn_signal(people, times, draw, paths,
-                                                        shadow=self.shadow_method == "signal")
+            receiver, paths, static = self.drawn_signal(people, times, draw, paths)
         return _receive(receiver, paths, static, times, generators, t0)
 
     @torch.no_grad()
@@ -534,9 +521,6 @@ class DigitalTwin:
         """
         if not items:
             return []
-        if self.shadow_method != "signal":  # the proxy's path form of the shadow: one item at a time
-            return [self.simulate(it.people, it.times, generators=it.generators, draw=it.draw, t0=it.t0)
-                    for it in items]
         times = [it.times.to(torch.float64).reshape(-1) for it in items]
         counts = [int(t.shape[0]) for t in times]
         all_times = torch.cat(times)

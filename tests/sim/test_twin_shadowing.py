@@ -33,9 +33,9 @@ def test_static_basis_route_equals_correction_paths():
     torch.testing.assert_close(sig, sig[:, :, :1].expand_as(sig))
 
 
-def test_shadow_method_paths_in_simulate_and_t0():
-    """``DigitalTwin(shadow_method="paths")`` gives :meth:`simulate` the same frames (to rounding);
-    ``t0`` moves the receiver's clock only."""
+def test_shadow_as_paths_equals_simulate_and_t0():
+    """The room's shadowed paths passed to the receiver (:meth:`DigitalTwin.frame_paths`) give :meth:`simulate`'s
+    frames (to rounding), with and without a draw; ``t0`` moves the receiver's clock only."""
     from radaraug.sensor.effects import SpurTone
     from radaraug.sim.randomization import ItemDraw
 
@@ -45,22 +45,18 @@ def test_shadow_method_paths_in_simulate_and_t0():
     fast = DigitalTwin(scene, receiver=FMCWReceiver(scene.config, effects=chain), intra_frame=0)
     people = [Walker(start=(4.0, -0.6), heading_rad=1.2)]
     times = fast.frame_times(range(2)) * 4
+    g = torch.Generator().manual_seed(0)
+    a = fast.simulate(people, times, generators=g)
+    b = fast.receiver(fast.frame_paths(people, times), static_signal=fast.static_signal(), frame_start_s=times,
+                      generator=torch.Generator().manual_seed(0))
+    assert float((a - b).abs().max()) < 1e-4 * float(a.abs().max())
     draw = ItemDraw(variant=0, system_gain_offset_dB=0.0, noise_figure_offset_dB=0.0, rcs_scale_dB=(1.0,))
-    frames = {}
-    for d in (None, draw):
-        for method in ("signal", "paths"):
-            fast.shadow_method = method  # the same twin: its room is traced once
-            frames[method] = fast.simulate(people, times, draw=d)
-        a, b = frames["signal"], frames["paths"]
-        assert float((a - b).abs().max()) < 1e-4 * float(a.abs().max())
-        base = a
+    base = fast.simulate(people, times, draw=draw)
     # The spur is time-locked: t0 = one spur period leaves the frames; half a period turns its sign.
     period = 1 / 233e3
     torch.testing.assert_close(fast.simulate(people, times, draw=draw, t0=1000 * period), base,
                                atol=1e-4 * float(base.abs().max()), rtol=0)
     assert not torch.allclose(fast.simulate(people, times, draw=draw, t0=period / 2), base)
-    with pytest.raises(ConfigError):
-        DigitalTwin(scene, shadow_method="basis")
 
 
 def _corridor(width: float, height: float, radar_z: float) -> Scene:
