@@ -44,6 +44,7 @@ lint: $(STAMP)
 bench: $(STAMP)
 	$(VENV)/bin/radaraug bench transforms -o benchmarks/transforms_cpu.json --overwrite
 	$(VENV)/bin/radaraug bench twin -o benchmarks/twin_cpu.json --overwrite
+	$(VENV)/bin/radaraug bench items -o benchmarks/twin_items_cpu.json --overwrite
 	$(VENV)/bin/radaraug bench training -o benchmarks/training_cpu.json --overwrite
 	$(VENV)/bin/radaraug bench diagnose -o benchmarks/diagnose_cpu.json --overwrite
 	$(VENV)/bin/radaraug bench static-room -o benchmarks/static_room_cpu.json --overwrite --figure docs/img/twin/static_profile_vs_density.png
