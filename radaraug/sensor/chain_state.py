@@ -258,6 +258,8 @@ class ChainState:
         :meth:`materialize` adds them. Signals added as samples and modulated copies get none.
         """
         tm = self.timing
+        if cutoff_Hz.numel() != 1:
+            raise InputTensorError(f"the high-pass start-up needs one cutoff for every RX, got {tuple(cutoff_Hz.shape)}")
         a = 2 * math.pi * float(cutoff_Hz.reshape(-1)[0])
         delay, rate = self.delay_s.double(), self.delay_rate.double()  # (…, RX, P)
         m = torch.arange(tm.num_chirps, device=self.device, dtype=torch.float64) * tm.prt

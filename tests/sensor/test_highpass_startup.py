@@ -10,7 +10,7 @@ import pytest
 import torch
 
 from radaraug.config import RadarConfig
-from radaraug.errors import ConfigError
+from radaraug.errors import ConfigError, InputTensorError
 from radaraug.sensor.chain_state import startup_coefficients
 from radaraug.sensor.effects import ADCClipping, AntiAliasLowPass, IFHighPass, effect_from_dict
 from radaraug.sensor.paths import Paths
@@ -104,6 +104,10 @@ def test_description_round_trip_and_bad_values() -> None:
     assert "startup" not in IFHighPass().to_dict()["params"]  # older descriptions stay as they were
     with pytest.raises(ConfigError, match="startup"):
         IFHighPass(startup=2)
+    config = RadarConfig.bgt60tr13c()
+    per_rx = FMCWReceiver(config, effects=[IFHighPass(cutoff_Hz=[70e3, 80e3, 90e3], startup=1)])
+    with pytest.raises(InputTensorError, match="one cutoff"):
+        per_rx(_one_path(config, 1.0))
 
 
 def test_static_signal_once_keeps_superposition() -> None:
