@@ -2,7 +2,7 @@
 
 Each person's paths scaled by its RCS draw, static point scatterers, the item's receiver (offsets,
 phase noise, catalog effects) and the algebra that turns the room's cached signal by a drawn RX
-mismatch. Functions of data only: the twin calls them (:meth:`DigitalTwin.drawn_signal`), never the
+mismatch. Functions of data only: the twin calls them (``DigitalTwin.simulate_items``), never the
 other way round.
 """
 

@@ -383,16 +383,9 @@ class DigitalTwin:
         return paths if shadow is None else Paths.cat([paths, shadow])
 
     # ------------------------------------------------------------------ a per-item draw
-    def people_paths(self, people: Sequence[Any], times: torch.Tensor, rcs_scale_dB: Sequence[float]) -> Paths:
-        """:meth:`paths` of ``people`` at ``times``, each person's scaled by its RCS scale (dB)."""
-        paths = self.paths(list(people), times)
-        t0 = times[:1].to(torch.float64)
-        segments = [int(p.ellipsoids(t0).centers.shape[-2]) for p in people]
-        return scale_people_paths(paths, segments, rcs_scale_dB)
-
     def _room_cached(self, key: tuple[str, int], make: Any) -> Any:
         if key not in self._room_cache:
-            value = make()  # outside any lock: a room synthesis takes a second
+            value = make()  # a room synthesis takes a second; setdefault keeps the first of racing threads
             return self._room_cache.setdefault(key, value)
         return self._room_cache[key]
 
@@ -420,22 +413,15 @@ class DigitalTwin:
             return quadrature(self.receiver, self.tracer.static_paths())
         return self._room_cached(("quadrature", k), make)
 
-    def _mismatched_shadow(self, people: list[Any], times: torch.Tensor,
-                           mismatch: RxGainPhaseMismatch) -> torch.Tensor | None:
-        """:meth:`shadow_signal` through the per-RX complex gain ``g`` of ``mismatch``, exactly.
-
-        The shadow is ``sum_p Re(d_p) b0_p + Im(d_p) b1_p`` over the room's paths (``d = T - 1``, ``b`` the
-        :meth:`static_basis`); the gain turns each path's coefficient, which is the same sum with
-        ``conj(g) d`` per RX: ``Re(g) shadow + Im(g) shadow(-j d)``. Both from one transmission and one
-        product. A per-chirp frequency-domain turn would not do: the near-range paths' beat tones hold
-        less than a cycle per chirp.
-        """
-        pair = self.shadow_signal(people, times, quadrature=True)
-        return None if pair is None else _turned(mismatch, *pair)
-
     def _drawn_parts(self, draw: ItemDraw, paths: Paths
                      ) -> tuple[FMCWReceiver, Paths, torch.Tensor, RxGainPhaseMismatch | None]:
-        """:meth:`drawn_signal` before the people's shadow and the gain offset: also the mismatch to turn the shadow by."""
+        """The item's receiver, all its paths and the room's signal before the people's shadow and the gain offset.
+
+        ``paths`` are the people's (RCS-scaled, negligible ones off). The room's cached signal is adjusted
+        exactly: turned by a drawn RX mismatch as ``a (cos(phi) S - sin(phi) Q)`` (``Q``:
+        :meth:`room_quadrature`; the mismatch is returned to turn the shadow alike), less the strongest
+        returns passed as paths for their phase noise (docs/simulation.md, "Twin randomization").
+        """
         if draw.scatterers:
             paths = Paths.cat([paths, static_scatterer_paths(self.config, draw.scatterers, paths)])
         pn = None if not draw.phase_noise_rms_Hz else (draw.phase_noise_rms_Hz, draw.phase_noise_paths)
@@ -456,23 +442,6 @@ class DigitalTwin:
             static = amp * (torch.cos(phase) * static - torch.sin(phase) * self.room_quadrature(k))
         return receiver, paths, static, mismatch
 
-    def drawn_signal(self, people: list[Any], times: torch.Tensor, draw: ItemDraw,
-                     paths: Paths) -> tuple[FMCWReceiver, Paths, torch.Tensor]:
-        """The item's receiver, all its paths and the room's signal for :meth:`simulate` with a draw.
-
-        ``paths`` are the people's (RCS-scaled, negligible ones off). The room's cached signal is adjusted
-        exactly: scaled by the gain offset (by linearity), turned by a drawn RX mismatch as
-        ``a (cos(phi) S - sin(phi) Q)`` (``Q``: :meth:`room_quadrature`), less the strongest returns passed
-        as paths for their phase noise (docs/simulation.md, "Twin randomization"); the people's shadow
-        changes the room's signal (:meth:`shadow_signal`).
-        """
-        receiver, paths, static, mismatch = self._drawn_parts(draw, paths)
-        change = (self.shadow_signal(people, times) if mismatch is None
-                  else self._mismatched_shadow(people, times, mismatch))
-        if change is not None:
-            static = static + change
-        return receiver, paths, _gain_offset(static, draw)
-
     @torch.no_grad()
     def simulate(
         self,
@@ -491,22 +460,12 @@ class DigitalTwin:
             generators: one generator per frame (frame ``k`` then depends only on its seed), one
                 for the batch, or None (global RNG).
             draw: a per-item draw (:meth:`~radaraug.sim.randomization.TwinRandomization.item`) to
-                simulate under (:meth:`drawn_signal`); its room variant is
+                simulate under (docs/simulation.md, "Twin randomization"); its room variant is
                 not applied here: simulate with that variant's twin. None (default): the twin as it is.
             t0: the recording's time at ``times == 0``, s: the receiver's time-locked effects (a spur
                 tone) see ``t0 + times``, so that several scenes can be played into one recording.
         """
-        people = list(people or [])
-        traced = self.paths(people, times) if draw is None else self.people_paths(people, times, draw.rcs_scale_dB)
-        paths = negligible_paths_off(traced)
-        if draw is None:
-            receiver, static = self.receiver, self.static_signal()
-            shadow = self.shadow_signal(people, times)
-            if shadow is not None:
-                static = static + shadow  # (T, RX, chirps, samples): the shadowed room per frame
-        else:
-            receiver, paths, static = self.drawn_signal(people, times, draw, paths)
-        return _receive(receiver, paths, static, times, generators, t0)
+        return self.simulate_items([TwinItem(people, times, generators, draw, t0)])[0]
 
     @torch.no_grad()
     def simulate_items(self, items: Sequence[TwinItem]) -> list[torch.Tensor]:
@@ -544,7 +503,7 @@ class DigitalTwin:
         for i, (it, (receiver, paths, static, mismatch)) in enumerate(zip(items, parts)):
             rows = slice(starts[i], starts[i + 1])
             if shadow is not None and who.people[i]:
-                if isinstance(shadow, tuple):  # some item's mismatch turns its shadow (as _mismatched_shadow)
+                if isinstance(shadow, tuple):  # some item's mismatch turns its shadow: the quadrature too
                     change = shadow[0][rows] if mismatch is None else _turned(mismatch, shadow[0][rows], shadow[1][rows])
                 else:
                     change = shadow[rows]

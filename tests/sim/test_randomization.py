@@ -279,10 +279,12 @@ def test_gain_offset_scales_room_people_and_noise_alike() -> None:
     effects = [e if e.name != "system_gain" else type(e)(gain_dB=g) for e in effects]
     ref_rx = FMCWReceiver(scene.config, effects=effects)
     draw = dsq.randomization.item(dsq.seed, i, params["count"])
-    from radaraug.sim.item_signal import static_scatterer_paths
+    from radaraug.sim.item_signal import scale_people_paths, static_scatterer_paths
 
     times = twin.frame_times([0])
-    people = twin.people_paths(dsq.scenario(i).people, times, draw.rcs_scale_dB)
+    walkers = dsq.scenario(i).people
+    segments = [int(p.ellipsoids(times[:1]).centers.shape[-2]) for p in walkers]
+    people = scale_people_paths(twin.paths(walkers, times), segments, draw.rcs_scale_dB)
     room = twin.tracer.static_paths().map(lambda t: t.expand(1, *t.shape))
     extra = [static_scatterer_paths(scene.config, draw.scatterers, people)] if draw.scatterers else []
     ref = ref_rx(Paths.cat([room, people, *extra]), frame_start_s=times)[0]
