@@ -133,7 +133,7 @@ def mismatch_panel(ax, cfg: RadarConfig, returns: Sequence[tuple[float, float]],
     gains = "/".join(f"{pr[f'noise_gain_dB_rx{i}']:+.2f}" for i in (2, 3))
     if returns:
         got = "returns " + "/".join(f"{pr[f'static_gain_dB_rx{i}']:+.2f}" for i in (2, 3)) + f" dB, noise {gains} dB"
-        got += "" if s.present else " (the noise must carry 40 % of it)"
+        got += "" if s.present else " (the floor must carry 40 % of what the returns predict for it)"
     else:
         got = f"noise {gains} dB, spread {pr['spread_dB']:.2f} dB"
     ax.set_title(f"rx_gain_phase_mismatch -3/+2 dB (dashed), {what}\n{verdict(s)}: {got}", fontsize=FS_TITLE)

@@ -900,6 +900,21 @@ FIGURES: list[Figure] = [
     Figure("docs/calibration.md", "found, held-out error 2.57 -> 0.54 dB (`benchmarks/diagnose_cpu.json`",
            "diagnose_cpu.json", ("error_before_dB", "error_after_dB"), "held-out error {:.2f} -> {:.2f} dB"),
     # docs/calibration.md: generator B's tables (diagnose_generator_b_cpu.json)
+    Figure("docs/calibration.md", "(`clipping_gain` in the record, seeds 1–3, 15 of 15 named): 3.7–4.4 → 1.8–1.9 dB at A "
+           "and 4.8–5.5 → 2.1–2.4 dB with a spur (halved at every seed), 6.6–6.9 → 3.5–3.7 dB at 43 dB and 5.3–5.7 → "
+           "3.6 dB at 128 × 32 (not halved)", _GB,
+           (*(f"clipping_gain/seed_{s}/{k}" for s in (1, 2, 3) for k in ("correct", "cases")),
+            *(f"clipping_gain/seed_{s}/rows/{r}/error_{w}_dB" for r in (0, 3, 1, 2) for w in ("before", "after")
+              for s in (1, 2, 3))),
+           lambda *v: f"(`clipping_gain` in the record, seeds 1–3, {sum(v[0:6:2]):d} of {sum(v[1:6:2]):d} named): "
+           + ", ".join(f"{_before_after()(*v[6 + 6 * i: 12 + 6 * i])} dB{w}" for i, w in enumerate(
+               (" at A", " with a spur", " at 43 dB", " at 128 × 32")))
+           .replace(" dB at A, ", " dB at A and ").replace(" with a spur, ", " with a spur (halved at every seed), ")
+           .replace(" dB at 43 dB, ", " dB at 43 dB and ") + " (not halved)"),
+    Figure("docs/calibration.md", "The gain fits +26 to +30 dB for the +18.4 dB put in, at the prior's bound in 10 of 12",
+           _GB, tuple(f"clipping_gain/seed_{s}/rows/{r}/params/adc_clipping/gain_dB" for s in (1, 2, 3) for r in range(4)),
+           lambda *g: f"The gain fits {min(g):+.0f} to {max(g):+.0f} dB for the +18.4 dB put in, at the prior's bound in "
+           f"{sum(x >= 30 - 0.02 * 60 for x in g):d} of {len(g):d}"),
     Figure("docs/calibration.md", "**36 of 36 at two seeds**", _GB,
            ("seeds/1/correct", "seeds/1/cases", "seeds/2/correct", "seeds/2/cases"),
            lambda c1, n1, c2, n2: f"**{c1} of {n1} at two seeds**" if (c1, n1) == (c2, n2) else f"{c1}/{n1} vs {c2}/{n2}"),

@@ -311,6 +311,11 @@ class Search:
             added.add("if_highpass")
             if keep:
                 chain, room, held = fitted, fitted_room, new_held
+        clip = ev.get("adc_clipping")
+        if clip is not None and clip.present and self.source.mode == "estimated" \
+                and find(chain, "system_gain") is not None:
+            chain, room, held = self._clipping_gain(chain, room, held, clip, steps)
+            added.add("adc_clipping")
         reported = [("adc_clipping", "always in the chain: the capture's ADC sits at its rails"),
                     ("tx_rx_leakage", "estimated mode: the static scene copies the capture's leakage")]
         for name, why in reported:
@@ -324,6 +329,34 @@ class Search:
             self.progress(f"{name}: {e.reason} ({why})")
             added.add(name)
         return chain, room, held
+
+    def _clipping_gain(self, chain: Chain, room: Room, held: Score, clip: Any,
+                       steps: list[dict[str, Any]]) -> tuple[Chain, Room, Score]:
+        """A clipping capture: refit the gain before the ADC with the base, kept if the held-out error falls.
+
+        Too much gain (or too small an ADC range) lifts the thermal noise over the ADC's own noise and
+        drives the strong part into the rails. In estimated mode the static scene follows the capture
+        whatever the gain, so the gain moves only the noise's share: the base refit alone cannot reach
+        it within its physical bounds. A rail hit by a strong near return instead leaves the gain where
+        it is (the step stays a report of the signature).
+        """
+        declared = float(require(chain, "system_gain")["params"]["gain_dB"])
+        prior = EFFECTS["system_gain"].priors(self.config)["gain_dB"]
+        fitted, fitted_room = self.refit_base(chain, [("system_gain", ParamSpec("gain_dB", prior))], room=room)
+        new_held = self.held_score(fitted, fitted_room)
+        gain = float(require(fitted, "system_gain")["params"]["gain_dB"])
+        keep = new_held.overall < held.overall - self.settings.min_gain_db
+        at_bound = min(gain - prior.lo, prior.hi - gain) <= 0.02 * (prior.hi - prior.lo)
+        why = (f"gain before the ADC {gain - declared:+.1f} dB over the declared chain: noise and returns reach "
+               "the rails" + (" (at the prior's bound: the capture asks for more)" if at_bound else "")
+               if keep else "always in the chain: the capture's ADC sits at its rails")
+        moved = {"params_before": {"gain_dB": declared}} if keep else {}
+        steps.append(_step("adc_clipping", True, {**clip.capture.params, "gain_dB": gain if keep else declared},
+                           held, new_held if keep else held, "clear" if keep else "signature only", clip.reason,
+                           source="signature", note=why, **moved))
+        self.progress(f"adc_clipping: {clip.reason}; {why}: held-out {held.overall:.3f} -> "
+                      f"{(new_held if keep else held).overall:.3f} dB")
+        return (fitted, fitted_room, new_held) if keep else (chain, room, held)
 
     # ------------------------------------------------------------------ the loop
     def _context(self, chain: Chain, twin_views: Views, room: Room | None = None) -> Context:

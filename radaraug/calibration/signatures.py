@@ -738,30 +738,74 @@ def _mismatch_in_noise(floor: torch.Tensor, g_noise: torch.Tensor, params: dict[
     )
 
 
+@lru_cache(maxsize=32)
+def declared_noise_floor(config: RadarConfig, frames: int = 4) -> tuple[float, float]:
+    """The declared chain's mid-band noise floor, as the RX mismatch detector reads it, and its thermal share.
+
+    The rest of the floor is ADC-side noise and rounding, added after the RX channels' gains: a channel
+    gain ``g`` moves the floor by only ``10 log10(share g + 1 - share)``. Measured on the default
+    receiver's empty frames with and without the ADC-side stages.
+
+    Returns:
+        ``(floor, thermal share)``: the floor in :attr:`Prepared.floor_hann` units, the share in [0, 1].
+    """
+    from radaraug.sensor import FMCWReceiver, Paths
+    from radaraug.sensor.defaults import default_effects
+
+    R = config.num_rx
+    z = torch.zeros(frames, 0, R, dtype=torch.float64)
+    empty = Paths(z, z.clone(), z.to(torch.complex128))
+    floors = []
+    for after_gain in ((), ("adc_noise", "adc_quantization")):  # everything; the thermal part alone
+        rx = FMCWReceiver(config, effects=[e for e in default_effects(config) if e.name not in after_gain])
+        fl = Prepared(rx(empty, generator=torch.Generator().manual_seed(0)), config).floor_hann
+        K = fl.shape[1]
+        floors.append(float(fl[:, max(K // 4, 2): max(3 * K // 4, 3)].median()))
+    return floors[0], min(max(floors[1] / max(floors[0], _TINY), 0.0), 1.0)
+
+
+def thermal_share(floor: float, config: RadarConfig) -> float:
+    """Share of a capture's mid-band floor ``floor`` that entered before the RX gains.
+
+    What the capture's floor holds over the declared ADC-side floor counts as thermal; at least the
+    declared share (a quieter floor than declared is not read as a missing thermal part).
+    """
+    declared, share = declared_noise_floor(config)
+    return min(max(share, 1 - (1 - share) * declared / max(floor, _TINY)), 1.0)
+
+
+NOISE_GAIN_RESOLUTION_DB = 0.3
+"""Smallest noise-floor ratio between RX the mismatch detector reads as a gain (dB)."""
+
+
 @_detector("rx_gain_phase_mismatch", min_rx=2)
 def detect_rx_gain_phase_mismatch(p: Prepared, config: RadarConfig,
                                   min_gain_db: float = 0.5, max_spread_db: float = 1.0,
                                   min_noise_share: float = 0.4, min_snr_db: float = 20.0,
-                                  min_noise_gain_db: float = 1.5) -> Signature:
+                                  min_noise_gain_db: float = 1.5, share: float | None = None) -> Signature:
     """A per-RX gain that scales the static returns and the noise alike (or, with no return, the noise).
 
     A gain in the RX channel gives the same ratio to RX1 at every static return and in the noise
-    floor (its thermal part; an ADC-side floor dilutes it). Phases are reported, not tested: without
-    a scene they cannot be told from the angle of arrival.
+    floor's thermal part; the ADC-side part, added after the gain, dilutes it. Where the dilution
+    leaves less than :data:`NOISE_GAIN_RESOLUTION_DB` in the floor, the static returns decide alone
+    (at least three, with the spread bound). Phases are reported, not tested: without a scene they
+    cannot be told from the angle of arrival.
 
     Args:
         p: ``frames`` as called: the capture's raw frames (SDK floats) or a :class:`Prepared` of them.
         config: the capture's config.
         min_gain_db: smallest |gain| (static returns) reported as a mismatch.
         max_spread_db: largest spread of the ratio over the static returns (MAD x 1.48).
-        min_noise_share: the noise's ratio must carry at least this share of the returns' (same sign).
+        min_noise_share: the noise's ratio must carry at least this share of what the returns' gain
+            predicts for the floor (same sign).
         min_snr_db: static returns used must stand this far over the per-chirp floor (dB).
         min_noise_gain_db: with no such return, the smallest |gain| of the noise alone.
+        share: the floor's thermal share (default: :func:`thermal_share` of RX1's floor).
 
     Returns:
         A :class:`Signature`; ``score`` is the largest |gain| (dB) when the two agree, else 0;
         ``params``: ``gain_dB_rx{i}`` (static returns, else noise), ``static_gain_dB_rx{i}``,
-        ``noise_gain_dB_rx{i}``, ``phase_rad_rx{i}``, ``spread_dB``, ``num_returns``.
+        ``noise_gain_dB_rx{i}``, ``phase_rad_rx{i}``, ``spread_dB``, ``num_returns``, ``thermal_share``.
     """
     F, R, M, N = p.shape
     floor = p.floor_hann  # (R, K)
@@ -783,15 +827,21 @@ def detect_rx_gain_phase_mismatch(p: Prepared, config: RadarConfig,
     spread = float(((g_k - g_static[:, None]).abs().median(dim=1).values * 1.4826).max()) if len(peaks) > 2 else 0.0
     k0 = peaks[0]
     ph = torch.angle(C[:, k0] * C[0, k0].conj())
+    if share is None:
+        share = thermal_share(float(floor[0, mid].median()), config)
     worst, agree = 0.0, True
     for i in range(1, R):
         gs, gn = float(g_static[i]), float(g_noise[i])
         if abs(gs) >= min_gain_db:
-            agree = agree and gs * gn > 0 and abs(gn) >= min_noise_share * abs(gs) and abs(gn) <= abs(gs) + 0.5
+            expect = 10 * math.log10(share * 10 ** (gs / 10) + 1 - share)  # the floor's ratio, diluted
+            if abs(expect) >= NOISE_GAIN_RESOLUTION_DB:
+                agree = agree and gs * gn > 0 and abs(gn) >= min_noise_share * abs(expect) and abs(gn) <= abs(gs) + 0.5
+            else:  # the floor cannot show it: it must not contradict it, and the returns decide
+                agree = agree and len(peaks) >= 3 and abs(gn) < NOISE_GAIN_RESOLUTION_DB + abs(expect)
             worst = max(worst, abs(gs))
     # RX1's static gain is 0 (the reference).
     params |= {**_per_rx("static_gain_dB", g_static), **_per_rx("gain_dB", g_static), **_per_rx("phase_rad", ph),
-               "spread_dB": spread}
+               "spread_dB": spread, "thermal_share": share}
     present = worst >= min_gain_db and agree and spread <= max_spread_db
     gains = ", ".join(f"{float(g_static[i]):+.2f}/{float(g_noise[i]):+.2f}" for i in range(1, R))
     return Signature(
@@ -1222,7 +1272,9 @@ __all__ = [
     "Signature",
     "butterworth_highpass_power",
     "detect_adc_clipping",
+    "NOISE_GAIN_RESOLUTION_DB",
     "declared_leakage_dBFS",
+    "declared_noise_floor",
     "declared_skirt_dBc",
     "detect_all",
     "detect_frame_drift",
@@ -1230,6 +1282,7 @@ __all__ = [
     "detect_interference",
     "detect_phase_noise",
     "detect_rx_gain_phase_mismatch",
+    "thermal_share",
     "detect_spur_tone",
     "detect_tx_rx_leakage",
     "detect_vibrating_clutter",

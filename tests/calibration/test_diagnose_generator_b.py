@@ -76,3 +76,20 @@ def test_steeper_declared_highpass_is_refitted_with_its_parameters_before_and_af
 def test_every_case_names_what_is_there(tmp_path, name):
     _, named, expected = _named(tmp_path, name)
     assert named == expected
+
+
+def test_clipping_by_gain_refits_the_gain_before_the_adc(tmp_path):
+    """Generator B's ADC range at 0.12 V (nominal 1 V): 18.4 dB more gain before the rails.
+
+    The base refit alone stays inside its physical noise bounds and leaves most of the error; the
+    clipping step fits the gain before the ADC (the twin's ``system_gain``), which lifts the thermal
+    noise over the ADC's own and drives the noise into the rails as in the capture.
+    """
+    diag, named, expected = _named(tmp_path, "adc_clipping@B")
+    assert named == expected == ["adc_clipping"]
+    (step,) = diag.result.steps
+    assert step["verdict"] == "clear" and step["params_before"] == {"gain_dB": 0.0}
+    assert step["params"]["gain_dB"] > 18.0  # generator B's thermal floor also sits over the twin's
+    assert step["error_after"] < 0.75 * step["error_before"]
+    gain = next(e for e in diag.profile.to_dict()["receiver"]["effects"] if e["name"] == "system_gain")
+    assert gain["params"]["gain_dB"] == pytest.approx(step["params"]["gain_dB"])

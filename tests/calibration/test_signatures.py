@@ -17,6 +17,7 @@ from scipy.special import j0, j1, ndtr
 from radaraug.calibration.signatures import (
     SIGNATURE_EFFECTS,
     Signature,
+    declared_noise_floor,
     detect_adc_clipping,
     detect_all,
     detect_frame_drift,
@@ -27,6 +28,7 @@ from radaraug.calibration.signatures import (
     detect_spur_tone,
     detect_tx_rx_leakage,
     detect_vibrating_clutter,
+    thermal_share,
 )
 from radaraug.config import RadarConfig
 
@@ -226,6 +228,43 @@ def test_rx_gain_in_the_returns_only_is_not_a_mismatch(cfg):
     rng = np.random.default_rng(8)
     x = room(cfg, rng, gains=[1.0, 1.3, 0.8])[None, :, None, :] + noise(cfg, rng, 16)
     assert not detect_rx_gain_phase_mismatch(to_frames(x), cfg).present
+
+
+@pytest.mark.parametrize("share", [0.05, 0.6])
+def test_rx_gain_through_an_adc_side_floor_that_dilutes_it(cfg, share):
+    """Thermal noise before the channel gains, ADC-side noise after: the floor moves by ``10 log10(s g + 1 - s)``.
+
+    At the paper's IF gain ~95 % of the floor enters after the gains, so the floor shows +-0.1 dB of a
+    -3/+2 dB mismatch; the static returns show all of it and decide.
+    """
+    rng = np.random.default_rng(11)
+    g_db = np.array([0.0, -3.0, 2.0])
+    g = 10 ** (g_db / 20)
+    total = 3.0
+    s_th, s_adc = total * math.sqrt(share), total * math.sqrt(1 - share)
+    x = (room(cfg, rng)[None, :, None, :] + noise(cfg, rng, 24, sigma=s_th)) * g[None, :, None, None]
+    x = x + noise(cfg, rng, 24, sigma=s_adc)
+    s = detect_rx_gain_phase_mismatch(to_frames(x), cfg, share=share)
+    assert s.present, s.detail
+    for i in (1, 2):
+        assert abs(s.params[f"gain_dB_rx{i + 1}"] - g_db[i]) < 0.1
+        diluted = 10 * math.log10(share * 10 ** (g_db[i] / 10) + 1 - share)
+        assert abs(s.params[f"noise_gain_dB_rx{i + 1}"] - diluted) < 0.15
+    # The same returns with equal channels: nothing.
+    x0 = room(cfg, rng)[None, :, None, :] + noise(cfg, rng, 24, sigma=total)
+    assert not detect_rx_gain_phase_mismatch(to_frames(x0), cfg, share=share).present
+
+
+def test_thermal_share_of_the_declared_floor_follows_the_if_gain(cfg):
+    """Thermal noise scales with the IF gain, the ADC-side noise does not: the share's odds rise 1 dB per dB."""
+    f33, s33 = declared_noise_floor(cfg)
+    _, s43 = declared_noise_floor(cfg.replace(if_gain_dB=cfg.if_gain_dB + 10))
+    assert 0.01 < s33 < 0.2  # most of the paper config's floor enters after the IF gain
+    assert (s43 / (1 - s43)) / (s33 / (1 - s33)) == pytest.approx(10.0, rel=0.1)
+    # A capture's floor 4x the declared one: what it holds over the ADC-side part is thermal.
+    assert thermal_share(f33, cfg) == pytest.approx(s33)
+    assert thermal_share(4 * f33, cfg) == pytest.approx(1 - (1 - s33) / 4)
+    assert thermal_share(f33 / 4, cfg) == pytest.approx(s33)  # never under the declared share
 
 
 # --------------------------------------------------------------------------- phase noise
