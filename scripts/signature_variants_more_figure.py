@@ -189,7 +189,8 @@ def highpass_panel(ax, cfg: RadarConfig) -> None:
         found.append((s.present, pr["hp_over_floor_dB"]))
     over = ", ".join(f"{o:+.1f}" if o > -30 else "< -30" for _, o in found)
     ax.set_title(f"if_highpass in the noise floor, IF gain {cfg.if_gain_dB} dB (dashed: the fits)\n"
-                 f"{sum(pr for pr, _ in found)} of 3 found; high-passed floor over the ADC floor {over} dB",
+                 f"{sum(pr for pr, _ in found[1:])} of the 2 other filters found, the declared "
+                 f"{'found' if found[0][0] else 'not'}; high-passed floor over the ADC floor {over} dB",
                  fontsize=FS_TITLE)
     ax.set(xlabel="beat frequency (kHz)", ylabel="dB over the band's top 8 bins", xscale="log")
     ax.legend(fontsize=6, loc="lower right")

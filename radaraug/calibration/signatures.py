@@ -648,19 +648,25 @@ def _hp_fit(f: torch.Tensor, psd: torch.Tensor, fcs: torch.Tensor, orders: torch
 
 @_detector("if_highpass", min_chirps=2)
 def detect_if_highpass(p: Prepared, config: RadarConfig, min_gain_db: float = 0.3,
-                       max_fit_Hz: float | None = None) -> Signature:
+                       max_fit_Hz: float | None = None, min_misfit_ratio: float = 2.0,
+                       min_small_gain_db: float = 0.1) -> Signature:
     """The IF high-pass's cutoff and order, from the shape of the noise floor.
 
     Chirp-to-chirp differences cancel everything static; the thermal part of the noise left went
     through the high-pass, the ADC-side part did not. A Butterworth ``|H|^2`` plus a flat floor is
     fitted to the floor's spectrum and compared with the nominal first-order high-pass at
-    ``config.effective_hp_cutoff_Hz``.
+    ``config.effective_hp_cutoff_Hz``. Where the high-passed floor stands only a few dB over the
+    ADC-side floor, another filter moves a few bins by a few tenths of a dB: the fit then counts when
+    the nominal misfit is ``min_misfit_ratio`` times the free one (which sits at the spectrum's own
+    estimation noise, ~0.08 dB).
 
     Args:
         p: ``frames`` as called: the capture's raw frames (SDK floats) or a :class:`Prepared` of them.
         config: the capture's config.
-        min_gain_db: smallest RMS improvement (dB) of the free fit over the nominal one.
+        min_gain_db: RMS improvement (dB) of the free fit over the nominal one that suffices alone.
         max_fit_Hz: top of the fitted band (default ``min(0.3 fs, 6 x nominal cutoff)``).
+        min_misfit_ratio: nominal over free misfit that makes a smaller improvement count.
+        min_small_gain_db: the smallest improvement (dB) that counts with that ratio.
 
     Returns:
         A :class:`Signature`; ``score`` is the RMS improvement (dB); ``params``: ``cutoff_Hz``,
@@ -706,7 +712,8 @@ def detect_if_highpass(p: Prepared, config: RadarConfig, min_gain_db: float = 0.
     hp_over = _db(max(a * (1 + c * fmax / fs), _TINY) / max(b, _TINY)) if b > 0 else 99.0
     gain = mis_n - mis
     differs = n_best >= 2 or abs(math.log(fc_best / nom)) > math.log(1.3)
-    present = gain >= min_gain_db and differs and hp_over > 0
+    clear = gain >= min_gain_db or (gain >= min_small_gain_db and mis_n >= min_misfit_ratio * mis)
+    present = clear and differs and hp_over > 0
     return Signature(
         "if_highpass", max(gain, 0.0), present,
         {"cutoff_Hz": fc_best, "order": n_best, "misfit_dB": mis, "nominal_misfit_dB": mis_n,

@@ -156,6 +156,24 @@ def test_highpass_nominal_is_not_reported(cfg):
     assert s.params["cutoff_Hz"] == pytest.approx(cfg.effective_hp_cutoff_Hz, rel=0.1)
 
 
+@pytest.mark.parametrize("fc,order", [(20e3, 1), (45e3, 1), (150e3, 2), (80e3, 1)])
+def test_highpass_a_few_db_over_the_adc_side_floor(cfg, fc, order):
+    """The high-passed floor only ~3 dB over a flat ADC-side floor (the twin's at IF 48 dB).
+
+    Another filter then moves a few bins by a few tenths of a dB (RMS gain under the 0.3 dB that
+    suffices alone); the nominal misfit at twice the free one's still names it, and not the nominal.
+    """
+    rng = np.random.default_rng(6)
+    s = detect_if_highpass(to_frames(butterworth_noise(cfg, rng, 24, fc, order, 4.0, 2.8)), cfg)
+    assert 2.0 < s.params["hp_over_floor_dB"] < 4.0
+    if fc == cfg.effective_hp_cutoff_Hz:
+        assert not s.present
+        return
+    assert s.present and s.score < 0.3, s.detail
+    assert s.params["order"] == order
+    assert s.params["cutoff_Hz"] == pytest.approx(fc, rel=0.12)
+
+
 # --------------------------------------------------------------------------- spur
 def test_spur_frequency_and_amplitude(cfg):
     F = 16
