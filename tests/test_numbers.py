@@ -244,8 +244,60 @@ def _errors(prefix: str, *rows: int) -> tuple[str, ...]:
     return (*(f"{prefix.format(r)}error_before_dB" for r in rows), *(f"{prefix.format(r)}error_after_dB" for r in rows))
 
 
+_DCF = "diffuse_clutter_fit_cpu.json"
+_DC_REAL = tuple(f"band_mean_db/real_48dB/{k}" for k in ("18_48_07", "18_52_43"))
+
+
+def _dc(scene: str, row: str) -> tuple[str, ...]:
+    """The band means of seeds 0, 1, 2 of one row of docs/diffuse_clutter.md's fit table (:data:`_DCF`)."""
+    return tuple(f"band_mean_db/{scene}/{row}/{i}" for i in range(3))
+
+
+def _dc_gaps(*v: float) -> str:
+    """How far the default empty corridor (seeds) and the specular twin lie under the two recordings."""
+    real, diffuse, spec = v[:2], v[2:5], v[5:]
+    under = [a - b for a in real for b in diffuse]
+    before = [a - b for a in real for b in spec]
+    return f"{min(under):.1f}-{max(under):.1f} dB under the two recordings, against {min(before):.0f}-{max(before):.0f} dB"
+
+
+def _dc_furnished(*v: float) -> str:
+    """The furnished corridor's loudest seed against the louder recording, its quietest against the quieter."""
+    loud, quiet, seeds = max(v[:2]), min(v[:2]), v[2:]
+    return (f"range from {max(seeds):.1f} dBFS ({loud - max(seeds):.1f} dB under the louder recording) to "
+            f"{min(seeds):.1f} ({quiet - min(seeds):.1f} dB under the quieter)")
+
+
+def _dc_bands(near: float, *v: float) -> str:
+    """The seed-0 twin and the recordings over 1-2.5 m and 3-5 m: near twin, near real x2, far twin, far real x2."""
+    near_real, far, far_real = v[:2], v[2], v[3:]
+    gaps = [r - far for r in far_real]
+    return (f"(seed 0: {near:.1f} against {near_real[0]:.1f} / {near_real[1]:.1f} dBFS); from 3 to 5 m the twin's "
+            f"corridor falls {min(gaps):.1f}-{max(gaps):.1f} dB under the recordings ({far:.1f} against "
+            f"{far_real[0]:.1f} / {far_real[1]:.1f} dBFS;")
+
+
+_DC_BANDS = tuple(k for band in ("1-2.5 m", "3-5 m") for k in
+                  (f"sub_band_mean_db/{band}/corridor_S0.7_seed0",
+                   *(f"sub_band_mean_db/{band}/real_48dB/{r}" for r in ("18_48_07", "18_52_43"))))
+_DC_COST = ("triangles", "area_m2", "visible_cells", "paths_default_merge", *(f"diffuse_paths_seconds/{i}" for i in range(3)))
+_DC_SECONDS = _range("{:.2f}")
+
 _ROD_RMS = "tables/in_frame_shadow/rod/doppler_profile_rms_error_db"
 _WALKER_OFF = "tables/in_frame_shadow/walker/largest_off_zero_doppler_difference_db_re_peak"
+_WALL = "tables/walker_metal_wall/{}_db/{}"
+_WALL_COLS = ("model", "knife_edge", "physical_optics")
+_END = "tables/person_end_wall/"
+_END_OFFSETS = ("0.0", "0.25", "0.75")
+_COST = "tables/cost/"
+
+
+def _std_range(*v: float) -> str:
+    """Sample standard deviation, smallest and largest of the per-corridor changes, as docs/shadowing.md writes them."""
+    m = sum(v) / len(v)
+    std = (sum((x - m) ** 2 for x in v) / (len(v) - 1)) ** 0.5
+    return f"spread by {std:.1f} dB (standard deviation) on the line of sight, from {min(v):.1f} to {max(v):+.1f} dB;"
+
 
 FIGURES: list[Figure] = [
     # README.md: the quick-mode headline (make demo), the held-out report suite, the plain loop
@@ -1013,7 +1065,7 @@ FIGURES: list[Figure] = [
            "reproduce_medium_cpu.json", (f"{_DIAG}/median dB: test, simulated, simulated + CDR/1",
                                          f"{_DIAG}/median dB: test, simulated, simulated + CDR/2"),
            lambda twin, clamped: f"(+{clamped - twin:.1f} dB,"),
-    # docs/shadowing.md: the corridor's static paths (the cost figures there are one-off, not records)
+    # docs/shadowing.md: the corridor's static paths (the shadow's cost is in shadowing_tables_cpu.json, below)
     Figure("docs/shadowing.md", "for the corridor's 6,600 paths", "twin_cpu.json", "room_static_paths", "{:,d} paths"),
     Figure("docs/shadowing.md", "In the two-walker corridor (6,600 static paths", "twin_cpu.json", "room_static_paths",
            "({:,d} static paths"),
@@ -1030,6 +1082,109 @@ FIGURES: list[Figure] = [
            "shadowing_tables_cpu.json", tuple(f"{_WALKER_OFF}/{k}/{i}" for k in ("0", "2") for i in range(4)),
            lambda *v: f"gives a held shadow {-max(v[:4]):.0f}-{-min(v[:4]):.0f} dB under the peak (K = 2: "
            f"{-max(v[4:]):.1f}-{-min(v[4:]):.1f} dB;"),
+    # docs/shadowing.md "Walker between the radar and a metal wall" (scripts/shadowing_tables.py)
+    Figure("docs/shadowing.md", "| crossing at 4 m, closest pass (torso centred) | -33.8 | -33.7 | -19.6 (partial Poisson "
+           "spot) |", "shadowing_tables_cpu.json",
+           tuple(_WALL.format("crossing_at_4_m_closest_pass", c) for c in _WALL_COLS),
+           "(torso centred) | {:.1f} | {:.1f} | {:.1f} (partial"),
+    Figure("docs/shadowing.md", "| crossing, mean while the torso covers the line | -24.9 | -24.6 | -23.8 |",
+           "shadowing_tables_cpu.json", tuple(_WALL.format("crossing_mean_while_torso_covers", c) for c in _WALL_COLS),
+           "| {:.1f} | {:.1f} | {:.1f} |"),
+    Figure("docs/shadowing.md", "| along the line, mean over 2-6 m | -38.4 | -38.5 | -34.2 |", "shadowing_tables_cpu.json",
+           tuple(_WALL.format("along_the_line_mean_2_to_6_m", c) for c in _WALL_COLS), "| {:.1f} | {:.1f} | {:.1f} |"),
+    Figure("docs/shadowing.md", "| walker > 1 m off the line | 0.0 |", "shadowing_tables_cpu.json",
+           "tables/walker_metal_wall/walker_over_1_m_off_the_line_largest_abs_model_db", "| {:.1f} |"),
+    # docs/shadowing.md "A person in front of a room's end wall"
+    Figure("docs/shadowing.md", "| the built-in corridor (exactly 2.000 x 2.700 m, radar at 1.200 m) | **+4.3 dB** | "
+           "-6.4 dB | -2.8 dB |", "shadowing_tables_cpu.json",
+           tuple(f"{_END}builtin_corridor_change_db/{k}" for k in _END_OFFSETS), "| **{:+.1f} dB** | {:.1f} dB | {:.1f} dB |"),
+    Figure("docs/shadowing.md", "| mean over 32 corridors (width, height +-10 cm, radar height +-5 cm) | **-3.6 dB** | "
+           "-3.9 dB | -0.2 dB |", "shadowing_tables_cpu.json",
+           (f"{_END}corridors", *(f"{_END}mean_over_corridors_change_db/{k}" for k in _END_OFFSETS)),
+           "| mean over {:d} corridors (width, height +-10 cm, radar height +-5 cm) | **{:.1f} dB** | {:.1f} dB | "
+           "{:.1f} dB |"),
+    Figure("docs/shadowing.md", "(the first of the 32 corridors) | -4.9 dB | -3.6 dB | -0.05 dB |",
+           "shadowing_tables_cpu.json",
+           (f"{_END}corridors", *(f"{_END}random_phase_sum_first_corridor/by_offset_db/{k}" for k in _END_OFFSETS)),
+           "(the first of the {:d} corridors) | {:.1f} dB | {:.1f} dB | {:.2f} dB |"),
+    Figure("docs/shadowing.md", "(the empty bin is 5.5 dB under the sum of its paths' powers)", "shadowing_tables_cpu.json",
+           f"{_END}random_phase_sum_builtin_corridor/coherent_vs_power_sum_db",
+           lambda v: f"(the empty bin is {-v:.1f} dB under the sum"),
+    Figure("docs/shadowing.md", "keep up to 1.37x their field", "shadowing_tables_cpu.json",
+           f"{_END}random_phase_sum_builtin_corridor/largest_abs_t_on_the_line", "keep up to {:.2f}x their field"),
+    Figure("docs/shadowing.md", "spread by 4.7 dB (standard deviation) on the line of sight, from -13.5 to +8.2 dB;",
+           "shadowing_tables_cpu.json", tuple(f"{_END}each_corridor_change_db/0.0/{i}" for i in range(32)), _std_range),
+    Figure("docs/shadowing.md", "the rise stays (+4.0 dB, recorded)", "shadowing_tables_cpu.json",
+           f"{_END}builtin_corridor_no_people_multipath_change_db/0.0", "the rise stays ({:+.1f} dB, recorded)"),
+    # docs/shadowing.md "Cost" and the static basis's time
+    Figure("docs/shadowing.md", "one chirp per path: 0.21 s on one CPU thread", "shadowing_tables_cpu.json",
+           f"{_COST}corridor_static_basis_s/median_s", "one chirp per path: {:.2f} s on one CPU thread"),
+    Figure("docs/shadowing.md", "a 2-core AMD EPYC shared with other jobs, one torch thread, median of 15 calls",
+           "shadowing_tables_cpu.json", ("cpu_count", "torch_threads", f"{_COST}dense_case/float32/repeats"),
+           lambda cores, threads, repeats: f"a {cores:d}-core AMD EPYC shared with other jobs, "
+           f"{'one' if threads == 1 else threads} torch thread, median of {repeats:d} calls"),
+    Figure("docs/shadowing.md", "a batch of 16 frames x 2 walkers (32 segments) x 5,000 static paths (2,000 single-bounce",
+           "shadowing_tables_cpu.json",
+           tuple(f"{_COST}dense_case/{k}" for k in ("frames", "walkers", "segments", "static_paths", "single_bounce")),
+           "{:d} frames x {:d} walkers ({:d} segments) x {:,d} static paths ({:,d} single-bounce"),
+    Figure("docs/shadowing.md", "and 3,000 double-bounce paths with 3 legs", "shadowing_tables_cpu.json",
+           f"{_COST}dense_case/double_bounce", "and {:,d} double-bounce"),
+    Figure("docs/shadowing.md", "**3.9 ms per frame** in float32 (mean 4.4 ms; 6.9 ms in float64)",
+           "shadowing_tables_cpu.json", tuple(f"{_COST}dense_case/{k}" for k in
+                                              ("float32/per_frame_median_ms", "float32/per_frame_mean_ms",
+                                               "float64/per_frame_median_ms")),
+           "**{:.1f} ms per frame** in float32 (mean {:.1f} ms; {:.1f} ms in float64)"),
+    Figure("docs/shadowing.md", "in every frame 2,113 of the 5,000 paths (mean)", "shadowing_tables_cpu.json",
+           (f"{_COST}dense_case/affected_paths_per_frame_mean", f"{_COST}dense_case/static_paths"),
+           "in every frame {:,.0f} of the {:,d} paths (mean)"),
+    Figure("docs/shadowing.md", "In the two-walker corridor (6,600 static paths) the shadow of a 16-frame batch "
+           "(`DigitalTwin.shadow_transmission`) takes **72.7 ms**", "shadowing_tables_cpu.json",
+           (f"{_COST}two_walker_corridor_16_frames/static_paths", f"{_COST}two_walker_corridor_16_frames/median_ms"),
+           "({:,d} static paths) the shadow of a 16-frame batch (`DigitalTwin.shadow_transmission`) takes **{:.1f} ms**"),
+    # docs/diffuse_clutter.md "Fit and before / after", "Cost" and "Merge" (scripts/diffuse_clutter_fit.py)
+    *(Figure("docs/diffuse_clutter.md", f"| real 48 dB, {k} | {v} |", _DCF, f"band_mean_db/real_48dB/{k}",
+             f"| real 48 dB, {k} | {{:.1f}} |") for k, v in (("18_48_07", "-42.6"), ("18_52_43", "-45.3"))),
+    Figure("docs/diffuse_clutter.md", "| twin, specular only | -90.3 (seeds 0/1/2: -90.3 / -90.1 / -90.4;", _DCF,
+           (_dc("corridor", "specular")[0], *_dc("corridor", "specular")),
+           "| twin, specular only | {:.1f} (seeds 0/1/2: {:.1f} / {:.1f} / {:.1f};"),
+    Figure("docs/diffuse_clutter.md", "| twin + diffuse, S = 0.4 (first guess) | -50.3 / -51.9 / -52.2 |", _DCF,
+           _dc("corridor", "diffuse_S0.4"), "| twin + diffuse, S = 0.4 (first guess) | {:.1f} / {:.1f} / {:.1f} |"),
+    Figure("docs/diffuse_clutter.md", "| twin + diffuse, S = 0.7 (default) | -45.5 / -47.0 / -47.4 |", _DCF,
+           _dc("corridor", "diffuse_S0.7"), "| twin + diffuse, S = 0.7 (default) | {:.1f} / {:.1f} / {:.1f} |"),
+    Figure("docs/diffuse_clutter.md", "| `corridor_furnished`, specular only | -62.6 / -62.6 / -62.6 (", _DCF,
+           _dc("corridor_furnished", "specular"), "| `corridor_furnished`, specular only | {:.1f} / {:.1f} / {:.1f} ("),
+    Figure("docs/diffuse_clutter.md", "| `corridor_furnished` + diffuse, S = 0.7 | -45.3 / -42.8 / -49.4 |", _DCF,
+           _dc("corridor_furnished", "diffuse_S0.7"),
+           "| `corridor_furnished` + diffuse, S = 0.7 | {:.1f} / {:.1f} / {:.1f} |"),
+    Figure("docs/diffuse_clutter.md", "0.2-4.8 dB under the two recordings, against 45-48 dB under before", _DCF,
+           (*_DC_REAL, *_dc("corridor", "diffuse_S0.7"), *_dc("corridor", "specular")), _dc_gaps),
+    Figure("docs/diffuse_clutter.md", "range from -42.8 dBFS (0.2 dB under the louder recording) to -49.4 (4.1 dB "
+           "under the quieter)", _DCF, (*_DC_REAL, *_dc("corridor_furnished", "diffuse_S0.7")), _dc_furnished),
+    Figure("docs/diffuse_clutter.md", "(about 2 dB here, 7 dB with the furnished objects)", _DCF,
+           (*_dc("corridor", "diffuse_S0.7"), *_dc("corridor_furnished", "diffuse_S0.7")),
+           lambda *v: f"(about {max(v[:3]) - min(v[:3]):.0f} dB here, {max(v[3:]) - min(v[3:]):.0f} dB with the "
+           "furnished objects)"),
+    Figure("docs/diffuse_clutter.md", "(seed 0: -41.5 against -41.5 / -42.5 dBFS); from 3 to 5 m the twin's corridor "
+           "falls 6.6-15.3 dB under the recordings (-57.6 against -42.3 / -51.0 dBFS;", _DCF, _DC_BANDS, _dc_bands),
+    Figure("docs/diffuse_clutter.md", "3384 triangles, 198.8 m^2): 30,456 visible cells, 6,515 paths after the default "
+           "merge; `diffuse_paths` takes 0.10-0.18 s on one thread", _DCF,
+           (*(f"cost/corridor/{k}" for k in _DC_COST), "threads"),
+           lambda tri, area, cells, paths, *v: f"{tri:d} triangles, {area:.1f} m^2): {cells:,d} visible cells, "
+           f"{paths:,d} paths after the default merge; `diffuse_paths` takes {_DC_SECONDS(*v[:3])} s on "
+           f"{'one thread' if v[3] == 1 else f'{v[3]:d} threads'}"),
+    Figure("docs/diffuse_clutter.md", "(6516 triangles, 2676 of them objects that can occlude): 28,896 visible cells, "
+           "0.29-0.54 s,", _DCF,
+           tuple(f"cost/corridor_furnished/{k}" for k in ("triangles", "occluding_faces", "visible_cells",
+                                                          *_DC_COST[-3:])),
+           lambda tri, occ, cells, *v: f"({tri:d} triangles, {occ:d} of them objects that can occlude): {cells:,d} "
+           f"visible cells, {_DC_SECONDS(*v)} s,"),
+    Figure("docs/diffuse_clutter.md", "(30,456 -> 24,570 paths in the corridor)", _DCF,
+           ("cost/corridor/visible_cells", "cost/corridor/paths_merge_1cm_0.5m"), "({:,d} -> {:,d} paths in the corridor)"),
+    Figure("benchmarks/README.md", "real -42.6 / -45.3 dBFS; twin at the default S = 0.7 -45.5 / -47.0 / -47.4, "
+           "specular only -90.3 / -90.1 / -90.4", _DCF,
+           (*_DC_REAL, *_dc("corridor", "diffuse_S0.7"), *_dc("corridor", "specular")),
+           "real {:.1f} / {:.1f} dBFS; twin at the default S = 0.7 {:.1f} / {:.1f} / {:.1f}, specular only {:.1f} / {:.1f} / "
+           "{:.1f}"),
     # docs/proxy.md: the independent set's empty-room level (the quick record's calibration capture)
     Figure("docs/proxy.md", "| empty room, median cell (per RX) | −103.0 dB (the calibration capture's, "
            "`benchmarks/reproduce_quick_cpu.json`;", "reproduce_quick_cpu.json",

@@ -99,11 +99,9 @@ def directive_norm(cos_theta_i: torch.Tensor, alpha_R: int) -> torch.Tensor:
 
 
 # Defaults. Room finishes: one S fitted so that the paper corridor's zero-Doppler clutter at
-# 1-5 m matches the real 48 dB recordings (docs/diffuse_clutter.md, "Fit": S = 0.7 puts the twin
-# at -45.4 to -47.3 dBFS over three seeds against -42.6 / -45.3 dBFS measured; S = 0.4 left it
-# 5-7 dB lower). The level
-# carries joints, sockets and fixtures a box corridor lacks, hence one value for every finish
-# rather than a per-material roughness. At 60 GHz (lambda = 5 mm) plaster and concrete
+# 1-5 m matches the real 48 dB recordings (docs/diffuse_clutter.md, "Fit", with the figures
+# of S = 0.7 and 0.4 against the recordings). The level carries joints, sockets and fixtures a
+# box corridor lacks, hence one value for every finish rather than a per-material roughness. At 60 GHz (lambda = 5 mm) plaster and concrete
 # textures of 0.2-0.5 mm RMS already give S^2 = 1 - exp(-(4 pi h / lambda)^2) = 0.25-0.7 by the
 # Kirchhoff criterion, the same range. Glass and metal are smooth (not fitted: a few % of the
 # field). Skin and the absorber scatter nothing here (people are modelled elsewhere).

@@ -87,7 +87,7 @@ def test_a_person_in_front_of_the_end_wall_darkens_it_in_expectation():
     tests/raytrace/test_shadow.py). Measured over these 32 corridors (width and height +-10 cm,
     radar height +-5 cm; 83 s): -3.6 / -3.9 / -0.2 dB on the line / 0.25 m / 0.75 m off, against the
     random-phase sums -4.9 / -3.6 / -0.05 dB. The 2 dB tolerance is statistical: single corridors
-    spread by +-5 dB or more (-11 to +9 dB measured), about 0.8 dB of standard error on a 32-corridor mean.
+    spread by +-5 dB or more (docs/shadowing.md), about 0.8 dB of standard error on a 32-corridor mean.
     """
     from radaraug.scene.people import StandingPerson
     from radaraug.transforms import RangeDoppler
