@@ -174,14 +174,21 @@ class Prepared:
         return self.moving.square().mean(dim=(1, 3))
 
     @cached_property
+    def chirp_excess(self) -> torch.Tensor:
+        """Each chirp's power per range bin over its frame's median chirp, all RX, ``(F, M, K)``.
+
+        No window: a Hann window would hide a burst near the chirp's ends (38 % of 5 us bursts missed).
+        """
+        pw = torch.fft.rfft(self.moving, dim=-1)[..., : self.shape[3] // 2].abs().square().sum(dim=1)  # (F, M, K)
+        return pw / pw.median(dim=1, keepdim=True).values.clamp_min(_TINY)
+
+    @cached_property
     def chirp_wideband(self) -> torch.Tensor:
-        """Each chirp's median over range bins of its power over its frame's median chirp, ``(F, M)``.
+        """Each chirp's median over range bins of :attr:`chirp_excess`, ``(F, M)``.
 
         A burst raises most range bins of its chirp; a moving object raises a few bins, which the median ignores.
         """
-        pw = self.moving_hann.abs().square().sum(dim=1)  # (F, M, K)
-        ref = pw.median(dim=1, keepdim=True).values.clamp_min(_TINY)
-        return (pw / ref).median(dim=-1).values
+        return self.chirp_excess.median(dim=-1).values
 
     @cached_property
     def burst_mask(self) -> torch.Tensor:
@@ -985,9 +992,7 @@ def detect_interference(p: Prepared, config: RadarConfig, min_bursts: int = 2,
     if nb == 0:
         return Signature("interference", 0.0, False, params, f"no chirp above its frame (spread {mad:.2f} dB)")
     fi, mi = torch.nonzero(flags, as_tuple=True)
-    spec = p.moving_hann.abs().square().mean(dim=1)  # (F, M, K)
-    ref = spec.median(dim=1, keepdim=True).values  # per frame, per bin
-    wide = (spec[fi, mi] > 2 * ref[fi, 0]).double().mean(dim=-1)  # (nb,)
+    wide = (p.chirp_excess[fi, mi] > 2).double().mean(dim=-1)  # (nb,)
     wideband = float(wide.median())
     excess = float(ex_db[flags].median())
     # Energy and extent of the bursts, per flagged chirp (RX mean).

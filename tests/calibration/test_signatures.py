@@ -347,15 +347,25 @@ def test_independent_noise_around_a_return_is_not_phase_noise(cfg):
 
 
 # --------------------------------------------------------------------------- interference
-def test_bursts_flag_exactly_the_hit_chirps(cfg):
+@pytest.mark.parametrize("where", ["inside", "ends"])
+def test_bursts_flag_exactly_the_hit_chirps(cfg, where):
+    """Hann-shaped sweeps in five chirps are flagged there and nowhere else, also in the chirp's outer 10 %.
+
+    A 5 us burst of 100 counts put into 5 % of the twin's chirps was flagged in 3.1 % of them while
+    the flags came from Hann range spectra, which hide the chirp's ends.
+    """
     F, M, N = 10, cfg.num_chirps_per_frame, cfg.num_samples_per_chirp
     x = base(cfg, 11, F)
     rng = np.random.default_rng(12)
     hit = [(0, 5), (2, 40), (3, 3), (7, 63), (9, 20)]
-    fs, dur, A = cfg.sample_rate_Hz, 20e-6, 80.0
+    fs = cfg.sample_rate_Hz
+    dur, A = (20e-6, 80.0) if where == "inside" else (6e-6, 150.0)
     t = np.arange(N) / fs
-    for f, m in hit:
-        t0 = rng.uniform(0.1 * N / fs, 0.9 * N / fs - dur)  # the Hann window hides the chirp's ends
+    for i, (f, m) in enumerate(hit):
+        if where == "inside":
+            t0 = rng.uniform(0.1 * N / fs, 0.9 * N / fs - dur)
+        else:  # wholly inside the first or the last 10 % of the chirp
+            t0 = rng.uniform(0, 0.1 * N / fs - dur) + (0.9 * N / fs if i % 2 else 0.0)
         u = t - t0
         inside = (u >= 0) & (u <= dur)
         burst = np.where(inside, A * np.sin(np.pi * u / dur) ** 2
