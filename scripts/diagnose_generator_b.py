@@ -40,7 +40,7 @@ def row(case: Case, seed: int) -> dict:
     return {"case": case.name, "expected": sorted(case.expected), "named": named,
             "ok": sorted(named) == sorted(case.expected), "verdicts": [s["verdict"] for s in steps],
             "error_before_dB": round(diag.result.before.overall, 3), "error_after_dB": round(diag.result.after.overall, 3),
-            "params": {s["effect"]: {k: round(float(v), 4) for k, v in s["params"].items()
+            "params": {s["effect"]: {k: float(f"{float(v):.5g}") for k, v in s["params"].items()
                                      if isinstance(v, (int, float)) and not isinstance(v, bool)} for s in steps},
             "seconds": round(time.perf_counter() - t, 1)}
 

@@ -12,7 +12,7 @@ from __future__ import annotations
 import copy
 import math
 from collections.abc import Callable, Mapping, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 import torch
@@ -55,6 +55,8 @@ class Context:
     capture: Views
     twin: Views
     probe: Callable[[Chain], Views]
+    measured: Mapping[str, Mapping[str, float]] = field(default_factory=dict)
+    """Each present signature's own measurement of its effect, by effect name."""
 
     def excess_db(self) -> torch.Tensor:
         """Capture over twin frame-averaged RD power, RX-averaged, ``(range, doppler)`` dB."""
@@ -431,14 +433,27 @@ def _chirp_nonlinearity() -> Candidate:
 
 def _interference() -> Candidate:
     def starts(ctx: Context) -> list[dict[str, Any]]:
+        m = ctx.measured.get("interference")
+        if m:
+            # The signature counted the bursts chirp by chirp: their share is the probability (kept),
+            # their energy and length start the amplitude and duration.
+            pr = _priors(ctx, "interference")
+            a0 = min(max(float(m["amplitude_counts"]), pr["amplitude_counts"].lo), pr["amplitude_counts"].hi)
+            d0 = min(max(float(m["duration_s"]), pr["duration_s"].lo), pr["duration_s"].hi)
+            return [{"probability": float(m["probability"]), "amplitude_counts": a, "duration_s": d}
+                    for a in (a0, a0 / 3) for d in (d0, 3 * d0)]
         # The share of chirps well above the median chirp power estimates the burst probability.
         p = ctx.capture.stats.burst_fraction - ctx.twin.stats.burst_fraction
         probs = (min(max(2 * p, 0.02), 0.9), 0.05, 0.25) if p > 0.005 else (0.05, 0.25)
         return [{"probability": q, "amplitude_counts": a, "duration_s": d}
                 for q in probs for a in (30.0, 300.0) for d in (5e-6, 15e-6)]
 
-    return Candidate("interference", _plain_specs("interference", "probability", "amplitude_counts", "duration_s"),
-                     starts, joint=NOISE_BASE)
+    def specs(ctx: Context, start: dict[str, Any]) -> list[ParamSpec]:
+        searched = ("amplitude_counts", "duration_s") if ctx.measured.get("interference") else \
+            ("probability", "amplitude_counts", "duration_s")
+        return [ParamSpec(p, _priors(ctx, "interference")[p]) for p in searched]
+
+    return Candidate("interference", specs, starts, joint=NOISE_BASE)
 
 
 def _frame_drift() -> Candidate:

@@ -137,6 +137,7 @@ class Search:
         self.first_held = int(fit_frames.shape[0])
         self.progress = progress or (lambda s: None)
         self.evaluations = 0
+        self._measured: dict[str, dict[str, float]] = {}  # present signatures' measurements (run() sets them)
 
     # ------------------------------------------------------------------ scoring
     def _score(self, twin_frames: torch.Tensor, cap: Views) -> Score:
@@ -361,7 +362,7 @@ class Search:
     # ------------------------------------------------------------------ the loop
     def _context(self, chain: Chain, twin_views: Views, room: Room | None = None) -> Context:
         return Context(self.config, self.source.mode, chain, self.cap_fit, twin_views,
-                       probe=lambda ch: self.fit_score(ch, room).twin)
+                       probe=lambda ch: self.fit_score(ch, room).twin, measured=self._measured)
 
     def run(self, chain: Chain, room: Room | None = None, evidence: Mapping[str, Any] | None = None) -> SearchResult:
         """Refit the base, then add effects while they improve the held-out error.
@@ -385,6 +386,7 @@ class Search:
         tried: list[dict[str, Any]] = []
         added: set[str] = set()
         ev = dict(evidence or {})
+        self._measured = {k: dict(e.capture.params) for k, e in ev.items() if e.present}
         if ev:
             current, cur_room, cur_held = self._signature_steps(current, cur_room, cur_held, ev, steps, added)
 

@@ -93,3 +93,13 @@ def test_clipping_by_gain_refits_the_gain_before_the_adc(tmp_path):
     assert step["error_after"] < 0.75 * step["error_before"]
     gain = next(e for e in diag.profile.to_dict()["receiver"]["effects"] if e["name"] == "system_gain")
     assert gain["params"]["gain_dB"] == pytest.approx(step["params"]["gain_dB"])
+
+
+def test_interference_keeps_the_burst_share_its_signature_counted(tmp_path):
+    """Generator B's interferer hits 8 % of the chirps: the step keeps the share the signature counted."""
+    diag, named, expected = _named(tmp_path, "interference@B")
+    assert named == expected == ["interference"]
+    (step,) = diag.result.steps
+    assert step["params"]["probability"] == pytest.approx(step["signature_params"]["probability"], abs=1e-6)
+    assert step["params"]["probability"] == pytest.approx(0.08, rel=0.25)
+    assert step["error_after"] < step["error_before"] / 2
