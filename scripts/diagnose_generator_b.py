@@ -40,9 +40,19 @@ def row(case: Case, seed: int) -> dict:
     return {"case": case.name, "expected": sorted(case.expected), "named": named,
             "ok": sorted(named) == sorted(case.expected), "verdicts": [s["verdict"] for s in steps],
             "error_before_dB": round(diag.result.before.overall, 3), "error_after_dB": round(diag.result.after.overall, 3),
-            "params": {s["effect"]: {k: float(f"{float(v):.5g}") for k, v in s["params"].items()
-                                     if isinstance(v, (int, float)) and not isinstance(v, bool)} for s in steps},
+            "params": {s["effect"]: {k: _rounded(v) for k, v in s["params"].items() if _rounded(v) is not None}
+                       for s in steps},
+            "refitted_declared": [{"effect": r["effect"], "params_after": r["params_after"]} for r in diag.refitted_declared],
             "seconds": round(time.perf_counter() - t, 1)}
+
+
+def _rounded(v: object) -> float | list[float] | None:
+    """A number (or a list of numbers, one per RX) to 5 significant digits; None for anything else."""
+    if isinstance(v, (int, float)) and not isinstance(v, bool):
+        return float(f"{float(v):.5g}")
+    if isinstance(v, (list, tuple)) and v and all(isinstance(x, (int, float)) and not isinstance(x, bool) for x in v):
+        return [float(f"{float(x):.5g}") for x in v]
+    return None
 
 
 def main() -> None:

@@ -458,6 +458,12 @@ def _interference() -> Candidate:
 
 def _frame_drift() -> Candidate:
     def starts(ctx: Context) -> list[dict[str, Any]]:
+        m = ctx.measured.get("frame_drift")
+        if m:
+            # The signature measured the frame means' excess variance per RX (kept) and the common
+            # gain's from the static returns (the start of its fit).
+            g = float(m["gain_rms_dB"])
+            return [{"gain_rms_dB": g, "dc_rms_counts": float(m["dc_rms_mean_counts"])}]
         c, t = ctx.capture.stats, ctx.twin.stats
         if c.frame_noise is None or t.frame_noise is None:
             return []
@@ -468,7 +474,11 @@ def _frame_drift() -> Candidate:
         return [{"gain_rms_dB": g, "dc_rms_counts": dc}, {"gain_rms_dB": 0.0, "dc_rms_counts": dc},
                 {"gain_rms_dB": max(g, 0.3), "dc_rms_counts": 0.0}]
 
-    return Candidate("frame_drift", _plain_specs("frame_drift", "gain_rms_dB", "dc_rms_counts"), starts)
+    def specs(ctx: Context, start: dict[str, Any]) -> list[ParamSpec]:
+        searched = ("gain_rms_dB",) if ctx.measured.get("frame_drift") else ("gain_rms_dB", "dc_rms_counts")
+        return [ParamSpec(p, _priors(ctx, "frame_drift")[p]) for p in searched]
+
+    return Candidate("frame_drift", specs, starts)
 
 
 def _rx_mismatch() -> Candidate:

@@ -1195,8 +1195,9 @@ def detect_frame_drift(p: Prepared, config: RadarConfig, min_dc_counts: float = 
             above zero.
 
     Returns:
-        A :class:`Signature`; ``score`` is the larger variance ratio; ``params``: ``dc_rms_counts``,
-        ``gain_rms_dB``, ``dc_f``, ``gain_f``, ``gain_z``, ``num_returns``.
+        A :class:`Signature`; ``score`` is the larger variance ratio; ``params``: ``dc_rms_counts``
+        (the largest RX), ``dc_rms_mean_counts`` (RMS over the RX), ``gain_rms_dB``, ``dc_f``, ``gain_f``,
+        ``gain_z``, ``num_returns``.
     """
     F, R, M, N = p.shape
     # Chirp DC: Blackman-Harris-weighted mean, blind to every return beyond ~4 range bins (a
@@ -1208,6 +1209,7 @@ def detect_frame_drift(p: Prepared, config: RadarConfig, min_dc_counts: float = 
     obs = fm.var(dim=0)
     dc_f = float((obs / expect.clamp_min(1e-12)).max())
     dc_rms = float((obs - expect).clamp_min(0).sqrt().max())
+    dc_rms_mean = float((obs - expect).clamp_min(0).mean().sqrt())  # the RMS over RX: what one stage draws
     # Gain: log-amplitude of each strong static return per frame (RX mean). A drifting gain moves
     # *every* static return alike, the near-DC leakage included (it goes through the same chain);
     # a person breathing or moving in front of the radar moves one return (on a BGT60 recording:
@@ -1245,7 +1247,7 @@ def detect_frame_drift(p: Prepared, config: RadarConfig, min_dc_counts: float = 
     present = (dc_f >= min_f and dc_rms >= min_dc_counts) or gain_ok
     return Signature(
         "frame_drift", max(dc_f, g_f) if present else 0.0, present,
-        {"dc_rms_counts": dc_rms, "gain_rms_dB": g_rms, "dc_f": dc_f, "gain_f": g_f,
+        {"dc_rms_counts": dc_rms, "dc_rms_mean_counts": dc_rms_mean, "gain_rms_dB": g_rms, "dc_f": dc_f, "gain_f": g_f,
          "gain_z": g_z if math.isfinite(g_z) else 99.0, "num_returns": float(len(levels))},
         f"frame-to-frame DC {dc_rms:.2f} counts RMS (variance ratio {dc_f:.1f}), gain {g_rms:.2f} dB RMS "
         f"(ratio {g_f:.1f}); score: variance ratio",

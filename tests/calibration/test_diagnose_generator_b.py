@@ -103,3 +103,17 @@ def test_interference_keeps_the_burst_share_its_signature_counted(tmp_path):
     assert step["params"]["probability"] == pytest.approx(step["signature_params"]["probability"], abs=1e-6)
     assert step["params"]["probability"] == pytest.approx(0.08, rel=0.25)
     assert step["error_after"] < step["error_before"] / 2
+
+
+def test_frame_drift_keeps_the_dc_wander_its_signature_measured(tmp_path):
+    """Generator B's DC wanders 4 counts RMS per frame: the views barely see it, the frame means do.
+
+    Fitted freely it ended at 0.6, 2.5 and 19.7 counts at the three settings; the step keeps the
+    signature's RMS over the RX and fits the gain drift (0.6 dB RMS put in) from its measurement.
+    """
+    diag, named, expected = _named(tmp_path, "frame_drift@B")
+    assert named == expected == ["frame_drift"]
+    (step,) = diag.result.steps
+    assert step["params"]["dc_rms_counts"] == pytest.approx(step["signature_params"]["dc_rms_mean_counts"], abs=1e-6)
+    assert step["params"]["dc_rms_counts"] == pytest.approx(4.0, rel=0.2)
+    assert step["params"]["gain_rms_dB"] == pytest.approx(0.6, rel=0.6)
