@@ -435,8 +435,10 @@ def verdicts(diag: Diagnosis) -> list[dict[str, Any]]:
     for name, s in steps.items():
         line = f"{name}: added" if not s.get("source") else f"{name}: named from its signature"
         if "params_before" in s:
+            # Only what the declaration holds: the step's other parameters are the signature's readings.
+            after = {k: s["params"][k] for k in s["params_before"] if k in s["params"]} or s["params"]
             line += (f"; declared, at other parameters: {_fmt_params(s['params_before'])} -> "
-                     f"{_fmt_params(s['params'])}")
+                     f"{_fmt_params(after)}")
         if s.get("verdict") == "ambiguous":
             alts = ", ".join(f"{a['effect']} {a['held_out_error']:.2f} dB" for a in s.get("alternatives", [])
                              if a["effect"] in s.get("ambiguous_with", []))

@@ -93,6 +93,10 @@ def test_clipping_by_gain_refits_the_gain_before_the_adc(tmp_path):
     assert step["error_after"] < 0.75 * step["error_before"]
     gain = next(e for e in diag.profile.to_dict()["receiver"]["effects"] if e["name"] == "system_gain")
     assert gain["params"]["gain_dB"] == pytest.approx(step["params"]["gain_dB"])
+    from radaraug.calibration.diagnose import verdicts
+
+    text = next(v["text"] for v in verdicts(diag) if v["effect"] == "adc_clipping")
+    assert "declared, at other parameters: gain_dB=0 -> gain_dB=" in text
 
 
 def test_interference_keeps_the_burst_share_its_signature_counted(tmp_path):
