@@ -481,6 +481,10 @@ def _frame_drift() -> Candidate:
     return Candidate("frame_drift", specs, starts)
 
 
+MEASURED_GAIN_HALF_DB = 0.25
+"""How far (dB) the search may move an RX gain the static returns measured (estimated mode)."""
+
+
 def _rx_mismatch() -> Candidate:
     def starts(ctx: Context) -> list[dict[str, Any]]:
         R = ctx.config.num_rx
@@ -495,6 +499,11 @@ def _rx_mismatch() -> Candidate:
         params = cur["params"] if cur is not None else {"gain_dB": 0.0, "phase_rad": 0.0}
         g0, p0 = _as_list(params["gain_dB"], R), _as_list(params["phase_rad"], R)
         gains = [g0[i] + float(d[i]) for i in range(R)]
+        m = ctx.measured.get("rx_gain_phase_mismatch")
+        if ctx.mode == "estimated" and m and m.get("num_returns", 0) > 0:
+            # The static returns measure the gains directly; the estimated static scene copies them, so the
+            # views see the mismatch only in the noise, whose thermal share the twin may not have.
+            gains = [g0[0]] + [g0[0] + float(m[f"static_gain_dB_rx{i + 1}"]) for i in range(1, R)]
         phases = list(p0)
         if ctx.mode == "scene":
             k, _ = _strongest_static(ctx, first=3)
@@ -506,7 +515,9 @@ def _rx_mismatch() -> Candidate:
     def specs(ctx: Context, start: dict[str, Any]) -> list[ParamSpec]:
         R = ctx.config.num_rx
         pr = _priors(ctx, "rx_gain_phase_mismatch")
-        out = [ParamSpec("gain_dB", _around(start["gain_dB"][i], pr["gain_dB"], half=2.0), i) for i in range(1, R)]
+        m = ctx.measured.get("rx_gain_phase_mismatch")
+        half = MEASURED_GAIN_HALF_DB if ctx.mode == "estimated" and m and m.get("num_returns", 0) > 0 else 2.0
+        out = [ParamSpec("gain_dB", _around(start["gain_dB"][i], pr["gain_dB"], half=half), i) for i in range(1, R)]
         if ctx.mode == "scene":
             out += [ParamSpec("phase_rad", _around(start["phase_rad"][i], pr["phase_rad"], half=0.4), i)
                     for i in range(1, R)]
