@@ -303,8 +303,9 @@ class Search:
             fitted, fitted_room = self.refit_base(cand, extra, room=room)
             new_held = self.held_score(fitted, fitted_room)
             keep = new_held.overall <= held.overall + self.settings.min_gain_db
-            # A declared stage at other parameters: the report gives them before and after.
-            steps.append(_step("if_highpass", True, require(fitted if keep else chain, "if_highpass")["params"], held,
+            # A declared stage at other parameters: the report gives them before and after (the
+            # signature's reading where the views could not tell the refit apart: not in the profile).
+            steps.append(_step("if_highpass", True, require(fitted, "if_highpass")["params"] if keep else start, held,
                                new_held if keep else held, "clear" if keep else "signature only", hp.reason,
                                source="signature", params_before=dict(declared)))
             self.progress(f"refit if_highpass from its signature ({hp.reason}): held-out {held.overall:.3f} -> "

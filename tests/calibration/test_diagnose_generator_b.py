@@ -136,3 +136,21 @@ def test_rx_mismatch_reports_the_gains_the_static_returns_measure(tmp_path):
     p = step["params"]
     gains = p["gain_dB"][1:] if "gain_dB" in p else [p["gain_dB_rx2"], p["gain_dB_rx3"]]
     assert gains == pytest.approx([1.8, -2.2], abs=0.5)
+
+
+@pytest.mark.slow
+def test_highpass_the_views_cannot_tell_apart_reports_the_signature(tmp_path):
+    """At 43 dB the refit to generator B's order-2 filter leaves the held-out error where it was.
+
+    The profile keeps the declared stage; the step reports what the floor's shape measured
+    (order 2, the sections' cutoff of a 150 kHz -3 dB point: 96.5 kHz), not the declaration again.
+    """
+    diag, named, expected = _named(tmp_path, "if_highpass@Ahi")
+    assert named == expected == ["if_highpass"]
+    (step,) = diag.result.steps
+    assert step["params_before"]["order"] == 1
+    assert step["params"]["order"] == 2
+    assert step["params"]["cutoff_Hz"] == pytest.approx(150e3 * math.sqrt(math.sqrt(2) - 1), rel=0.1)
+    if step["verdict"] == "signature only":  # not kept: the profile keeps the declared stage
+        hp = next(e for e in diag.profile.to_dict()["receiver"]["effects"] if e["name"] == "if_highpass")
+        assert hp["params"]["order"] == 1
