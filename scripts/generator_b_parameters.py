@@ -32,8 +32,8 @@ def _rel(name: str, put: float, got: Any, tol: float) -> Check:
     return (name, put, None if got is None else float(got), tol, f"within {100 * tol:.0f} %")
 
 
-def _abs(name: str, put: float, got: Any, tol: float, unit: str) -> Check:
-    return (name, put, None if got is None else float(got), tol, f"within {tol:g} {unit}")
+def _abs(name: str, put: float, got: Any, tol: float, reads: str) -> Check:
+    return (name, put, None if got is None else float(got), tol, reads)
 
 
 def _ok(check: Check) -> bool | None:
@@ -50,7 +50,7 @@ def _spur(p: Mapping[str, Any], got: Mapping[str, Any], case: Any, effects: Mapp
     v_pp = effects.get("adc_clipping", {}).get("adc_range_Vpp", V_ADC_PP)
     amp = p["amplitude_mV"] * 1e-3 / v_pp * cfg.adc_full_scale_counts
     return [_abs("freq_Hz", p["freq_Hz"], got.get("freq_Hz"), cfg.sample_rate_Hz / cfg.num_samples_per_chirp / 4,
-                 "Hz (a quarter range bin)"),
+                 "within a quarter range bin"),
             _rel("amplitude_counts", amp, got.get("amplitude_counts"), 0.3)]
 
 
@@ -61,9 +61,9 @@ def _vibration(p: Mapping[str, Any], got: Mapping[str, Any], case: Any, effects:
     if 4 * math.pi * p["displacement_mm"] * 1e-3 / case.config.wavelength_m < 2:
         # Small beta: a sideband pair at +-f_v; its level is the return's times J1(beta), and the
         # return's carrier sits in the estimated static scene, so level and displacement trade off.
-        return [_rel("vibration_Hz", p["vibration_Hz"], f, 0.02),
-                ("velocity_displacement_m_Hz", put, product, None, "not identifiable (level x J1(beta))")]
-    return [_rel("velocity_displacement_m_Hz", put, product, 0.2)]
+        return [_rel("vibration_Hz (small beta)", p["vibration_Hz"], f, 0.02),
+                ("f_v d (small beta)", put, product, None, "not identifiable (level x J1(beta))")]
+    return [_rel("f_v d (a Doppler band)", put, product, 0.2)]
 
 
 def _phase_noise(p: Mapping[str, Any], got: Mapping[str, Any], case: Any, effects: Mapping[str, Any]) -> list[Check]:
@@ -72,7 +72,7 @@ def _phase_noise(p: Mapping[str, Any], got: Mapping[str, Any], case: Any, effect
 
 def _highpass(p: Mapping[str, Any], got: Mapping[str, Any], case: Any, effects: Mapping[str, Any]) -> list[Check]:
     order = int(p["order"])
-    return [_abs("order", order, got.get("order"), 0, ""),
+    return [_abs("order", order, got.get("order"), 0, "exactly"),
             _rel("cutoff_Hz (per section)", section_cutoff(p["cutoff_Hz"], order), got.get("cutoff_Hz"), 0.2)]
 
 
@@ -81,7 +81,7 @@ def _mismatch(p: Mapping[str, Any], got: Mapping[str, Any], case: Any, effects: 
     out = []
     for i in range(1, case.config.num_rx):
         fitted = g[i] - g[0] if isinstance(g, list) and len(g) > i else got.get(f"gain_dB_rx{i + 1}")
-        out.append(_abs(f"gain_dB RX{i + 1} re RX1", p["gain_dB"][i] - p["gain_dB"][0], fitted, 0.5, "dB"))
+        out.append(_abs(f"gain_dB RX{i + 1} re RX1", p["gain_dB"][i] - p["gain_dB"][0], fitted, 0.5, "within 0.5 dB"))
     return out
 
 
@@ -152,7 +152,16 @@ def main() -> None:
     compared = [c for r in results for e in r["effects"].values() for c in e if c["ok"] is not None]
     summary = {"cases": len(results), "named_first": sum(r["named_first"] for r in results),
                "parameters_compared": len(compared), "parameters_within": sum(bool(c["ok"]) for c in compared)}
-    args.output.write_text(json.dumps({"summary": summary, "cases": results}, indent=1) + "\n")
+    by: dict[tuple[str, str], dict[str, Any]] = {}
+    for r in results:
+        for eff, cs in r["effects"].items():
+            for c in cs:
+                row = by.setdefault((eff, c["parameter"]), {"effect": eff, "parameter": c["parameter"],
+                                                            "reads": c["reads"], "compared": 0, "within": 0})
+                row["compared"] += c["ok"] is not None
+                row["within"] += bool(c["ok"])
+    args.output.write_text(json.dumps({"summary": summary, "by_parameter": list(by.values()), "cases": results},
+                                      indent=1) + "\n")
     print(json.dumps(summary))
     for r in results:
         for eff, cs in r["effects"].items():
