@@ -462,8 +462,7 @@ def _frame_drift() -> Candidate:
         if m:
             # The signature measured the frame means' excess variance per RX (kept) and the common
             # gain's from the static returns (the start of its fit).
-            g = float(m["gain_rms_dB"])
-            return [{"gain_rms_dB": g, "dc_rms_counts": float(m["dc_rms_mean_counts"])}]
+            return [{"gain_rms_dB": float(m["gain_rms_dB"]), "dc_rms_counts": float(m["dc_rms_mean_counts"])}]
         c, t = ctx.capture.stats, ctx.twin.stats
         if c.frame_noise is None or t.frame_noise is None:
             return []

@@ -283,8 +283,9 @@ class Search:
         """Effects the chain already holds whose signature departs from the declaration.
 
         ``if_highpass`` takes the detected cutoff and order and the base is refitted (kept unless the
-        held-out error rises by more than ``min_gain_db``); ``adc_clipping`` and, in estimated mode,
-        ``tx_rx_leakage`` are reported from their signature.
+        held-out error rises by more than ``min_gain_db``); ``adc_clipping`` is reported from its
+        signature, in estimated mode with the gain before the ADC refitted (:meth:`_clipping_gain`);
+        in estimated mode ``tx_rx_leakage`` is reported from its signature.
         """
         hp = ev.get("if_highpass")
         if hp is not None and hp.present and find(chain, "if_highpass") is not None:
