@@ -152,11 +152,17 @@ def _narrow(ctx: Context, name: str, start: dict[str, Any], pname: str, **around
     return ParamSpec(pname, _around(start[pname], _priors(ctx, name)[pname], **around))
 
 
-def _plain_specs(name: str, *pnames: str) -> Callable[[Context, dict[str, Any]], list[ParamSpec]]:
-    """Specs of ``pnames`` over the effect's own prior ranges, whatever the start."""
+def _plain_specs(name: str, *pnames: str, kept: tuple[str, ...] = ()) -> Callable[[Context, dict[str, Any]],
+                                                                                     list[ParamSpec]]:
+    """Specs of ``pnames`` over the effect's own prior ranges, whatever the start.
+
+    ``kept``: parameters left at their start when the effect's signature measured them
+    (:attr:`Context.measured`).
+    """
 
     def specs(ctx: Context, start: dict[str, Any]) -> list[ParamSpec]:
-        return [ParamSpec(p, _priors(ctx, name)[p]) for p in pnames]
+        skip = kept if ctx.measured.get(name) else ()
+        return [ParamSpec(p, _priors(ctx, name)[p]) for p in pnames if p not in skip]
 
     return specs
 
@@ -448,12 +454,8 @@ def _interference() -> Candidate:
         return [{"probability": q, "amplitude_counts": a, "duration_s": d}
                 for q in probs for a in (30.0, 300.0) for d in (5e-6, 15e-6)]
 
-    def specs(ctx: Context, start: dict[str, Any]) -> list[ParamSpec]:
-        searched = ("amplitude_counts", "duration_s") if ctx.measured.get("interference") else \
-            ("probability", "amplitude_counts", "duration_s")
-        return [ParamSpec(p, _priors(ctx, "interference")[p]) for p in searched]
-
-    return Candidate("interference", specs, starts, joint=NOISE_BASE)
+    return Candidate("interference", _plain_specs("interference", "probability", "amplitude_counts", "duration_s",
+                                                  kept=("probability",)), starts, joint=NOISE_BASE)
 
 
 def _frame_drift() -> Candidate:
@@ -473,15 +475,22 @@ def _frame_drift() -> Candidate:
         return [{"gain_rms_dB": g, "dc_rms_counts": dc}, {"gain_rms_dB": 0.0, "dc_rms_counts": dc},
                 {"gain_rms_dB": max(g, 0.3), "dc_rms_counts": 0.0}]
 
-    def specs(ctx: Context, start: dict[str, Any]) -> list[ParamSpec]:
-        searched = ("gain_rms_dB",) if ctx.measured.get("frame_drift") else ("gain_rms_dB", "dc_rms_counts")
-        return [ParamSpec(p, _priors(ctx, "frame_drift")[p]) for p in searched]
-
-    return Candidate("frame_drift", specs, starts)
+    return Candidate("frame_drift", _plain_specs("frame_drift", "gain_rms_dB", "dc_rms_counts", kept=("dc_rms_counts",)),
+                     starts)
 
 
 MEASURED_GAIN_HALF_DB = 0.25
 """How far (dB) the search may move an RX gain the static returns measured (estimated mode)."""
+
+
+def _gains_from_returns(ctx: Context) -> Mapping[str, float] | None:
+    """The mismatch signature's reading when its static returns measured the gains in estimated mode.
+
+    The estimated static scene copies the capture's returns, so the views see the mismatch only in the
+    noise, whose thermal share the twin may not have.
+    """
+    m = ctx.measured.get("rx_gain_phase_mismatch")
+    return m if ctx.mode == "estimated" and m and m.get("num_returns", 0) > 0 else None
 
 
 def _rx_mismatch() -> Candidate:
@@ -498,10 +507,8 @@ def _rx_mismatch() -> Candidate:
         params = cur["params"] if cur is not None else {"gain_dB": 0.0, "phase_rad": 0.0}
         g0, p0 = _as_list(params["gain_dB"], R), _as_list(params["phase_rad"], R)
         gains = [g0[i] + float(d[i]) for i in range(R)]
-        m = ctx.measured.get("rx_gain_phase_mismatch")
-        if ctx.mode == "estimated" and m and m.get("num_returns", 0) > 0:
-            # The static returns measure the gains directly; the estimated static scene copies them, so the
-            # views see the mismatch only in the noise, whose thermal share the twin may not have.
+        m = _gains_from_returns(ctx)
+        if m is not None:
             gains = [g0[0]] + [g0[0] + float(m[f"static_gain_dB_rx{i + 1}"]) for i in range(1, R)]
         phases = list(p0)
         if ctx.mode == "scene":
@@ -514,8 +521,7 @@ def _rx_mismatch() -> Candidate:
     def specs(ctx: Context, start: dict[str, Any]) -> list[ParamSpec]:
         R = ctx.config.num_rx
         pr = _priors(ctx, "rx_gain_phase_mismatch")
-        m = ctx.measured.get("rx_gain_phase_mismatch")
-        half = MEASURED_GAIN_HALF_DB if ctx.mode == "estimated" and m and m.get("num_returns", 0) > 0 else 2.0
+        half = MEASURED_GAIN_HALF_DB if _gains_from_returns(ctx) is not None else 2.0
         out = [ParamSpec("gain_dB", _around(start["gain_dB"][i], pr["gain_dB"], half=half), i) for i in range(1, R)]
         if ctx.mode == "scene":
             out += [ParamSpec("phase_rad", _around(start["phase_rad"][i], pr["phase_rad"], half=0.4), i)

@@ -752,6 +752,11 @@ def _mismatch_in_noise(floor: torch.Tensor, g_noise: torch.Tensor, params: dict[
     )
 
 
+def _mid_band(k: int) -> slice:
+    """The middle half of ``k`` range bins, where the RX mismatch detector reads the noise floor."""
+    return slice(max(k // 4, 2), max(3 * k // 4, 3))
+
+
 @lru_cache(maxsize=32)
 def declared_noise_floor(config: RadarConfig, frames: int = 4) -> tuple[float, float]:
     """The declared chain's mid-band noise floor, as the RX mismatch detector reads it, and its thermal share.
@@ -773,8 +778,7 @@ def declared_noise_floor(config: RadarConfig, frames: int = 4) -> tuple[float, f
     for after_gain in ((), ("adc_noise", "adc_quantization")):  # everything; the thermal part alone
         rx = FMCWReceiver(config, effects=[e for e in default_effects(config) if e.name not in after_gain])
         fl = Prepared(rx(empty, generator=torch.Generator().manual_seed(0)), config).floor_hann
-        K = fl.shape[1]
-        floors.append(float(fl[:, max(K // 4, 2): max(3 * K // 4, 3)].median()))
+        floors.append(float(fl[:, _mid_band(fl.shape[1])].median()))
     return floors[0], min(max(floors[1] / max(floors[0], _TINY), 0.0), 1.0)
 
 
@@ -824,7 +828,7 @@ def detect_rx_gain_phase_mismatch(p: Prepared, config: RadarConfig,
     F, R, M, N = p.shape
     floor = p.floor_hann  # (R, K)
     K = floor.shape[1]
-    mid = slice(max(K // 4, 2), max(3 * K // 4, 3))
+    mid = _mid_band(K)
     g_noise = 10 * torch.log10((floor[:, mid] / floor[:1, mid]).median(dim=1).values)
     C = p.static_hann.mean(dim=0)  # (R, K)
     pc = C.abs().square()
