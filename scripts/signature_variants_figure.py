@@ -26,6 +26,7 @@ from radaraug.calibration.signatures import (
     detect_vibrating_clutter,
 )
 from radaraug.config import RadarConfig
+from radaraug.files import atomic_savefig
 from radaraug.sensor import FMCWReceiver, Paths
 from radaraug.sensor.defaults import default_effects
 from radaraug.sensor.effects import PhaseNoise, SpurTone, VibratingClutter
@@ -106,7 +107,7 @@ def main() -> None:
     cross_rx_profile(axes.flat[-1], p, cfg)
     fig.tight_layout()
     args.out.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(args.out, dpi=90)
+    atomic_savefig(fig, args.out, dpi=90)
     print("wrote", args.out)
 
 

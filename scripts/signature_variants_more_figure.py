@@ -45,6 +45,7 @@ from radaraug.calibration.signatures import (
     detect_tx_rx_leakage,
 )
 from radaraug.config import RadarConfig
+from radaraug.files import atomic_savefig
 from radaraug.sensor import FMCWReceiver, Paths
 from radaraug.sensor.defaults import LEAKAGE_COUPLING_DB, default_effects
 from radaraug.sensor.effects import (
@@ -402,7 +403,7 @@ def main() -> None:
     drift_panels(axes[4, 1], axes[4, 2], cfg)
     fig.tight_layout()
     args.out.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(args.out, dpi=80)
+    atomic_savefig(fig, args.out, dpi=80)
     print("wrote", args.out)
 
 
