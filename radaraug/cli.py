@@ -139,13 +139,14 @@ def _cmd_info(args: argparse.Namespace) -> Result:
 
 
 def _cmd_fit_cdr(args: argparse.Namespace) -> Result:
-    from radaraug.calibration.record import fit_record
+    from radaraug.calibration.record import PERSISTENT_THRESHOLD_DB, fit_record
     from radaraug.transforms import CalibratedDR
 
     _check_output(args, args.output)
     with _stdout_for(args):
         # the calibration record: the floor fit and the capture's identity (its content digest)
-        record = fit_record(args.path, max_frames=args.max_frames, progress=True, floor=args.floor)
+        record = fit_record(args.path, max_frames=args.max_frames, progress=True, floor=args.floor,
+                            persistent_db=PERSISTENT_THRESHOLD_DB)
         record.save(args.output)
         cdr = CalibratedDR.from_record(record)
     if args.json:
@@ -326,7 +327,7 @@ def resolve_train_args(argv: Sequence[str]) -> list[str]:
     A recipe name stands for its base + task + method files (:mod:`radaraug.recipes`). Consecutive
     config files are merged as :func:`radaraug.recipes.compose` merges them (mappings key by key, at
     every depth) and given to LightningCLI as one inline YAML: LightningCLI alone would replace a
-    mapping value such as ``data.randomization`` whole when a later file sets one of its keys.
+    mapping value such as ``data.twin.randomization`` whole when a later file sets one of its keys.
     """
     import yaml
 
@@ -385,7 +386,7 @@ def _cmd_recipes(args: argparse.Namespace) -> Result:
     for name in recipes.recipe_names():
         data = recipes.compose(name)["data"]
         rows.append({"name": name, "files": [str(p) for p in recipes.recipe_files(name)], "task": data["task"],
-                     "method": data["method"]})
+                     "method": recipes.method_of(data["method"])})
     if args.json:
         return {"folder": str(recipes.RECIPES_DIR), "recipes": rows, "ablations": recipes.ablations()}
     for r in rows:

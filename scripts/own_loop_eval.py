@@ -26,8 +26,9 @@ CALL = 'chains = training_chains(room.calibration, "randomdr", task=TASK, seed=S
 VARIANTS = {
     "randomdr (the measured chain, default)": CALL,
     "the paper's chain (cdr, normal floor, noisy twin, dBFS image clipped to [-110, -40])":
-        'chains = training_chains(room.calibration, "cdr", task=TASK, seed=SEED, representation="paper", '
-        'cdr_floor="normal", cdr_twin_noise_offset_db=None, clip_range=[-110.0, -40.0], excise_persistent_db=None)',
+        'from radaraug.training import CDR; '
+        'chains = training_chains(room.calibration, CDR(floor="normal", twin_noise_offset_db=None), task=TASK, '
+        'seed=SEED, image={"representation": "paper", "clip_range": [-110.0, -40.0], "excise_persistent_db": None})',
 }
 
 

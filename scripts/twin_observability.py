@@ -2,7 +2,7 @@
 
 Simulates items of the training twin exactly as ``radaraug reproduce --quick`` does for its RT /
 RandomDR runs (the corridor scene, ``RadarConfig.bgt60tr13c()``, default ``TwinRandomization()``,
-default receiver, ``sim_seed`` 0, one frame per item, ``rd_db_chain()``), and looks at each item's
+default receiver, twin seed (``data.twin.seed``) 0, one frame per item, ``rd_db_chain()``), and looks at each item's
 floor-relative map as the network's level chain makes it (``level_chain("floor_relative", excise)``:
 RX mean power, each range row minus its Doppler median, zero Doppler +-1 bin blanked, and the
 persistent cells of the independent held-out set's empty-room capture excised, as the quick run does).
@@ -514,7 +514,7 @@ def main() -> None:
     """Parse the arguments, measure every item, write the JSON."""
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--items", type=int, default=600, help="items to simulate (default 600)")
-    ap.add_argument("--seed", type=int, default=0, help="sim_seed of the twin dataset (the quick run's: 0)")
+    ap.add_argument("--seed", type=int, default=0, help="seed of the twin dataset (data.twin.seed; the quick run's: 0)")
     ap.add_argument("--start", type=int, default=0, help="first item index (default 0: the training items)")
     ap.add_argument("--out", required=True, help="JSON file to write")
     ap.add_argument("--skip-range-bins", type=int, default=3, help="first range bins left out (leakage)")

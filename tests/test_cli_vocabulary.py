@@ -380,7 +380,7 @@ def _doc_flag_table() -> dict[str, str]:
 REPRODUCE_FLAGS = {  # flag -> (extra arguments, the value expected at the recipe key)
     "--calibration": ([], None),  # the base arguments give it; checked against the file below
     "--test": ([], None),
-    "--cdr-floor": (["--cdr-floor", "empirical"], "empirical"),
+    "--cdr-floor": (["--cdr-floor", "empirical", "--methods", "cdr"], "empirical"),
     "--representation": (["--representation", "paper"], "paper"),
     "--test-dr": (["--test-dr"], True),
     "--accelerator": (["--accelerator", "cpu"], "cpu"),
@@ -390,8 +390,8 @@ REPRODUCE_FLAGS = {  # flag -> (extra arguments, the value expected at the recip
 def test_the_documented_flag_table_is_the_tested_one() -> None:
     table = _doc_flag_table()
     assert set(table) == set(REPRODUCE_FLAGS)
-    for flag, key in table.items():  # each flag is named after its key
-        assert flag == "--" + key.split(".")[-1].replace("_", "-"), (flag, key)
+    for flag, key in table.items():  # each flag is named after its key (a CDR method's floor: --cdr-floor)
+        assert flag.endswith("-" + key.split(".")[-1].replace("_", "-")), (flag, key)
 
 
 @pytest.mark.parametrize("flag", sorted(REPRODUCE_FLAGS))
@@ -404,9 +404,17 @@ def test_each_reproduce_flag_reaches_its_recipe_key(flag, tmp_path, monkeypatch)
     cal, test = _capture(tmp_path / "empty.h5"), _capture(tmp_path / "walk.h5")
     got: dict[str, object] = {}
 
-    def datamodule(**kw):
-        got.update({f"data.{k}": v for k, v in kw.items()})
+    def flatten(prefix, kw):
+        for k, v in kw.items():
+            got[f"{prefix}.{k}"] = v
+            if isinstance(v, dict):
+                flatten(f"{prefix}.{k}", v)
+
+    def from_recipe(kw):
+        flatten("data", kw)
         return SimpleNamespace(hparams=kw)
+
+    datamodule = SimpleNamespace(from_recipe=from_recipe)
 
     def trainer(settings, accelerator, run_dir, **kw):
         got["trainer.accelerator"] = accelerator

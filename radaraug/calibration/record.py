@@ -36,6 +36,9 @@ NOISE_FIT_VERSION = 2
 
 #: Frames of the calibration capture read for the excision mask.
 PERSISTENT_FRAMES = 64
+#: dB over the row's floor at which a cell is persistent: the recipes' excision threshold, and what
+#: ``radaraug fit-cdr`` / ``calibrate`` record, so that a record serves the excision without the capture.
+PERSISTENT_THRESHOLD_DB = 3.0
 
 
 def noise_fit_path(cache_dir: str | Path, scene: str, config: RadarConfig, target_db: float,
@@ -120,7 +123,7 @@ def persistent_cells_of(calibration: str, threshold_db: float, rd_db: Callable[[
         n = min(cap.num_frames, int(frames))
         if n < 3:
             raise ConfigError(f"calibration {calibration}: {n} frames; excising its persistent lines needs >= 3 "
-                              "(record longer, or set data.excise_persistent_db: null)")
+                              "(record longer, or set data.image.excise_persistent_db: null)")
         maps = CombineRx("mean_power", db=True)(rd_db(cap.read(0, n))).squeeze(-3)
     return persistent_cells(maps, float(threshold_db))
 

@@ -71,7 +71,7 @@ def calibrate(
         CaptureError, DeviceError, ConfigError: as :func:`~radaraug.capture.record.record`.
         KeyboardInterrupt: Ctrl-C while recording (nothing is written; a kept recording keeps its frames).
     """
-    from radaraug.calibration.record import fit_record
+    from radaraug.calibration.record import PERSISTENT_THRESHOLD_DB, fit_record
 
     output = Path(output)
     if floor not in FLOORS:  # before recording, not after ten seconds of it
@@ -90,7 +90,8 @@ def calibrate(
         with warnings.catch_warnings():
             # The motion warning of fit() becomes the refusal below.
             warnings.simplefilter("ignore", MotionWarning)
-            cal = fit_record(rec_path, floor=floor, motion_threshold_db=motion_threshold_db)
+            cal = fit_record(rec_path, floor=floor, motion_threshold_db=motion_threshold_db,
+                             persistent_db=PERSISTENT_THRESHOLD_DB)
     finally:
         if temporary:
             rec_path.unlink(missing_ok=True)

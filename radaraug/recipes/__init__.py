@@ -126,7 +126,7 @@ def load(path: str | Path) -> dict[str, Any]:
 def compose(*names: str) -> dict[str, Any]:
     """The merged recipe of ``names`` (recipe names or YAML files), in order.
 
-    Example: ``compose("counting_cdr", "ablation/cdr_normal_floor")["data"]["cdr_floor"] == "normal"``.
+    Example: ``compose("counting_cdr", "ablation/cdr_normal_floor")["data"]["method"]["init_args"]["floor"] == "normal"``.
     """
     out: dict[str, Any] = {}
     for name in names:
@@ -135,17 +135,29 @@ def compose(*names: str) -> dict[str, Any]:
     return out
 
 
+def method_of(entry: Any) -> str | None:
+    """The method name (``method/NAME.yaml``) whose ``data.method`` has the ``class_path`` of ``entry``."""
+    path = entry.get("class_path") if isinstance(entry, dict) else None
+    for name in methods():
+        own = compose(f"method/{name}").get("data", {}).get("method", {})
+        if path is not None and own.get("class_path") == path:
+            return name
+    return None
+
+
 def ablation(name: str) -> tuple[str, dict[str, Any]]:
-    """``(method, changes)`` of an ablation override: its ``data.method`` and the data keys it changes."""
+    """``(method, changes)`` of an ablation override: the method its ``data.method`` names, and its data keys."""
     data = dict(compose(f"ablation/{name}").get("data", {}))
-    method = data.pop("method", None)
-    if method not in methods():
-        raise ConfigError(f"recipe ablation/{name}.yaml must name its method (data.method: one of {methods()})")
-    return str(method), data
+    method = method_of(data.get("method"))
+    if method is None:
+        raise ConfigError(f"recipe ablation/{name}.yaml must name its method (data.method.class_path: that of one "
+                          f"of {methods()})")
+    init_args = data.pop("method").get("init_args")
+    return method, data | ({"method": init_args} if init_args else {})
 
 
 def ablation_method(name: str) -> str:
-    """The method an ablation override changes (its ``data.method``)."""
+    """The method an ablation override changes (the one its ``data.method`` names)."""
     return ablation(name)[0]
 
 

@@ -6,6 +6,7 @@ experiment; see docs/training.md.
 
 from radaraug.training.data import RadarDataModule
 from radaraug.training.dropin import TrainingChains, training_chains
+from radaraug.training.methods import CDR, RT, CDRProfile, Method, OwnDR, RandomDR
 from radaraug.training.metrics import (
     accuracy,
     balanced_accuracy,
@@ -15,20 +16,28 @@ from radaraug.training.metrics import (
 )
 from radaraug.training.models import TorchvisionClassifier
 from radaraug.training.module import RDClassifier
-from radaraug.training.pipeline import METHODS, TASKS, estimate_clip_range, image_chain, make_dr, rd_db_chain
+from radaraug.training.pipeline import TASKS, estimate_clip_range, image_chain, rd_db_chain
+from radaraug.training.preparation import ImageSpec, TwinSplits, prepare
 from radaraug.training.testset import CalibrationWarning, TestSetWarning, check_test_set
 
 __all__ = [
     "TASKS",
-    "METHODS",
     "RadarDataModule",
+    "Method",
+    "RT",
+    "RandomDR",
+    "CDR",
+    "CDRProfile",
+    "OwnDR",
+    "TwinSplits",
+    "ImageSpec",
+    "prepare",
     "TrainingChains",
     "training_chains",
     "RDClassifier",
     "TorchvisionClassifier",
     "rd_db_chain",
     "image_chain",
-    "make_dr",
     "estimate_clip_range",
     "confusion_matrix",
     "balanced_accuracy",

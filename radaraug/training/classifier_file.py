@@ -102,14 +102,13 @@ def classifier_record(model: Any, datamodule: Any, *, gate: StaticChangeDetector
     if datamodule.clip is None or datamodule.config is None:
         raise CheckpointError("the data module has not been set up (no clip range or radar config)")
     net, arch = torchvision_net(model.net)
-    hp = datamodule.hparams
-    size = hp["image_size"]
+    spec, size = datamodule.image_spec, datamodule.image_spec.size
     chain = ChainSpec(RangeDoppler().extra_spec(),  # the chain rd_db_chain() builds
-                      str(hp["representation"]), int(hp.get("blank_zero_doppler", 1)),
+                      str(spec.representation), int(spec.blank_zero_doppler),
                       (float(datamodule.clip[0]), float(datamodule.clip[1])),
                       None if size is None else (int(size[0]), int(size[1])), datamodule.excise)
-    info = {"method": datamodule.method, "train_items": int(hp["train_items"]), "sim_seed": int(hp["sim_seed"]),
-            "dr_seed": int(hp["dr_seed"]), **(provenance or {})}
+    info = {"method": datamodule.method.name, "train_items": int(datamodule.twin.train_items),
+            "sim_seed": int(datamodule.twin.seed), "dr_seed": int(datamodule.hparams["seed"]), **(provenance or {})}
     return file_record(task=str(model.hparams["task"]), arch=arch, net=net, config=datamodule.config, chain=chain,
                        context_frames=int(model.hparams.get("context_frames", 1)), gate=gate, provenance=info)
 

@@ -47,7 +47,7 @@ class RadarCLI(LightningCLI):
 
     def after_fit(self) -> None:
         """Write ``classifier.pt`` into the log folder, then test the fitted model on the test split."""
-        folder = self.datamodule.hparams["out_dir"] or self.trainer.log_dir
+        folder = self.trainer.log_dir
         if self.trainer.global_rank == 0 and folder is not None:
             save_checkpoint(classifier_record(self.model, self.datamodule, gate=_gate_of(self.datamodule),
                                               provenance={"recipe": "radaraug train fit"}),

@@ -21,6 +21,7 @@ from torch import nn
 from radaraug import recipes
 from radaraug.config import RadarConfig
 from radaraug.errors import ConfigError
+from radaraug.training.methods import Method
 from radaraug.training.pipeline import rd_db_chain
 
 
@@ -62,7 +63,7 @@ class TrainingChains:
         return ds
 
 
-def training_chains(calibration: str | os.PathLike, method: str = "randomdr", *, task: str = "occupancy",
+def training_chains(calibration: str | os.PathLike, method: str | Method = "randomdr", *, task: str = "occupancy",
                     image_size: Sequence[int] | None = (64, 32), estimate_items: int = 256, seed: int = 0,
                     cache_dir: str | os.PathLike | None = None, progress: bool = False,
                     **data: Any) -> TrainingChains:
@@ -73,14 +74,16 @@ def training_chains(calibration: str | os.PathLike, method: str = "randomdr", *,
     Args:
         calibration: the empty-room capture (radaraug HDF5 or Infineon recording): its config, excision mask
             and CDR's floor come from it.
-        method: ``rt``, ``randomdr`` (default) or ``cdr``.
+        method: ``rt``, ``randomdr`` (default) or ``cdr`` (the recipe's method), or a method object
+            (:mod:`radaraug.training.methods`) that replaces the recipe's of its name.
         task: ``occupancy`` or ``counting`` (the recipe whose settings are taken).
         image_size: network input ``(H, W)`` (None: the RD map's size).
         estimate_items: twin items that estimate the clip range.
         seed: seed of the DR draws and the estimation items.
         cache_dir: where those items are cached (None: the user cache folder).
         progress: progress bars while simulating.
-        **data: any other ``RadarDataModule`` key, overriding the recipe's (e.g. ``representation="paper"``).
+        **data: any other ``RadarDataModule`` key, merged into the recipe's key by key (e.g.
+            ``image={"representation": "paper"}``).
 
     Raises:
         ConfigError: a CalibratedDR JSON (the chain needs the capture's frames), or an unknown method/key.
@@ -93,15 +96,18 @@ def training_chains(calibration: str | os.PathLike, method: str = "randomdr", *,
     if is_calibration_json(calibration):
         raise ConfigError(f"{calibration}: a CalibratedDR JSON has no frames; training_chains needs the empty-room "
                           "capture itself (its persistent lines are excised, the floor is fitted on it)")
+    given = method if isinstance(method, Method) else None
+    method = method.name if isinstance(method, Method) else method
     if method == "cdr_profile":
         raise ConfigError("training_chains: cdr_profile's twin is fitted by radaraug diagnose; use the recipes")
     recipe = dict(recipes.compose(f"{task}_{method}").get("data", {}))
-    kw = recipe | {"calibration": str(calibration), "test": [{"path": str(calibration), "count": 0}],
-                   "train_items": int(estimate_items), "val_items": 0, "sim_seed": int(seed), "dr_seed": int(seed),
-                   "image_size": None if image_size is None else [int(v) for v in image_size],
-                   "cache_dir": None if cache_dir is None else str(cache_dir), "progress": progress}
-    kw = recipes.merge(kw, data)  # key by key: randomization={"people": ...} keeps the recipe's catalog settings
-    dm = RadarDataModule(**kw)
+    kw = recipes.merge(recipe, {
+        "calibration": str(calibration), "test": [{"path": str(calibration), "count": 0}], "seed": int(seed),
+        "twin": {"train_items": int(estimate_items), "val_items": 0, "seed": int(seed), "progress": progress},
+        "image": {"size": None if image_size is None else [int(v) for v in image_size]},
+        "cache_dir": None if cache_dir is None else str(cache_dir)})
+    kw = recipes.merge(kw, data)  # key by key: twin={"randomization": {"people": ...}} keeps the recipe's catalog
+    dm = RadarDataModule.from_recipe(kw if given is None else kw | {"method": given})
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", TestSetWarning)  # the calibration stands in as the test set: one class
         dm.setup("fit")
@@ -110,4 +116,4 @@ def training_chains(calibration: str | os.PathLike, method: str = "randomdr", *,
     image: list[nn.Module] = list(dm.image.children())
     train: list[nn.Module] = [rd, *([dm.dr] if dm.dr is not None else []), *image]
     return TrainingChains(train=nn.Sequential(*train), test=nn.Sequential(rd, *image), config=dm.config,
-                          clip_range_db=dm.clip, excise=dm.excise, dr=dm.dr, method=method, _datamodule=dm)
+                          clip_range_db=dm.clip, excise=dm.excise, dr=dm.dr, method=dm.method.name, _datamodule=dm)

@@ -171,7 +171,7 @@ class RDClassifier(L.LightningModule):
         bacc = balanced_accuracy(cm)
         self.log("test/balanced_accuracy", bacc, sync_dist=True)
         dm = getattr(self.trainer, "datamodule", None)
-        out = self.hparams["out_dir"] or getattr(dm, "hparams", {}).get("out_dir") or self.trainer.log_dir
+        out = self.hparams["out_dir"] or self.trainer.log_dir
         self.last_test_probs = torch.cat([p for p, _ in self._test_out]) if self._test_out else None
         self.last_test_labels = torch.cat([y for _, y in self._test_out]) if self._test_out else None
         self._test_out = []

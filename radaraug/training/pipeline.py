@@ -1,6 +1,6 @@
 """The paper's processing chain, split where the simulate-once cache sits.
 
-:func:`rd_db_chain` (raw frames to per-RX dB maps, cached), :func:`make_dr` (training only) and
+:func:`rd_db_chain` (raw frames to per-RX dB maps, cached), the method's DR (training only) and
 :func:`image_chain` (every split; captures skip the DR). The chain is drawn in docs/training.md.
 """
 
@@ -16,13 +16,11 @@ from torch import nn
 
 from radaraug.errors import ConfigError
 from radaraug.transforms import (
-    CalibratedDR,
     ClipNormalize,
     Colormap,
     CombineRx,
     FloorRelative,
     RadarCompose,
-    RandomDR,
     RangeDoppler,
     Resize,
     ToDecibels,
@@ -30,21 +28,9 @@ from radaraug.transforms import (
 
 #: Class names per task; the label of a simulated item is its people count.
 TASKS: dict[str, tuple[str, ...]] = {"occupancy": ("empty", "occupied"), "counting": ("0", "1", "2")}
-#: Noise-floor randomization methods: the paper's three, and CDR on a twin whose receiver carries
-#: the twin profile fitted (``radaraug diagnose``) on the same empty-room calibration capture.
-METHODS = ("rt", "randomdr", "cdr", "cdr_profile")
 #: Network input representations: the paper's clipped dBFS map, or each range row referenced to
 #: its own Doppler median with zero Doppler blanked (docs/training.md, "Representations").
 REPRESENTATIONS = ("paper", "floor_relative")
-#: CalibratedDR floors a run can ask for: CalibratedDR's own (``normal``: the paper's, ``empirical``:
-#: the capture's measured distribution) and ``matched``: the empirical clamp distribution
-#: deconvolved against the twin's own empty-room floor, so that ``max(S, N)`` has the capture's
-#: (:func:`radaraug.transforms.floor_fit.matched_floor_quantiles`).
-CDR_FLOORS = ("normal", "empirical", "matched")
-#: Methods whose DR is CalibratedDR (they need a calibration).
-CDR_METHODS = ("cdr", "cdr_profile")
-#: Methods whose twin receiver is the twin profile fitted on the calibration capture.
-PROFILE_METHODS = ("cdr_profile",)
 
 
 def check_task(task: str) -> tuple[str, ...]:
@@ -69,45 +55,6 @@ def is_calibration_json(calibration: str | os.PathLike) -> bool:
 def rd_db_chain() -> RadarCompose:
     """Raw frames ``(..., rx, chirps, samples)`` -> per-RX RD dB maps ``(..., rx, range, doppler)``."""
     return RadarCompose([RangeDoppler(), ToDecibels()])
-
-
-def make_dr(
-    method: str,
-    *,
-    calibration: str | os.PathLike | CalibratedDR | None = None,
-    seed: int | None = None,
-    randomdr_mean_db: Sequence[float] | None = None,
-    randomdr_std_db: Sequence[float] | None = None,
-    cdr_floor: str | None = None,
-) -> nn.Module | None:
-    """The training-time noise-floor randomization of ``method`` (None for ``rt``).
-
-    Args:
-        method: ``rt`` (no randomization), ``randomdr``, ``cdr`` or ``cdr_profile`` (``cdr``'s DR).
-        calibration: for the CDR methods: a fitted :class:`CalibratedDR`, its JSON, or an empty-room capture.
-        seed: seed of the transform's own generator (per-sample draws).
-        randomdr_mean_db: RandomDR's range of the floor mean in dB (None: the default, docs/transforms.md).
-        randomdr_std_db: RandomDR's range of the floor standard deviation in dB (None: the default).
-        cdr_floor: ``"normal"``, ``"empirical"`` or ``"matched"`` (empirical here; the data module then
-            matches its quantiles to the twin's floor); None: the calibration's own.
-    """
-    if method not in METHODS:
-        raise ConfigError(f"method must be one of {METHODS}, got {method!r}")
-    if method == "rt":
-        return None
-    if method == "randomdr":
-        ranges = {"mean_db": randomdr_mean_db, "std_db": randomdr_std_db}
-        kw: dict[str, Any] = {k: tuple(v) for k, v in ranges.items() if v is not None}
-        return RandomDR(seed=seed, **kw)
-    if calibration is None:
-        raise ConfigError(f"method {method!r} needs a calibration: an empty-room capture or a CalibratedDR JSON")
-    if isinstance(calibration, CalibratedDR):
-        fitted = calibration
-    elif is_calibration_json(calibration):
-        fitted = CalibratedDR.load(calibration)
-    else:
-        fitted = CalibratedDR.fit(calibration, progress=False)
-    return fitted.replace(floor=("empirical" if cdr_floor == "matched" else cdr_floor) or fitted.floor, seed=seed)
 
 
 def check_representation(representation: str) -> str:

@@ -7,6 +7,7 @@ per-run metrics and the paper's figures (docs/training.md, "radaraug reproduce")
 from __future__ import annotations
 
 import contextlib
+import inspect
 import json
 import logging
 import os
@@ -26,7 +27,8 @@ from radaraug._optional import lazy_import
 from radaraug.errors import ConfigError
 from radaraug.files import atomic_write_json, atomic_write_text
 from radaraug.training.classifier_file import classifier_record, save_checkpoint
-from radaraug.training.pipeline import CDR_METHODS, METHODS, PROFILE_METHODS, TASKS, is_calibration_json
+from radaraug.training.methods import METHODS
+from radaraug.training.pipeline import TASKS, is_calibration_json
 from radaraug.units import DB_CONVENTION
 
 #: A :class:`ReproduceSettings` field left to the recipes (``radaraug.recipes``): the run takes the value
@@ -74,7 +76,7 @@ class ReproduceSettings:
     #: write each run's classifier file (``runs/.../classifier.pt``, ~45 MB for a ResNet18; docs/predict.md)
     keep_classifiers: bool = True
     #: methods run unless ``reproduce(methods=...)`` names them
-    methods: tuple[str, ...] = METHODS
+    methods: tuple[str, ...] = tuple(METHODS)
     #: generated test sets used when no test captures are given (:data:`DEFAULT_TEST_SETS`)
     test_sets: tuple[str, ...] = ("proxy", "independent")
     #: worlds per held-out suite (``design``/``report`` in ``test_sets``; None: ``radaraug.heldout.worlds.DEFAULT_WORLDS``)
@@ -104,10 +106,44 @@ class ReproduceSettings:
                    methods=("rt", "randomdr", "cdr"), ablations=(), test_sets=("independent",))
 
 
-#: The settings fields that override a recipe key when set (those whose default is ``"recipe"``):
-#: field -> (section, key); every one is a ``data`` key of the same name but ``lr`` and ``context_frames``, the model's.
-RECIPE_KEYS = {f.name: ("model" if f.name in ("lr", "context_frames") else "data", f.name)
-               for f in fields(ReproduceSettings) if f.default == RECIPE}
+#: The settings fields that override a recipe key when set (those whose default is ``"recipe"``): field ->
+#: the recipe key's path. A ``data.method.init_args`` key is set only where the run's method takes it.
+RECIPE_KEYS: dict[str, tuple[str, ...]] = {
+    "lr": ("model", "lr"), "context_frames": ("model", "context_frames"),
+    "randomization": ("data", "twin", "randomization"), "calibrate_noise": ("data", "twin", "calibrate_noise"),
+    "representation": ("data", "image", "representation"),
+    "blank_zero_doppler": ("data", "image", "blank_zero_doppler"),
+    "excise_persistent_db": ("data", "image", "excise_persistent_db"),
+    "cdr_twin_noise_offset_db": ("data", "method", "init_args", "twin_noise_offset_db"),
+    "cdr_floor": ("data", "method", "init_args", "floor"),
+}
+assert set(RECIPE_KEYS) == {f.name for f in fields(ReproduceSettings) if f.default == RECIPE}
+#: The settings fields that set a recipe key whatever the recipe says (sizes and workers): field -> path.
+SIZE_KEYS: dict[str, tuple[str, ...]] = {
+    "train_items": ("data", "twin", "train_items"), "val_items": ("data", "twin", "val_items"),
+    "tracer_rays": ("data", "twin", "tracer_rays"), "sim_workers": ("data", "twin", "workers"),
+    "image_size": ("data", "image", "size"), "batch_size": ("data", "batch_size"),
+    "num_workers": ("data", "num_workers"), "profile_max_frames": ("data", "method", "init_args", "max_frames"),
+}
+
+
+def _set_key(cfg: dict[str, Any], path: tuple[str, ...], value: Any) -> None:
+    """``cfg[path] = value``; a method argument only where the recipe's method takes it."""
+    if path[:3] == ("data", "method", "init_args"):
+        name = recipes.method_of(cfg.get("data", {}).get("method"))
+        if name is None or path[3] not in inspect.signature(METHODS[name]).parameters:
+            return
+    *parents, key = path
+    node = cfg
+    for p in parents:
+        node = node.setdefault(p, {})
+    node[key] = value
+
+
+def _get_key(cfg: dict[str, Any], path: tuple[str, ...]) -> Any:
+    for p in path:
+        cfg = cfg.get(p, {}) if isinstance(cfg, dict) else {}
+    return None if cfg == {} else cfg
 
 
 def parse_test_arg(text: str) -> dict[str, Any]:
@@ -135,8 +171,8 @@ def _cdr_floor_of(keep: dict[tuple[str, str, str], tuple[Any, Any]], settings: R
 
     if not any(isinstance(dm.dr, CalibratedDR) for _, dm in keep.values()):
         return None
-    floors = {dm.hparams["cdr_floor"] or dm.dr.floor for (_, _, n), (_, dm) in keep.items()
-              if n in CDR_METHODS and isinstance(dm.dr, CalibratedDR)}
+    floors = {dm.method.floor or dm.dr.floor for (_, _, n), (_, dm) in keep.items()
+              if n in METHODS and dm.method.needs_calibration and isinstance(dm.dr, CalibratedDR)}
     return floors.pop() if len(floors) == 1 else effective_settings(settings)["cdr_floor"]
 
 
@@ -164,10 +200,10 @@ ABLATIONS: dict[str, tuple[str, dict[str, Any]]] = {name: recipes.ablation(name)
 def run_recipe(task: str, method: str, settings: ReproduceSettings, ablation: str | None = None) -> dict[str, Any]:
     """The recipe of one run: base + task + method (+ the ablation), with ``settings``' overrides."""
     cfg = recipes.compose(f"{task}_{method}")
-    for field, (section, key) in RECIPE_KEYS.items():
+    for field, path in RECIPE_KEYS.items():
         value = getattr(settings, field)
         if not (isinstance(value, str) and value == RECIPE):
-            cfg.setdefault(section, {})[key] = value
+            _set_key(cfg, path, value)
     if ablation is not None:  # last: an ablation's one change wins over the experiment's settings
         cfg = recipes.merge(cfg, recipes.compose(f"ablation/{ablation}"))
     return cfg
@@ -180,8 +216,7 @@ def effective_settings(settings: ReproduceSettings) -> dict[str, Any]:
     ``cdr`` method's recipe; the others from the base recipe.
     """
     cfg = run_recipe("occupancy", "cdr", settings)
-    return asdict(settings) | {field: cfg.get(section, {}).get(key)
-                               for field, (section, key) in RECIPE_KEYS.items()}
+    return asdict(settings) | {field: _get_key(cfg, path) for field, path in RECIPE_KEYS.items()}
 
 
 @dataclass
@@ -236,12 +271,15 @@ def _test_sets(out: Path, settings: ReproduceSettings, calibration: str | None,
     return sets
 
 
-def _shared_across_test_sets(method: str, data_kw: dict[str, Any]) -> bool:
+def _shared_across_test_sets(data: dict[str, Any]) -> bool:
     """True when a run does not depend on the calibration capture (train once, test on every set)."""
+    from radaraug.training.methods import method_from
+    from radaraug.training.preparation import ImageSpec, TwinSplits
+
+    twin, image = TwinSplits(**data.get("twin", {})), ImageSpec(**data.get("image", {}))
     # the excision mask of floor_relative maps comes from the calibration capture too
-    excises = data_kw.get("representation") == "floor_relative" and data_kw.get("excise_persistent_db") is not None
-    return (method not in CDR_METHODS and not data_kw.get("calibrate_noise", True) and not data_kw.get("profile")
-            and not excises and data_kw.get("catalog_priors", "physics") == "physics")
+    return (not method_from(data["method"]).needs_calibration and not twin.calibrate_noise and twin.profile is None
+            and not image.excises and twin.catalog_priors == "physics")
 
 
 @torch.no_grad()
@@ -262,7 +300,7 @@ def _scores(model: Any, dm: Any, loader: Any, *, with_dr: bool, limit: int = 512
     return torch.cat(probs)[:limit], torch.cat(labels)[:limit]
 
 
-def _fit(task: str, method: str, seed: int, *, settings: ReproduceSettings, data_kw: dict[str, Any],
+def _fit(task: str, seed: int, *, settings: ReproduceSettings, data_kw: dict[str, Any],
          model_kw: dict[str, Any], run_dir: Path, accelerator: str,
          progress: bool) -> tuple[Any, Any, Any, float, float | None]:
     """Train one run: ``data_kw`` / ``model_kw`` are its recipe's sections with this experiment's inputs."""
@@ -272,8 +310,7 @@ def _fit(task: str, method: str, seed: int, *, settings: ReproduceSettings, data
     from radaraug.training.module import RDClassifier
 
     L.seed_everything(seed, workers=True, verbose=False)
-    dm = RadarDataModule(**(data_kw | {"task": task, "method": method, "dr_seed": seed, "out_dir": str(run_dir),
-                                       "progress": progress}))
+    dm = RadarDataModule.from_recipe(recipes.merge(data_kw, {"task": task, "seed": seed, "twin": {"progress": progress}}))
     model = RDClassifier(**(model_kw | {"task": task, "out_dir": str(run_dir)}))
     trainer = _trainer(settings, accelerator, run_dir, fitting=True)
     t0 = time.perf_counter()
@@ -288,14 +325,13 @@ def _fit(task: str, method: str, seed: int, *, settings: ReproduceSettings, data
     return model, dm, trainer, time.perf_counter() - t0, None if val_bacc is None else float(val_bacc)
 
 
-def _size_kw(settings: ReproduceSettings) -> dict[str, Any]:
-    """The data keys ``reproduce`` sets from its settings (sizes and workers), whatever the recipe says.
-
-    Each is the settings field of the same name (``image_size`` as a list, as in a recipe).
-    """
-    keys = ("train_items", "val_items", "image_size", "batch_size", "num_workers", "sim_workers",
-            "tracer_rays", "proxy_frames_per_count", "profile_max_frames")
-    return {k: getattr(settings, k) for k in keys} | {"image_size": list(settings.image_size)}
+def _sized(recipe: dict[str, Any], settings: ReproduceSettings) -> dict[str, Any]:
+    """``recipe`` with the keys ``reproduce`` sets from its settings (:data:`SIZE_KEYS`), whatever it says."""
+    out = recipes.merge(recipe, {})
+    for field, path in SIZE_KEYS.items():
+        value = getattr(settings, field)
+        _set_key(out, path, list(value) if field == "image_size" else value)
+    return out
 
 
 def _trainer(settings: ReproduceSettings, accelerator: str, run_dir: Path, *, fitting: bool = False) -> Any:
@@ -335,9 +371,7 @@ def _test_dm(trained: Any, ts: TestSet, data_kw: dict[str, Any], run_dir: Path) 
     """A data module for testing a model trained with ``trained`` (its clip range) on test set ``ts``."""
     from radaraug.training.data import RadarDataModule
 
-    kw = dict(trained.hparams) | {"calibration": ts.calibration, "test": ts.tests, "out_dir": str(run_dir),
-                                  "proxy_dir": data_kw["proxy_dir"]}
-    dm = RadarDataModule(**kw)
+    dm = RadarDataModule.from_recipe(dict(trained.hparams) | {"calibration": ts.calibration, "test": ts.tests})
     dm.clip, dm.excise = trained.clip, trained.excise
     return dm
 
@@ -395,8 +429,8 @@ def reproduce(
         settings = replace(settings, worlds=worlds)
     methods = tuple(settings.methods if methods is None else methods)
     test_sets = tuple(settings.test_sets if test_sets is None else test_sets)
-    _check_known("method", methods, METHODS)
-    if calibration is not None and is_calibration_json(calibration) and any(m in PROFILE_METHODS for m in methods):
+    _check_known("method", methods, list(METHODS))
+    if calibration is not None and is_calibration_json(calibration) and any(METHODS[m].fits_profile for m in methods):
         raise ConfigError(f"method 'cdr_profile' fits a twin profile on an empty-room capture, but the calibration "
                           f"{calibration!r} is a CalibratedDR JSON: give the capture, or leave cdr_profile out")
 
@@ -434,17 +468,18 @@ def reproduce(
     bar = tqdm(total=len(sets) * len(tasks) * len(variants) * seeds, desc="reproduce runs", disable=not progress)
     shared: dict[tuple[str, str, int, str], tuple[Any, Any, float, float | None]] = {}  # model, data module, fit s, val
     for ts in sets:
-        data_kw = {"calibration": ts.calibration, "test": ts.tests, "cache_dir": str(out / "cache"),
-                   "proxy_dir": str(out / "proxy"), "test_dr": test_dr}
+        data_kw = {"calibration": ts.calibration, "test": ts.tests, "cache_dir": str(out / "cache")}
         for task in tasks:
             results[ts.name][task], scores[ts.name][task] = {}, {}
             for name, method, ablation_name in variants:
                 seed_reps: list[dict[str, Any]] = []
                 seed_scores: list[tuple[Any, Any, Any]] = []
-                recipe = run_recipe(task, method, settings, ablation_name)
+                recipe = _sized(run_recipe(task, method, settings, ablation_name), settings)
+                if test_dr:
+                    _set_key(recipe, ("data", "method", "init_args", "test_dr"), True)
                 context_frames = int(recipe.get("model", {}).get("context_frames", 1))
-                kw = recipe.get("data", {}) | _size_kw(settings) | data_kw
-                is_shared = _shared_across_test_sets(method, kw)
+                kw = recipe.get("data", {}) | data_kw
+                is_shared = _shared_across_test_sets(kw)
                 for seed in range(seeds):
                     run_dir = out / "runs" / ts.name / f"{task}_{name}_seed{seed}"
                     bar.set_postfix_str(f"{ts.name} {task} {name} seed {seed}")
@@ -456,7 +491,7 @@ def reproduce(
                         trainer = _trainer(settings, accelerator, run_dir)
                         trained_on = trained_dm.hparams["calibration"]
                     else:
-                        model, dm, trainer, fit_s, val_bacc = _fit(task, method, seed, settings=settings, data_kw=kw,
+                        model, dm, trainer, fit_s, val_bacc = _fit(task, seed, settings=settings, data_kw=kw,
                                                                    model_kw=recipe.get("model", {}), run_dir=run_dir, accelerator=accelerator,
                                                                    progress=progress)
                         trained_on = None
@@ -734,7 +769,8 @@ def _ablation_table(results: dict[str, dict[str, Any]]) -> list[dict[str, Any]]:
 
 def _shared_info(keep: dict, attr: str) -> dict[str, Any] | None:
     """The data modules' ``attr`` (``noise_fit``, ``profile_info``: the runs share it), if any run has one."""
-    return next((getattr(dm, attr) for _, dm in keep.values() if getattr(dm, attr, None) is not None), None)
+    return next((getattr(dm.prepared, attr) for _, dm in keep.values()
+                 if getattr(dm.prepared, attr, None) is not None), None)
 
 
 def _profile_of(keep: dict, out: Path) -> dict[str, Any] | None:
@@ -1001,7 +1037,7 @@ def _markdown(rep: dict[str, Any]) -> str:
 
         added = ", ".join(f"`{e}`" for e in prof.get("effects_added") or []) or "none"
         how = ("fitted by `radaraug diagnose` on the calibration capture"
-               if str(prof.get("source", "")).startswith("fitted") else "given as `data.profile`")
+               if str(prof.get("source", "")).startswith("fitted") else "given as `data.twin.profile`")
         frames = f", {prof['max_frames']} frames read" if prof.get("max_frames") else ""
         lines += ["## Twin profile (`cdr_profile`)", "",
                   f"The `cdr_profile` runs simulate with the twin profile {how} (`{prof.get('path')}`; capture "

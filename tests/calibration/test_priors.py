@@ -69,10 +69,10 @@ def test_nothing_found_keeps_the_randomization() -> None:
 
 def test_datamodule_refuses_unknown_priors() -> None:
     from radaraug.errors import ConfigError
-    from radaraug.training.data import RadarDataModule
+    from radaraug.training import TwinSplits
 
     with pytest.raises(ConfigError, match="catalog_priors"):
-        RadarDataModule(catalog_priors="measured")  # type: ignore[arg-type]
+        TwinSplits(catalog_priors="measured")  # type: ignore[arg-type]
 
 
 def test_effects_draws_stay_reproducible_with_priors() -> None:

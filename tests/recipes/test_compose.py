@@ -7,7 +7,8 @@ import yaml
 
 from radaraug import recipes
 from radaraug.errors import ConfigError
-from radaraug.training.pipeline import METHODS, TASKS
+from radaraug.training.methods import METHODS
+from radaraug.training.pipeline import TASKS
 
 
 def test_one_name_per_task_and_method_from_the_override_files():
@@ -22,9 +23,9 @@ def test_a_name_is_base_task_and_method_merged(name):
     cfg = recipes.compose(name)
     task, method = files[1].stem, files[2].stem
     assert name == f"{task}_{method}"
-    assert cfg["data"]["task"] == task and cfg["data"]["method"] == method
+    assert cfg["data"]["task"] == task and recipes.method_of(cfg["data"]["method"]) == method
     # twin randomization on by default, its catalog without the persistent effects (spur, fan)
-    assert cfg["data"]["randomization"] == {"catalog": {"spur_tone": {"probability": 0.0},
+    assert cfg["data"]["twin"]["randomization"] == {"catalog": {"spur_tone": {"probability": 0.0},
                                                         "vibrating_clutter": {"probability": 0.0}}}
     # the base's keys are all there, the method's added: nothing of the base lost in the merge
     base = yaml.safe_load((recipes.RECIPES_DIR / "base.yaml").read_text())
@@ -55,7 +56,7 @@ def test_every_ablation_names_its_method_and_changes_something(name):
     assert method in METHODS and name.startswith(method.split("_")[0])
     main = recipes.compose(f"occupancy_{method}")
     changed = recipes.compose(f"occupancy_{method}", f"ablation/{name}")
-    assert changed != main and changed["data"]["method"] == method
+    assert changed != main and recipes.method_of(changed["data"]["method"]) == method
 
 
 def test_names_of_the_old_checkout_place_and_single_files_resolve():

@@ -7,10 +7,10 @@ import torch
 
 from radaraug.errors import ConfigError
 from radaraug.io import RadarCaptureDataset
-from radaraug.training import RadarDataModule, training_chains
+from radaraug.training import CDR, ImageSpec, RadarDataModule, TwinSplits, training_chains
 from radaraug.transforms import CalibratedDR, FloorRelative, RandomDR
 
-SMALL = {"estimate_items": 8, "tracer_rays": 16, "randomization": False, "image_size": (32, 16)}
+SMALL = {"estimate_items": 8, "twin": {"tracer_rays": 16, "randomization": False}, "image_size": (32, 16)}
 
 
 def test_the_chains_are_the_recipes_chains(captures, tmp_path) -> None:
@@ -22,9 +22,10 @@ def test_the_chains_are_the_recipes_chains(captures, tmp_path) -> None:
     image, label = real[0]
     assert image.shape == (3, 32, 16) and 0 <= float(image.min()) and float(image.max()) <= 1 and label == 1
     # the same clip range and excision as the data module of the recipe (its estimate on the same items)
-    dm = RadarDataModule(calibration=str(cal), test=[{"path": str(cal), "count": 0}], train_items=8, val_items=0,
-                         cache_dir=str(tmp_path), tracer_rays=16, randomization=False, image_size=[32, 16],
-                         progress=False, blank_zero_doppler=1)
+    dm = RadarDataModule(calibration=str(cal), test=[{"path": str(cal), "count": 0}], cache_dir=str(tmp_path),
+                         twin=TwinSplits(train_items=8, val_items=0, tracer_rays=16, randomization=False,
+                                         progress=False, workers=2),
+                         image=ImageSpec(size=[32, 16], blank_zero_doppler=1))
     with pytest.warns(UserWarning):
         dm.setup("fit")
     assert dm.clip == ch.clip_range_db and torch.equal(dm.excise, ch.excise)
@@ -43,15 +44,16 @@ def test_cdr_gets_the_matched_floor_and_json_is_refused(captures, tmp_path) -> N
     CalibratedDR.fit(str(cal), progress=False).save(js)
     with pytest.raises(ConfigError, match="cdr.json: a CalibratedDR JSON has no frames"):
         training_chains(js)
-    paper = training_chains(cal, "cdr", cache_dir=tmp_path, representation="paper", cdr_floor="normal",
-                            clip_range=[-110.0, -40.0], excise_persistent_db=None, **SMALL)
+    paper = training_chains(cal, CDR(floor="normal"), cache_dir=tmp_path,
+                            image={"representation": "paper", "clip_range": [-110.0, -40.0],
+                                   "excise_persistent_db": None}, **SMALL)
     assert paper.clip_range_db == (-110.0, -40.0) and paper.excise is None and paper.dr.floor == "normal"
 
 
 def test_a_randomization_override_keeps_the_recipes_other_keys(captures, tmp_path) -> None:
     cal, _ = captures
-    ch = training_chains(cal, "rt", cache_dir=tmp_path, estimate_items=4, tracer_rays=16, image_size=(32, 16),
-                         randomization={"room": {"variants": 1}})
+    ch = training_chains(cal, "rt", cache_dir=tmp_path, estimate_items=4, image_size=(32, 16),
+                         twin={"tracer_rays": 16, "randomization": {"room": {"variants": 1}}})
     rz = ch._datamodule.simulated_dataset().randomization
     assert rz.room.variants == 1  # the override
     assert rz.catalog["spur_tone"].probability == 0 == rz.catalog["vibrating_clutter"].probability  # the recipe's

@@ -4,7 +4,7 @@ import pytest
 import torch
 
 from radaraug.errors import ConfigError
-from radaraug.training.data import RadarDataModule
+from radaraug.training import CDR, CDRProfile, ImageSpec, RadarDataModule
 from radaraug.training.pipeline import image_chain
 
 
@@ -17,8 +17,8 @@ def test_image_size_must_be_height_and_width():
 
 def test_clip_range_must_be_two_values_and_setup_must_run_first():
     with pytest.raises(ConfigError, match=r"\[vmin, vmax\]"):
-        RadarDataModule(clip_range=[-120.0])
-    dm = RadarDataModule(clip_range=[-120.0, -60.0])
+        ImageSpec(clip_range=[-120.0])
+    dm = RadarDataModule(image=ImageSpec(clip_range=[-120.0, -60.0]))
     assert dm.clip == (-120.0, -60.0)
     with pytest.raises(ConfigError, match="setup"):
         dm.images(torch.zeros(1, 3, 8, 4))
@@ -28,17 +28,17 @@ def test_clip_range_must_be_two_values_and_setup_must_run_first():
 
 
 def test_cdr_floor_reaches_the_dr_and_is_checked(captures, tmp_path):
-    from radaraug.training.pipeline import make_dr
     from radaraug.transforms import CalibratedDR
 
     cal, _ = captures
     fitted = CalibratedDR.fit(cal, progress=False)
-    assert make_dr("cdr", calibration=fitted).floor == "normal"  # the calibration's own (a capture: normal)
-    emp = make_dr("cdr", calibration=fitted, cdr_floor="empirical", seed=1)
+    assert CDR(floor=None).dr(fitted, seed=0).floor == "normal"  # the calibration's own (a capture: normal)
+    emp = CDR(floor="empirical").dr(fitted, seed=1)
     assert emp.floor == "empirical" and torch.equal(emp.quantiles_db, fitted.quantiles_db)
+    assert CDR().dr(fitted, seed=1).floor == "empirical"  # matched: empirical, then matched by the data module
     path = tmp_path / "cdr.json"
     CalibratedDR.fit(cal, progress=False, floor="empirical").save(path)
-    assert make_dr("cdr", calibration=str(path)).floor == "empirical"  # a JSON keeps its floor
-    assert make_dr("cdr_profile", calibration=str(path), cdr_floor="normal").floor == "normal"
-    with pytest.raises(ConfigError, match="cdr_floor must be one of"):
-        RadarDataModule(cdr_floor="gaussian")
+    assert CDR(floor=None).dr(str(path), seed=0).floor == "empirical"  # a JSON keeps its floor
+    assert CDRProfile(floor="normal").dr(str(path), seed=0).floor == "normal"
+    with pytest.raises(ConfigError, match="CDR floor must be one of"):
+        CDR(floor="gaussian")  # type: ignore[arg-type]

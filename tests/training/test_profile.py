@@ -1,7 +1,8 @@
-"""The fourth method, cdr_profile, and data.profile: the twin's receiver from a fitted twin profile."""
+"""The fourth method, CDRProfile, and data.twin.profile: the twin's receiver from a fitted twin profile."""
 
 import json
 import shutil
+from dataclasses import replace
 from types import SimpleNamespace
 
 import pytest
@@ -15,13 +16,14 @@ from radaraug.sensor.profile import TwinProfile
 from radaraug.sensor.receiver import FMCWReceiver
 from radaraug.sim.dataset import SimulatedRadarDataset
 from radaraug.sim.randomization import TwinRandomization
-from radaraug.training import RadarDataModule
+from radaraug.training import CDR, RT, CDRProfile, ImageSpec, RadarDataModule, TwinSplits
 from radaraug.training.cache import cache_key, cache_spec, content_digest
-from radaraug.training.pipeline import METHODS, make_dr
+from radaraug.training.methods import METHODS
+from radaraug.training.preparation import profile_cache_path
 from radaraug.transforms import CalibratedDR
 
-SMALL = {"train_items": 6, "val_items": 0, "tracer_rays": 16, "image_size": [32, 16], "randomization": False,
-         "progress": False, "batch_size": 3}
+SMALL_TWIN = TwinSplits(train_items=6, val_items=0, tracer_rays=16, randomization=False, progress=False,
+                        calibrate_noise=True)
 TWIN = {"tracer_options": {"rays": 16}}
 
 
@@ -48,95 +50,104 @@ def fake_diagnose(monkeypatch):
     return calls
 
 
-def _dm(tmp_path, captures, **kw):
+def _dm(tmp_path, captures, method, twin=None, **kw):
+    """A small data module; ``twin``: TwinSplits fields changed from SMALL_TWIN."""
     cal, tests = captures
     args = {"task": "occupancy", "calibration": str(cal), "test": [{"path": str(tests[0][0]), "count": 0}],
-            "cache_dir": str(tmp_path / "c"), "out_dir": str(tmp_path / "run")} | SMALL | kw
+            "cache_dir": str(tmp_path / "c"), "method": method, "twin": replace(SMALL_TWIN, **(twin or {})),
+            "image": ImageSpec(size=[32, 16]), "batch_size": 3} | kw
     return RadarDataModule(**args)
+
+
+def _run_info(dm, folder):
+    dm.write_run_files(folder)
+    return json.loads((folder / "clip_range.json").read_text())
 
 
 def test_cdr_profile_is_the_fourth_method_with_cdrs_dr(captures):
     cal, _ = captures
-    assert METHODS == ("rt", "randomdr", "cdr", "cdr_profile")
+    assert list(METHODS) == ["rt", "randomdr", "cdr", "cdr_profile"]
     fitted = CalibratedDR.fit(cal, progress=False)
-    a, b = make_dr("cdr", calibration=fitted, seed=3), make_dr("cdr_profile", calibration=fitted, seed=3)
+    a, b = CDR(floor=None).dr(fitted, seed=3), CDRProfile(floor=None).dr(fitted, seed=3)
     assert type(a) is type(b) is CalibratedDR
     assert (a.mean_db, a.std_db) == (b.mean_db, b.std_db)
     x = torch.full((2, 3, 32, 16), -150.0)
     assert torch.equal(a.train()(x), b.train()(x))  # same draws for the same seed
     with pytest.raises(ConfigError, match="'cdr_profile' needs a calibration"):
-        make_dr("cdr_profile")
+        CDRProfile().dr(None, seed=0)
 
 
 def test_data_profile_json_sets_the_twin_receiver(tmp_path, captures):
     prof = _profile()
     path = prof.save(tmp_path / "profile.json")
-    dm = _dm(tmp_path, captures, method="rt", profile=str(path))
+    dm = _dm(tmp_path, captures, RT(), twin={"profile": str(path)})
     dm.setup("fit")
     sim = dm.simulated_dataset()
     assert sim.twin_options["receiver"].to_dict() == prof.receiver(dm.config).to_dict()
-    assert dm.noise_fit is None and dm.receiver_kind() == "profile"  # the profile replaces the noise fit
-    info = json.loads((tmp_path / "run" / "clip_range.json").read_text())
+    assert dm.prepared.noise_fit is None and dm.receiver_kind() == "profile"  # the profile replaces the noise fit
+    info = _run_info(dm, tmp_path / "run")
     assert info["twin_receiver"] == "profile" and info["twin_noise_fit"].startswith("skipped")
     assert info["twin_profile"]["path"] == str(path) and info["twin_profile"]["effects_added"] == ["adc_noise"]
     assert info["twin_profile"]["error_after_dB"] == 0.5
     # the same set without the profile: the default chain with a fitted noise figure, another cache file
-    plain = _dm(tmp_path, captures, method="rt", out_dir=None)
+    plain = _dm(tmp_path, captures, RT())
     plain.setup("fit")
-    assert plain.receiver_kind() == "noise_fit" and plain.twin_profile is None
+    assert plain.receiver_kind() == "noise_fit" and plain.prepared.twin_profile is None
     assert len(list((tmp_path / "c").glob("train-*.h5"))) == 2
 
 
 def test_cdr_profile_fits_once_on_the_calibration_capture(tmp_path, captures, fake_diagnose):
     cal, _ = captures
-    dm = _dm(tmp_path, captures, method="cdr_profile", profile_max_frames=40)
+    dm = _dm(tmp_path, captures, CDRProfile(max_frames=40))
     dm.setup("fit")
     assert fake_diagnose == [{"capture": str(cal), "scene": None, "max_frames": 40}]
     cached = list((tmp_path / "c").glob("profile-*.json"))
-    assert len(cached) == 1 and dm.profile_info["path"] == str(cached[0])
+    assert len(cached) == 1 and dm.prepared.profile_info["path"] == str(cached[0])
     assert TwinProfile.load(cached[0]).to_dict() == _profile(capture=str(cal)).to_dict()
     assert dm.simulated_dataset().twin_options["receiver"].to_dict() == _profile().receiver(dm.config).to_dict()
-    assert dm.noise_fit is None and dm.profile_info["calibrate_noise"].startswith("skipped")
+    assert dm.prepared.noise_fit is None and dm.prepared.profile_info["calibrate_noise"].startswith("skipped")
     # another run (another task, same capture): the cached profile, no second diagnose
-    again = _dm(tmp_path, captures, task="counting", method="cdr_profile", profile_max_frames=40, out_dir=None)
+    again = _dm(tmp_path, captures, CDRProfile(max_frames=40), task="counting")
     again.setup("fit")
-    assert len(fake_diagnose) == 1 and again.profile_info["path"] == str(cached[0])
-    # a given data.profile wins: nothing is fitted
+    assert len(fake_diagnose) == 1 and again.prepared.profile_info["path"] == str(cached[0])
+    # a given data.twin.profile wins: nothing is fitted
     given = _profile(noise_figure_dB=30.0).save(tmp_path / "given.json")
-    dm3 = _dm(tmp_path, captures, method="cdr_profile", profile=str(given), out_dir=None)
+    dm3 = _dm(tmp_path, captures, CDRProfile(), twin={"profile": str(given)})
     dm3.setup("fit")
-    assert len(fake_diagnose) == 1 and dm3.profile_info["source"] == "data.profile"
+    assert len(fake_diagnose) == 1 and dm3.prepared.profile_info["source"] == "data.twin.profile"
 
 
 def test_profile_cache_key_follows_the_capture_content(tmp_path, captures):
     cal, _ = captures
-    dm = _dm(tmp_path, captures, method="cdr_profile")
     renamed = tmp_path / "renamed.h5"
     shutil.copy(cal, renamed)
     assert content_digest(renamed) == content_digest(cal)
-    assert dm.profile_cache_path(str(renamed)) == dm.profile_cache_path(str(cal))
+
+    def path(capture, max_frames=100):
+        return profile_cache_path(str(capture), tmp_path / "c", max_frames)
+
+    assert path(renamed) == path(cal)
     cfg = small_config()
     other = write_capture(tmp_path / "other.h5", point_scatterer_frames(cfg, 0, 12, 7), cfg)
-    assert dm.profile_cache_path(str(other)) != dm.profile_cache_path(str(cal))
-    fewer = _dm(tmp_path, captures, method="cdr_profile", profile_max_frames=40)
-    assert fewer.profile_cache_path(str(cal)) != dm.profile_cache_path(str(cal))
-    assert dm.profile_cache_path(str(cal)).name.startswith("profile-")
+    assert path(other) != path(cal)
+    assert path(cal, 40) != path(cal)
+    assert path(cal).name.startswith("profile-")
 
 
 def test_cdr_profile_with_a_calibrated_dr_json_is_a_clear_error(tmp_path, captures, fake_diagnose):
     cal, tests = captures
     js = tmp_path / "cdr.json"
     CalibratedDR.fit(cal, progress=False).save(js)
-    dm = _dm(tmp_path, captures, method="cdr_profile", calibration=str(js))
-    with pytest.raises(ConfigError, match="CalibratedDR JSON.*data.profile"):
+    dm = _dm(tmp_path, captures, CDRProfile(), calibration=str(js))
+    with pytest.raises(ConfigError, match="calibration record without one.*data.twin.profile"):
         dm.setup("fit")
     assert fake_diagnose == []
     # cdr takes the same JSON; cdr_profile does with a given profile
-    _dm(tmp_path, captures, method="cdr", calibration=str(js), out_dir=None).setup("fit")
+    _dm(tmp_path, captures, CDR(floor=None), calibration=str(js)).setup("fit")
     prof = _profile().save(tmp_path / "p.json")
-    _dm(tmp_path, captures, method="cdr_profile", calibration=str(js), profile=str(prof), out_dir=None).setup("fit")
+    _dm(tmp_path, captures, CDRProfile(floor=None), calibration=str(js), twin={"profile": str(prof)}).setup("fit")
     with pytest.raises(ConfigError, match="'cdr_profile' needs data.calibration"):
-        _dm(tmp_path, captures, method="cdr_profile", calibration=None).setup("fit")
+        _dm(tmp_path, captures, CDRProfile(), calibration=None).setup("fit")
 
 
 def test_cache_keys_differ_between_plain_and_profile_receivers():
@@ -169,14 +180,14 @@ def test_twin_randomization_draws_around_a_profile_receiver():
 def test_cdr_profile_end_to_end_with_the_real_diagnose(tmp_path, captures):
     cal, _ = captures
     # twin randomization on: its gain / noise-figure / phase-noise draws act on the fitted chain's stages
-    dm = _dm(tmp_path, captures, method="cdr_profile", randomization={"room": {"variants": 1}})
+    dm = _dm(tmp_path, captures, CDRProfile(floor=None), twin={"randomization": {"room": {"variants": 1}}})
     dm.setup("fit")
     cached = list((tmp_path / "c").glob("profile-*.json"))
     assert len(cached) == 1
     prof = TwinProfile.load(cached[0])
     assert prof.fitted_on["capture"] == cal.name and prof.fitted_on["scene"] is None
     assert dm.simulated_dataset().twin_options["receiver"].to_dict() == prof.receiver(dm.config).to_dict()
-    info = json.loads((tmp_path / "run" / "clip_range.json").read_text())
+    info = _run_info(dm, tmp_path / "run")
     assert info["method"] == "cdr_profile" and info["twin_profile"]["effects"] == prof.effect_names
     assert info["twin_profile"]["error_after_dB"] <= info["twin_profile"]["error_before_dB"]
     x, _ = next(iter(dm.train_dataloader()))
@@ -197,16 +208,16 @@ def test_catalog_priors_from_the_calibrations_diagnosis(tmp_path, captures, monk
 
     monkeypatch.setattr(calibration_mod, "diagnose", diagnose)
     kw = {"randomization": {"room": {"variants": 1}}, "calibrate_noise": False, "train_items": 3}
-    dm = _dm(tmp_path, captures, method="rt", catalog_priors="calibration", **kw)
+    dm = _dm(tmp_path, captures, RT(), twin=kw | {"catalog_priors": "calibration"})
     dm.setup("fit")
-    assert len(calls) == 1 and dm.twin_profile is None and dm.receiver_kind() == "default"
+    assert len(calls) == 1 and dm.prepared.twin_profile is None and dm.receiver_kind() == "default"
     rz = dm.simulated_dataset().randomization
     frac = 150e3 / (small_config().sample_rate_Hz / 2)
     spur = rz.catalog["spur_tone"]
     assert spur.freq_nyquist[0] < frac < spur.freq_nyquist[1] and spur.probability == 0.7
-    info = json.loads((tmp_path / "run" / "clip_range.json").read_text())["catalog_priors"]
+    info = _run_info(dm, tmp_path / "run")["catalog_priors"]
     assert info["found"] == ["spur_tone"] and "spur_tone" in info["changes"]
-    plain = _dm(tmp_path, captures, method="rt", out_dir=None, **kw)
+    plain = _dm(tmp_path, captures, RT(), twin=kw)
     plain.setup("fit")
     assert plain.simulated_dataset().randomization.catalog["spur_tone"].freq_nyquist == (0.01, 0.99)
-    assert len(calls) == 1 and plain.catalog_prior_info is None
+    assert len(calls) == 1 and plain.prepared.catalog_prior_info is None

@@ -22,10 +22,10 @@ RECIPES = recipes.recipe_names()
 def _small_args(tmp: Path, captures, randomization: str = "false") -> list[str]:
     cal, tests = captures
     test = json.dumps([{"path": str(tests[0][0]), "count": 0}, {"path": str(tests[1][0])}])
-    return ["--data.calibration", str(cal), "--data.test", test, "--data.train_items", "8",
-            "--data.val_items", "4", "--data.randomization", randomization, "--data.tracer_rays", "16",
-            "--data.cache_dir", str(tmp / "cache"), "--data.image_size", "[32, 16]", "--data.num_workers", "0",
-            "--data.sim_workers", "0", "--data.progress", "false", "--data.batch_size", "4",
+    return ["--data.calibration", str(cal), "--data.test", test, "--data.twin.train_items", "8",
+            "--data.twin.val_items", "4", "--data.twin.randomization", randomization, "--data.twin.tracer_rays", "16",
+            "--data.cache_dir", str(tmp / "cache"), "--data.image.size", "[32, 16]", "--data.num_workers", "0",
+            "--data.twin.workers", "0", "--data.twin.progress", "false", "--data.batch_size", "4",
             "--trainer.enable_progress_bar", "false", "--trainer.enable_model_summary", "false"]
 
 
@@ -72,7 +72,7 @@ def test_ddp_two_gloo_processes_each_simulate_their_own_shard(recipe, tmp_path, 
     cmd = [sys.executable, "-m", "radaraug.cli", "train", "fit", "--config", recipe,
            "--trainer.max_epochs", "1", "--trainer.strategy", "ddp", "--trainer.devices", "2",
            "--trainer.accelerator", "cpu", "--trainer.logger", "false", "--trainer.enable_checkpointing", "false",
-           "--data.out_dir", str(out), *_small_args(tmp_path, captures), "--data.train_items", "9",
+           "--trainer.default_root_dir", str(out), *_small_args(tmp_path, captures), "--data.twin.train_items", "9",
            "--data.batch_size", "3"]
     env = {**os.environ, "PL_DISABLE_FORK": "1", "OMP_NUM_THREADS": "1"}
     res = subprocess.run(cmd, cwd=tmp_path, env=env, capture_output=True, text=True, timeout=240)
@@ -93,7 +93,7 @@ def test_ddp_two_gloo_processes_each_simulate_their_own_shard(recipe, tmp_path, 
 
 
 def test_objects_and_override_files_through_the_cli(tmp_path, captures, monkeypatch):
-    # a backbone and a DR as class_path objects, an ablation override as a second --config, test captures
+    # a backbone and a method with a DR of yours as class_path objects, an ablation override as a second --config, test captures
     # spelt PATH:COUNT as on reproduce's command line and as a RadarCaptureDataset object
     monkeypatch.chdir(tmp_path)
     cal, tests = captures
@@ -102,15 +102,16 @@ def test_objects_and_override_files_through_the_cli(tmp_path, captures, monkeypa
     given = {"class_path": "radaraug.io.RadarCaptureDataset", "init_args": {"paths": str(tests[1][0]), "label": "count"}}
     args[i + 1] = json.dumps([f"{tests[0][0]}:0", str(tests[1][0]), given])
     backbone = json.dumps({"class_path": "radaraug.training.TorchvisionClassifier", "init_args": {"arch": "resnet18"}})
-    dr = json.dumps({"class_path": "radaraug.transforms.RandomDR", "init_args": {"mean_db": [-90.0, -80.0], "seed": 3}})
+    dr = json.dumps({"class_path": "radaraug.training.methods.OwnDR", "init_args": {"module": {
+        "class_path": "radaraug.transforms.RandomDR", "init_args": {"mean_db": [-90.0, -80.0], "seed": 3}}}})
     rc = main(["train", "fit", "--config", "counting_rt", "--config", "ablation/rt_paper_image",
-               "--model.backbone", backbone, "--data.dr", dr, "--trainer.max_epochs", "1",
+               "--model.backbone", backbone, "--data.method", dr, "--trainer.max_epochs", "1",
                "--trainer.accelerator", "cpu", "--trainer.enable_checkpointing", "false", *args])
     assert rc == 0
     saved = yaml.safe_load((tmp_path / "lightning_logs" / "version_0" / "config.yaml").read_text())
     assert saved["model"]["backbone"]["init_args"]["arch"] == "resnet18"
-    assert saved["data"]["dr"]["class_path"] == "radaraug.transforms.RandomDR"
-    assert saved["data"]["representation"] == "paper" and saved["data"]["method"] == "rt"
+    assert saved["data"]["method"]["init_args"]["module"]["class_path"] == "radaraug.transforms.RandomDR"
+    assert saved["data"]["image"]["representation"] == "paper"
     assert saved["data"]["test"][2]["class_path"] == "radaraug.io.RadarCaptureDataset"
     info = json.loads((tmp_path / "lightning_logs" / "version_0" / "clip_range.json").read_text())
     assert info["task"] == "counting"

@@ -49,7 +49,7 @@ def test_report_on_a_tiny_run(tmp_path, captures):
     # the ablation table pairs each ablation with the run it changes
     table = {(r["task"], r["ablation"]): r for r in data["test_sets"]["captures"]["ablation_table"]}
     row = table[("occupancy", "rt_paper_image")]
-    assert row["main"] == "rt" and row["changes"] == {"representation": "paper"}
+    assert row["main"] == "rt" and row["changes"] == {"image": {"representation": "paper"}}
     assert row["delta"] == pytest.approx(row["ablation_mean"] - row["main_mean"])
     # two seeds x (4 methods + 2 ablations) x 2 tasks, each with its own metrics files
     assert len(data["runs"]) == 24 and len(list((out / "runs").glob("*/*/test_metrics.json"))) == 24
@@ -192,9 +192,13 @@ def test_the_runs_take_their_hyperparameters_from_the_recipes():
         "context_frames": 8, "blank_zero_doppler": 1}
     # an explicit setting overrides every run's recipe; an ablation's one change wins over it
     s = R.ReproduceSettings(representation="paper")
-    assert R.run_recipe("counting", "rt", s)["data"]["representation"] == "paper"
-    assert R.run_recipe("counting", "cdr", s, "cdr_normal_floor")["data"]["cdr_floor"] == "normal"
-    assert R.ABLATIONS["rt_no_excision"] == ("rt", {"excise_persistent_db": None})
+    assert R.run_recipe("counting", "rt", s)["data"]["image"]["representation"] == "paper"
+    assert R.run_recipe("counting", "cdr", s, "cdr_normal_floor")["data"]["method"]["init_args"]["floor"] == "normal"
+    assert R.ABLATIONS["rt_no_excision"] == ("rt", {"image": {"excise_persistent_db": None}})
+    # a method's argument is set only on the methods that take it
+    floor = R.ReproduceSettings(cdr_floor="empirical")
+    assert R.run_recipe("counting", "cdr", floor)["data"]["method"]["init_args"]["floor"] == "empirical"
+    assert "init_args" not in R.run_recipe("counting", "rt", floor)["data"]["method"]
 
 
 def test_a_suite_of_worlds_reports_mean_and_worst_world(tmp_path, capsys, monkeypatch):

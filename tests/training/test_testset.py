@@ -8,12 +8,22 @@ from data import point_scatterer_frames, small_config
 
 from radaraug.errors import ConfigError
 from radaraug.io import write_capture
-from radaraug.training import CalibrationWarning, RadarDataModule, TestSetWarning, check_test_set
+from radaraug.training import (
+    CDR,
+    CalibrationWarning,
+    CDRProfile,
+    ImageSpec,
+    RadarDataModule,
+    RandomDR,
+    TestSetWarning,
+    TwinSplits,
+    check_test_set,
+)
 from radaraug.training.testset import check_calibration, read_test_counts
 from radaraug.transforms import CalibratedDR
 
-SMALL = {"train_items": 6, "val_items": 0, "tracer_rays": 16, "image_size": [32, 16], "randomization": False,
-         "progress": False, "batch_size": 3}
+SMALL = {"twin": TwinSplits(train_items=6, val_items=0, tracer_rays=16, randomization=False, progress=False,
+                            calibrate_noise=True), "image": ImageSpec(size=[32, 16]), "batch_size": 3}
 
 
 def _entries(tests, counts=None):
@@ -78,19 +88,20 @@ def test_a_calibration_json_cannot_serve_the_noise_fit_or_cdr_profile(captures, 
     cal, _ = captures
     js = tmp_path / "cdr.json"
     CalibratedDR.fit(str(cal), progress=False).save(js)
-    with pytest.raises(ConfigError, match=r"'cdr_profile' fits a twin profile.*cdr\.json is a CalibratedDR JSON"):
-        check_calibration(str(js), "cdr_profile")
-    with pytest.warns(CalibrationWarning, match=r"cdr\.json is a CalibratedDR JSON: the twin's noise figure cannot be "
-                                                r"fitted from it.*default receiver"):
-        check_calibration(str(js), "cdr")
-    for args, kw in (((str(js), "randomdr"), {"calibrate_noise": False}),  # no noise fit asked for
-                     ((str(js), "cdr_profile"), {"profile": "fitted/profile.json"})):  # the profile replaces both
+    with pytest.raises(ConfigError, match=r"'cdr_profile' fits a twin profile.*cdr\.json is a calibration record "
+                                          "without one"):
+        check_calibration(str(js), CDRProfile())
+    with pytest.warns(CalibrationWarning, match=r"cdr\.json is a calibration record without a noise fit: the twin's "
+                                                r"noise figure cannot be fitted from it.*default receiver"):
+        check_calibration(str(js), CDR(floor=None))
+    for args, kw in (((str(js), RandomDR()), {"calibrate_noise": False}),  # no noise fit asked for
+                     ((str(js), CDRProfile(floor=None)), {"profile": "fitted/profile.json"})):  # the profile replaces both
         with pytest.warns(CalibrationWarning) as caught:  # only the gate is left out
             check_calibration(*args, **kw)
         assert [str(w.message).split("so ")[1][:30] for w in caught] == ["no static-change gate goes int"]
     with warnings.catch_warnings():
         warnings.simplefilter("error")
-        check_calibration(str(cal), "cdr_profile")  # a capture serves both
+        check_calibration(str(cal), CDRProfile())  # a capture serves both
 
 
 def test_a_lever_left_out_for_want_of_the_capture_is_named(captures, tmp_path):
@@ -98,24 +109,24 @@ def test_a_lever_left_out_for_want_of_the_capture_is_named(captures, tmp_path):
     cal, _ = captures
     js = tmp_path / "cdr.json"
     CalibratedDR.fit(str(cal), progress=False).save(js)  # the paper's normal floor
-    with pytest.warns(CalibrationWarning, match=r"cdr\.json is a CalibratedDR JSON: it holds no frames, so the empty "
+    with pytest.warns(CalibrationWarning, match=r"cdr\.json is a calibration record \(JSON\): it holds no frames, so the empty "
                                                 r"room's persistent lines are not excised from the maps \(-0\.08 occupancy"):
-        check_calibration(str(js), "randomdr", calibrate_noise=False, excise=True)
+        check_calibration(str(js), RandomDR(), calibrate_noise=False, excise=True)
     with pytest.warns(CalibrationWarning, match="no data.calibration: the empty room's persistent lines are not excised"):
-        check_calibration(None, "randomdr", excise=True)
+        check_calibration(None, RandomDR(), excise=True)
     with pytest.warns(CalibrationWarning, match=r"fitted with floor 'normal'; this run draws CDR's floor as 'matched'"):
-        check_calibration(str(js), "cdr", calibrate_noise=False, cdr_floor="matched")
+        check_calibration(str(js), CDR(floor="matched"), calibrate_noise=False)
     # Without excision the lost gate (and, with no calibration at all, the noise fit) is still named.
     with pytest.warns(CalibrationWarning, match="no data.calibration: no static-change gate goes into the classifier "
                                                 "file, and the twin's noise is not fitted"):
-        check_calibration(None, "randomdr", excise=False)
-    with pytest.warns(CalibrationWarning, match=r"cdr\.json is a CalibratedDR JSON: it holds no frames, so no "
+        check_calibration(None, RandomDR(), excise=False)
+    with pytest.warns(CalibrationWarning, match=r"cdr\.json is a calibration record \(JSON\): it holds no frames, so no "
                                                 "static-change gate") as caught:
-        check_calibration(str(js), "cdr", calibrate_noise=False, cdr_floor="normal")
+        check_calibration(str(js), CDR(floor="normal"), calibrate_noise=False)
     assert not any("fitted with floor" in str(w.message) for w in caught)  # the floor asked for is the JSON's own
     with warnings.catch_warnings():
         warnings.simplefilter("error")
-        check_calibration(str(cal), "randomdr", excise=True)  # the capture serves everything
+        check_calibration(str(cal), RandomDR(), excise=True)  # the capture serves everything
 
 
 def test_the_data_module_checks_before_simulating(captures, tmp_path):
@@ -123,13 +134,13 @@ def test_the_data_module_checks_before_simulating(captures, tmp_path):
     js = tmp_path / "cdr.json"
     CalibratedDR.fit(str(cal), progress=False).save(js)
     cache = tmp_path / "cache"
-    dm = RadarDataModule(task="counting", method="cdr", calibration=str(js), test=_entries(tests, [0, 1, 4]),
+    dm = RadarDataModule(task="counting", method=CDR(floor=None), calibration=str(js), test=_entries(tests, [0, 1, 4]),
                          cache_dir=str(cache), **SMALL)
     with pytest.warns(CalibrationWarning, match="noise figure cannot be fitted"), \
             pytest.raises(ConfigError, match=r"walk_2\.h5: people count 4"):
         dm.setup("fit")
-    dm = RadarDataModule(task="occupancy", method="cdr_profile", calibration=str(js), test=_entries(tests),
+    dm = RadarDataModule(task="occupancy", method=CDRProfile(), calibration=str(js), test=_entries(tests),
                          cache_dir=str(cache), **SMALL)
-    with pytest.raises(ConfigError, match="cdr_profile.*CalibratedDR JSON"):
+    with pytest.raises(ConfigError, match="cdr_profile.*calibration record without one"):
         dm.setup("fit")
     assert not cache.exists()  # nothing was simulated
