@@ -29,6 +29,7 @@ from radaraug.files import atomic_write_json, atomic_write_text
 from radaraug.training.classifier_file import classifier_record, save_checkpoint
 from radaraug.training.methods import METHODS
 from radaraug.training.pipeline import TASKS, is_calibration_json
+from radaraug.transforms.record_file import load_record
 from radaraug.units import DB_CONVENTION
 
 #: A :class:`ReproduceSettings` field left to the recipes (``radaraug.recipes``): the run takes the value
@@ -430,9 +431,11 @@ def reproduce(
     methods = tuple(settings.methods if methods is None else methods)
     test_sets = tuple(settings.test_sets if test_sets is None else test_sets)
     _check_known("method", methods, list(METHODS))
-    if calibration is not None and is_calibration_json(calibration) and any(METHODS[m].fits_profile for m in methods):
+    if (calibration is not None and is_calibration_json(calibration) and any(METHODS[m].fits_profile for m in methods)
+            and load_record(calibration).profile is None):
         raise ConfigError(f"method 'cdr_profile' fits a twin profile on an empty-room capture, but the calibration "
-                          f"{calibration!r} is a CalibratedDR JSON: give the capture, or leave cdr_profile out")
+                          f"{calibration!r} is a calibration record without one: give the capture, or leave "
+                          "cdr_profile out")
 
     names = list(settings.ablations if ablations is None else ablations) if ablation else []
     _check_known("ablation", names, sorted(ABLATIONS))

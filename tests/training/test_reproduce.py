@@ -11,6 +11,7 @@ import radaraug.training.reproduce as R
 from radaraug.cli import main
 from radaraug.errors import ConfigError
 from radaraug.training.reproduce import ReproduceSettings, parse_test_arg, reproduce
+from radaraug.transforms import CalibratedDR
 
 TINY = ReproduceSettings(train_items=9, val_items=3, epochs=1, image_size=(32, 16), batch_size=6, tracer_rays=16,
                          num_workers=0, sim_workers=0, randomization=False, profile_max_frames=10,
@@ -136,8 +137,10 @@ def test_cli_reproduce_and_bad_arguments(tmp_path, captures, capsys, monkeypatch
 
     assert r.ReproduceSettings.quick().profile_max_frames == 40
     assert "cdr_profile" in r.ReproduceSettings.full().methods and inspect.signature(reproduce).parameters["methods"].default is None
-    with pytest.raises(ConfigError, match="cdr_profile.*CalibratedDR JSON"):
-        reproduce(tmp_path, calibration="cdr.json", test=[{"path": str(tests[0][0]), "count": 0}])
+    js = tmp_path / "cdr.json"
+    CalibratedDR.fit(str(cal), progress=False).save(js)  # a record of the floor only: no profile
+    with pytest.raises(ConfigError, match="cdr_profile.*calibration record without one"):
+        reproduce(tmp_path / "r", calibration=str(js), test=[{"path": str(tests[0][0]), "count": 0}])
     # test captures without their empty room: refused, not calibrated on a generated room
     with pytest.raises(ConfigError, match="--test needs --calibration"):
         reproduce(tmp_path, test=[{"path": str(tests[0][0]), "count": 0}], settings=TINY)
