@@ -685,8 +685,9 @@ def build_parser() -> argparse.ArgumentParser:
     info.add_argument("--json", action="store_true", help="print one JSON object")
     info.add_argument("--max-frames", type=int, default=256, help="frames used for the statistics")
 
-    fit = command("fit-cdr", _cmd_fit_cdr, help="fit CalibratedDR's floor on an empty-room capture (the JSON "
-                  "serves CDR only: training and reproduce want the capture itself)")
+    fit = command("fit-cdr", _cmd_fit_cdr, help="fit CalibratedDR's floor and the persistent cells on an "
+                  "empty-room capture (the JSON serves CDR and the excision; the static-change gate needs the "
+                  "capture itself)")
     fit.add_argument("path", help="empty-room capture (radaraug .h5 or Infineon recording folder), recorded "
                      "like the test captures")
     _output_args(fit, "calibration JSON to write (CDR's floor only: no frames, so no excision, gate or profile)")
@@ -761,7 +762,7 @@ def build_parser() -> argparse.ArgumentParser:
                      help="empty-room capture recorded like the --test captures: the twin simulates its config, its "
                      "persistent lines are excised, CDR's floor and each classifier's static-change gate are "
                      "fitted on it, cdr_profile fits its profile on it (required with --test; the generated test "
-                     "sets bring their own; a CalibratedDR JSON serves CDR only, with a warning)")
+                     "sets bring their own; a calibration record JSON serves what it holds, with a warning about the gate)")
     rep.add_argument("--test", action="append", default=None, metavar="PATH[:COUNT]",
                      help="test capture; COUNT labels the whole file, else per-frame 'count' labels (repeatable)")
     rep.add_argument("--cdr-floor", choices=("matched", "normal", "empirical"), default=None,

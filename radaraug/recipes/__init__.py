@@ -98,10 +98,16 @@ def is_recipe_name(text: str) -> bool:
 
 
 def merge(base: dict[str, Any], override: dict[str, Any]) -> dict[str, Any]:
-    """``override`` merged into a copy of ``base``: mappings key by key, anything else replaced."""
+    """``override`` merged into a copy of ``base``: mappings key by key, anything else replaced.
+
+    A mapping that names another ``class_path`` replaces the old one whole (its ``init_args`` belong to the
+    old class).
+    """
     out = copy.deepcopy(base)
     for key, value in override.items():
-        if isinstance(value, dict) and isinstance(out.get(key), dict):
+        old = out.get(key)
+        if (isinstance(value, dict) and isinstance(old, dict)
+                and value.get("class_path", old.get("class_path")) == old.get("class_path")):
             out[key] = merge(out[key], value)
         else:
             out[key] = copy.deepcopy(value)

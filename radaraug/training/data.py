@@ -82,7 +82,8 @@ class RadarDataModule(L.LightningDataModule):
             :class:`~radaraug.training.methods.RandomDR`: it wins on held-out data).
         calibration: the empty-room capture recorded like the test captures: the twin simulates its radar
             config, its persistent lines are excised, CDR's floor (and ``CDRProfile``'s profile) is fitted on
-            it. A CalibratedDR JSON serves CDR only (a warning names what is left out). None with no ``test``:
+            it. A calibration record (JSON) serves what it holds (a warning names what is left out). None with no
+            ``test``:
             the held-out proxy's.
         test: test captures: ``"PATH:N"`` / ``{"path", "count": N}`` (N people in the whole file),
             ``"PATH"`` / ``{"path"}`` (the file's per-frame ``count`` labels), or a
@@ -197,7 +198,7 @@ class RadarDataModule(L.LightningDataModule):
         elif calibration is None and self.method.needs_calibration:
             # The proxy's empty room says nothing about the user's captures: no silent stand-in.
             raise ConfigError(f"method {self.method.name!r} needs data.calibration: an empty-room capture (or "
-                              "CalibratedDR JSON) recorded like the test captures")
+                              "calibration record) recorded like the test captures")
         return calibration, [dict(e) for e in test]  # the config's entries were checked in __init__
 
     def prepare_data(self) -> None:

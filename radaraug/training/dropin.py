@@ -86,7 +86,7 @@ def training_chains(calibration: str | os.PathLike, method: str | Method = "rand
             ``image={"representation": "paper"}``).
 
     Raises:
-        ConfigError: a CalibratedDR JSON (the chain needs the capture's frames), or an unknown method/key.
+        ConfigError: a calibration record JSON (the chain needs the capture's frames), or an unknown method/key.
         CaptureError: the capture cannot be read.
     """
     from radaraug.training.data import RadarDataModule
@@ -94,7 +94,7 @@ def training_chains(calibration: str | os.PathLike, method: str | Method = "rand
     from radaraug.training.testset import TestSetWarning
 
     if is_calibration_json(calibration):
-        raise ConfigError(f"{calibration}: a CalibratedDR JSON has no frames; training_chains needs the empty-room "
+        raise ConfigError(f"{calibration}: a calibration record (JSON) has no frames; training_chains needs the empty-room "
                           "capture itself (its persistent lines are excised, the floor is fitted on it)")
     given = method if isinstance(method, Method) else None
     method = method.name if isinstance(method, Method) else method

@@ -34,7 +34,7 @@ class Method:
 
     #: the method's name in reports and recipe files (``method/NAME.yaml``)
     name: ClassVar[str] = ""
-    #: its DR is fitted on the empty-room capture (or a CalibratedDR JSON)
+    #: its DR is fitted on the empty-room capture (or read from a calibration record)
     needs_calibration: ClassVar[bool] = False
     #: its twin's receiver is the twin profile fitted on the empty-room capture
     fits_profile: ClassVar[bool] = False
@@ -140,7 +140,7 @@ class CDR(Method):
         from radaraug.transforms import CalibratedDR
 
         if calibration is None:
-            raise ConfigError(f"method {self.name!r} needs a calibration: an empty-room capture or a CalibratedDR JSON")
+            raise ConfigError(f"method {self.name!r} needs a calibration: an empty-room capture or a calibration record")
         fitted: CalibratedDR
         if isinstance(calibration, CalibratedDR):
             fitted = calibration

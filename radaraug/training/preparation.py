@@ -21,6 +21,7 @@ from radaraug.calibration.record import PERSISTENT_THRESHOLD_DB
 from radaraug.config import RadarConfig
 from radaraug.errors import CalibrationError, ConfigError
 from radaraug.sensor.profile import PROFILE_VERSION, TwinProfile
+from radaraug.sim.dataset import SimulatedRadarDataset
 from radaraug.training.methods import Method
 from radaraug.training.pipeline import check_representation, is_calibration_json
 from radaraug.transforms.record_file import CalibrationRecord, load_record
@@ -72,7 +73,7 @@ class TwinSplits:
     tracer_rays: int | None = None
     workers: int = 0
     progress: bool = True
-    dataset: Any = None
+    dataset: SimulatedRadarDataset | None = None
 
     def __post_init__(self) -> None:
         if self.train_items < 1 or self.val_items < 0:
@@ -229,8 +230,6 @@ def simulated_dataset(prepared: Prepared, method: Method, twin: TwinSplits, cali
         length: items (None: ``train_items + val_items``).
         seed: the set's seed (None: ``twin.seed``).
     """
-    from radaraug.sim.dataset import SimulatedRadarDataset
-
     if twin.dataset is not None:
         return twin.dataset
     randomization = None
@@ -270,9 +269,10 @@ def simulated_dataset(prepared: Prepared, method: Method, twin: TwinSplits, cali
     )
 
 
-def _checked_given(twin: TwinSplits, config: RadarConfig, method: Method) -> Any:
+def _checked_given(twin: TwinSplits, config: RadarConfig, method: Method) -> SimulatedRadarDataset:
     """``twin.dataset`` as given, after the checks :class:`TwinSplits` names."""
     ds = twin.dataset
+    assert ds is not None
     if ds.config != config:
         raise ConfigError(f"data.twin.dataset has another radar config ({ds.config.describe()}) than the test "
                           f"captures ({config.describe()})")
@@ -304,7 +304,7 @@ def _resolve_receiver(out: Prepared, method: Method, capture: str | None, cache_
         if capture is None:
             raise ConfigError(
                 f"method {method.name!r} fits a twin profile on the empty-room capture in data.calibration, but "
-                "there is none or it is a CalibratedDR JSON: give the capture itself, or a fitted profile as "
+                "there is none: give the capture itself, or a fitted profile as "
                 "data.twin.profile (radaraug diagnose CAPTURE -o DIR writes DIR/profile.json)")
         prof, path = _shared_profile_fit(capture, cache_dir, twin, method, broadcast, rank)
         info = {"source": "fitted on data.calibration", "path": path, "calibration": str(capture),

@@ -403,7 +403,7 @@ def reproduce(
         quick: the quick settings (:meth:`ReproduceSettings.quick`) instead of the full ones.
         seeds: seeds per task x method (0 .. seeds-1).
         calibration: empty-room capture of the test captures (CDR, noise fit, ``cdr_profile``'s profile);
-            required with ``test``, refused without it. A CalibratedDR JSON serves CDR but not ``cdr_profile``.
+            required with ``test``, refused without it. A calibration record (JSON) serves what it holds.
         test: test entries ``{"path", "count"?}`` (None: the generated ``test_sets``).
         tasks: subset of ``occupancy``/``counting``.
         methods: subset of ``rt``/``randomdr``/``cdr``/``cdr_profile`` (None: the settings').
@@ -452,7 +452,7 @@ def reproduce(
     gates = {ts.name: _static_gate(ts, settings.static_gate_margin_db) for ts in sets}
     for ts in sets:
         if settings.static_gate_margin_db is not None and gates[ts.name] is None:
-            what = "no calibration" if ts.calibration is None else f"calibration {ts.calibration} is a CalibratedDR JSON"
+            what = "no calibration" if ts.calibration is None else f"calibration {ts.calibration} is a calibration record (no frames)"
             warnings.warn(f"test set {ts.name}: {what}, so no static-change gate is fitted: the report has no "
                           "gated accuracies (+ static gate) and its classifier files no gate; give the empty-room "
                           "capture itself", CalibrationWarning, stacklevel=2)

@@ -48,6 +48,11 @@ def test_merge_is_key_by_key_for_mappings_and_replaces_the_rest():
     out = recipes.merge(base, {"data": {"r": {"x": 1}, "l": [3]}})
     assert out == {"data": {"a": 1, "r": {"x": 1}, "l": [3]}, "model": {"lr": 1}}
     assert base["data"]["r"] is True  # the inputs are not changed
+    # another class: its own arguments, not the old class's
+    cdr = {"method": {"class_path": "m.CDR", "init_args": {"floor": "normal"}}}
+    assert recipes.merge(cdr, {"method": {"class_path": "m.RT"}}) == {"method": {"class_path": "m.RT"}}
+    assert recipes.merge(cdr, {"method": {"init_args": {"test_dr": True}}})["method"]["init_args"] == {
+        "floor": "normal", "test_dr": True}
 
 
 @pytest.mark.parametrize("name", recipes.ablations())
