@@ -193,6 +193,10 @@ def prepare(method: Method, calibration: str | None, source: str, twin: TwinSpli
         excise = persistent_cells_of(calibration, float(image.excise_persistent_db or 0.0), rd_db_chain())
     elif fit_excision and image.excises and record is not None:
         excise = record.persistent_mask()  # at the record's threshold (radaraug fit-cdr records the recipes')
+        shape = (config.num_range_bins, config.num_chirps_per_frame)
+        if excise is not None and tuple(excise.shape) != shape:
+            raise ConfigError(f"calibration record {calibration}: its persistent cells are of a {tuple(excise.shape)} "
+                              f"map, the captures' maps are {shape} (another radar config)")
     out = Prepared(config, dr, excise)
     if not simulate:
         return out

@@ -259,3 +259,8 @@ def test_a_calibration_record_serves_what_it_holds(tmp_path, captures):
     with pytest.warns(CalibrationWarning):
         rt.setup("fit")
     assert rt.prepared.noise_fit == rec.noise_fit and rt.receiver_kind() == "noise_fit"
+    # a record of another config's maps: refused, naming the file
+    rec.persistent_cells = dict(rec.persistent_cells, shape=[7, 5], cells=[[1, 2]])
+    other = rec.save(tmp_path / "other.json")
+    with pytest.warns(CalibrationWarning), pytest.raises(ConfigError, match="other.json: its persistent cells"):
+        RadarDataModule(task="occupancy", method=RT(), calibration=str(other), **kw).setup("fit")
