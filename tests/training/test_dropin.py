@@ -42,7 +42,7 @@ def test_cdr_gets_the_matched_floor_and_json_is_refused(captures, tmp_path) -> N
     assert isinstance(ch.dr, CalibratedDR) and ch.dr.floor == "empirical"  # matched: quantiles against the twin
     js = tmp_path / "cdr.json"
     CalibratedDR.fit(str(cal), progress=False).save(js)
-    with pytest.raises(ConfigError, match="cdr.json: a CalibratedDR JSON has no frames"):
+    with pytest.raises(ConfigError, match=r"cdr.json: a calibration record \(JSON\) has no frames"):
         training_chains(js)
     paper = training_chains(cal, CDR(floor="normal"), cache_dir=tmp_path,
                             image={"representation": "paper", "clip_range": [-110.0, -40.0],
