@@ -59,12 +59,12 @@ NULL_WINDOW_BINS = (8, 20, 35, 50, 65, 80)  # empty items: person windows at the
 def quick_calibration_excise(threshold_db: float) -> tuple[torch.Tensor, dict[str, Any]]:
     """The quick run's excision mask: persistent cells of the independent set's empty-room capture."""
     from radaraug.calibration.record import persistent_cells_of
-    from radaraug.heldout import make_independent_proxy
+    from radaraug.heldout import make_independent_set
 
     with tempfile.TemporaryDirectory() as tmp:
         # Same generator, seed (2024) and 40 calibration frames as reproduce's "independent" test set;
         # the calibration capture does not depend on the test files' counts or lengths.
-        proxy = make_independent_proxy(tmp, frames_per_count=1, counts=(0,), progress=False)
+        proxy = make_independent_set(tmp, frames_per_count=1, counts=(0,), progress=False)
         mask = persistent_cells_of(str(proxy.calibration), threshold_db, rd_db_chain())
     return mask, {"source": "independent held-out set, seed 2024, 40 frames", "threshold_db": threshold_db,
                   "cells": int(mask.sum())}

@@ -2,17 +2,16 @@
 
 Its room (:mod:`~radaraug.heldout.room`), people (:mod:`~radaraug.heldout.walkers`) and receiver
 (:mod:`~radaraug.heldout.receiver`) are written anew, so a modelling error of the twin is not
-shared by the test. :func:`make_independent_proxy` writes the ``independent`` set, :func:`make_suite`
+shared by the test. :func:`make_independent_set` writes the ``independent`` set, :func:`make_suite`
 the drawn test worlds. It imports none of the twin's packages (tested). See docs/heldout_worlds.md.
 """
 
 from radaraug.heldout.generator import (
     GENERATOR_VERSION,
-    IndependentProxySet,
-    load_independent_proxy,
-    make_independent_proxy,
+    load_independent_set,
+    make_independent_set,
 )
 from radaraug.heldout.worlds import SUITES, World, draw_world, load_world, make_suite, make_world
 
-__all__ = ["GENERATOR_VERSION", "SUITES", "IndependentProxySet", "World", "draw_world", "load_world",
-           "load_independent_proxy", "make_independent_proxy", "make_suite", "make_world"]
+__all__ = ["GENERATOR_VERSION", "SUITES", "World", "draw_world", "load_world",
+           "load_independent_set", "make_independent_set", "make_suite", "make_world"]

@@ -1,6 +1,6 @@
 """The ``independent`` held-out set: labelled captures made without any of the twin's code.
 
-:func:`make_independent_proxy` writes captures of 0, 1 and 2 people and an empty-room calibration
+:func:`make_independent_set` writes captures of 0, 1 and 2 people and an empty-room calibration
 capture of one fixed office, like :func:`radaraug.sim.proxy.make_proxy`, from the independent room,
 people and receiver; its undeclared effects act on every capture, the calibration one included.
 Receiver constants, effects and seeding: docs/heldout_worlds.md ("Inside the generator").
@@ -78,10 +78,6 @@ values by antenna number 1, 2, 3): LO phase noise, a spur tone, frame drift and 
 mismatch, in every capture (docs/heldout_worlds.md, "The independent set's receiver")."""
 
 
-#: The generated set (:class:`radaraug.io.generated_set.GeneratedTestSet`, shared by both generators).
-IndependentProxySet = GeneratedTestSet
-
-
 # ------------------------------------------------------------------------------------ receiver
 def _by_antenna(values: Sequence[float], config: RadarConfig) -> list[float]:
     """Per-RX values for the config's antennas from a table for antennas 1, 2, 3 (cycled beyond)."""
@@ -140,14 +136,14 @@ def resolve_effects(effects: str | Sequence[Mapping[str, Any]] | None, config: R
         extra: list[dict[str, Any]] = []
     elif isinstance(effects, str):
         if effects != "default":
-            raise ConfigError(f"make_independent_proxy: effects must be 'default', 'none' or a list, got {effects!r}")
+            raise ConfigError(f"make_independent_set: effects must be 'default', 'none' or a list, got {effects!r}")
         extra = default_effects(config)
     else:
         extra = [dict(e) for e in effects]
     try:
         _check_effects(base + extra)
     except ValueError as err:
-        raise ConfigError(f"make_independent_proxy: {err}") from None
+        raise ConfigError(f"make_independent_set: {err}") from None
     return json.loads(json.dumps(base + extra))
 
 
@@ -294,7 +290,7 @@ def _write_file(path: Path, config: RadarConfig, episodes: list[dict[str, Any]],
                 bar.update(b - a)
 
 
-def load_independent_proxy(out_dir: str | os.PathLike) -> IndependentProxySet:
+def load_independent_set(out_dir: str | os.PathLike) -> GeneratedTestSet:
     """The set described by ``out_dir/manifest.json`` (files checked to exist).
 
     Raises:
@@ -303,7 +299,7 @@ def load_independent_proxy(out_dir: str | os.PathLike) -> IndependentProxySet:
     return load_generated_set(out_dir, MANIFEST_NAME, MANIFEST_FORMAT, "independent held-out manifest")[0]
 
 
-def make_independent_proxy(
+def make_independent_set(
     out_dir: str | os.PathLike,
     *,
     config: RadarConfig | None = None,
@@ -314,7 +310,7 @@ def make_independent_proxy(
     counts: Sequence[int] = (0, 1, 2),
     standing_probability: float = 0.0,
     progress: bool = True,
-) -> IndependentProxySet:
+) -> GeneratedTestSet:
     """Generate (or reuse) the independent held-out set in ``out_dir``.
 
     Args:
@@ -333,7 +329,7 @@ def make_independent_proxy(
         progress: show a tqdm progress bar (frames).
 
     Returns:
-        The :class:`IndependentProxySet` (``calibration``, ``tests``, ``config``, ``manifest``,
+        The :class:`GeneratedTestSet` (``calibration``, ``tests``, ``config``, ``manifest``,
         ``reused``, ``to_dict()``, ``test_specs()``).
 
     Raises:
@@ -341,14 +337,14 @@ def make_independent_proxy(
     """
     config = RadarConfig.bgt60tr13c() if config is None else config
     if not isinstance(config, RadarConfig):
-        raise ConfigError(f"make_independent_proxy: config must be a RadarConfig, got {type(config).__name__}")
-    frames_per_count = check_count_arg("make_independent_proxy", "frames_per_count", frames_per_count, 1)
-    calibration_frames = check_count_arg("make_independent_proxy", "calibration_frames", calibration_frames, 1)
-    seed = check_count_arg("make_independent_proxy", "seed", seed, 0)
-    counts = check_people_counts("make_independent_proxy", counts)
+        raise ConfigError(f"make_independent_set: config must be a RadarConfig, got {type(config).__name__}")
+    frames_per_count = check_count_arg("make_independent_set", "frames_per_count", frames_per_count, 1)
+    calibration_frames = check_count_arg("make_independent_set", "calibration_frames", calibration_frames, 1)
+    seed = check_count_arg("make_independent_set", "seed", seed, 0)
+    counts = check_people_counts("make_independent_set", counts)
     if isinstance(standing_probability, bool) or not isinstance(standing_probability, (int, float)) \
             or not 0.0 <= float(standing_probability) <= 1.0:
-        raise ConfigError(f"make_independent_proxy: standing_probability must be in [0, 1], got {standing_probability!r}")
+        raise ConfigError(f"make_independent_set: standing_probability must be in [0, 1], got {standing_probability!r}")
     resolved = resolve_effects(effects, config)
     settings = json.loads(json.dumps({
         "generator_version": GENERATOR_VERSION, "frames_per_count": frames_per_count,
@@ -413,7 +409,7 @@ def write_set_files(out: Path, config: RadarConfig, *, seed: int, counts: Sequen
 
 
 def _generate(out: Path, settings: dict[str, Any], config: RadarConfig, effects: list[dict[str, Any]],
-              progress: bool) -> IndependentProxySet:
+              progress: bool) -> GeneratedTestSet:
     started = time.perf_counter()
     manifest_path = start_generated_set(out, MANIFEST_NAME)
     seed = settings["seed"]
@@ -475,7 +471,7 @@ def finish_set(out: Path, manifest_path: Path, manifest: dict[str, Any], files: 
 
 
 __all__ = [
-    "GENERATOR_VERSION", "IndependentProxySet", "PeoplePriors", "RECEIVER", "UNDECLARED_EFFECTS", "default_effects",
-    "load_independent_proxy", "make_independent_proxy", "person_tracks", "plan_episodes", "receiver_kwargs",
+    "GENERATOR_VERSION", "PeoplePriors", "RECEIVER", "UNDECLARED_EFFECTS", "default_effects",
+    "load_independent_set", "make_independent_set", "person_tracks", "plan_episodes", "receiver_kwargs",
     "finish_set", "resolve_effects", "write_set_files",
 ]

@@ -262,10 +262,10 @@ def _test_sets(out: Path, settings: ReproduceSettings, calibration: str | None,
 
             proxy: Any = make_proxy(out / "proxy", frames_per_count=settings.proxy_frames_per_count, progress=progress)
         else:  # "independent" or "standing"
-            from radaraug.heldout import make_independent_proxy
+            from radaraug.heldout import make_independent_set
 
             standing: dict[str, Any] = {"seed": STANDING_SEED, "standing_probability": STANDING_PROBABILITY}
-            proxy = make_independent_proxy(out / name, frames_per_count=settings.proxy_frames_per_count,
+            proxy = make_independent_set(out / name, frames_per_count=settings.proxy_frames_per_count,
                                            progress=progress, **(standing if name == "standing" else {}))
         sets.append(TestSet(name, str(proxy.calibration),
                             [{"path": str(p), "count": int(c)} for p, c in proxy.tests], proxy.to_dict()))

@@ -15,10 +15,11 @@ import torch
 
 from radaraug.config import RadarConfig
 from radaraug.errors import ConfigError
-from radaraug.heldout import IndependentProxySet, load_independent_proxy, make_independent_proxy, walkers
+from radaraug.heldout import load_independent_set, make_independent_set, walkers
 from radaraug.heldout import room as room_mod
 from radaraug.heldout.generator import _chirp_times, plan_episodes, resolve_effects
 from radaraug.io import open_capture
+from radaraug.io.generated_set import GeneratedTestSet
 
 ROOT = Path(__file__).resolve().parents[2]
 FRAMES, CAL_FRAMES, SEED = 6, 4, 7
@@ -30,9 +31,9 @@ def small_config() -> RadarConfig:
 
 
 @pytest.fixture(scope="module")
-def made(tmp_path_factory: pytest.TempPathFactory) -> IndependentProxySet:
+def made(tmp_path_factory: pytest.TempPathFactory) -> GeneratedTestSet:
     out = tmp_path_factory.mktemp("heldout")
-    return make_independent_proxy(out, config=small_config(), frames_per_count=FRAMES, calibration_frames=CAL_FRAMES,
+    return make_independent_set(out, config=small_config(), frames_per_count=FRAMES, calibration_frames=CAL_FRAMES,
                                   seed=SEED, progress=False)
 
 
@@ -41,7 +42,7 @@ def read(path: Path) -> tuple[np.ndarray, dict[str, np.ndarray] | None, RadarCon
         return cap.read(as_float=False).numpy(), cap.labels, cap.config
 
 
-def test_files_frames_labels_and_config(made: IndependentProxySet) -> None:
+def test_files_frames_labels_and_config(made: GeneratedTestSet) -> None:
     cfg = small_config()
     assert made.config == cfg and not made.reused
     assert [c for _, c in made.tests] == [0, 1, 2]
@@ -63,7 +64,7 @@ def test_files_frames_labels_and_config(made: IndependentProxySet) -> None:
     assert RadarConfig.from_dict(d["config"]) == cfg
 
 
-def test_manifest_and_reuse(made: IndependentProxySet) -> None:
+def test_manifest_and_reuse(made: GeneratedTestSet) -> None:
     assert made.manifest is not None and made.manifest.name == "manifest.json"
     m = json.loads(made.manifest.read_text())
     assert m["format"] == "radaraug-heldout-independent" and m["seed"] == SEED
@@ -76,23 +77,23 @@ def test_manifest_and_reuse(made: IndependentProxySet) -> None:
     assert len(people) == 2 and all(1.5 <= p["height_m"] <= 1.95 for p in people)
     assert m["settings"]["generator_version"] == m["generator_version"]
     mtime = made.calibration.stat().st_mtime_ns
-    again = make_independent_proxy(made.calibration.parent, config=small_config(), frames_per_count=FRAMES,
+    again = make_independent_set(made.calibration.parent, config=small_config(), frames_per_count=FRAMES,
                                    calibration_frames=CAL_FRAMES, seed=SEED, progress=False)
     assert again.reused and again.tests == made.tests and made.calibration.stat().st_mtime_ns == mtime
-    assert load_independent_proxy(made.calibration.parent).tests == made.tests
+    assert load_independent_set(made.calibration.parent).tests == made.tests
 
 
-def test_deterministic_per_seed_and_count(made: IndependentProxySet, tmp_path: Path) -> None:
+def test_deterministic_per_seed_and_count(made: GeneratedTestSet, tmp_path: Path) -> None:
     """The file of a count depends on (seed, count, ...) only, not on the other counts generated."""
     kw = dict(config=small_config(), frames_per_count=FRAMES, calibration_frames=CAL_FRAMES, progress=False)
-    alone = make_independent_proxy(tmp_path / "a", seed=SEED, counts=(1,), **kw)
+    alone = make_independent_set(tmp_path / "a", seed=SEED, counts=(1,), **kw)
     assert np.array_equal(read(alone.tests[0][0])[0], read(made.tests[1][0])[0])
     assert np.array_equal(read(alone.calibration)[0], read(made.calibration)[0])
-    other = make_independent_proxy(tmp_path / "b", seed=SEED + 1, counts=(1,), **kw)
+    other = make_independent_set(tmp_path / "b", seed=SEED + 1, counts=(1,), **kw)
     assert not np.array_equal(read(other.tests[0][0])[0], read(alone.tests[0][0])[0])
 
 
-def test_a_person_shows_up_at_their_range(made: IndependentProxySet) -> None:
+def test_a_person_shows_up_at_their_range(made: GeneratedTestSet) -> None:
     from radaraug.transforms import RangeDoppler, ToDecibels
 
     cfg = small_config()
@@ -142,9 +143,9 @@ def test_bad_arguments() -> None:
     with pytest.raises(ConfigError):
         resolve_effects([{"name": "spur_tone", "freq_Hz": 1e5}], small_config())
     with pytest.raises(ConfigError):
-        make_independent_proxy("unused", counts=(3,), progress=False)
+        make_independent_set("unused", counts=(3,), progress=False)
     with pytest.raises(ConfigError):
-        make_independent_proxy("unused", frames_per_count=0, progress=False)
+        make_independent_set("unused", frames_per_count=0, progress=False)
     assert [e["name"] for e in resolve_effects("none", small_config())] == ["adc_noise"]
 
 

@@ -97,12 +97,12 @@ def test_report_on_a_tiny_run(tmp_path, captures):
 def test_generated_test_sets_at_a_non_paper_config_and_shared_training(tmp_path):
     """Two test sets; a run that does not use the calibration trains once and is tested on both."""
     from radaraug.config import RadarConfig
-    from radaraug.heldout import make_independent_proxy
+    from radaraug.heldout import make_independent_set
 
     cfg = RadarConfig.bgt60tr13c(num_samples_per_chirp=64, num_chirps_per_frame=16, if_gain_dB=38.0)
-    a = make_independent_proxy(tmp_path / "a", config=cfg, frames_per_count=4, calibration_frames=16, seed=1,
+    a = make_independent_set(tmp_path / "a", config=cfg, frames_per_count=4, calibration_frames=16, seed=1,
                                progress=False)
-    b = make_independent_proxy(tmp_path / "b", config=cfg, frames_per_count=4, calibration_frames=16, seed=2,
+    b = make_independent_set(tmp_path / "b", config=cfg, frames_per_count=4, calibration_frames=16, seed=2,
                                progress=False)
     import radaraug.training.reproduce as r
 
