@@ -118,9 +118,10 @@ class RadarDataModule(L.LightningDataModule):
         super().__init__()
         self.class_names = check_task(task)
         self.task = task
-        self.method = RandomDR() if method is None else method
-        self.twin = TwinSplits() if twin is None else twin
-        self.image_spec = ImageSpec() if image is None else image
+        # specs given as plain values (a checkpoint's hparams, a recipe) are built here
+        self.method = RandomDR() if method is None else method_from(method)
+        self.twin = TwinSplits() if twin is None else TwinSplits(**twin) if isinstance(twin, dict) else twin
+        self.image_spec = ImageSpec() if image is None else ImageSpec(**image) if isinstance(image, dict) else image
         # the specs as plain values: checkpoints and saved configs hold no objects
         self.save_hyperparameters(ignore=["method", "twin", "image", "test"])
         self.hparams.update(method=self.method.to_dict(), twin=self.twin.to_dict(), image=self.image_spec.to_dict())
@@ -151,22 +152,13 @@ class RadarDataModule(L.LightningDataModule):
 
     @classmethod
     def from_recipe(cls, data: dict[str, Any]) -> RadarDataModule:
-        """The data module of a recipe's ``data`` section (plain values: ``method`` a ``class_path`` entry).
+        """The data module of a recipe's ``data`` section, or of a checkpoint's hyperparameters (plain values).
 
         Raises:
             ConfigError: an unknown key or method.
         """
-        kw = dict(data)
-        if "method" in kw:
-            kw["method"] = method_from(kw["method"])
-        for key, spec in (("twin", TwinSplits), ("image", ImageSpec)):
-            if isinstance(kw.get(key), dict):
-                try:
-                    kw[key] = spec(**kw[key])
-                except TypeError as e:
-                    raise ConfigError(f"data.{key}: {e}") from None
         try:
-            return cls(**kw)
+            return cls(**data)
         except TypeError as e:
             raise ConfigError(f"data: {e}") from None
 

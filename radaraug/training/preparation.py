@@ -113,6 +113,8 @@ class ImageSpec:
 
     def __post_init__(self) -> None:
         check_representation(self.representation)
+        lo, hi = self.clip_percentiles  # a YAML list or a tuple: one value
+        self.clip_percentiles = (float(lo), float(hi))
         if self.clip_range is not None and len(self.clip_range) != 2:
             raise ConfigError(f"clip_range must be [vmin, vmax], got {self.clip_range!r}")
 

@@ -264,3 +264,17 @@ def test_a_calibration_record_serves_what_it_holds(tmp_path, captures):
     other = rec.save(tmp_path / "other.json")
     with pytest.warns(CalibrationWarning), pytest.raises(ConfigError, match="other.json: its persistent cells"):
         RadarDataModule(task="occupancy", method=RT(), calibration=str(other), **kw).setup("fit")
+
+
+def test_the_hyperparameters_are_plain_and_rebuild_the_module():
+    """A checkpoint keeps plain values (no objects); they build the same module again."""
+    dm = RadarDataModule(task="counting", method=CDR(floor="normal"), twin=replace(TWIN, train_items=7),
+                         image=ImageSpec(size=[32, 16], blank_zero_doppler=2), seed=4)
+    assert dm.hparams["method"] == {"class_path": "radaraug.training.methods.CDR",
+                                    "init_args": {"floor": "normal", "twin_noise_offset_db": -15.0, "test_dr": False}}
+    assert json.loads(json.dumps(dict(dm.hparams))) == dict(dm.hparams)
+    again = RadarDataModule(**dm.hparams)
+    assert again.method == dm.method and again.twin == dm.twin and again.image_spec == dm.image_spec
+    assert again.hparams == dm.hparams
+    with pytest.raises(ConfigError, match="data: .*unexpected keyword"):
+        RadarDataModule.from_recipe({"train_items": 5})
