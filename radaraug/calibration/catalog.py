@@ -259,6 +259,14 @@ def _noise_like(name: str, pname: str, grid: Sequence[float], factors: Sequence[
 
 def _spur() -> Candidate:
     def starts(ctx: Context) -> list[dict[str, Any]]:
+        m = ctx.measured.get("spur_tone")
+        if m and "doppler_bin" in m:
+            # A locked line: the signature's fine DFT over fast time and its Doppler bin fixed the alias,
+            # which the views cannot (aliases 1/T apart make the same Doppler line; measured: the search
+            # moved generator B's 187.30 kHz spur to 189.87 kHz, one 1/T over, from this start's
+            # neighbours). The search then moves it within half a Doppler bin.
+            return [{"freq_Hz": float(m["freq_Hz"]), "amplitude_counts": float(m["amplitude_counts"]),
+                     "phase_rad": 0.0}]
         cfg = ctx.config
         ex = ctx.excess_db()
         M = ex.shape[1]

@@ -54,6 +54,17 @@ def test_quick_cases_name_what_is_there(tmp_path, name):
         assert max(coupling) < -50.0  # generator B's leakage sits ~24 dB under the declared -35.8 / -43.8 dB
 
 
+@pytest.mark.parametrize("name", ["spur_tone@A", "clipping+spur@A"])
+def test_a_locked_spur_keeps_the_alias_its_signature_measured(tmp_path, name):
+    """At config A a chirp repeats every 391.55 us: aliases 2.55 kHz apart, 0.65 range bin, make one
+    Doppler line. The fitted frequency is the one put in (187.3 kHz), not the next alias."""
+    diag, named, _ = _named(tmp_path, name, seed=3)
+    assert "spur_tone" in named
+    spur = next(e for e in diag.profile.to_dict()["receiver"]["effects"] if e["name"] == "spur_tone")
+    cfg = _BY_NAME[name].config
+    assert abs(spur["params"]["freq_Hz"] - 187_300.0) <= cfg.sample_rate_Hz / cfg.num_samples_per_chirp / 4
+
+
 def test_steeper_declared_highpass_is_refitted_with_its_parameters_before_and_after(tmp_path):
     """The declared first-order high-pass, where the capture's is a second-order Butterworth at 150 kHz.
 
