@@ -344,8 +344,12 @@ def _vibrating() -> Candidate:
         ex = ctx.excess_db()
         M = ex.shape[1]
         out = []
+        m = ctx.measured.get("vibrating_clutter") or {}
         for r, d, v in _line_peaks(ex, 1, 6.0):
-            vib = abs(d - M // 2) / (M * cfg.chirp_repetition_time_s)
+            # The pair's signature read f_v to a fraction of a Doppler bin (each line's centre); the
+            # residual's peak only to its bin.
+            vib = (float(m["vibration_Hz"]) if "beta" in m and "vibration_Hz" in m
+                   else abs(d - M // 2) / (M * cfg.chirp_repetition_time_s))
             for beta in (0.5, 1.5):
                 # An estimated static scene already holds the object's mean return: add only
                 # what the vibration adds (carrier 0).
@@ -359,6 +363,8 @@ def _vibrating() -> Candidate:
 
     def specs(ctx: Context, start: dict[str, Any]) -> list[ParamSpec]:
         dopp = 1 / (ctx.config.num_chirps_per_frame * ctx.config.chirp_repetition_time_s)
+        if "beta" in (ctx.measured.get("vibrating_clutter") or {}):
+            dopp /= 4  # measured: within a quarter bin of the signature's f_v
         f_v = start["vibration_Hz"]
         return [_narrow(ctx, "vibrating_clutter", start, "level_dB", half=8.0),
                 _narrow(ctx, "vibrating_clutter", start, "displacement_m", rel=0.6),
