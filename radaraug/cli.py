@@ -690,7 +690,7 @@ def build_parser() -> argparse.ArgumentParser:
                   "capture itself)")
     fit.add_argument("path", help="empty-room capture (radaraug .h5 or Infineon recording folder), recorded "
                      "like the test captures")
-    _output_args(fit, "calibration JSON to write (CDR's floor only: no frames, so no excision, gate or profile)")
+    _output_args(fit, "calibration JSON to write (CDR's floor and the persistent cells: no frames, so no gate or profile)")
     fit.add_argument("--max-frames", type=int, default=None, help="frames read (default: all)")
     fit.add_argument("--floor", choices=("normal", "empirical"), default="normal",
                      help="the floor distribution the calibration draws from: normal (the paper's CDR) or empirical "
@@ -890,7 +890,7 @@ def build_parser() -> argparse.ArgumentParser:
 
     cal = command("calibrate", _cmd_calibrate, help="record the empty room and fit CalibratedDR in one step "
                   "(--keep-recording keeps the capture training needs)")
-    live(cal, "calibration JSON to write (CDR's floor only: no frames, so no excision, gate or profile)")
+    live(cal, "calibration JSON to write (CDR's floor and the persistent cells: no frames, so no gate or profile)")
     cal.add_argument("--keep-recording", default=None, metavar="PATH",
                      help="also keep the empty-room recording here (.h5): the capture to give as data.calibration "
                      "or reproduce --calibration (the twin's config, excision, CDR floor, static-change gate, "

@@ -338,18 +338,23 @@ def _static_clutter() -> Candidate:
     return Candidate("static_clutter", _range_level_specs("static_clutter", "range_m"), starts, modes=("scene",))
 
 
+def _measured_pair_Hz(ctx: Context) -> float | None:
+    """``f_v`` of a present Doppler-pair signature (its reading carries ``beta``; a band's does not), or None."""
+    m = ctx.measured.get("vibrating_clutter") or {}
+    return float(m["vibration_Hz"]) if "beta" in m and "vibration_Hz" in m else None
+
+
 def _vibrating() -> Candidate:
     def starts(ctx: Context) -> list[dict[str, Any]]:
         cfg = ctx.config
         ex = ctx.excess_db()
         M = ex.shape[1]
         out = []
-        m = ctx.measured.get("vibrating_clutter") or {}
+        measured = _measured_pair_Hz(ctx)
         for r, d, v in _line_peaks(ex, 1, 6.0):
             # The pair's signature read f_v to a fraction of a Doppler bin (each line's centre); the
             # residual's peak only to its bin.
-            vib = (float(m["vibration_Hz"]) if "beta" in m and "vibration_Hz" in m
-                   else abs(d - M // 2) / (M * cfg.chirp_repetition_time_s))
+            vib = measured if measured is not None else abs(d - M // 2) / (M * cfg.chirp_repetition_time_s)
             for beta in (0.5, 1.5):
                 # An estimated static scene already holds the object's mean return: add only
                 # what the vibration adds (carrier 0).
@@ -363,7 +368,7 @@ def _vibrating() -> Candidate:
 
     def specs(ctx: Context, start: dict[str, Any]) -> list[ParamSpec]:
         dopp = 1 / (ctx.config.num_chirps_per_frame * ctx.config.chirp_repetition_time_s)
-        if "beta" in (ctx.measured.get("vibrating_clutter") or {}):
+        if _measured_pair_Hz(ctx) is not None:
             dopp /= 4  # measured: within a quarter bin of the signature's f_v
         f_v = start["vibration_Hz"]
         return [_narrow(ctx, "vibrating_clutter", start, "level_dB", half=8.0),
