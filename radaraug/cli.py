@@ -444,7 +444,7 @@ def _cmd_reproduce(args: argparse.Namespace) -> Result:
 
 
 def _cmd_make_proxy(args: argparse.Namespace) -> Result:
-    from radaraug.sim.proxy import MANIFEST_NAME, make_proxy
+    from radaraug.testsets.proxy import MANIFEST_NAME, make_proxy
 
     # No manifest after --overwrite: the set is generated again, file by file.
     _check_output(args, args.output, folder=True, owned=[MANIFEST_NAME])

@@ -16,8 +16,8 @@ import math
 from pathlib import Path
 
 from radaraug.detection import StaticChangeDetector
-from radaraug.heldout.worlds import make_suite
 from radaraug.io import open_capture
+from radaraug.testsets.independent.worlds import make_suite
 
 
 def kind_of(people: list[dict], velocity_resolution_m_s: float) -> str:

@@ -59,7 +59,7 @@ NULL_WINDOW_BINS = (8, 20, 35, 50, 65, 80)  # empty items: person windows at the
 def quick_calibration_excise(threshold_db: float) -> tuple[torch.Tensor, dict[str, Any]]:
     """The quick run's excision mask: persistent cells of the independent set's empty-room capture."""
     from radaraug.calibration.record import persistent_cells_of
-    from radaraug.heldout import make_independent_set
+    from radaraug.testsets.independent import make_independent_set
 
     with tempfile.TemporaryDirectory() as tmp:
         # Same generator, seed (2024) and 40 calibration frames as reproduce's "independent" test set;

@@ -270,7 +270,7 @@ def test_fit_cdr_and_simulate_json(tmp_path, capsys) -> None:
 
 def test_make_proxy_and_reproduce_json(tmp_path, capsys, monkeypatch) -> None:
     # The long jobs themselves are tested elsewhere; here only what the CLI prints from their results.
-    import radaraug.sim.proxy as proxy
+    import radaraug.testsets.proxy as proxy
     import radaraug.training.reproduce as rep
 
     def fake_proxy(out, **kw):

@@ -166,7 +166,7 @@ def test_capture_and_calibrate_json_name_their_file_output(tmp_path, monkeypatch
 
 def test_fit_cdr_demo_make_proxy_reproduce_json_name_their_output(tmp_path, monkeypatch, capsys) -> None:
     import radaraug.demo as demo
-    import radaraug.sim.proxy as proxy
+    import radaraug.testsets.proxy as proxy
     import radaraug.training.reproduce as rep
 
     cap = _capture(tmp_path / "room.h5")
@@ -201,7 +201,7 @@ def _demo(tmp_path, monkeypatch):
 
 
 def _make_proxy(tmp_path, monkeypatch):
-    import radaraug.sim.proxy as proxy
+    import radaraug.testsets.proxy as proxy
 
     monkeypatch.setattr(proxy, "make_proxy", _reached)
     return ["make-proxy"], True
@@ -339,7 +339,7 @@ def test_simulate_shard_checks_the_shard_file(tmp_path, capsys) -> None:
 
 
 def test_make_proxy_resume_reuses_and_overwrite_regenerates(tmp_path, monkeypatch) -> None:
-    import radaraug.sim.proxy as proxy
+    import radaraug.testsets.proxy as proxy
 
     seen = []
     monkeypatch.setattr(proxy, "make_proxy", lambda out, **kw: seen.append((Path(out) / proxy.MANIFEST_NAME).exists())

@@ -19,6 +19,7 @@ from torch import nn
 from radaraug.config import RadarConfig
 from radaraug.detection import StaticChangeDetector
 from radaraug.errors import CheckpointError, ConfigError, InputTensorError
+from radaraug.testsets.tasks import TASKS
 from radaraug.training.classifier_file import (
     ChainSpec,
     classifier_record,
@@ -27,7 +28,6 @@ from radaraug.training.classifier_file import (
     save_checkpoint,
 )
 from radaraug.training.metrics import causal_context, gated_predictions
-from radaraug.training.pipeline import TASKS
 
 #: Frames through the network at a time.
 DEFAULT_BATCH = 64

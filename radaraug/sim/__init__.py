@@ -4,13 +4,11 @@
 * :class:`SimulatedRadarDataset`: a torch Dataset whose item ``i`` is a pure function of (seed, i);
 * :class:`ScenarioSampler` / :class:`Scenario`: who walks where; :class:`TwinRandomization`: per-item draws;
 * :func:`simulate_capture`: a scene simulated into a radaraug HDF5 capture (sharded, resumable);
-* :func:`make_proxy` / :func:`load_proxy`: the held-out proxy set (another room, another sensor chain);
 * :func:`item_generator` / :func:`item_seed`: the per-item seeding; :class:`Stream`: its named streams.
 """
 
 from radaraug.sim.dataset import SimulatedRadarDataset
 from radaraug.sim.offline import simulate_capture
-from radaraug.sim.proxy import load_proxy, make_proxy
 from radaraug.sim.randomization import TwinRandomization
 from radaraug.sim.scenarios import Scenario, ScenarioSampler
 from radaraug.sim.seeding import Stream, item_generator, item_seed
@@ -25,7 +23,5 @@ __all__ = [
     "TwinRandomization",
     "item_generator",
     "item_seed",
-    "load_proxy",
-    "make_proxy",
     "simulate_capture",
 ]

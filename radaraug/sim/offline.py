@@ -65,7 +65,7 @@ def people_inside(twin: DigitalTwin, people: list[Any], times: torch.Tensor, *,
     """Per frame, how many people have their pelvis inside the room's bounding box.
 
     With ``min_range_m``, only those also at least that far in front of the radar along its
-    horizontal boresight count (the proxy's label rule, :func:`radaraug.sim.proxy.people_in_view`).
+    horizontal boresight count (the proxy's label rule, :func:`radaraug.testsets.proxy.people_in_view`).
     """
     counts = np.zeros(len(times), dtype=np.int64)
     verts = twin.scene.room.vertices.to(torch.float64)

@@ -6,6 +6,7 @@ experiment; see docs/training.md.
 
 from radaraug.training.data import RadarDataModule
 from radaraug.training.dropin import TrainingChains, training_chains
+from radaraug.training.inputs import CalibrationWarning
 from radaraug.training.methods import CDR, RT, CDRProfile, Method, OwnDR, RandomDR
 from radaraug.training.metrics import (
     accuracy,
@@ -16,12 +17,10 @@ from radaraug.training.metrics import (
 )
 from radaraug.training.models import TorchvisionClassifier
 from radaraug.training.module import RDClassifier
-from radaraug.training.pipeline import TASKS, estimate_clip_range, image_chain, rd_db_chain
+from radaraug.training.pipeline import estimate_clip_range, image_chain, rd_db_chain
 from radaraug.training.preparation import ImageSpec, TwinSplits, prepare
-from radaraug.training.testset import CalibrationWarning, TestSetWarning, check_test_set
 
 __all__ = [
-    "TASKS",
     "RadarDataModule",
     "Method",
     "RT",
@@ -44,7 +43,5 @@ __all__ = [
     "accuracy",
     "classification_report",
     "save_metrics",
-    "check_test_set",
-    "TestSetWarning",
     "CalibrationWarning",
 ]

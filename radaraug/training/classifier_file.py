@@ -117,7 +117,7 @@ def file_record(*, task: str, arch: str, net: nn.Module, config: RadarConfig, ch
                 gate: StaticChangeDetector | None, provenance: dict[str, Any]) -> dict[str, Any]:
     """The classifier file's dict (tensors and plain values only) of its parts (layout: docs/predict.md)."""
     from radaraug import __version__
-    from radaraug.training.pipeline import TASKS
+    from radaraug.testsets.tasks import TASKS
 
     return {"radaraug_version": __version__, "task": task, "classes": list(TASKS[task]), "arch": arch,
             "state_dict": {k: v.detach().cpu().clone() for k, v in net.state_dict().items()},

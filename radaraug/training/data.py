@@ -23,18 +23,13 @@ from radaraug.config import RadarConfig
 from radaraug.errors import ConfigError
 from radaraug.files import atomic_write_json
 from radaraug.io import RadarCaptureDataset
+from radaraug.testsets.checks import dataset_entries, parse_test_entry
+from radaraug.testsets.tasks import check_task, label_of
 from radaraug.training.cache import CachedMaps, build_map_caches, default_cache_dir
+from radaraug.training.inputs import check_inputs
 from radaraug.training.methods import Method, RandomDR, method_from
-from radaraug.training.pipeline import (
-    check_task,
-    estimate_clip_range,
-    image_chain,
-    is_calibration_json,
-    label_of,
-    rd_db_chain,
-)
+from radaraug.training.pipeline import estimate_clip_range, image_chain, is_calibration_json, rd_db_chain
 from radaraug.training.preparation import NOISE_FIT_SKIPPED, ImageSpec, Prepared, TwinSplits, prepare
-from radaraug.training.testset import check_inputs, dataset_entries, parse_test_entry
 from radaraug.transforms import CalibratedDR
 
 #: Test frames per people count of the held-out proxy generated when a run names no test captures.
@@ -88,7 +83,7 @@ class RadarDataModule(L.LightningDataModule):
         test: test captures: ``"PATH:N"`` / ``{"path", "count": N}`` (N people in the whole file),
             ``"PATH"`` / ``{"path"}`` (the file's per-frame ``count`` labels), or a
             :class:`~radaraug.io.RadarCaptureDataset` labelled with people counts and without a transform
-            (:func:`~radaraug.training.testset.dataset_entries`). None: the held-out proxy, generated once
+            (:func:`~radaraug.testsets.checks.dataset_entries`). None: the held-out proxy, generated once
             under ``cache_dir/proxy``.
         twin: the simulated splits (:class:`~radaraug.training.preparation.TwinSplits`).
         image: the network input (:class:`~radaraug.training.preparation.ImageSpec`).
@@ -174,7 +169,7 @@ class RadarDataModule(L.LightningDataModule):
 
     # ------------------------------------------------------------------ resolving inputs
     def _proxy(self) -> Any:
-        from radaraug.sim.proxy import make_proxy
+        from radaraug.testsets.proxy import make_proxy
 
         return make_proxy(Path(self.hparams["cache_dir"]) / "proxy", frames_per_count=PROXY_FRAMES_PER_COUNT,
                           progress=self.twin.progress)

@@ -89,9 +89,9 @@ def training_chains(calibration: str | os.PathLike, method: str | Method = "rand
         ConfigError: a calibration record JSON (the chain needs the capture's frames), or an unknown method/key.
         CaptureError: the capture cannot be read.
     """
+    from radaraug.testsets.checks import TestSetWarning
     from radaraug.training.data import RadarDataModule
     from radaraug.training.pipeline import is_calibration_json
-    from radaraug.training.testset import TestSetWarning
 
     if is_calibration_json(calibration):
         raise ConfigError(f"{calibration}: a calibration record (JSON) has no frames; training_chains needs the empty-room "

@@ -10,6 +10,7 @@ import lightning as L
 import torch
 import torch.nn.functional as F
 
+from radaraug.testsets.tasks import check_task
 from radaraug.training.metrics import (
     balanced_accuracy,
     classification_report,
@@ -18,7 +19,6 @@ from radaraug.training.metrics import (
     save_metrics,
 )
 from radaraug.training.models import resnet18
-from radaraug.training.pipeline import check_task
 
 
 class RDClassifier(L.LightningModule):

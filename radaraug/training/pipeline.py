@@ -9,7 +9,6 @@ from __future__ import annotations
 import math
 import os
 from collections.abc import Sequence
-from typing import Any
 
 import torch
 from torch import nn
@@ -26,25 +25,9 @@ from radaraug.transforms import (
     ToDecibels,
 )
 
-#: Class names per task; the label of a simulated item is its people count.
-TASKS: dict[str, tuple[str, ...]] = {"occupancy": ("empty", "occupied"), "counting": ("0", "1", "2")}
 #: Network input representations: the paper's clipped dBFS map, or each range row referenced to
 #: its own Doppler median with zero Doppler blanked (docs/training.md, "Representations").
 REPRESENTATIONS = ("paper", "floor_relative")
-
-
-def check_task(task: str) -> tuple[str, ...]:
-    """The class names of ``task`` (ConfigError for an unknown task)."""
-    if task not in TASKS:
-        raise ConfigError(f"task must be one of {sorted(TASKS)}, got {task!r}")
-    return TASKS[task]
-
-
-def label_of(count: int | torch.Tensor, task: str) -> Any:
-    """The class label of a people count for ``task`` (occupancy: count > 0)."""
-    if task == "occupancy":
-        return (count > 0).long() if isinstance(count, torch.Tensor) else int(count > 0)
-    return count
 
 
 def is_calibration_json(calibration: str | os.PathLike) -> bool:

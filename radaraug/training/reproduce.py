@@ -26,9 +26,10 @@ from radaraug import recipes
 from radaraug._optional import lazy_import
 from radaraug.errors import ConfigError
 from radaraug.files import atomic_write_json, atomic_write_text
+from radaraug.testsets.tasks import TASKS
 from radaraug.training.classifier_file import classifier_record, save_checkpoint
 from radaraug.training.methods import METHODS
-from radaraug.training.pipeline import TASKS, is_calibration_json
+from radaraug.training.pipeline import is_calibration_json
 from radaraug.transforms.record_file import load_record
 from radaraug.units import DB_CONVENTION
 
@@ -80,7 +81,7 @@ class ReproduceSettings:
     methods: tuple[str, ...] = tuple(METHODS)
     #: generated test sets used when no test captures are given (:data:`DEFAULT_TEST_SETS`)
     test_sets: tuple[str, ...] = ("proxy", "independent")
-    #: worlds per held-out suite (``design``/``report`` in ``test_sets``; None: ``radaraug.heldout.worlds.DEFAULT_WORLDS``)
+    #: worlds per held-out suite (``design``/``report`` in ``test_sets``; None: ``radaraug.testsets.independent.worlds.DEFAULT_WORLDS``)
     worlds: int | None = None
     #: excise the calibration capture's persistent lines from floor-relative maps (``RadarDataModule.excise_persistent_db``)
     excise_persistent_db: float | None | str = RECIPE
@@ -148,8 +149,8 @@ def _get_key(cfg: dict[str, Any], path: tuple[str, ...]) -> Any:
 
 
 def parse_test_arg(text: str) -> dict[str, Any]:
-    """``PATH`` or ``PATH:COUNT`` -> a test entry (:func:`radaraug.training.testset.parse_test_entry`)."""
-    from radaraug.training.testset import parse_test_entry
+    """``PATH`` or ``PATH:COUNT`` -> a test entry (:func:`radaraug.testsets.checks.parse_test_entry`)."""
+    from radaraug.testsets.checks import parse_test_entry
 
     return parse_test_entry(text, "--test")
 
@@ -178,10 +179,10 @@ def _cdr_floor_of(keep: dict[tuple[str, str, str], tuple[Any, Any]], settings: R
 
 
 #: The held-out test sets ``reproduce`` generates when no test captures are given: the twin in
-#: another room (:mod:`radaraug.sim.proxy`) and a NumPy generator that shares no simulation code
-#: with the twin (:mod:`radaraug.heldout`). Each comes with its own empty-room capture.
+#: another room (:mod:`radaraug.testsets.proxy`) and a NumPy generator that shares no simulation code
+#: with the twin (:mod:`radaraug.testsets.independent`). Each comes with its own empty-room capture.
 DEFAULT_TEST_SETS = ("proxy", "independent")
-#: The held-out suites of test worlds (:mod:`radaraug.heldout.worlds`): ``design`` (look at it freely;
+#: The held-out suites of test worlds (:mod:`radaraug.testsets.independent.worlds`): ``design`` (look at it freely;
 #: its numbers are validation numbers), ``report`` (run only to report) and the spent report suites
 #: (``report-1``, ``report-2``: rerun their records; validation numbers now). Each world is a test set.
 SUITE_TEST_SETS = ("design", "report", "report-1", "report-2")
@@ -249,7 +250,7 @@ def _test_sets(out: Path, settings: ReproduceSettings, calibration: str | None,
     sets = []
     for name in names:
         if name in SUITE_TEST_SETS:
-            from radaraug.heldout.worlds import make_suite
+            from radaraug.testsets.independent.worlds import make_suite
 
             for world, made in make_suite(out / "worlds", name, worlds=settings.worlds,
                                           frames_per_count=settings.proxy_frames_per_count, progress=progress):
@@ -258,11 +259,11 @@ def _test_sets(out: Path, settings: ReproduceSettings, calibration: str | None,
                                     made.to_dict() | {"world": world.to_dict()}, suite=name))
             continue
         if name == "proxy":
-            from radaraug.sim.proxy import make_proxy
+            from radaraug.testsets.proxy import make_proxy
 
             proxy: Any = make_proxy(out / "proxy", frames_per_count=settings.proxy_frames_per_count, progress=progress)
         else:  # "independent" or "standing"
-            from radaraug.heldout import make_independent_set
+            from radaraug.testsets.independent import make_independent_set
 
             standing: dict[str, Any] = {"seed": STANDING_SEED, "standing_probability": STANDING_PROBABILITY}
             proxy = make_independent_set(out / name, frames_per_count=settings.proxy_frames_per_count,
@@ -443,7 +444,8 @@ def reproduce(
     out.mkdir(parents=True, exist_ok=True)
     t_start = time.perf_counter()
     sets = _test_sets(out, settings, calibration, test, test_sets, progress)
-    from radaraug.training.testset import CalibrationWarning, check_test_set
+    from radaraug.testsets.checks import check_test_set
+    from radaraug.training.inputs import CalibrationWarning
 
     for ts in sets:
         for task in tasks:
@@ -655,7 +657,7 @@ def _calibration_scores(model: Any, test_dm: Any, ts: TestSet, data_kw: dict[str
         return None
     cal = replace(ts, tests=[{"path": ts.calibration, "count": 0}])
     dm = _test_dm(test_dm, cal, data_kw, run_dir)
-    from radaraug.training.testset import TestSetWarning
+    from radaraug.testsets.checks import TestSetWarning
 
     with _quiet(), warnings.catch_warnings():
         warnings.simplefilter("ignore", TestSetWarning)  # an empty-room capture holds one class by design
@@ -888,7 +890,7 @@ TEST_SET_TEXT = {
 }
 
 SUITE_TEXT = {
-    "design": ("**design suite** (`radaraug.heldout.worlds`): test worlds drawn from wide priors (room, mounting, "
+    "design": ("**design suite** (`radaraug.testsets.independent.worlds`): test worlds drawn from wide priors (room, mounting, "
                "radar config, people, disturbances), each with its own empty-room capture. It may be looked at as "
                "often as one likes, so numbers on it are **validation** numbers."),
     "report": ("**report suite**: worlds from the same priors and other seeds, run only to report a decision "

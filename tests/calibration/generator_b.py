@@ -2,7 +2,7 @@
 
 A second independent capture generator for the calibration tests. It shares no code (and no
 modelling shortcut) with ``radaraug.sim``, ``radaraug.raytrace``, ``radaraug.sensor``,
-``radaraug.scene``, ``radaraug.heldout`` or ``tests/calibration/numpy_capture.py``; it reads only the
+``radaraug.scene``, ``radaraug.testsets.independent`` or ``tests/calibration/numpy_capture.py``; it reads only the
 numbers of a :class:`~radaraug.config.RadarConfig`. Its conventions are its own:
 
 * **Room**: an empty office (back wall 4.6 m away, two side walls, a metal cabinet, a desk, a

@@ -7,8 +7,8 @@ import yaml
 
 from radaraug import recipes
 from radaraug.errors import ConfigError
+from radaraug.testsets.tasks import TASKS
 from radaraug.training.methods import METHODS
-from radaraug.training.pipeline import TASKS
 
 
 def test_one_name_per_task_and_method_from_the_override_files():

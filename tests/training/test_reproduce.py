@@ -97,7 +97,7 @@ def test_report_on_a_tiny_run(tmp_path, captures):
 def test_generated_test_sets_at_a_non_paper_config_and_shared_training(tmp_path):
     """Two test sets; a run that does not use the calibration trains once and is tested on both."""
     from radaraug.config import RadarConfig
-    from radaraug.heldout import make_independent_set
+    from radaraug.testsets.independent import make_independent_set
 
     cfg = RadarConfig.bgt60tr13c(num_samples_per_chirp=64, num_chirps_per_frame=16, if_gain_dB=38.0)
     a = make_independent_set(tmp_path / "a", config=cfg, frames_per_count=4, calibration_frames=16, seed=1,
@@ -276,7 +276,7 @@ def test_early_stopping_tests_the_best_epoch(tmp_path, captures, monkeypatch):
 def test_a_json_calibration_says_the_report_has_no_gate(tmp_path, captures, monkeypatch):
     """With a CalibratedDR JSON, reproduce says once per test set that no gated accuracies come (before training)."""
     import radaraug.training.reproduce as r
-    from radaraug.training.testset import CalibrationWarning
+    from radaraug.training.inputs import CalibrationWarning
 
     _, tests = captures
 

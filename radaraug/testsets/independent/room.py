@@ -100,7 +100,7 @@ class Room:
     """A room of point scatterers: its box, surfaces, fixtures, the radar's mount and the walkable floor.
 
     The defaults are the ``independent`` set's office (docs/heldout_worlds.md, "Room");
-    :mod:`radaraug.heldout.worlds` draws others.
+    :mod:`radaraug.testsets.independent.worlds` draws others.
 
     Attributes:
         size_m: length (x), width (y), height (z).

@@ -21,9 +21,16 @@ import numpy as np
 
 from radaraug.config import RadarConfig
 from radaraug.errors import ConfigError
-from radaraug.heldout import room as room_mod
-from radaraug.heldout import walkers
-from radaraug.heldout.generator import (
+from radaraug.testsets.generated import (
+    GeneratedTestSet,
+    check_count_arg,
+    load_generated_set,
+    reusable_generated_set,
+    start_generated_set,
+)
+from radaraug.testsets.independent import room as room_mod
+from radaraug.testsets.independent import walkers
+from radaraug.testsets.independent.generator import (
     MANIFEST_NAME,
     RECEIVER,
     PeoplePriors,
@@ -32,14 +39,7 @@ from radaraug.heldout.generator import (
     resolve_effects,
     write_set_files,
 )
-from radaraug.heldout.receiver import C_LIGHT
-from radaraug.io.generated_set import (
-    GeneratedTestSet,
-    check_count_arg,
-    load_generated_set,
-    reusable_generated_set,
-    start_generated_set,
-)
+from radaraug.testsets.independent.receiver import C_LIGHT
 
 WORLD_GENERATOR_VERSION = 1
 """Bumped whenever a world's draw or output changes; part of the reuse check."""
@@ -111,7 +111,7 @@ class World:
         config: the radar configuration of its captures.
         room: the room, fixtures, fan and mount.
         people: what its people are drawn from.
-        receiver: :func:`radaraug.heldout.receiver.generate` keyword arguments of its base chain.
+        receiver: :func:`radaraug.testsets.independent.receiver.generate` keyword arguments of its base chain.
         effects: every receiver effect (base ADC noise plus the disturbances).
         disturbances: the names of the disturbances it carries (:data:`DISTURBANCES`).
     """
@@ -373,7 +373,7 @@ def make_world(out_dir: str | os.PathLike, world: World, *, frames_per_count: in
         return reused[0]
     started = time.perf_counter()
     manifest_path = start_generated_set(out, MANIFEST_NAME)
-    common = {"source": "radaraug held-out world generator (radaraug.heldout.worlds)",
+    common = {"source": "radaraug held-out world generator (radaraug.testsets.independent.worlds)",
               "world": world.name, "world_generator_version": WORLD_GENERATOR_VERSION, "seed": world.seed,
               "note": "simulated without the training twin's code: numbers on it are sim-to-sim, not sim-to-real"}
     files = write_set_files(out, world.config, seed=world.seed, counts=counts, frames_per_count=frames_per_count,
@@ -386,7 +386,7 @@ def make_world(out_dir: str | os.PathLike, world: World, *, frames_per_count: in
         "world_generator_version": WORLD_GENERATOR_VERSION,
         "settings": settings,
         "statement": (f"A held-out test world of the {world.suite!r} suite, drawn from wide priors by the independent "
-                      "generator (radaraug.heldout), which shares no simulation code with the training twin. "
+                      "generator (radaraug.testsets.independent), which shares no simulation code with the training twin. "
                       + ("Report suite: run it only to report a decision already made, never to make one."
                          if world.suite == "report" else
                          "Spent report suite: it has been looked at, so its numbers are validation numbers now."

@@ -15,11 +15,11 @@ import torch
 
 from radaraug.config import RadarConfig
 from radaraug.errors import ConfigError
-from radaraug.heldout import load_independent_set, make_independent_set, walkers
-from radaraug.heldout import room as room_mod
-from radaraug.heldout.generator import _chirp_times, plan_episodes, resolve_effects
 from radaraug.io import open_capture
-from radaraug.io.generated_set import GeneratedTestSet
+from radaraug.testsets.generated import GeneratedTestSet
+from radaraug.testsets.independent import load_independent_set, make_independent_set, walkers
+from radaraug.testsets.independent import room as room_mod
+from radaraug.testsets.independent.generator import _chirp_times, plan_episodes, resolve_effects
 
 ROOT = Path(__file__).resolve().parents[2]
 FRAMES, CAL_FRAMES, SEED = 6, 4, 7
@@ -150,7 +150,7 @@ def test_bad_arguments() -> None:
 
 
 def test_imports_none_of_the_twin() -> None:
-    code = ("import radaraug.heldout, sys; bad=[m for m in sys.modules if m.split('.')[:2] in "
+    code = ("import radaraug.testsets.independent, sys; bad=[m for m in sys.modules if m.split('.')[:2] in "
             "(['radaraug','sim'],['radaraug','raytrace'],['radaraug','sensor'],['radaraug','scene'])]; "
             "assert not bad, bad")
     env = {**os.environ, "PYTHONPATH": os.pathsep.join([str(ROOT), os.environ.get("PYTHONPATH", "")])}
@@ -161,7 +161,7 @@ def test_imports_none_of_the_twin() -> None:
 
 def test_receiver_track_matches_a_moving_target() -> None:
     """A track sampled from a constant-speed trajectory synthesizes what ``moving_target`` does."""
-    from radaraug.heldout.receiver import generate
+    from radaraug.testsets.independent.receiver import generate
 
     cfg = small_config()
     quiet = dict(noise_figure_dB=-np.inf, leakage_coupling_dB=-np.inf, seed=0)

@@ -1,7 +1,7 @@
 """The ``independent`` held-out set: labelled captures made without any of the twin's code.
 
 :func:`make_independent_set` writes captures of 0, 1 and 2 people and an empty-room calibration
-capture of one fixed office, like :func:`radaraug.sim.proxy.make_proxy`, from the independent room,
+capture of one fixed office, like :func:`radaraug.testsets.proxy.make_proxy`, from the independent room,
 people and receiver; its undeclared effects act on every capture, the calibration one included.
 Receiver constants, effects and seeding: docs/heldout_worlds.md ("Inside the generator").
 """
@@ -23,10 +23,7 @@ import numpy as np
 from radaraug.config import RadarConfig
 from radaraug.errors import ConfigError
 from radaraug.files import atomic_write_json
-from radaraug.heldout import room as room_mod
-from radaraug.heldout import walkers
-from radaraug.heldout.receiver import _check_effects, _chirp_times, generate
-from radaraug.io.generated_set import (
+from radaraug.testsets.generated import (
     GeneratedTestSet,
     check_count_arg,
     check_people_counts,
@@ -35,6 +32,9 @@ from radaraug.io.generated_set import (
     start_generated_set,
     test_file_name,
 )
+from radaraug.testsets.independent import room as room_mod
+from radaraug.testsets.independent import walkers
+from radaraug.testsets.independent.receiver import _check_effects, _chirp_times, generate
 
 GENERATOR_VERSION = 1
 """Bumped whenever the output changes; part of the reuse check."""
@@ -93,7 +93,7 @@ def tx_power_dBm(config: RadarConfig) -> float:
 
 
 def receiver_kwargs(config: RadarConfig) -> dict[str, Any]:
-    """Keyword arguments of :func:`radaraug.heldout.receiver.generate` for the base chain."""
+    """Keyword arguments of :func:`radaraug.testsets.independent.receiver.generate` for the base chain."""
     scale = config.adc_full_scale_counts / 4095.0
     mid = config.adc_full_scale_counts / 2.0
     dc = _by_antenna(RECEIVER["dc_counts_12bit"], config)
@@ -124,7 +124,7 @@ def resolve_effects(effects: str | Sequence[Mapping[str, Any]] | None, config: R
     Args:
         effects: ``"default"`` (:func:`default_effects`), ``"none"`` or None (the base chain
             only), or a list of receiver effects ``{"name": ..., **params}``
-            (:data:`radaraug.heldout.receiver.EFFECT_PARAMS`) applied on top of the base chain.
+            (:data:`radaraug.testsets.independent.receiver.EFFECT_PARAMS`) applied on top of the base chain.
         config: the radar configuration.
 
     Raises:
@@ -376,7 +376,7 @@ def write_set_files(out: Path, config: RadarConfig, *, seed: int, counts: Sequen
         common: attributes written into every file.
         room: the room, its fixtures and the radar's mount.
         people: what the people are drawn from.
-        receiver: :func:`radaraug.heldout.receiver.generate` keyword arguments (default
+        receiver: :func:`radaraug.testsets.independent.receiver.generate` keyword arguments (default
             :func:`receiver_kwargs`).
         progress: show a tqdm progress bar (frames).
         desc: the progress bar's label.
@@ -413,7 +413,7 @@ def _generate(out: Path, settings: dict[str, Any], config: RadarConfig, effects:
     started = time.perf_counter()
     manifest_path = start_generated_set(out, MANIFEST_NAME)
     seed = settings["seed"]
-    common = {"source": "radaraug independent held-out generator (radaraug.heldout)",
+    common = {"source": "radaraug independent held-out generator (radaraug.testsets.independent)",
               "generator_version": GENERATOR_VERSION, "seed": seed,
               "note": "simulated without the training twin's code: numbers on it are sim-to-sim, not sim-to-real"}
     files = write_set_files(out, config, seed=seed, counts=settings["counts"],
@@ -426,7 +426,7 @@ def _generate(out: Path, settings: dict[str, Any], config: RadarConfig, effects:
         "format": MANIFEST_FORMAT,
         "generator_version": GENERATOR_VERSION,
         "settings": settings,
-        "statement": "An independent held-out set: room, people and receiver simulated by radaraug.heldout, which "
+        "statement": "An independent held-out set: room, people and receiver simulated by radaraug.testsets.independent, which "
                      "shares no simulation code with the training twin. It is still simulation (sim-to-sim, not "
                      "sim-to-real). Its settings were fixed before any training result was seen; do not tune them "
                      "to make a method look good.",
@@ -446,7 +446,7 @@ def _generate(out: Path, settings: dict[str, Any], config: RadarConfig, effects:
             "episode_frames": list(EPISODE_FRAMES), "min_separation_m": MIN_SEPARATION_M,
             "standing_probability": settings["standing_probability"],
         },
-        "receiver": {"model": "radaraug.heldout.receiver.generate (NumPy, per-sample float64 phases, analog "
+        "receiver": {"model": "radaraug.testsets.independent.receiver.generate (NumPy, per-sample float64 phases, analog "
                               "first-order IF filters with the high-pass start-up transient)",
                      "constants": {k: list(v) if isinstance(v, tuple) else v for k, v in RECEIVER.items()},
                      "generate_kwargs": json.loads(json.dumps(receiver_kwargs(config))),

@@ -1,7 +1,7 @@
 """A generated test set: an empty-room capture and labelled captures, as the generators return them.
 
-Shared by the held-out generators (:mod:`radaraug.sim.proxy`, the twin in another room, and
-:mod:`radaraug.heldout`, which shares no simulation code with the twin): both hand ``reproduce`` and
+Shared by the held-out generators (:mod:`radaraug.testsets.proxy`, the twin in another room, and
+:mod:`radaraug.testsets.independent`, which shares no simulation code with the twin): both hand ``reproduce`` and
 the recipes the same object.
 """
 

@@ -20,7 +20,7 @@ from radaraug.scene.people.sine_gait import SineGait, write_sine_gait_bvh
 from radaraug.scene.people.skeleton import JOINT_INDEX
 from radaraug.scene.scene import Scene
 from radaraug.sensor.defaults import default_effects
-from radaraug.sim import proxy
+from radaraug.testsets import proxy
 from radaraug.transforms import CalibratedDR, RangeDoppler, ToDecibels
 from radaraug.transforms.summary import summarize_capture
 

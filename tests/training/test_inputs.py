@@ -1,4 +1,4 @@
-"""The test set and the calibration are checked before anything is simulated (radaraug.training.testset)."""
+"""The test set and the calibration are checked before anything is simulated (radaraug.testsets.checks, radaraug.training.inputs)."""
 
 import warnings
 
@@ -8,6 +8,7 @@ from data import point_scatterer_frames, small_config
 
 from radaraug.errors import ConfigError
 from radaraug.io import write_capture
+from radaraug.testsets.checks import TestSetWarning, check_test_set, read_test_counts
 from radaraug.training import (
     CDR,
     CalibrationWarning,
@@ -15,11 +16,9 @@ from radaraug.training import (
     ImageSpec,
     RadarDataModule,
     RandomDR,
-    TestSetWarning,
     TwinSplits,
-    check_test_set,
 )
-from radaraug.training.testset import check_calibration, read_test_counts
+from radaraug.training.inputs import check_calibration
 from radaraug.transforms import CalibratedDR
 
 SMALL = {"twin": TwinSplits(train_items=6, val_items=0, tracer_rays=16, randomization=False, progress=False,

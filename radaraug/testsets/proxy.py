@@ -27,15 +27,6 @@ from radaraug.config import RadarConfig
 from radaraug.errors import ConfigError
 from radaraug.files import atomic_write_json
 from radaraug.io.blocks import BLOCK_FRAMES, BlockWriter
-from radaraug.io.generated_set import (
-    GeneratedTestSet,
-    check_count_arg,
-    check_people_counts,
-    load_generated_set,
-    reusable_generated_set,
-    start_generated_set,
-    test_file_name,
-)
 from radaraug.scene.geometry import RadarPose, SceneGeometry
 from radaraug.scene.materials import Material
 from radaraug.scene.room import box, merge
@@ -47,6 +38,15 @@ from radaraug.sim.randomization import ItemDraw
 from radaraug.sim.scenarios import ScenarioSampler, _uniform
 from radaraug.sim.seeding import Stream, item_seed
 from radaraug.sim.twin import DigitalTwin
+from radaraug.testsets.generated import (
+    GeneratedTestSet,
+    check_count_arg,
+    check_people_counts,
+    load_generated_set,
+    reusable_generated_set,
+    start_generated_set,
+    test_file_name,
+)
 from radaraug.units import DB_CONVENTION, FLOAT_CONVENTION
 
 SPEC_PATH = Path(__file__).resolve().parents[1] / "data" / "proxy.yaml"
@@ -209,7 +209,7 @@ def _make_people(params: list[dict[str, float]], motion_dir: Path, stem: str) ->
 
 
 # ---------------------------------------------------------------------------------- the result
-#: The generated set (:class:`radaraug.io.generated_set.GeneratedTestSet`, shared by both generators).
+#: The generated set (:class:`radaraug.testsets.generated.GeneratedTestSet`, shared by both generators).
 ProxySet = GeneratedTestSet
 
 
@@ -412,7 +412,7 @@ def _generate(out: Path, settings: dict[str, Any], frames_per_count: int, calibr
     tqdm = lazy_import("tqdm.auto", feature="progress bars").tqdm
 
     total = calibration_frames + frames_per_count * len(counts)
-    common = {"source": "radaraug held-out proxy generator (radaraug.sim.proxy)",
+    common = {"source": "radaraug held-out proxy generator (radaraug.testsets.proxy)",
               "generator_version": GENERATOR_VERSION, "seed": seed,
               "note": "simulated held-out proxy: numbers on it are sim-to-proxy, not sim-to-real"}
     files: dict[str, Any] = {"motion": []}

@@ -10,7 +10,7 @@ import pytest
 import torch
 
 from radaraug.io import open_capture
-from radaraug.sim import proxy
+from radaraug.testsets import proxy
 
 # sha256 of the uint16 ADC codes (and of the float64 timestamps) of
 # make_proxy(out, frames_per_count=4, calibration_frames=4, seed=3, tracer_options={"rays": 16}), on the

@@ -10,10 +10,11 @@ import numpy as np
 import pytest
 
 from radaraug.errors import ConfigError
-from radaraug.heldout import room as room_mod
-from radaraug.heldout import walkers
-from radaraug.heldout.generator import PeoplePriors, plan_episodes
-from radaraug.heldout.worlds import (
+from radaraug.io import open_capture
+from radaraug.testsets.independent import room as room_mod
+from radaraug.testsets.independent import walkers
+from radaraug.testsets.independent.generator import PeoplePriors, plan_episodes
+from radaraug.testsets.independent.worlds import (
     DISTURBANCES,
     SPENT_SUITES,
     SUITES,
@@ -24,7 +25,6 @@ from radaraug.heldout.worlds import (
     make_world,
     world_seed,
 )
-from radaraug.io import open_capture
 
 N_DRAWN = 40
 
