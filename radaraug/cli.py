@@ -139,7 +139,7 @@ def _cmd_info(args: argparse.Namespace) -> Result:
 
 
 def _cmd_fit_cdr(args: argparse.Namespace) -> Result:
-    from radaraug.calibration.record import PERSISTENT_THRESHOLD_DB, fit_record
+    from radaraug.diagnosis.record import PERSISTENT_THRESHOLD_DB, fit_record
     from radaraug.transforms import CalibratedDR
 
     _check_output(args, args.output)
@@ -460,8 +460,8 @@ def _cmd_make_proxy(args: argparse.Namespace) -> Result:
 
 
 def _cmd_diagnose(args: argparse.Namespace) -> Result:
-    from radaraug.calibration import SearchSettings, diagnose, write_report
-    from radaraug.calibration.diagnose import verdicts
+    from radaraug.diagnosis import SearchSettings, diagnose, write_report
+    from radaraug.diagnosis.diagnose import verdicts
 
     if args.max_frames < 4:
         raise ConfigError(f"--max-frames must be >= 4, got {args.max_frames}")
@@ -802,7 +802,7 @@ def build_parser() -> argparse.ArgumentParser:
     proxy.add_argument("--seed", type=int, default=1234, help="seed of the walks and the noise")
     proxy.add_argument("--json", action="store_true", help="print the calibration and test capture paths as one JSON object")
 
-    dia = command("diagnose", _cmd_diagnose, help="compare a capture with the twin, fit the missing effects (docs/calibration.md)")
+    dia = command("diagnose", _cmd_diagnose, help="compare a capture with the twin, fit the missing effects (docs/diagnosis.md)")
     dia.add_argument("capture", help="radaraug .h5 capture or Infineon recording folder (for a sensor "
                      "profile: the empty-room capture, as cdr_profile and catalog_priors: calibration use it)")
     dia.add_argument("--scene", default=None, help="the capture's scene (file or built-in name); "

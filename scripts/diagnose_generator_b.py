@@ -1,6 +1,6 @@
 """Run ``diagnose`` on generator B's cases and write one row per case (benchmarks/diagnose_generator_b_cpu.json).
 
-Each case (``tests/calibration/generator_b.py`` ``CASES``) is simulated at a seed, written as a
+Each case (``tests/diagnosis/generator_b.py`` ``CASES``) is simulated at a seed, written as a
 capture and diagnosed in estimated mode (40 frames); a row says what was named (the search's
 steps, plus declared stages refitted at other parameters), whether that is exactly the case's
 effects, the verdicts, the held-out error before and after, and the fitted parameters.
@@ -21,10 +21,10 @@ import torch
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from radaraug.calibration import diagnose  # noqa: E402
+from radaraug.diagnosis import diagnose  # noqa: E402
 from radaraug.io import write_capture  # noqa: E402
 from radaraug.units import float_to_counts  # noqa: E402
-from tests.calibration.generator_b import CASES, Case  # noqa: E402
+from tests.diagnosis.generator_b import CASES, Case  # noqa: E402
 
 
 def row(case: Case, seed: int) -> dict:

@@ -4,7 +4,7 @@ Each recording (third-party, read from the real-data folder, never copied into t
 diagnosed in estimated mode (no scene: none comes with one), 100 frames or as many as it has; the
 record keeps, per recording, its IF gain, the frames used, the held-out overall error of the
 default twin, after the base refit and at the end, the cut (1 - final / default), the effects
-named with their fitted parameters, and the seconds the diagnosis took. docs/calibration.md's
+named with their fitted parameters, and the seconds the diagnosis took. docs/diagnosis.md's
 table "Since the signatures" quotes it.
 
     python scripts/diagnose_public_recordings.py REAL_DIR -o benchmarks/diagnose_public_recordings_cpu.json
@@ -25,7 +25,7 @@ import torch
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from radaraug.calibration import diagnose  # noqa: E402
+from radaraug.diagnosis import diagnose  # noqa: E402
 
 MAX_FRAMES = 100
 
@@ -99,7 +99,7 @@ def main() -> None:
               f"{r['error_final_dB']} dB (cut {r['cut']:.0%}), named {r['named']}, {r['seconds']} s", flush=True)
     record = {"benchmark": "diagnose-public-recordings",
               "command": f"python scripts/diagnose_public_recordings.py REAL_DIR -o {out}",
-              "what": f"radaraug.calibration.diagnose(recording, max_frames={MAX_FRAMES}) in estimated mode on "
+              "what": f"radaraug.diagnosis.diagnose(recording, max_frames={MAX_FRAMES}) in estimated mode on "
                       "each public recording; errors are the held-out overall error (dB) of the default twin, "
                       "after the base refit and at the end; cut = 1 - final / default",
               "machine": f"{os.cpu_count()}-core {platform.machine()} CPU, {torch.get_num_threads()} threads, "

@@ -1,4 +1,4 @@
-"""Generator B's parameters against what ``diagnose`` fitted, with stated tolerances (docs/calibration.md).
+"""Generator B's parameters against what ``diagnose`` fitted, with stated tolerances (docs/diagnosis.md).
 
 Reads the JSON-lines rows of ``scripts/diagnose_generator_b.py`` and, per case and injected effect,
 compares each fitted parameter with the one put in (converted to the twin's units where the two
@@ -22,7 +22,7 @@ from typing import Any
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 from radaraug.sensor.effects.filters import section_cutoff  # noqa: E402
-from tests.calibration.generator_b import CASES, V_ADC_PP  # noqa: E402
+from tests.diagnosis.generator_b import CASES, V_ADC_PP  # noqa: E402
 
 Check = tuple[str, float, float | None, float | None, str]
 """(parameter, put in, fitted, tolerance, how the tolerance reads)."""

@@ -1,4 +1,4 @@
-"""Figure of the effect variants the signatures tell apart (docs/calibration.md, "Physical variants").
+"""Figure of the effect variants the signatures tell apart (docs/diagnosis.md, "Physical variants").
 
 Simulates 40 empty-room frames at the paper's config with the twin's receiver and one effect in
 each of its forms (a spur locked to absolute time and one unlocked; a vibration of 0.3 mm at
@@ -19,13 +19,13 @@ from pathlib import Path
 import torch
 
 from radaraug._optional import pyplot
-from radaraug.calibration.signatures import (
+from radaraug.config import RadarConfig
+from radaraug.diagnosis.signatures import (
     Prepared,
     detect_phase_noise,
     detect_spur_tone,
     detect_vibrating_clutter,
 )
-from radaraug.config import RadarConfig
 from radaraug.files import atomic_savefig
 from radaraug.sensor import FMCWReceiver, Paths
 from radaraug.sensor.defaults import default_effects

@@ -1,4 +1,4 @@
-"""Figure of the other effect variants the signatures tell apart (docs/calibration.md, "Physical variants").
+"""Figure of the other effect variants the signatures tell apart (docs/diagnosis.md, "Physical variants").
 
 The companion of ``signature_variants_figure.py`` (spur, vibration, weak-carrier phase noise): 40 frames
 at the paper's config (IF gain 33 dB unless a panel says 48 dB, the BGT60's highest) through the twin's
@@ -32,7 +32,8 @@ from pathlib import Path
 import torch
 
 from radaraug._optional import pyplot
-from radaraug.calibration.signatures import (
+from radaraug.config import RadarConfig
+from radaraug.diagnosis.signatures import (
     Prepared,
     Signature,
     butterworth_highpass_power,
@@ -44,7 +45,6 @@ from radaraug.calibration.signatures import (
     detect_rx_gain_phase_mismatch,
     detect_tx_rx_leakage,
 )
-from radaraug.config import RadarConfig
 from radaraug.files import atomic_savefig
 from radaraug.sensor import FMCWReceiver, Paths
 from radaraug.sensor.defaults import LEAKAGE_COUPLING_DB, default_effects

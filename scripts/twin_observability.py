@@ -58,7 +58,7 @@ NULL_WINDOW_BINS = (8, 20, 35, 50, 65, 80)  # empty items: person windows at the
 # ----------------------------------------------------------------------------- helpers
 def quick_calibration_excise(threshold_db: float) -> tuple[torch.Tensor, dict[str, Any]]:
     """The quick run's excision mask: persistent cells of the independent set's empty-room capture."""
-    from radaraug.calibration.record import persistent_cells_of
+    from radaraug.diagnosis.record import persistent_cells_of
     from radaraug.testsets.independent import make_independent_set
 
     with tempfile.TemporaryDirectory() as tmp:

@@ -215,7 +215,7 @@ def _reproduce(tmp_path, monkeypatch):
 
 
 def _diagnose(tmp_path, monkeypatch):
-    import radaraug.calibration as calibration
+    import radaraug.diagnosis as calibration
 
     monkeypatch.setattr(calibration, "diagnose", _reached)
     return ["diagnose", str(_capture(tmp_path / "room.h5"))], True

@@ -50,8 +50,8 @@ def test_imports_go_down_the_layers() -> None:
 
 def test_the_check_sees_an_import_up() -> None:
     placed = layers()
-    assert placed["io"] < placed["transforms"] < placed["calibration"] < placed["cli"]
+    assert placed["io"] < placed["transforms"] < placed["diagnosis"] < placed["cli"]
     assert placed["errors"] == placed["files"] == 1
-    graph = {"radaraug.transforms.dr": {"radaraug.calibration.record", "radaraug.io.base"},
+    graph = {"radaraug.transforms.dr": {"radaraug.diagnosis.record", "radaraug.io.base"},
              "radaraug.sim.twin": {"radaraug.sim.seeding", "radaraug.sensor"}}
-    assert _up(graph, placed) == ["radaraug.transforms.dr -> radaraug.calibration.record"]
+    assert _up(graph, placed) == ["radaraug.transforms.dr -> radaraug.diagnosis.record"]

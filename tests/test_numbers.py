@@ -239,7 +239,7 @@ def _pub(name: str, *keys: str) -> tuple[str, ...]:
 
 
 def _pub_row(name: str) -> tuple[str, ...]:
-    """One row of docs/calibration.md's table "Since the signatures": default, base refit, final, cut."""
+    """One row of docs/diagnosis.md's table "Since the signatures": default, base refit, final, cut."""
     return _pub(name, "error_default_dB", "error_base_refit_dB", "error_final_dB", "cut")
 
 def _errors(prefix: str, *rows: int) -> tuple[str, ...]:
@@ -973,16 +973,16 @@ FIGURES: list[Figure] = [
     Figure("docs/simulation.md", "the default twin makes 94.2 frames/s with 2 workers and 48.1 in one process",
            "twin_cpu.json", ("frames_per_s_workers", "workers", "frames_per_s_1proc"),
            "{:.1f} frames/s with {:d} workers and {:.1f} in one process"),
-    Figure("docs/calibration.md",
+    Figure("docs/diagnosis.md",
            "**58.6 s** on a 2-core CPU (target: at most 2 minutes), 323 twin evaluations, 47.0x the time of "
            "simulating the capture itself (1.25 s)", "diagnose_cpu.json",
            ("diagnose_s", "target_s", "evaluations", "ratio_diagnose_to_simulate", "simulate_capture_s"),
            "**{:.1f} s** on a 2-core CPU (target: at most {:.0f} minutes), {:d} twin evaluations, {:.1f}x the time of "
            "simulating the capture itself ({:.2f} s)", (1.0, 1 / 60, 1, 1.0, 1.0)),
-    Figure("docs/calibration.md", "found, held-out error 2.57 -> 0.54 dB (`benchmarks/diagnose_cpu.json`",
+    Figure("docs/diagnosis.md", "found, held-out error 2.57 -> 0.54 dB (`benchmarks/diagnose_cpu.json`",
            "diagnose_cpu.json", ("error_before_dB", "error_after_dB"), "held-out error {:.2f} -> {:.2f} dB"),
-    # docs/calibration.md: generator B's tables (diagnose_generator_b_cpu.json)
-    Figure("docs/calibration.md", "(`clipping_gain` in the record, seeds 1–3, 15 of 15 named): 3.7–4.4 → 1.8–1.9 dB at A "
+    # docs/diagnosis.md: generator B's tables (diagnose_generator_b_cpu.json)
+    Figure("docs/diagnosis.md", "(`clipping_gain` in the record, seeds 1–3, 15 of 15 named): 3.7–4.4 → 1.8–1.9 dB at A "
            "and 4.8–5.5 → 2.1–2.4 dB with a spur (halved at every seed), 6.6–6.9 → 3.5–3.7 dB at 43 dB and 5.3–5.7 → "
            "3.6 dB at 128 × 32 (not halved)", _GB,
            (*(f"clipping_gain/seed_{s}/{k}" for s in (1, 2, 3) for k in ("correct", "cases")),
@@ -993,11 +993,11 @@ FIGURES: list[Figure] = [
                (" at A", " with a spur", " at 43 dB", " at 128 × 32")))
            .replace(" dB at A, ", " dB at A and ").replace(" with a spur, ", " with a spur (halved at every seed), ")
            .replace(" dB at 43 dB, ", " dB at 43 dB and ") + " (not halved)"),
-    Figure("docs/calibration.md", "The gain fits +26 to +30 dB for the +18.4 dB put in, at the prior's bound in 10 of 12",
+    Figure("docs/diagnosis.md", "The gain fits +26 to +30 dB for the +18.4 dB put in, at the prior's bound in 10 of 12",
            _GB, tuple(f"clipping_gain/seed_{s}/rows/{r}/params/adc_clipping/gain_dB" for s in (1, 2, 3) for r in range(4)),
            lambda *g: f"The gain fits {min(g):+.0f} to {max(g):+.0f} dB for the +18.4 dB put in, at the prior's bound in "
            f"{sum(x >= 30 - 0.02 * 60 for x in g):d} of {len(g):d}"),
-    Figure("docs/calibration.md", "fitted 7.4-8.1 % in all 8 interference cases (before, free: 4-75 %), every held-out "
+    Figure("docs/diagnosis.md", "fitted 7.4-8.1 % in all 8 interference cases (before, free: 4-75 %), every held-out "
            "error still at least halved (mean 2.23 -> 2.15 dB after)", _GB,
            (*(f"interference_measured/seed_3/rows/{i}/params/interference/probability" for i in range(8)),
             *(f"interference_measured/before_this_change/{c}/interference/probability" for c in _INTERFERENCE_CASES),
@@ -1008,76 +1008,76 @@ FIGURES: list[Figure] = [
            f"(before, free: {100 * min(v[8:16]):.0f}-{100 * max(v[8:16]):.0f} %), "
            + ("every held-out error still at least halved" if v[-2] == v[-1] else f"{v[-2]} halved")
            + f" (mean {sum(v[16:24]) / 8:.2f} -> {sum(v[24:32]) / 8:.2f} dB after)"),
-    Figure("docs/calibration.md", "seed 3 **51 of 51 named exactly**, the held-out error halved in 39 of the 48 cases",
+    Figure("docs/diagnosis.md", "seed 3 **51 of 51 named exactly**, the held-out error halved in 39 of the 48 cases",
            _GB, ("widened_table_v2/seed_3/correct", "widened_table_v2/seed_3/cases", "widened_table_v2/seed_3/error_halved",
                  "widened_table_v2/seed_3/cases_with_effects"),
            "seed 3 **{:d} of {:d} named exactly**, the held-out error halved in {:d} of the {:d} cases"),
-    Figure("docs/calibration.md", "seeds 1 and 2: 22 of 22 and 22 of 22 named exactly", _GB,
+    Figure("docs/diagnosis.md", "seeds 1 and 2: 22 of 22 and 22 of 22 named exactly", _GB,
            ("widened_table_v2/seed_1_selected/correct", "widened_table_v2/seed_1_selected/cases",
             "widened_table_v2/seed_2_selected/correct", "widened_table_v2/seed_2_selected/cases"),
            "seeds 1 and 2: {:d} of {:d} and {:d} of {:d} named exactly"),
-    Figure("docs/calibration.md", "(**95 of 95**)", _GB,
+    Figure("docs/diagnosis.md", "(**95 of 95**)", _GB,
            ("widened_table_v2/parameters/summary/named_first", "widened_table_v2/parameters/summary/cases"), "(**{:d} of {:d}**)"),
-    Figure("docs/calibration.md", "**125 of 146 compared parameters within**", _GB,
+    Figure("docs/diagnosis.md", "**125 of 146 compared parameters within**", _GB,
            ("widened_table_v2/parameters/summary/parameters_within", "widened_table_v2/parameters/summary/parameters_compared"),
            "**{:d} of {:d} compared parameters within**"),
-    Figure("docs/calibration.md", "| `phase_noise` | freq_noise_rms_Hz | within 30 % | 3 of 9 |", _GB,
+    Figure("docs/diagnosis.md", "| `phase_noise` | freq_noise_rms_Hz | within 30 % | 3 of 9 |", _GB,
            ("widened_table_v2/parameters/by_parameter/1/within", "widened_table_v2/parameters/by_parameter/1/compared"),
            "{:d} of {:d} |"),
-    Figure("docs/calibration.md", "| `spur_tone` | freq_Hz | within a quarter range bin | 6 of 8 |", _GB,
+    Figure("docs/diagnosis.md", "| `spur_tone` | freq_Hz | within a quarter range bin | 6 of 8 |", _GB,
            ("widened_table_v2/parameters/by_parameter/2/within", "widened_table_v2/parameters/by_parameter/2/compared"),
            "{:d} of {:d} |"),
-    Figure("docs/calibration.md", "**15 of 15 named exactly, 15 of 15 errors halved, frequency 15 of 15", _GB,
+    Figure("docs/diagnosis.md", "**15 of 15 named exactly, 15 of 15 errors halved, frequency 15 of 15", _GB,
            ("spur_alias/named_exactly", "spur_alias/cases", "spur_alias/halved", "spur_alias/cases",
             "spur_alias/parameters/spur_tone/0/within", "spur_alias/parameters/spur_tone/0/compared"),
            "**{:d} of {:d} named exactly, {:d} of {:d} errors halved, frequency {:d} of {:d}"),
-    Figure("docs/calibration.md", "**12 of 12 named exactly, 12 of 12 errors halved, `vibration_Hz` 9 of 9 within 2 %**",
+    Figure("docs/diagnosis.md", "**12 of 12 named exactly, 12 of 12 errors halved, `vibration_Hz` 9 of 9 within 2 %**",
            _GB, ("vibration_start/named_exactly", "vibration_start/cases", "vibration_start/halved",
                  "vibration_start/cases", "vibration_start/parameters/vibrating_clutter/0/within",
                  "vibration_start/parameters/vibrating_clutter/0/compared"),
            "**{:d} of {:d} named exactly, {:d} of {:d} errors halved, `vibration_Hz` {:d} of {:d} within 2 %**"),
-    Figure("docs/calibration.md", "moved 1.319 → 1.285 dB (128 × 32), 0.966 → 0.878 (A)", _GB,
+    Figure("docs/diagnosis.md", "moved 1.319 → 1.285 dB (128 × 32), 0.966 → 0.878 (A)", _GB,
            ("widened_table_v2/seed_3/rows/26/error_after_dB", "vibration_start/rows/seed_3/0/error_after_dB",
             "widened_table_v2/seed_3/rows/24/error_after_dB", "vibration_start/rows/seed_3/2/error_after_dB"),
            "moved {:.3f} → {:.3f} dB (128 × 32), {:.3f} → {:.3f} (A)"),
-    Figure("docs/calibration.md", "amplitude 15 of 15 within 30 %", _GB,
+    Figure("docs/diagnosis.md", "amplitude 15 of 15 within 30 %", _GB,
            ("spur_alias/parameters/spur_tone/1/within", "spur_alias/parameters/spur_tone/1/compared"),
            "amplitude {:d} of {:d} within 30 %"),
-    Figure("docs/calibration.md", "errors after moved 1.200 → 0.808 dB (A), 2.092 → 2.040 (with clipping)", _GB,
+    Figure("docs/diagnosis.md", "errors after moved 1.200 → 0.808 dB (A), 2.092 → 2.040 (with clipping)", _GB,
            ("widened_table_v2/seed_3/rows/9/error_after_dB", "spur_alias/rows/seed_3/0/error_after_dB",
             "widened_table_v2/seed_3/rows/35/error_after_dB", "spur_alias/rows/seed_3/4/error_after_dB"),
            "errors after moved {:.3f} → {:.3f} dB (A), {:.3f} → {:.3f} (with clipping)"),
-    Figure("docs/calibration.md", "| `spur_tone` | amplitude_counts | within 30 % | 8 of 8 |", _GB,
+    Figure("docs/diagnosis.md", "| `spur_tone` | amplitude_counts | within 30 % | 8 of 8 |", _GB,
            ("widened_table_v2/parameters/by_parameter/3/within", "widened_table_v2/parameters/by_parameter/3/compared"),
            "{:d} of {:d} |"),
-    Figure("docs/calibration.md", "| `if_highpass` | order | exactly | 12 of 12 |", _GB,
+    Figure("docs/diagnosis.md", "| `if_highpass` | order | exactly | 12 of 12 |", _GB,
            ("widened_table_v2/parameters/by_parameter/4/within", "widened_table_v2/parameters/by_parameter/4/compared"),
            "{:d} of {:d} |"),
-    Figure("docs/calibration.md", "| `if_highpass` | cutoff_Hz (per section) | within 20 % | 12 of 12 |", _GB,
+    Figure("docs/diagnosis.md", "| `if_highpass` | cutoff_Hz (per section) | within 20 % | 12 of 12 |", _GB,
            ("widened_table_v2/parameters/by_parameter/5/within", "widened_table_v2/parameters/by_parameter/5/compared"),
            "{:d} of {:d} |"),
-    Figure("docs/calibration.md", "| `rx_gain_phase_mismatch` | gain_dB RX2 re RX1 | within 0.5 dB | 12 of 12 |", _GB,
+    Figure("docs/diagnosis.md", "| `rx_gain_phase_mismatch` | gain_dB RX2 re RX1 | within 0.5 dB | 12 of 12 |", _GB,
            ("widened_table_v2/parameters/by_parameter/6/within", "widened_table_v2/parameters/by_parameter/6/compared"),
            "{:d} of {:d} |"),
-    Figure("docs/calibration.md", "| `rx_gain_phase_mismatch` | gain_dB RX3 re RX1 | within 0.5 dB | 12 of 12 |", _GB,
+    Figure("docs/diagnosis.md", "| `rx_gain_phase_mismatch` | gain_dB RX3 re RX1 | within 0.5 dB | 12 of 12 |", _GB,
            ("widened_table_v2/parameters/by_parameter/7/within", "widened_table_v2/parameters/by_parameter/7/compared"),
            "{:d} of {:d} |"),
-    Figure("docs/calibration.md", "| `interference` | probability | within 25 % | 24 of 24 |", _GB,
+    Figure("docs/diagnosis.md", "| `interference` | probability | within 25 % | 24 of 24 |", _GB,
            ("widened_table_v2/parameters/by_parameter/9/within", "widened_table_v2/parameters/by_parameter/9/compared"),
            "{:d} of {:d} |"),
-    Figure("docs/calibration.md", "| `interference` | duration_s | within 50 % | 6 of 15 |", _GB,
+    Figure("docs/diagnosis.md", "| `interference` | duration_s | within 50 % | 6 of 15 |", _GB,
            ("widened_table_v2/parameters/by_parameter/10/within", "widened_table_v2/parameters/by_parameter/10/compared"),
            "{:d} of {:d} |"),
-    Figure("docs/calibration.md", "| `vibrating_clutter` | vibration_Hz (small beta) | within 2 % | 5 of 7 |", _GB,
+    Figure("docs/diagnosis.md", "| `vibrating_clutter` | vibration_Hz (small beta) | within 2 % | 5 of 7 |", _GB,
            ("widened_table_v2/parameters/by_parameter/11/within", "widened_table_v2/parameters/by_parameter/11/compared"),
            "{:d} of {:d} |"),
-    Figure("docs/calibration.md", "| `frame_drift` | dc_rms_counts | within 25 % | 12 of 12 |", _GB,
+    Figure("docs/diagnosis.md", "| `frame_drift` | dc_rms_counts | within 25 % | 12 of 12 |", _GB,
            ("widened_table_v2/parameters/by_parameter/13/within", "widened_table_v2/parameters/by_parameter/13/compared"),
            "{:d} of {:d} |"),
-    Figure("docs/calibration.md", "| `frame_drift` | gain_rms_dB | within 50 % | 11 of 12 |", _GB,
+    Figure("docs/diagnosis.md", "| `frame_drift` | gain_rms_dB | within 50 % | 11 of 12 |", _GB,
            ("widened_table_v2/parameters/by_parameter/14/within", "widened_table_v2/parameters/by_parameter/14/compared"),
            "{:d} of {:d} |"),
-    Figure("docs/calibration.md", "| `vibrating_clutter` | f_v d (a Doppler band) | within 20 % | 2 of 3 |", _GB,
+    Figure("docs/diagnosis.md", "| `vibrating_clutter` | f_v d (a Doppler band) | within 20 % | 2 of 3 |", _GB,
            ("widened_table_v2/parameters/by_parameter/15/within", "widened_table_v2/parameters/by_parameter/15/compared"),
            "{:d} of {:d} |"),
 
@@ -1089,58 +1089,58 @@ FIGURES: list[Figure] = [
             "widened_table_v2/parameters/summary/parameters_compared"),
            "seed 3 {:d} of {:d} named, errors halved in {:d} of {:d}, the injected effect named first in {:d} of {:d} "
            "(seeds 1–3), {:d} of {:d} parameters within their stated tolerance"),
-    Figure("docs/calibration.md", "cases with an effect (37 before)", _GB, "widened_table/seed_3/error_halved",
+    Figure("docs/diagnosis.md", "cases with an effect (37 before)", _GB, "widened_table/seed_3/error_halved",
            "cases with an effect ({:d} before)"),
-    Figure("docs/calibration.md", "are the 9 whose error does not halve", _GB,
+    Figure("docs/diagnosis.md", "are the 9 whose error does not halve", _GB,
            ("widened_table_v2/seed_3/cases_with_effects", "widened_table_v2/seed_3/error_halved"),
            lambda n, h: f"are the {n - h:d} whose error does not halve"),
-    Figure("docs/calibration.md", "**36 of 36 at two seeds**", _GB,
+    Figure("docs/diagnosis.md", "**36 of 36 at two seeds**", _GB,
            ("seeds/1/correct", "seeds/1/cases", "seeds/2/correct", "seeds/2/cases"),
            lambda c1, n1, c2, n2: f"**{c1} of {n1} at two seeds**" if (c1, n1) == (c2, n2) else f"{c1}/{n1} vs {c2}/{n2}"),
-    Figure("docs/calibration.md", "At seed 3, with the base bounds: 42 of 42", _GB, ("seeds/3/correct", "seeds/3/cases"),
+    Figure("docs/diagnosis.md", "At seed 3, with the base bounds: 42 of 42", _GB, ("seeds/3/correct", "seeds/3/cases"),
            "with the base bounds: {:d} of {:d}"),
-    Figure("docs/calibration.md", "the 9 variant cases at seeds 1–3 with the final code: 27 of 27 named, every "
+    Figure("docs/diagnosis.md", "the 9 variant cases at seeds 1–3 with the final code: 27 of 27 named, every "
            "held-out error at least halved", _GB, ("variants/correct", "variants/cases", "variants/halved"),
            lambda c, n, h: f"{c} of {n} named, " + ("every held-out error at least halved" if h == n else f"{h} halved")),
-    Figure("docs/calibration.md", "unlocked spur 4.7 → 0.9–1.0 dB at the paper's config", _GB,
+    Figure("docs/diagnosis.md", "unlocked spur 4.7 → 0.9–1.0 dB at the paper's config", _GB,
            _errors(_VARIANT, 0, 9, 18), lambda *v: f"unlocked spur {_before_after()(*v)} dB"),
-    Figure("docs/calibration.md", "three interferer slopes 8.2–10.6 → 1.8–3.7 dB", _GB,
+    Figure("docs/diagnosis.md", "three interferer slopes 8.2–10.6 → 1.8–3.7 dB", _GB,
            _errors(_VARIANT, 3, 4, 5, 12, 13, 14, 21, 22, 23), lambda *v: f"slopes {_before_after()(*v)} dB"),
-    Figure("docs/calibration.md", "the 6 mm vibration 5.4–7.1 → 1.1–1.8 dB", _GB,
+    Figure("docs/diagnosis.md", "the 6 mm vibration 5.4–7.1 → 1.1–1.8 dB", _GB,
            _errors(_VARIANT, 6, 7, 8, 15, 16, 17, 24, 25, 26), lambda *v: f"vibration {_before_after()(*v)} dB"),
-    Figure("docs/calibration.md", "amplitude 5.8–8.3 counts (6.1 put in)", _GB,
+    Figure("docs/diagnosis.md", "amplitude 5.8–8.3 counts (6.1 put in)", _GB,
            tuple(f"{_VARIANT.format(r)}params/0/amplitude_counts" for r in (0, 1, 2, 9, 10, 11, 18, 19, 20)),
            lambda *v: f"amplitude {_range('{:.1f}')(*v).replace('-', '–')} counts"),
-    Figure("docs/calibration.md", "`f_v d` within 3.3 % of the 0.150 m·Hz put in at both paper-config gains", _GB,
+    Figure("docs/diagnosis.md", "`f_v d` within 3.3 % of the 0.150 m·Hz put in at both paper-config gains", _GB,
            tuple(f"{_VARIANT.format(r)}params/0/{k}" for r in (6, 7, 15, 16, 24, 25) for k in ("displacement_m", "vibration_Hz")),
            lambda *v: f"within {100 * max(abs(d * f / 0.150 - 1) for d, f in zip(v[::2], v[1::2])):.1f} % of the 0.150"),
-    Figure("docs/calibration.md", "error 5.4–5.5 → 1.6 dB, but `f_v d` 3.8-4.7x low", _GB,
+    Figure("docs/diagnosis.md", "error 5.4–5.5 → 1.6 dB, but `f_v d` 3.8-4.7x low", _GB,
            (*_errors(_VARIANT, 8, 17, 26),
             *(f"{_VARIANT.format(r)}params/0/{k}" for r in (8, 17, 26) for k in ("displacement_m", "vibration_Hz"))),
            lambda *v: f"error {_before_after()(*v[:6])} dB, but `f_v d` "
                       f"{_range('{:.1f}')(*(0.150 / (d * f) for d, f in zip(v[6::2], v[7::2])))}x low"),
-    Figure("docs/calibration.md", "the held-out error then stays 1.6 dB (0.8 without the bounds)", _GB,
+    Figure("docs/diagnosis.md", "the held-out error then stays 1.6 dB (0.8 without the bounds)", _GB,
            ("seeds/3/rows/1/error_after_dB", "seeds/1/rows/1/error_after_dB", "seeds/2/rows/1/error_after_dB"),
            lambda a, *b: f"stays {a:.1f} dB ({_span('{:.1f}')(*b)} without the bounds)"),
-    Figure("docs/calibration.md", "**51 of 51 named exactly at seed 3**, and the 6 new variant cases 6 of 6 at seeds 1 "
+    Figure("docs/diagnosis.md", "**51 of 51 named exactly at seed 3**, and the 6 new variant cases 6 of 6 at seeds 1 "
            "and 2. The held-out error halves in 37 of the 48 cases with an effect", _GB,
            tuple(f"widened_table/{s}/{k}" for s in ("seed_3", "new_variants_seed_1", "new_variants_seed_2")
                  for k in ("correct", "cases")) + ("widened_table/seed_3/error_halved",),
            lambda c3, n3, c1, n1, c2, n2, h: f"**{c3} of {n3} named exactly at seed 3**, and the {n1} new variant cases "
            + (f"{c1} of {n1} at seeds 1 and 2" if (c1, n1) == (c2, n2) else f"{c1}/{n1}, {c2}/{n2}")
            + f". The held-out error halves in {h} of the {n3 - 3} cases with an effect"),
-    Figure("docs/calibration.md", "(3.7 → 3.5 dB at A, 6.6 → 6.6 at 43 dB, 5.5 → 5.3 at 128 × 32; clipping with a spur "
+    Figure("docs/diagnosis.md", "(3.7 → 3.5 dB at A, 6.6 → 6.6 at 43 dB, 5.5 → 5.3 at 128 × 32; clipping with a spur "
            "4.8 → 3.4 dB)", _GB, _errors(_WIDE, 3, 4, 5, 35),
            lambda a, b, c, d, a2, b2, c2, d2: f"({a:.1f} → {a2:.1f} dB at A, {b:.1f} → {b2:.1f} at 43 dB, {c:.1f} → "
            f"{c2:.1f} at 128 × 32; clipping with a spur {d:.1f} → {d2:.1f} dB)"),
-    Figure("docs/calibration.md", "`leakage_clipping` at 43 dB and 128 × 32 (3.4 → 2.0, 2.6 → 1.4 dB)", _GB,
+    Figure("docs/diagnosis.md", "`leakage_clipping` at 43 dB and 128 × 32 (3.4 → 2.0, 2.6 → 1.4 dB)", _GB,
            _errors(_WIDE, 49, 50), lambda a, b, a2, b2: f"({a:.1f} → {a2:.1f}, {b:.1f} → {b2:.1f} dB)"),
-    Figure("docs/calibration.md", "(3.1 → 1.6-1.7, 1.9-2.0 → 1.0-1.1 dB): their controls end at 1.6 and 1.0 dB", _GB,
+    Figure("docs/diagnosis.md", "(3.1 → 1.6-1.7, 1.9-2.0 → 1.0-1.1 dB): their controls end at 1.6 and 1.0 dB", _GB,
            (*_errors(_WIDE, 19, 16), *_errors(_WIDE, 20, 17, 32), f"{_WIDE.format(1)}error_after_dB",
             f"{_WIDE.format(2)}error_after_dB"),
            lambda *v: f"({_before_after('-')(*v[:4])}, {_before_after('-')(*v[4:10])} dB): their controls end at "
                       f"{v[10]:.1f} and {v[11]:.1f} dB"),
-    Figure("docs/calibration.md", "is fitted at 2.2-2.3 MHz at 128 × 32 and ends at the prior's 3 MHz bound at 43 dB; at "
+    Figure("docs/diagnosis.md", "is fitted at 2.2-2.3 MHz at 128 × 32 and ends at the prior's 3 MHz bound at 43 dB; at "
            "the paper's config it is named from the signature alone (`freq_noise_rms_Hz_lower` 1.33 MHz", _GB,
            (f"{_WIDE.format(47)}params/phase_noise/freq_noise_rms_Hz",
             "widened_table/new_variants_seed_1/rows/4/params/phase_noise/freq_noise_rms_Hz",
@@ -1152,37 +1152,37 @@ FIGURES: list[Figure] = [
            lambda b1, b2, b3, h1, h2, h3, low: f"fitted at {_span('{:.1f}', '-')(b1, b2, b3)} MHz at 128 × 32 and ends at "
            f"the prior's {_span('{:.0f}')(h1, h2, h3)} MHz bound at 43 dB; at the paper's config it is named from the "
            f"signature alone (`freq_noise_rms_Hz_lower` {low:.2f} MHz", 1e-6),
-    Figure("docs/calibration.md", "a section cutoff of 82-105 kHz at seeds 1 and 3, a -3 dB point of 128-162 kHz at "
+    Figure("docs/diagnosis.md", "a section cutoff of 82-105 kHz at seeds 1 and 3, a -3 dB point of 128-162 kHz at "
            "order 2", _GB,
            (*(f"{_WIDE.format(r)}params/if_highpass/cutoff_Hz" for r in (12, 14)),
             *(f"widened_table/highpass_refit_seed_1/rows/{r}/params/if_highpass/cutoff_Hz" for r in (0, 1, 3))),
            lambda *v: f"a section cutoff of {_range('{:.0f}')(*v)} kHz at seeds 1 and 3, a -3 dB point of "
                       f"{_range('{:.0f}')(*(c / (2 ** 0.5 - 1) ** 0.5 for c in v))} kHz at order 2", 1e-3),
-    Figure("docs/calibration.md", "with drift at seed 1 it is (88 kHz)", _GB,
+    Figure("docs/diagnosis.md", "with drift at seed 1 it is (88 kHz)", _GB,
            "widened_table/highpass_refit_seed_1/rows/3/params/if_highpass/cutoff_Hz", "it is ({:.0f} kHz)", 1e-3),
-    # docs/calibration.md: the worked example on the public recordings, since the signatures (_PUB)
-    Figure("docs/calibration.md", "one run each on a 2-core CPU, 0.7-22.0 s per recording)", _PUB,
+    # docs/diagnosis.md: the worked example on the public recordings, since the signatures (_PUB)
+    Figure("docs/diagnosis.md", "one run each on a 2-core CPU, 0.7-22.0 s per recording)", _PUB,
            tuple(f"recordings/{n}/seconds" for n in _PUB_ROWS), lambda *v: f"{_range('{:.1f}')(*v)} s per recording"),
-    Figure("docs/calibration.md", "| ssalehi 2 reflectors (static) | 1.05 | 0.57 | **0.57** | **46 %** |", _PUB,
+    Figure("docs/diagnosis.md", "| ssalehi 2 reflectors (static) | 1.05 | 0.57 | **0.57** | **46 %** |", _PUB,
            _pub_row(_PUB_ROWS[0]), "| {:.2f} | {:.2f} | **{:.2f}** | **{:.0f} %** |", (1.0, 1.0, 1.0, 100.0)),
-    *(Figure("docs/calibration.md", quote, _PUB, _pub_row(name), "| {:.2f} | {:.2f} | {:.2f} | {:.0f} % |",
+    *(Figure("docs/diagnosis.md", quote, _PUB, _pub_row(name), "| {:.2f} | {:.2f} | {:.2f} | {:.0f} % |",
              (1.0, 1.0, 1.0, 100.0))
       for name, quote in zip(_PUB_ROWS[1:], ("| zharfanw breathing | 3.18 | 3.18 | 3.18 | 0 % |",
                                              "| jjustin 18_53_49 | 4.33 | 3.03 | 2.82 | 35 % |",
                                              "| jjustin 18_48_07 | 6.41 | 5.08 | 5.08 | 21 % |",
                                              "| jjustin 18_52_43 | 8.00 | 6.79 | 5.91 | 26 % |"))),
-    Figure("docs/calibration.md", "static recording loses 46 % of its error", _PUB, f"recordings/{_PUB_ROWS[0]}/cut",
+    Figure("docs/diagnosis.md", "static recording loses 46 % of its error", _PUB, f"recordings/{_PUB_ROWS[0]}/cut",
            "loses {:.0f} % of its error", 100.0),
-    Figure("docs/calibration.md", "3.9 counts RMS in 18_52_43 (1.1 in 18_53_49)", _PUB,
+    Figure("docs/diagnosis.md", "3.9 counts RMS in 18_52_43 (1.1 in 18_53_49)", _PUB,
            (*_pub("jjustin_18_52_43", "params/frame_drift/dc_rms_counts"),
             *_pub("jjustin_18_53_49", "params/frame_drift/dc_rms_counts")),
            "{:.1f} counts RMS in 18_52_43 ({:.1f} in 18_53_49)"),
-    Figure("docs/calibration.md", "1.9 dB RMS (1.7), and 18_53_49's final error rose from 2.63 to 2.82 dB", _PUB,
+    Figure("docs/diagnosis.md", "1.9 dB RMS (1.7), and 18_53_49's final error rose from 2.63 to 2.82 dB", _PUB,
            (*_pub("jjustin_18_52_43", "params/frame_drift/gain_rms_dB"),
             *_pub("jjustin_18_53_49", "params/frame_drift/gain_rms_dB"),
             *_pub("jjustin_18_53_49", "error_final_dB")),
            lambda g1, g2, e: f"{g1:.1f} dB RMS ({g2:.1f}), and 18_53_49's final error rose from 2.63 to {e:.2f} dB"),
-    Figure("docs/calibration.md", "(RX1 at -25.1 to -23.5 dB on the three hackathon files", _PUB,
+    Figure("docs/diagnosis.md", "(RX1 at -25.1 to -23.5 dB on the three hackathon files", _PUB,
            tuple(f"recordings/{n}/params/tx_rx_leakage/coupling_dB/0" for n in _PUB_ROWS[2:]),
            lambda *v: f"RX1 at {min(v):.1f} to {max(v):.1f} dB on the three hackathon files"),
     Figure("docs/transforms.md",
@@ -2354,8 +2354,8 @@ NOTED: list[Noted] = [
           "previous_run/previous_run/note", ("8:16 for the command",)),
     Noted("benchmarks/README.md", "a change of one ADC code in ~5e-4 of the items' samples", "reproduce_quick_cpu.json",
           "previous_run/previous_run/previous_run/note", ("one ADC code in ~5e-4",)),
-    # docs/calibration.md: what the worked example on the public recordings names (_PUB's lists)
-    *(Noted("docs/calibration.md", quote, _PUB, f"recordings/{name}/{key}", (text,))
+    # docs/diagnosis.md: what the worked example on the public recordings names (_PUB's lists)
+    *(Noted("docs/diagnosis.md", quote, _PUB, f"recordings/{name}/{key}", (text,))
       for name, key, text, quote in (
           ("jjustin_18_53_49", "added/0", "frame_drift", "| 2.82 | 35 % | `frame_drift`; `tx_rx_leakage` refitted |"),
           ("jjustin_18_52_43", "added/0", "frame_drift", "| 5.91 | 26 % | `frame_drift`; `tx_rx_leakage` refitted |"),

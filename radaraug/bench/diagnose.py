@@ -37,7 +37,7 @@ def _capture_frames(cfg: RadarConfig, frames: int) -> torch.Tensor:
 
 def run_diagnose_benchmark(*, frames: int = 100, out: str | Path | None = None) -> dict[str, Any]:
     """Seconds to diagnose a ``frames``-frame capture at the paper's config, and the ratio to simulating it."""
-    from radaraug.calibration import diagnose
+    from radaraug.diagnosis import diagnose
     from radaraug.io import write_capture
 
     cfg = RadarConfig.bgt60tr13c()

@@ -1,6 +1,6 @@
 """`radaraug bench people-level`: a moving person's level in captures against the twin's walker.
 
-Fits :func:`radaraug.calibration.people_level.fit_people_level` per capture, the twin simulated in the
+Fits :func:`radaraug.diagnosis.people_level.fit_people_level` per capture, the twin simulated in the
 same process at its config and IF gain; see docs/benchmarks.md.
 """
 
@@ -26,7 +26,7 @@ def run_people_level_benchmark(
     """
     import torch
 
-    from radaraug.calibration.people_level import fit_people_level
+    from radaraug.diagnosis.people_level import fit_people_level
     from radaraug.errors import ConfigError
     from radaraug.units import DB_CONVENTION
 
@@ -38,7 +38,7 @@ def run_people_level_benchmark(
         "db_convention": DB_CONVENTION,
         "what": "capture-minus-twin MTI range-Doppler peak (RX1, dBFS) of a moving person at matched range bin; "
                 "twin = DigitalTwin(corridor) at the capture's config and IF gain, single walkers crossing the "
-                "same ranges (radaraug.calibration.people_level.fit_people_level, defaults)",
+                "same ranges (radaraug.diagnosis.people_level.fit_people_level, defaults)",
         "torch": torch.__version__,
         "machine": platform.machine(),
         "recordings": fits,

@@ -71,7 +71,7 @@ def calibrate(
         CaptureError, DeviceError, ConfigError: as :func:`~radaraug.capture.record.record`.
         KeyboardInterrupt: Ctrl-C while recording (nothing is written; a kept recording keeps its frames).
     """
-    from radaraug.calibration.record import PERSISTENT_THRESHOLD_DB, fit_record
+    from radaraug.diagnosis.record import PERSISTENT_THRESHOLD_DB, fit_record
 
     output = Path(output)
     if floor not in FLOORS:  # before recording, not after ten seconds of it

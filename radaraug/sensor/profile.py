@@ -3,7 +3,7 @@
 A profile holds the receiver description (:meth:`FMCWReceiver.to_dict`), the fitted ``room`` section
 (ray-tracer options, :data:`ROOM_PARAMS`) and what it was fitted on. The IF gain belongs to the radar
 configuration and is stored as ``null``; per-RX parameters fail clearly on a config with another RX count.
-Format and use: ``docs/calibration.md``, "Twin profiles".
+Format and use: ``docs/diagnosis.md``, "Twin profiles".
 """
 
 from __future__ import annotations

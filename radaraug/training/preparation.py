@@ -17,8 +17,8 @@ from typing import Any, Literal
 import torch
 from torch import nn
 
-from radaraug.calibration.record import PERSISTENT_THRESHOLD_DB
 from radaraug.config import RadarConfig
+from radaraug.diagnosis.record import PERSISTENT_THRESHOLD_DB
 from radaraug.errors import CalibrationError, ConfigError
 from radaraug.sensor.profile import PROFILE_VERSION, TwinProfile
 from radaraug.sim.dataset import SimulatedRadarDataset
@@ -30,7 +30,7 @@ from radaraug.transforms.record_file import CalibrationRecord, load_record
 CATALOG_PRIORS = ("physics", "calibration")
 PROFILE_FIT_FORMAT = "radaraug-profile-fit"
 #: Version of the cached ``cdr_profile`` fits (``cache_dir/profile-<key>.json``): part of their key,
-#: bumped when what :func:`radaraug.calibration.diagnose` fits changes, so old fits are not reused.
+#: bumped when what :func:`radaraug.diagnosis.diagnose` fits changes, so old fits are not reused.
 PROFILE_FIT_VERSION = 1
 NOISE_FIT_SKIPPED = "skipped: the twin's receiver comes from the twin profile (its fitted chain sets the floor)"
 
@@ -46,7 +46,7 @@ class TwinSplits:
         randomization: twin randomization: True (defaults), False/None (off), or a mapping of its sections
             (:class:`~radaraug.sim.randomization.TwinRandomization`).
         catalog_priors: ``"physics"`` (the effect catalog's own ranges) or ``"calibration"`` (centred on the
-            effects ``diagnose`` adds on the calibration capture: :mod:`radaraug.calibration.priors`).
+            effects ``diagnose`` adds on the calibration capture: :mod:`radaraug.diagnosis.priors`).
         calibrate_noise: fit the twin's noise figure to the calibration capture's floor (skipped when the
             receiver is a profile).
         profile: a twin profile JSON (``radaraug diagnose`` writes one) the twin's receiver is built from, any
@@ -190,7 +190,7 @@ def prepare(method: Method, calibration: str | None, source: str, twin: TwinSpli
         dr.check_config(config)
     excise = None
     if fit_excision and image.excises and has_capture and calibration is not None:
-        from radaraug.calibration.record import persistent_cells_of
+        from radaraug.diagnosis.record import persistent_cells_of
 
         excise = persistent_cells_of(calibration, float(image.excise_persistent_db or 0.0), rd_db_chain())
     elif fit_excision and image.excises and record is not None:
@@ -214,7 +214,7 @@ def prepare(method: Method, calibration: str | None, source: str, twin: TwinSpli
     else:
         calibration_profile = None
     if out.twin_profile is None and twin.calibrate_noise and has_capture and calibration is not None:
-        from radaraug.calibration.record import cached_noise_fit
+        from radaraug.diagnosis.record import cached_noise_fit
 
         out.noise_fit = cached_noise_fit(calibration, scene=str(twin.scene), config=config, cache_dir=cache_dir,
                                          tracer_rays=twin.tracer_rays)
@@ -245,7 +245,7 @@ def simulated_dataset(prepared: Prepared, method: Method, twin: TwinSplits, cali
         r = twin.randomization
         randomization = TwinRandomization() if r is True else TwinRandomization.from_dict(dict(r))
         if calibration_profile is not None:
-            from radaraug.calibration.priors import calibration_priors
+            from radaraug.diagnosis.priors import calibration_priors
 
             randomization, record = calibration_priors(calibration_profile, randomization, prepared.config)
             prepared.catalog_prior_info = {"source": "diagnose on data.calibration", **record}
@@ -257,7 +257,7 @@ def simulated_dataset(prepared: Prepared, method: Method, twin: TwinSplits, cali
     if prepared.twin_profile is not None:
         extra["profile"] = prepared.twin_profile
     elif prepared.noise_fit is not None or quiet is not None:
-        from radaraug.calibration.noise_fit import noise_fit_receiver
+        from radaraug.diagnosis.noise_fit import noise_fit_receiver
         from radaraug.sensor.defaults import ADC_NOISE_RMS_COUNTS, DEFAULT_NOISE_FIGURE_DB
 
         fit = prepared.noise_fit or {"noise_figure_dB": DEFAULT_NOISE_FIGURE_DB,
@@ -359,7 +359,7 @@ def _shared_profile_fit(calibration: str, cache_dir: str | Path, twin: TwinSplit
     data: dict[str, Any] | None = None
     path_fitted: str | None = None
     if rank == 0:  # one diagnose per run; the other DDP ranks get its result
-        from radaraug.calibration.record import cached_profile_fit
+        from radaraug.diagnosis.record import cached_profile_fit
 
         path = profile_cache_path(calibration, cache_dir, _max_frames(method))
         fitted = cached_profile_fit(calibration, path, max_frames=_max_frames(method), progress=twin.progress)

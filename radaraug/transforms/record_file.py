@@ -1,8 +1,8 @@
 """The calibration record: what one empty-room capture calibrates, in one versioned JSON file.
 
 :func:`load_record` is the one reader; it also reads older CalibratedDR, twin-profile and noise-fit
-files as partial records (docs/calibration.md, "The calibration record"). No other transform module is
-imported here; :func:`radaraug.calibration.record.fit_record` fits records.
+files as partial records (docs/diagnosis.md, "The calibration record"). No other transform module is
+imported here; :func:`radaraug.diagnosis.record.fit_record` fits records.
 """
 
 from __future__ import annotations
@@ -52,7 +52,7 @@ class CalibrationRecord:
         capture: ``{"name", "sha256", "frames"}``: :func:`content_digest` (None for frames from no file) and
             the frames the floor was fitted on.
         profile: the twin profile ``diagnose`` fitted on the capture (no scene).
-        noise_fit: the twin's noise fit (:func:`radaraug.calibration.noise_fit.fit_noise_figure`'s dict).
+        noise_fit: the twin's noise fit (:func:`radaraug.diagnosis.noise_fit.fit_noise_figure`'s dict).
         persistent_cells: ``{"threshold_db", "shape": [range, doppler], "cells": [[r, d], ...]}``
             (:meth:`persistent_mask`).
         file: the file it was read from (not saved).

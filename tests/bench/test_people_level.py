@@ -7,8 +7,8 @@ import json
 import pytest
 import torch
 
-from radaraug.calibration.people_level import twin_walks
 from radaraug.cli import main
+from radaraug.diagnosis.people_level import twin_walks
 from radaraug.io import write_capture
 from radaraug.units import float_to_counts
 
@@ -16,7 +16,7 @@ from radaraug.units import float_to_counts
 def test_people_level_bench_fits_a_capture_file(tmp_path, capsys):
     """A capture of twin walkers 6 dB brighter than the twin's (other seed), written as a file: the bench reads
     it and fits +6 dB (closed form: the receiver is linear up to the ADC)."""
-    from tests.calibration.test_people_level import CONFIG, SPAN
+    from tests.diagnosis.test_people_level import CONFIG, SPAN
 
     threads = torch.get_num_threads()
     torch.set_num_threads(1)

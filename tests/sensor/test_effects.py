@@ -30,7 +30,7 @@ DESIGN_NAMES = {
 
 def test_registry_names_and_round_trip(cfg):
     # Registered beyond the design list: the IF gain, and the ADC-referred noise and frame drift
-    # the calibration loop needs to explain measured noise.
+    # the diagnosis loop needs to explain measured noise.
     assert set(EFFECTS) - DESIGN_NAMES == {"if_gain", "adc_noise", "frame_drift"}
     rx = FMCWReceiver(cfg)
     assert [e.name for e in rx.effects] == [

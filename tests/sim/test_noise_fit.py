@@ -3,7 +3,7 @@
 import pytest
 import torch
 
-from radaraug.calibration.noise_fit import fit_noise_figure, noise_fit_receiver
+from radaraug.diagnosis.noise_fit import fit_noise_figure, noise_fit_receiver
 from radaraug.errors import CalibrationError
 from radaraug.io.summary import noise_floor_db
 from radaraug.scene.scene import Scene

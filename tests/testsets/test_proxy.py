@@ -79,7 +79,7 @@ def test_manifest_describes_the_set(made: proxy.ProxySet) -> None:
     assert {d["effect"] for d in diffs["receiver_effects"]} >= {
         "spur_tone", "phase_noise", "thermal_noise", "system_gain", "rx_gain_phase_mismatch", "tx_rx_leakage"}
     assert diffs["room"]["proxy"]["size_m"] == [14.0, 2.6, 3.0]
-    # The empty room is saved as a scene file with the radar pose (for the calibration loop).
+    # The empty room is saved as a scene file with the radar pose (for the diagnosis loop).
     scene = Scene.from_file(made.manifest.parent / "room.json")
     assert scene.room.num_faces == proxy.proxy_room().num_faces
     assert proxy.load_proxy(made.manifest.parent).tests == made.tests

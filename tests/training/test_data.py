@@ -231,7 +231,7 @@ def test_test_captures_as_dataset_objects(tmp_path):
 def test_a_calibration_record_serves_what_it_holds(tmp_path, captures):
     """A record JSON with persistent cells, a profile and a noise fit serves the excision, CDRProfile's twin
     and the noise fit without the capture's frames; only the static-change gate is left out (and said)."""
-    from radaraug.calibration.record import PERSISTENT_THRESHOLD_DB, fit_record
+    from radaraug.diagnosis.record import PERSISTENT_THRESHOLD_DB, fit_record
     from radaraug.sensor.profile import TwinProfile
     from radaraug.sensor.receiver import FMCWReceiver
     from radaraug.training import CalibrationWarning, CDRProfile

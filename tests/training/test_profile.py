@@ -9,7 +9,7 @@ import pytest
 import torch
 from data import point_scatterer_frames, small_config
 
-import radaraug.calibration as calibration_mod
+import radaraug.diagnosis as calibration_mod
 from radaraug.errors import ConfigError
 from radaraug.io import write_capture
 from radaraug.sensor.profile import TwinProfile
@@ -39,7 +39,7 @@ def _profile(noise_figure_dB: float = 21.5, capture: str = "x") -> TwinProfile:
 
 @pytest.fixture
 def fake_diagnose(monkeypatch):
-    """radaraug.calibration.diagnose replaced by a recorder that returns _profile()."""
+    """radaraug.diagnosis.diagnose replaced by a recorder that returns _profile()."""
     calls = []
 
     def diagnose(capture, scene=None, max_frames=100, progress=False, **kw):
@@ -176,7 +176,7 @@ def test_twin_randomization_draws_around_a_profile_receiver():
     assert torch.isfinite(x).all()
 
 
-@pytest.mark.skipif(not hasattr(calibration_mod, "diagnose"), reason="radaraug.calibration.diagnose is missing")
+@pytest.mark.skipif(not hasattr(calibration_mod, "diagnose"), reason="radaraug.diagnosis.diagnose is missing")
 def test_cdr_profile_end_to_end_with_the_real_diagnose(tmp_path, captures):
     cal, _ = captures
     # twin randomization on: its gain / noise-figure / phase-noise draws act on the fitted chain's stages

@@ -157,7 +157,7 @@ def test_cli_reproduce_and_bad_arguments(tmp_path, captures, capsys, monkeypatch
                   settings=TINY, tasks=["counting"])
     assert not (tmp_path / "bad" / "cache").exists()
     monkeypatch.setattr(r.ReproduceSettings, "quick", classmethod(lambda cls: TINY))
-    import radaraug.calibration as calibration_mod
+    import radaraug.diagnosis as calibration_mod
 
     real_diagnose, frames = calibration_mod.diagnose, []
 

@@ -7,8 +7,8 @@ import json
 import pytest
 import torch
 
-from radaraug.calibration.record import fit_record
 from radaraug.config import RadarConfig
+from radaraug.diagnosis.record import fit_record
 from radaraug.errors import CalibrationError
 from radaraug.io import write_capture
 from radaraug.sensor import FMCWReceiver

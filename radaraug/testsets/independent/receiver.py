@@ -2,7 +2,7 @@
 
 It shares no code with :mod:`radaraug.sensor` (it reads only a
 :class:`~radaraug.config.RadarConfig`'s numbers), so captures made with it can test the twin and the
-calibration loop with known, undeclared effects. The signal model, the receiver chain, the IF
+diagnosis loop with known, undeclared effects. The signal model, the receiver chain, the IF
 filters (``filter_method``), the ``effects``, the ``scene``/``tracks`` formats and the seeding are
 specified in docs/heldout_worlds.md ("Receiver").
 """
