@@ -159,7 +159,7 @@ ACCELERATORS = ("auto", "cpu", "cuda")
 """``--accelerator`` values (Lightning's word; ``auto``: cuda where there is one, else cpu)."""
 
 
-def _device_arg(text: str, option: str = "--device") -> str:
+def _device_arg(text: str, option: str = "--accelerator") -> str:
     """Check a torch device that must exist on this machine (``cpu``, ``cuda``, ``cuda:N``)."""
     import torch
 
@@ -506,7 +506,7 @@ def _cmd_diagnose(args: argparse.Namespace) -> Result:
 
 
 def _live_device(args: argparse.Namespace, default_config: Any = None):
-    """The device of ``capture`` / ``calibrate`` / ``predict`` from their arguments (nothing opened yet).
+    """The board of ``capture`` / ``calibrate`` / ``predict`` (``--board``) from their arguments (nothing opened yet).
 
     ``default_config``: the radar config without ``--radar-config`` (None: the device's own default).
     """
@@ -515,7 +515,7 @@ def _live_device(args: argparse.Namespace, default_config: Any = None):
 
     config = RadarConfig.from_json(args.radar_config) if args.radar_config else default_config
     # The virtual-only options default to None so that one given with a board is refused, not ignored.
-    return open_device(args.device, config, scene=args.scene, profile=args.profile, seed=args.seed,
+    return open_device(args.board, config, scene=args.scene, profile=args.profile, seed=args.seed,
                        realtime=args.realtime)
 
 
@@ -531,7 +531,7 @@ def _cmd_devices(args: argparse.Namespace) -> Result:
         return {"boards": [b.to_dict() for b in boards], "permission_denied": denied}
     if not boards:
         print("no Infineon radar board found on USB (vendor 0x058b: MCU7, V9, PSoC6 kit); "
-              "check the cable, or record without one: radaraug capture --device virtual")
+              "check the cable, or record without one: radaraug capture --board virtual")
         return 0
     for b in boards:
         serial = b.serial or "serial unreadable"
@@ -542,6 +542,12 @@ def _cmd_devices(args: argparse.Namespace) -> Result:
     return 0
 
 
+def _recording_json(result: Any) -> dict[str, Any]:
+    """A recording's ``--json`` object: its file is ``output``, what recorded it ``board`` (the CLI's words)."""
+    data = result.to_dict()
+    return {"output": data.pop("path"), "board": data.pop("device"), **data}
+
+
 def _cmd_capture(args: argparse.Namespace) -> Result:
     from radaraug.capture import record
 
@@ -549,8 +555,7 @@ def _cmd_capture(args: argparse.Namespace) -> Result:
     result = record(_live_device(args), args.output, seconds=args.seconds, label=args.label,
                     overwrite=args.overwrite, progress=not args.no_progress)
     if args.json:
-        data = result.to_dict()
-        _print_json({"output": data.pop("path"), **data})
+        _print_json(_recording_json(result))
     else:
         rate = result.frames / result.seconds if result.seconds > 0 else float("nan")
         where = result.path if result.path is not None else "no file (no frame recorded)"
@@ -574,7 +579,7 @@ def _cmd_calibrate(args: argparse.Namespace) -> Result:
     cdr = run.cdr
     if args.json:
         return {"output": str(run.output), "mean_db": cdr.mean_db, "std_db": cdr.std_db, "floor": cdr.floor,
-                "motion_fraction": cdr.motion, "recording": run.recording.to_dict()}
+                "motion_fraction": cdr.motion, "recording": _recording_json(run.recording)}
     kept = f"; recording kept in {run.recording.path}" if args.keep_recording else ""
     print(f"CalibratedDR: m_t = {cdr.mean_db:.2f} dB, s_t = {cdr.std_db:.2f} dB from {run.recording.frames} "
           f"empty-room frames (motion {100 * (cdr.motion or 0.0):.3f} %) -> {run.output}{kept}")
@@ -594,9 +599,9 @@ def _classifier(args: argparse.Namespace) -> Any:
 def _cmd_predict(args: argparse.Namespace) -> Result:
     from radaraug.inference.predict import RowWriter, follow_capture, predict_captures, predict_device
 
-    if bool(args.sources) == (args.device is not None):
-        raise ConfigError("predict needs capture paths or --device (a board, or 'virtual'), not both")
-    if args.follow and (args.device is not None or len(args.sources) != 1):
+    if bool(args.sources) == (args.board is not None):
+        raise ConfigError("predict needs capture paths or --board (a board, or 'virtual'), not both")
+    if args.follow and (args.board is not None or len(args.sources) != 1):
         raise ConfigError("--follow reads one capture while it is recorded: give exactly one path")
     if args.json and args.output == "-":
         raise ConfigError("--json prints a summary on stdout: write the rows to a file with -o")
@@ -608,7 +613,7 @@ def _cmd_predict(args: argparse.Namespace) -> Result:
         print(f"{args.classifier}: the classifier file carries no static-change gate (it was trained without an "
               "empty-room capture); decisions are the network's alone. --calibration EMPTY fits one for this room",
               file=sys.stderr)
-    if args.device is not None:
+    if args.board is not None:
         chunks: Any = predict_device(clf, _live_device(args, clf.config), seconds=args.seconds,
                                      max_frames=args.max_frames, window=args.window, gate=gate)
     elif args.follow:
@@ -822,9 +827,9 @@ def build_parser() -> argparse.ArgumentParser:
                      help="print the udev rule that lets users open the boards (Linux) and exit")
 
     def live(parser: argparse.ArgumentParser, output: str) -> None:
-        parser.add_argument("--device", default="auto",
-                            help="'auto' (first board, through Infineon's ifxradarsdk), 'virtual' (the digital "
-                            "twin) or a board's serial")
+        parser.add_argument("--board", default="auto",
+                            help="the radar board: 'auto' (first board, through Infineon's ifxradarsdk), 'virtual' "
+                            "(the digital twin) or a board's serial")
         parser.add_argument("--radar-config", default=None,
                             help="radar config JSON (radaraug or Infineon config.json; default: the scene's "
                             "for virtual, the BGT60TR13C preset for a board)")
@@ -859,8 +864,8 @@ def build_parser() -> argparse.ArgumentParser:
                       help="one radaraug capture still being recorded: classify frames as they are flushed")
     pred.add_argument("--idle-timeout", type=float, default=60.0,
                       help="--follow: stop after this many seconds without a new frame")
-    pred.add_argument("--device", default=None,
-                      help="live: 'auto' (first board), 'virtual' (the digital twin) or a board's serial")
+    pred.add_argument("--board", default=None,
+                      help="live: the radar board: 'auto' (first board), 'virtual' (the digital twin) or a board's serial")
     pred.add_argument("--radar-config", default=None, help="live: radar config JSON (default: the classifier's)")
     pred.add_argument("--seconds", type=float, default=None, help="live: stop after this long (default: Ctrl-C)")
     pred.add_argument("--max-frames", type=int, default=None, help="live: stop after this many frames")

@@ -50,23 +50,24 @@ def _reached(*args, **kwargs):
     raise Reached("reached the work")
 
 
-# --------------------------------------------------------------------------- 1. --accelerator / --device
+# --------------------------------------------------------------------------- 1. --accelerator / --board
 TORCH_COMMANDS = {"simulate": ["corridor", "--frames", "1", "-o", "x.h5"], "bench": ["transforms"]}
 BOARD_COMMANDS = ("capture", "calibrate", "predict")
 
 
 @pytest.mark.parametrize("name", sorted(_subparsers()))
-def test_device_means_a_board_and_accelerator_a_torch_device(name) -> None:
+def test_board_means_a_board_and_accelerator_a_torch_device(name) -> None:
     parser = _subparsers()[name]
-    device, accelerator = _option(parser, "--device"), _option(parser, "--accelerator")
+    board, accelerator = _option(parser, "--board"), _option(parser, "--accelerator")
+    assert _option(parser, "--device") is None, name  # one word per idea: no --device anywhere
     if name in BOARD_COMMANDS:
-        assert device.dest == "device" and "board" in device.help and accelerator is None
+        assert board.dest == "board" and "board" in board.help and accelerator is None
     elif name in TORCH_COMMANDS:
-        assert accelerator.choices == cli.ACCELERATORS == ("auto", "cpu", "cuda") and device is None
+        assert accelerator.choices == cli.ACCELERATORS == ("auto", "cpu", "cuda") and board is None
     elif name == "reproduce":
-        assert device is None and accelerator.choices == cli.ACCELERATORS
+        assert board is None and accelerator.choices == cli.ACCELERATORS
     else:
-        assert device is None and accelerator is None, name
+        assert board is None and accelerator is None, name
 
 
 @pytest.mark.parametrize("name", sorted(TORCH_COMMANDS))
@@ -131,7 +132,7 @@ def test_radar_config_reaches_the_device(name, tmp_path, monkeypatch, capsys) ->
     got = []
     monkeypatch.setattr(capture, "open_device", lambda spec, config, **kw: got.append((spec, config)) or _reached())
     head = [name] if name != "predict" else [name, str(_classifier_file(tmp_path))]
-    argv = [*head, "--device", "virtual", "--radar-config", str(tmp_path / "radar.json"), "-o", str(tmp_path / "out")]
+    argv = [*head, "--board", "virtual", "--radar-config", str(tmp_path / "radar.json"), "-o", str(tmp_path / "out")]
     assert main(argv) == 3
     assert got == [("virtual", cfg)]
     assert "reached the work" in capsys.readouterr().err
@@ -153,15 +154,17 @@ def test_capture_and_calibrate_json_name_their_file_output(tmp_path, monkeypatch
                        device={"name": "virtual"})
     monkeypatch.setattr(capture, "open_device", lambda *a, **k: None)
     monkeypatch.setattr(capture, "record", lambda device, path, **kw: rec)
-    assert main(["capture", "--device", "virtual", "-o", str(tmp_path / "c.h5"), "--json"]) == 0
+    assert main(["capture", "--board", "virtual", "-o", str(tmp_path / "c.h5"), "--json"]) == 0
     printed = json.loads(capsys.readouterr().out)
-    assert printed == {"output": str(tmp_path / "c.h5"), **{k: v for k, v in rec.to_dict().items() if k != "path"}}
+    rest = {k: v for k, v in rec.to_dict().items() if k not in ("path", "device")}
+    assert printed == {"output": str(tmp_path / "c.h5"), "board": {"name": "virtual"}, **rest}
 
     cdr = SimpleNamespace(mean_db=-90.0, std_db=2.0, floor="normal", motion=0.0)
     run = SimpleNamespace(cdr=cdr, output=tmp_path / "cdr.json", recording=rec)
     monkeypatch.setattr(capture, "calibrate", lambda device, output, **kw: run)
-    assert main(["calibrate", "--device", "virtual", "-o", str(tmp_path / "cdr.json"), "--json"]) == 0
-    assert json.loads(capsys.readouterr().out)["output"] == str(tmp_path / "cdr.json")
+    assert main(["calibrate", "--board", "virtual", "-o", str(tmp_path / "cdr.json"), "--json"]) == 0
+    printed = json.loads(capsys.readouterr().out)
+    assert printed["output"] == str(tmp_path / "cdr.json") and printed["recording"]["board"] == {"name": "virtual"}
 
 
 def test_fit_cdr_demo_make_proxy_reproduce_json_name_their_output(tmp_path, monkeypatch, capsys) -> None:
@@ -226,7 +229,7 @@ def _live(name):
         import radaraug.capture as capture
 
         monkeypatch.setattr(capture, "open_device", _reached)
-        return [name, "--device", "virtual"], False
+        return [name, "--board", "virtual"], False
     return setup
 
 
@@ -305,7 +308,7 @@ def test_calibrate_refuses_an_existing_kept_recording(tmp_path, monkeypatch, cap
 
     monkeypatch.setattr(capture, "open_device", _reached)
     (tmp_path / "rec.h5").write_text("old")
-    argv = ["calibrate", "--device", "virtual", "-o", str(tmp_path / "cdr.json"), "--keep-recording",
+    argv = ["calibrate", "--board", "virtual", "-o", str(tmp_path / "cdr.json"), "--keep-recording",
             str(tmp_path / "rec.h5")]
     assert main(argv) == 3
     assert f"error: {tmp_path / 'rec.h5'}: exists" in capsys.readouterr().err

@@ -53,7 +53,7 @@ def run_predict_benchmark(*, batch: int = 32, repeats: int = 5, device: str = "c
         with torch.inference_mode():
             exported(x)
 
-    def live() -> None:  # one frame per call, the smoothing carried: what `radaraug predict --device` does
+    def live() -> None:  # one frame per call, the smoothing carried: what `radaraug predict --board` does
         stream = clf.stream()
         for f in x[:8]:
             stream.push(f)

@@ -26,7 +26,7 @@ def open_device(
     seed: int | None = None,
     realtime: bool | None = None,
 ) -> RadarDevice:
-    """A device from a ``--device`` value (nothing is opened until ``start()``).
+    """A device from a ``--board`` value (nothing is opened until ``start()``).
 
     Args:
         spec: ``"virtual"``, ``"auto"`` (the first board the SDK finds) or a board's serial/UUID.

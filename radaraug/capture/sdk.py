@@ -20,7 +20,7 @@ SDK_MODULE = "ifxradarsdk"
 SDK_MISSING = (
     "reading a real board needs Infineon's Radar SDK Python package 'ifxradarsdk', which is not installed: "
     "download the Radar Development Kit from Infineon (https://www.infineon.com, 'Radar Development Kit') and "
-    "pip install its ifxradarsdk wheel; or use --device virtual"
+    "pip install its ifxradarsdk wheel; or use --board virtual"
 )
 _RECOVERABLE = ("FifoOverflow", "FrameAcquisitionFailed")
 """SDK exception class names that mean frames were lost but the stream goes on."""

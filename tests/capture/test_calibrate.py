@@ -45,7 +45,7 @@ def test_empty_corridor_gives_a_calibration_that_loads(tmp_path) -> None:
 def test_a_walker_is_refused_with_the_reason(tmp_path, capsys) -> None:
     cfg = tmp_path / "cfg.json"
     CFG.to_json(cfg)
-    rc = main(["calibrate", "--device", "virtual", "--scene", "corridor_one_walker", "--radar-config", str(cfg),
+    rc = main(["calibrate", "--board", "virtual", "--scene", "corridor_one_walker", "--radar-config", str(cfg),
                "--seconds", "3.2", "--no-realtime", "--no-progress", "-o", str(tmp_path / "cdr.json")])
     err = capsys.readouterr().err
     assert rc == 3 and err.count("\n") == 1
@@ -61,7 +61,7 @@ def test_too_short_to_check_is_refused(tmp_path) -> None:
 def test_cli_calibrate(tmp_path, capsys) -> None:
     cfg = tmp_path / "cfg.json"
     CFG.to_json(cfg)
-    rc = main(["calibrate", "--device", "virtual", "--radar-config", str(cfg), "--seconds", "2", "--no-realtime",
+    rc = main(["calibrate", "--board", "virtual", "--radar-config", str(cfg), "--seconds", "2", "--no-realtime",
                "--no-progress", "-o", str(tmp_path / "cdr.json"), "--json", "--floor", "empirical"])
     assert rc == 0
     out = json.loads(capsys.readouterr().out)

@@ -1,4 +1,4 @@
-"""A separate `radaraug capture --device virtual` process, killed for real (SIGKILL, SIGINT), and a
+"""A separate `radaraug capture --board virtual` process, killed for real (SIGKILL, SIGINT), and a
 full disk (the process's file-size limit, SIGXFSZ ignored) refused before recording starts.
 
 Frames are a pure function of (seed, frame index), so what a killed recording holds is checked
@@ -32,7 +32,7 @@ FULL_DISK = ("import resource, signal; signal.signal(signal.SIGXFSZ, signal.SIG_
 
 
 def _start(cfg_file: Path, out: Path, seed: int = 7) -> subprocess.Popen:
-    args = ["capture", "--device", "virtual", "--radar-config", str(cfg_file), "--seconds", "60", "--realtime",
+    args = ["capture", "--board", "virtual", "--radar-config", str(cfg_file), "--seconds", "60", "--realtime",
             "--seed", str(seed), "--no-progress", "-o", str(out)]
     return subprocess.Popen([sys.executable, "-c", CLI, *args], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                             text=True, cwd=REPO, env={**os.environ, "PYTHONPATH": str(REPO)})
@@ -108,7 +108,7 @@ def test_full_disk_and_unwritable_path_fail_before_recording(tmp_path, cfg_file,
         return subprocess.run([sys.executable, "-c", pre + CLI, *argv], capture_output=True, text=True, cwd=REPO,
                               timeout=120, env={**os.environ, "PYTHONPATH": str(REPO)})
 
-    base = ["capture", "--device", "virtual", "--radar-config", str(cfg_file), "--no-progress"]
+    base = ["capture", "--board", "virtual", "--radar-config", str(cfg_file), "--no-progress"]
     r = run(*base, "--seconds", "600", "-o", str(tmp_path / "big.h5"), limit=2 << 20)
     assert r.returncode == 3, r.stderr
     assert "not enough space" in r.stderr and "ulimit -f" in r.stderr and "nothing was written" in r.stderr

@@ -94,7 +94,7 @@ def test_without_the_sdk_the_error_says_what_to_install(monkeypatch, cfg, tmp_pa
     monkeypatch.setitem(sys.modules, "ifxradarsdk", None)  # import fails as if not installed
     with pytest.raises(DeviceError, match="ifxradarsdk.*Infineon"):
         SdkDevice(cfg).start()
-    assert main(["capture", "--device", "auto", "-o", str(tmp_path / "x.h5"), "--seconds", "1"]) == 3
+    assert main(["capture", "--board", "auto", "-o", str(tmp_path / "x.h5"), "--seconds", "1"]) == 3
     assert "pip install its ifxradarsdk wheel" in capsys.readouterr().err
     assert list(tmp_path.iterdir()) == []
 
@@ -104,7 +104,7 @@ def test_without_the_sdk_the_error_says_what_to_install(monkeypatch, cfg, tmp_pa
 def test_a_virtual_only_option_given_for_a_board_is_refused_not_ignored(sdk, tmp_path, capsys, option) -> None:
     log = sdk()
     # even the options' default values, given explicitly: a board would silently ignore them
-    assert main(["capture", "--device", "auto", "-o", str(tmp_path / "x.h5"), "--seconds", "1", *option]) == 3
+    assert main(["capture", "--board", "auto", "-o", str(tmp_path / "x.h5"), "--seconds", "1", *option]) == 3
     assert "only for the virtual sensor" in capsys.readouterr().err
     assert list(tmp_path.iterdir()) == [] and log["opened"] == []
     with pytest.raises(ConfigError, match="scene, seed: only for the virtual sensor"):

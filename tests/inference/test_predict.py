@@ -128,7 +128,7 @@ def test_live_virtual_sensor_is_a_pure_function_of_its_seed(tmp_path, clf, capsy
     want = clf.predict(VirtualSensor("corridor", config=cfg, seed=3).frames(0, 4), window=2)
     assert torch.allclose(torch.cat([c.probs for _, _, c in chunks]), want.probs, atol=1e-6)
     clf.save(tmp_path / "c.pt")
-    assert main(["predict", str(tmp_path / "c.pt"), "--device", "virtual", "--no-realtime", "--seed", "3",
+    assert main(["predict", str(tmp_path / "c.pt"), "--board", "virtual", "--no-realtime", "--seed", "3",
                  "--max-frames", "4", "--window", "2", "-o", str(tmp_path / "live.jsonl")]) == 0
     rows = [json.loads(line) for line in (tmp_path / "live.jsonl").read_text().splitlines()]
     assert [r["frame"] for r in rows] == [0, 1, 2, 3]
@@ -146,7 +146,7 @@ def test_follow_ends_with_every_flushed_frame_when_the_recorder_is_killed(tmp_pa
     small_config().to_json(tmp_path / "cfg.json")
     path = tmp_path / "live.h5"
     cli = "import sys; from radaraug.cli import main; sys.exit(main(sys.argv[1:]))"
-    proc = subprocess.Popen([sys.executable, "-c", cli, "capture", "--device", "virtual", "--radar-config",
+    proc = subprocess.Popen([sys.executable, "-c", cli, "capture", "--board", "virtual", "--radar-config",
                              str(tmp_path / "cfg.json"), "--seconds", "60", "--realtime", "--no-progress", "-o", str(path)],
                             cwd=REPO, env={**os.environ, "PYTHONPATH": str(REPO)})
     chunks = []
