@@ -84,7 +84,8 @@ class RadarDataModule(L.LightningDataModule):
             ``"PATH"`` / ``{"path"}`` (the file's per-frame ``count`` labels), or a
             :class:`~radaraug.io.RadarCaptureDataset` labelled with people counts and without a transform
             (:func:`~radaraug.testsets.checks.dataset_entries`). None: the held-out proxy, generated once
-            under ``cache_dir/proxy``.
+            under ``cache_dir/proxy``. ``[]``: no test captures (fit only; the radar config is then the
+            calibration's).
         twin: the simulated splits (:class:`~radaraug.training.preparation.TwinSplits`).
         image: the network input (:class:`~radaraug.training.preparation.ImageSpec`).
         cache_dir: folder of the simulate-once cache and the cached fits (None: the user's cache folder,
@@ -221,7 +222,7 @@ class RadarDataModule(L.LightningDataModule):
         check_inputs(test, self.task, calibration=calibration, method=self.method, profile=self.twin.profile,
                      calibrate_noise=self.twin.calibrate_noise, excise=self.image_spec.excises and self.excise is None)
         has_capture = calibration is not None and not is_calibration_json(calibration)
-        source = calibration if calibration is not None and has_capture else test[0]["path"]
+        source = calibration if calibration is not None and has_capture else test[0]["path"] if test else None
         n_train, n_val = self.twin.train_items, self.twin.val_items
         needs_sim = stage in (None, "fit", "validate") or self.clip is None
         self.prepared = p = prepare(self.method, calibration, source, self.twin, self.image_spec,
@@ -270,8 +271,9 @@ class RadarDataModule(L.LightningDataModule):
             if t.config != p.config:
                 raise ConfigError(f"test capture {t.paths[0]} has another radar config ({t.config.describe()}) "
                                   f"than the training twin ({p.config.describe()}, from {source})")
-        full: ConcatDataset[Any] = ConcatDataset(tests)  # items as RadarCaptureDataset gives them
-        self._test = _Labelled(Subset(full, range(rank, len(full), world)), self.task)
+        if tests:
+            full: ConcatDataset[Any] = ConcatDataset(tests)  # items as RadarCaptureDataset gives them
+            self._test = _Labelled(Subset(full, range(rank, len(full), world)), self.task)
         # Where each recording starts, in test order (frame context, RDClassifier.context_frames);
         # a DDP shard strides over the frames, so it has no order to give.
         self.test_recording_starts = _recording_starts(tests) if world == 1 else None
@@ -374,7 +376,13 @@ class RadarDataModule(L.LightningDataModule):
         return self._loader(self._val, shuffle=False) if self._val is not None else []
 
     def test_dataloader(self) -> DataLoader:
-        """The test captures' loader."""
+        """The test captures' loader.
+
+        Raises:
+            ConfigError: the module was given no test captures (``test=[]``).
+        """
+        if self._test is None and self.hparams["test"] == []:
+            raise ConfigError("this data module was given no test captures (test=[]): nothing to test on")
         return self._loader(self._test, shuffle=False)
 
     def on_after_batch_transfer(self, batch: Any, dataloader_idx: int) -> Any:

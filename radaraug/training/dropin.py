@@ -11,7 +11,6 @@ from __future__ import annotations
 
 import dataclasses
 import os
-import warnings
 from collections.abc import Sequence
 from typing import Any
 
@@ -67,13 +66,14 @@ def training_chains(calibration: str | os.PathLike, method: str | Method = "rand
                     image_size: Sequence[int] | None = (64, 32), estimate_items: int = 256, seed: int = 0,
                     cache_dir: str | os.PathLike | None = None, progress: bool = False,
                     **data: Any) -> TrainingChains:
-    """The recipes' measured chain as transforms, from the empty-room capture recorded like your test captures.
+    """The recipes' measured chain as transforms, from the empty-room capture (or its calibration record).
 
     Simulates ``estimate_items`` twin items (cached) to estimate the clip range (and CDR's matched floor).
 
     Args:
-        calibration: the empty-room capture (radaraug HDF5 or Infineon recording): its config, excision mask
-            and CDR's floor come from it.
+        calibration: the empty-room capture (radaraug HDF5 or Infineon recording), or its calibration
+            record (JSON, from ``radaraug calibrate`` / ``fit-cdr``): the config, excision mask and CDR's floor
+            come from it (a record serves what it holds; a warning names what it lacks).
         method: ``rt``, ``randomdr`` (default) or ``cdr`` (the recipe's method), or a method object
             (:mod:`radaraug.training.methods`) that replaces the recipe's of its name.
         task: ``occupancy`` or ``counting`` (the recipe whose settings are taken).
@@ -86,31 +86,24 @@ def training_chains(calibration: str | os.PathLike, method: str | Method = "rand
             ``image={"representation": "paper"}``).
 
     Raises:
-        ConfigError: a calibration record JSON (the chain needs the capture's frames), or an unknown method/key.
+        ConfigError: an unknown method or key, or a record without what the method needs.
         CaptureError: the capture cannot be read.
     """
-    from radaraug.testsets.checks import TestSetWarning
     from radaraug.training.data import RadarDataModule
-    from radaraug.training.pipeline import is_calibration_json
 
-    if is_calibration_json(calibration):
-        raise ConfigError(f"{calibration}: a calibration record (JSON) has no frames; training_chains needs the empty-room "
-                          "capture itself (its persistent lines are excised, the floor is fitted on it)")
     given = method if isinstance(method, Method) else None
     method = method.name if isinstance(method, Method) else method
     if method == "cdr_profile":
         raise ConfigError("training_chains: cdr_profile's twin is fitted by radaraug diagnose; use the recipes")
     recipe = dict(recipes.compose(f"{task}_{method}").get("data", {}))
     kw = recipes.merge(recipe, {
-        "calibration": str(calibration), "test": [{"path": str(calibration), "count": 0}], "seed": int(seed),
+        "calibration": str(calibration), "test": [], "seed": int(seed),
         "twin": {"train_items": int(estimate_items), "val_items": 0, "seed": int(seed), "progress": progress},
         "image": {"size": None if image_size is None else [int(v) for v in image_size]},
         "cache_dir": None if cache_dir is None else str(cache_dir)})
     kw = recipes.merge(kw, data)  # key by key: twin={"randomization": {"people": ...}} keeps the recipe's catalog
     dm = RadarDataModule.from_recipe(kw if given is None else kw | {"method": given})
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", TestSetWarning)  # the calibration stands in as the test set: one class
-        dm.setup("fit")
+    dm.setup("fit")
     assert dm.image is not None and dm.config is not None and dm.clip is not None
     rd = rd_db_chain()
     image: list[nn.Module] = list(dm.image.children())

@@ -154,7 +154,7 @@ def _same_process(value: Any) -> Any:
     return value
 
 
-def prepare(method: Method, calibration: str | None, source: str, twin: TwinSplits, image: ImageSpec,
+def prepare(method: Method, calibration: str | None, source: str | None, twin: TwinSplits, image: ImageSpec,
             cache_dir: str | Path, *, dr_seed: int, simulate: bool = True, fit_excision: bool = True,
             broadcast: Callable[[Any], Any] = _same_process, rank: int = 0) -> Prepared:
     """The radar config, DR, excision mask, receiver and simulated dataset of one run.
@@ -162,7 +162,8 @@ def prepare(method: Method, calibration: str | None, source: str, twin: TwinSpli
     Args:
         method: the run's method.
         calibration: the empty-room capture, a calibration record (JSON: what it holds is used), or None.
-        source: the capture whose radar config the twin simulates (the calibration capture, else a test file).
+        source: the capture whose radar config the twin simulates (the calibration capture, else a test file;
+            None: the calibration record's config).
         twin: the simulated splits' spec.
         image: the network input's spec (whether to excise).
         cache_dir: where the fits are cached.
@@ -174,7 +175,8 @@ def prepare(method: Method, calibration: str | None, source: str, twin: TwinSpli
         rank: this process's rank.
 
     Raises:
-        ConfigError: a method that needs what the calibration cannot give.
+        ConfigError: a method that needs what the calibration cannot give, or no config (no ``source`` and
+            no calibration record holding one).
         CalibrationError: the profile fit did not reach this rank.
     """
     from radaraug.io import open_capture
@@ -183,8 +185,14 @@ def prepare(method: Method, calibration: str | None, source: str, twin: TwinSpli
 
     has_capture = calibration is not None and not is_calibration_json(calibration)
     record = None if calibration is None or has_capture else load_record(calibration)
-    with open_capture(source) as cap:
-        config = cap.config
+    if source is not None:
+        with open_capture(source) as cap:
+            config = cap.config
+    elif record is not None and record.config is not None:
+        config = record.config
+    else:
+        raise ConfigError(f"no radar config: no capture to read it from, and the calibration {calibration!r} is "
+                          "not a calibration record that holds one")
     dr = method.dr(calibration, dr_seed)
     if isinstance(dr, CalibratedDR):
         dr.check_config(config)

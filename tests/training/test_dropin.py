@@ -5,9 +5,9 @@ from __future__ import annotations
 import pytest
 import torch
 
-from radaraug.errors import ConfigError
+from radaraug.diagnosis.record import PERSISTENT_THRESHOLD_DB, fit_record
 from radaraug.io import RadarCaptureDataset
-from radaraug.training import CDR, ImageSpec, RadarDataModule, TwinSplits, training_chains
+from radaraug.training import CDR, CalibrationWarning, ImageSpec, RadarDataModule, TwinSplits, training_chains
 from radaraug.transforms import CalibratedDR, FloorRelative, RandomDR
 
 SMALL = {"estimate_items": 8, "twin": {"tracer_rays": 16, "randomization": False}, "image_size": (32, 16)}
@@ -36,18 +36,33 @@ def test_the_chains_are_the_recipes_chains(captures, tmp_path) -> None:
     assert len(ch.simulated(5, seed=3)) == 5 and len(sim) == 4
 
 
-def test_cdr_gets_the_matched_floor_and_json_is_refused(captures, tmp_path) -> None:
+def test_cdr_gets_the_matched_floor(captures, tmp_path) -> None:
     cal, _ = captures
     ch = training_chains(cal, "cdr", cache_dir=tmp_path, **SMALL)
     assert isinstance(ch.dr, CalibratedDR) and ch.dr.floor == "empirical"  # matched: quantiles against the twin
-    js = tmp_path / "cdr.json"
-    CalibratedDR.fit(str(cal), progress=False).save(js)
-    with pytest.raises(ConfigError, match=r"cdr.json: a calibration record \(JSON\) has no frames"):
-        training_chains(js)
     paper = training_chains(cal, CDR(floor="normal"), cache_dir=tmp_path,
                             image={"representation": "paper", "clip_range": [-110.0, -40.0],
                                    "excise_persistent_db": None}, **SMALL)
     assert paper.clip_range_db == (-110.0, -40.0) and paper.excise is None and paper.dr.floor == "normal"
+
+
+def test_a_calibration_record_serves_what_it_holds(captures, tmp_path) -> None:
+    cal, _ = captures
+    ch = training_chains(cal, "cdr", cache_dir=tmp_path, **SMALL)
+    record = tmp_path / "cdr.json"  # what radaraug calibrate / fit-cdr write: the floor and the persistent cells
+    fit_record(cal, persistent_db=PERSISTENT_THRESHOLD_DB).save(record)
+    with pytest.warns(CalibrationWarning, match="static-change gate"):
+        from_record = training_chains(record, "cdr", cache_dir=tmp_path, **SMALL)
+    assert from_record.config == ch.config and torch.equal(from_record.excise, ch.excise)
+    assert from_record.clip_range_db == ch.clip_range_db  # the same twin items, the same clip estimate
+    assert isinstance(from_record.dr, CalibratedDR) and from_record.dr.floor == "empirical"
+    # matched against the same twin floor (the record keeps its quantiles to JSON precision)
+    assert torch.allclose(from_record.dr.quantiles_db, ch.dr.quantiles_db, atol=1e-3, rtol=0)
+    floor_only = tmp_path / "floor.json"  # a record without persistent cells: nothing to excise, said so
+    CalibratedDR.fit(str(cal), progress=False).save(floor_only)
+    with pytest.warns(CalibrationWarning, match="not excised"):
+        bare = training_chains(floor_only, "randomdr", cache_dir=tmp_path, **SMALL)
+    assert bare.excise is None and bare.config == ch.config
 
 
 def test_a_randomization_override_keeps_the_recipes_other_keys(captures, tmp_path) -> None:
