@@ -47,6 +47,7 @@ bench: $(STAMP)
 	$(VENV)/bin/radaraug bench items -o benchmarks/twin_items_cpu.json --overwrite
 	$(VENV)/bin/radaraug bench training -o benchmarks/training_cpu.json --overwrite
 	$(VENV)/bin/radaraug bench diagnose -o benchmarks/diagnose_cpu.json --overwrite
+	$(VENV)/bin/radaraug bench steps -o benchmarks/steps_cpu.json --overwrite
 	$(VENV)/bin/radaraug bench static-room -o benchmarks/static_room_cpu.json --overwrite --figure docs/img/twin/static_profile_vs_density.png
 
 # GPU checks (docs/gpu.md). `make gpu-wheels` (a machine with internet) downloads the wheels a GPU

@@ -225,6 +225,10 @@ def _cmd_bench(args: argparse.Namespace) -> Result:
         from radaraug.bench.predict import run_predict_benchmark
 
         result = run_predict_benchmark(batch=args.batch or 32, repeats=args.repeats, device=device, out=args.output)
+    elif args.what == "steps":
+        from radaraug.bench.steps import run_steps_benchmark
+
+        result = run_steps_benchmark(device=device, out=args.output)
     elif args.what == "items":
         from radaraug.bench.items import run_items_benchmark
 
@@ -704,7 +708,7 @@ def build_parser() -> argparse.ArgumentParser:
 
     bench = command("bench", _cmd_bench, help="benchmarks (figures as ratios against a same-process baseline)")
     bench.add_argument("what", choices=["transforms", "twin", "training", "predict", "diagnose", "static-room",
-                                        "micro-doppler", "people-level", "contract", "items"],
+                                        "micro-doppler", "people-level", "contract", "items", "steps"],
                        help="which benchmark (docs/benchmarks.md)")
     bench.add_argument("--capture", action="append", default=None,
                        help="people-level: a capture with a moving person (.h5 or Infineon folder); repeat for more")
