@@ -29,6 +29,9 @@ ROOT = Path(__file__).resolve().parents[1]
 BENCHMARKS = ROOT / "benchmarks"
 
 
+_ERR = "heldout_design_errors_cpu.json"  # scripts/design_errors.py
+
+
 class Figure(NamedTuple):
     """A figure quoted on a page from a benchmark record."""
 
@@ -2154,6 +2157,47 @@ FIGURES: list[Figure] = [
            f"previous_run/results/occupancy/cdr/{_BA}", "occupancy {:.3f} with"),
     Figure("docs/training.md", "counting 0.419 with vs", "reproduce_medium_cpu.json",
            f"previous_run/results/counting/cdr/{_BA}", "counting {:.3f} with"),
+    # what the classifiers miss on the design suite, by kind of frame (scripts/design_errors.py)
+    Figure("docs/static_change.md", "missed 31.3 % of the frames where every walker is under 1.5 bins of radial speed "
+           "against 7.3 % where one walks faster, and 86.0 % of standing people's frames; with the gate below fused "
+           "in, 10.5 %, 5.5 % and 11.0 %", _ERR,
+           tuple(f"occupancy_error_share/{h}/{k}" for h in ("network", "gated") for k in ("slow", "walking", "standing")),
+           "missed {:.1f} % of the frames where every walker is under 1.5 bins of radial speed against {:.1f} % where "
+           "one walks faster, and {:.1f} % of standing people's frames; with the gate below fused in, {:.1f} %, "
+           "{:.1f} % and {:.1f} %", 100.0),
+    Figure("docs/training.md", "the current design suite's are recorded, below: 31.3 %, 86.0 % and 7.3 % of their frames",
+           _ERR, tuple(f"occupancy_error_share/network/{k}" for k in ("slow", "standing", "walking")),
+           "below: {:.1f} %, {:.1f} % and {:.1f} % of their frames", 100.0),
+    Figure("docs/training.md", "true 1 is read as 2 on 385 of 1,440 frames and true 2 as 1 on 687 of 1,440 with the gate",
+           _ERR, ("counting_confusion_true_by_predicted_summed_over_seeds/gated/1/2",
+                  "counting_confusion_true_by_predicted_summed_over_seeds/gated/2/1"),
+           "true 1 is read as 2 on {:d} of 1,440 frames and true 2 as 1 on {:d} of 1,440"),
+    Figure("docs/training.md", "| the network | 7.3 % | 31.3 % | 86.0 % | 2.6 % |", _ERR,
+           tuple(f"occupancy_error_share/network/{k}" for k in ("walking", "slow", "standing", "empty")),
+           "| the network | {:.1f} % | {:.1f} % | {:.1f} % | {:.1f} % |", 100.0),
+    Figure("docs/training.md", "| + static gate | 5.5 % | 10.5 % | 11.0 % | 2.6 % |", _ERR,
+           tuple(f"occupancy_error_share/gated/{k}" for k in ("walking", "slow", "standing", "empty")),
+           "| + static gate | {:.1f} % | {:.1f} % | {:.1f} % | {:.1f} % |", 100.0),
+    *(Figure("docs/training.md", f"| {row} | {cells} |", _ERR,
+             tuple(f"counting_confusion_by_moving_people_summed_over_seeds/gated/{moving}_moving/{true}/{p}"
+                   for p in range(3)), f"| {row} | {{:d}} | {{:d}} | {{:d}} |")
+      for row, cells, moving, true in (("1 person, moving", "86 | 373 | 270", 1, 1),
+                                       ("1 person, not moving", "115 | 481 | 115", 0, 1),
+                                       ("2 people, both moving", "12 | 256 | 392", 2, 2),
+                                       ("2 people, one moving", "0 | 249 | 111", 1, 2),
+                                       ("2 people, neither moving", "0 | 182 | 238", 0, 2))),
+    Figure("docs/training.md", "occupancy 0.878, + gate 0.949; counting 0.624, + gate 0.692, the round-3 figures",
+           _ERR, tuple(f"run_results/{t}/{k}" for t in ("occupancy", "counting") for k in ("mean", "gated_mean")),
+           "occupancy {:.3f}, + gate {:.3f}; counting {:.3f}, + gate {:.3f}"),
+    Figure("docs/training.md", "the twin's own simulated validation is 0.684 for counting in the same run", _ERR,
+           "run_results/counting/val_mean", "validation is {:.3f} for counting"),
+    Figure("benchmarks/README.md", "occupancy missed: walkers 7.3 %, slow 31.3 %, standing 86.0 % (+ gate 5.5 / 10.5 / "
+           "11.0 %); counting + gate: 2 people both moving read as 1 on 256 of 660 frames", _ERR,
+           (*(f"occupancy_error_share/{h}/{k}" for h in ("network", "gated") for k in ("walking", "slow", "standing")),
+            "counting_confusion_by_moving_people_summed_over_seeds/gated/2_moving/2/1"),
+           lambda *v: f"occupancy missed: walkers {100 * v[0]:.1f} %, slow {100 * v[1]:.1f} %, standing "
+           f"{100 * v[2]:.1f} % (+ gate {100 * v[3]:.1f} / {100 * v[4]:.1f} / {100 * v[5]:.1f} %); counting + gate: "
+           f"2 people both moving read as 1 on {v[6]:d} of 660 frames"),
     # docs/static_change.md: how often the gate fired on the design worlds
     Figure("docs/static_change.md", "On the six design worlds no empty test frame crosses its threshold",
            "static_change_design_cpu.json", tuple(f"worlds/design-w0{i}/fired_empty" for i in range(6)),
