@@ -1,8 +1,9 @@
 """What the diagnosis loop simulates: the capture's scene through a candidate receiver chain.
 
-In ``"scene"`` mode the room is ray-traced once and its static paths (specular and diffuse apart,
+In ``"scene"`` mode the twin traces the room once and its static paths (specular and diffuse apart,
 so a candidate diffuse gain needs no retrace) go through each chain's linear stages, recomputed only
-when one changes; people are traced once. In ``"estimated"`` mode (no scene) the static scene is
+when one changes; the people and their shadow are the twin's ``frame_paths``, traced once. With the
+twin's own chain the frames equal ``DigitalTwin.simulate``'s (tested). In ``"estimated"`` mode (no scene) the static scene is
 the capture's mean chirp, so only what varies is diagnosed. See ``docs/diagnosis.md``, "Two modes".
 """
 

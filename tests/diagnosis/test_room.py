@@ -146,3 +146,32 @@ def test_the_fitted_gain_is_unbiased_over_independent_draws(tmp_path):
     e = torch.tensor(errors)
     assert abs(float(e.mean())) < 1.5
     assert float(e.pow(2).mean().sqrt()) < 2.5
+
+
+def test_scene_mode_frames_are_the_twins_frames():
+    """What the loop compares with a capture in scene mode is what the twin simulates, people and shadow included.
+
+    The loop's source (diagnose's scene mode) holds the twin's traced room and its people's paths with their
+    shadow corrections, and synthesizes them through each candidate chain; with the twin's own chain its frames
+    equal :meth:`DigitalTwin.simulate`'s to float64 rounding (the shadow as correction paths there, through the
+    static basis in the twin). The chain has no noise stages here: with more paths (the corrections) the noise
+    stages draw their numbers in another order, so the two give other draws of the same noise.
+    """
+    from radaraug.diagnosis.diagnose import _source as diagnose_source
+    from radaraug.scene.people import Walker
+    from radaraug.sensor.defaults import default_effects
+
+    scene = _scene()
+    scene.people = [Walker(height_m=1.75, speed_m_s=1.2, start=(1.2, -0.3), heading_rad=0.15)]
+    # No ADC rounding (float rounding moves codes) and no noise stages (their draws follow the path count)
+    noisy = ("adc_quantization", "thermal_noise", "adc_noise", "phase_noise")
+    rx = FMCWReceiver(CFG, effects=[e for e in default_effects(CFG) if e.name not in noisy])
+    src, chain, _ = diagnose_source(CFG, scene, torch.zeros(1), sim_frames=2, rx=rx, tracer_options=None)
+    twin = DigitalTwin(scene, config=CFG, receiver=rx, dtype=torch.float64)
+    times = twin.frame_times(range(4))
+    ours = src.frames(chain, 4, seed=11)
+    theirs = twin.simulate(scene.people, times, generators=torch.Generator().manual_seed(11))
+    empty = twin.simulate(None, times, generators=torch.Generator().manual_seed(11))
+    people = (theirs - empty).abs().max()
+    assert float(people) > 1e-3  # the walker and its shadow are in the frames compared
+    torch.testing.assert_close(ours, theirs, rtol=0, atol=1e-9 * float(people))
