@@ -19,6 +19,7 @@ import math
 from collections import Counter
 from pathlib import Path
 
+import numpy as np
 import torch
 
 from radaraug.config import RadarConfig
@@ -26,6 +27,9 @@ from radaraug.detection import StaticChangeDetector
 from radaraug.errors import ConfigError
 from radaraug.files import atomic_write_json
 from radaraug.files import load_json as _load_json
+from radaraug.testsets.independent import room as room_mod
+from radaraug.testsets.independent import walkers
+from radaraug.testsets.independent.worlds import draw_world
 from radaraug.training.metrics import context_predictions, gated_predictions
 
 _spec = importlib.util.spec_from_file_location("static_change_figure", Path(__file__).with_name("static_change_figure.py"))
@@ -59,6 +63,35 @@ def _frames(manifest: Path, velocity_resolution_m_s: float) -> tuple[list[str], 
     return kinds, moving
 
 
+def _pair_apart(manifest: Path, config: RadarConfig, mount: room_mod.Mount, image: tuple[int, int]) -> list[bool | None]:
+    """Per test frame of two people: whether their torsos sit >= 1 image pixel apart (else None).
+
+    A pixel of the network's input (resized from the range-Doppler map) in range or in Doppler.
+    """
+    fields = set(walkers.Person.__dataclass_fields__)
+    px_range = config.range_resolution_m * config.num_range_bins / image[0]
+    px_speed = config.velocity_resolution_m_s * config.num_chirps_per_frame / image[1]
+    out: list[bool | None] = []
+    for entry in load_json(manifest)["files"]["tests"]:
+        for ep in entry["episodes"]:
+            n = int(ep["frames"])
+            if len(ep["people"]) != 2:
+                out += [None] * n
+                continue
+            t = float(ep["t0_s"]) + np.arange(n) * config.frame_repetition_time_s
+            dt = walkers.DERIVATIVE_STEP_S
+            rv = []
+            for p in ep["people"]:
+                person = walkers.Person(**{k: v for k, v in p.items() if k in fields})
+                r = room_mod.look(walkers.positions(person, t)[0], mount)[0]  # the pelvis' range (F,)
+                rate = (room_mod.look(walkers.positions(person, t + dt)[0], mount)[0]
+                        - room_mod.look(walkers.positions(person, t - dt)[0], mount)[0]) / (2 * dt)
+                rv.append((r, rate))
+            apart = (np.abs(rv[0][0] - rv[1][0]) >= px_range) | (np.abs(rv[0][1] - rv[1][1]) >= px_speed)
+            out += [bool(a) for a in apart]
+    return out
+
+
 def _world_manifests(run: Path) -> dict[str, Path]:
     """World name -> its manifest, for every held-out world the run generated."""
     out = {}
@@ -86,6 +119,9 @@ def main() -> None:
     confusion = {"network": torch.zeros(3, 3, dtype=torch.long), "gated": torch.zeros(3, 3, dtype=torch.long)}
     # counting: true count x predicted count, split by how many people move off zero Doppler
     by_moving = {how: torch.zeros(3, 3, 3, dtype=torch.long) for how in confusion}
+    # two-person frames: predicted count, split by whether the two sit apart in the network's image
+    pairs = {how: {"apart": Counter(), "same_pixel": Counter()} for how in confusion}
+    image = tuple(int(v) for v in report["settings"]["image_size"])
     per_world: dict[str, dict] = {}
     seeds: set[int] = set()
     for name, manifest in worlds.items():
@@ -93,6 +129,8 @@ def main() -> None:
         world_dir = manifest.parent
         config = RadarConfig.from_dict(data["config"])
         kinds, moving = _frames(manifest, config.velocity_resolution_m_s)
+        world = draw_world(data["world"]["suite"], int(data["world"]["index"]))
+        apart = _pair_apart(manifest, config, world.room.mount, image)
         det = StaticChangeDetector.from_capture(world_dir / data["files"]["calibration"]["path"], margin_db=args.margin_db)
         gate = torch.cat([det.detect_capture(world_dir / e["path"]) for e in data["files"]["tests"]])
         row: dict[str, dict] = {}
@@ -118,6 +156,9 @@ def main() -> None:
                         confusion[how] += torch.bincount(labels * 3 + pred, minlength=9).reshape(3, 3)
                         m = torch.tensor(moving)
                         by_moving[how] += torch.bincount(m * 9 + labels * 3 + pred, minlength=27).reshape(3, 3, 3)
+                        for i, a in enumerate(apart):
+                            if a is not None and moving[i] == 2:
+                                pairs[how]["apart" if a else "same_pixel"][int(pred[i])] += 1
         per_world[name] = {"frames": dict(Counter(kinds)), "occupancy_errors_summed_over_seeds":
                            {how: dict(c) for how, c in row.items()},
                            "gate_threshold_db": det.threshold_db}
@@ -140,6 +181,10 @@ def main() -> None:
                                                    "single_frame_mean", "val_mean")}
                         for task, methods in report["suites"]["design"]["results"].items()
                         for name, r in methods.items() if name == args.method},
+        "counting_two_moving_people_by_image_separation_summed_over_seeds": {
+            how: {where: [c[k] for k in range(3)] for where, c in d.items()} for how, d in pairs.items()},
+        "image_separation": "apart: the two torsos >= 1 pixel of the network's image apart in range or in Doppler "
+                            "(pixel = map bins x map size / image size)",
         "worlds_detail": per_world,
     }
     atomic_write_json(args.output, record, indent=1)
