@@ -63,33 +63,40 @@ def _frames(manifest: Path, velocity_resolution_m_s: float) -> tuple[list[str], 
     return kinds, moving
 
 
-def _pair_apart(manifest: Path, config: RadarConfig, mount: room_mod.Mount, image: tuple[int, int]) -> list[bool | None]:
-    """Per test frame of two people: whether their torsos sit >= 1 image pixel apart (else None).
+def _pairs(manifest: Path, config: RadarConfig, mount: room_mod.Mount,
+           image: tuple[int, int]) -> tuple[list[bool | None], list[float | None]]:
+    """Per test frame of two people: whether their torsos sit >= 1 image pixel apart, and their level gap (dB).
 
-    A pixel of the network's input (resized from the range-Doppler map) in range or in Doppler.
+    The pixel: the network's input (resized from the range-Doppler map) in range or in Doppler. The gap:
+    the two people's received power by the radar equation (their mean RCS, the antenna pattern, range).
+    None for other frames.
     """
     fields = set(walkers.Person.__dataclass_fields__)
     px_range = config.range_resolution_m * config.num_range_bins / image[0]
     px_speed = config.velocity_resolution_m_s * config.num_chirps_per_frame / image[1]
     out: list[bool | None] = []
+    gaps: list[float | None] = []
     for entry in load_json(manifest)["files"]["tests"]:
         for ep in entry["episodes"]:
             n = int(ep["frames"])
             if len(ep["people"]) != 2:
                 out += [None] * n
+                gaps += [None] * n
                 continue
             t = float(ep["t0_s"]) + np.arange(n) * config.frame_repetition_time_s
             dt = walkers.DERIVATIVE_STEP_S
-            rv = []
+            rv, level = [], []
             for p in ep["people"]:
                 person = walkers.Person(**{k: v for k, v in p.items() if k in fields})
-                r = room_mod.look(walkers.positions(person, t)[0], mount)[0]  # the pelvis' range (F,)
+                r, u = room_mod.look(walkers.positions(person, t)[0], mount)  # the pelvis' range (F,)
+                level.append(room_mod.level_dB(10 ** (p["rcs_dBsm"] / 10), r, u, config.wavelength_m))
                 rate = (room_mod.look(walkers.positions(person, t + dt)[0], mount)[0]
                         - room_mod.look(walkers.positions(person, t - dt)[0], mount)[0]) / (2 * dt)
                 rv.append((r, rate))
             apart = (np.abs(rv[0][0] - rv[1][0]) >= px_range) | (np.abs(rv[0][1] - rv[1][1]) >= px_speed)
             out += [bool(a) for a in apart]
-    return out
+            gaps += [float(g) for g in np.abs(level[0] - level[1])]
+    return out, gaps
 
 
 def _world_manifests(run: Path) -> dict[str, Path]:
@@ -121,6 +128,8 @@ def main() -> None:
     by_moving = {how: torch.zeros(3, 3, 3, dtype=torch.long) for how in confusion}
     # two-person frames: predicted count, split by whether the two sit apart in the network's image
     pairs = {how: {"apart": Counter(), "same_pixel": Counter()} for how in confusion}
+    gap_bins = (("gap_under_6_dB", 0.0, 6.0), ("gap_6_to_15_dB", 6.0, 15.0), ("gap_over_15_dB", 15.0, math.inf))
+    by_gap = {how: {name: Counter() for name, *_ in gap_bins} for how in confusion}
     image = tuple(int(v) for v in report["settings"]["image_size"])
     per_world: dict[str, dict] = {}
     seeds: set[int] = set()
@@ -130,7 +139,7 @@ def main() -> None:
         config = RadarConfig.from_dict(data["config"])
         kinds, moving = _frames(manifest, config.velocity_resolution_m_s)
         world = draw_world(data["world"]["suite"], int(data["world"]["index"]))
-        apart = _pair_apart(manifest, config, world.room.mount, image)
+        apart, gaps = _pairs(manifest, config, world.room.mount, image)
         det = StaticChangeDetector.from_capture(world_dir / data["files"]["calibration"]["path"], margin_db=args.margin_db)
         gate = torch.cat([det.detect_capture(world_dir / e["path"]) for e in data["files"]["tests"]])
         row: dict[str, dict] = {}
@@ -159,6 +168,10 @@ def main() -> None:
                         for i, a in enumerate(apart):
                             if a is not None and moving[i] == 2:
                                 pairs[how]["apart" if a else "same_pixel"][int(pred[i])] += 1
+                                gap = gaps[i]
+                                assert gap is not None
+                                name = next(nm for nm, lo, hi in gap_bins if lo <= gap < hi)
+                                by_gap[how][name][int(pred[i])] += 1
         per_world[name] = {"frames": dict(Counter(kinds)), "occupancy_errors_summed_over_seeds":
                            {how: dict(c) for how, c in row.items()},
                            "gate_threshold_db": det.threshold_db}
@@ -183,6 +196,9 @@ def main() -> None:
                         for name, r in methods.items() if name == args.method},
         "counting_two_moving_people_by_image_separation_summed_over_seeds": {
             how: {where: [c[k] for k in range(3)] for where, c in d.items()} for how, d in pairs.items()},
+        "counting_two_moving_people_by_level_gap_summed_over_seeds": {
+            how: {name: [c[k] for k in range(3)] for name, c in d.items()} for how, d in by_gap.items()},
+        "level_gap": "the two people's received power apart (radar equation: mean RCS, antenna pattern, range), dB",
         "image_separation": "apart: the two torsos >= 1 pixel of the network's image apart in range or in Doppler "
                             "(pixel = map bins x map size / image size)",
         "worlds_detail": per_world,

@@ -2204,6 +2204,13 @@ FIGURES: list[Figure] = [
                            "counting_two_moving_people_by_image_separation_summed_over_seeds/gated/same_pixel/2"),
            lambda *v: "In every one of the 660 frames of two moving people the two torsos sit at least one pixel"
            if sum(v) == 0 else f"In all but {sum(v)} of the 660 frames"),
+    Figure("docs/training.md", "within 6 dB of each other, 168 of 456 such frames are read as one; 6–15 dB apart, "
+           "88 of 204; no frame is further apart", _ERR,
+           tuple(f"counting_two_moving_people_by_level_gap_summed_over_seeds/gated/{g}/{k}"
+                 for g in ("gap_under_6_dB", "gap_6_to_15_dB", "gap_over_15_dB") for k in range(3)),
+           lambda *v: f"within 6 dB of each other, {v[1]} of {sum(v[0:3])} such frames are read as one; 6–15 dB "
+           f"apart, {v[4]} of {sum(v[3:6])}; " + ("no frame is further apart" if sum(v[6:9]) == 0
+                                                  else f"further apart, {v[7]} of {sum(v[6:9])}")),
     # docs/static_change.md: how often the gate fired on the design worlds
     Figure("docs/static_change.md", "On the six design worlds no empty test frame crosses its threshold",
            "static_change_design_cpu.json", tuple(f"worlds/design-w0{i}/fired_empty" for i in range(6)),
