@@ -228,7 +228,10 @@ def _cmd_bench(args: argparse.Namespace) -> Result:
     elif args.what == "steps":
         from radaraug.bench.steps import run_steps_benchmark
 
-        result = run_steps_benchmark(device=device, out=args.output)
+        if device != "cpu":
+            raise ConfigError("bench steps: calibrate's fit and export run on the CPU (neither command takes "
+                              "--accelerator); leave --accelerator out")
+        result = run_steps_benchmark(out=args.output)
     elif args.what == "items":
         from radaraug.bench.items import run_items_benchmark
 

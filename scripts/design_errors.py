@@ -46,57 +46,45 @@ def load_json(path: Path) -> dict:
     return _load_json(path, error=ConfigError)
 
 
-def _moving(people: list[dict], velocity_resolution_m_s: float) -> int:
-    """How many of ``people`` walk at >= 1.5 Doppler bins of radial speed (off the blanked zero Doppler)."""
-    return sum(not p["standing"] and p["speed_m_s"] * abs(math.cos(p.get("track_yaw_rad", 0.0)))
-               >= 1.5 * velocity_resolution_m_s for p in people)
+def _frames(manifest: Path, config: RadarConfig, mount: room_mod.Mount, image: tuple[int, int]) -> dict[str, list]:
+    """Per test frame, in test order (the manifest's test files'): what it holds.
 
-
-def _frames(manifest: Path, velocity_resolution_m_s: float) -> tuple[list[str], list[int]]:
-    """Every test frame's kind and number of moving people, in test order (the manifest's test files')."""
-    kinds: list[str] = []
-    moving: list[int] = []
-    for entry in load_json(manifest)["files"]["tests"]:
-        for ep in entry["episodes"]:
-            kinds += [kind_of(ep["people"], velocity_resolution_m_s)] * int(ep["frames"])
-            moving += [_moving(ep["people"], velocity_resolution_m_s)] * int(ep["frames"])
-    return kinds, moving
-
-
-def _pairs(manifest: Path, config: RadarConfig, mount: room_mod.Mount,
-           image: tuple[int, int]) -> tuple[list[bool | None], list[float | None]]:
-    """Per test frame of two people: whether their torsos sit >= 1 image pixel apart, and their level gap (dB).
-
-    The pixel: the network's input (resized from the range-Doppler map) in range or in Doppler. The gap:
-    the two people's received power by the radar equation (their mean RCS, the antenna pattern, range).
-    None for other frames.
+    ``kind``: the episode's kind (:func:`kind_of`, as the gate's figure sorts them). ``moving``: how many
+    people move off the blanked zero Doppler in this frame (a walker whose torso's radial speed at the
+    frame's start is >= 1.5 Doppler bins). For frames of two people, ``apart``: their torsos >= 1 pixel of
+    the network's input apart in range or in Doppler; ``gap_dB``: their received powers apart (radar
+    equation: mean RCS, antenna pattern, range); None for other frames.
     """
     fields = set(walkers.Person.__dataclass_fields__)
+    vres = config.velocity_resolution_m_s
     px_range = config.range_resolution_m * config.num_range_bins / image[0]
-    px_speed = config.velocity_resolution_m_s * config.num_chirps_per_frame / image[1]
-    out: list[bool | None] = []
-    gaps: list[float | None] = []
+    px_speed = vres * config.num_chirps_per_frame / image[1]
+    dt = walkers.DERIVATIVE_STEP_S
+    out: dict[str, list] = {"kind": [], "moving": [], "apart": [], "gap_dB": []}
     for entry in load_json(manifest)["files"]["tests"]:
         for ep in entry["episodes"]:
             n = int(ep["frames"])
-            if len(ep["people"]) != 2:
-                out += [None] * n
-                gaps += [None] * n
-                continue
             t = float(ep["t0_s"]) + np.arange(n) * config.frame_repetition_time_s
-            dt = walkers.DERIVATIVE_STEP_S
-            rv, level = [], []
+            ranges, rates, speeds, levels = [], [], [], []
             for p in ep["people"]:
                 person = walkers.Person(**{k: v for k, v in p.items() if k in fields})
-                r, u = room_mod.look(walkers.positions(person, t)[0], mount)  # the pelvis' range (F,)
-                level.append(room_mod.level_dB(10 ** (p["rcs_dBsm"] / 10), r, u, config.wavelength_m))
+                r, u = room_mod.look(walkers.positions(person, t)[0], mount)  # the torso's range (F,)
                 rate = (room_mod.look(walkers.positions(person, t + dt)[0], mount)[0]
                         - room_mod.look(walkers.positions(person, t - dt)[0], mount)[0]) / (2 * dt)
-                rv.append((r, rate))
-            apart = (np.abs(rv[0][0] - rv[1][0]) >= px_range) | (np.abs(rv[0][1] - rv[1][1]) >= px_speed)
-            out += [bool(a) for a in apart]
-            gaps += [float(g) for g in np.abs(level[0] - level[1])]
-    return out, gaps
+                ranges.append(r)
+                rates.append(np.zeros(n) if p["standing"] else rate)  # signed: toward and away differ
+                speeds.append(np.abs(rates[-1]))
+                levels.append(room_mod.level_dB(10 ** (p["rcs_dBsm"] / 10), r, u, config.wavelength_m))
+            out["kind"] += [kind_of(ep["people"], vres)] * n
+            out["moving"] += [int(sum(v[k] >= 1.5 * vres for v in speeds)) for k in range(n)]
+            if len(ep["people"]) == 2:
+                apart = (np.abs(ranges[0] - ranges[1]) >= px_range) | (np.abs(rates[0] - rates[1]) >= px_speed)
+                out["apart"] += [bool(x) for x in apart]
+                out["gap_dB"] += [float(g) for g in np.abs(levels[0] - levels[1])]
+            else:
+                out["apart"] += [None] * n
+                out["gap_dB"] += [None] * n
+    return out
 
 
 def _world_manifests(run: Path) -> dict[str, Path]:
@@ -137,9 +125,9 @@ def main() -> None:
         data = load_json(manifest)
         world_dir = manifest.parent
         config = RadarConfig.from_dict(data["config"])
-        kinds, moving = _frames(manifest, config.velocity_resolution_m_s)
         world = draw_world(data["world"]["suite"], int(data["world"]["index"]))
-        apart, gaps = _pairs(manifest, config, world.room.mount, image)
+        frames_of = _frames(manifest, config, world.room.mount, image)
+        kinds, moving, apart, gaps = (frames_of[k] for k in ("kind", "moving", "apart", "gap_dB"))
         det = StaticChangeDetector.from_capture(world_dir / data["files"]["calibration"]["path"], margin_db=args.margin_db)
         gate = torch.cat([det.detect_capture(world_dir / e["path"]) for e in data["files"]["tests"]])
         row: dict[str, dict] = {}
@@ -170,8 +158,8 @@ def main() -> None:
                                 pairs[how]["apart" if a else "same_pixel"][int(pred[i])] += 1
                                 gap = gaps[i]
                                 assert gap is not None
-                                name = next(nm for nm, lo, hi in gap_bins if lo <= gap < hi)
-                                by_gap[how][name][int(pred[i])] += 1
+                                gap_bin = next(nm for nm, lo, hi in gap_bins if lo <= gap < hi)
+                                by_gap[how][gap_bin][int(pred[i])] += 1
         per_world[name] = {"frames": dict(Counter(kinds)), "occupancy_errors_summed_over_seeds":
                            {how: dict(c) for how, c in row.items()},
                            "gate_threshold_db": det.threshold_db}
@@ -182,8 +170,10 @@ def main() -> None:
                    "-o RUN; python scripts/design_errors.py RUN -o FILE",
         "method": args.method, "worlds": len(worlds), "seeds": sorted(seeds), "context_frames": context,
         "gate_margin_db": args.margin_db,
-        "kinds": "empty: nobody; walking: a walker at >= 1.5 Doppler bins of radial speed; slow: every walker "
-                 "under 1.5 bins; standing: only standing people",
+        "kinds": "per episode (scripts/static_change_figure.py kind_of): empty: nobody; walking: a walker whose "
+                 "speed along its track times |cos(track yaw)| is >= 1.5 Doppler bins; slow: every walker under "
+                 "that; standing: only standing people",
+        "moving": "per frame: walkers whose torso's radial speed at the frame's start is >= 1.5 Doppler bins",
         "occupancy_frames_per_seed": {k: frames[k] // n for k in KINDS},
         "occupancy_error_share": {how: {k: (missed[how][k] / frames[k] if frames[k] else None) for k in KINDS}
                                   for how in missed},

@@ -10,8 +10,8 @@ Steps:
 1. ``install``: the wheels brought along (``make gpu-wheels`` made them on a machine with
    internet) and the package, ``pip install --no-index --no-deps`` into a folder on PYTHONPATH;
 2. ``tests``: every CUDA variant of the test suite (``pytest -m '' -k cuda``);
-3. ``bench_twin``, ``bench_transforms``, ``bench_training``, ``bench_predict``, ``bench_steps``: the
-   benchmarks on CUDA, each with its CPU baseline or bare-network baseline measured in the same process;
+3. ``bench_twin``, ``bench_transforms``, ``bench_training``, ``bench_predict``: the benchmarks on CUDA,
+   each with its CPU baseline or bare-network baseline measured in the same process;
 4. ``reproduce``: ``radaraug reproduce`` at a size that fits the step's time (``--reproduce-size``
    items, epochs), tasks x methods x seeds as in full mode's main runs, with a projection of the
    full run (6,000 items x 15 epochs, every ablation) from its measured simulation and training
@@ -34,8 +34,8 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 
 #: (name, time limit in s). The sum stays under 10 minutes with the install's minute.
-STEPS = (("env", 30), ("install", 60), ("tests", 120), ("bench_twin", 90), ("bench_transforms", 30),
-         ("bench_training", 45), ("bench_predict", 30), ("bench_steps", 30), ("reproduce", 150))
+STEPS = (("env", 30), ("install", 60), ("tests", 150), ("bench_twin", 90), ("bench_transforms", 30),
+         ("bench_training", 45), ("bench_predict", 30), ("reproduce", 150))
 
 
 def _command(name: str, out: Path, args: argparse.Namespace) -> list[str]:
@@ -64,9 +64,8 @@ def _command(name: str, out: Path, args: argparse.Namespace) -> list[str]:
     if name == "bench_training":
         return cli + ["bench", "training", "--accelerator", "cuda", "--batch", "256", "--repeats", "10",
                       "--out", str(out / "training_cuda.json")]
-    if name in ("bench_predict", "bench_steps"):  # predict and export times for docs/your_sensor.md's GPU column
-        what = name.removeprefix("bench_")
-        return cli + ["bench", what, "--accelerator", "cuda", "-o", str(out / f"{what}_cuda.json")]
+    if name == "bench_predict":  # predict's time for docs/your_sensor.md's GPU column
+        return cli + ["bench", "predict", "--accelerator", "cuda", "-o", str(out / "predict_cuda.json")]
     if name == "reproduce":
         return [py, str(Path(__file__).resolve()), "--reproduce-only", "--out", str(out),
                 "--reproduce-size", args.reproduce_size]

@@ -2181,31 +2181,31 @@ FIGURES: list[Figure] = [
     *(Figure("docs/training.md", f"| {row} | {cells} |", _ERR,
              tuple(f"counting_confusion_by_moving_people_summed_over_seeds/gated/{moving}_moving/{true}/{p}"
                    for p in range(3)), f"| {row} | {{:d}} | {{:d}} | {{:d}} |")
-      for row, cells, moving, true in (("1 person, moving", "86 | 373 | 270", 1, 1),
-                                       ("1 person, not moving", "115 | 481 | 115", 0, 1),
-                                       ("2 people, both moving", "12 | 256 | 392", 2, 2),
-                                       ("2 people, one moving", "0 | 249 | 111", 1, 2),
-                                       ("2 people, neither moving", "0 | 182 | 238", 0, 2))),
+      for row, cells, moving, true in (("1 person, moving", "85 | 442 | 268", 1, 1),
+                                       ("1 person, not moving", "116 | 412 | 117", 0, 1),
+                                       ("2 people, both moving", "12 | 310 | 347", 2, 2),
+                                       ("2 people, one moving", "0 | 243 | 270", 1, 2),
+                                       ("2 people, neither moving", "0 | 134 | 124", 0, 2))),
     Figure("docs/training.md", "occupancy 0.878, + gate 0.949; counting 0.624, + gate 0.692, the round-3 figures",
            _ERR, tuple(f"run_results/{t}/{k}" for t in ("occupancy", "counting") for k in ("mean", "gated_mean")),
            "occupancy {:.3f}, + gate {:.3f}; counting {:.3f}, + gate {:.3f}"),
     Figure("docs/training.md", "the twin's own simulated validation is 0.684 for counting in the same run", _ERR,
            "run_results/counting/val_mean", "validation is {:.3f} for counting"),
     Figure("benchmarks/README.md", "occupancy missed: walkers 7.3 %, slow 31.3 %, standing 86.0 % (+ gate 5.5 / 10.5 / "
-           "11.0 %); counting + gate: 2 people both moving read as 1 on 256 of 660 frames", _ERR,
+           "11.0 %); counting + gate: 2 people both moving read as 1 on 310 of 669 frames", _ERR,
            (*(f"occupancy_error_share/{h}/{k}" for h in ("network", "gated") for k in ("walking", "slow", "standing")),
             "counting_confusion_by_moving_people_summed_over_seeds/gated/2_moving/2/1"),
            lambda *v: f"occupancy missed: walkers {100 * v[0]:.1f} %, slow {100 * v[1]:.1f} %, standing "
            f"{100 * v[2]:.1f} % (+ gate {100 * v[3]:.1f} / {100 * v[4]:.1f} / {100 * v[5]:.1f} %); counting + gate: "
-           f"2 people both moving read as 1 on {v[6]:d} of 660 frames"),
-    Figure("docs/training.md", "In every one of the 660 frames of two moving people the two torsos sit at least one "
+           f"2 people both moving read as 1 on {v[6]:d} of 669 frames"),
+    Figure("docs/training.md", "In every one of the 669 frames of two moving people the two torsos sit at least one "
            "pixel", _ERR, ("counting_two_moving_people_by_image_separation_summed_over_seeds/gated/same_pixel/0",
                            "counting_two_moving_people_by_image_separation_summed_over_seeds/gated/same_pixel/1",
                            "counting_two_moving_people_by_image_separation_summed_over_seeds/gated/same_pixel/2"),
-           lambda *v: "In every one of the 660 frames of two moving people the two torsos sit at least one pixel"
-           if sum(v) == 0 else f"In all but {sum(v)} of the 660 frames"),
-    Figure("docs/training.md", "within 6 dB of each other, 168 of 456 such frames are read as one; 6–15 dB apart, "
-           "88 of 204; no frame is further apart", _ERR,
+           lambda *v: "In every one of the 669 frames of two moving people the two torsos sit at least one pixel"
+           if sum(v) == 0 else f"In all but {sum(v)} of the 669 frames"),
+    Figure("docs/training.md", "within 6 dB of each other, 198 of 441 such frames are read as one; 6–15 dB apart, "
+           "112 of 228; no frame is further apart", _ERR,
            tuple(f"counting_two_moving_people_by_level_gap_summed_over_seeds/gated/{g}/{k}"
                  for g in ("gap_under_6_dB", "gap_6_to_15_dB", "gap_over_15_dB") for k in range(3)),
            lambda *v: f"within 6 dB of each other, {v[1]} of {sum(v[0:3])} such frames are read as one; 6–15 dB "

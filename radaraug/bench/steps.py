@@ -25,12 +25,13 @@ def _seconds(fn: Any) -> float:
     return time.perf_counter() - start
 
 
-def run_steps_benchmark(*, frames: int = 100, device: str = "cpu", out: str | Path | None = None) -> dict[str, Any]:
+def run_steps_benchmark(*, frames: int = 100, out: str | Path | None = None) -> dict[str, Any]:
     """Time ``radaraug calibrate``'s fit and ``radaraug export`` at the board's preset and the demo's classifier.
+
+    Both run on the CPU, as the commands do (neither takes ``--accelerator``).
 
     Args:
         frames: empty-room frames (the board's 10 s at 10 frames/s by default).
-        device: torch device of the classifier (the calibration fit runs where ``calibrate`` runs it, on the CPU).
         out: optional JSON file to write.
     """
     import importlib.util
@@ -43,7 +44,7 @@ def run_steps_benchmark(*, frames: int = 100, device: str = "cpu", out: str | Pa
     from radaraug.training.models import resnet18
 
     cfg = RadarConfig.bgt60tr13c()
-    result: dict[str, Any] = {"benchmark": "steps", "frame_shape": list(cfg.frame_shape), "device": device}
+    result: dict[str, Any] = {"benchmark": "steps", "frame_shape": list(cfg.frame_shape), "device": "cpu"}
     with tempfile.TemporaryDirectory() as tmp:
         empty = Path(tmp) / "empty.h5"
         sensor = open_device("virtual", cfg, scene="corridor", seed=0, realtime=False)
@@ -67,8 +68,7 @@ def run_steps_benchmark(*, frames: int = 100, device: str = "cpu", out: str | Pa
 
         torch.manual_seed(0)
         chain = ChainSpec({}, "floor_relative", 1, (-5.0, 30.0), (64, 32))  # the demo's chain and image size
-        clf = RadarClassifier(resnet18(2), arch="resnet18", task="occupancy", config=cfg, chain=chain,
-                              context_frames=8).to(torch.device(device))
+        clf = RadarClassifier(resnet18(2), arch="resnet18", task="occupancy", config=cfg, chain=chain, context_frames=8)
         x = check_frames(clf, n=32)
         clf.probabilities(x)  # warm-up
         batch_s = _seconds(lambda: clf.probabilities(x))
@@ -81,7 +81,5 @@ def run_steps_benchmark(*, frames: int = 100, device: str = "cpu", out: str | Pa
         result["export_formats_skipped"] = sorted(set(FORMATS) - set(formats))
     result.update({"torch_threads": torch.get_num_threads(), "torch_version": torch.__version__,
                    "cpu": platform.processor() or platform.machine()})
-    if torch.device(device).type == "cuda":
-        result["gpu"] = torch.cuda.get_device_name(torch.device(device))
     write_figures(out, result)
     return result

@@ -46,7 +46,7 @@ def open_device(
     given = [name for name, value in (("scene", scene), ("profile", profile), ("seed", seed), ("realtime", realtime))
              if value is not None]
     if given:
-        raise ConfigError(f"{', '.join(given)}: only for the virtual sensor (device 'virtual'), not for a board "
+        raise ConfigError(f"{', '.join(given)}: only for the virtual sensor (--board virtual), not for a board "
                           f"({spec!r})")
     return SdkDevice(config or RadarConfig.bgt60tr13c(), serial=None if spec == "auto" else spec)
 

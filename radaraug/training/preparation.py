@@ -163,7 +163,7 @@ def prepare(method: Method, calibration: str | None, source: str | None, twin: T
         method: the run's method.
         calibration: the empty-room capture, a calibration record (JSON: what it holds is used), or None.
         source: the capture whose radar config the twin simulates (the calibration capture, else a test file;
-            None: the calibration record's config).
+            None: the calibration's, capture or record).
         twin: the simulated splits' spec.
         image: the network input's spec (whether to excise).
         cache_dir: where the fits are cached.
@@ -185,8 +185,9 @@ def prepare(method: Method, calibration: str | None, source: str | None, twin: T
 
     has_capture = calibration is not None and not is_calibration_json(calibration)
     record = None if calibration is None or has_capture else load_record(calibration)
-    if source is not None:
-        with open_capture(source) as cap:
+    config_from = source if source is not None else calibration if has_capture else None
+    if config_from is not None:
+        with open_capture(config_from) as cap:
             config = cap.config
     elif record is not None and record.config is not None:
         config = record.config

@@ -236,6 +236,8 @@ def _test_sets(out: Path, settings: ReproduceSettings, calibration: str | None,
                test: Sequence[dict[str, Any]] | None, names: Sequence[str], progress: bool) -> list[TestSet]:
     """The user's captures, or the generated held-out sets named in ``names``."""
     if test is not None:
+        if not test:
+            raise ConfigError("reproduce: the test set is empty; give labelled test captures (--test PATH[:COUNT])")
         if calibration is None:
             raise ConfigError("reproduce --test needs --calibration: an empty-room capture recorded like the test "
                               "captures (CDR and the twin's noise fit calibrate on it; without one they would "

@@ -72,3 +72,24 @@ def test_a_randomization_override_keeps_the_recipes_other_keys(captures, tmp_pat
     rz = ch._datamodule.simulated_dataset().randomization
     assert rz.room.variants == 1  # the override
     assert rz.catalog["spur_tone"].probability == 0 == rz.catalog["vibrating_clutter"].probability  # the recipe's
+
+
+def test_prepare_takes_the_config_from_the_calibration_and_reproduce_refuses_no_test(captures, tmp_path) -> None:
+    from radaraug.errors import ConfigError
+    from radaraug.io import open_capture
+    from radaraug.training import RT, prepare
+    from radaraug.training.reproduce import reproduce
+
+    cal, _ = captures
+    with open_capture(cal) as cap:
+        config = cap.config
+    twin, image = TwinSplits(train_items=2, val_items=0, randomization=False), ImageSpec(size=[32, 16])
+    # no test capture to read the config from: the calibration capture's (or record's) serves
+    assert prepare(RT(), str(cal), None, twin, image, tmp_path, dr_seed=0, simulate=False).config == config
+    record = tmp_path / "cdr.json"
+    CalibratedDR.fit(str(cal), progress=False).save(record)
+    assert prepare(RT(), str(record), None, twin, image, tmp_path, dr_seed=0, simulate=False).config == config
+    with pytest.raises(ConfigError, match="no radar config"):
+        prepare(RT(), None, None, twin, image, tmp_path, dr_seed=0, simulate=False)
+    with pytest.raises(ConfigError, match="the test set is empty"):
+        reproduce(tmp_path / "out", quick=True, calibration=str(cal), test=[], progress=False)
