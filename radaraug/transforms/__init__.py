@@ -17,6 +17,7 @@ from radaraug.transforms.per_item import augmentation_generator
 from radaraug.transforms.spectral import (
     CombineRx,
     DopplerFFT,
+    InterferenceExcision,
     RangeDoppler,
     RangeFFT,
     RemoveMean,
@@ -34,6 +35,7 @@ __all__ = [
     "RadarCompose",
     "RemoveMean",
     "StaticClutterRemoval",
+    "InterferenceExcision",
     "RangeFFT",
     "DopplerFFT",
     "RangeDoppler",

@@ -60,6 +60,27 @@ class StaticClutterRemoval(RadarTransform):
     kernel = staticmethod(F.static_clutter_removal)
 
 
+class InterferenceExcision(RadarTransform):
+    """Replace the chirps an interferer's burst hit by the mean of the frame's other chirps (before the RD FFTs).
+
+    Deterministic; raw cubes ``(..., rx, chirps, samples)`` in and out. See
+    :func:`~radaraug.transforms.functional.interference_excision` and docs/transforms.md.
+
+    Args:
+        threshold_db: how far a chirp's moving power must stand over the frame's median chirp.
+    """
+
+    input_layout = RAW_LAYOUT
+    kernel = staticmethod(F.interference_excision)
+    spec_fields = ("threshold_db",)
+
+    def __init__(self, threshold_db: float = 6.0) -> None:
+        super().__init__()
+        if not threshold_db > 0:
+            raise InputTensorError(f"InterferenceExcision threshold_db must be > 0, got {threshold_db}")
+        self.threshold_db = float(threshold_db)
+
+
 class RangeFFT(_WindowedFFT):
     """Range FFT: real ``(..., rx, chirps, samples)`` -> complex ``(..., rx, chirps, N // 2)``, dBFS scaled.
 

@@ -19,6 +19,7 @@ from radaraug.transforms.functional._image import clip_normalize, colormap, colo
 from radaraug.transforms.functional._spectral import (
     combine_rx,
     doppler_fft,
+    interference_excision,
     range_doppler,
     range_fft,
     remove_mean,
@@ -29,6 +30,7 @@ from radaraug.transforms.functional._spectral import (
 __all__ = [
     "remove_mean",
     "static_clutter_removal",
+    "interference_excision",
     "range_fft",
     "doppler_fft",
     "range_doppler",

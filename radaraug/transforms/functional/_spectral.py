@@ -69,6 +69,37 @@ def static_clutter_removal(x: torch.Tensor) -> torch.Tensor:
     return x - x.mean(dim=-2, keepdim=True)
 
 
+def interference_excision(x: torch.Tensor, threshold_db: float = 6.0) -> torch.Tensor:
+    """Chirps hit by an interferer's burst replaced by the mean of the frame's other chirps.
+
+    A crossing FMCW interferer sweeps the IF band within a few chirps and raises every range bin there;
+    the Doppler FFT then smears it over the whole row. A chirp is flagged when its power after the
+    frame's mean chirp is removed (RX and samples averaged) exceeds the frame's median chirp by
+    ``threshold_db``: people and the room change slowly from chirp to chirp, a burst does not.
+
+    Args:
+        x: raw cube ``(..., rx, chirps, samples)``, real floating.
+        threshold_db: how far over the median chirp a chirp must stand to be replaced.
+
+    Examples:
+        >>> x = torch.ones(1, 4, 2); x[0, 1] = 5.0
+        >>> interference_excision(x)[0].tolist()
+        [[1.0, 1.0], [1.0, 1.0], [1.0, 1.0], [1.0, 1.0]]
+    """
+    x = check_tensor(x, f"interference_excision expects {RAW_LAYOUT}", finite=False)
+    if x.ndim < 3:
+        raise InputTensorError(f"interference_excision expects {RAW_LAYOUT}, got shape {tuple(x.shape)}")
+    mean = x.mean(dim=-2, keepdim=True)  # (..., rx, 1, samples): what does not change within the frame
+    moving = x - mean
+    power = moving.square().mean(dim=(-3, -1))  # (..., chirps)
+    median = power.median(dim=-1, keepdim=True).values
+    hit = (power > median * 10 ** (float(threshold_db) / 10))[..., None, :, None]  # (..., 1, chirps, 1)
+    # The replacement: the mean of the chirps not hit (the bursts would leave their share in the plain mean).
+    keep = (~hit).to(x.dtype)
+    clean_mean = (x * keep).sum(dim=-2, keepdim=True) / keep.sum(dim=-2, keepdim=True).clamp_min(1)
+    return torch.where(hit, clean_mean, x)  # other chirps exactly as they came
+
+
 def range_fft(x: torch.Tensor, window: str = "hann") -> torch.Tensor:
     """Range FFT -> complex ``(..., rx, chirps, N // 2)``: windowed, divided by the window sum, positive bins.
 
