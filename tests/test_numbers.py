@@ -650,10 +650,10 @@ FIGURES: list[Figure] = [
     Figure("benchmarks/README.md", "**27 of 27 named, 27 of 27 errors at least halved**", "diagnose_generator_b_cpu.json",
            ("variants/correct", "variants/cases", "variants/halved", "variants/cases"),
            "**{:d} of {:d} named, {:d} of {:d} errors at least halved**"),
-    Figure("benchmarks/README.md", "27 of the 36 run before the session ended, 27 of 27 named",
+    Figure("benchmarks/README.md", "27 of the 36 were run, 27 of 27 named",
            "diagnose_generator_b_cpu.json",
            tuple(f"seeds_final_code/{s}/{k}" for s in (1, 2) for k in ("cases_run", "cases_in_table", "correct")),
-           lambda r1, t1, c1, r2, t2, c2: f"{r1:d} of the {t1:d} run before the session ended, {c1:d} of {r1:d} named"
+           lambda r1, t1, c1, r2, t2, c2: f"{r1:d} of the {t1:d} were run, {c1:d} of {r1:d} named"
            if (r1, t1, c1) == (r2, t2, c2) else "seeds 1 and 2 differ"),
     Figure("benchmarks/README.md", "(4.4 -> 3.5 dB at A:", "diagnose_generator_b_cpu.json",
            ("seeds_final_code/1/rows/3/error_before_dB", "seeds_final_code/1/rows/3/error_after_dB"),
