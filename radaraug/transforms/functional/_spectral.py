@@ -87,11 +87,8 @@ def interference_excision(x: torch.Tensor, threshold_db: float = 6.0) -> torch.T
         [[1.0, 1.0], [1.0, 1.0], [1.0, 1.0], [1.0, 1.0]]
     """
     x = check_tensor(x, f"interference_excision expects {RAW_LAYOUT}", finite=False)
-    if x.ndim < 3:
-        raise InputTensorError(f"interference_excision expects {RAW_LAYOUT}, got shape {tuple(x.shape)}")
-    mean = x.mean(dim=-2, keepdim=True)  # (..., rx, 1, samples): what does not change within the frame
-    moving = x - mean
-    power = moving.square().mean(dim=(-3, -1))  # (..., chirps)
+    # What changes from chirp to chirp (the frame's mean chirp removed), its power per chirp over RX and samples
+    power = static_clutter_removal(x).square().mean(dim=(-3, -1))  # (..., chirps)
     median = power.median(dim=-1, keepdim=True).values
     hit = (power > median * 10 ** (float(threshold_db) / 10))[..., None, :, None]  # (..., 1, chirps, 1)
     # The replacement: the mean of the chirps not hit (the bursts would leave their share in the plain mean).
