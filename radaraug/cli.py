@@ -159,6 +159,19 @@ ACCELERATORS = ("auto", "cpu", "cuda")
 """``--accelerator`` values (Lightning's word; ``auto``: cuda where there is one, else cpu)."""
 
 
+def _db_or_off(text: str) -> float | str:
+    """A positive dB threshold, or ``"off"``."""
+    if text.strip().lower() == "off":
+        return "off"
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a threshold in dB or 'off', got {text!r}") from None
+    if not value > 0:
+        raise argparse.ArgumentTypeError(f"the threshold must be > 0 dB, got {text!r}")
+    return value
+
+
 def _device_arg(text: str, option: str = "--accelerator") -> str:
     """Check a torch device that must exist on this machine (``cpu``, ``cuda``, ``cuda:N``)."""
     import torch
@@ -427,9 +440,13 @@ def _cmd_reproduce(args: argparse.Namespace) -> Result:
     _check_output(args, args.output, folder=True, owned=REPRODUCE_OUTPUTS)
     with _stdout_for(args):
         settings = None
+        changes: dict[str, Any] = {}
         if args.representation is not None:
-            base = ReproduceSettings.quick() if args.quick else ReproduceSettings.full()
-            settings = replace(base, representation=args.representation)
+            changes["representation"] = args.representation
+        if args.excise_interference_db is not None:
+            changes["excise_interference_db"] = None if args.excise_interference_db == "off" else args.excise_interference_db
+        if changes:
+            settings = replace(ReproduceSettings.quick() if args.quick else ReproduceSettings.full(), **changes)
         report = reproduce(args.output, quick=args.quick, seeds=args.seeds, calibration=args.calibration,
                            test=test, ablation=not args.no_ablation, accelerator=accelerator, progress=True,
                            cdr_floor=args.cdr_floor, test_dr=args.test_dr, settings=settings,
@@ -784,6 +801,10 @@ def build_parser() -> argparse.ArgumentParser:
     rep.add_argument("--representation", choices=("floor_relative", "paper"), default=None,
                      help="network input of the main runs: floor_relative (default: each range row referenced to "
                      "its Doppler median, zero Doppler blanked) or paper (the clipped dBFS map)")
+    rep.add_argument("--excise-interference-db", type=_db_or_off, default=None, metavar="DB|off",
+                     help="replace each frame's chirps whose moving power stands DB over its median chirp (another "
+                     "radar's burst) before the RD FFTs, in training and test alike, or off (default: the recipes'; "
+                     "docs/training.md)")
     rep.add_argument("--test-sets", default=None,
                      help="generated test sets when no --test is given, comma-separated: proxy (the twin in "
                      "another room), independent (a NumPy generator sharing no code with the twin), standing (the "

@@ -164,10 +164,13 @@ def main() -> None:
                            {how: dict(c) for how, c in row.items()},
                            "gate_threshold_db": det.threshold_db}
     n = max(len(seeds), 1)
+    interference = report["settings"].get("excise_interference_db")  # absent from runs before the option: none
     record = {
         "benchmark": "heldout_design_errors", "kind": "validation (the design suite is looked at)",
         "command": "radaraug reproduce --quick --seeds 3 --methods randomdr --test-sets design --worlds 8 --no-ablation "
+                   f"--excise-interference-db {'off' if interference is None else interference} "
                    "-o RUN; python scripts/design_errors.py RUN -o FILE",
+        "excise_interference_db": interference,
         "method": args.method, "worlds": len(worlds), "seeds": sorted(seeds), "context_frames": context,
         "gate_margin_db": args.margin_db,
         "kinds": "per episode (scripts/static_change_figure.py kind_of): empty: nobody; walking: a walker whose "
@@ -181,7 +184,7 @@ def main() -> None:
         "counting_confusion_by_moving_people_summed_over_seeds": {
             how: {f"{k}_moving": cm[k].tolist() for k in range(3)} for how, cm in by_moving.items()},
         "run_results": {task: {k: r[k] for k in ("mean", "worst", "worst_world", "gated_mean", "gated_worst",
-                                                   "single_frame_mean", "val_mean")}
+                                                   "single_frame_mean", "val_mean", "per_world")}
                         for task, methods in report["suites"]["design"]["results"].items()
                         for name, r in methods.items() if name == args.method},
         "counting_two_moving_people_by_image_separation_summed_over_seeds": {

@@ -99,6 +99,18 @@ def test_reproduce_accelerator_reaches_lightning(monkeypatch, tmp_path) -> None:
         build_parser().parse_args(["reproduce", "--accelerator", "gpu"])
 
 
+def test_reproduce_interference_excision_off_overrides_the_recipe(monkeypatch, tmp_path) -> None:
+    import radaraug.training.reproduce as rep
+
+    seen = []
+    monkeypatch.setattr(rep, "reproduce", lambda out, **kw: seen.append(kw["settings"]) or _reached())
+    assert main(["reproduce", "--quick", "--excise-interference-db", "off", "-o", str(tmp_path / "a")]) == 3
+    assert seen[-1].excise_interference_db is None and seen[-1].epochs == rep.ReproduceSettings.quick().epochs
+    for bad in ("0", "-3", "six"):
+        with pytest.raises(SystemExit):
+            build_parser().parse_args(["reproduce", "--excise-interference-db", bad, "-o", "x"])
+
+
 # --------------------------------------------------------------------------- 2. --config / --radar-config
 @pytest.mark.parametrize("name", sorted(_subparsers()))
 def test_config_is_a_recipe_and_radar_config_a_radar_json(name) -> None:
@@ -385,6 +397,7 @@ REPRODUCE_FLAGS = {  # flag -> (extra arguments, the value expected at the recip
     "--test": ([], None),
     "--cdr-floor": (["--cdr-floor", "empirical", "--methods", "cdr"], "empirical"),
     "--representation": (["--representation", "paper"], "paper"),
+    "--excise-interference-db": (["--excise-interference-db", "7.5"], 7.5),
     "--test-dr": (["--test-dr"], True),
     "--accelerator": (["--accelerator", "cpu"], "cpu"),
 }

@@ -98,10 +98,14 @@ class MatmulChain(nn.Module):
         self.register_buffer("resize_h", _resize_matrix(samples // 2, int(size[0])).float())
         self.register_buffer("resize_w", _resize_matrix(chirps, int(size[1])).float())
         self.median_index = (chirps - 1) // 2  # torch's lower median
+        self.excises_interference = spec.interference_db is not None
+        self.interference_ratio = 10.0 ** (float(spec.interference_db or 0.0) / 10.0)
 
     def forward(self, frames: torch.Tensor) -> torch.Tensor:
         """Raw frames ``(B, rx, chirps, samples)`` float32 -> viridis images ``(B, 3, H, W)`` in [0, 1]."""
         x = frames.float()
+        if self.excises_interference:
+            x = self._excise_interference(x)
         a_re = x @ self.rng_re.T  # (B, rx, chirps, range)
         a_im = x @ self.rng_im.T
         o_re = self.dop_re @ a_re - self.dop_im @ a_im  # (B, rx, doppler, range)
@@ -116,3 +120,13 @@ class MatmulChain(nn.Module):
         idx = (u * n).long().clamp(0, n - 1)
         img = self.lut[idx].permute(0, 3, 1, 2)  # (B, 3, range, doppler)
         return self.resize_h @ img @ self.resize_w.T
+
+    def _excise_interference(self, x: torch.Tensor) -> torch.Tensor:
+        """:func:`~radaraug.transforms.functional.interference_excision` with a sort for the median (ONNX has no median)."""
+        moving = x - x.mean(dim=-2, keepdim=True)
+        power = (moving * moving).mean(dim=(1, 3))  # (B, chirps)
+        median = torch.sort(power, dim=-1).values[:, self.median_index:self.median_index + 1]
+        hit = (power > median * self.interference_ratio)[:, None, :, None]  # (B, 1, chirps, 1)
+        keep = (~hit).float()
+        clean_mean = (x * keep).sum(dim=-2, keepdim=True) / keep.sum(dim=-2, keepdim=True).clamp_min(1.0)
+        return torch.where(hit, clean_mean, x)

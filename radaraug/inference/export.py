@@ -101,7 +101,8 @@ def export(classifier: RadarClassifier, out_dir: str | os.PathLike, *, formats: 
                   "units": "SDK floats 2*counts/(2**adc_bits-1) - 1",
                   "shape": [None, cfg.num_rx, cfg.num_chirps_per_frame, cfg.num_samples_per_chirp]},
         "output": {"name": "probabilities", "layout": "(batch, classes)", "classes": list(classifier.class_names)},
-        "chain": "range-Doppler (DFT matrices), dB, RX mean power, floor-relative map, excision, clip, viridis, "
+        "chain": ("interference excision, " if classifier.chain.interference_db is not None else "")
+                 + "range-Doppler (DFT matrices), dB, RX mean power, floor-relative map, excision, clip, viridis, "
                  "resize: all inside the export",
         "not_inside": "the causal smoothing over frames and the static-change gate (run them on the host: "
                       "docs/predict.md)",

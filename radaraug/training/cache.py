@@ -50,7 +50,8 @@ def _jsonable(value: Any) -> Any:
     return repr(value)
 
 
-def cache_spec(dataset: SimulatedRadarDataset, indices: Sequence[int]) -> dict[str, Any]:
+def cache_spec(dataset: SimulatedRadarDataset, indices: Sequence[int], *,
+               interference_db: float | None = None) -> dict[str, Any]:
     """Everything the cached maps of ``dataset[indices]`` depend on (JSON types)."""
     idx = list(indices)
     receiver = dataset.twin_options.get("receiver")
@@ -69,7 +70,7 @@ def cache_spec(dataset: SimulatedRadarDataset, indices: Sequence[int]) -> dict[s
         # a hash, not the list: a 100k-item index list would bloat every file's attributes
         "indices": {"count": len(idx), "first": idx[0] if idx else None, "last": idx[-1] if idx else None,
                     "sha1": hashlib.sha1(np.asarray(idx, dtype=np.int64).tobytes()).hexdigest()},
-        "chain": rd_db_chain().chain_spec(),
+        "chain": rd_db_chain(interference_db).chain_spec(),
         "db_convention": DB_CONVENTION,
     }
 
@@ -83,6 +84,7 @@ def build_map_cache(
     num_workers: int = 0,
     progress: bool = True,
     name: str = "sim",
+    interference_db: float | None = None,
 ) -> Path:
     """The cache file of ``dataset[indices]``: reused when it exists, else simulated and written.
 
@@ -96,12 +98,13 @@ def build_map_cache(
             here, and inherited by them).
         progress: show a progress bar.
         name: file name prefix.
+        interference_db: the map chain's interference excision threshold (:func:`~radaraug.training.rd_db_chain`).
 
     Returns:
         ``cache_dir/<name>-<key>.h5``.
     """
     return build_map_caches(dataset, {name: indices}, cache_dir, batch_size=batch_size, num_workers=num_workers,
-                            progress=progress)[name]
+                            progress=progress, interference_db=interference_db)[name]
 
 
 def build_map_caches(
@@ -112,13 +115,15 @@ def build_map_caches(
     batch_size: int = 16,
     num_workers: int = 0,
     progress: bool = True,
+    interference_db: float | None = None,
 ) -> dict[str, Path]:
     """One cache file per split (``{name: indices}``), as :func:`build_map_cache`, the missing ones in one pass.
 
     One DataLoader simulates every missing split, so its workers set up each room variant once.
     """
     cache_dir = Path(cache_dir)
-    paths = {name: cache_dir / f"{name}-{cache_key(cache_spec(dataset, idx))}.h5" for name, idx in splits.items()}
+    paths = {name: cache_dir / f"{name}-{cache_key(cache_spec(dataset, idx, interference_db=interference_db))}.h5"
+             for name, idx in splits.items()}
     todo = [name for name, path in paths.items() if not path.is_file() and len(splits[name])]
     if not todo:
         return paths
@@ -134,7 +139,7 @@ def build_map_caches(
     order.sort(key=lambda o: -1 if (v := dataset.room_variant(o[2])) is None else v)
     loader = DataLoader(Subset(sim, [i for _, _, i in order]), batch_size=batch_size, num_workers=num_workers,
                         persistent_workers=False)
-    chain = rd_db_chain()
+    chain = rd_db_chain(interference_db)
     tqdm = lazy_import("tqdm.auto", feature="progress bars").tqdm
     partials = {name: temporary_name(paths[name]) for name in todo}
     total = len(order)
@@ -142,7 +147,7 @@ def build_map_caches(
         files = {name: h5py.File(partials[name], "w") for name in todo}
         try:
             for name, f in files.items():
-                spec = cache_spec(dataset, splits[name])
+                spec = cache_spec(dataset, splits[name], interference_db=interference_db)
                 f.attrs.update({"format": CACHE_FORMAT, "version": CACHE_VERSION, "key": cache_key(spec),
                                 "spec": json.dumps(spec), "db_convention": DB_CONVENTION})
                 f.create_dataset("index", data=np.asarray(list(splits[name]), dtype=np.int64))

@@ -24,8 +24,8 @@ from radaraug.files import atomic_write_bytes, regular_file_size
 
 FORMAT = "radaraug-classifier"
 """The ``format`` field of every classifier file."""
-FORMAT_VERSION = 1
-"""Bumped when the layout changes; a file of a newer version is refused."""
+FORMAT_VERSION = 2
+"""Bumped when the layout changes; a file of a newer version is refused (2: the chain's ``interference_db``)."""
 
 if TYPE_CHECKING:
     from radaraug.config import RadarConfig
@@ -43,6 +43,7 @@ class ChainSpec:
         clip_range_db: the ``[vmin, vmax]`` the training maps were clipped to.
         image_size: the network input ``(H, W)``, or None for the RD map's own size.
         excise: bool ``(range, doppler)`` mask of the calibration's persistent cells, or None.
+        interference_db: the interference excision's threshold before the RD FFTs, or None (none).
     """
 
     range_doppler: dict[str, Any]
@@ -51,13 +52,17 @@ class ChainSpec:
     clip_range_db: tuple[float, float]
     image_size: tuple[int, int] | None
     excise: torch.Tensor | None = None
+    interference_db: float | None = None
 
     def eager(self) -> nn.Sequential:
         """The chain from the library's transforms: raw frames ``(B, rx, chirps, samples)`` -> ``(B, 3, H, W)``."""
         from radaraug.training.pipeline import image_chain
-        from radaraug.transforms import RadarCompose, RangeDoppler, ToDecibels
+        from radaraug.transforms import InterferenceExcision, RadarCompose, RangeDoppler, ToDecibels
 
-        rd = RadarCompose([RangeDoppler(**self.range_doppler), ToDecibels()])  # rd_db_chain() with these windows
+        steps: list[nn.Module] = [RangeDoppler(**self.range_doppler), ToDecibels()]  # rd_db_chain() with these windows
+        if self.interference_db is not None:
+            steps.insert(0, InterferenceExcision(self.interference_db))
+        rd = RadarCompose(steps)
         return nn.Sequential(rd, *image_chain(*self.clip_range_db, self.image_size, self.representation, self.excise,
                                               self.blank_zero_doppler))
 
@@ -66,7 +71,8 @@ class ChainSpec:
         return {"range_doppler": dict(self.range_doppler), "representation": self.representation,
                 "blank_zero_doppler": int(self.blank_zero_doppler), "clip_range_db": [float(v) for v in self.clip_range_db],
                 "image_size": None if self.image_size is None else [int(v) for v in self.image_size],
-                "excise": None if self.excise is None else self.excise.to(torch.bool).cpu()}
+                "excise": None if self.excise is None else self.excise.to(torch.bool).cpu(),
+                "interference_db": None if self.interference_db is None else float(self.interference_db)}
 
     @classmethod
     def from_dict(cls, data: dict[str, Any], *, source: str) -> ChainSpec:
@@ -74,10 +80,12 @@ class ChainSpec:
         try:
             size = data["image_size"]
             excise = data["excise"]
+            interference = data.get("interference_db")  # absent from files of before the excision: none
             spec = cls(dict(data["range_doppler"]), str(data["representation"]), int(data["blank_zero_doppler"]),
                        (float(data["clip_range_db"][0]), float(data["clip_range_db"][1])),
                        None if size is None else (int(size[0]), int(size[1])),
-                       None if excise is None else torch.as_tensor(excise, dtype=torch.bool))
+                       None if excise is None else torch.as_tensor(excise, dtype=torch.bool),
+                       None if interference is None else float(interference))
         except (KeyError, TypeError, ValueError, IndexError) as e:
             raise CheckpointError(f"{source}: the test chain it records is incomplete or malformed ({e!r})") from None
         return spec
@@ -106,7 +114,8 @@ def classifier_record(model: Any, datamodule: Any, *, gate: StaticChangeDetector
     chain = ChainSpec(RangeDoppler().extra_spec(),  # the chain rd_db_chain() builds
                       str(spec.representation), int(spec.blank_zero_doppler),
                       (float(datamodule.clip[0]), float(datamodule.clip[1])),
-                      None if size is None else (int(size[0]), int(size[1])), datamodule.excise)
+                      None if size is None else (int(size[0]), int(size[1])), datamodule.excise,
+                      spec.excise_interference_db)
     info = {"method": datamodule.method.name, "train_items": int(datamodule.twin.train_items),
             "sim_seed": int(datamodule.twin.seed), "dr_seed": int(datamodule.hparams["seed"]), **(provenance or {})}
     return file_record(task=str(model.hparams["task"]), arch=arch, net=net, config=datamodule.config, chain=chain,

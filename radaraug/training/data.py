@@ -30,7 +30,7 @@ from radaraug.training.inputs import check_inputs
 from radaraug.training.methods import Method, RandomDR, method_from
 from radaraug.training.pipeline import estimate_clip_range, image_chain, is_calibration_json, rd_db_chain
 from radaraug.training.preparation import NOISE_FIT_SKIPPED, ImageSpec, Prepared, TwinSplits, prepare
-from radaraug.transforms import CalibratedDR
+from radaraug.transforms import CalibratedDR, RadarCompose
 
 #: Test frames per people count of the held-out proxy generated when a run names no test captures.
 PROXY_FRAMES_PER_COUNT = 120
@@ -239,7 +239,8 @@ class RadarDataModule(L.LightningDataModule):
             splits = {"train": range(rank, n_train - n_train % world, world),
                       "val": range(n_train + rank, n_train + n_val, world)}
             built = build_map_caches(p.simulated, splits, self.hparams["cache_dir"], num_workers=self.twin.workers,
-                                     progress=self.twin.progress and rank == 0)
+                                     progress=self.twin.progress and rank == 0,
+                                     interference_db=self.image_spec.excise_interference_db)
             train = CachedMaps(built["train"])
             self.train_class_counts = torch.bincount(label_of(train.counts, self.task),
                                                      minlength=len(self.class_names))
@@ -259,13 +260,13 @@ class RadarDataModule(L.LightningDataModule):
             count = entry.get("count")
             if "dataset" not in entry:
                 tests.append(RadarCaptureDataset(entry["path"], label="count" if count is None else int(count),
-                                                 transform=rd_db_chain()))
+                                                 transform=self.rd_chain()))
             elif entry["dataset"] not in given_used:
                 given_used.add(entry["dataset"])
                 # A copy with the module's RD chain: the user's dataset object keeps its own (no)
                 # transform (the copy opens its own file handles: RadarCaptureDataset.__getstate__).
                 given = copy.copy(self._given_tests[entry["dataset"]])
-                given.transform = rd_db_chain()
+                given.transform = self.rd_chain()
                 tests.append(given)
         for t in tests:
             if t.config != p.config:
@@ -281,6 +282,10 @@ class RadarDataModule(L.LightningDataModule):
             folder = self.trainer.log_dir  # every rank asks: Lightning broadcasts it
             if self.trainer.global_rank == 0:
                 self.write_run_files(folder)
+
+    def rd_chain(self) -> RadarCompose:
+        """Raw frames -> per-RX dB maps, as this module's simulated maps were made (captures and twin alike)."""
+        return rd_db_chain(self.image_spec.excise_interference_db)
 
     def _image_chain(self) -> torch.nn.Module:
         assert self.clip is not None

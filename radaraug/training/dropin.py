@@ -21,7 +21,6 @@ from radaraug import recipes
 from radaraug.config import RadarConfig
 from radaraug.errors import ConfigError
 from radaraug.training.methods import Method
-from radaraug.training.pipeline import rd_db_chain
 
 
 @dataclasses.dataclass
@@ -105,7 +104,7 @@ def training_chains(calibration: str | os.PathLike, method: str | Method = "rand
     dm = RadarDataModule.from_recipe(kw if given is None else kw | {"method": given})
     dm.setup("fit")
     assert dm.image is not None and dm.config is not None and dm.clip is not None
-    rd = rd_db_chain()
+    rd = dm.rd_chain()
     image: list[nn.Module] = list(dm.image.children())
     train: list[nn.Module] = [rd, *([dm.dr] if dm.dr is not None else []), *image]
     return TrainingChains(train=nn.Sequential(*train), test=nn.Sequential(rd, *image), config=dm.config,

@@ -19,6 +19,7 @@ from radaraug.transforms import (
     Colormap,
     CombineRx,
     FloorRelative,
+    InterferenceExcision,
     RadarCompose,
     RangeDoppler,
     Resize,
@@ -35,9 +36,17 @@ def is_calibration_json(calibration: str | os.PathLike) -> bool:
     return str(calibration).lower().endswith(".json")
 
 
-def rd_db_chain() -> RadarCompose:
-    """Raw frames ``(..., rx, chirps, samples)`` -> per-RX RD dB maps ``(..., rx, range, doppler)``."""
-    return RadarCompose([RangeDoppler(), ToDecibels()])
+def rd_db_chain(interference_db: float | None = None) -> RadarCompose:
+    """Raw frames ``(..., rx, chirps, samples)`` -> per-RX RD dB maps ``(..., rx, range, doppler)``.
+
+    Args:
+        interference_db: replace the chirps another radar's burst hit first
+            (:class:`~radaraug.transforms.InterferenceExcision` at this threshold); None: no excision.
+    """
+    steps: list[nn.Module] = [RangeDoppler(), ToDecibels()]
+    if interference_db is not None:
+        steps.insert(0, InterferenceExcision(float(interference_db)))
+    return RadarCompose(steps)
 
 
 def check_representation(representation: str) -> str:

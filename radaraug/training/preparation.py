@@ -22,7 +22,7 @@ from radaraug.diagnosis.record import PERSISTENT_THRESHOLD_DB
 from radaraug.errors import CalibrationError, ConfigError
 from radaraug.sensor.profile import PROFILE_VERSION, TwinProfile
 from radaraug.sim.dataset import SimulatedRadarDataset
-from radaraug.training.methods import Method
+from radaraug.training.methods import CDR, Method
 from radaraug.training.pipeline import check_representation, is_calibration_json
 from radaraug.transforms.record_file import CalibrationRecord, load_record
 
@@ -97,6 +97,9 @@ class ImageSpec:
         blank_zero_doppler: with ``floor_relative``: Doppler bins blanked on each side of zero.
         excise_persistent_db: with ``floor_relative``: cells whose median over the calibration capture stands
             this many dB above their row's floor are set to the floor in every map (None: none).
+        excise_interference_db: replace each frame's chirps whose moving power stands this many dB over the
+            frame's median chirp (another radar's burst; :class:`~radaraug.transforms.InterferenceExcision`),
+            before the RD FFTs, in training and test alike (6; None: none).
         clip_percentiles: percentiles of simulated (post-DR) maps that give ``[vmin, vmax]``.
         clip_range: a fixed ``[vmin, vmax]`` instead of the estimate.
 
@@ -108,6 +111,7 @@ class ImageSpec:
     representation: Literal["paper", "floor_relative"] = "floor_relative"
     blank_zero_doppler: int = 1
     excise_persistent_db: float | None = PERSISTENT_THRESHOLD_DB
+    excise_interference_db: float | None = 6.0  # the recipes' (chosen on the design suite: docs/training.md)
     clip_percentiles: tuple[float, float] = (1.0, 99.9)
     clip_range: list[float] | None = None
 
@@ -117,6 +121,8 @@ class ImageSpec:
         self.clip_percentiles = (float(lo), float(hi))
         if self.clip_range is not None and len(self.clip_range) != 2:
             raise ConfigError(f"clip_range must be [vmin, vmax], got {self.clip_range!r}")
+        if self.excise_interference_db is not None and not float(self.excise_interference_db) > 0:
+            raise ConfigError(f"excise_interference_db must be > 0 dB or null, got {self.excise_interference_db!r}")
 
     @property
     def excises(self) -> bool:
@@ -194,14 +200,19 @@ def prepare(method: Method, calibration: str | None, source: str | None, twin: T
     else:
         raise ConfigError(f"no radar config: no capture to read it from, and the calibration {calibration!r} is "
                           "not a calibration record that holds one")
-    dr = method.dr(calibration, dr_seed)
+    dr_source: Any = calibration
+    if isinstance(method, CDR) and has_capture and image.excise_interference_db is not None:
+        # CDR's floor from the capture's maps as the run makes them: without the bursts the excision removes
+        dr_source = CalibratedDR.fit(calibration, pipeline=rd_db_chain(image.excise_interference_db), progress=False)
+    dr = method.dr(dr_source, dr_seed)
     if isinstance(dr, CalibratedDR):
         dr.check_config(config)
     excise = None
     if fit_excision and image.excises and has_capture and calibration is not None:
         from radaraug.diagnosis.record import persistent_cells_of
 
-        excise = persistent_cells_of(calibration, float(image.excise_persistent_db or 0.0), rd_db_chain())
+        excise = persistent_cells_of(calibration, float(image.excise_persistent_db or 0.0),
+                                     rd_db_chain(image.excise_interference_db))
     elif fit_excision and image.excises and record is not None:
         excise = record.persistent_mask()  # at the record's threshold (radaraug fit-cdr records the recipes')
         shape = (config.num_range_bins, config.num_chirps_per_frame)

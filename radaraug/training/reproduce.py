@@ -85,6 +85,8 @@ class ReproduceSettings:
     worlds: int | None = None
     #: excise the calibration capture's persistent lines from floor-relative maps (``RadarDataModule.excise_persistent_db``)
     excise_persistent_db: float | None | str = RECIPE
+    #: replace the chirps another radar's burst hit before the RD FFTs (``ImageSpec.excise_interference_db``)
+    excise_interference_db: float | None | str = RECIPE
     #: fit the twin's noise figure to each calibration capture (``RadarDataModule.calibrate_noise``)
     calibrate_noise: bool | str = RECIPE
     #: CDR's twin noise below the others' (``RadarDataModule.cdr_twin_noise_offset_db``)
@@ -116,6 +118,7 @@ RECIPE_KEYS: dict[str, tuple[str, ...]] = {
     "representation": ("data", "image", "representation"),
     "blank_zero_doppler": ("data", "image", "blank_zero_doppler"),
     "excise_persistent_db": ("data", "image", "excise_persistent_db"),
+    "excise_interference_db": ("data", "image", "excise_interference_db"),
     "cdr_twin_noise_offset_db": ("data", "method", "init_args", "twin_noise_offset_db"),
     "cdr_floor": ("data", "method", "init_args", "floor"),
 }
@@ -804,13 +807,12 @@ def _with_dr(dm: Any) -> tuple[torch.Tensor, torch.Tensor, torch.Tensor, torch.T
         return empty, one, dm.dr.train()(empty), dm.dr.train()(one)
 
 
-def _capture_maps(path: str, n: int) -> torch.Tensor:
+def _capture_maps(path: str, n: int, dm: Any) -> torch.Tensor:
     from radaraug.io import open_capture
-    from radaraug.training.pipeline import rd_db_chain
 
     with open_capture(path) as cap:
         x = cap.read(0, min(n, cap.num_frames))
-    return rd_db_chain()(x)
+    return dm.rd_chain()(x)  # as the run's own maps were made
 
 
 def _figures(fig_dir: Path, keep: dict, results: dict, calibration: str | None,
@@ -835,9 +837,9 @@ def _figures(fig_dir: Path, keep: dict, results: dict, calibration: str | None,
         return figs
     dm = cdr_run[1]
     sim_empty, sim_one, cdr_empty, cdr_one = _with_dr(dm)
-    real_empty = _capture_maps(calibration, 64)
+    real_empty = _capture_maps(calibration, 64, dm)
     one = [e for e in test if e.get("count") == 1]
-    real_one = _capture_maps(one[0]["path"], 64) if one else None
+    real_one = _capture_maps(one[0]["path"], 64, dm) if one else None
     # Fig. 4's sources (legend, key in ``floors``, maps) and Fig. 5's simulated columns (title,
     # empty-room maps, one-person maps), in their order
     sources = [("simulation", "simulation", sim_empty), ("simulation + CDR", "simulation_cdr", cdr_empty)]

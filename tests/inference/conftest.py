@@ -23,12 +23,13 @@ def small_config() -> RadarConfig:
 
 
 def chain(representation: str = "floor_relative", size: tuple[int, int] | None = (16, 8),
-          excise: torch.Tensor | None = None) -> ChainSpec:
+          excise: torch.Tensor | None = None, interference_db: float | None = None) -> ChainSpec:
     clip = (-5.0, 30.0) if representation == "floor_relative" else (-110.0, -40.0)
-    return ChainSpec(dict(RD), representation, 1, clip, size, excise)
+    return ChainSpec(dict(RD), representation, 1, clip, size, excise, interference_db)
 
 
-def classifier(task: str = "occupancy", *, constant: int | None = None, seed: int = 0, **kw) -> RadarClassifier:
+def classifier(task: str = "occupancy", *, constant: int | None = None, seed: int = 0,
+               interference_db: float | None = None, **kw) -> RadarClassifier:
     """An untrained ResNet18 classifier; ``constant``: one whose answer is always that class (p ~ 0.99)."""
     torch.manual_seed(seed)
     net = resnet18(2 if task == "occupancy" else 3)
@@ -37,7 +38,8 @@ def classifier(task: str = "occupancy", *, constant: int | None = None, seed: in
             net.fc.weight.zero_()
             net.fc.bias.fill_(0.0)
             net.fc.bias[constant] = 6.0
-    return RadarClassifier(net, arch="resnet18", task=task, config=small_config(), chain=chain(), **kw)
+    return RadarClassifier(net, arch="resnet18", task=task, config=small_config(),
+                           chain=chain(interference_db=interference_db), **kw)
 
 
 def room_frames(n: int, seed: int = 0, target: float = 0.0) -> torch.Tensor:
@@ -46,6 +48,14 @@ def room_frames(n: int, seed: int = 0, target: float = 0.0) -> torch.Tensor:
     t = torch.arange(64, dtype=torch.float32)
     x = 0.004 * torch.randn(n, 3, 16, 64, generator=g) + 0.03 * torch.cos(2 * torch.pi * 20 / 64 * t)
     return (x + target * torch.cos(2 * torch.pi * 9 / 64 * t)).clamp(-1, 1)
+
+
+def with_bursts(x: torch.Tensor) -> torch.Tensor:
+    """``x`` with an interferer's burst (a chirp sweeping the IF band) on chirp 5 of every other frame."""
+    t = torch.arange(x.shape[-1], dtype=x.dtype)
+    x = x.clone()
+    x[::2, :, 5] += 0.3 * torch.cos(2 * torch.pi * 0.002 * t * t)
+    return x.clamp(-1, 1)
 
 
 def write_frames(path, frames: torch.Tensor, config: RadarConfig | None = None):

@@ -10,7 +10,7 @@ from radaraug.errors import CheckpointError
 from radaraug.inference import ChainSpec, MatmulChain
 from radaraug.inference.chain import _dft_matrices, _resize_matrix
 from radaraug.transforms import functional as F
-from tests.inference.conftest import RD, chain, room_frames
+from tests.inference.conftest import RD, chain, room_frames, with_bursts
 
 
 @pytest.mark.parametrize("chirps", [16, 15])  # odd: the complex fftshift window
@@ -44,10 +44,26 @@ def test_matmul_chain_equals_the_eager_chain(representation, size) -> None:
     assert float(diff.max()) < 0.03 and float((diff > 1e-4).double().mean()) < 0.005
 
 
+def test_matmul_chain_excises_interference_as_the_eager_chain() -> None:
+    x = with_bursts(room_frames(4, target=0.01))  # bursts in frames 0 and 2
+    plain, excising = chain(), chain(interference_db=6.0)
+    eager, before = excising.eager()(x), plain.eager()(x)
+    assert torch.equal(eager[1::2], before[1::2])  # frames without a burst: untouched
+    assert float((eager[::2] - before[::2]).abs().max()) > 0.1  # with one: the burst is gone
+    diff = (eager - MatmulChain(excising, 64, 16)(x)).abs()
+    assert float(diff.max()) < 0.03 and float((diff > 1e-4).double().mean()) < 0.005
+
+
 def test_spec_round_trip_and_refusals() -> None:
     spec = chain(excise=torch.eye(32, 16, dtype=torch.bool))
     again = ChainSpec.from_dict(spec.to_dict(), source="x")
     assert again.to_dict()["clip_range_db"] == spec.to_dict()["clip_range_db"] and torch.equal(again.excise, spec.excise)
+    assert again.interference_db is None
+    with_excision = ChainSpec(dict(RD), "paper", 1, (-1.0, 1.0), None, None, 7.5)
+    assert ChainSpec.from_dict(with_excision.to_dict(), source="x").interference_db == 7.5
+    old = spec.to_dict()
+    del old["interference_db"]  # a format-1 file: no interference excision
+    assert ChainSpec.from_dict(old, source="x").interference_db is None
     with pytest.raises(CheckpointError, match="x: the test chain"):
         ChainSpec.from_dict({"representation": "paper"}, source="x")
     with pytest.raises(CheckpointError, match="static-clutter"):

@@ -31,6 +31,7 @@ def test_key_changes_with_every_input():
         cache_spec(_ds(sampler=ScenarioSampler(speed_m_s=(0.5, 1.0))), range(4)),
         cache_spec(_ds(scene="corridor_two_walkers"), range(4)),
         cache_spec(_ds(twin_options={"tracer_options": {"rays": 32}}), range(4)),
+        cache_spec(_ds(), range(4), interference_db=6.0),  # the maps' chain
     ]
     keys = {cache_key(s) for s in changed}
     assert base not in keys and len(keys) == len(changed)
@@ -63,8 +64,11 @@ def test_killed_build_leaves_no_trusted_file(tmp_path, monkeypatch):
     calls = []
 
     class Dies:
+        def __init__(self, interference_db=None):
+            self.interference_db = interference_db
+
         def chain_spec(self):
-            return real_chain().chain_spec()
+            return real_chain(self.interference_db).chain_spec()
 
         def __call__(self, x):
             calls.append(1)

@@ -278,3 +278,33 @@ def test_the_hyperparameters_are_plain_and_rebuild_the_module():
     assert again.hparams == dm.hparams
     with pytest.raises(ConfigError, match="data: .*unexpected keyword"):
         RadarDataModule.from_recipe({"train_items": 5})
+
+
+def test_interference_excision_reaches_twin_captures_and_the_classifier_file(tmp_path, captures):
+    from radaraug.inference import RadarClassifier
+    from radaraug.training import RDClassifier
+    from radaraug.training.classifier_file import classifier_record
+
+    cal, tests = captures
+    kw = SMALL | {"cache_dir": str(tmp_path / "c"), "test": [{"path": str(p), "count": c} for p, c in tests]}
+    plain = RadarDataModule(task="occupancy", method=RT(), calibration=str(cal),
+                            **(kw | {"image": ImageSpec(size=[32, 16], excise_interference_db=None)}))
+    plain.setup("fit")
+    dm = RadarDataModule(task="occupancy", method=RT(), calibration=str(cal), **kw)  # the default: 6 dB
+    dm.setup("fit")
+    # the twin's maps are made through the excision: a cache of their own, not the plain chain's
+    assert len(list((tmp_path / "c").glob("train-*.h5"))) == 2
+    assert [s["name"] for s in dm.rd_chain().chain_spec()] == ["InterferenceExcision", "RangeDoppler", "ToDecibels"]
+    assert dm._test is not None
+    capture_chain = dm._test.base.dataset.datasets[0].transform
+    assert capture_chain.chain_spec() == dm.rd_chain().chain_spec()  # captures as the twin
+    # the classifier file keeps it, and its chain runs it
+    clf = RadarClassifier.from_record(classifier_record(RDClassifier(task="occupancy"), dm), source="x")
+    assert clf.chain.interference_db == 6.0
+    assert classifier_record(RDClassifier(task="occupancy"), plain)["chain"]["interference_db"] is None
+    # CDR's floor is fitted on the calibration's maps as the run makes them
+    cdr = RadarDataModule(task="occupancy", method=CDR(), calibration=str(cal), **kw)
+    cdr.setup("fit")
+    assert cdr.dr.chain[0]["name"] == "InterferenceExcision"
+    with pytest.raises(ConfigError, match="excise_interference_db"):
+        ImageSpec(excise_interference_db=0)

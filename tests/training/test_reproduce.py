@@ -190,7 +190,7 @@ def test_the_runs_take_their_hyperparameters_from_the_recipes():
     eff = R.effective_settings(R.ReproduceSettings.quick())
     assert {k: eff[k] for k in R.RECIPE_KEYS} == {
         "randomization": {"catalog": {"spur_tone": {"probability": 0.0}, "vibrating_clutter": {"probability": 0.0}}},
-        "representation": "floor_relative", "excise_persistent_db": 3.0,
+        "representation": "floor_relative", "excise_persistent_db": 3.0, "excise_interference_db": 6.0,
         "calibrate_noise": False, "cdr_twin_noise_offset_db": -15.0, "cdr_floor": "matched", "lr": 0.001,
         "context_frames": 8, "blank_zero_doppler": 1}
     # an explicit setting overrides every run's recipe; an ablation's one change wins over it
@@ -198,6 +198,7 @@ def test_the_runs_take_their_hyperparameters_from_the_recipes():
     assert R.run_recipe("counting", "rt", s)["data"]["image"]["representation"] == "paper"
     assert R.run_recipe("counting", "cdr", s, "cdr_normal_floor")["data"]["method"]["init_args"]["floor"] == "normal"
     assert R.ABLATIONS["rt_no_excision"] == ("rt", {"image": {"excise_persistent_db": None}})
+    assert R.ABLATIONS["randomdr_no_interference_excision"] == ("randomdr", {"image": {"excise_interference_db": None}})
     # a method's argument is set only on the methods that take it
     floor = R.ReproduceSettings(cdr_floor="empirical")
     assert R.run_recipe("counting", "cdr", floor)["data"]["method"]["init_args"]["floor"] == "empirical"
