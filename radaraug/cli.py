@@ -139,14 +139,14 @@ def _cmd_info(args: argparse.Namespace) -> Result:
 
 
 def _cmd_fit_cdr(args: argparse.Namespace) -> Result:
-    from radaraug.diagnosis.record import PERSISTENT_THRESHOLD_DB, fit_record
+    from radaraug.diagnosis.record import PERSISTENT_THRESHOLD_DB, fit_record, recipes_map_chain
     from radaraug.transforms import CalibratedDR
 
     _check_output(args, args.output)
     with _stdout_for(args):
-        # the calibration record: the floor fit and the capture's identity (its content digest)
+        # the calibration record: the floor fit (on the recipes' maps) and the capture's identity (its content digest)
         record = fit_record(args.path, max_frames=args.max_frames, progress=True, floor=args.floor,
-                            persistent_db=PERSISTENT_THRESHOLD_DB)
+                            persistent_db=PERSISTENT_THRESHOLD_DB, pipeline=recipes_map_chain())
         record.save(args.output)
         cdr = CalibratedDR.from_record(record)
     if args.json:
@@ -809,7 +809,7 @@ def build_parser() -> argparse.ArgumentParser:
                      help="generated test sets when no --test is given, comma-separated: proxy (the twin in "
                      "another room), independent (a NumPy generator sharing no code with the twin), standing (the "
                      "independent generator with 30 %% of its people standing), design (held-out worlds to look "
-                     "at: validation numbers), report (held-out worlds run only to report), report-1, report-2 (the first two report suites, spent); default: independent "
+                     "at: validation numbers), report (held-out worlds run only to report), report-1, report-2, report-3 (the first three report suites, spent); default: independent "
                      "with --quick, proxy and independent in full mode")
     rep.add_argument("--worlds", type=int, default=None,
                      help="worlds per held-out suite (design/report in --test-sets; default 6 design, 4 report)")

@@ -183,8 +183,10 @@ def main() -> None:
         "counting_confusion_true_by_predicted_summed_over_seeds": {how: cm.tolist() for how, cm in confusion.items()},
         "counting_confusion_by_moving_people_summed_over_seeds": {
             how: {f"{k}_moving": cm[k].tolist() for k in range(3)} for how, cm in by_moving.items()},
-        "run_results": {task: {k: r[k] for k in ("mean", "worst", "worst_world", "gated_mean", "gated_worst",
-                                                   "single_frame_mean", "val_mean", "per_world")}
+        "run_results": {task: {**{k: r[k] for k in ("mean", "worst", "worst_world", "gated_mean", "gated_worst",
+                                                      "single_frame_mean", "val_mean", "per_world")},
+                               "gated_per_world": {w: report["test_sets"][w]["results"][task][name]
+                                                   ["static_gate_balanced_accuracy"]["mean"] for w in r["per_world"]}}
                         for task, methods in report["suites"]["design"]["results"].items()
                         for name, r in methods.items() if name == args.method},
         "counting_two_moving_people_by_image_separation_summed_over_seeds": {

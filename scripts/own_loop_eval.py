@@ -28,7 +28,8 @@ VARIANTS = {
     "the paper's chain (cdr, normal floor, noisy twin, dBFS image clipped to [-110, -40])":
         'from radaraug.training import CDR; '
         'chains = training_chains(room.calibration, CDR(floor="normal", twin_noise_offset_db=None), task=TASK, '
-        'seed=SEED, image={"representation": "paper", "clip_range": [-110.0, -40.0], "excise_persistent_db": None})',
+        'seed=SEED, image={"representation": "paper", "clip_range": [-110.0, -40.0], "excise_persistent_db": None, '
+        '"excise_interference_db": None})',
 }
 
 

@@ -30,6 +30,8 @@ BENCHMARKS = ROOT / "benchmarks"
 
 
 _ERR = "heldout_design_errors_cpu.json"  # scripts/design_errors.py
+_IE = "heldout_design_interference_cpu.json"  # the same with the interference excision (round 7)
+_ADA = "heldout_design_adabn_cpu.json"
 
 
 class Figure(NamedTuple):
@@ -2211,6 +2213,44 @@ FIGURES: list[Figure] = [
            lambda *v: f"within 6 dB of each other, {v[1]} of {sum(v[0:3])} such frames are read as one; 6–15 dB "
            f"apart, {v[4]} of {sum(v[3:6])}; " + ("no frame is further apart" if sum(v[6:9]) == 0
                                                   else f"further apart, {v[7]} of {sum(v[6:9])}")),
+    # the interference excision on the design suite (round 7): the record before and after, per world
+    *(Figure("docs/training.md", f"| {label} | {cells} |", rec,
+             tuple(f"run_results/{t}/{k}" for t in ("occupancy", "counting") for k in ("mean", "worst", "gated_mean",
+                                                                                     "gated_worst"))
+             + ("run_results/occupancy/val_mean", "run_results/counting/val_mean"),
+             lambda *v, label=label: f"| {label} | " + (
+                 "**{:.3f}** ({:.3f}) | **{:.3f}** ({:.3f}) | **{:.3f}** ({:.3f}) | **{:.3f}** ({:.3f}) | {:.3f} / {:.3f} |"
+                 if "default" in label else
+                 "{:.3f} (worst {:.3f}) | {:.3f} ({:.3f}) | {:.3f} ({:.3f}) | {:.3f} ({:.3f}) | {:.3f} / {:.3f} |").format(*v))
+      for label, cells, rec in (
+          ("without the excision", "0.878 (worst 0.710) | 0.949 (0.839) | 0.624 (0.476) | 0.692 (0.500) | 0.864 / 0.684",
+           _ERR),
+          ("**with it (default)**", "**0.890** (0.718) | **0.965** (0.851) | **0.665** (0.533) | **0.737** (0.543) | "
+           "0.876 / 0.684", _IE))),
+    *(Figure("docs/training.md", (f"| `{w}` " if rec == _ADA else "") + f"| {occ} | {gated} | {cnt} | {cnt_gated} |", rec,
+             tuple(f"{prefix}/{t}/{k}/{w}" for t in ("occupancy", "counting") for k in keys),
+             ("| `" + w + "` | {:.3f} → " + occ[-5:] + " | {:.3f} → " + gated[-5:] + " | {:.3f} → " + cnt[-5:]
+              + " | {:.3f} → ") if rec == _ADA else
+             (occ[:5] + " → {:.3f} | " + gated[:5] + " → {:.3f} | " + cnt[:5] + " → {:.3f} | " + cnt_gated[:5]
+              + " → {:.3f} |"))
+      for w, occ, gated, cnt, cnt_gated in (
+          ("design-w00", "0.883 → 0.887", "0.989 → 1.000", "0.624 → 0.654", "0.765 → 0.809"),
+          ("design-w01", "0.900 → 1.000", "0.900 → 1.000", "0.607 → 0.839", "0.607 → 0.839"),
+          ("design-w02", "0.892 → 0.890", "1.000 → 0.997", "0.622 → 0.656", "0.770 → 0.804"),
+          ("design-w03", "0.933 → 0.946", "0.996 → 1.000", "0.589 → 0.585", "0.589 → 0.585"),
+          ("design-w04", "0.801 → 0.753", "0.917 → 0.904", "0.548 → 0.543", "0.639 → 0.659"),
+          ("design-w05", "0.957 → 0.963", "0.990 → 0.985", "0.476 → 0.533", "0.500 → 0.543"),
+          ("design-w06", "0.710 → 0.718", "0.839 → 0.851", "0.576 → 0.594", "0.702 → 0.728"),
+          ("design-w07", "0.950 → 0.967", "0.963 → 0.979", "0.952 → 0.915", "0.967 → 0.930"))
+      for rec, prefix, keys in ((_ADA, "summary", ("base context/per_world", "base context+gate/per_world")),
+                                (_IE, "run_results", ("per_world", "gated_per_world")))),
+    *(Figure("docs/training.md", ("| **design** (round 7, 8 worlds, 3 seeds, RandomDR; `benchmarks/heldout_design_"
+             "interference_cpu.json`) | " if rec == _ERR else "") + "occupancy + gate 0.949 → 0.965, counting + gate "
+             "0.692 → 0.737 (worst world 0.500 → 0.543)", rec,
+             tuple(f"run_results/{t}/{k}" for t, k in (("occupancy", "gated_mean"), ("counting", "gated_mean"),
+                                                       ("counting", "gated_worst"))), fmt)
+      for rec, fmt in ((_ERR, "occupancy + gate {:.3f} → 0.965, counting + gate {:.3f} → 0.737 (worst world {:.3f} →"),
+                       (_IE, "→ {:.3f}, counting + gate 0.692 → {:.3f} (worst world 0.500 → {:.3f})"))),
     # docs/static_change.md: how often the gate fired on the design worlds
     Figure("docs/static_change.md", "On the six design worlds no empty test frame crosses its threshold",
            "static_change_design_cpu.json", tuple(f"worlds/design-w0{i}/fired_empty" for i in range(6)),

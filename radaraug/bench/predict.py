@@ -27,13 +27,15 @@ def run_predict_benchmark(*, batch: int = 32, repeats: int = 5, device: str = "c
         device: torch device.
         out: optional JSON file to write.
     """
+    from radaraug.diagnosis.record import INTERFERENCE_THRESHOLD_DB
     from radaraug.inference import ChainSpec, RadarClassifier
     from radaraug.inference.export import ExportedClassifier, check_frames
     from radaraug.training.models import resnet18
 
     cfg = RadarConfig.bgt60tr13c()
     torch.manual_seed(0)
-    chain = ChainSpec({}, "floor_relative", 1, (-5.0, 30.0), (64, 32))  # the demo's chain and image size
+    chain = ChainSpec({}, "floor_relative", 1, (-5.0, 30.0), (64, 32),  # the demo's chain and image size
+                      interference_db=INTERFERENCE_THRESHOLD_DB)
     clf = RadarClassifier(resnet18(2), arch="resnet18", task="occupancy", config=cfg, chain=chain, context_frames=8)
     dev = torch.device(device)
     clf.to(dev)

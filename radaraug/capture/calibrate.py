@@ -71,7 +71,7 @@ def calibrate(
         CaptureError, DeviceError, ConfigError: as :func:`~radaraug.capture.record.record`.
         KeyboardInterrupt: Ctrl-C while recording (nothing is written; a kept recording keeps its frames).
     """
-    from radaraug.diagnosis.record import PERSISTENT_THRESHOLD_DB, fit_record
+    from radaraug.diagnosis.record import PERSISTENT_THRESHOLD_DB, fit_record, recipes_map_chain
 
     output = Path(output)
     if floor not in FLOORS:  # before recording, not after ten seconds of it
@@ -91,7 +91,7 @@ def calibrate(
             # The motion warning of fit() becomes the refusal below.
             warnings.simplefilter("ignore", MotionWarning)
             cal = fit_record(rec_path, floor=floor, motion_threshold_db=motion_threshold_db,
-                             persistent_db=PERSISTENT_THRESHOLD_DB)
+                             persistent_db=PERSISTENT_THRESHOLD_DB, pipeline=recipes_map_chain())
     finally:
         if temporary:
             rec_path.unlink(missing_ok=True)

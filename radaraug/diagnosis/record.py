@@ -39,6 +39,20 @@ PERSISTENT_FRAMES = 64
 #: dB over the row's floor at which a cell is persistent: the recipes' excision threshold, and what
 #: ``radaraug fit-cdr`` / ``calibrate`` record, so that a record serves the excision without the capture.
 PERSISTENT_THRESHOLD_DB = 3.0
+#: dB over the frame's median chirp at which a chirp is another radar's burst: the recipes' interference
+#: excision (``ImageSpec.excise_interference_db``), and the chain ``radaraug fit-cdr`` / ``calibrate`` fit on.
+INTERFERENCE_THRESHOLD_DB = 6.0
+
+
+def recipes_map_chain(interference_db: float | None = INTERFERENCE_THRESHOLD_DB) -> Any:
+    """Raw frames -> per-RX dB maps as the recipes make them (interference excision, RD FFTs, dB)."""
+    from radaraug.transforms.compose import RadarCompose
+    from radaraug.transforms.spectral import InterferenceExcision, RangeDoppler, ToDecibels
+
+    steps: list[Any] = [RangeDoppler(), ToDecibels()]
+    if interference_db is not None:
+        steps.insert(0, InterferenceExcision(float(interference_db)))
+    return RadarCompose(steps)
 
 
 def noise_fit_path(cache_dir: str | Path, scene: str, config: RadarConfig, target_db: float,
@@ -147,7 +161,7 @@ def fit_record(
         capture: the empty-room capture (radaraug ``.h5`` or Infineon recording folder).
         floor: CalibratedDR's floor distribution, ``"normal"`` or ``"empirical"``.
         pipeline: raw cube -> dB map chain of the floor and the persistent cells; default
-            ``RangeDoppler() -> ToDecibels()``.
+            ``RangeDoppler() -> ToDecibels()`` (the recipes': :func:`recipes_map_chain`).
         max_frames: frames the floor is fitted on (default: all).
         motion_threshold_db: threshold of the motion check (warns ``MotionWarning``).
         profile_frames: also fit the twin profile (``diagnose`` without a scene) on this many frames.
@@ -184,10 +198,7 @@ def fit_record(
             raise CalibrationError(f"{capture}: no radar config to simulate the noise fit with")
         record.noise_fit = _noise_fit(noise_scene, config, capture_noise_floor_db(capture), tracer_rays)
     if persistent_db is not None:
-        from radaraug.transforms.compose import RadarCompose
-        from radaraug.transforms.spectral import RangeDoppler, ToDecibels
-
-        chain = pipeline if pipeline is not None else RadarCompose([RangeDoppler(), ToDecibels()])
+        chain = pipeline if pipeline is not None else recipes_map_chain(None)
         mask = persistent_cells_of(str(capture), persistent_db, chain)
         record.persistent_cells = {"threshold_db": float(persistent_db), "shape": list(mask.shape),
                                    "cells": mask.nonzero().tolist()}

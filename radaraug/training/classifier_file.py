@@ -88,6 +88,9 @@ class ChainSpec:
                        None if interference is None else float(interference))
         except (KeyError, TypeError, ValueError, IndexError) as e:
             raise CheckpointError(f"{source}: the test chain it records is incomplete or malformed ({e!r})") from None
+        if spec.interference_db is not None and not spec.interference_db > 0:
+            raise CheckpointError(f"{source}: the test chain's interference_db must be > 0 dB or null, "
+                                  f"got {spec.interference_db}")
         return spec
 
 

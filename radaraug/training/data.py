@@ -343,14 +343,25 @@ class RadarDataModule(L.LightningDataModule):
         return self.prepared.receiver_kind(self.method)
 
     def state_dict(self) -> dict[str, Any]:
-        """The clip range and the excised cells, saved in checkpoints (they are part of the model)."""
+        """The clip range, the excised cells and the interference threshold, saved in checkpoints (part of the model)."""
         # Part of the model: a checkpoint tested later must clip and excise the same way.
         return {"clip_range": None if self.clip is None else list(self.clip),
                 "excise": None if self.excise is None else self.excise.nonzero().tolist(),
-                "excise_shape": None if self.excise is None else list(self.excise.shape)}
+                "excise_shape": None if self.excise is None else list(self.excise.shape),
+                "interference_db": self.image_spec.excise_interference_db}
 
     def load_state_dict(self, state_dict: dict[str, Any]) -> None:
-        """Restore the clip range, the excised cells (and the image chain) from a checkpoint."""
+        """Restore the clip range, the excised cells (and the image chain) from a checkpoint.
+
+        Raises:
+            ConfigError: the checkpoint's network saw maps with another interference excision than this
+                module's ``image.excise_interference_db`` (a checkpoint without the key: none).
+        """
+        saved = state_dict.get("interference_db")  # absent from checkpoints of before the excision: none
+        if saved != self.image_spec.excise_interference_db:
+            raise ConfigError(f"the checkpoint was trained with data.image.excise_interference_db: {saved}, this data "
+                              f"module has {self.image_spec.excise_interference_db}: set it to {saved} to test it "
+                              "with the chain it was trained on")
         if state_dict.get("excise") is not None:
             mask = torch.zeros(*state_dict["excise_shape"], dtype=torch.bool)
             cells = torch.tensor(state_dict["excise"], dtype=torch.long).reshape(-1, 2)

@@ -13,17 +13,15 @@ from collections.abc import Sequence
 import torch
 from torch import nn
 
+from radaraug.diagnosis.record import recipes_map_chain
 from radaraug.errors import ConfigError
 from radaraug.transforms import (
     ClipNormalize,
     Colormap,
     CombineRx,
     FloorRelative,
-    InterferenceExcision,
     RadarCompose,
-    RangeDoppler,
     Resize,
-    ToDecibels,
 )
 
 #: Network input representations: the paper's clipped dBFS map, or each range row referenced to
@@ -43,10 +41,7 @@ def rd_db_chain(interference_db: float | None = None) -> RadarCompose:
         interference_db: replace the chirps another radar's burst hit first
             (:class:`~radaraug.transforms.InterferenceExcision` at this threshold); None: no excision.
     """
-    steps: list[nn.Module] = [RangeDoppler(), ToDecibels()]
-    if interference_db is not None:
-        steps.insert(0, InterferenceExcision(float(interference_db)))
-    return RadarCompose(steps)
+    return recipes_map_chain(interference_db)
 
 
 def check_representation(representation: str) -> str:

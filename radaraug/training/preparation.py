@@ -18,7 +18,7 @@ import torch
 from torch import nn
 
 from radaraug.config import RadarConfig
-from radaraug.diagnosis.record import PERSISTENT_THRESHOLD_DB
+from radaraug.diagnosis.record import INTERFERENCE_THRESHOLD_DB, PERSISTENT_THRESHOLD_DB
 from radaraug.errors import CalibrationError, ConfigError
 from radaraug.sensor.profile import PROFILE_VERSION, TwinProfile
 from radaraug.sim.dataset import SimulatedRadarDataset
@@ -111,7 +111,7 @@ class ImageSpec:
     representation: Literal["paper", "floor_relative"] = "floor_relative"
     blank_zero_doppler: int = 1
     excise_persistent_db: float | None = PERSISTENT_THRESHOLD_DB
-    excise_interference_db: float | None = 6.0  # the recipes' (chosen on the design suite: docs/training.md)
+    excise_interference_db: float | None = INTERFERENCE_THRESHOLD_DB  # chosen on the design suite (docs/training.md)
     clip_percentiles: tuple[float, float] = (1.0, 99.9)
     clip_range: list[float] | None = None
 
@@ -160,6 +160,19 @@ def _same_process(value: Any) -> Any:
     return value
 
 
+def _check_record_chain(record: CalibrationRecord, path: str, run_chain: list[dict[str, Any]]) -> None:
+    """Warn when a calibration record was fitted on maps made otherwise than the run makes them."""
+    from radaraug.training.inputs import CalibrationWarning
+    from radaraug.transforms.dsp_spec import canonical_chain, describe_chain
+
+    fitted = (record.cdr or {}).get("chain")
+    if fitted is not None and canonical_chain(fitted) != canonical_chain(run_chain):
+        warnings.warn(f"calibration record {path} was fitted on maps made by {describe_chain(fitted)}, but this run "
+                      f"makes {describe_chain(run_chain)}: its floor and persistent cells may not match the run's maps; "
+                      "refit it with `radaraug fit-cdr` (it fits on the recipes' chain)", CalibrationWarning,
+                      stacklevel=3)
+
+
 def prepare(method: Method, calibration: str | None, source: str | None, twin: TwinSplits, image: ImageSpec,
             cache_dir: str | Path, *, dr_seed: int, simulate: bool = True, fit_excision: bool = True,
             broadcast: Callable[[Any], Any] = _same_process, rank: int = 0) -> Prepared:
@@ -200,6 +213,8 @@ def prepare(method: Method, calibration: str | None, source: str | None, twin: T
     else:
         raise ConfigError(f"no radar config: no capture to read it from, and the calibration {calibration!r} is "
                           "not a calibration record that holds one")
+    if record is not None and record.cdr is not None:
+        _check_record_chain(record, str(calibration), rd_db_chain(image.excise_interference_db).chain_spec())
     dr_source: Any = calibration
     if isinstance(method, CDR) and has_capture and image.excise_interference_db is not None:
         # CDR's floor from the capture's maps as the run makes them: without the bursts the excision removes

@@ -95,7 +95,8 @@ class ReproduceSettings:
     cdr_floor: str | None = RECIPE
     #: ablation variants (``recipes/ablation/NAME.yaml``) run unless ``reproduce(ablation=False)``
     ablations: tuple[str, ...] = ("rt_paper_image", "randomdr_paper_image", "cdr_paper_image", "cdr_normal_floor",
-                                  "cdr_empirical_floor", "rt_no_twin_randomization", "rt_noise_fit")
+                                  "cdr_empirical_floor", "rt_no_twin_randomization", "rt_noise_fit",
+                                  "randomdr_no_interference_excision")
 
     @classmethod
     def full(cls) -> ReproduceSettings:
@@ -187,8 +188,8 @@ def _cdr_floor_of(keep: dict[tuple[str, str, str], tuple[Any, Any]], settings: R
 DEFAULT_TEST_SETS = ("proxy", "independent")
 #: The held-out suites of test worlds (:mod:`radaraug.testsets.independent.worlds`): ``design`` (look at it freely;
 #: its numbers are validation numbers), ``report`` (run only to report) and the spent report suites
-#: (``report-1``, ``report-2``: rerun their records; validation numbers now). Each world is a test set.
-SUITE_TEST_SETS = ("design", "report", "report-1", "report-2")
+#: (``report-1`` … ``report-3``: rerun their records; validation numbers now). Each world is a test set.
+SUITE_TEST_SETS = ("design", "report", "report-1", "report-2", "report-3")
 #: Every generated test set ``--test-sets`` may name: the defaults, ``standing`` (the independent
 #: generator with standing (breathing, swaying) people in 30 % of the drawn people, another seed) and
 #: the suites of :data:`SUITE_TEST_SETS`.
@@ -903,6 +904,8 @@ SUITE_TEXT = {
                  "**validation** numbers now."),
     "report-2": ("**report-2**: the second report suite, run once and then looked at: spent, so its numbers are "
                  "**validation** numbers now."),
+    "report-3": ("**report-3**: the third report suite, run once and then published world by world: spent, so its "
+                 "numbers are **validation** numbers now."),
 }
 
 QUICK_TRADES = ("Quick mode trades, against full mode (6000 items, 15 epochs, 128 x 64, every ablation): fewer "

@@ -64,6 +64,8 @@ def test_spec_round_trip_and_refusals() -> None:
     old = spec.to_dict()
     del old["interference_db"]  # a format-1 file: no interference excision
     assert ChainSpec.from_dict(old, source="x").interference_db is None
+    with pytest.raises(CheckpointError, match="x: the test chain's interference_db"):
+        ChainSpec.from_dict(old | {"interference_db": 0.0}, source="x")
     with pytest.raises(CheckpointError, match="x: the test chain"):
         ChainSpec.from_dict({"representation": "paper"}, source="x")
     with pytest.raises(CheckpointError, match="static-clutter"):

@@ -231,7 +231,7 @@ def test_test_captures_as_dataset_objects(tmp_path):
 def test_a_calibration_record_serves_what_it_holds(tmp_path, captures):
     """A record JSON with persistent cells, a profile and a noise fit serves the excision, CDRProfile's twin
     and the noise fit without the capture's frames; only the static-change gate is left out (and said)."""
-    from radaraug.diagnosis.record import PERSISTENT_THRESHOLD_DB, fit_record
+    from radaraug.diagnosis.record import PERSISTENT_THRESHOLD_DB, fit_record, recipes_map_chain
     from radaraug.sensor.profile import TwinProfile
     from radaraug.sensor.receiver import FMCWReceiver
     from radaraug.training import CalibrationWarning, CDRProfile
@@ -240,7 +240,7 @@ def test_a_calibration_record_serves_what_it_holds(tmp_path, captures):
     kw = SMALL | {"cache_dir": str(tmp_path / "c"), "test": [{"path": str(p), "count": c} for p, c in tests]}
     from_capture = RadarDataModule(task="occupancy", method=RT(), calibration=str(cal), **kw)
     from_capture.setup("fit")
-    rec = fit_record(cal, persistent_db=PERSISTENT_THRESHOLD_DB)
+    rec = fit_record(cal, persistent_db=PERSISTENT_THRESHOLD_DB, pipeline=recipes_map_chain())  # as fit-cdr
     rec.profile = TwinProfile(FMCWReceiver(rec.config).to_dict(), {"capture": cal.name, "mode": "estimated"})
     rec.noise_fit = {"noise_figure_dB": 13.0, "adc_noise_rms_counts": 2.0}
     path = rec.save(tmp_path / "record.json")
@@ -250,6 +250,7 @@ def test_a_calibration_record_serves_what_it_holds(tmp_path, captures):
         dm.setup("fit")
     said = " ".join(str(w.message) for w in caught)
     assert "static-change gate" in said and "not excised" not in said and "noise figure" not in said
+    assert "fitted on maps made by" not in said  # fitted on the recipes' chain
     assert torch.equal(dm.excise, from_capture.excise)
     assert dm.prepared.twin_profile.to_dict() == rec.profile.to_dict()
     assert dm.prepared.profile_info["source"] == f"the calibration record {path}"
@@ -259,6 +260,10 @@ def test_a_calibration_record_serves_what_it_holds(tmp_path, captures):
     with pytest.warns(CalibrationWarning):
         rt.setup("fit")
     assert rt.prepared.noise_fit == rec.noise_fit and rt.receiver_kind() == "noise_fit"
+    # a record fitted on other maps (here without the interference excision): used, with a warning naming both
+    plain = fit_record(cal, persistent_db=PERSISTENT_THRESHOLD_DB).save(tmp_path / "plain.json")
+    with pytest.warns(CalibrationWarning, match="plain.json was fitted on maps made by RemoveMean"):
+        RadarDataModule(task="occupancy", method=RT(), calibration=str(plain), **kw).setup("fit")
     # a record of another config's maps: refused, naming the file
     rec.persistent_cells = dict(rec.persistent_cells, shape=[7, 5], cells=[[1, 2]])
     other = rec.save(tmp_path / "other.json")

@@ -22,9 +22,16 @@ def test_clip_range_must_be_two_values_and_setup_must_run_first():
     assert dm.clip == (-120.0, -60.0)
     with pytest.raises(ConfigError, match="setup"):
         dm.images(torch.zeros(1, 3, 8, 4))
-    dm.load_state_dict({"clip_range": [-110.0, -50.0]})
+    dm.load_state_dict({"clip_range": [-110.0, -50.0], "interference_db": 6.0})
     assert dm.clip == (-110.0, -50.0)
-    assert dm.state_dict() == {"clip_range": [-110.0, -50.0], "excise": None, "excise_shape": None}
+    assert dm.state_dict() == {"clip_range": [-110.0, -50.0], "excise": None, "excise_shape": None,
+                               "interference_db": 6.0}
+    # a checkpoint trained without the interference excision (or from before it) is not tested with it
+    with pytest.raises(ConfigError, match="excise_interference_db: None"):
+        dm.load_state_dict({"clip_range": [-110.0, -50.0]})
+    old = RadarDataModule(image=ImageSpec(excise_interference_db=None))
+    old.load_state_dict({"clip_range": [-110.0, -50.0]})
+    assert old.clip == (-110.0, -50.0)
 
 
 def test_cdr_floor_reaches_the_dr_and_is_checked(captures, tmp_path):
