@@ -146,7 +146,8 @@ def _cmd_fit_cdr(args: argparse.Namespace) -> Result:
     with _stdout_for(args):
         # the calibration record: the floor fit (on the recipes' maps) and the capture's identity (its content digest)
         record = fit_record(args.path, max_frames=args.max_frames, progress=True, floor=args.floor,
-                            persistent_db=PERSISTENT_THRESHOLD_DB, pipeline=recipes_map_chain())
+                            persistent_db=PERSISTENT_THRESHOLD_DB,
+                            pipeline=recipes_map_chain(_off_as_none(args.excise_interference_db)))
         record.save(args.output)
         cdr = CalibratedDR.from_record(record)
     if args.json:
@@ -170,6 +171,21 @@ def _db_or_off(text: str) -> float | str:
     if not value > 0:
         raise argparse.ArgumentTypeError(f"the threshold must be > 0 dB, got {text!r}")
     return value
+
+
+def _interference_arg(parser: argparse.ArgumentParser) -> None:
+    """``--excise-interference-db`` of the commands that fit a calibration record."""
+    from radaraug.diagnosis.record import INTERFERENCE_THRESHOLD_DB
+
+    parser.add_argument("--excise-interference-db", type=_db_or_off, default=INTERFERENCE_THRESHOLD_DB,
+                        metavar="DB|off", help="fit on maps with another radar's bursts excised at this threshold, as "
+                        "the recipes make them (default: %(default)s, the recipes'); off: RangeDoppler -> ToDecibels "
+                        "alone (the paper's chain)")
+
+
+def _off_as_none(value: float | str) -> float | None:
+    """A :func:`_db_or_off` value: ``"off"`` -> None."""
+    return None if value == "off" else float(value)
 
 
 def _device_arg(text: str, option: str = "--accelerator") -> str:
@@ -444,7 +460,7 @@ def _cmd_reproduce(args: argparse.Namespace) -> Result:
         if args.representation is not None:
             changes["representation"] = args.representation
         if args.excise_interference_db is not None:
-            changes["excise_interference_db"] = None if args.excise_interference_db == "off" else args.excise_interference_db
+            changes["excise_interference_db"] = _off_as_none(args.excise_interference_db)
         if changes:
             settings = replace(ReproduceSettings.quick() if args.quick else ReproduceSettings.full(), **changes)
         report = reproduce(args.output, quick=args.quick, seeds=args.seeds, calibration=args.calibration,
@@ -599,7 +615,8 @@ def _cmd_calibrate(args: argparse.Namespace) -> Result:
     if args.keep_recording is not None:
         _check_output(args, args.keep_recording)
     run = calibrate(_live_device(args), args.output, seconds=args.seconds, keep_recording=args.keep_recording,
-                    overwrite=args.overwrite, progress=not args.no_progress, floor=args.floor)
+                    overwrite=args.overwrite, progress=not args.no_progress, floor=args.floor,
+                    interference_db=_off_as_none(args.excise_interference_db))
     cdr = run.cdr
     if args.json:
         return {"output": str(run.output), "mean_db": cdr.mean_db, "std_db": cdr.std_db, "floor": cdr.floor,
@@ -725,6 +742,7 @@ def build_parser() -> argparse.ArgumentParser:
                      help="the floor distribution the calibration draws from: normal (the paper's CDR) or empirical "
                      "(the capture's measured one; its quantiles are recorded either way)")
     fit.add_argument("--json", action="store_true", help="print the calibration record (with the output path) as one JSON object")
+    _interference_arg(fit)
 
     bench = command("bench", _cmd_bench, help="benchmarks (figures as ratios against a same-process baseline)")
     bench.add_argument("what", choices=["transforms", "twin", "training", "predict", "diagnose", "static-room",
@@ -930,6 +948,7 @@ def build_parser() -> argparse.ArgumentParser:
                      "cdr_profile)")
     cal.add_argument("--floor", choices=("normal", "empirical"), default="normal",
                      help="the floor distribution the calibration draws from (as fit-cdr --floor)")
+    _interference_arg(cal)
     return p
 
 

@@ -11,6 +11,7 @@ from typing import TYPE_CHECKING
 
 from radaraug.capture.base import RadarDevice
 from radaraug.capture.record import RecordResult, record
+from radaraug.diagnosis.record import INTERFERENCE_THRESHOLD_DB
 from radaraug.errors import CalibrationError
 from radaraug.transforms import CalibratedDR, MotionWarning
 from radaraug.transforms._motion import DEFAULT_THRESHOLD_DB, MIN_FRAMES, WARN_FRACTION
@@ -49,6 +50,7 @@ def calibrate(
     motion_threshold_db: float = DEFAULT_THRESHOLD_DB,
     progress: bool = False,
     floor: str = "normal",
+    interference_db: float | None = INTERFERENCE_THRESHOLD_DB,
 ) -> CalibrationRun:
     """Record ``seconds`` of the empty room from ``device``, fit its calibration record, save it to ``output``.
 
@@ -61,6 +63,8 @@ def calibrate(
         motion_threshold_db: threshold of the motion check.
         progress: show a progress bar.
         floor: ``"normal"`` (the paper's) or ``"empirical"`` (see :class:`~radaraug.transforms.CalibratedDR`).
+        interference_db: fit on maps with another radar's bursts excised at this threshold, as the recipes
+            make them (None: ``RangeDoppler -> ToDecibels`` alone, the paper's chain).
 
     Returns:
         A :class:`CalibrationRun`.
@@ -91,7 +95,8 @@ def calibrate(
             # The motion warning of fit() becomes the refusal below.
             warnings.simplefilter("ignore", MotionWarning)
             cal = fit_record(rec_path, floor=floor, motion_threshold_db=motion_threshold_db,
-                             persistent_db=PERSISTENT_THRESHOLD_DB, pipeline=recipes_map_chain())
+                             persistent_db=PERSISTENT_THRESHOLD_DB,
+                             pipeline=recipes_map_chain(interference_db))
     finally:
         if temporary:
             rec_path.unlink(missing_ok=True)

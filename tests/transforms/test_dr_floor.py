@@ -16,7 +16,7 @@ import torch
 
 from radaraug.cli import main
 from radaraug.errors import CalibrationError, InputTensorError
-from radaraug.transforms import CalibratedDR, RadarCompose, RangeDoppler, ToDecibels
+from radaraug.transforms import CalibratedDR, InterferenceExcision, RadarCompose, RangeDoppler, ToDecibels
 from radaraug.transforms import functional as F
 from radaraug.transforms.floor_fit import QUANTILES
 
@@ -127,8 +127,16 @@ def test_fit_cdr_cli_writes_the_floor_it_is_asked_for(tmp_path, capsys, cfg) -> 
     assert "empirical floor" in capsys.readouterr().out
     cdr = CalibratedDR.load(tmp_path / "cdr.json")
     assert cdr.floor == "empirical" and cdr.quantiles_db.shape == (QUANTILES,)
-    low = RadarCompose([RangeDoppler(), ToDecibels(), cdr])(counts_to_float(counts))
+    # fitted on the recipes' maps (bursts excised first): it composes after that chain, and refuses another
+    low = RadarCompose([InterferenceExcision(), RangeDoppler(), ToDecibels(), cdr])(counts_to_float(counts))
     assert low.shape == (20, 3, 64, 32)
+    with pytest.raises(CalibrationError, match="InterferenceExcision"):
+        RadarCompose([RangeDoppler(), ToDecibels(), cdr])
+    # --excise-interference-db off: the paper's chain
+    assert main(["fit-cdr", str(tmp_path / "empty.h5"), "-o", str(tmp_path / "plain.json"),
+                 "--excise-interference-db", "off"]) == 0
+    plain = CalibratedDR.load(tmp_path / "plain.json")
+    assert RadarCompose([RangeDoppler(), ToDecibels(), plain])(counts_to_float(counts)).shape == (20, 3, 64, 32)
 
 
 @pytest.mark.real

@@ -88,9 +88,11 @@ def interference_excision(x: torch.Tensor, threshold_db: float = 6.0) -> torch.T
     """
     x = check_tensor(x, f"interference_excision expects {RAW_LAYOUT}", finite=False)
     # What changes from chirp to chirp (the frame's mean chirp removed), its power per chirp over RX and samples
-    power = static_clutter_removal(x).square().mean(dim=(-3, -1))  # (..., chirps)
+    power = static_clutter_removal(x).square_().mean(dim=(-3, -1))  # (..., chirps)
     median = power.median(dim=-1, keepdim=True).values
     hit = (power > median * 10 ** (float(threshold_db) / 10))[..., None, :, None]  # (..., 1, chirps, 1)
+    if not bool(hit.any()):  # the usual case: nothing to replace, so no full-size work beyond the power
+        return x
     # The replacement: the mean of the chirps not hit (the bursts would leave their share in the plain mean).
     keep = (~hit).to(x.dtype)
     clean_mean = (x * keep).sum(dim=-2, keepdim=True) / keep.sum(dim=-2, keepdim=True).clamp_min(1)
