@@ -147,7 +147,7 @@ def _cmd_fit_cdr(args: argparse.Namespace) -> Result:
         # the calibration record: the floor fit (on the recipes' maps) and the capture's identity (its content digest)
         record = fit_record(args.path, max_frames=args.max_frames, progress=True, floor=args.floor,
                             persistent_db=PERSISTENT_THRESHOLD_DB,
-                            pipeline=recipes_map_chain(_off_as_none(args.excise_interference_db)))
+                            pipeline=recipes_map_chain(_record_interference_db(args.excise_interference_db)))
         record.save(args.output)
         cdr = CalibratedDR.from_record(record)
     if args.json:
@@ -175,17 +175,22 @@ def _db_or_off(text: str) -> float | str:
 
 def _interference_arg(parser: argparse.ArgumentParser) -> None:
     """``--excise-interference-db`` of the commands that fit a calibration record."""
-    from radaraug.diagnosis.record import INTERFERENCE_THRESHOLD_DB
-
-    parser.add_argument("--excise-interference-db", type=_db_or_off, default=INTERFERENCE_THRESHOLD_DB,
-                        metavar="DB|off", help="fit on maps with another radar's bursts excised at this threshold, as "
-                        "the recipes make them (default: %(default)s, the recipes'); off: RangeDoppler -> ToDecibels "
-                        "alone (the paper's chain)")
+    parser.add_argument("--excise-interference-db", type=_db_or_off, default=None, metavar="DB|off",
+                        help="fit on maps with another radar's bursts excised at this threshold, as the recipes make "
+                        "them (default: the recipes' threshold, data.image.excise_interference_db); off: "
+                        "RangeDoppler -> ToDecibels alone (the paper's chain)")
 
 
 def _off_as_none(value: float | str) -> float | None:
     """A :func:`_db_or_off` value: ``"off"`` -> None."""
     return None if value == "off" else float(value)
+
+
+def _record_interference_db(value: float | str | None) -> float | None:
+    """The interference threshold a calibration record is fitted with (None given: the recipes')."""
+    from radaraug.diagnosis.record import INTERFERENCE_THRESHOLD_DB
+
+    return INTERFERENCE_THRESHOLD_DB if value is None else _off_as_none(value)
 
 
 def _device_arg(text: str, option: str = "--accelerator") -> str:
@@ -616,11 +621,11 @@ def _cmd_calibrate(args: argparse.Namespace) -> Result:
         _check_output(args, args.keep_recording)
     run = calibrate(_live_device(args), args.output, seconds=args.seconds, keep_recording=args.keep_recording,
                     overwrite=args.overwrite, progress=not args.no_progress, floor=args.floor,
-                    interference_db=_off_as_none(args.excise_interference_db))
+                    interference_db=_record_interference_db(args.excise_interference_db))
     cdr = run.cdr
     if args.json:
         return {"output": str(run.output), "mean_db": cdr.mean_db, "std_db": cdr.std_db, "floor": cdr.floor,
-                "motion_fraction": cdr.motion, "recording": _recording_json(run.recording)}
+                "chain": cdr.chain, "motion_fraction": cdr.motion, "recording": _recording_json(run.recording)}
     kept = f"; recording kept in {run.recording.path}" if args.keep_recording else ""
     print(f"CalibratedDR: m_t = {cdr.mean_db:.2f} dB, s_t = {cdr.std_db:.2f} dB from {run.recording.frames} "
           f"empty-room frames (motion {100 * (cdr.motion or 0.0):.3f} %) -> {run.output}{kept}")

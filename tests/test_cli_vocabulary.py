@@ -171,7 +171,7 @@ def test_capture_and_calibrate_json_name_their_file_output(tmp_path, monkeypatch
     rest = {k: v for k, v in rec.to_dict().items() if k not in ("path", "device")}
     assert printed == {"output": str(tmp_path / "c.h5"), "board": {"name": "virtual"}, **rest}
 
-    cdr = SimpleNamespace(mean_db=-90.0, std_db=2.0, floor="normal", motion=0.0)
+    cdr = SimpleNamespace(mean_db=-90.0, std_db=2.0, floor="normal", motion=0.0, chain=[])
     run = SimpleNamespace(cdr=cdr, output=tmp_path / "cdr.json", recording=rec)
     monkeypatch.setattr(capture, "calibrate", lambda device, output, **kw: run)
     assert main(["calibrate", "--board", "virtual", "-o", str(tmp_path / "cdr.json"), "--json"]) == 0

@@ -80,6 +80,9 @@ def calibrate(
     output = Path(output)
     if floor not in FLOORS:  # before recording, not after ten seconds of it
         raise CalibrationError(f"calibrate: floor must be one of {FLOORS}, got {floor!r}")
+    if interference_db is not None and not interference_db > 0:
+        raise CalibrationError(f"calibrate: interference_db must be > 0 dB or None, got {interference_db!r}")
+    chain = recipes_map_chain(interference_db)
     _check_writable(output)
     if keep_recording is not None:
         rec_path, temporary = Path(keep_recording), False
@@ -95,8 +98,7 @@ def calibrate(
             # The motion warning of fit() becomes the refusal below.
             warnings.simplefilter("ignore", MotionWarning)
             cal = fit_record(rec_path, floor=floor, motion_threshold_db=motion_threshold_db,
-                             persistent_db=PERSISTENT_THRESHOLD_DB,
-                             pipeline=recipes_map_chain(interference_db))
+                             persistent_db=PERSISTENT_THRESHOLD_DB, pipeline=chain)
     finally:
         if temporary:
             rec_path.unlink(missing_ok=True)

@@ -161,7 +161,8 @@ def fit_record(
         capture: the empty-room capture (radaraug ``.h5`` or Infineon recording folder).
         floor: CalibratedDR's floor distribution, ``"normal"`` or ``"empirical"``.
         pipeline: raw cube -> dB map chain of the floor and the persistent cells; default
-            ``RangeDoppler() -> ToDecibels()`` (the recipes': :func:`recipes_map_chain`).
+            ``RangeDoppler() -> ToDecibels()`` (``fit-cdr`` and ``calibrate`` pass the recipes':
+            :func:`recipes_map_chain`).
         max_frames: frames the floor is fitted on (default: all).
         motion_threshold_db: threshold of the motion check (warns ``MotionWarning``).
         profile_frames: also fit the twin profile (``diagnose`` without a scene) on this many frames.

@@ -68,3 +68,13 @@ def test_cli_calibrate(tmp_path, capsys) -> None:
     assert out["recording"]["frames"] == 20 and out["motion_fraction"] == 0.0 and out["floor"] == "empirical"
     cdr = CalibratedDR.load(tmp_path / "cdr.json")
     assert cdr.num_frames == 20 and cdr.floor == "empirical"
+    assert out["chain"][0]["name"] == "InterferenceExcision"  # the recipes' chain by default
+    rc = main(["calibrate", "--board", "virtual", "--radar-config", str(cfg), "--seconds", "2", "--no-realtime",
+               "--no-progress", "-o", str(tmp_path / "plain.json"), "--json", "--excise-interference-db", "off"])
+    assert rc == 0 and json.loads(capsys.readouterr().out)["chain"][0]["name"] == "RangeDoppler"
+
+
+def test_a_bad_interference_threshold_is_refused_before_recording(tmp_path) -> None:
+    with pytest.raises(CalibrationError, match="interference_db must be > 0"):
+        calibrate(VirtualSensor("corridor", config=CFG, realtime=False), tmp_path / "cdr.json", interference_db=0.0)
+    assert not list(tmp_path.iterdir())

@@ -15,6 +15,7 @@ from radaraug.transforms import (
     CombineRx,
     DopplerFFT,
     FloorRelative,
+    InterferenceExcision,
     RadarCompose,
     RandomDR,
     RangeDoppler,
@@ -228,11 +229,12 @@ def test_shapes_and_devices_follow_the_input_on_the_meta_device():
     # (before: "Tensor.item() cannot be called on meta tensors").
     x = torch.empty(2, 3, 8, 16, device="meta")
     pipeline = RadarCompose(
-        [RangeDoppler(), ToDecibels(), CalibratedDR(-100, 3, floor="empirical", quantiles_db=[-110.0, -90.0]),
+        [InterferenceExcision(), RangeDoppler(), ToDecibels(),
+         CalibratedDR(-100, 3, floor="empirical", quantiles_db=[-110.0, -90.0]),
          RandomDR(), CombineRx("mean_power", db=True),
          ClipNormalize(-120, -40), Colormap(), Resize((5, 7))]
     )
     y = pipeline(x)
     assert y.device.type == "meta" and y.shape == (2, 3, 5, 7) and y.dtype == torch.float32
-    for t in (pipeline[2], pipeline[3]):
+    for t in (pipeline[3], pipeline[4]):
         assert all(v.device.type == "meta" for v in t.last_params.values())

@@ -91,8 +91,8 @@ def interference_excision(x: torch.Tensor, threshold_db: float = 6.0) -> torch.T
     power = static_clutter_removal(x).square_().mean(dim=(-3, -1))  # (..., chirps)
     median = power.median(dim=-1, keepdim=True).values
     hit = (power > median * 10 ** (float(threshold_db) / 10))[..., None, :, None]  # (..., 1, chirps, 1)
-    if not bool(hit.any()):  # the usual case: nothing to replace, so no full-size work beyond the power
-        return x
+    if x.device.type == "cpu" and not bool(hit.any()):  # the usual case: nothing to replace (a CUDA or meta
+        return x                                           # tensor is not read back to the host)
     # The replacement: the mean of the chirps not hit (the bursts would leave their share in the plain mean).
     keep = (~hit).to(x.dtype)
     clean_mean = (x * keep).sum(dim=-2, keepdim=True) / keep.sum(dim=-2, keepdim=True).clamp_min(1)
