@@ -95,8 +95,7 @@ class ReproduceSettings:
     cdr_floor: str | None = RECIPE
     #: ablation variants (``recipes/ablation/NAME.yaml``) run unless ``reproduce(ablation=False)``
     ablations: tuple[str, ...] = ("rt_paper_image", "randomdr_paper_image", "cdr_paper_image", "cdr_normal_floor",
-                                  "cdr_empirical_floor", "rt_no_twin_randomization", "rt_noise_fit",
-                                  "randomdr_no_interference_excision")
+                                  "cdr_empirical_floor", "rt_no_twin_randomization", "rt_noise_fit")
 
     @classmethod
     def full(cls) -> ReproduceSettings:
