@@ -213,12 +213,12 @@ def prepare(method: Method, calibration: str | None, source: str | None, twin: T
     else:
         raise ConfigError(f"no radar config: no capture to read it from, and the calibration {calibration!r} is "
                           "not a calibration record that holds one")
+    maps = rd_db_chain(image.excise_interference_db)  # raw frames -> dB maps, as this run makes them
     if record is not None and record.cdr is not None:
-        _check_record_chain(record, str(calibration), rd_db_chain(image.excise_interference_db).chain_spec())
-    dr_source: Any = calibration
-    if isinstance(method, CDR) and has_capture and image.excise_interference_db is not None:
-        # CDR's floor from the capture's maps as the run makes them: without the bursts the excision removes
-        dr_source = CalibratedDR.fit(calibration, pipeline=rd_db_chain(image.excise_interference_db), progress=False)
+        _check_record_chain(record, str(calibration), maps.chain_spec())
+    # CDR's floor from the capture's maps as the run makes them (without the bursts the excision removes)
+    dr_source: Any = CalibratedDR.fit(calibration, pipeline=maps, progress=False) \
+        if isinstance(method, CDR) and has_capture else calibration
     dr = method.dr(dr_source, dr_seed)
     if isinstance(dr, CalibratedDR):
         dr.check_config(config)
@@ -226,8 +226,7 @@ def prepare(method: Method, calibration: str | None, source: str | None, twin: T
     if fit_excision and image.excises and has_capture and calibration is not None:
         from radaraug.diagnosis.record import persistent_cells_of
 
-        excise = persistent_cells_of(calibration, float(image.excise_persistent_db or 0.0),
-                                     rd_db_chain(image.excise_interference_db))
+        excise = persistent_cells_of(calibration, float(image.excise_persistent_db or 0.0), maps)
     elif fit_excision and image.excises and record is not None:
         excise = record.persistent_mask()  # at the record's threshold (radaraug fit-cdr records the recipes')
         shape = (config.num_range_bins, config.num_chirps_per_frame)
