@@ -97,6 +97,12 @@ def _world_manifests(run: Path) -> dict[str, Path]:
     return out
 
 
+def _suite_std(report: dict, worlds: dict, task: str, method: str, key: str) -> float:
+    """The std over seeds of the suite mean (each seed's mean over the worlds)."""
+    per_world = [report["test_sets"][w]["results"][task][method][key]["per_seed"] for w in worlds]
+    return float(np.std([np.mean(seed) for seed in zip(*per_world)]))
+
+
 def main() -> None:
     """Score every run of the design suite by kind of frame and write the record."""
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
@@ -186,7 +192,11 @@ def main() -> None:
         "run_results": {task: {**{k: r[k] for k in ("mean", "worst", "worst_world", "gated_mean", "gated_worst",
                                                       "single_frame_mean", "val_mean", "per_world")},
                                "gated_per_world": {w: report["test_sets"][w]["results"][task][name]
-                                                   ["static_gate_balanced_accuracy"]["mean"] for w in r["per_world"]}}
+                                                   ["static_gate_balanced_accuracy"]["mean"] for w in r["per_world"]},
+                               "mean_std_over_seeds": _suite_std(report, r["per_world"], task, name,
+                                                                 "balanced_accuracy"),
+                               "gated_mean_std_over_seeds": _suite_std(report, r["per_world"], task, name,
+                                                                       "static_gate_balanced_accuracy")}
                         for task, methods in report["suites"]["design"]["results"].items()
                         for name, r in methods.items() if name == args.method},
         "counting_two_moving_people_by_image_separation_summed_over_seeds": {

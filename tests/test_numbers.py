@@ -2325,6 +2325,12 @@ FIGURES: list[Figure] = [
     Figure("docs/predict.md", "the network alone also ran faster in this hour than in the record before, 1141.2 against "
            "908.8 frames/s", "predict_cpu.json", ("network_alone_frames_per_s", "previous_run/network_alone_frames_per_s"),
            "{:.1f} against {:.1f} frames/s"),
+    Figure("docs/training.md", "0.012 / 0.008 / 0.005 / 0.006 without the excision", _ADA,
+           tuple(f"summary/{t}/{k}/std_over_seeds_of_suite_mean" for t in _TASKS
+                 for k in ("base context", "base context+gate")), "{:.3f} / {:.3f} / {:.3f} / {:.3f} without"),
+    Figure("docs/training.md", "0.006 / 0.001 / 0.009 / 0.007 with it. The plain", _IE,
+           tuple(f"run_results/{t}/{k}" for t in _TASKS for k in ("mean_std_over_seeds", "gated_mean_std_over_seeds")),
+           "{:.3f} / {:.3f} / {:.3f} / {:.3f} with it"),
     # the interference excision on the design suite (round 7): the record before and after, per world
     *(Figure("benchmarks/README.md", ("occupancy 0.878 " if rec == _ERR else "") + "→ 0.890 (+ gate 0.949 → 0.965), "
              "counting 0.624 → 0.665 (+ gate 0.692 → 0.737), worst counting world 0.476 → 0.533", rec,
