@@ -464,6 +464,8 @@ def _cmd_reproduce(args: argparse.Namespace) -> Result:
         changes: dict[str, Any] = {}
         if args.representation is not None:
             changes["representation"] = args.representation
+        if args.resample is not None:
+            changes["resample"] = args.resample
         if args.excise_interference_db is not None:
             changes["excise_interference_db"] = _off_as_none(args.excise_interference_db)
         if changes:
@@ -824,6 +826,9 @@ def build_parser() -> argparse.ArgumentParser:
     rep.add_argument("--representation", choices=("floor_relative", "paper"), default=None,
                      help="network input of the main runs: floor_relative (default: each range row referenced to "
                      "its Doppler median, zero Doppler blanked) or paper (the clipped dBFS map)")
+    rep.add_argument("--resample", choices=("bilinear", "max"), default=None,
+                     help="how each map shrinks to the image size: bilinear (the colour image resized, the paper's) "
+                     "or max (each pixel the max of the levels it covers; default: the recipes'; docs/training.md)")
     rep.add_argument("--excise-interference-db", type=_db_or_off, default=None, metavar="DB|off",
                      help="replace each frame's chirps whose moving power stands DB over its median chirp (another "
                      "radar's burst) before the RD FFTs, in training and test alike, or off (default: the recipes'; "

@@ -397,6 +397,7 @@ REPRODUCE_FLAGS = {  # flag -> (extra arguments, the value expected at the recip
     "--test": ([], None),
     "--cdr-floor": (["--cdr-floor", "empirical", "--methods", "cdr"], "empirical"),
     "--representation": (["--representation", "paper"], "paper"),
+    "--resample": (["--resample", "max"], "max"),
     "--excise-interference-db": (["--excise-interference-db", "7.5"], 7.5),
     "--test-dr": (["--test-dr"], True),
     "--accelerator": (["--accelerator", "cpu"], "cpu"),

@@ -19,7 +19,7 @@ from radaraug.errors import CheckpointError
 from radaraug.training.classifier_file import ChainSpec
 from radaraug.transforms import ToDecibels
 from radaraug.transforms.functional._floor import zero_doppler_bins
-from radaraug.transforms.functional._image import colormap_lut
+from radaraug.transforms.functional._image import colormap_lut, max_windows
 from radaraug.transforms.windows import normalized_window, shifted_doppler_window
 
 #: ToDecibels' default magnitude floor (the eager chain's): its dB maps stay finite on exact zeros.
@@ -95,8 +95,13 @@ class MatmulChain(nn.Module):
         self.vmin, self.vmax = float(spec.clip_range_db[0]), float(spec.clip_range_db[1])
         self.register_buffer("lut", colormap_lut("viridis").float())
         size = spec.image_size or (samples // 2, chirps)
-        self.register_buffer("resize_h", _resize_matrix(samples // 2, int(size[0])).float())
-        self.register_buffer("resize_w", _resize_matrix(chirps, int(size[1])).float())
+        self.max_resize = spec.resample == "max"
+        if self.max_resize:  # each pixel the max of its cells' levels, before the colour table (gathers)
+            self.register_buffer("resize_h", max_windows(samples // 2, int(size[0])))
+            self.register_buffer("resize_w", max_windows(chirps, int(size[1])))
+        else:
+            self.register_buffer("resize_h", _resize_matrix(samples // 2, int(size[0])).float())
+            self.register_buffer("resize_w", _resize_matrix(chirps, int(size[1])).float())
         self.median_index = (chirps - 1) // 2  # torch's lower median
         self.excises_interference = spec.interference_db is not None
         self.interference_ratio = 10.0 ** (float(spec.interference_db or 0.0) / 10.0)
@@ -116,10 +121,14 @@ class MatmulChain(nn.Module):
             median = torch.sort(level, dim=-1).values[..., self.median_index:self.median_index + 1]
             level = (level - median) * self.keep
         u = (level.clamp(self.vmin, self.vmax) - self.vmin) * (1.0 / (self.vmax - self.vmin))
+        if self.max_resize:
+            b, h, w = u.shape[0], self.resize_h.shape[0], self.resize_w.shape[0]
+            u = u[:, self.resize_h.flatten()].reshape(b, h, -1, u.shape[-1]).amax(dim=2)
+            u = u[:, :, self.resize_w.flatten()].reshape(b, h, w, -1).amax(dim=3)
         n = self.lut.shape[0]
         idx = (u * n).long().clamp(0, n - 1)
         img = self.lut[idx].permute(0, 3, 1, 2)  # (B, 3, range, doppler)
-        return self.resize_h @ img @ self.resize_w.T
+        return img if self.max_resize else self.resize_h @ img @ self.resize_w.T
 
     def _excise_interference(self, x: torch.Tensor) -> torch.Tensor:
         """:func:`~radaraug.transforms.functional.interference_excision` with a sort for the median (ONNX has no median)."""

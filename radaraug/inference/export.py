@@ -102,8 +102,9 @@ def export(classifier: RadarClassifier, out_dir: str | os.PathLike, *, formats: 
                   "shape": [None, cfg.num_rx, cfg.num_chirps_per_frame, cfg.num_samples_per_chirp]},
         "output": {"name": "probabilities", "layout": "(batch, classes)", "classes": list(classifier.class_names)},
         "chain": ("interference excision, " if classifier.chain.interference_db is not None else "")
-                 + "range-Doppler (DFT matrices), dB, RX mean power, floor-relative map, excision, clip, viridis, "
-                 "resize: all inside the export",
+                 + "range-Doppler (DFT matrices), dB, RX mean power, floor-relative map, excision, clip, "
+                 + ("max resize, viridis" if classifier.chain.resample == "max" else "viridis, resize")
+                 + ": all inside the export",
         "not_inside": "the causal smoothing over frames and the static-change gate (run them on the host: "
                       "docs/predict.md)",
         "context_frames": classifier.context_frames, "config": cfg.to_dict(), "check_frames": len(x),

@@ -24,8 +24,9 @@ from radaraug.files import atomic_write_bytes, regular_file_size
 
 FORMAT = "radaraug-classifier"
 """The ``format`` field of every classifier file."""
-FORMAT_VERSION = 2
-"""Bumped when the layout changes; a file of a newer version is refused (2: the chain's ``interference_db``)."""
+FORMAT_VERSION = 3
+"""Bumped when the layout changes; a file of a newer version is refused (2: the chain's ``interference_db``;
+3: its ``resample``)."""
 
 if TYPE_CHECKING:
     from radaraug.config import RadarConfig
@@ -44,6 +45,8 @@ class ChainSpec:
         image_size: the network input ``(H, W)``, or None for the RD map's own size.
         excise: bool ``(range, doppler)`` mask of the calibration's persistent cells, or None.
         interference_db: the interference excision's threshold before the RD FFTs, or None (none).
+        resample: how the map shrinks to ``image_size``: ``"bilinear"`` or ``"max"``
+            (:func:`radaraug.training.pipeline.image_chain`).
     """
 
     range_doppler: dict[str, Any]
@@ -53,6 +56,7 @@ class ChainSpec:
     image_size: tuple[int, int] | None
     excise: torch.Tensor | None = None
     interference_db: float | None = None
+    resample: str = "bilinear"
 
     def eager(self) -> nn.Sequential:
         """The chain from the library's transforms: raw frames ``(B, rx, chirps, samples)`` -> ``(B, 3, H, W)``."""
@@ -64,7 +68,7 @@ class ChainSpec:
             steps.insert(0, InterferenceExcision(self.interference_db))
         rd = RadarCompose(steps)
         return nn.Sequential(rd, *image_chain(*self.clip_range_db, self.image_size, self.representation, self.excise,
-                                              self.blank_zero_doppler))
+                                              self.blank_zero_doppler, self.resample))
 
     def to_dict(self) -> dict[str, Any]:
         """Plain values and tensors only (what a weights-only load accepts)."""
@@ -72,7 +76,8 @@ class ChainSpec:
                 "blank_zero_doppler": int(self.blank_zero_doppler), "clip_range_db": [float(v) for v in self.clip_range_db],
                 "image_size": None if self.image_size is None else [int(v) for v in self.image_size],
                 "excise": None if self.excise is None else self.excise.to(torch.bool).cpu(),
-                "interference_db": None if self.interference_db is None else float(self.interference_db)}
+                "interference_db": None if self.interference_db is None else float(self.interference_db),
+                "resample": self.resample}
 
     @classmethod
     def from_dict(cls, data: dict[str, Any], *, source: str) -> ChainSpec:
@@ -81,13 +86,16 @@ class ChainSpec:
             size = data["image_size"]
             excise = data["excise"]
             interference = data.get("interference_db")  # absent from files of before the excision: none
+            resample = str(data.get("resample", "bilinear"))  # absent from files of before version 3: bilinear
             spec = cls(dict(data["range_doppler"]), str(data["representation"]), int(data["blank_zero_doppler"]),
                        (float(data["clip_range_db"][0]), float(data["clip_range_db"][1])),
                        None if size is None else (int(size[0]), int(size[1])),
                        None if excise is None else torch.as_tensor(excise, dtype=torch.bool),
-                       None if interference is None else float(interference))
+                       None if interference is None else float(interference), resample)
         except (KeyError, TypeError, ValueError, IndexError) as e:
             raise CheckpointError(f"{source}: the test chain it records is incomplete or malformed ({e!r})") from None
+        if spec.resample not in ("bilinear", "max"):
+            raise CheckpointError(f"{source}: the test chain's resample must be 'bilinear' or 'max', got {spec.resample!r}")
         if spec.interference_db is not None and not spec.interference_db > 0:
             raise CheckpointError(f"{source}: the test chain's interference_db must be > 0 dB or null, "
                                   f"got {spec.interference_db}")
@@ -118,7 +126,7 @@ def classifier_record(model: Any, datamodule: Any, *, gate: StaticChangeDetector
                       str(spec.representation), int(spec.blank_zero_doppler),
                       (float(datamodule.clip[0]), float(datamodule.clip[1])),
                       None if size is None else (int(size[0]), int(size[1])), datamodule.excise,
-                      spec.excise_interference_db)
+                      spec.excise_interference_db, str(spec.resample))
     info = {"method": datamodule.method.name, "train_items": int(datamodule.twin.train_items),
             "sim_seed": int(datamodule.twin.seed), "dr_seed": int(datamodule.hparams["seed"]), **(provenance or {})}
     return file_record(task=str(model.hparams["task"]), arch=arch, net=net, config=datamodule.config, chain=chain,

@@ -290,7 +290,7 @@ class RadarDataModule(L.LightningDataModule):
     def _image_chain(self) -> torch.nn.Module:
         assert self.clip is not None
         s = self.image_spec
-        return image_chain(*self.clip, s.size, s.representation, self.excise, s.blank_zero_doppler)
+        return image_chain(*self.clip, s.size, s.representation, self.excise, s.blank_zero_doppler, s.resample)
 
     def _matched_dr(self, dr: CalibratedDR, train: CachedMaps) -> CalibratedDR:
         """``dr`` with its floor quantiles matched to the twin's own empty-room floor (the ``matched`` floor)."""
@@ -343,25 +343,28 @@ class RadarDataModule(L.LightningDataModule):
         return self.prepared.receiver_kind(self.method)
 
     def state_dict(self) -> dict[str, Any]:
-        """The clip range, the excised cells and the interference threshold, saved in checkpoints (part of the model)."""
+        """The clip range, the excised cells, the interference threshold and the resample, saved in checkpoints."""
         # Part of the model: a checkpoint tested later must clip and excise the same way.
         return {"clip_range": None if self.clip is None else list(self.clip),
                 "excise": None if self.excise is None else self.excise.nonzero().tolist(),
                 "excise_shape": None if self.excise is None else list(self.excise.shape),
-                "interference_db": self.image_spec.excise_interference_db}
+                "interference_db": self.image_spec.excise_interference_db, "resample": self.image_spec.resample}
 
     def load_state_dict(self, state_dict: dict[str, Any]) -> None:
         """Restore the clip range, the excised cells (and the image chain) from a checkpoint.
 
         Raises:
-            ConfigError: the checkpoint's network saw maps with another interference excision than this
-                module's ``image.excise_interference_db`` (a checkpoint without the key: none).
+            ConfigError: the checkpoint's network saw maps with another interference excision or resample than
+                this module's ``image.excise_interference_db`` / ``image.resample`` (a checkpoint without the key:
+                none / bilinear).
         """
-        saved = state_dict.get("interference_db")  # absent from checkpoints of before the excision: none
-        if saved != self.image_spec.excise_interference_db:
-            raise ConfigError(f"the checkpoint was trained with data.image.excise_interference_db: {saved}, this data "
-                              f"module has {self.image_spec.excise_interference_db}: set it to {saved} to test it "
-                              "with the chain it was trained on")
+        # absent from checkpoints of before the excision / the resample option: none / bilinear
+        for key, saved in (("excise_interference_db", state_dict.get("interference_db")),
+                           ("resample", state_dict.get("resample", "bilinear"))):
+            if saved != getattr(self.image_spec, key):
+                raise ConfigError(f"the checkpoint was trained with data.image.{key}: {saved}, this data module has "
+                                  f"{getattr(self.image_spec, key)}: set it to {saved} to test it with the chain it "
+                                  "was trained on")
         if state_dict.get("excise") is not None:
             mask = torch.zeros(*state_dict["excise_shape"], dtype=torch.bool)
             cells = torch.tensor(state_dict["excise"], dtype=torch.long).reshape(-1, 2)

@@ -20,6 +20,7 @@ from radaraug.transforms import (
     Colormap,
     CombineRx,
     FloorRelative,
+    MaxResize,
     RadarCompose,
     Resize,
 )
@@ -27,6 +28,9 @@ from radaraug.transforms import (
 #: Network input representations: the paper's clipped dBFS map, or each range row referenced to
 #: its own Doppler median with zero Doppler blanked (docs/training.md, "Representations").
 REPRESENTATIONS = ("paper", "floor_relative")
+#: How a map shrinks to the network's size: the paper's bilinear resize of the colour image, or the max of
+#: the cells each pixel covers, taken on the levels before the colour map (docs/training.md, "Representations").
+RESAMPLES = ("bilinear", "max")
 
 
 def is_calibration_json(calibration: str | os.PathLike) -> bool:
@@ -42,6 +46,13 @@ def rd_db_chain(interference_db: float | None = None) -> RadarCompose:
             (:class:`~radaraug.transforms.InterferenceExcision` at this threshold); None: no excision.
     """
     return recipes_map_chain(interference_db)
+
+
+def check_resample(resample: str) -> str:
+    """``resample`` if it is one of :data:`RESAMPLES` (ConfigError otherwise)."""
+    if resample not in RESAMPLES:
+        raise ConfigError(f"resample must be one of {RESAMPLES}, got {resample!r}")
+    return resample
 
 
 def check_representation(representation: str) -> str:
@@ -65,13 +76,20 @@ def level_chain(representation: str = "paper", excise: torch.Tensor | None = Non
 
 def image_chain(vmin: float, vmax: float, size: Sequence[int] | None = None,
                 representation: str = "paper", excise: torch.Tensor | None = None,
-                blank_zero_doppler: int = 1) -> nn.Sequential:
-    """Per-RX dB maps -> ``(3, H, W)`` viridis images in [0, 1] (the network input; levels: :func:`level_chain`)."""
-    steps: list[nn.Module] = [*level_chain(representation, excise, blank_zero_doppler), ClipNormalize(vmin, vmax),
-                              Colormap("viridis")]
-    if size is not None:
-        if len(size) != 2:
-            raise ConfigError(f"image size must be [H, W], got {list(size)}")
+                blank_zero_doppler: int = 1, resample: str = "bilinear") -> nn.Sequential:
+    """Per-RX dB maps -> ``(3, H, W)`` viridis images in [0, 1] (the network input; levels: :func:`level_chain`).
+
+    ``resample``: ``"bilinear"`` resizes the colour image (the paper's), ``"max"`` shrinks the clipped levels
+    to ``size`` by the max of each pixel's cells before the colour map (:class:`~radaraug.transforms.MaxResize`).
+    """
+    check_resample(resample)
+    if size is not None and len(size) != 2:
+        raise ConfigError(f"image size must be [H, W], got {list(size)}")
+    steps: list[nn.Module] = [*level_chain(representation, excise, blank_zero_doppler), ClipNormalize(vmin, vmax)]
+    if size is not None and resample == "max":
+        steps.append(MaxResize((int(size[0]), int(size[1]))))
+    steps.append(Colormap("viridis"))
+    if size is not None and resample == "bilinear":
         steps.append(Resize((int(size[0]), int(size[1]))))
     return nn.Sequential(*steps)
 

@@ -23,7 +23,7 @@ from radaraug.errors import CalibrationError, ConfigError
 from radaraug.sensor.profile import PROFILE_VERSION, TwinProfile
 from radaraug.sim.dataset import SimulatedRadarDataset
 from radaraug.training.methods import CDR, Method
-from radaraug.training.pipeline import check_representation, is_calibration_json
+from radaraug.training.pipeline import check_representation, check_resample, is_calibration_json
 from radaraug.transforms.record_file import CalibrationRecord, load_record
 
 #: Where the twin randomization's effect catalog takes its priors (``TwinSplits.catalog_priors``).
@@ -100,11 +100,13 @@ class ImageSpec:
         excise_interference_db: replace each frame's chirps whose moving power stands this many dB over the
             frame's median chirp (another radar's burst; :class:`~radaraug.transforms.InterferenceExcision`),
             before the RD FFTs, in training and test alike (6; None: none).
+        resample: how the map shrinks to ``size``: ``"bilinear"`` (the colour image resized, the paper's) or
+            ``"max"`` (each pixel the max of the levels it covers, before the colour map).
         clip_percentiles: percentiles of simulated (post-DR) maps that give ``[vmin, vmax]``.
         clip_range: a fixed ``[vmin, vmax]`` instead of the estimate.
 
     Raises:
-        ConfigError: an unknown representation or a malformed clip range.
+        ConfigError: an unknown representation or resample, or a malformed clip range.
     """
 
     size: list[int] | None = None
@@ -112,11 +114,13 @@ class ImageSpec:
     blank_zero_doppler: int = 1
     excise_persistent_db: float | None = PERSISTENT_THRESHOLD_DB
     excise_interference_db: float | None = INTERFERENCE_THRESHOLD_DB  # chosen on the design suite (docs/training.md)
+    resample: Literal["bilinear", "max"] = "bilinear"
     clip_percentiles: tuple[float, float] = (1.0, 99.9)
     clip_range: list[float] | None = None
 
     def __post_init__(self) -> None:
         check_representation(self.representation)
+        check_resample(self.resample)
         lo, hi = self.clip_percentiles  # a YAML list or a tuple: one value
         self.clip_percentiles = (float(lo), float(hi))
         if self.clip_range is not None and len(self.clip_range) != 2:

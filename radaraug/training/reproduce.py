@@ -67,6 +67,8 @@ class ReproduceSettings:
     context_frames: int | str = RECIPE
     #: network input of the main runs (``RadarDataModule.representation``)
     representation: str = RECIPE
+    #: how the map shrinks to ``image_size``: ``bilinear`` or ``max`` (``ImageSpec.resample``)
+    resample: str = RECIPE
     #: Doppler bins blanked on each side of zero in floor-relative maps (``RadarDataModule.blank_zero_doppler``)
     blank_zero_doppler: int | str = RECIPE
     #: stop a run once simulated validation balanced accuracy has not risen for this many epochs and test
@@ -115,7 +117,7 @@ class ReproduceSettings:
 RECIPE_KEYS: dict[str, tuple[str, ...]] = {
     "lr": ("model", "lr"), "context_frames": ("model", "context_frames"),
     "randomization": ("data", "twin", "randomization"), "calibrate_noise": ("data", "twin", "calibrate_noise"),
-    "representation": ("data", "image", "representation"),
+    "representation": ("data", "image", "representation"), "resample": ("data", "image", "resample"),
     "blank_zero_doppler": ("data", "image", "blank_zero_doppler"),
     "excise_persistent_db": ("data", "image", "excise_persistent_db"),
     "excise_interference_db": ("data", "image", "excise_interference_db"),

@@ -12,7 +12,7 @@ from radaraug.transforms.base import RadarTransform, RandomRadarTransform
 from radaraug.transforms.compose import RadarCompose
 from radaraug.transforms.dr import CalibratedDR, RandomDR
 from radaraug.transforms.floor import FloorRelative
-from radaraug.transforms.image import ClipNormalize, Colormap, Resize
+from radaraug.transforms.image import ClipNormalize, Colormap, MaxResize, Resize
 from radaraug.transforms.per_item import augmentation_generator
 from radaraug.transforms.spectral import (
     CombineRx,
@@ -47,6 +47,7 @@ __all__ = [
     "FloorRelative",
     "ClipNormalize",
     "Colormap",
+    "MaxResize",
     "Resize",
     "WINDOWS",
     "get_window",

@@ -137,3 +137,26 @@ class Resize(RadarTransform):
     def extra_spec(self) -> dict[str, Any]:
         """``size`` and ``antialias``."""
         return {"size": list(self.size), "antialias": self.antialias}
+
+
+class MaxResize(RadarTransform):
+    """Resample the last two dims to ``size = (height, width)``, each output cell the max of the cells it covers.
+
+    Put it before :class:`Colormap` (on levels or [0, 1] values): a person one range bin wide keeps their
+    peak where :class:`Resize` averages it with the floor (docs/transforms.md).
+
+    Args:
+        size: ``(height, width)``; a single int raises :class:`~radaraug.errors.ConfigError`.
+    """
+
+    event_ndim = 2
+    input_layout = "an image or map (..., H, W)"
+    kernel = staticmethod(F.max_resize)
+
+    def __init__(self, size: Sequence[int]) -> None:
+        super().__init__()
+        self.size = check_size(size, "MaxResize")
+
+    def extra_spec(self) -> dict[str, Any]:
+        """``size``."""
+        return {"size": list(self.size)}

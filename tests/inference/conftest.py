@@ -23,13 +23,14 @@ def small_config() -> RadarConfig:
 
 
 def chain(representation: str = "floor_relative", size: tuple[int, int] | None = (16, 8),
-          excise: torch.Tensor | None = None, interference_db: float | None = None) -> ChainSpec:
+          excise: torch.Tensor | None = None, interference_db: float | None = None,
+          resample: str = "bilinear") -> ChainSpec:
     clip = (-5.0, 30.0) if representation == "floor_relative" else (-110.0, -40.0)
-    return ChainSpec(dict(RD), representation, 1, clip, size, excise, interference_db)
+    return ChainSpec(dict(RD), representation, 1, clip, size, excise, interference_db, resample)
 
 
 def classifier(task: str = "occupancy", *, constant: int | None = None, seed: int = 0,
-               interference_db: float | None = None, **kw) -> RadarClassifier:
+               interference_db: float | None = None, resample: str = "bilinear", **kw) -> RadarClassifier:
     """An untrained ResNet18 classifier; ``constant``: one whose answer is always that class (p ~ 0.99)."""
     torch.manual_seed(seed)
     net = resnet18(2 if task == "occupancy" else 3)
@@ -39,7 +40,7 @@ def classifier(task: str = "occupancy", *, constant: int | None = None, seed: in
             net.fc.bias.fill_(0.0)
             net.fc.bias[constant] = 6.0
     return RadarClassifier(net, arch="resnet18", task=task, config=small_config(),
-                           chain=chain(interference_db=interference_db), **kw)
+                           chain=chain(interference_db=interference_db, resample=resample), **kw)
 
 
 def room_frames(n: int, seed: int = 0, target: float = 0.0) -> torch.Tensor:

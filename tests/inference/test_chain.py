@@ -29,12 +29,13 @@ def test_resize_matrices_are_the_antialiased_resize() -> None:
     assert torch.allclose(_resize_matrix(8, 8), torch.eye(8, dtype=torch.float64), atol=1e-12)
 
 
+@pytest.mark.parametrize("resample", ["bilinear", "max"])
 @pytest.mark.parametrize("representation", ["floor_relative", "paper"])
-@pytest.mark.parametrize("size", [(16, 8), None])
-def test_matmul_chain_equals_the_eager_chain(representation, size) -> None:
+@pytest.mark.parametrize("size", [(16, 8), (20, 8), None])
+def test_matmul_chain_equals_the_eager_chain(representation, size, resample) -> None:
     excise = torch.zeros(32, 16, dtype=torch.bool)
     excise[20, 3] = True
-    spec = chain(representation, size, excise)
+    spec = chain(representation, size, excise, resample=resample)
     x = room_frames(6, target=0.01)
     eager, mat = spec.eager()(x), MatmulChain(spec, 64, 16)(x)
     assert eager.shape == mat.shape == (6, 3, *(size or (32, 16)))
@@ -58,12 +59,17 @@ def test_spec_round_trip_and_refusals() -> None:
     spec = chain(excise=torch.eye(32, 16, dtype=torch.bool))
     again = ChainSpec.from_dict(spec.to_dict(), source="x")
     assert again.to_dict()["clip_range_db"] == spec.to_dict()["clip_range_db"] and torch.equal(again.excise, spec.excise)
-    assert again.interference_db is None
+    assert again.interference_db is None and again.resample == "bilinear"
+    assert ChainSpec.from_dict(chain(resample="max").to_dict(), source="x").resample == "max"
     with_excision = ChainSpec(dict(RD), "paper", 1, (-1.0, 1.0), None, None, 7.5)
     assert ChainSpec.from_dict(with_excision.to_dict(), source="x").interference_db == 7.5
     old = spec.to_dict()
     del old["interference_db"]  # a format-1 file: no interference excision
     assert ChainSpec.from_dict(old, source="x").interference_db is None
+    del old["resample"]  # a format-2 file: the bilinear resize
+    assert ChainSpec.from_dict(old, source="x").resample == "bilinear"
+    with pytest.raises(CheckpointError, match="x: the test chain's resample must be"):
+        ChainSpec.from_dict(old | {"resample": "nearest"}, source="x")
     with pytest.raises(CheckpointError, match="x: the test chain's interference_db"):
         ChainSpec.from_dict(old | {"interference_db": 0.0}, source="x")
     with pytest.raises(CheckpointError, match="x: the test chain"):

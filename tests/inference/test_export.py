@@ -13,12 +13,14 @@ from radaraug.inference.export import PROB_TOLERANCE, ExportedClassifier, check_
 from tests.inference.conftest import classifier, room_frames, with_bursts, write_frames
 
 
+@pytest.mark.parametrize("resample", ["bilinear", "max"])
 @pytest.mark.parametrize("fmt", ["torchscript", "torch_export", "onnx"])
-def test_each_export_matches_the_eager_classifier(fmt, tmp_path) -> None:
+def test_each_export_matches_the_eager_classifier(fmt, resample, tmp_path) -> None:
     if fmt == "onnx":
         pytest.importorskip("onnxruntime")
         pytest.importorskip("onnxscript")
-    clf = classifier("counting", seed=1, interference_db=6.0)  # the excision's sort and masks exported too
+    # the excision's sort and masks exported too, and the max resize's gathers
+    clf = classifier("counting", seed=1, interference_db=6.0, resample=resample)
     x = with_bursts(room_frames(6, target=0.01))
     rec = export(clf, tmp_path, formats=[fmt], frames=x)
     got = rec["exports"][fmt]

@@ -307,6 +307,10 @@ def test_interference_excision_reaches_twin_captures_and_the_classifier_file(tmp
     clf = RadarClassifier.from_record(classifier_record(RDClassifier(task="occupancy"), dm), source="x")
     assert clf.chain.interference_db == 6.0
     assert classifier_record(RDClassifier(task="occupancy"), plain)["chain"]["interference_db"] is None
+    # the resample reaches the file too
+    plain.image_spec.resample = "max"
+    assert RadarClassifier.from_record(classifier_record(RDClassifier(task="occupancy"), plain),
+                                       source="x").chain.resample == "max"
     # CDR's floor is fitted on the calibration's maps as the run makes them
     cdr = RadarDataModule(task="occupancy", method=CDR(), calibration=str(cal), **kw)
     cdr.setup("fit")

@@ -15,6 +15,20 @@ def test_image_size_must_be_height_and_width():
         image_chain(-120.0, -60.0, [6, 5, 4])
 
 
+def test_max_resample_shrinks_the_levels_before_the_colour_map():
+    # one cell 25 dB over a floor-relative floor of 0: the max keeps its colour, bilinear dims it
+    x = torch.zeros(1, 3, 32, 16)
+    x[..., 10, 5] = 25.0
+    peak = image_chain(0.0, 25.0, [8, 4], resample="max")(x)
+    top = image_chain(0.0, 25.0, None)(x)[..., 10, 5]  # the colour of a full-scale cell
+    assert torch.allclose(peak[..., 2, 1], top) and peak.shape == (1, 3, 8, 4)
+    assert not torch.allclose(image_chain(0.0, 25.0, [8, 4])(x)[..., 2, 1], top, atol=0.1)
+    with pytest.raises(ConfigError, match="resample must be one of"):
+        image_chain(0.0, 25.0, [8, 4], resample="nearest")
+    with pytest.raises(ConfigError, match="resample must be one of"):
+        ImageSpec(resample="nearest")  # type: ignore[arg-type]
+
+
 def test_clip_range_must_be_two_values_and_setup_must_run_first():
     with pytest.raises(ConfigError, match=r"\[vmin, vmax\]"):
         ImageSpec(clip_range=[-120.0])
@@ -25,13 +39,15 @@ def test_clip_range_must_be_two_values_and_setup_must_run_first():
     dm.load_state_dict({"clip_range": [-110.0, -50.0], "interference_db": 6.0})
     assert dm.clip == (-110.0, -50.0)
     assert dm.state_dict() == {"clip_range": [-110.0, -50.0], "excise": None, "excise_shape": None,
-                               "interference_db": 6.0}
+                               "interference_db": 6.0, "resample": dm.image_spec.resample}
     # a checkpoint trained without the interference excision (or from before it) is not tested with it
     with pytest.raises(ConfigError, match="excise_interference_db: None"):
         dm.load_state_dict({"clip_range": [-110.0, -50.0]})
-    old = RadarDataModule(image=ImageSpec(excise_interference_db=None))
-    old.load_state_dict({"clip_range": [-110.0, -50.0]})
+    old = RadarDataModule(image=ImageSpec(excise_interference_db=None, resample="bilinear"))
+    old.load_state_dict({"clip_range": [-110.0, -50.0]})  # a checkpoint of before the resample option: bilinear
     assert old.clip == (-110.0, -50.0)
+    with pytest.raises(ConfigError, match="resample: max"):
+        old.load_state_dict({"clip_range": [-110.0, -50.0], "resample": "max"})
 
 
 def test_cdr_floor_reaches_the_dr_and_is_checked(captures, tmp_path):

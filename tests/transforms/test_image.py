@@ -5,7 +5,7 @@ import torch
 from torchvision.transforms import v2
 
 from radaraug.errors import ConfigError, InputTensorError, RadarAugError
-from radaraug.transforms import ClipNormalize, Colormap, Resize
+from radaraug.transforms import ClipNormalize, Colormap, MaxResize, Resize
 from radaraug.transforms import functional as F
 
 
@@ -76,6 +76,28 @@ def test_resize_equals_torchvision_v2_resize(size, antialias):
     # with one thread PyTorch's kernel sums in another order for the two layouts (1e-16 apart).
     torch.testing.assert_close(Resize(size, antialias=antialias)(x), ref, rtol=0, atol=1e-12)
     assert torch.equal(v2.Resize(size, antialias=antialias)(x), ref)
+
+
+@pytest.mark.parametrize("shape,size", [((128, 64), (64, 32)), ((100, 64), (64, 32)), ((32, 16), (64, 32)),
+                                        ((7, 5), (3, 4))])
+def test_max_resize_equals_adaptive_max_pooling(shape, size, dtype, device):
+    # an independent reference: torch's adaptive max pooling has the same windows
+    x = torch.randn(2, 3, *shape, dtype=torch.float64, generator=torch.Generator().manual_seed(1)).to(dtype=dtype)
+    want = torch.nn.functional.adaptive_max_pool2d(x, size)
+    got = MaxResize(size)(x.to(device))
+    assert got.shape == (2, 3, *size) and got.device.type == torch.device(device).type
+    assert torch.equal(got.cpu(), want)
+
+
+def test_max_resize_keeps_a_one_cell_peak_that_bilinear_averages():
+    # a target one range bin wide, 20 dB over a 0 dB floor, on a 128 x 64 map shrunk to 64 x 32
+    x = torch.zeros(1, 128, 64)
+    x[0, 41, 17] = 20.0
+    assert float(MaxResize((64, 32))(x).max()) == 20.0
+    # bilinear with antialias spreads it over about 2 x 2 output pixels at most a quarter each, or less
+    assert float(Resize((64, 32))(x).max()) <= 20.0 / 4 + 1e-6
+    with pytest.raises(ConfigError, match=r"\(height, width\)"):
+        MaxResize(16)
 
 
 def test_estimate_on_empty_data_is_a_clear_error():

@@ -15,7 +15,7 @@ Examples:
 
 from radaraug.transforms.functional._dr import calibrated_floor, dr_clamp, empirical_floor, random_floor
 from radaraug.transforms.functional._floor import floor_relative, persistent_cells
-from radaraug.transforms.functional._image import clip_normalize, colormap, colormap_lut, resize
+from radaraug.transforms.functional._image import clip_normalize, colormap, colormap_lut, max_resize, resize
 from radaraug.transforms.functional._spectral import (
     combine_rx,
     doppler_fft,
@@ -45,5 +45,6 @@ __all__ = [
     "clip_normalize",
     "colormap",
     "colormap_lut",
+    "max_resize",
     "resize",
 ]

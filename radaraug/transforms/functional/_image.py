@@ -1,4 +1,4 @@
-"""From dB maps to network images: clip and normalize, colormap lookup, resize."""
+"""From dB maps to network images: clip and normalize, colormap lookup, resize (bilinear or by the max)."""
 
 from __future__ import annotations
 
@@ -137,3 +137,41 @@ def resize(x: torch.Tensor, size: Sequence[int], antialias: bool = True) -> torc
     flat = x.reshape(-1, 1, *x.shape[-2:])
     out = nnf.interpolate(flat, size=size, mode="bilinear", align_corners=False, antialias=bool(antialias))
     return out.reshape(*lead, *size)
+
+
+def max_windows(n_in: int, n_out: int) -> torch.Tensor:
+    """``(n_out, k)`` input indices of each output cell's window (adaptive pooling's), short windows repeated.
+
+    Window ``i`` covers ``floor(i * n_in / n_out) .. ceil((i + 1) * n_in / n_out) - 1``; a window shorter
+    than the longest repeats its last index, which leaves a max unchanged.
+    """
+    starts = [(i * n_in) // n_out for i in range(n_out)]
+    ends = [-(-(i + 1) * n_in // n_out) for i in range(n_out)]
+    k = max(e - s for s, e in zip(starts, ends))
+    return torch.tensor([[min(s + j, e - 1) for j in range(k)] for s, e in zip(starts, ends)], dtype=torch.long)
+
+
+def max_resize(x: torch.Tensor, size: Sequence[int]) -> torch.Tensor:
+    """Resample the last two dims to ``size`` keeping each output cell's largest input value.
+
+    Each output cell is the max over the input cells it covers (the windows of adaptive max pooling),
+    so a target one range bin wide keeps its peak where a bilinear shrink averages it with the floor
+    around it. Gathers and maxima only, so exporters (ONNX) take it as it is.
+
+    Args:
+        x: an image or map ``(..., H, W)``, real floating.
+        size: ``(height, width)``.
+
+    Raises:
+        ConfigError: ``size`` is not two positive ints.
+
+    Examples:
+        >>> max_resize(torch.tensor([[0.0, 0.0, 9.0, 0.0]]), (1, 2)).tolist()
+        [[0.0, 9.0]]
+    """
+    size = check_size(size, "max_resize")
+    x = check_tensor(x, "max_resize expects an image or map (..., H, W)", min_ndim=2, finite=False)
+    (h, w), lead = x.shape[-2:], x.shape[:-2]
+    rows, cols = max_windows(h, size[0]).to(x.device), max_windows(w, size[1]).to(x.device)
+    y = x.index_select(-2, rows.flatten()).reshape(*lead, size[0], rows.shape[1], w).amax(dim=-2)
+    return y.index_select(-1, cols.flatten()).reshape(*lead, size[0], size[1], cols.shape[1]).amax(dim=-1)
