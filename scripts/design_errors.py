@@ -111,6 +111,7 @@ def main() -> None:
     ap.add_argument("--method", default="randomdr")
     ap.add_argument("--margin-db", type=float, default=3.0)
     ap.add_argument("--context-frames", type=int, default=None, help="default: the run's (its report.json)")
+    ap.add_argument("--note", default=None, help="a note to keep in the record")
     args = ap.parse_args()
     report = load_json(args.run / "report.json")
     context = args.context_frames or int(report["settings"]["context_frames"])
@@ -171,12 +172,14 @@ def main() -> None:
                            "gate_threshold_db": det.threshold_db}
     n = max(len(seeds), 1)
     interference = report["settings"].get("excise_interference_db")  # absent from runs before the option: none
+    resample = report["settings"].get("resample") or "bilinear"  # absent from runs before the option: bilinear
     record = {
         "benchmark": "heldout_design_errors", "kind": "validation (the design suite is looked at)",
         "command": "radaraug reproduce --quick --seeds 3 --methods randomdr --test-sets design --worlds 8 --no-ablation "
                    f"--excise-interference-db {'off' if interference is None else interference} "
-                   "-o RUN; python scripts/design_errors.py RUN -o FILE",
-        "excise_interference_db": interference,
+                   + ("--resample max " if resample == "max" else "")
+                   + "-o RUN; python scripts/design_errors.py RUN -o FILE",
+        "excise_interference_db": interference, "resample": resample, "note": args.note,
         "method": args.method, "worlds": len(worlds), "seeds": sorted(seeds), "context_frames": context,
         "gate_margin_db": args.margin_db,
         "kinds": "per episode (scripts/static_change_figure.py kind_of): empty: nobody; walking: a walker whose "

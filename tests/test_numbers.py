@@ -32,6 +32,21 @@ BENCHMARKS = ROOT / "benchmarks"
 _ERR = "heldout_design_errors_cpu.json"  # scripts/design_errors.py
 _IE = "heldout_design_interference_cpu.json"  # the same with the interference excision (round 7)
 _ADA = "heldout_design_adabn_cpu.json"
+_MAX = "heldout_design_max_resample_cpu.json"  # the same with resample: max (round 8)
+
+
+def _design_deltas(values: Sequence[float]) -> str:
+    """``occupancy moves by lo…hi and counting by lo…hi`` over worlds 0-6: max-resize minus the default's."""
+    base = json.loads((BENCHMARKS / _IE).read_text())["run_results"]
+    parts = []
+    for k, t in enumerate(("occupancy", "counting")):
+        d = [values[7 * k + i] - base[t]["per_world"][f"design-w0{i}"] for i in range(7)]
+        parts.append(f"{_signed3(min(d))}…{_signed3(max(d))}")
+    return f"occupancy moves by {parts[0]} and counting by {parts[1]}"
+
+
+def _signed3(value: float) -> str:
+    return ("−" if value < 0 else "+") + f"{abs(value):.3f}"
 
 
 class Figure(NamedTuple):
@@ -2557,6 +2572,61 @@ FIGURES: list[Figure] = [
            f"{_RULE}/excess_off_db/visible_threshold_db", "twin beats {:.2f} dB"),
     Figure("docs/twin_observability.md", "only about 5 of 594 people lose > 6 dB (a count not kept in the record)",
            "twin_observability_cpu.json", f"{_VIS}/n_people", "of {} people"),
+    # docs/training.md, issue 34 fifth round: the twin's learnability and the max resize on the design suite
+    Figure("docs/training.md", "RandomDR runs (800 items × 4 epochs) score 0.890 ± 0.034 occupancy and 0.670 ± 0.024 counting",
+           "twin_learnability_cpu.json", tuple(f"summaries/{t} 800x4 bilinear/all items/{k}" for t in ("occupancy", "counting")
+                                              for k in ("mean", "std")), "score {:.3f} ± {:.3f} occupancy and {:.3f} ± {:.3f}"),
+    Figure("docs/training.md", "epochs 0.926 ± 0.002 / 0.743 ± 0.004, while 800 × 16 (the same steps) gains only +0.007",
+           "twin_learnability_cpu.json", (*(f"summaries/{t} 3200x4 bilinear/all items/{k}" for t in ("occupancy", "counting")
+                                            for k in ("mean", "std")), "summaries/occupancy 800x16 bilinear/all items/mean",
+                                          "summaries/occupancy 800x4 bilinear/all items/mean"),
+           lambda a, b, c, d, e, f: f"epochs {a:.3f} ± {b:.3f} / {c:.3f} ± {d:.3f}, while 800 × 16 (the same steps) gains "
+                                    f"only +{e - f:.3f}"),
+    Figure("docs/training.md", "And 137 of the 600 items hold a person no detector finds", "twin_learnability_cpu.json",
+           "account_set/items_with_a_person_not_resolved", "And {} of the 600"),
+    Figure("docs/training.md", "3200 × 4 reaches **0.974 occupancy and 0.858 counting**", "twin_learnability_cpu.json",
+           tuple(f"summaries/{t} 3200x4 bilinear/items whose people are all resolved/mean" for t in ("occupancy", "counting")),
+           "**{:.3f} occupancy and {:.3f} counting**"),
+    Figure("docs/training.md", "on the twin's own items it raised occupancy +0.028 (section 5)", "twin_learnability_cpu.json",
+           ("summaries/occupancy 800x4 max/all items/mean", "summaries/occupancy 800x4 bilinear/all items/mean"),
+           lambda a, b: f"occupancy +{a - b:.3f}"),
+    *(Figure("docs/training.md", quote, rec,
+             tuple(f"run_results/{t}/{k}" for t in ("occupancy", "counting") for k in ("mean", "worst", "gated_mean", "gated_worst"))
+             + ("run_results/occupancy/val_mean", "run_results/counting/val_mean"),
+             f"| {{:.3f}} ({worst}{{:.3f}}) | {{:.3f}} ({{:.3f}}) | {{:.3f}} ({{:.3f}}) | {{:.3f}} ({{:.3f}}) | {{:.3f}} / {{:.3f}} |")
+      for rec, worst, quote in ((_IE, "worst ", "| bilinear (default) | 0.890 (worst 0.718) | 0.965 (0.851) | 0.665 (0.533) | "
+                                                "0.737 (0.543) | 0.876 / 0.684 |"),
+                                (_MAX, "", "| max | 0.852 (0.635) | 0.922 (0.639) | 0.647 (0.463) | 0.718 (0.463) | "
+                                           "0.879 / 0.679 |"))),
+    Figure("docs/training.md", "falls from 0.967 to 0.635 occupancy (0.979 → 0.639 with the gate) and from 0.915 to 0.794 counting",
+           (_IE, _MAX)[1], ("run_results/occupancy/per_world/design-w07", "run_results/occupancy/gated_per_world/design-w07",
+                            "run_results/counting/per_world/design-w07"),
+           lambda a, b, c: f"to {a:.3f} occupancy (0.979 → {b:.3f} with the gate) and from 0.915 to {c:.3f} counting"),
+    Figure("docs/training.md", "falls from 0.967 to 0.635 occupancy (0.979 → 0.639", _IE,
+           ("run_results/occupancy/per_world/design-w07", "run_results/occupancy/gated_per_world/design-w07"),
+           lambda a, b: f"falls from {a:.3f} to 0.635 occupancy ({b:.3f} →"),
+    Figure("docs/training.md", "(`design-w05` 0.533 → 0.463, `design-w01` 0.839 → 0.880)", _MAX,
+           ("run_results/counting/per_world/design-w05", "run_results/counting/per_world/design-w01"),
+           lambda a, b: f"0.533 → {a:.3f}, `design-w01` 0.839 → {b:.3f})"),
+    Figure("docs/training.md", "occupancy moves by −0.004…+0.013 and counting by −0.070…+0.041", _MAX,
+           tuple(f"run_results/{t}/per_world/design-w0{i}" for t in ("occupancy", "counting") for i in range(7)),
+           lambda *v: _design_deltas(v)),
+    Figure("docs/training.md", "| occupancy 0.890 → 0.852 (+ gate 0.965 → 0.922), counting 0.665 → 0.647 (+ gate 0.737 → 0.718); "
+           "`design-w07` 0.967 → 0.635 |", _MAX, ("run_results/occupancy/mean", "run_results/occupancy/gated_mean",
+                                                  "run_results/counting/mean", "run_results/counting/gated_mean",
+                                                  "run_results/occupancy/per_world/design-w07"),
+           "0.890 → {:.3f} (+ gate 0.965 → {:.3f}), counting 0.665 → {:.3f} (+ gate 0.737 → {:.3f}); `design-w07` 0.967 → {:.3f}"),
+    Figure("docs/training.md", "| 3200 items: simulated occupancy +0.036, counting +0.073; 16 epochs +0.007;",
+           "twin_learnability_cpu.json",
+           (*(f"summaries/{t} {g} bilinear/all items/mean" for t in ("occupancy", "counting") for g in ("3200x4", "800x4")),
+            "summaries/occupancy 800x16 bilinear/all items/mean"),
+           lambda a, b, c, d, e: f"occupancy +{a - b:.3f}, counting +{c - d:.3f}; 16 epochs +{e - b:.3f};"),
+    Figure("benchmarks/README.md", "| occupancy 0.890 → 0.852 (+ gate 0.965 → 0.922), counting 0.665 → 0.647 (+ gate 0.737 → "
+           "0.718); `design-w07` occupancy 0.967 → 0.635 |", _MAX,
+           ("run_results/occupancy/mean", "run_results/occupancy/gated_mean", "run_results/counting/mean",
+            "run_results/counting/gated_mean", "run_results/occupancy/per_world/design-w07"),
+           "0.890 → {:.3f} (+ gate 0.965 → {:.3f}), counting 0.665 → {:.3f} (+ gate 0.737 → {:.3f}); `design-w07` occupancy "
+           "0.967 → {:.3f} |"),
     # docs/twin_observability.md, section 5: how far the networks learn the twin (scripts/twin_learnability.py)
     Figure("benchmarks/README.md", "800 x 4 (the demo's) occupancy 0.890, counting 0.670; 3200 x 4 0.926 / 0.743, on items "
            "whose people are all resolved 0.974 / 0.858; 137 of 600 items", "twin_learnability_cpu.json",
