@@ -21,7 +21,6 @@ scores and the per-item account, which ``--rescore`` reads again); the runs' fol
 from __future__ import annotations
 
 import argparse
-import copy
 import dataclasses
 import json
 import platform
@@ -32,6 +31,7 @@ from pathlib import Path
 from typing import Any
 
 import torch
+from torch.utils.data import DataLoader
 from tqdm import tqdm
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
@@ -106,20 +106,6 @@ def account(dm: Any, start: int, n: int) -> tuple[list[dict[str, Any]], float]:
     return records, threshold
 
 
-@torch.no_grad()
-def scores(model: Any, dm: Any, maps: CachedMaps) -> torch.Tensor:
-    """Class probabilities of every account item, through a copy of the run's DR (train mode) and image chain."""
-    model.eval()
-    dr = copy.deepcopy(dm.dr)
-    out = []
-    for lo in range(0, len(maps), 64):
-        x = maps.maps(slice(lo, lo + 64)).float()
-        if dr is not None:
-            x = dr.train()(x)
-        out.append(torch.softmax(model(dm.image(x)).float(), dim=1))
-    return torch.cat(out)
-
-
 def summarize(task: str, probs: list[torch.Tensor], records: list[dict[str, Any]]) -> dict[str, Any]:
     """Balanced accuracy on all items, on the items whose people are all resolved, and against resolved labels."""
     k = len(TASKS[task])
@@ -166,8 +152,8 @@ def main() -> None:
     ap.add_argument("--account-start", type=int, default=20000)
     ap.add_argument("--account-items", type=int, default=600)
     ap.add_argument("--resample", choices=("bilinear", "max"), default="bilinear",
-                    help="how the map shrinks to the image size: the recipes' bilinear resize of the colour image, "
-                         "or a max over each output pixel's cells before the colour map (a trial)")
+                    help="how the map shrinks to the image size (data.image.resample): the recipes' bilinear resize "
+                         "of the colour image, or the max of each pixel's cells before the colour map")
     ap.add_argument("--account-from", nargs="+", metavar="RECORD",
                     help="take the account of the same items from an earlier full record instead of redoing it")
     ap.add_argument("--note", default=None, help="a note to keep in the record (e.g. what else ran on the machine)")
@@ -175,15 +161,14 @@ def main() -> None:
                     help="train nothing: take the runs of these records (same account set) and redo the account")
     args = ap.parse_args()
     work = Path(args.work)
-    if args.resample == "max":
-        _patch_max_resample()
     t0 = time.perf_counter()
     quick = rp.ReproduceSettings.quick()
     (ts,) = rp._test_sets(work, quick, None, None, ["independent"], progress=True)
     data_kw = {"calibration": ts.calibration, "test": ts.tests, "cache_dir": str(work / "cache")}
 
     def recipe_of(task: str, items: int, epochs: int) -> tuple[Any, dict[str, Any], dict[str, Any]]:
-        settings = dataclasses.replace(quick, train_items=items, val_items=0, epochs=epochs, keep_classifiers=False)
+        settings = dataclasses.replace(quick, train_items=items, val_items=0, epochs=epochs, keep_classifiers=False,
+                                       resample=args.resample)
         recipe = rp._sized(rp.run_recipe(task, "randomdr", settings), settings)
         return settings, recipe.get("data", {}) | data_kw, recipe.get("model", {})
 
@@ -224,7 +209,8 @@ def main() -> None:
                             records, threshold = account(dm, args.account_start, args.account_items)
                         if [r["count"] for r in records] != maps.counts.tolist():
                             raise RuntimeError("the account's items and the cached maps disagree")
-                    p = scores(model, dm, maps)
+                    # through the run's DR (train mode) and image chain, as validation
+                    p = rp._scores(model, dm, DataLoader(maps, batch_size=64), with_dr=True, limit=len(maps))[0]
                     runs.append({"task": task, "train_items": items, "epochs": epochs, "resample": args.resample,
                                  "seed": seed, "fit_seconds": round(fit_s, 1),
                                  "probs": [[round(float(v), 4) for v in row] for row in p]})
@@ -242,33 +228,6 @@ def _earlier_account(paths: list[str], start: int, n: int) -> tuple[Any, Any]:
         if acc and "observable_count" in acc[0] and [r["index"] for r in acc] == list(range(start, start + n)):
             return acc, old.get("account_set", {}).get("detection_threshold_db", old.get("detection_threshold_db"))
     return None, None
-
-
-def _patch_max_resample() -> None:
-    """Make the data modules' image chain shrink by a max over cells (levels) instead of a bilinear resize."""
-    import torch.nn.functional as nnf
-    from torch import nn
-
-    import radaraug.training.data as data_mod
-    from radaraug.training.pipeline import level_chain
-    from radaraug.transforms import ClipNormalize, Colormap
-
-    class MaxShrink(nn.Module):
-        def __init__(self, size: tuple[int, int]) -> None:
-            super().__init__()
-            self.size = size
-
-        def forward(self, x: torch.Tensor) -> torch.Tensor:
-            lead = x.shape[:-2]
-            y = nnf.adaptive_max_pool2d(x.reshape(-1, 1, *x.shape[-2:]), self.size)
-            return y.reshape(*lead, *self.size)
-
-    def image_chain(vmin: float, vmax: float, size: Any = None, representation: str = "paper",
-                    excise: Any = None, blank_zero_doppler: int = 1) -> nn.Sequential:
-        return nn.Sequential(*level_chain(representation, excise, blank_zero_doppler), ClipNormalize(vmin, vmax),
-                             MaxShrink((int(size[0]), int(size[1]))), Colormap("viridis"))
-
-    data_mod.image_chain = image_chain
 
 
 def _write(args: argparse.Namespace, runs: list[dict[str, Any]], records: Any, threshold: Any, t0: float) -> None:

@@ -19,7 +19,7 @@ from radaraug.errors import CheckpointError
 from radaraug.training.classifier_file import ChainSpec
 from radaraug.transforms import ToDecibels
 from radaraug.transforms.functional._floor import zero_doppler_bins
-from radaraug.transforms.functional._image import colormap_lut, max_windows
+from radaraug.transforms.functional._image import colormap_lut, max_windows, windows_max
 from radaraug.transforms.windows import normalized_window, shifted_doppler_window
 
 #: ToDecibels' default magnitude floor (the eager chain's): its dB maps stay finite on exact zeros.
@@ -122,9 +122,7 @@ class MatmulChain(nn.Module):
             level = (level - median) * self.keep
         u = (level.clamp(self.vmin, self.vmax) - self.vmin) * (1.0 / (self.vmax - self.vmin))
         if self.max_resize:
-            b, h, w = u.shape[0], self.resize_h.shape[0], self.resize_w.shape[0]
-            u = u[:, self.resize_h.flatten()].reshape(b, h, -1, u.shape[-1]).amax(dim=2)
-            u = u[:, :, self.resize_w.flatten()].reshape(b, h, w, -1).amax(dim=3)
+            u = windows_max(u, self.resize_h, self.resize_w)
         n = self.lut.shape[0]
         idx = (u * n).long().clamp(0, n - 1)
         img = self.lut[idx].permute(0, 3, 1, 2)  # (B, 3, range, doppler)

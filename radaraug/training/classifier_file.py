@@ -94,8 +94,10 @@ class ChainSpec:
                        None if interference is None else float(interference), resample)
         except (KeyError, TypeError, ValueError, IndexError) as e:
             raise CheckpointError(f"{source}: the test chain it records is incomplete or malformed ({e!r})") from None
-        if spec.resample not in ("bilinear", "max"):
-            raise CheckpointError(f"{source}: the test chain's resample must be 'bilinear' or 'max', got {spec.resample!r}")
+        from radaraug.training.pipeline import RESAMPLES
+
+        if spec.resample not in RESAMPLES:
+            raise CheckpointError(f"{source}: the test chain's resample must be one of {RESAMPLES}, got {spec.resample!r}")
         if spec.interference_db is not None and not spec.interference_db > 0:
             raise CheckpointError(f"{source}: the test chain's interference_db must be > 0 dB or null, "
                                   f"got {spec.interference_db}")

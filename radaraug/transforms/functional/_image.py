@@ -171,7 +171,12 @@ def max_resize(x: torch.Tensor, size: Sequence[int]) -> torch.Tensor:
     """
     size = check_size(size, "max_resize")
     x = check_tensor(x, "max_resize expects an image or map (..., H, W)", min_ndim=2, finite=False)
-    (h, w), lead = x.shape[-2:], x.shape[:-2]
-    rows, cols = max_windows(h, size[0]).to(x.device), max_windows(w, size[1]).to(x.device)
-    y = x.index_select(-2, rows.flatten()).reshape(*lead, size[0], rows.shape[1], w).amax(dim=-2)
-    return y.index_select(-1, cols.flatten()).reshape(*lead, size[0], size[1], cols.shape[1]).amax(dim=-1)
+    h, w = x.shape[-2:]
+    return windows_max(x, max_windows(h, size[0]).to(x.device), max_windows(w, size[1]).to(x.device))
+
+
+def windows_max(x: torch.Tensor, rows: torch.Tensor, cols: torch.Tensor) -> torch.Tensor:
+    """``(..., H, W)`` -> ``(..., len(rows), len(cols))``: the max over each cell's window (:func:`max_windows`)."""
+    lead, w = x.shape[:-2], x.shape[-1]
+    y = x.index_select(-2, rows.flatten()).reshape(*lead, rows.shape[0], rows.shape[1], w).amax(dim=-2)
+    return y.index_select(-1, cols.flatten()).reshape(*lead, rows.shape[0], cols.shape[0], cols.shape[1]).amax(dim=-1)
