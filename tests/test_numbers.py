@@ -33,6 +33,7 @@ _ERR = "heldout_design_errors_cpu.json"  # scripts/design_errors.py
 _IE = "heldout_design_interference_cpu.json"  # the same with the interference excision (round 7)
 _ADA = "heldout_design_adabn_cpu.json"
 _MAX = "heldout_design_max_resample_cpu.json"  # the same with resample: max (round 8)
+_TWICE = "heldout_design_1600x2_cpu.json"  # the same with 1600 items x 2 epochs (round 9)
 
 
 def _design_deltas(values: Sequence[float]) -> str:
@@ -49,6 +50,23 @@ def _ie_counting() -> tuple[float, float]:
     """Counting's suite mean and gated mean in the default's design record (the fourth round)."""
     c = json.loads((BENCHMARKS / _IE).read_text())["run_results"]["counting"]
     return c["mean"], c["gated_mean"]
+
+
+def _ie_value(path: str) -> float:
+    """A value under ``run_results`` of the default's design record (the fourth round)."""
+    node = json.loads((BENCHMARKS / _IE).read_text())["run_results"]
+    for part in path.split("/"):
+        node = node[part]
+    return node
+
+
+def _twice_row(v: Sequence[float]) -> str:
+    """The decision table's 1600 x 2 row: the default's means and gated means -> 1600 x 2's, simulated validation gains."""
+    base = json.loads((BENCHMARKS / _IE).read_text())["run_results"]
+    o, c = base["occupancy"], base["counting"]
+    return (f"occupancy {o['mean']:.3f} → {v[0]:.3f} (+ gate {o['gated_mean']:.3f} → {v[1]:.3f}), counting {c['mean']:.3f} → "
+            f"{v[3]:.3f} (+ gate {c['gated_mean']:.3f} → {v[4]:.3f}), within about 1.5 seed std; simulated validation "
+            f"+{v[2] - o['val_mean']:.3f} / +{v[5] - c['val_mean']:.3f} |")
 
 
 def _signed3(value: float) -> str:
@@ -82,6 +100,16 @@ def _range(fmt: str) -> Callable[..., str]:
 def _ranges(fmt: str, size: int, sep: str) -> Callable[..., str]:
     """:func:`_range` of each run of ``size`` values (one record's runs), joined by ``sep``."""
     return lambda *values: sep.join(_range(fmt)(*values[i:i + size]) for i in range(0, len(values), size))
+
+
+def _en_range(fmt: str) -> Callable[..., str]:
+    """:func:`_range` with an en dash, as the pages write a span."""
+    return lambda *values: f"{fmt.format(min(values))}–{fmt.format(max(values))}"
+
+
+def _cdr_worlds(path: str) -> tuple[str, ...]:
+    """``path`` under each of the 8 worlds' sources in ``cdr_floor_account_cpu.json``."""
+    return tuple(f"worlds/{i}/by_source/{path}" for i in range(8))
 
 
 def _sorted(fmt: str, sep: str = " / ") -> Callable[..., str]:
@@ -2578,6 +2606,52 @@ FIGURES: list[Figure] = [
            f"{_RULE}/excess_off_db/visible_threshold_db", "twin beats {:.2f} dB"),
     Figure("docs/twin_observability.md", "only about 5 of 594 people lose > 6 dB (a count not kept in the record)",
            "twin_observability_cpu.json", f"{_VIS}/n_people", "of {} people"),
+    # docs/training.md, "CDR's floor once the map is floor-relative" (scripts/cdr_floor_account.py, 8 design worlds)
+    Figure("README.md", "adds 12.1–25.4 dB to an empty room's largest cell", "cdr_floor_account_cpu.json",
+           _cdr_worlds("cdr_normal/empty_peak_gap_db"), lambda *v: f"adds {_en_range('{:.1f}')(*v)} dB to"),
+    Figure("benchmarks/README.md", "empty-room spread: capture 2.69-4.49 dB, RT 2.68-2.78, noise alone 2.73; CDR normal "
+           "4.38-7.52, matched 2.90-5.49; the largest empty cell 12.1-25.4 dB (normal) and 4.5-30.7 dB (matched)",
+           "cdr_floor_account_cpu.json",
+           (*(k for src in ("capture", "rt", "cdr_normal", "cdr_matched") for k in _cdr_worlds(f"{src}/0/texture_std_db/median")),
+            "closed_form_texture_std_db/3 rx", *_cdr_worlds("cdr_normal/empty_peak_gap_db"),
+            *_cdr_worlds("cdr_matched/empty_peak_gap_db")),
+           lambda *v: f"spread: capture {_range('{:.2f}')(*v[:8])} dB, RT {_range('{:.2f}')(*v[8:16])}, noise alone "
+                      f"{v[32]:.2f}; CDR normal {_range('{:.2f}')(*v[16:24])}, matched {_range('{:.2f}')(*v[24:32])}; the "
+                      f"largest empty cell {_range('{:.1f}')(*v[33:41])} dB (normal) and {_range('{:.1f}')(*v[41:49])} dB (matched)"),
+    Figure("docs/training.md", "by `10/ln 10 · sqrt(trigamma(rx))` dB (2.73 dB for the sensor's three receivers",
+           "cdr_floor_account_cpu.json", "closed_form_texture_std_db/3 rx", "({:.2f} dB for the sensor's three"),
+    Figure("docs/training.md", "| capture (each world's empty test file) | 2.69–4.49 (six worlds 2.69–2.99) | 6.9–10.6 |",
+           "cdr_floor_account_cpu.json", (*_cdr_worlds("capture/0/texture_std_db/median"),
+                                          *_cdr_worlds("capture/0/peak_db/median")),
+           lambda *v: f"| {_en_range('{:.2f}')(*v[:8])} (six worlds {_en_range('{:.2f}')(*sorted(v[:8])[:6])}) | "
+                      f"{_en_range('{:.1f}')(*v[8:])} |"),
+    *(Figure("docs/training.md", quote, "cdr_floor_account_cpu.json",
+             (*_cdr_worlds(f"{source}/0/texture_std_db/median"), *_cdr_worlds(f"{source}/0/peak_db/median")),
+             lambda *v: f"| {_en_range('{:.2f}')(*v[:8])} | {_en_range('{:.1f}')(*v[8:])} |")
+      for quote, source in (("| RT: the noisy twin, no DR | 2.68–2.78 | 7.4–10.9 |", "rt"),
+                            ("| RandomDR | 2.16–2.69 | 7.3–10.9 |", "randomdr"),
+                            ("| CDR, matched clamp (the recipes') | 2.90–5.49 | 12.3–39.3 |", "cdr_matched"),
+                            ("| CDR, the paper's normal clamp (`cdr_normal_floor`) | 4.38–7.52 | 20.0–32.7 |",
+                             "cdr_normal"))),
+    Figure("docs/training.md", "its spread, 6.8–11.3 dB, measures how the capture's cells vary over the whole map (its "
+           "rows' medians 1.0–3.7 dB apart", "cdr_floor_account_cpu.json",
+           (*(f"worlds/{i}/cdr_normal_fit_db/std" for i in range(8)), *_cdr_worlds("capture/0/row_spread_db/median")),
+           lambda *v: f"spread, {_en_range('{:.1f}')(*v[:8])} dB, measures how the capture's cells vary over the whole "
+                      f"map (its rows' medians {_en_range('{:.1f}')(*v[8:])} dB apart"),
+    Figure("docs/training.md", "a within-row texture 1.2–2.7 times", "cdr_floor_account_cpu.json",
+           (*_cdr_worlds("cdr_normal/0/texture_std_db/median"), *_cdr_worlds("capture/0/texture_std_db/median")),
+           lambda *v: f"texture {_en_range('{:.1f}')(*(a / b for a, b in zip(v[:8], v[8:])))} times"),
+    Figure("docs/training.md", "`design-w03` and `w05`: 35.2 and 39.3 dB", "cdr_floor_account_cpu.json",
+           tuple(f"worlds/{i}/by_source/cdr_matched/0/peak_db/median" for i in (3, 5)), "`w05`: {:.1f} and {:.1f} dB"),
+    Figure("docs/training.md", "stands 4.5–30.7 dB (matched) and 12.1–25.4 dB (normal) above", "cdr_floor_account_cpu.json",
+           (*_cdr_worlds("cdr_matched/empty_peak_gap_db"), *_cdr_worlds("cdr_normal/empty_peak_gap_db")),
+           lambda *v: f"stands {_en_range('{:.1f}')(*v[:8])} dB (matched) and {_en_range('{:.1f}')(*v[8:])} dB (normal)"),
+    Figure("docs/training.md", "with an AUC of 0.65–0.71, in the paper's CDR's of 0.56–0.66", "cdr_floor_account_cpu.json",
+           (*_cdr_worlds("rt/auc_peak_1_vs_2"), *_cdr_worlds("cdr_normal/auc_peak_1_vs_2")),
+           lambda *v: f"AUC of {_en_range('{:.2f}')(*v[:8])}, in the paper's CDR's of {_en_range('{:.2f}')(*v[8:])}"),
+    Figure("docs/training.md", "(`design-w04` 4.49 dB, `design-w07` 3.40 dB)", "cdr_floor_account_cpu.json",
+           tuple(f"worlds/{i}/by_source/capture/0/texture_std_db/median" for i in (4, 7)),
+           "(`design-w04` {:.2f} dB, `design-w07` {:.2f} dB)"),
     # docs/training.md, issue 34 fifth round: the twin's learnability and the max resize on the design suite
     Figure("docs/training.md", "RandomDR runs (800 items × 4 epochs) score 0.890 ± 0.034 occupancy and 0.670 ± 0.024 counting",
            "twin_learnability_cpu.json", tuple(f"summaries/{t} 800x4 bilinear/all items/{k}" for t in ("occupancy", "counting")
@@ -2603,12 +2677,39 @@ FIGURES: list[Figure] = [
       for rec, worst, quote in ((_IE, "worst ", "| bilinear (default) | 0.890 (worst 0.718) | 0.965 (0.851) | 0.665 (0.533) | "
                                                 "0.737 (0.543) | 0.876 / 0.684 |"),
                                 (_MAX, "", "| max | 0.852 (0.635) | 0.922 (0.639) | 0.647 (0.463) | 0.718 (0.463) | "
-                                           "0.879 / 0.679 |"))),
+                                           "0.879 / 0.679 |"),
+                                (_IE, "worst ", "| 800 × 4 (default) | 0.890 (worst 0.718) | 0.965 (0.851) | 0.665 (0.533) | "
+                                                "0.737 (0.543) | 0.876 / 0.684 |"),
+                                (_TWICE, "", "| 1600 × 2 | 0.876 (0.704) | 0.959 (0.850) | 0.650 (0.457) | 0.729 (0.502) | "
+                                             "0.908 / 0.751 |"))),
     *(Figure("docs/training.md", quote, rec, tuple(f"run_results/{t}/{k}" for t in ("occupancy", "counting")
                                                 for k in ("mean_std_over_seeds", "gated_mean_std_over_seeds")), fmt)
       for rec, quote, fmt in ((_MAX, "(occupancy, + gate, counting, + gate): 0.010 / 0.011 / 0.023 / 0.025",
                                ": {:.3f} / {:.3f} / {:.3f} / {:.3f}"),
-                              (_IE, "(bilinear: 0.006 / 0.001 / 0.009 / 0.007)", "(bilinear: {:.3f} / {:.3f} / {:.3f} / {:.3f})"))),
+                              (_IE, "(bilinear: 0.006 / 0.001 / 0.009 / 0.007)", "(bilinear: {:.3f} / {:.3f} / {:.3f} / {:.3f})"),
+                              (_TWICE, "each suite mean with 1600 × 2 is 0.009 / 0.006 / 0.015 / 0.014",
+                               "is {:.3f} / {:.3f} / {:.3f} / {:.3f}"))),
+    Figure("docs/training.md", "(`design-w00` 0.654 → 0.759, `design-w07` 0.915 → 0.804)", _TWICE,
+           ("run_results/counting/per_world/design-w00", "run_results/counting/per_world/design-w07"),
+           lambda a, b: f"(`design-w00` {_ie_value('counting/per_world/design-w00'):.3f} → {a:.3f}, `design-w07` "
+                        f"{_ie_value('counting/per_world/design-w07'):.3f} → {b:.3f})"),
+    Figure("docs/training.md", "Simulated validation rose most (counting +0.067)", _TWICE, "run_results/counting/val_mean",
+           lambda v: f"(counting +{v - _ie_value('counting/val_mean'):.3f})"),
+    Figure("docs/training.md", "occupancy 0.890 → 0.876 (+ gate 0.965 → 0.959), counting 0.665 → 0.650 (+ gate 0.737 → "
+           "0.729), within about 1.5 seed std; simulated validation +0.032 / +0.067 |", _TWICE,
+           tuple(f"run_results/{t}/{k}" for t in ("occupancy", "counting") for k in ("mean", "gated_mean", "val_mean")),
+           lambda *v: _twice_row(v)),
+    Figure("docs/training.md", "the twin's noise already has the capture's within-row spread (2.68–2.78 dB against "
+           "2.69–2.99 dB in six of eight worlds, 2.73 dB in closed form), and the paper's pooled Normal fit puts "
+           "12.1–25.4 dB more", "cdr_floor_account_cpu.json",
+           (*_cdr_worlds("rt/0/texture_std_db/median"), *_cdr_worlds("capture/0/texture_std_db/median"),
+            *_cdr_worlds("cdr_normal/empty_peak_gap_db"), "closed_form_texture_std_db/3 rx"),
+           lambda *v: f"spread ({_en_range('{:.2f}')(*v[:8])} dB against {_en_range('{:.2f}')(*sorted(v[8:16])[:6])} dB in "
+                      f"six of eight worlds, {v[24]:.2f} dB in closed form), and the paper's pooled Normal fit puts "
+                      f"{_en_range('{:.1f}')(*v[16:24])} dB more"),
+    Figure("docs/training.md", "a pooled calibrated floor adds 4.5–30.7 dB (matched) / 12.1–25.4 dB (normal)",
+           "cdr_floor_account_cpu.json", (*_cdr_worlds("cdr_matched/empty_peak_gap_db"), *_cdr_worlds("cdr_normal/empty_peak_gap_db")),
+           lambda *v: f"adds {_en_range('{:.1f}')(*v[:8])} dB (matched) / {_en_range('{:.1f}')(*v[8:])} dB (normal)"),
     Figure("docs/training.md", "the counting losses (−0.018, −0.019) lie within it", _MAX,
            ("run_results/counting/mean", "run_results/counting/gated_mean"),
            lambda a, b: "(−{:.3f}, −{:.3f})".format(*(base - v for base, v in zip(_ie_counting(), (a, b))))),

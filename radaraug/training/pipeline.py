@@ -24,6 +24,7 @@ from radaraug.transforms import (
     RadarCompose,
     Resize,
 )
+from radaraug.transforms.functional._floor import zero_doppler_bins
 
 #: Network input representations: the paper's clipped dBFS map, or each range row referenced to
 #: its own Doppler median with zero Doppler blanked (docs/training.md, "Representations").
@@ -72,6 +73,41 @@ def level_chain(representation: str = "paper", excise: torch.Tensor | None = Non
     if check_representation(representation) == "floor_relative":
         steps.append(FloorRelative(blank_zero_doppler=blank_zero_doppler, excise=excise))
     return nn.Sequential(*steps)
+
+
+def noise_texture_db(rx: int) -> float:
+    """Std (dB) of a noise-only cell of a floor-relative map: ``10 log10`` of a chi-square of ``2 rx`` dof.
+
+    The mean power over ``rx`` receivers of complex-Gaussian noise is Gamma(``rx``) distributed at any level,
+    so its dB spread, ``10 / ln 10 * sqrt(trigamma(rx))``, is the same for every floor (5.57 dB for one
+    receiver, 2.73 dB for three): what a floor-relative map shows of a floor, whatever its level.
+    """
+    if rx < 1:
+        raise ConfigError(f"noise_texture_db needs rx >= 1, got {rx}")
+    trigamma = math.pi ** 2 / 6 - sum(1.0 / j ** 2 for j in range(1, rx))
+    return 10 / math.log(10) * math.sqrt(trigamma)
+
+
+@torch.no_grad()
+def floor_texture(db_maps: torch.Tensor, excise: torch.Tensor | None = None,
+                  blank_zero_doppler: int = 1) -> dict[str, torch.Tensor]:
+    """Per frame of per-RX dB maps ``(N, rx, range, doppler)``, what the floor looks like before and after referencing.
+
+    Over the cells off the blanked zero Doppler and outside ``excise``: ``level_db``, the RX-combined map's
+    median (the absolute floor a calibration sets); ``texture_std_db``, the floor-relative cells' spread (for
+    noise alone :func:`noise_texture_db`); ``peak_db``, the largest floor-relative cell (what a person adds
+    over its row's floor); ``row_spread_db``, the std over range rows of their medians (how the floor varies
+    along range). Each ``(N,)``. docs/training.md ("CDR's floor once the map is floor-relative") uses them.
+    """
+    absolute = level_chain("paper")(db_maps.float()).squeeze(-3)
+    relative = level_chain("floor_relative", excise, blank_zero_doppler)(db_maps.float()).squeeze(-3)
+    keep = torch.ones(absolute.shape[-2:], dtype=torch.bool, device=absolute.device)
+    keep[:, zero_doppler_bins(absolute.shape[-1], blank_zero_doppler)] = False
+    if excise is not None:
+        keep &= ~excise.to(keep.device)
+    a, r = absolute[:, keep], relative[:, keep]
+    return {"level_db": a.median(dim=1).values, "texture_std_db": r.std(dim=1), "peak_db": r.max(dim=1).values,
+            "row_spread_db": absolute.median(dim=-1).values.std(dim=-1)}
 
 
 def image_chain(vmin: float, vmax: float, size: Sequence[int] | None = None,

@@ -563,10 +563,11 @@ def reproduce(
 
     figures: dict[str, Path] = {}
     floors: dict[str, dict[str, float]] = {ts.name: {} for ts in sets}
+    textures: dict[str, dict[str, Any]] = {ts.name: {} for ts in sets}
     for ts in sets:
         fig_dir = out / "figures" / ts.name
         sub = {(t, n): v for (s, t, n), v in keep.items() if s == ts.name}
-        figs = _figures(fig_dir, sub, results[ts.name], ts.calibration, ts.tests, floors[ts.name])
+        figs = _figures(fig_dir, sub, results[ts.name], ts.calibration, ts.tests, floors[ts.name], textures[ts.name])
         for task, by in scores[ts.name].items():
             if by:
                 figs[f"scores_{task}"] = F.score_histograms(
@@ -580,6 +581,7 @@ def reproduce(
         "results": results[primary.name],
         "test_sets": {ts.name: {"calibration": ts.calibration, "test": ts.tests, "generator": ts.info,
                                 "results": results[ts.name], "empty_room_median_db": floors[ts.name],
+                                "empty_room_floor_relative": textures[ts.name] or None,
                                 "static_gate": (gates[ts.name] or {}).get("info"),
                                 "ablation_table": _ablation_table(results[ts.name])} for ts in sets},
         "suites": _suite_summary(sets, results),
@@ -817,12 +819,39 @@ def _capture_maps(path: str, n: int, dm: Any) -> torch.Tensor:
     return dm.rd_chain()(x)  # as the run's own maps were made
 
 
+def _empty_textures(keep: dict, task: str, dm: Any, real_empty: torch.Tensor) -> dict[str, Any]:
+    """The empty room once floor-referenced: each run's training maps (after its DR) and the calibration capture.
+
+    Per source the medians over frames of :func:`~radaraug.training.pipeline.floor_texture`'s spread and
+    largest cell, and the spread of noise alone (closed form): what is left of a calibrated floor in the
+    network's input (docs/training.md, "CDR's floor once the map is floor-relative").
+    """
+    from radaraug.training.pipeline import floor_texture, noise_texture_db
+
+    def medians(maps: torch.Tensor, run_dm: Any) -> dict[str, float]:
+        t = floor_texture(maps, run_dm.excise, run_dm.image_spec.blank_zero_doppler)
+        return {"texture_std_db": round(float(t["texture_std_db"].median()), 2),
+                "peak_db": round(float(t["peak_db"].median()), 2), "frames": len(maps)}
+
+    out: dict[str, Any] = {"noise_alone_texture_std_db": round(noise_texture_db(real_empty.shape[-3]), 2),
+                           "capture": medians(real_empty, dm)}
+    for (t, name), (_, run_dm) in keep.items():
+        train = getattr(run_dm, "_train", None)
+        if t != task or train is None:  # a run trained for another test set keeps no simulated split here
+            continue
+        empty = _maps_of(run_dm, 0, 64).float()
+        if len(empty):
+            with torch.no_grad():
+                out[name] = medians(empty if run_dm.dr is None else run_dm.dr.train()(empty), run_dm)
+    return out
+
+
 def _figures(fig_dir: Path, keep: dict, results: dict, calibration: str | None,
-             test: Sequence[dict[str, Any]], floors: dict[str, float]) -> dict[str, Path]:
+             test: Sequence[dict[str, Any]], floors: dict[str, float], textures: dict[str, Any]) -> dict[str, Path]:
     """Write the figures; fill ``floors`` with the median empty-room RD level (dB) of each source.
 
     The sources: simulation, simulation + CDR, the calibration capture and, with ``cdr_profile`` runs, the
-    profile twin with and without CDR (Fig. 4's data).
+    profile twin with and without CDR (Fig. 4's data). ``textures`` gets :func:`_empty_textures`.
     """
     from radaraug.training import figures as F
 
@@ -855,6 +884,7 @@ def _figures(fig_dir: Path, keep: dict, results: dict, calibration: str | None,
     for _, key, maps in sources:
         v = maps.float().flatten()
         floors[key] = round(float(v[torch.isfinite(v) & (v > -250)].median()), 2)
+    textures.update(_empty_textures(keep, task, dm, real_empty))
     figs["fig4_noise_floor"] = F.noise_floor_histograms({name: maps for name, _, maps in sources},
                                                         fig_dir / "fig4_noise_floor_histograms.png")
     vmin, vmax = dm.clip
@@ -1021,6 +1051,15 @@ def _markdown(rep: dict[str, Any]) -> str:
                       f"(their largest leave-one-out score {gate['calibration_max_db']:.1f} dB + {gate['margin_db']:g} "
                       f"dB); it fired on {100 * gate['test_frames_fired']:.0f} % of the test frames. \"+ static gate\" "
                       "raises a run's 'nobody' to one person where it fires (with the run's frame context).", ""]
+        tex = ts.get("empty_room_floor_relative")
+        if tex:
+            srcs = [k for k in tex if k != "noise_alone_texture_std_db"]
+            lines += ["Empty room once floor-referenced (the network's input: cells off zero Doppler, medians over "
+                      "frames; docs/training.md, \"CDR's floor once the map is floor-relative\"): spread "
+                      + ", ".join(f"{k} {tex[k]['texture_std_db']:.2f} dB" for k in srcs)
+                      + f" (noise alone, any level: {tex['noise_alone_texture_std_db']:.2f} dB); largest cell "
+                      + ", ".join(f"{k} {tex[k]['peak_db']:.1f} dB" for k in srcs)
+                      + ". The level a calibrated floor sets cancels in this map; its spread is what is left.", ""]
         if ts["ablation_table"]:
             header = ["task", "ablation", "changes", "main run", "with", "without (ablation)", "delta"]
             rows = [[r["task"], r["ablation"], f"`{json.dumps(r['changes'])}`", r["main"], _fmt(r, "main_"),

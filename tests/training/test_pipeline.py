@@ -1,11 +1,13 @@
 """The training chain's inputs: sizes and clip ranges are checked where they are given."""
 
+import math
+
 import pytest
 import torch
 
 from radaraug.errors import ConfigError
 from radaraug.training import CDR, CDRProfile, ImageSpec, RadarDataModule
-from radaraug.training.pipeline import image_chain
+from radaraug.training.pipeline import floor_texture, image_chain, noise_texture_db
 
 
 def test_image_size_must_be_height_and_width():
@@ -27,6 +29,26 @@ def test_max_resample_shrinks_the_levels_before_the_colour_map():
         image_chain(0.0, 25.0, [8, 4], resample="nearest")
     with pytest.raises(ConfigError, match="resample must be one of"):
         ImageSpec(resample="nearest")  # type: ignore[arg-type]
+
+
+def test_noise_texture_is_the_chi_square_closed_form_at_any_level():
+    # one receiver: 10 log10 of an exponential, std 10/ln10 * pi/sqrt(6) = 5.57 dB; three: trigamma(3)
+    assert noise_texture_db(1) == pytest.approx(10 / math.log(10) * math.pi / math.sqrt(6))
+    assert noise_texture_db(3) == pytest.approx(10 / math.log(10) * math.sqrt(math.pi ** 2 / 6 - 1.25))
+    with pytest.raises(ConfigError, match="rx >= 1"):
+        noise_texture_db(0)
+    g = torch.Generator().manual_seed(0)
+    iq = torch.randn(8, 3, 128, 64, 2, generator=g, dtype=torch.float64)
+    db = 10 * torch.log10(iq.square().sum(-1))
+    quiet, loud = floor_texture(db - 120.0), floor_texture(db - 60.0)
+    assert float(loud["level_db"].mean() - quiet["level_db"].mean()) == pytest.approx(60.0, abs=1e-3)
+    for key in ("texture_std_db", "peak_db", "row_spread_db"):  # referenced to the row: the level cancels
+        assert torch.allclose(quiet[key], loud[key], atol=1e-3)
+    assert float(quiet["texture_std_db"].mean()) == pytest.approx(noise_texture_db(3), abs=0.05)
+    # a floor whose rows sit at different levels keeps the same texture: the rows' spread moves instead
+    tilted = db + torch.linspace(0, 20, 128, dtype=torch.float64)[:, None]
+    assert torch.allclose(floor_texture(tilted)["texture_std_db"], quiet["texture_std_db"], atol=1e-3)
+    assert float(floor_texture(tilted)["row_spread_db"].mean()) > 5.0
 
 
 def test_clip_range_must_be_two_values_and_setup_must_run_first():

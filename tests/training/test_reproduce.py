@@ -59,6 +59,12 @@ def test_report_on_a_tiny_run(tmp_path, captures):
         assert (out / data["figures"][f"captures/{key}"]).read_bytes()[:4] == b"\x89PNG"
     assert set(data["empty_room_median_db"]) == {"simulation", "simulation_cdr", "capture", "simulation_profile",
                                                  "simulation_profile_cdr"}
+    # the empty room once floor-referenced: every run of the first task and the capture, beside noise's closed form
+    tex = data["test_sets"]["captures"]["empty_room_floor_relative"]
+    assert set(tex) == {"noise_alone_texture_std_db", "capture", *variants}
+    assert tex["noise_alone_texture_std_db"] == pytest.approx(2.73, abs=0.01)  # three receivers
+    assert all(tex[k]["texture_std_db"] > 0 and tex[k]["frames"] > 0 for k in ("capture", *variants))
+    assert "Empty room once floor-referenced" in (out / "report.md").read_text()
     # the twin's noise figure was fitted to the calibration capture's floor (independent generator)
     fit = data["twin_noise_fit"]
     assert abs(fit["twin_floor_db"] - fit["target_floor_db"]) < 0.5
