@@ -92,6 +92,8 @@ def world_record(world: Any, made: Any, out: Path, items: int, frames: int) -> d
             rec["cdr_normal_fit_db"] = {"mean": round(dm.dr.mean_db, 2), "std": round(dm.dr.std_db, 2)}
         if first_dm is None:
             first_dm = dm
+            # the calibration's persistent cells the recipes excise from every map: their share of the map
+            rec["excised_share"] = round(float(dm.excise.double().mean()), 4) if dm.excise is not None else 0.0
             for e in tests:
                 with open_capture(e["path"]) as cap:
                     x = cap.read(0, min(frames, cap.num_frames))
@@ -104,7 +106,8 @@ def summarize(rec: dict[str, Any]) -> dict[str, Any]:
     """Percentiles per source and count, the twin's gaps to the capture, and the peak's AUC between counts."""
     src = rec["sources"]
     cap = src["capture"]
-    out: dict[str, Any] = {"world": rec["world"], "cdr_normal_fit_db": rec.get("cdr_normal_fit_db"), "by_source": {}}
+    out: dict[str, Any] = {"world": rec["world"], "cdr_normal_fit_db": rec.get("cdr_normal_fit_db"),
+                           "excised_share": rec.get("excised_share"), "by_source": {}}
     for name, by_count in src.items():
         row: dict[str, Any] = {}
         for c, s in by_count.items():

@@ -2611,6 +2611,9 @@ FIGURES: list[Figure] = [
     Figure("docs/twin_observability.md", "only about 5 of 594 people lose > 6 dB (a count not kept in the record)",
            "twin_observability_cpu.json", f"{_VIS}/n_people", "of {} people"),
     # docs/training.md, "CDR's floor once the map is floor-relative" (scripts/cdr_floor_account.py, 8 design worlds)
+    Figure("docs/training.md", "in the 8 worlds of the design suite it marks 0.32–4.59 % of the cells",
+           "cdr_floor_account_cpu.json", tuple(f"worlds/{i}/excised_share" for i in range(8)),
+           lambda *v: f"it marks {_en_range('{:.2f}')(*v)} % of", scale=100.0),
     Figure("docs/training.md", "(within −0.70…+1.21 dB in the 8 worlds, where the noisy twin sits −13.17…+3.08 dB off",
            "cdr_floor_account_cpu.json", (*_cdr_worlds("cdr_matched/empty_level_gap_db"), *_cdr_worlds("rt/empty_level_gap_db")),
            lambda *v: f"(within {_signed2(min(v[:8]))}…{_signed2(max(v[:8]))} dB in the 8 worlds, where the noisy twin sits "
