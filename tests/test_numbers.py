@@ -34,6 +34,7 @@ _IE = "heldout_design_interference_cpu.json"  # the same with the interference e
 _ADA = "heldout_design_adabn_cpu.json"
 _MAX = "heldout_design_max_resample_cpu.json"  # the same with resample: max (round 8)
 _TWICE = "heldout_design_1600x2_cpu.json"  # the same with 1600 items x 2 epochs (round 9)
+_FLOOR80 = "heldout_design_randomdr_floor80_cpu.json"  # the same with RandomDR's means over -120...-80 dB (round 9)
 
 
 def _design_deltas(values: Sequence[float]) -> str:
@@ -2611,6 +2612,45 @@ FIGURES: list[Figure] = [
     Figure("docs/twin_observability.md", "only about 5 of 594 people lose > 6 dB (a count not kept in the record)",
            "twin_observability_cpu.json", f"{_VIS}/n_people", "of {} people"),
     # docs/training.md, "CDR's floor once the map is floor-relative" (scripts/cdr_floor_account.py, 8 design worlds)
+    Figure("benchmarks/README.md", "occupancy 0.890 → 0.876 (+ gate 0.965 → 0.959), counting 0.665 → 0.650 (+ gate 0.737 → "
+           "0.729); simulated validation 0.876 / 0.684 → 0.908 / 0.751", _TWICE,
+           tuple(f"run_results/{t}/{k}" for t in ("occupancy", "counting") for k in ("mean", "gated_mean", "val_mean")),
+           lambda a, b, va, c, d, vc: f"occupancy {_ie_value('occupancy/mean'):.3f} → {a:.3f} (+ gate "
+                                      f"{_ie_value('occupancy/gated_mean'):.3f} → {b:.3f}), counting "
+                                      f"{_ie_value('counting/mean'):.3f} → {c:.3f} (+ gate {_ie_value('counting/gated_mean'):.3f}"
+                                      f" → {d:.3f}); simulated validation {_ie_value('occupancy/val_mean'):.3f} / "
+                                      f"{_ie_value('counting/val_mean'):.3f} → {va:.3f} / {vc:.3f}"),
+    Figure("benchmarks/README.md", "occupancy 0.891 (+ gate 0.966), counting 0.665 (+ gate 0.737); worst counting world "
+           "0.533 → 0.459", _FLOOR80,
+           (*(f"run_results/{t}/{k}" for t in ("occupancy", "counting") for k in ("mean", "gated_mean")),
+            "run_results/counting/worst"),
+           lambda a, b, c, d, w: f"occupancy {a:.3f} (+ gate {b:.3f}), counting {c:.3f} (+ gate {d:.3f}); worst counting "
+                                 f"world {_ie_value('counting/worst'):.3f} → {w:.3f}"),
+    Figure("docs/training.md", "(RT, median) 1.8–13.3 dB above the captures' in six of the eight worlds",
+           "cdr_floor_account_cpu.json", _cdr_worlds("rt/one_peak_gap_db"),
+           lambda *v: f"(RT, median) {_en_range('{:.1f}')(*[x for x in v if x > 0])} dB above the captures' in "
+                      f"{('no', 'one', 'two', 'three', 'four', 'five', 'six', 'seven', 'eight')[sum(x > 0 for x in v)]} of"),
+    *(Figure("docs/training.md", quote, _FLOOR80, keys, fmt) for quote, keys, fmt in (
+        ("The suite means do not move: occupancy 0.891 (+ gate 0.966), counting 0.665 (+ gate 0.737), against "
+         "0.890 / 0.965 / 0.665 / 0.737",
+         tuple(f"run_results/{t}/{k}" for t in ("occupancy", "counting") for k in ("mean", "gated_mean")),
+         lambda a, b, c, d: f"occupancy {a:.3f} (+ gate {b:.3f}), counting {c:.3f} (+ gate {d:.3f}), against "
+                            + " / ".join(f"{_ie_value(k):.3f}" for k in ("occupancy/mean", "occupancy/gated_mean",
+                                                                          "counting/mean", "counting/gated_mean"))),
+        ("the worst counting world falls (0.533 → 0.459, `design-w05`), the counting seed spread widens (0.022) and "
+         "simulated validation drops (0.862 / 0.657)",
+         ("run_results/counting/worst", "run_results/counting/mean_std_over_seeds", "run_results/occupancy/val_mean",
+          "run_results/counting/val_mean"),
+         lambda w, sd, vo, vc: f"falls ({_ie_value('counting/worst'):.3f} → {w:.3f}, `design-w05`), the counting seed "
+                               f"spread widens ({sd:.3f}) and simulated validation drops ({vo:.3f} / {vc:.3f})"),
+        ("occupancy 0.890 → 0.891 (+ gate 0.965 → 0.966), counting 0.665 → 0.665 (+ gate 0.737 → 0.737); worst counting "
+         "world 0.533 → 0.459 |",
+         tuple(f"run_results/{t}/{k}" for t in ("occupancy", "counting") for k in ("mean", "gated_mean")) + (
+             "run_results/counting/worst",),
+         lambda a, b, c, d, w: f"occupancy {_ie_value('occupancy/mean'):.3f} → {a:.3f} (+ gate "
+                               f"{_ie_value('occupancy/gated_mean'):.3f} → {b:.3f}), counting {_ie_value('counting/mean'):.3f} "
+                               f"→ {c:.3f} (+ gate {_ie_value('counting/gated_mean'):.3f} → {d:.3f}); worst counting world "
+                               f"{_ie_value('counting/worst'):.3f} → {w:.3f} |"))),
     Figure("docs/training.md", "in the 8 worlds of the design suite it marks 0.32–4.59 % of the cells",
            "cdr_floor_account_cpu.json", tuple(f"worlds/{i}/excised_share" for i in range(8)),
            lambda *v: f"it marks {_en_range('{:.2f}')(*v)} % of", scale=100.0),
