@@ -35,6 +35,8 @@ _ADA = "heldout_design_adabn_cpu.json"
 _MAX = "heldout_design_max_resample_cpu.json"  # the same with resample: max (round 8)
 _TWICE = "heldout_design_1600x2_cpu.json"  # the same with 1600 items x 2 epochs (round 9)
 _FLOOR80 = "heldout_design_randomdr_floor80_cpu.json"  # the same with RandomDR's means over -120...-80 dB (round 9)
+_ROW = "heldout_design_cdr_row_cpu.json"  # a row-wise calibrated CDR floor (round 9); RT of the same run:
+_ROW_RT = "heldout_design_rt_cpu.json"
 
 
 def _design_deltas(values: Sequence[float]) -> str:
@@ -51,6 +53,14 @@ def _ie_counting() -> tuple[float, float]:
     """Counting's suite mean and gated mean in the default's design record (the fourth round)."""
     c = json.loads((BENCHMARKS / _IE).read_text())["run_results"]["counting"]
     return c["mean"], c["gated_mean"]
+
+
+def _row_rt(path: str) -> float:
+    """A value under ``run_results`` of RT's design record (the run beside the row-wise CDR)."""
+    node = json.loads((BENCHMARKS / _ROW_RT).read_text())["run_results"]
+    for part in path.split("/"):
+        node = node[part]
+    return node
 
 
 def _ie_value(path: str) -> float:
@@ -2612,6 +2622,30 @@ FIGURES: list[Figure] = [
     Figure("docs/twin_observability.md", "only about 5 of 594 people lose > 6 dB (a count not kept in the record)",
            "twin_observability_cpu.json", f"{_VIS}/n_people", "of {} people"),
     # docs/training.md, "CDR's floor once the map is floor-relative" (scripts/cdr_floor_account.py, 8 design worlds)
+    Figure("benchmarks/README.md", "RT occupancy 0.883 (+ gate 0.954), counting 0.653 (+ gate 0.723); row-wise CDR "
+           "0.754 / 0.518, 0.500 occupancy in `design-w02` and `w04`", _ROW,
+           ("run_results/occupancy/mean", "run_results/counting/mean", "run_results/occupancy/per_world/design-w02",
+            "run_results/occupancy/per_world/design-w04"),
+           lambda a, b, c, d: f"RT occupancy {_row_rt('occupancy/mean'):.3f} (+ gate {_row_rt('occupancy/gated_mean'):.3f}), "
+                              f"counting {_row_rt('counting/mean'):.3f} (+ gate {_row_rt('counting/gated_mean'):.3f}); "
+                              f"row-wise CDR {a:.3f} / {b:.3f}, {max(c, d):.3f} occupancy in"),
+    Figure("docs/training.md", "(`w00`, `w01`, `w03`, `w06`: occupancy within 0.02 of RT's)", _ROW,
+           tuple(f"run_results/occupancy/per_world/design-w0{i}" for i in (0, 1, 3, 6)),
+           lambda *v: "occupancy within {:.2f} of RT's)".format(max(abs(a - _row_rt(f"occupancy/per_world/design-w0{i}"))
+                                                                   for a, i in zip(v, (0, 1, 3, 6))))),
+    Figure("docs/training.md", "(`w02` and `w04` at 0.500 occupancy, `w05` at 0.604 with counting 0.213; `w07` 0.875 against "
+           "0.974): suite means 0.754 occupancy and 0.518 counting against RT's 0.883 and 0.653", _ROW,
+           ("run_results/occupancy/per_world/design-w02", "run_results/occupancy/per_world/design-w04",
+            "run_results/occupancy/per_world/design-w05", "run_results/counting/per_world/design-w05",
+            "run_results/occupancy/per_world/design-w07", "run_results/occupancy/mean", "run_results/counting/mean"),
+           lambda a, b, c, d, e, f, g: f"(`w02` and `w04` at {a:.3f} occupancy, `w05` at {c:.3f} with counting {d:.3f}; "
+                                       f"`w07` {e:.3f} against {_row_rt('occupancy/per_world/design-w07'):.3f}): suite means "
+                                       f"{f:.3f} occupancy and {g:.3f} counting against RT's {_row_rt('occupancy/mean'):.3f} "
+                                       f"and {_row_rt('counting/mean'):.3f}" if a == b else "w02 and w04 differ"),
+    Figure("docs/training.md", "occupancy 0.754, counting 0.518 against RT's 0.883 / 0.653: ties RT in four worlds", _ROW,
+           ("run_results/occupancy/mean", "run_results/counting/mean"),
+           lambda a, b: f"occupancy {a:.3f}, counting {b:.3f} against RT's {_row_rt('occupancy/mean'):.3f} / "
+                        f"{_row_rt('counting/mean'):.3f}: ties RT in four worlds"),
     Figure("benchmarks/README.md", "occupancy 0.890 → 0.876 (+ gate 0.965 → 0.959), counting 0.665 → 0.650 (+ gate 0.737 → "
            "0.729); simulated validation 0.876 / 0.684 → 0.908 / 0.751", _TWICE,
            tuple(f"run_results/{t}/{k}" for t in ("occupancy", "counting") for k in ("mean", "gated_mean", "val_mean")),
