@@ -70,7 +70,6 @@ def world_record(world: Any, made: Any, out: Path, items: int, frames: int) -> d
     tests = [{"path": str(p), "count": int(c)} for p, c in made.tests]
     rec: dict[str, Any] = {"world": world.name, "sources": {}}
     capture_by_count: dict[int, torch.Tensor] = {}
-    first_dm = None
     for name, (method, ablation) in SOURCES.items():
         recipe = _sized(run_recipe("counting", method, settings, ablation), settings)
         kw = recipes.merge(recipe["data"], {"task": "counting", "calibration": str(made.calibration), "test": tests,
@@ -83,15 +82,14 @@ def world_record(world: Any, made: Any, out: Path, items: int, frames: int) -> d
         for c in (0, 1, 2):
             idx = (train.counts == c).nonzero().flatten().tolist()
             maps = train.maps(idx)
-            if name != "rt":
+            if dm.dr is not None:  # RT has none
                 with torch.no_grad():
                     maps = dm.dr.train()(maps.float())
             by_count[c] = frame_stats(maps, dm)
         rec["sources"][name] = by_count
         if name == "cdr_normal":
             rec["cdr_normal_fit_db"] = {"mean": round(dm.dr.mean_db, 2), "std": round(dm.dr.std_db, 2)}
-        if first_dm is None:
-            first_dm = dm
+        if not capture_by_count:  # the captures once, through the first source's chain and excision
             # the calibration's persistent cells the recipes excise from every map: their share of the map
             rec["excised_share"] = round(float(dm.excise.double().mean()), 4) if dm.excise is not None else 0.0
             for e in tests:

@@ -24,7 +24,7 @@ from radaraug.transforms import (
     RadarCompose,
     Resize,
 )
-from radaraug.transforms.functional._floor import zero_doppler_bins
+from radaraug.transforms.functional._floor import floor_relative, zero_doppler_bins
 
 #: Network input representations: the paper's clipped dBFS map, or each range row referenced to
 #: its own Doppler median with zero Doppler blanked (docs/training.md, "Representations").
@@ -100,7 +100,7 @@ def floor_texture(db_maps: torch.Tensor, excise: torch.Tensor | None = None,
     along range). Each ``(N,)``. docs/training.md ("CDR's floor once the map is floor-relative") uses them.
     """
     absolute = level_chain("paper")(db_maps.float()).squeeze(-3)
-    relative = level_chain("floor_relative", excise, blank_zero_doppler)(db_maps.float()).squeeze(-3)
+    relative = floor_relative(absolute, blank_zero_doppler, excise)  # the floor-relative level chain, RX combined once
     keep = torch.ones(absolute.shape[-2:], dtype=torch.bool, device=absolute.device)
     keep[:, zero_doppler_bins(absolute.shape[-1], blank_zero_doppler)] = False
     if excise is not None:
