@@ -2634,14 +2634,19 @@ FIGURES: list[Figure] = [
            lambda *v: "occupancy within {:.2f} of RT's)".format(max(abs(a - _row_rt(f"occupancy/per_world/design-w0{i}"))
                                                                    for a, i in zip(v, (0, 1, 3, 6))))),
     Figure("docs/training.md", "(`w02` and `w04` at 0.500 occupancy, `w05` at 0.604 with counting 0.213; `w07` 0.875 against "
-           "0.974): suite means 0.754 occupancy and 0.518 counting against RT's 0.883 and 0.653", _ROW,
+           "0.974): suite means 0.754 ± 0.015 occupancy and 0.518 ± 0.030 counting against RT's 0.883 ± 0.006 and "
+           "0.653 ± 0.024", _ROW,
            ("run_results/occupancy/per_world/design-w02", "run_results/occupancy/per_world/design-w04",
             "run_results/occupancy/per_world/design-w05", "run_results/counting/per_world/design-w05",
-            "run_results/occupancy/per_world/design-w07", "run_results/occupancy/mean", "run_results/counting/mean"),
-           lambda a, b, c, d, e, f, g: f"(`w02` and `w04` at {a:.3f} occupancy, `w05` at {c:.3f} with counting {d:.3f}; "
-                                       f"`w07` {e:.3f} against {_row_rt('occupancy/per_world/design-w07'):.3f}): suite means "
-                                       f"{f:.3f} occupancy and {g:.3f} counting against RT's {_row_rt('occupancy/mean'):.3f} "
-                                       f"and {_row_rt('counting/mean'):.3f}" if a == b else "w02 and w04 differ"),
+            "run_results/occupancy/per_world/design-w07", "run_results/occupancy/mean",
+            "run_results/occupancy/mean_std_over_seeds", "run_results/counting/mean",
+            "run_results/counting/mean_std_over_seeds"),
+           lambda a, b, c, d, e, f, fs, g, gs: (
+               f"(`w02` and `w04` at {a:.3f} occupancy, `w05` at {c:.3f} with counting {d:.3f}; `w07` {e:.3f} against "
+               f"{_row_rt('occupancy/per_world/design-w07'):.3f}): suite means {f:.3f} ± {fs:.3f} occupancy and {g:.3f} ± "
+               f"{gs:.3f} counting against RT's {_row_rt('occupancy/mean'):.3f} ± "
+               f"{_row_rt('occupancy/mean_std_over_seeds'):.3f} and {_row_rt('counting/mean'):.3f} ± "
+               f"{_row_rt('counting/mean_std_over_seeds'):.3f}" if a == b else "w02 and w04 differ")),
     Figure("docs/training.md", "occupancy 0.754, counting 0.518 against RT's 0.883 / 0.653: ties RT in four worlds", _ROW,
            ("run_results/occupancy/mean", "run_results/counting/mean"),
            lambda a, b: f"occupancy {a:.3f}, counting {b:.3f} against RT's {_row_rt('occupancy/mean'):.3f} / "
