@@ -1103,6 +1103,34 @@ FIGURES: list[Figure] = [
                (" at A", " with a spur", " at 43 dB", " at 128 × 32")))
            .replace(" dB at A, ", " dB at A and ").replace(" with a spur, ", " with a spur (halved at every seed), ")
            .replace(" dB at 43 dB, ", " dB at 43 dB and ") + " (not halved)"),
+    Figure("benchmarks/README.md", "the 7 clipping cases at seeds 1–3 21 of 21 named, 21 of 21 halved; seed 3's whole "
+           "table 51 of 51 named, errors halved in 43 of 48", _GB,
+           ("declipped_static/named_exactly", "declipped_static/cases", "declipped_static/halved",
+            "declipped_static/cases", "declipped_static/seed_3_table/correct", "declipped_static/seed_3_table/cases",
+            "declipped_static/seed_3_table/error_halved", "declipped_static/seed_3_table/cases_with_effects"),
+           "the 7 clipping cases at seeds 1–3 {:d} of {:d} named, {:d} of {:d} halved; seed 3's whole table {:d} of "
+           "{:d} named, errors halved in {:d} of {:d}"),
+    Figure("docs/diagnosis.md", "**21 of 21 named exactly, 21 of 21 errors halved** (7 of the 15 rows of `clipping_gain` "
+           "were)", _GB, ("declipped_static/named_exactly", "declipped_static/cases", "declipped_static/halved",
+                          "declipped_static/cases", "declipped_static/before_this_change/halved",
+                          "declipped_static/before_this_change/rows"),
+           "**{:d} of {:d} named exactly, {:d} of {:d} errors halved** ({:d} of the {:d} rows of `clipping_gain` were)"),
+    Figure("docs/diagnosis.md", "by gain 3.6–4.2 → 0.56–0.60 dB at A, 5.1–5.6 → 0.25–0.72 at 43 dB, 4.2–4.4 → 0.25–0.34 "
+           "at 128 × 32, with a spur 4.3–4.9 → 0.81–0.98; the leakage's chirp-start clipping 2.4–2.5 → 0.83–0.85 (A), "
+           "3.4–3.5 → 1.55–1.56 (43 dB), 2.3–2.6 → 1.00–1.02 (128 × 32)", _GB,
+           tuple(f"declipped_static/rows/seed_{s}/{r}/error_{w}_dB" for r in (0, 1, 2, 3, 4, 5, 6)
+                 for w in ("before", "after") for s in (1, 2, 3)),
+           lambda *v: "by gain {} dB at A, {} at 43 dB, {} at 128 × 32, with a spur {}; the leakage's chirp-start "
+           "clipping {} (A), {} (43 dB), {} (128 × 32)".format(
+               *(f"{_span('{:.1f}')(*v[6 * i:6 * i + 3])} → {_span('{:.2f}')(*v[6 * i + 3:6 * i + 6])}"
+                 for i in range(7)))),
+    Figure("docs/diagnosis.md", "**51 of 51 named exactly, the error halved in 43 of 48**; the 44 other cases are "
+           "unchanged to the recorded digit. The 5 left", _GB,
+           ("declipped_static/seed_3_table/correct", "declipped_static/seed_3_table/cases",
+            "declipped_static/seed_3_table/error_halved", "declipped_static/seed_3_table/cases_with_effects",
+            "declipped_static/seed_3_table/unchanged_from_latest_records"),
+           lambda c, n, h, e, u: f"**{c:d} of {n:d} named exactly, the error halved in {h:d} of {e:d}**; the "
+           f"{u:d} other cases are unchanged to the recorded digit. The {e - h:d} left"),
     Figure("docs/diagnosis.md", "The gain fits +26 to +30 dB for the +18.4 dB put in, at the prior's bound in 10 of 12",
            _GB, tuple(f"clipping_gain/seed_{s}/rows/{r}/params/adc_clipping/gain_dB" for s in (1, 2, 3) for r in range(4)),
            lambda *g: f"The gain fits {min(g):+.0f} to {max(g):+.0f} dB for the +18.4 dB put in, at the prior's bound in "

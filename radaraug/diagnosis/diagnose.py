@@ -27,6 +27,7 @@ from radaraug.diagnosis.catalog import (
     require,
     with_effect,
 )
+from radaraug.diagnosis.declip import declipped_mean_chirp
 from radaraug.diagnosis.room import ROOM_PRIORS
 from radaraug.diagnosis.search import Search, SearchResult, SearchSettings
 from radaraug.diagnosis.twin_source import STATIC_STAGES, TwinSource
@@ -145,7 +146,7 @@ def _source(config: RadarConfig, scene: Any, fit: torch.Tensor, sim_frames: int,
     chain = rx.to_dict()["effects"]
     if scene is None:
         chain = [e for e in chain if e["name"] not in STATIC_STAGES]
-        return TwinSource(config, mean_chirp=fit.mean(dim=(0, 2)), tx_power_dBm=rx.tx_power_dBm,
+        return TwinSource(config, mean_chirp=declipped_mean_chirp(fit), tx_power_dBm=rx.tx_power_dBm,
                           front_end_gain_dB=rx.front_end_gain_dB), chain, None
     from radaraug.scene.scene import Scene
     from radaraug.sim.twin import DigitalTwin
