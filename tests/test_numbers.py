@@ -1110,6 +1110,26 @@ FIGURES: list[Figure] = [
             "declipped_static/seed_3_table/error_halved", "declipped_static/seed_3_table/cases_with_effects"),
            "the 7 clipping cases at seeds 1–3 {:d} of {:d} named, {:d} of {:d} halved; seed 3's whole table {:d} of "
            "{:d} named, errors halved in {:d} of {:d}"),
+    Figure("benchmarks/README.md", "the band cases at seeds 1–3 9 of 9 named, 9 of 9 halved, f_v d 9 of 9 within 20 %",
+           _GB, ("band_start/named_exactly", "band_start/cases", "band_start/halved", "band_start/cases",
+                 "band_start/parameters/by_parameter/0/within", "band_start/parameters/by_parameter/0/compared"),
+           "the band cases at seeds 1–3 {:d} of {:d} named, {:d} of {:d} halved, f_v d {:d} of {:d} within 20 %"),
+    Figure("docs/diagnosis.md", "**9 of 9 named exactly, 9 of 9 errors halved, f_v d 9 of 9 within 20 %** "
+           "(0.134–0.154 m·Hz)", _GB,
+           ("band_start/named_exactly", "band_start/cases", "band_start/halved", "band_start/cases",
+            "band_start/parameters/by_parameter/0/within", "band_start/parameters/by_parameter/0/compared",
+            *(f"band_start/parameters/cases/{i}/effects/vibrating_clutter/0/fitted" for i in range(9))),
+           lambda *v: "**{:d} of {:d} named exactly, {:d} of {:d} errors halved, f_v d {:d} of {:d} within 20 %** "
+           "({})".format(*(int(x) for x in v[:6]), _en_range("{:.3f}")(*v[6:]) + " m·Hz")),
+    Figure("docs/diagnosis.md", "the errors after moved 1.601 → 1.520 dB (128 × 32), 1.205 → 1.239 (A), 1.686 → 1.641 "
+           "(43 dB)", _GB,
+           ("declipped_static/seed_3_table/rows/44/error_after_dB", "band_start/rows/seed_3/0/error_after_dB",
+            "declipped_static/seed_3_table/rows/42/error_after_dB", "band_start/rows/seed_3/1/error_after_dB",
+            "declipped_static/seed_3_table/rows/43/error_after_dB", "band_start/rows/seed_3/2/error_after_dB"),
+           "the errors after moved {:.3f} → {:.3f} dB (128 × 32), {:.3f} → {:.3f} (A), {:.3f} → {:.3f} (43 dB)"),
+    Figure("docs/diagnosis.md", "The other vibration cases and the controls at seed 3 are unchanged (8 of 8)", _GB,
+           ("band_start/seed_3_other_cases_unchanged", "band_start/seed_3_other_cases_count"),
+           "The other vibration cases and the controls at seed 3 are unchanged ({:d} of {:d})"),
     Figure("docs/diagnosis.md", "**21 of 21 named exactly, 21 of 21 errors halved** (7 of the 15 rows of `clipping_gain` "
            "were)", _GB, ("declipped_static/named_exactly", "declipped_static/cases", "declipped_static/halved",
                           "declipped_static/cases", "declipped_static/before_this_change/halved",

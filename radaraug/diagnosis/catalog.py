@@ -344,12 +344,22 @@ def _measured_pair_Hz(ctx: Context) -> float | None:
     return float(m["vibration_Hz"]) if "beta" in m and "vibration_Hz" in m else None
 
 
+def _measured_band_v_max(ctx: Context) -> float | None:
+    """``v_max`` (m/s) of a present Doppler-band signature (a vibration of ``beta >> 1``), or None."""
+    m = ctx.measured.get("vibrating_clutter") or {}
+    return float(m["v_max_m_s"]) if m.get("variant") == 1.0 and "v_max_m_s" in m else None
+
+
 def _vibrating() -> Candidate:
     def starts(ctx: Context) -> list[dict[str, Any]]:
         cfg = ctx.config
         ex = ctx.excess_db()
         M = ex.shape[1]
         out = []
+        if _measured_band_v_max(ctx) is not None:
+            # The band's edge measured v_max = 2 pi f_v d; a small-beta pair would fit the band's
+            # brightest cells instead (a pair at ~7 bins for a +-5-bin band at 32 chirps).
+            return _band_starts(ctx, ex)
         measured = _measured_pair_Hz(ctx)
         for r, d, v in _line_peaks(ex, 1, 6.0):
             # The pair's signature read f_v to a fraction of a Doppler bin (each line's centre); the
@@ -382,7 +392,8 @@ def _band_starts(ctx: Context, ex: torch.Tensor, min_db: float = 6.0, min_bins: 
     """Starts of a large vibration from a Doppler band: a row raised from zero Doppler out to +-v_max.
 
     Only ``2 pi f_v d = v_max`` is identified, so the starts span ``f_v`` of 0.3, 1 and 3 Doppler bins
-    with ``d = v_max / (2 pi f_v)``; the search refines both.
+    with ``d = v_max / (2 pi f_v)``; ``v_max`` is the band signature's measured edge when present, else
+    the residual's band width. The search refines both.
     """
     cfg = ctx.config
     K, M = ex.shape
@@ -397,7 +408,8 @@ def _band_starts(ctx: Context, ex: torch.Tensor, min_db: float = 6.0, min_bins: 
     if width < min_bins or max(int(w_up[r]), int(w_dn[r])) >= c - 3:
         return []
     dopp = 1 / (M * cfg.chirp_repetition_time_s)  # Hz per Doppler bin
-    v_max = (width + 1) * dopp * cfg.wavelength_m / 2
+    measured = _measured_band_v_max(ctx)
+    v_max = measured if measured is not None else (width + 1) * dopp * cfg.wavelength_m / 2
     col = c + 2 + width // 2
     hi = _priors(ctx, "vibrating_clutter")["displacement_m"].hi
     out = []

@@ -74,6 +74,16 @@ def test_a_small_vibration_keeps_the_frequency_its_signature_measured(tmp_path):
     assert abs(vib["params"]["vibration_Hz"] - 420.0) <= 0.02 * 420.0
 
 
+def test_a_large_vibration_keeps_the_band_edge_its_signature_measured(tmp_path):
+    """6 mm at 25 Hz (f_v d = 0.150 m Hz) fills +-5 Doppler bins at 128 x 32: the band's edge gives the
+    start, so the fit is a band (f_v d within 20 %), not a small-beta pair at the band's brightest cells."""
+    diag, named, expected = _named(tmp_path, "vibration_band@B", seed=3)
+    assert named == expected
+    vib = next(e for e in diag.profile.to_dict()["receiver"]["effects"] if e["name"] == "vibrating_clutter")
+    product = vib["params"]["vibration_Hz"] * vib["params"]["displacement_m"]
+    assert product == pytest.approx(0.150, rel=0.2)
+
+
 def test_steeper_declared_highpass_is_refitted_with_its_parameters_before_and_after(tmp_path):
     """The declared first-order high-pass, where the capture's is a second-order Butterworth at 150 kHz.
 
