@@ -15,6 +15,8 @@ import torch
 
 # Bisection steps for the static value: the bracket shrinks by 2**-60, far below an ADC code.
 _STEPS = 60
+# A sample this close to a rail is on it (float32 rounding of the rail code; the next code is 2**-11 in).
+_ON_RAIL = 1e-6
 
 
 def _phi(z: torch.Tensor) -> torch.Tensor:
@@ -56,7 +58,7 @@ def noise_sigma(x: torch.Tensor, rail: float = 1.0) -> torch.Tensor:
     Returns:
         ``(R,)`` standard deviations.
     """
-    on_rail = x.abs() >= rail
+    on_rail = x.abs() >= rail - _ON_RAIL
     q = on_rail.double().mean(dim=(0, 2))  # (R, N) clipped share per position
     d = (x[:, :, 1:] - x[:, :, :-1]).abs()  # (F, R, M-1, N)
     ok = ~(on_rail[:, :, 1:] | on_rail[:, :, :-1])
@@ -85,7 +87,7 @@ def declipped_mean_chirp(x: torch.Tensor, rail: float = 1.0) -> torch.Tensor:
     """
     x = x.to(torch.float64)
     mean = x.mean(dim=(0, 2))
-    on_rail = (x.abs() >= rail).any(dim=0).any(dim=1)  # (R, N)
+    on_rail = (x.abs() >= rail - _ON_RAIL).any(dim=0).any(dim=1)  # (R, N)
     if not bool(on_rail.any()):
         return mean
     sigma = noise_sigma(x, rail).clamp_min(1e-9)[:, None].expand_as(mean)
