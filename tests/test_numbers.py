@@ -291,6 +291,14 @@ def _before_after(sep: str = "–") -> Callable[..., str]:
 
 
 _GB = "diagnose_generator_b_cpu.json"
+_LEVELS = "testset_levels_cpu.json"
+
+
+def _minus(v: float) -> str:
+    """``v`` to one decimal with the pages' minus sign."""
+    return f"{v:.1f}".replace("-", "−")
+
+
 _INTERFERENCE_CASES = ("interference@A", "interference@Ahi", "interference@B", "phase_noise+interference@A",
                        "interference+vibration@B", "interference_slopes@A", "interference_slopes@Ahi",
                        "interference_slopes@B")
@@ -1475,6 +1483,44 @@ FIGURES: list[Figure] = [
            (*_DC_REAL, *_dc("corridor", "diffuse_S0.7"), *_dc("corridor", "specular")),
            "real {:.1f} / {:.1f} dBFS; twin at the default S = 0.7 {:.1f} / {:.1f} / {:.1f}, specular only {:.1f} / {:.1f} / "
            "{:.1f}"),
+    Figure("benchmarks/README.md", "empty median cell twin −101.1 / proxy −99.3 / independent −102.0 dB; one person's "
+           "median peak −70.5 / −77.3 / −69.1 dB", _LEVELS,
+           (*(f"{s}/empty_median_cell_dB" for s in ("twin", "proxy", "independent")),
+            *(f"{s}/count_1_peak_dB/median" for s in ("twin", "proxy", "independent"))),
+           lambda *v: "empty median cell twin {} / proxy {} / independent {} dB; one person's median peak {} / {} / {} "
+           "dB".format(*map(_minus, v))),
+    # docs/proxy.md: the levels of the twin, the proxy and the independent set (testset_levels_cpu.json)
+    Figure("docs/proxy.md", "| empty room, median cell | −101.1 dB | −99.3 dB |", _LEVELS,
+           ("twin/empty_median_cell_dB", "proxy/empty_median_cell_dB"),
+           lambda t, p: f"| empty room, median cell | {_minus(t)} dB | {_minus(p)} dB |"),
+    Figure("docs/proxy.md", "| −98.8 dB (noise only) | −81.1 dB (10.32 m, +15 Doppler bins: the spur) |", _LEVELS,
+           ("twin/empty_strongest_off_zero_dB", "proxy/empty_strongest_off_zero_dB",
+            "proxy/empty_strongest_off_zero_range_m", "proxy/empty_strongest_off_zero_doppler_bins"),
+           lambda t, p, r, d: f"| {_minus(t)} dB (noise only) | {_minus(p)} dB ({r:.2f} m, {d:+d} Doppler bins: the spur) |"),
+    *(Figure("docs/proxy.md", quote, _LEVELS,
+             tuple(f"{src}/count_{c}_peak_dB/{q}" for src in ("twin", "proxy") for q in ("median", "p10", "p90")),
+             lambda *v, head=head: f"{head} | " + " | ".join(
+                 f"{_minus(v[i])} dB ({_minus(v[i + 1])} to {_minus(v[i + 2])})" for i in (0, 3)) + " |")
+      for c, head, quote in (
+          (1, "| 1 person, per-frame off-zero peak (median; 10th to 90th percentile)",
+           "| 1 person, per-frame off-zero peak (median; 10th to 90th percentile) | −70.5 dB (−77.8 to −59.8) | "
+           "−77.3 dB (−81.2 to −68.3) |"),
+          (2, "| 2 people, per-frame off-zero peak",
+           "| 2 people, per-frame off-zero peak | −67.0 dB (−74.1 to −57.5) | −76.5 dB (−80.8 to −71.4) |"))),
+    Figure("docs/proxy.md", "RX power-combined: −102.0 dB) |", _LEVELS, "independent/empty_median_cell_dB",
+           lambda v: f"RX power-combined: {_minus(v)} dB) |"),
+    Figure("docs/proxy.md", "| −78.0 dB: the spur (6.88 m, +11 Doppler bins) |", _LEVELS,
+           ("independent/empty_strongest_off_zero_dB", "independent/empty_strongest_off_zero_range_m",
+            "independent/empty_strongest_off_zero_doppler_bins"),
+           lambda v, r, d: f"| {_minus(v)} dB: the spur ({r:.2f} m, {d:+d} Doppler bins) |"),
+    Figure("docs/proxy.md", "| 1 person, per-frame off-zero peak | −69.1 dB median (10th to 90th percentile −77.2 to "
+           "−62.0 dB) |", _LEVELS, tuple(f"independent/count_1_peak_dB/{q}" for q in ("median", "p10", "p90")),
+           lambda m, lo, hi: f"| 1 person, per-frame off-zero peak | {_minus(m)} dB median (10th to 90th percentile "
+           f"{_minus(lo)} to {_minus(hi)} dB) |"),
+    Figure("docs/proxy.md", "| 2 people, per-frame off-zero peak | −67.5 dB median (−73.0 to −60.8 dB) |", _LEVELS,
+           tuple(f"independent/count_2_peak_dB/{q}" for q in ("median", "p10", "p90")),
+           lambda m, lo, hi: f"| 2 people, per-frame off-zero peak | {_minus(m)} dB median ({_minus(lo)} to "
+           f"{_minus(hi)} dB) |"),
     # docs/proxy.md: the independent set's empty-room level (the quick record's calibration capture)
     Figure("docs/proxy.md", "| empty room, median cell (per RX) | −103.0 dB (the calibration capture's, "
            "`benchmarks/reproduce_quick_cpu.json`;", "reproduce_quick_cpu.json",
