@@ -387,6 +387,7 @@ class Search:
         steps: list[dict[str, Any]] = []
         tried: list[dict[str, Any]] = []
         added: set[str] = set()
+        own_specs: dict[str, list[tuple[str, ParamSpec]]] = {}  # each search step's own parameters
         ev = dict(evidence or {})
         self._measured = {k: dict(e.capture.params) for k, e in ev.items() if e.present}
         if ev:
@@ -467,16 +468,24 @@ class Search:
             added.add(cand.name)
             current, cur_held = fitted, held
             # The base was bent to imitate the new stage before it existed (a higher floor, a lower
-            # anti-alias cutoff...): refit the base together with the new stage's parameters,
-            # kept only when the held-out error does not get worse.
-            rebased, rebased_room = self.refit_base(current, own, room=cur_room)
-            rebased_held = self.held_score(rebased, rebased_room)
-            if rebased_held.overall <= cur_held.overall:
-                current, cur_room, cur_held = rebased, rebased_room, rebased_held
-                steps[-1]["error_after_base_refit"] = round(rebased_held.overall, 4)
-                steps[-1]["params"] = require(current, cand.name)["params"]
-                if cur_room:
-                    steps[-1]["room_after_base_refit"] = dict(cur_room)
+            # anti-alias cutoff...): refit the base together with the new stage's parameters. So were
+            # the effects added before it (phase noise raising the floor that bursts raise): then a
+            # second refit adds the earlier steps' parameters. Each is kept only when the held-out
+            # error does not get worse.
+            earlier = [spec for specs_of in own_specs.values() for spec in specs_of]
+            own_specs[cand.name] = own
+            for extra in (own, own + earlier) if earlier else (own,):
+                rebased, rebased_room = self.refit_base(current, extra, room=cur_room)
+                rebased_held = self.held_score(rebased, rebased_room)
+                if rebased_held.overall <= cur_held.overall:
+                    current, cur_room, cur_held = rebased, rebased_room, rebased_held
+                    steps[-1]["error_after_base_refit"] = round(rebased_held.overall, 4)
+                    steps[-1]["params"] = require(current, cand.name)["params"]
+                    for prev in own_specs:  # the earlier steps' parameters as the joint refit left them
+                        first = next(step for step in steps if step["effect"] == prev)
+                        first["params"] = require(current, prev)["params"]
+                    if cur_room:
+                        steps[-1]["room_after_base_refit"] = dict(cur_room)
         for name, e in ev.items():
             if e.present and name not in added:
                 # Named by its signature even though no fit beat the margin: the report says both.
