@@ -1122,6 +1122,24 @@ FIGURES: list[Figure] = [
            _GB, ("band_start/named_exactly", "band_start/cases", "band_start/halved", "band_start/cases",
                  "band_start/parameters/by_parameter/0/within", "band_start/parameters/by_parameter/0/compared"),
            "the band cases at seeds 1–3 {:d} of {:d} named, {:d} of {:d} halved, f_v d {:d} of {:d} within 20 %"),
+    Figure("benchmarks/README.md", "seeds 3 and 1 51 of 51 named each, halved in 43 of 48 each, 121 of 136 parameters "
+           "within", _GB, ("final_tables/seed_3/correct", "final_tables/seed_3/cases", "final_tables/seed_3/error_halved",
+                           "final_tables/seed_3/cases_with_effects", "final_tables/parameters/summary/parameters_within",
+                           "final_tables/parameters/summary/parameters_compared"),
+           "seeds 3 and 1 {:d} of {:d} named each, halved in {:d} of {:d} each, {:d} of {:d} parameters within"),
+    Figure("docs/diagnosis.md", "seed 3 **51 of 51 named exactly, the error halved in 43 of 48**; seed 1 51 of 51, 43 of "
+           "48 (seed 2 not run this round). The injected effect is named first in 102 of 102 cases; 121 of 136 compared "
+           "parameters", _GB,
+           (*(f"final_tables/seed_{s}/{k}" for s in (3, 1) for k in ("correct", "cases", "error_halved",
+                                                                     "cases_with_effects")),
+            "final_tables/parameters/summary/named_first", "final_tables/parameters/summary/cases",
+            "final_tables/parameters/summary/parameters_within", "final_tables/parameters/summary/parameters_compared"),
+           "seed 3 **{:d} of {:d} named exactly, the error halved in {:d} of {:d}**; seed 1 {:d} of {:d}, {:d} of "
+           "{:d} (seed 2 not run this round). The injected effect is named first in {:d} of {:d} cases; {:d} of {:d} "
+           "compared parameters"),
+    Figure("docs/diagnosis.md", "`phase_noise+interference@A` at seed 3 from 1.890 to 1.420 dB", _GB,
+           ("declipped_static/seed_3_table/rows/31/error_after_dB", "final_tables/seed_3/rows/31/error_after_dB"),
+           "`phase_noise+interference@A` at seed 3 from {:.3f} to {:.3f} dB"),
     Figure("docs/diagnosis.md", "**9 of 9 named exactly, 9 of 9 errors halved, f_v d 9 of 9 within 20 %** "
            "(0.134–0.154 m·Hz)", _GB,
            ("band_start/named_exactly", "band_start/cases", "band_start/halved", "band_start/cases",
