@@ -23,7 +23,8 @@ def _phi(z: torch.Tensor) -> torch.Tensor:
     return torch.exp(-0.5 * z * z) / math.sqrt(2 * math.pi)
 
 
-def _Phi(z: torch.Tensor) -> torch.Tensor:
+def normal_cdf(z: torch.Tensor) -> torch.Tensor:
+    """The standard normal's CDF (also the clipping detector's Gaussian prediction)."""
     return 0.5 * torch.erfc(-z / math.sqrt(2))
 
 
@@ -40,7 +41,7 @@ def clipped_mean(s: torch.Tensor, sigma: torch.Tensor, rail: float = 1.0) -> tor
     """
     a = (-rail - s) / sigma
     b = (rail - s) / sigma
-    Pa, Pb = _Phi(a), _Phi(b)
+    Pa, Pb = normal_cdf(a), normal_cdf(b)
     return -rail * Pa + rail * (1 - Pb) + s * (Pb - Pa) + sigma * (_phi(a) - _phi(b))
 
 

@@ -20,6 +20,7 @@ from typing import Concatenate, ParamSpec
 import torch
 
 from radaraug.config import RadarConfig
+from radaraug.diagnosis.declip import normal_cdf
 
 _TINY = 1e-30
 
@@ -79,10 +80,6 @@ def _remove_dc(x: torch.Tensor, w: torch.Tensor) -> torch.Tensor:
 
 def _db(p: float | torch.Tensor) -> float:
     return 10 * math.log10(max(float(p), _TINY))
-
-
-def _norm_cdf(z: torch.Tensor) -> torch.Tensor:
-    return 0.5 * torch.erfc(-z / math.sqrt(2))
 
 
 class Prepared:
@@ -327,7 +324,7 @@ def detect_adc_clipping(p: Prepared, config: RadarConfig,
     q = torch.quantile(c[:, :: max(1, n // 200_000)], torch.tensor([0.25, 0.5, 0.75], dtype=torch.float64,
                                                                   device=c.device), dim=1)
     mu, sigma = q[1], ((q[2] - q[0]) / 1.349).clamp_min(0.5)
-    gauss = _norm_cdf((0.5 - mu) / sigma) + _norm_cdf((mu - (p.full - 0.5)) / sigma)
+    gauss = normal_cdf((0.5 - mu) / sigma) + normal_cdf((mu - (p.full - 0.5)) / sigma)
     frac = float((lo + hi).sum() / c.numel())
     # A rail without samples gives 0 (the counts are >= 0).
     pileup = float(torch.maximum(lo / (lo_nb + 1), hi / (hi_nb + 1)).max())
