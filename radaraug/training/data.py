@@ -242,6 +242,8 @@ class RadarDataModule(L.LightningDataModule):
                                      progress=self.twin.progress and rank == 0,
                                      interference_db=self.image_spec.excise_interference_db)
             train = CachedMaps(built["train"])
+            if self.task == "counting" and self.twin.count_labels == "observable":
+                self._observable_labels(train, p.simulated)
             self.train_class_counts = torch.bincount(label_of(train.counts, self.task),
                                                      minlength=len(self.class_names))
             self._train = _Labelled(train, self.task)
@@ -282,6 +284,17 @@ class RadarDataModule(L.LightningDataModule):
             folder = self.trainer.log_dir  # every rank asks: Lightning broadcasts it
             if self.trainer.global_rank == 0:
                 self.write_run_files(folder)
+
+    def _observable_labels(self, train: CachedMaps, dataset: Any) -> None:
+        """Lower ``train``'s counts to the people each map shows apart (``count_labels: observable``)."""
+        from radaraug.training.observable import observable_counts, person_range_bins
+
+        bins = [person_range_bins(dataset, int(i)) for i in train.indices]
+        counts, threshold = observable_counts(train.maps(), train.counts, bins, excise=self.excise,
+                                              blank_zero_doppler=self.image_spec.blank_zero_doppler)
+        #: training items whose counting label was lowered, and the detection threshold (dB over the row's floor)
+        self.observable_relabelled = {"items": int((counts != train.counts).sum()), "threshold_db": threshold}
+        train.counts = counts
 
     def rd_chain(self) -> RadarCompose:
         """Raw frames -> per-RX dB maps, as this module's simulated maps were made (captures and twin alike)."""

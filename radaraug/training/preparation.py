@@ -28,6 +28,7 @@ from radaraug.transforms.record_file import CalibrationRecord, load_record
 
 #: Where the twin randomization's effect catalog takes its priors (``TwinSplits.catalog_priors``).
 CATALOG_PRIORS = ("physics", "calibration")
+COUNT_LABELS = ("drawn", "observable")
 PROFILE_FIT_FORMAT = "radaraug-profile-fit"
 #: Version of the cached ``cdr_profile`` fits (``cache_dir/profile-<key>.json``): part of their key,
 #: bumped when what :func:`radaraug.diagnosis.diagnose` fits changes, so old fits are not reused.
@@ -54,12 +55,14 @@ class TwinSplits:
         tracer_rays: trace the room with SBR at this many rays per axis (None: the image method).
         workers: DataLoader workers that simulate while the cache is built.
         progress: progress bars while simulating and fitting.
+        count_labels: counting's training labels: ``"drawn"`` (the people drawn) or ``"observable"`` (no more
+            than the map shows apart: :func:`~radaraug.training.observable.observable_counts`).
         dataset: a :class:`~radaraug.sim.SimulatedRadarDataset` used as given instead of the one built from
             the fields above (the fitted-receiver options are then not applied; a warning names them). It
             needs the test captures' radar config, target ``count`` and ``train_items + val_items`` items.
 
     Raises:
-        ConfigError: sizes or ``catalog_priors`` out of range.
+        ConfigError: sizes, ``catalog_priors`` or ``count_labels`` out of range.
     """
 
     scene: str = "corridor"
@@ -73,6 +76,7 @@ class TwinSplits:
     tracer_rays: int | None = None
     workers: int = 0
     progress: bool = True
+    count_labels: Literal["drawn", "observable"] = "drawn"
     dataset: SimulatedRadarDataset | None = None
 
     def __post_init__(self) -> None:
@@ -80,6 +84,8 @@ class TwinSplits:
             raise ConfigError(f"train_items must be >= 1 and val_items >= 0, got {self.train_items}, {self.val_items}")
         if self.catalog_priors not in CATALOG_PRIORS:
             raise ConfigError(f"catalog_priors must be one of {CATALOG_PRIORS}, got {self.catalog_priors!r}")
+        if self.count_labels not in COUNT_LABELS:
+            raise ConfigError(f"count_labels must be one of {COUNT_LABELS}, got {self.count_labels!r}")
 
     def to_dict(self) -> dict[str, Any]:
         """The fields as plain values (``dataset`` left out)."""

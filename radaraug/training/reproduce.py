@@ -91,6 +91,8 @@ class ReproduceSettings:
     excise_interference_db: float | None | str = RECIPE
     #: fit the twin's noise figure to each calibration capture (``RadarDataModule.calibrate_noise``)
     calibrate_noise: bool | str = RECIPE
+    #: counting's training labels: ``drawn`` or ``observable`` (``TwinSplits.count_labels``)
+    count_labels: str = RECIPE
     #: CDR's twin noise below the others' (``RadarDataModule.cdr_twin_noise_offset_db``)
     cdr_twin_noise_offset_db: float | None | str = RECIPE
     #: CalibratedDR floor of the CDR methods (``RadarDataModule.cdr_floor``)
@@ -117,6 +119,7 @@ class ReproduceSettings:
 RECIPE_KEYS: dict[str, tuple[str, ...]] = {
     "lr": ("model", "lr"), "context_frames": ("model", "context_frames"),
     "randomization": ("data", "twin", "randomization"), "calibrate_noise": ("data", "twin", "calibrate_noise"),
+    "count_labels": ("data", "twin", "count_labels"),
     "representation": ("data", "image", "representation"), "resample": ("data", "image", "resample"),
     "blank_zero_doppler": ("data", "image", "blank_zero_doppler"),
     "excise_persistent_db": ("data", "image", "excise_persistent_db"),

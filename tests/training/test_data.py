@@ -317,3 +317,21 @@ def test_interference_excision_reaches_twin_captures_and_the_classifier_file(tmp
     assert cdr.dr.chain[0]["name"] == "InterferenceExcision"
     with pytest.raises(ConfigError, match="excise_interference_db"):
         ImageSpec(excise_interference_db=0)
+
+
+def test_observable_count_labels_lower_only_counting_training_labels(tmp_path, captures):
+    cal, tests = captures
+    twin = replace(TWIN, train_items=24, count_labels="observable")
+    kw = {"calibration": str(cal), "test": [{"path": str(tests[0][0]), "count": 0}], "cache_dir": str(tmp_path / "c"),
+          "twin": twin, "image": ImageSpec(size=[32, 16]), "batch_size": 3}
+    dm = RadarDataModule(task="counting", method=RT(), **kw)
+    dm.setup("fit")
+    drawn = dm._train.base.indices.clone()  # the items; their drawn counts come from the dataset
+    counts = torch.tensor([dm.prepared.simulated.scenario(int(i)).count for i in drawn])
+    labels = torch.tensor([int(y) for _, y in dm._train])
+    assert bool((labels <= counts).all()) and torch.equal(labels == 0, counts == 0)
+    assert dm.train_class_counts.tolist() == torch.bincount(labels, minlength=3).tolist()
+    assert dm.observable_relabelled["items"] == int((labels != counts).sum()) > 0  # small maps: most pairs share a blob
+    occ = RadarDataModule(task="occupancy", method=RT(), **kw)
+    occ.setup("fit")
+    assert [int(y) for _, y in occ._train] == (counts > 0).long().tolist()  # occupancy keeps the drawn labels

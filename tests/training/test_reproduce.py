@@ -198,7 +198,7 @@ def test_the_runs_take_their_hyperparameters_from_the_recipes():
         "randomization": {"catalog": {"spur_tone": {"probability": 0.0}, "vibrating_clutter": {"probability": 0.0}}},
         "representation": "floor_relative", "excise_persistent_db": 3.0, "excise_interference_db": 6.0,
         "calibrate_noise": False, "cdr_twin_noise_offset_db": -15.0, "cdr_floor": "matched", "lr": 0.001,
-        "context_frames": 8, "blank_zero_doppler": 1, "resample": "bilinear"}
+        "context_frames": 8, "blank_zero_doppler": 1, "resample": "bilinear", "count_labels": "drawn"}
     # an explicit setting overrides every run's recipe; an ablation's one change wins over it
     s = R.ReproduceSettings(representation="paper")
     assert R.run_recipe("counting", "rt", s)["data"]["image"]["representation"] == "paper"
