@@ -35,7 +35,8 @@ _ADA = "heldout_design_adabn_cpu.json"
 _MAX = "heldout_design_max_resample_cpu.json"  # the same with resample: max (round 8)
 _TWICE = "heldout_design_1600x2_cpu.json"  # the same with 1600 items x 2 epochs (round 9)
 _FLOOR80 = "heldout_design_randomdr_floor80_cpu.json"  # the same with RandomDR's means over -120...-80 dB (round 9)
-_OBSLAB = "heldout_design_observable_labels_cpu.json"  # counting on observable labels (round 10)
+_OBSLAB = "heldout_design_observable_labels_cpu.json"
+_WEAK = "heldout_design_weak_people_cpu.json"  # the twin's people over -30...+10 dB (round 10)  # counting on observable labels (round 10)
 _ROW = "heldout_design_cdr_row_cpu.json"  # a row-wise calibrated CDR floor (round 9); RT of the same run:
 _ROW_RT = "heldout_design_rt_cpu.json"
 
@@ -78,6 +79,18 @@ def _obs_worlds(*per_world: float) -> str:
     return (f"{words[len(lose)]} worlds lose {min(d[i] for i in lose):.3f}–{d[worst]:.3f} (`design-w0{worst}` "
             f"{base[worst]:.3f} → {per_world[worst]:.3f}); `design-w0{g}` (a fan, RX mismatch, clipping) gains "
             f"({base[g]:.3f} → {per_world[g]:.3f})")
+
+
+_WEAK_ROW_KEYS = tuple(f"run_results/{t}/{k}" for t in ("occupancy", "counting")
+                       for k in ("mean", "worst", "gated_mean", "gated_worst")) + (
+    "run_results/occupancy/val_mean", "run_results/counting/val_mean")
+
+
+def _weak_row(om: float, ow: float, og: float, ogw: float, cm: float, cw: float, cg: float, cgw: float, vo: float,
+              vc: float, worst: bool = False) -> str:
+    w = "worst " if worst else ""
+    return (f"| {om:.3f} ({w}{ow:.3f}) | {og:.3f} ({ogw:.3f}) | {cm:.3f} ({cw:.3f}) | {cg:.3f} ({cgw:.3f}) | "
+            f"{vo:.3f} / {vc:.3f} |")
 
 
 def _ie_counting() -> tuple[float, float]:
@@ -3079,6 +3092,46 @@ FIGURES: list[Figure] = [
            lambda m, g, a, b: f"counting {m:.3f} (+ gate {g:.3f}) against {_ie_value('counting/mean'):.3f} "
                               f"({_ie_value('counting/gated_mean'):.3f}); one read as two {_ie_confusion(1, 2)} → {a}, "
                               f"two read as one {_ie_confusion(2, 1)} → {b}"),
+    # round 10: the twin's people much weaker, against the default's design record
+    *(Figure("docs/training.md", quote, _WEAK, keys, fmt) for quote, keys, fmt in (
+        ("| −30…+10 dB | 0.878 (0.742) | 0.941 (0.842) | 0.661 (0.456) | 0.727 (0.456) | 0.806 / 0.587 |",
+         _WEAK_ROW_KEYS, lambda *v: "| −30…+10 dB " + _weak_row(*v)),
+        ("std over the 3 seeds of the suite means with −30…+10 dB: 0.016 / 0.025 / 0.022 / 0.026",
+         tuple(f"run_results/{t}/{k}" for t in ("occupancy", "counting")
+               for k in ("mean_std_over_seeds", "gated_mean_std_over_seeds")),
+         "−30…+10 dB: {:.3f} / {:.3f} / {:.3f} / {:.3f}"),
+        ("Counting gains in the two worlds of the weakest people (`design-w00` 0.654 → 0.743, `design-w01` 0.839 → 0.943) "
+         "and loses in `design-w07` (256 × 64; drift, phase noise, clipping: occupancy 0.967 → 0.836, counting 0.915 → "
+         "0.765) and `design-w05` (0.533 → 0.456)",
+         tuple(f"run_results/{t}/per_world/design-w0{w}" for t, w in (("counting", 0), ("counting", 1),
+                                                                        ("occupancy", 7), ("counting", 7), ("counting", 5))),
+         lambda c0, c1, o7, c7, c5: f"(`design-w00` {_ie_value('counting/per_world/design-w00'):.3f} → {c0:.3f}, "
+                                    f"`design-w01` {_ie_value('counting/per_world/design-w01'):.3f} → {c1:.3f}) and loses in "
+                                    f"`design-w07` (256 × 64; drift, phase noise, clipping: occupancy "
+                                    f"{_ie_value('occupancy/per_world/design-w07'):.3f} → {o7:.3f}, counting "
+                                    f"{_ie_value('counting/per_world/design-w07'):.3f} → {c7:.3f}) and `design-w05` "
+                                    f"({_ie_value('counting/per_world/design-w05'):.3f} → {c5:.3f})"),
+        ("| the twin's people over −30…+10 dB (not −20…+10): not taken | **design** (round 10, 8 worlds, 3 seeds; "
+         "`benchmarks/heldout_design_weak_people_cpu.json`) | occupancy 0.890 → 0.878 (+ gate 0.965 → 0.941), counting "
+         "0.665 → 0.661 (+ gate 0.737 → 0.727); `design-w07` occupancy 0.967 → 0.836 |",
+         (*(f"run_results/{t}/{k}" for t in ("occupancy", "counting") for k in ("mean", "gated_mean")),
+          "run_results/occupancy/per_world/design-w07"),
+         lambda a, b, c, d, w: f"occupancy {_ie_value('occupancy/mean'):.3f} → {a:.3f} (+ gate "
+                               f"{_ie_value('occupancy/gated_mean'):.3f} → {b:.3f}), counting "
+                               f"{_ie_value('counting/mean'):.3f} → {c:.3f} (+ gate {_ie_value('counting/gated_mean'):.3f}"
+                               f" → {d:.3f}); `design-w07` occupancy {_ie_value('occupancy/per_world/design-w07'):.3f} → "
+                               f"{w:.3f}"),
+    )),
+    Figure("docs/training.md", "| −20…+10 dB (default) | 0.890 (worst 0.718) | 0.965 (0.851) | 0.665 (0.533) | 0.737 "
+           "(0.543) | 0.876 / 0.684 |", _IE, _WEAK_ROW_KEYS, lambda *v: "| −20…+10 dB (default) " + _weak_row(*v, worst=True)),
+    Figure("docs/training.md", "show the person 5.55 and 6.35 dB weaker than the twin's", "people_level_cpu.json",
+           ("recordings/recording_2022_05_25_18_48_07/offset_dB", "recordings/recording_2022_05_25_18_52_43/offset_dB"),
+           lambda a, b: f"the person {-a:.2f} and {-b:.2f} dB weaker"),
+    Figure("benchmarks/README.md", "occupancy 0.878 (+ gate 0.941), counting 0.661 (+ gate 0.727) against 0.890 (0.965) and "
+           "0.665 (0.737)", _WEAK, tuple(f"run_results/{t}/{k}" for t in ("occupancy", "counting") for k in ("mean", "gated_mean")),
+           lambda a, b, c, d: f"occupancy {a:.3f} (+ gate {b:.3f}), counting {c:.3f} (+ gate {d:.3f}) against "
+                              f"{_ie_value('occupancy/mean'):.3f} ({_ie_value('occupancy/gated_mean'):.3f}) and "
+                              f"{_ie_value('counting/mean'):.3f} ({_ie_value('counting/gated_mean'):.3f})"),
     Figure("docs/twin_observability.md", "lost on the design suite, counting 0.665 → 0.579", _OBSLAB, "run_results/counting/mean",
            lambda m: f"counting {_ie_value('counting/mean'):.3f} → {m:.3f}"),
     Figure("docs/training.md", "The account ([twin_observability.md](twin_observability.md), section 5) finds 87 of the 210 "
