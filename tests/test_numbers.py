@@ -1181,6 +1181,16 @@ FIGURES: list[Figure] = [
            "seed 3 **{:d} of {:d} named exactly, the error halved in {:d} of {:d}**; seed 1 {:d} of {:d}, {:d} of "
            "{:d} (seed 2 not run this round). The injected effect is named first in {:d} of {:d} cases; {:d} of {:d} "
            "compared parameters"),
+    Figure("docs/diagnosis.md", "with 32 modulated paths instead of 4 the fit is 2.51 MHz at 128 × 32 and the bound at 43 dB, "
+           "with generator B's 100 kHz corner instead of 200 kHz 2.30 MHz and the bound; the strong carrier's case stays "
+           "within 30 % either way (442 kHz with 32 paths)", _GB,
+           tuple(f"phase_noise_overshoot_probe/{k}/{i}/params/phase_noise/freq_noise_rms_Hz"
+                 for k, i in (("num_paths_32", 0), ("num_paths_32", 1), ("corner_100kHz", 0), ("corner_100kHz", 1),
+                              ("num_paths_32", 2))),
+           lambda a, b, c, d, e: f"the fit is {a / 1e6:.2f} MHz at 128 × 32 and {'the bound' if b >= 3e6 else b} at 43 dB, "
+                                 f"with generator B's 100 kHz corner instead of 200 kHz {c / 1e6:.2f} MHz and "
+                                 f"{'the bound' if d >= 3e6 else d}; the strong carrier's case stays within 30 % either way "
+                                 f"({e / 1e3:.0f} kHz with 32 paths)" if abs(e / 4e5 - 1) <= 0.3 else "not within"),
     Figure("docs/diagnosis.md", "`phase_noise+interference@A` at seed 3 from 1.890 to 1.420 dB", _GB,
            ("declipped_static/seed_3_table/rows/31/error_after_dB", "final_tables/seed_3/rows/31/error_after_dB"),
            "`phase_noise+interference@A` at seed 3 from {:.3f} to {:.3f} dB"),
