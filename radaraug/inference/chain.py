@@ -18,7 +18,7 @@ from torch.nn import functional as nnf
 from radaraug.errors import CheckpointError
 from radaraug.training.classifier_file import ChainSpec
 from radaraug.transforms import ToDecibels
-from radaraug.transforms.functional._floor import zero_doppler_bins
+from radaraug.transforms.functional._floor import kept_cells
 from radaraug.transforms.functional._image import colormap_lut, max_windows, windows_max
 from radaraug.transforms.windows import normalized_window, shifted_doppler_window
 
@@ -84,14 +84,10 @@ class MatmulChain(nn.Module):
         rr, ri, dr, di = _dft_matrices(samples, chirps, spec.range_doppler)
         for name, value in (("rng_re", rr), ("rng_im", ri), ("dop_re", dr), ("dop_im", di)):
             self.register_buffer(name, value.float().contiguous())
-        bins = spec.blank_zero_doppler if spec.representation == "floor_relative" else 0
-        keep = torch.ones(samples // 2, chirps, dtype=torch.bool)
-        if bins:
-            keep[:, zero_doppler_bins(chirps, bins)] = False
-        if spec.excise is not None and spec.representation == "floor_relative":
-            keep &= ~spec.excise
-        self.register_buffer("keep", keep.float())
         self.floor_relative = spec.representation == "floor_relative"
+        keep = (kept_cells(samples // 2, chirps, spec.blank_zero_doppler, spec.excise) if self.floor_relative
+                else torch.ones(samples // 2, chirps, dtype=torch.bool))
+        self.register_buffer("keep", keep.float())
         self.vmin, self.vmax = float(spec.clip_range_db[0]), float(spec.clip_range_db[1])
         self.register_buffer("lut", colormap_lut("viridis").float())
         size = spec.image_size or (samples // 2, chirps)

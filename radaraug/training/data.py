@@ -28,6 +28,7 @@ from radaraug.testsets.tasks import check_task, label_of
 from radaraug.training.cache import CachedMaps, build_map_caches, default_cache_dir
 from radaraug.training.inputs import check_inputs
 from radaraug.training.methods import Method, RandomDR, method_from
+from radaraug.training.observable import observable_counts, person_range_bins
 from radaraug.training.pipeline import estimate_clip_range, image_chain, is_calibration_json, rd_db_chain
 from radaraug.training.preparation import NOISE_FIT_SKIPPED, ImageSpec, Prepared, TwinSplits, prepare
 from radaraug.transforms import CalibratedDR, RadarCompose
@@ -145,6 +146,9 @@ class RadarDataModule(L.LightningDataModule):
         #: where each recording starts in the test order (set by setup; None under DDP: shards stride over frames)
         self.test_recording_starts: torch.Tensor | None = None
         self.train_class_counts: torch.Tensor | None = None
+        #: with ``count_labels: observable``, training items whose counting label was lowered and the detection
+        #: threshold (dB over the row's floor)
+        self.observable_relabelled: dict[str, Any] | None = None
 
     @classmethod
     def from_recipe(cls, data: dict[str, Any]) -> RadarDataModule:
@@ -287,12 +291,9 @@ class RadarDataModule(L.LightningDataModule):
 
     def _observable_labels(self, train: CachedMaps, dataset: Any) -> None:
         """Lower ``train``'s counts to the people each map shows apart (``count_labels: observable``)."""
-        from radaraug.training.observable import observable_counts, person_range_bins
-
         bins = [person_range_bins(dataset, int(i)) for i in train.indices]
         counts, threshold = observable_counts(train.maps(), train.counts, bins, excise=self.excise,
                                               blank_zero_doppler=self.image_spec.blank_zero_doppler)
-        #: training items whose counting label was lowered, and the detection threshold (dB over the row's floor)
         self.observable_relabelled = {"items": int((counts != train.counts).sum()), "threshold_db": threshold}
         train.counts = counts
 

@@ -1,4 +1,4 @@
-"""Counting labels that say how many people a simulated frame shows (docs/training.md, "Observable labels").
+"""Counting labels that say how many people a simulated frame shows (docs/training.md, "Issue 34, seventh round").
 
 A drawn person can be weaker than what an empty room shows somewhere, or share one blob of the map with the
 other person; a two-person label on such a frame teaches that one blob may be two people. Here a person counts
@@ -16,7 +16,7 @@ import torch.nn.functional as nnf
 
 from radaraug.errors import ConfigError
 from radaraug.training.pipeline import level_chain
-from radaraug.transforms.functional._floor import zero_doppler_bins
+from radaraug.transforms.functional._floor import kept_cells
 
 #: Range bins either side of a person's slant range searched for their own peak.
 PERSON_RANGE_WINDOW = 2
@@ -31,8 +31,7 @@ def person_range_bins(dataset: Any, index: int) -> list[int]:
     ellipsoids, over the config's range resolution.
     """
     scenario = dataset.scenario(index)
-    rz = dataset.randomization if dataset.randomized else None
-    variant = None if rz is None else rz.item(dataset.seed, index, scenario.count).variant
+    variant = dataset.room_variant(index)
     twin = dataset.twin if variant is None else dataset.variant_twin(variant)
     radar = twin.scene.radar.position.detach().to(torch.float64).cpu()
     step = float(dataset.config.range_resolution_m)
@@ -84,18 +83,18 @@ def observable_counts(db_maps: torch.Tensor, counts: torch.Tensor, range_bins: S
         raise ConfigError("observable_counts: no empty item to set the detection threshold on")
     level = level_chain("floor_relative", excise, blank_zero_doppler)(db_maps.float()).squeeze(-3)
     n, r, d = level.shape
-    valid = torch.ones(r, d, dtype=torch.bool)
+    valid = kept_cells(r, d, blank_zero_doppler, excise, device=level.device)
     valid[:SKIP_RANGE_BINS] = False
-    valid[:, zero_doppler_bins(d, blank_zero_doppler)] = False
-    if excise is not None:
-        valid &= ~excise.cpu()
     level = level.masked_fill(~valid, -math.inf)
     peaks = level.flatten(1).amax(1)
     empty = peaks[counts == 0].sort().values
     threshold = float(empty[int(round((1 - false_alarm) * (len(empty) - 1)))])
-    regions = _regions(level > threshold)
     out = counts.clone()
-    for i in (counts > 1).nonzero().flatten().tolist():
+    several = (counts > 1).nonzero().flatten().tolist()  # only they can be lowered
+    if not several:
+        return out, threshold
+    regions = _regions(level[several] > threshold)
+    for k, i in enumerate(several):
         seen = set()
         for b in range_bins[i]:
             lo, hi = max(SKIP_RANGE_BINS, b - PERSON_RANGE_WINDOW), min(r, b + PERSON_RANGE_WINDOW + 1)
@@ -104,6 +103,6 @@ def observable_counts(db_maps: torch.Tensor, counts: torch.Tensor, range_bins: S
             window = level[i, lo:hi]
             if bool((window > threshold).any()):
                 row, col = divmod(int(window.argmax()), d)
-                seen.add(int(regions[i, lo + row, col]))
+                seen.add(int(regions[k, lo + row, col]))
         out[i] = min(int(counts[i]), max(1, len(seen)))
     return out, threshold

@@ -24,7 +24,7 @@ from radaraug.transforms import (
     RadarCompose,
     Resize,
 )
-from radaraug.transforms.functional._floor import floor_relative, zero_doppler_bins
+from radaraug.transforms.functional._floor import floor_relative, kept_cells
 
 #: Network input representations: the paper's clipped dBFS map, or each range row referenced to
 #: its own Doppler median with zero Doppler blanked (docs/training.md, "Representations").
@@ -101,10 +101,8 @@ def floor_texture(db_maps: torch.Tensor, excise: torch.Tensor | None = None,
     """
     absolute = level_chain("paper")(db_maps.float()).squeeze(-3)
     relative = floor_relative(absolute, blank_zero_doppler, excise)  # the floor-relative level chain, RX combined once
-    keep = torch.ones(absolute.shape[-2:], dtype=torch.bool, device=absolute.device)
-    keep[:, zero_doppler_bins(absolute.shape[-1], blank_zero_doppler)] = False
-    if excise is not None:
-        keep &= ~excise.to(keep.device)
+    rows, cols = absolute.shape[-2:]
+    keep = kept_cells(rows, cols, blank_zero_doppler, excise, device=absolute.device)
     a, r = absolute[:, keep], relative[:, keep]
     return {"level_db": a.median(dim=1).values, "texture_std_db": r.std(dim=1), "peak_db": r.max(dim=1).values,
             "row_spread_db": absolute.median(dim=-1).values.std(dim=-1)}

@@ -11,6 +11,7 @@ from radaraug.errors import ConfigError
 from radaraug.transforms import FloorRelative
 from radaraug.transforms import functional as F
 from radaraug.transforms.floor_fit import floor_values, matched_floor_quantiles
+from radaraug.transforms.functional._floor import kept_cells
 
 
 def exp_noise_db(shape: tuple[int, ...], mean_db: float, seed: int) -> torch.Tensor:
@@ -98,3 +99,16 @@ def test_persistent_cells_mark_lines_of_the_empty_room_not_its_noise() -> None:
         F.floor_relative(maps, excise=mask[:10])
     with pytest.raises(ConfigError, match="frames"):
         F.persistent_cells(maps[:2])
+
+
+
+@pytest.mark.parametrize("bins", [0, 1, 2])
+def test_kept_cells_are_the_cells_floor_relative_leaves(bins):
+    x = torch.randn(6, 16, generator=torch.Generator().manual_seed(bins)) * 10 - 100
+    excise = torch.zeros(6, 16, dtype=torch.bool)
+    excise[2, 3] = excise[4, 12] = True
+    keep = kept_cells(6, 16, bins, excise)
+    # what floor_relative sets to 0 dB: the excised cells and zero Doppler +-bins (none for 0), whatever the map
+    assert bool((F.floor_relative(x, bins, excise)[~keep] == 0).all())
+    assert int((~keep).sum()) == 2 + (6 * (2 * bins + 1) if bins else 0)
+    assert bool(keep[:, 16 // 2 - bins: 16 // 2 + bins + 1].any()) == (bins == 0)

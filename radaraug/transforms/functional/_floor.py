@@ -14,6 +14,17 @@ def zero_doppler_bins(doppler: int, bins: int) -> slice:
     return slice(max(centre - bins, 0), min(centre + bins + 1, doppler))
 
 
+def kept_cells(range_bins: int, doppler: int, blank_zero_doppler: int, excise: torch.Tensor | None = None,
+               device: torch.device | str | None = None) -> torch.Tensor:
+    """Bool ``(range, doppler)``: the cells :func:`floor_relative` leaves (not blanked at zero Doppler, not excised)."""
+    keep = torch.ones(range_bins, doppler, dtype=torch.bool, device=device)
+    if blank_zero_doppler:
+        keep[:, zero_doppler_bins(doppler, blank_zero_doppler)] = False
+    if excise is not None:
+        keep &= ~excise.to(keep.device)
+    return keep
+
+
 def check_blank_bins(bins: int) -> int:
     """``bins`` as an int >= 0 (ConfigError otherwise)."""
     if isinstance(bins, bool) or not isinstance(bins, int) or bins < 0:
