@@ -122,9 +122,6 @@ def classifier_record(model: Any, datamodule: Any, *, gate: StaticChangeDetector
 
     if datamodule.clip is None or datamodule.config is None:
         raise CheckpointError("the data module has not been set up (no clip range or radar config)")
-    if datamodule.image_spec.frames != 1:
-        raise CheckpointError("classifier files hold single-frame chains; this data module stacks "
-                              f"{datamodule.image_spec.frames} frames (data.image.frames)")
     net, arch = torchvision_net(model.net)
     spec, size = datamodule.image_spec, datamodule.image_spec.size
     chain = ChainSpec(RangeDoppler().extra_spec(),  # the chain rd_db_chain() builds

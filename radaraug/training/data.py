@@ -51,23 +51,6 @@ class _Labelled(Dataset):
         return x, int(label_of(int(count), self.task))
 
 
-class _FrameStacks(Dataset):
-    """Each frame of ``base`` stacked with the ``frames - 1`` before it in its recording (the first one repeated)."""
-
-    def __init__(self, base: Dataset, starts: torch.Tensor, frames: int) -> None:
-        self.base, self.frames = base, frames
-        # index of each frame's recording's first frame
-        self.first = torch.cummax(torch.where(starts, torch.arange(len(starts)), 0), 0).values
-
-    def __len__(self) -> int:
-        return len(self.first)
-
-    def __getitem__(self, i: int) -> tuple[torch.Tensor, Any]:
-        rows = [max(j, int(self.first[i])) for j in range(i - self.frames + 1, i + 1)]
-        x, label = self.base[i]
-        return torch.stack([x if j == i else self.base[j][0] for j in rows]), label
-
-
 def _recording_starts(tests: Sequence[RadarCaptureDataset]) -> torch.Tensor:
     """``(frames,)`` bool over the concatenated test captures: True at each file's first frame."""
     flags = []
@@ -151,8 +134,6 @@ class RadarDataModule(L.LightningDataModule):
             else:
                 entries.append(parse_test_entry(e, f"test[{i}]"))
         self.hparams["test"] = None if test is None else entries
-        if self.image_spec.frames > 1 and self.twin.count_labels != "drawn":
-            raise ConfigError("data.image.frames > 1 takes the drawn counting labels (count_labels: drawn)")
         clip = self.image_spec.clip_range
         self.clip: tuple[float, float] | None = None if clip is None else (float(clip[0]), float(clip[1]))
         self.dr: torch.nn.Module | None = None
@@ -231,8 +212,7 @@ class RadarDataModule(L.LightningDataModule):
             raise ConfigError("RadarDataModule.setup() has not run")
         if length is None and seed is None and self.prepared.simulated is not None:
             return self.prepared.simulated
-        return simulated_dataset(self.prepared, self.method, self.twin, length=length, seed=seed,
-                                 frames_per_item=self.image_spec.frames)
+        return simulated_dataset(self.prepared, self.method, self.twin, length=length, seed=seed)
 
     # ------------------------------------------------------------------ Lightning hooks
     def setup(self, stage: str | None = None) -> None:
@@ -300,9 +280,7 @@ class RadarDataModule(L.LightningDataModule):
                                   f"than the training twin ({p.config.describe()}, from {source})")
         if tests:
             full: ConcatDataset[Any] = ConcatDataset(tests)  # items as RadarCaptureDataset gives them
-            stacked = _FrameStacks(full, _recording_starts(tests), self.image_spec.frames)
-            self._test = _Labelled(Subset(stacked if self.image_spec.frames > 1 else full,
-                                          range(rank, len(full), world)), self.task)
+            self._test = _Labelled(Subset(full, range(rank, len(full), world)), self.task)
         # Where each recording starts, in test order (frame context, RDClassifier.context_frames);
         # a DDP shard strides over the frames, so it has no order to give.
         self.test_recording_starts = _recording_starts(tests) if world == 1 else None
@@ -326,8 +304,7 @@ class RadarDataModule(L.LightningDataModule):
     def _image_chain(self) -> torch.nn.Module:
         assert self.clip is not None
         s = self.image_spec
-        return image_chain(*self.clip, s.size, s.representation, self.excise, s.blank_zero_doppler, s.resample,
-                           s.frames)
+        return image_chain(*self.clip, s.size, s.representation, self.excise, s.blank_zero_doppler, s.resample)
 
     def _matched_dr(self, dr: CalibratedDR, train: CachedMaps) -> CalibratedDR:
         """``dr`` with its floor quantiles matched to the twin's own empty-room floor (the ``matched`` floor)."""
@@ -451,8 +428,7 @@ class RadarDataModule(L.LightningDataModule):
         if self.dr is not None and trainer is not None and (trainer.training or trainer.validating
                                                             or trainer.sanity_checking
                                                             or (trainer.testing and self.method.test_dr)):
-            # stacked frames share their item's floor draw: the frames join the RX axis for the DR
-            x = self.dr.to(x.device).train()(x.flatten(-4, -3) if x.ndim == 5 else x).reshape(x.shape)
+            x = self.dr.to(x.device).train()(x)
         return self.image.to(x.device)(x), y
 
     def images(self, db_maps: torch.Tensor) -> torch.Tensor:

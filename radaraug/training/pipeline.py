@@ -110,26 +110,21 @@ def floor_texture(db_maps: torch.Tensor, excise: torch.Tensor | None = None,
 
 def image_chain(vmin: float, vmax: float, size: Sequence[int] | None = None,
                 representation: str = "paper", excise: torch.Tensor | None = None,
-                blank_zero_doppler: int = 1, resample: str = "bilinear", frames: int = 1) -> nn.Sequential:
+                blank_zero_doppler: int = 1, resample: str = "bilinear") -> nn.Sequential:
     """Per-RX dB maps -> ``(3, H, W)`` viridis images in [0, 1] (the network input; levels: :func:`level_chain`).
 
     ``resample``: ``"bilinear"`` resizes the colour image (the paper's), ``"max"`` shrinks the clipped levels
     to ``size`` by the max of each pixel's cells before the colour map (:class:`~radaraug.transforms.MaxResize`).
-    ``frames=3``: maps ``(..., 3, rx, range, doppler)`` of consecutive frames; their clipped levels are the
-    three channels (no colour map), so that the network sees motion between frames.
     """
     check_resample(resample)
     if size is not None and len(size) != 2:
         raise ConfigError(f"image size must be [H, W], got {list(size)}")
     steps: list[nn.Module] = [*level_chain(representation, excise, blank_zero_doppler), ClipNormalize(vmin, vmax)]
-    if frames != 1:
-        steps.insert(-1, nn.Flatten(-4, -3))  # (..., 3 frames, 1 combined RX, range, doppler) -> 3 channels
-    if size is not None and (resample == "max" or frames != 1):
-        steps.append((MaxResize if resample == "max" else Resize)((int(size[0]), int(size[1]))))
-    if frames == 1:
-        steps.append(Colormap("viridis"))
-        if size is not None and resample == "bilinear":
-            steps.append(Resize((int(size[0]), int(size[1]))))
+    if size is not None and resample == "max":
+        steps.append(MaxResize((int(size[0]), int(size[1]))))
+    steps.append(Colormap("viridis"))
+    if size is not None and resample == "bilinear":
+        steps.append(Resize((int(size[0]), int(size[1]))))
     return nn.Sequential(*steps)
 
 

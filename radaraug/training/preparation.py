@@ -110,11 +110,9 @@ class ImageSpec:
             ``"max"`` (each pixel the max of the levels it covers, before the colour map).
         clip_percentiles: percentiles of simulated (post-DR) maps that give ``[vmin, vmax]``.
         clip_range: a fixed ``[vmin, vmax]`` instead of the estimate.
-        frames: 1 (one frame, the colour map) or 3 (each item three consecutive frames, their clipped levels the
-            network's three channels, oldest first; a test frame is stacked with the two before it in its recording).
 
     Raises:
-        ConfigError: an unknown representation or resample, frames other than 1 or 3, or a malformed clip range.
+        ConfigError: an unknown representation or resample, or a malformed clip range.
     """
 
     size: list[int] | None = None
@@ -125,12 +123,9 @@ class ImageSpec:
     resample: Literal["bilinear", "max"] = "bilinear"
     clip_percentiles: tuple[float, float] = (1.0, 99.9)
     clip_range: list[float] | None = None
-    frames: int = 1
 
     def __post_init__(self) -> None:
         check_representation(self.representation)
-        if self.frames not in (1, 3):
-            raise ConfigError(f"image frames must be 1 (the colour map) or 3 (frames as channels), got {self.frames!r}")
         check_resample(self.resample)
         lo, hi = self.clip_percentiles  # a YAML list or a tuple: one value
         self.clip_percentiles = (float(lo), float(hi))
@@ -269,12 +264,12 @@ def prepare(method: Method, calibration: str | None, source: str | None, twin: T
                                          tracer_rays=twin.tracer_rays)
     elif out.twin_profile is None and twin.calibrate_noise and record is not None:
         out.noise_fit = record.noise_fit
-    out.simulated = simulated_dataset(out, method, twin, calibration_profile, frames_per_item=image.frames)
+    out.simulated = simulated_dataset(out, method, twin, calibration_profile)
     return out
 
 
 def simulated_dataset(prepared: Prepared, method: Method, twin: TwinSplits, calibration_profile: TwinProfile | None = None,
-                      length: int | None = None, seed: int | None = None, frames_per_item: int = 1) -> Any:
+                      length: int | None = None, seed: int | None = None) -> Any:
     """The training twin's dataset in ``prepared``'s radar config, with its receiver.
 
     Args:
@@ -284,7 +279,6 @@ def simulated_dataset(prepared: Prepared, method: Method, twin: TwinSplits, cali
         calibration_profile: the profile the effect catalog's priors are centred on (``catalog_priors``).
         length: items (None: ``train_items + val_items``).
         seed: the set's seed (None: ``twin.seed``).
-        frames_per_item: consecutive frames per item (``ImageSpec.frames``).
     """
     if twin.dataset is not None:
         return twin.dataset
@@ -321,7 +315,7 @@ def simulated_dataset(prepared: Prepared, method: Method, twin: TwinSplits, cali
     return SimulatedRadarDataset(
         twin.scene, length=twin.train_items + twin.val_items if length is None else int(length),
         seed=twin.seed if seed is None else int(seed), config=prepared.config, target="count",
-        twin_options=twin_options, frames_per_item=frames_per_item, **extra,
+        twin_options=twin_options, **extra,
     )
 
 

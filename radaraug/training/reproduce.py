@@ -69,8 +69,6 @@ class ReproduceSettings:
     representation: str = RECIPE
     #: how the map shrinks to ``image_size``: ``bilinear`` or ``max`` (``ImageSpec.resample``)
     resample: str = RECIPE
-    #: consecutive frames per network input: 1 or 3 (``ImageSpec.frames``; 3 needs ``keep_classifiers=False``)
-    frames: int | str = RECIPE
     #: Doppler bins blanked on each side of zero in floor-relative maps (``RadarDataModule.blank_zero_doppler``)
     blank_zero_doppler: int | str = RECIPE
     #: stop a run once simulated validation balanced accuracy has not risen for this many epochs and test
@@ -123,7 +121,6 @@ RECIPE_KEYS: dict[str, tuple[str, ...]] = {
     "randomization": ("data", "twin", "randomization"), "calibrate_noise": ("data", "twin", "calibrate_noise"),
     "count_labels": ("data", "twin", "count_labels"),
     "representation": ("data", "image", "representation"), "resample": ("data", "image", "resample"),
-    "frames": ("data", "image", "frames"),
     "blank_zero_doppler": ("data", "image", "blank_zero_doppler"),
     "excise_persistent_db": ("data", "image", "excise_persistent_db"),
     "excise_interference_db": ("data", "image", "excise_interference_db"),
@@ -442,9 +439,6 @@ def reproduce(
         settings = replace(settings, cdr_floor=cdr_floor)
     if worlds is not None:
         settings = replace(settings, worlds=worlds)
-    if settings.frames not in (RECIPE, 1) and settings.keep_classifiers:
-        raise ConfigError("classifier files hold single-frame chains: reproduce with frames > 1 needs "
-                          "keep_classifiers=False")
     methods = tuple(settings.methods if methods is None else methods)
     test_sets = tuple(settings.test_sets if test_sets is None else test_sets)
     _check_known("method", methods, list(METHODS))

@@ -335,33 +335,3 @@ def test_observable_count_labels_lower_only_counting_training_labels(tmp_path, c
     occ = RadarDataModule(task="occupancy", method=RT(), **kw)
     occ.setup("fit")
     assert [int(y) for _, y in occ._train] == (counts > 0).long().tolist()  # occupancy keeps the drawn labels
-
-
-def test_three_frames_stack_consecutive_frames_in_training_and_test(tmp_path, captures):
-    cal, tests = captures
-    entries = [{"path": str(p), "count": c} for p, c in tests]
-    image = ImageSpec(size=[32, 16], frames=3)
-    dm = RadarDataModule(task="counting", method=RandomDR(), calibration=str(cal), test=entries,
-                         cache_dir=str(tmp_path / "c"), **(SMALL | {"image": image}))
-    dm.setup("fit")
-    x, _ = dm._train[0]
-    assert x.shape[0] == 3 and not torch.equal(x[0], x[2])  # three frames of one item: people moved
-    assert dm.images(x[None]).shape == (1, 3, 32, 16)
-    # a test frame is stacked with the two before it in its recording; a recording's first frames repeat its first
-    full = dm._test.base.dataset
-    first, third = full[0][0], full[2][0]
-    assert torch.equal(first[0], first[2]) and torch.equal(third[0], full.base[0][0])
-    n0 = dm.test_recording_starts.nonzero()[1].item()
-    assert torch.equal(full[n0][0][0], full.base[n0][0])  # the second recording starts anew
-    # the DR draws one floor per item: every frame of a blank item gets the same floor level
-    class T:
-        training, validating, sanity_checking, testing = True, False, False, False
-
-    dm.trainer, dm.image = T(), torch.nn.Identity()
-    lifted, _ = dm.on_after_batch_transfer((torch.full((4, 3, *x.shape[1:]), -300.0), torch.zeros(4)), 0)
-    level = lifted.flatten(2).median(dim=-1).values  # (items, frames)
-    assert torch.allclose(level, level[:, :1], atol=0.5) and level[:, 0].std() > 0.5
-    with pytest.raises(ConfigError, match="frames"):
-        ImageSpec(frames=2)
-    with pytest.raises(ConfigError, match="count_labels"):
-        RadarDataModule(task="counting", twin=replace(TWIN, count_labels="observable"), image=image)
