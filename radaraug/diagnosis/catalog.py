@@ -489,6 +489,36 @@ def _interference() -> Candidate:
                                                   kept=("probability",)), starts, joint=NOISE_BASE)
 
 
+PHASE_NOISE_SEEN_DB = 30.0
+"""Carrier over the per-chirp floor (dB) from which the views see an LO skirt in single cells; under it
+the skirt shows only in the cross-RX signature, whose measurement the search then keeps."""
+PHASE_NOISE_REL = 0.1
+"""How far (log10) the search may move an LO noise its signature measured on a strong carrier (x/÷ 1.26)."""
+
+
+def _phase_noise() -> Candidate:
+    # Without a signature (or a phase-noise stage), the starts are those of the default 100 kHz RMS.
+    plain = _noise_like("phase_noise", "freq_noise_rms_Hz", [100e3 * f for f in (0.3, 3.0, 10.0)], (0.3, 3.0, 10.0))
+
+    def starts(ctx: Context) -> list[dict[str, Any]]:
+        m = ctx.measured.get("phase_noise")
+        if m and "freq_noise_rms_Hz" in m:
+            return [{"freq_noise_rms_Hz": float(m["freq_noise_rms_Hz"])}]
+        return plain.starts(ctx)
+
+    def specs(ctx: Context, start: dict[str, Any]) -> list[ParamSpec]:
+        m = ctx.measured.get("phase_noise")
+        prior = _priors(ctx, "phase_noise")["freq_noise_rms_Hz"]
+        if not m or "freq_noise_rms_Hz" not in m:
+            return [ParamSpec("freq_noise_rms_Hz", prior)]
+        if float(m["carrier_snr_dB"]) < PHASE_NOISE_SEEN_DB:
+            # The skirt is under every cell's floor: the views would trade it against the floor's level.
+            return []
+        return [ParamSpec("freq_noise_rms_Hz", _around(float(start["freq_noise_rms_Hz"]), prior, rel=PHASE_NOISE_REL))]
+
+    return Candidate("phase_noise", specs, starts)
+
+
 def _frame_drift() -> Candidate:
     def starts(ctx: Context) -> list[dict[str, Any]]:
         m = ctx.measured.get("frame_drift")
@@ -600,8 +630,7 @@ def catalog() -> list[Candidate]:
         _multipath(),
         _chirp_nonlinearity(),
         _leakage(),
-        # Without a phase-noise stage, the starts are those of the default 100 kHz RMS.
-        _noise_like("phase_noise", "freq_noise_rms_Hz", [100e3 * f for f in (0.3, 3.0, 10.0)], (0.3, 3.0, 10.0)),
+        _phase_noise(),
     ]
 
 

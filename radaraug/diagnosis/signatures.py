@@ -370,7 +370,8 @@ def detect_phase_noise(p: Prepared, config: RadarConfig, guard: int = 5,
     Returns:
         A :class:`Signature`; ``score`` is ``z``; ``params``: ``skirt_dBc`` (over the carrier's power),
         ``range_m``, ``range_bin``, ``carrier_snr_dB``, ``whiteness`` (~1 for noise new every chirp),
-        ``alignment``, ``freq_noise_rms_Hz_lower`` (a lower bound), ``declared_skirt_dBc``, ``excess_dB``.
+        ``alignment``, ``freq_noise_rms_Hz_lower`` (a lower bound), ``declared_skirt_dBc``, ``excess_dB``,
+        ``freq_noise_rms_Hz`` (the declared stage's Lorentzian, at its corner, scaled to the measured skirt).
     """
     F, R, M, N = p.shape
     keep = (~p.burst_mask).to(torch.float64)  # (F, M)
@@ -450,7 +451,9 @@ def detect_phase_noise(p: Prepared, config: RadarConfig, guard: int = 5,
     excess = _db(ratio) - decl
     params = {"skirt_dBc": _db(ratio), "range_bin": float(k0), "range_m": k0 * config.range_resolution_m,
               "carrier_snr_dB": snr, "whiteness": whiteness, "alignment": alignment, "z": z,
-              "freq_noise_rms_Hz_lower": pn_rms, "declared_skirt_dBc": decl, "excess_dB": excess}
+              "freq_noise_rms_Hz_lower": pn_rms, "declared_skirt_dBc": decl, "excess_dB": excess,
+              # the skirt grows as the LO noise's square: the declared stage's RMS scaled to the measured skirt
+              "freq_noise_rms_Hz": _DECLARED_LO_RMS_HZ * 10 ** (excess / 20)}
     note = ""
     if min_excess_db is not None and present and excess < min_excess_db:
         present = False
@@ -461,6 +464,10 @@ def detect_phase_noise(p: Prepared, config: RadarConfig, guard: int = 5,
         f"(z = {z:.1f}, whiteness {whiteness:.2f}, alignment with the carrier {alignment:.2f}, "
         f"{excess:+.1f} dB over the declared){note}; score: z",
     )
+
+
+_DECLARED_LO_RMS_HZ = 100e3
+"""The declared :class:`~radaraug.sensor.effects.PhaseNoise`'s RMS frequency noise (its default)."""
 
 
 def declared_skirt_dBc(config: RadarConfig, tau_s: float, offsets: torch.Tensor) -> float:

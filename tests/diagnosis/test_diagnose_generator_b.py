@@ -93,6 +93,16 @@ def test_a_later_effect_refits_the_earlier_ones_it_was_imitated_by(tmp_path):
     assert diag.result.after.overall < 1.6
 
 
+def test_the_weak_carriers_lo_noise_is_read_off_its_skirt(tmp_path):
+    """1.5 MHz of LO noise on a carrier ~16 dB over the floor at 128 x 32: named, and within 30 % (2.25 MHz
+    when the views fitted it, trading the skirt against a floor the base refit could not reach)."""
+    diag, named, expected = _named(tmp_path, "phase_noise_weak_carrier@B", seed=3)
+    assert named == expected
+    (step,) = diag.result.steps
+    assert step["params_fitted"] == 0
+    assert step["params"]["freq_noise_rms_Hz"] == pytest.approx(1.5e6, rel=0.3)
+
+
 def test_steeper_declared_highpass_is_refitted_with_its_parameters_before_and_after(tmp_path):
     """The declared first-order high-pass, where the capture's is a second-order Butterworth at 150 kHz.
 

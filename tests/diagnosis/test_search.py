@@ -317,3 +317,24 @@ def test_rx_mismatch_without_static_returns_is_named_from_the_noise(tmp_path):
     assert [s["effect"] for s in d.result.steps] == ["rx_gain_phase_mismatch"]
     # the ADC-side noise, after the mismatch, dilutes it: the noise shows part of the 4 dB
     assert -4.5 < d.evidence["rx_gain_phase_mismatch"].capture.params["gain_dB_rx2"] < -1.5
+
+
+def test_the_lo_noise_starts_from_its_skirt_and_is_kept_on_a_weak_carrier():
+    """The signature's LO noise starts the search; a weak carrier keeps it, a strong one moves it x/÷ 1.26 at most."""
+    from radaraug.config import RadarConfig
+    from radaraug.diagnosis.catalog import PHASE_NOISE_REL, Context, catalog
+
+    cand = next(c for c in catalog() if c.name == "phase_noise")
+    ctx = Context(RadarConfig.bgt60tr13c(), "estimated", [], None, None, None)  # type: ignore[arg-type]
+    [start] = cand.starts(ctx)[:1]
+    assert start["freq_noise_rms_Hz"] == pytest.approx(30e3)  # no signature: the default's grid
+    assert cand.specs(ctx, start)[0].prior.hi == 3e6
+    for snr, kept in ((18.0, True), (42.0, False)):
+        ctx.measured = {"phase_noise": {"freq_noise_rms_Hz": 1.5e6, "carrier_snr_dB": snr}}
+        assert cand.starts(ctx) == [{"freq_noise_rms_Hz": 1.5e6}]
+        specs = cand.specs(ctx, cand.starts(ctx)[0])
+        if kept:
+            assert specs == []
+        else:
+            assert [s.prior.lo for s in specs] == [pytest.approx(1.5e6 / 10**PHASE_NOISE_REL)]
+            assert specs[0].prior.hi == pytest.approx(min(1.5e6 * 10**PHASE_NOISE_REL, 3e6))
