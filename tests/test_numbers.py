@@ -3523,9 +3523,9 @@ def test_generator_b_final_tables_leave_the_same_five_unhalved_at_every_seed() -
 
 
 def test_generator_b_lo_noise_from_the_skirt_paragraph() -> None:
-    """docs/diagnosis.md's "The LO noise read off its skirt" quotes ``lo_noise_from_skirt`` (and ``final_tables``)."""
+    """docs/diagnosis.md's "The LO noise read off its skirt" quotes ``signature_starts`` (and ``final_tables``)."""
     rec = json.loads((BENCHMARKS / _GB).read_text())
-    new, old = rec["lo_noise_from_skirt"], rec["final_tables"]
+    new, old = rec["signature_starts"], rec["final_tables"]
     rows = {s: {r["case"]: r for r in (new["seed_3"]["rows"] if s == 3 else new[f"seed_{s}_phase_noise_rows"])}
             for s in (3, 1, 2)}
     before = {s: {r["case"]: r for r in old[f"seed_{s}"]["rows"]} for s in (3, 1, 2)}
@@ -3554,13 +3554,26 @@ def test_generator_b_lo_noise_from_the_skirt_paragraph() -> None:
     ]
     pn = next(b for b in new["parameters"]["by_parameter"] if b["effect"] == "phase_noise")
     pn_old = next(b for b in old["parameters"]["by_parameter"] if b["effect"] == "phase_noise")
+    spurs = [r["params"]["spur_tone"] for r in new["seed_3"]["rows"] + new["seed_1_spur_unlocked_rows"]
+             + new["seed_2_spur_unlocked_rows"] if r["case"].startswith("spur_unlocked@")]
+    wandered = {old[f"seed_{s}"]["rows"][i]["params"]["spur_tone"]["freq_Hz"] for s in (1, 2)
+                for i, r in enumerate(old[f"seed_{s}"]["rows"]) if r["case"] == "spur_unlocked@Ahi"}
+    spur_by = {(b["parameter"]): b for b in new["parameters"]["by_parameter"] if b["effect"] == "spur_tone"}
     quotes += [f"beside interference at seed 2, {100 * (pair_s2 / 400e3 - 1):.0f} % over",
                f"**The LO noise within 30 % in {pn['within']} of {pn['compared']} cases** ({pn_old['within']} before",
+               f"wander to {'/'.join(f'{f / 1e3:.2f}' for f in wandered)} kHz at seeds 1 and 2",
+               f"now {min(s['freq_Hz'] for s in spurs) / 1e3:.2f}–{max(s['freq_Hz'] for s in spurs) / 1e3:.2f} kHz at every "
+               f"config and seed, the amplitude {min(s['amplitude_counts'] for s in spurs):.2f}–"
+               f"{max(s['amplitude_counts'] for s in spurs):.2f} counts",
                f"**{new['parameters']['summary']['parameters_within']} of {new['parameters']['summary']['parameters_compared']}"
-               f" compared parameters within** ({old['parameters']['summary']['parameters_within']} before)",
+               f" compared parameters within** ({new['parameters_lo_noise_only']['summary']['parameters_within']} with the LO "
+               f"noise alone, {old['parameters']['summary']['parameters_within']} before; spur frequency and amplitude "
+               f"{spur_by['freq_Hz']['within']} of {spur_by['freq_Hz']['compared']} each)",
                f"{new['seed_3']['correct']} of {new['seed_3']['cases']} named exactly, the error halved in "
                f"{new['seed_3']['error_halved']} of {new['seed_3']['cases_with_effects']}, the same five not halved"]
     assert new["seed_3"]["not_halved"] == new["seed_1"]["not_halved"] == new["seed_2"]["not_halved"]
+    assert (spur_by["amplitude_counts"]["within"], spur_by["amplitude_counts"]["compared"]) == (
+        spur_by["freq_Hz"]["within"], spur_by["freq_Hz"]["compared"])
     page = " ".join((ROOT / "docs/diagnosis.md").read_text(encoding="utf-8").split())
     for q in quotes:
         assert q in page, q

@@ -267,6 +267,11 @@ def _spur() -> Candidate:
             # neighbours). The search then moves it within half a Doppler bin.
             return [{"freq_Hz": float(m["freq_Hz"]), "amplitude_counts": float(m["amplitude_counts"]),
                      "phase_rad": 0.0}]
+        if (ridge := _measured_ridge(ctx)) is not None:
+            # An unlocked spur's ridge: the signature's fine DFT over fast time read its frequency and amplitude
+            # (the views' ridge, summed over Doppler, let the search wander half a bin at 43 dB).
+            return [{"freq_Hz": float(ridge["freq_Hz"]), "amplitude_counts": float(ridge["amplitude_counts"]),
+                     "phase_rad": 0.0, "phase_jitter_rad": math.pi}]
         cfg = ctx.config
         ex = ctx.excess_db()
         M = ex.shape[1]
@@ -290,13 +295,20 @@ def _spur() -> Candidate:
 
     def specs(ctx: Context, start: dict[str, Any]) -> list[ParamSpec]:
         if start.get("phase_jitter_rad", 0.0) > 0:  # unlocked: only the fast-time frequency shows
-            half = 0.5 * ctx.config.sample_rate_Hz / ctx.config.num_samples_per_chirp
+            # within a twentieth of a range bin when the ridge signature read it (its closed-form test)
+            half = (0.05 if _measured_ridge(ctx) is not None else 0.5) * ctx.config.sample_rate_Hz / ctx.config.num_samples_per_chirp
         else:
             half = 0.5 / (ctx.config.num_chirps_per_frame * ctx.config.chirp_repetition_time_s)
         return [_narrow(ctx, "spur_tone", start, "freq_Hz", half=half),
                 _narrow(ctx, "spur_tone", start, "amplitude_counts", rel=0.7)]
 
     return Candidate("spur_tone", specs, starts)
+
+
+def _measured_ridge(ctx: Context) -> Mapping[str, float] | None:
+    """The spur signature's reading when it found an unlocked spur's ridge (None otherwise)."""
+    m = ctx.measured.get("spur_tone")
+    return m if m and m.get("locked") == 0.0 and "freq_Hz" in m else None
 
 
 def _ridge_start(ctx: Context, ex: torch.Tensor, cap: torch.Tensor, bin_hz: float,

@@ -103,6 +103,17 @@ def test_the_weak_carriers_lo_noise_is_read_off_its_skirt(tmp_path):
     assert step["params"]["freq_noise_rms_Hz"] == pytest.approx(1.5e6, rel=0.3)
 
 
+@pytest.mark.slow
+def test_an_unlocked_spur_at_43_db_keeps_the_frequency_its_ridge_reads(tmp_path):
+    """At 43 dB the views' ridge had let the search wander to 185.56 kHz (seed 1); the ridge's fine DFT reads 187.3."""
+    diag, named, expected = _named(tmp_path, "spur_unlocked@Ahi", seed=1)
+    assert named == expected
+    (step,) = diag.result.steps
+    cfg = next(c for c in CASES if c.name == "spur_unlocked@Ahi").config
+    assert abs(step["params"]["freq_Hz"] - 187.3e3) < 0.25 * cfg.sample_rate_Hz / cfg.num_samples_per_chirp
+    assert step["params"]["amplitude_counts"] == pytest.approx(6.143, rel=0.3)
+
+
 def test_steeper_declared_highpass_is_refitted_with_its_parameters_before_and_after(tmp_path):
     """The declared first-order high-pass, where the capture's is a second-order Butterworth at 150 kHz.
 

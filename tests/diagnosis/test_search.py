@@ -338,3 +338,19 @@ def test_the_lo_noise_starts_from_its_skirt_and_is_kept_on_a_weak_carrier():
         else:
             assert [s.prior.lo for s in specs] == [pytest.approx(1.5e6 / 10**PHASE_NOISE_REL)]
             assert specs[0].prior.hi == pytest.approx(min(1.5e6 * 10**PHASE_NOISE_REL, 3e6))
+
+
+def test_an_unlocked_spur_starts_from_its_ridge_reading():
+    """A ridge the spur signature read starts the search there; the frequency moves a twentieth of a bin at most."""
+    from radaraug.config import RadarConfig
+    from radaraug.diagnosis.catalog import Context, catalog
+
+    cfg = RadarConfig.bgt60tr13c()
+    cand = next(c for c in catalog() if c.name == "spur_tone")
+    ctx = Context(cfg, "estimated", [], None, None, None,  # type: ignore[arg-type]
+                  measured={"spur_tone": {"freq_Hz": 187.305e3, "amplitude_counts": 6.2, "locked": 0.0}})
+    (start,) = cand.starts(ctx)
+    assert start == {"freq_Hz": 187.305e3, "amplitude_counts": 6.2, "phase_rad": 0.0, "phase_jitter_rad": math.pi}
+    freq = next(s for s in cand.specs(ctx, start) if s.name == "freq_Hz")
+    bin_hz = cfg.sample_rate_Hz / cfg.num_samples_per_chirp
+    assert freq.prior.hi - freq.prior.lo == pytest.approx(0.1 * bin_hz)
