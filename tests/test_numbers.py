@@ -3559,6 +3559,12 @@ def test_generator_b_lo_noise_from_the_skirt_paragraph() -> None:
     wandered = {old[f"seed_{s}"]["rows"][i]["params"]["spur_tone"]["freq_Hz"] for s in (1, 2)
                 for i, r in enumerate(old[f"seed_{s}"]["rows"]) if r["case"] == "spur_unlocked@Ahi"}
     spur_by = {(b["parameter"]): b for b in new["parameters"]["by_parameter"] if b["effect"] == "spur_tone"}
+    drift = next(b for b in new["parameters"]["by_parameter"] if b["parameter"] == "gain_rms_dB")
+    new_b = next(r for r in new["seed_3_drift_rows"] if r["case"] == "frame_drift@B")["params"]["frame_drift"]["gain_rms_dB"]
+    old_b = before[3]["frame_drift@B"]["params"]["frame_drift"]["gain_rms_dB"]
+    for s in (3, 1, 2):  # no drift case's error rose by more than 0.005 dB
+        for r in new[f"seed_{s}_drift_rows"]:
+            assert r["error_after_dB"] <= before[s][r["case"]]["error_after_dB"] + 0.005 + 1e-9, (s, r["case"])
     quotes += [f"beside interference at seed 2, {100 * (pair_s2 / 400e3 - 1):.0f} % over",
                f"**The LO noise within 30 % in {pn['within']} of {pn['compared']} cases** ({pn_old['within']} before",
                f"wander to {'/'.join(f'{f / 1e3:.2f}' for f in wandered)} kHz at seeds 1 and 2",
@@ -3566,9 +3572,12 @@ def test_generator_b_lo_noise_from_the_skirt_paragraph() -> None:
                f"config and seed, the amplitude {min(s['amplitude_counts'] for s in spurs):.2f}–"
                f"{max(s['amplitude_counts'] for s in spurs):.2f} counts",
                f"**{new['parameters']['summary']['parameters_within']} of {new['parameters']['summary']['parameters_compared']}"
-               f" compared parameters within** ({new['parameters_lo_noise_only']['summary']['parameters_within']} with the LO "
+               f" compared parameters within** ({new['parameters_before_the_drift_bound']['summary']['parameters_within']} "
+               f"before the drift bound, {new['parameters_lo_noise_only']['summary']['parameters_within']} with the LO "
                f"noise alone, {old['parameters']['summary']['parameters_within']} before; spur frequency and amplitude "
-               f"{spur_by['freq_Hz']['within']} of {spur_by['freq_Hz']['compared']} each)",
+               f"{spur_by['freq_Hz']['within']} of {spur_by['freq_Hz']['compared']} each, the drift gain "
+               f"{drift['within']} of {drift['compared']})",
+               f"seed 3, {new_b:.2f} dB RMS instead of {old_b:.2f} (0.6 put in)",
                f"{new['seed_3']['correct']} of {new['seed_3']['cases']} named exactly, the error halved in "
                f"{new['seed_3']['error_halved']} of {new['seed_3']['cases_with_effects']}, the same five not halved"]
     assert new["seed_3"]["not_halved"] == new["seed_1"]["not_halved"] == new["seed_2"]["not_halved"]

@@ -548,8 +548,22 @@ def _frame_drift() -> Candidate:
         return [{"gain_rms_dB": g, "dc_rms_counts": dc}, {"gain_rms_dB": 0.0, "dc_rms_counts": dc},
                 {"gain_rms_dB": max(g, 0.3), "dc_rms_counts": 0.0}]
 
-    return Candidate("frame_drift", _plain_specs("frame_drift", "gain_rms_dB", "dc_rms_counts", kept=("dc_rms_counts",)),
-                     starts)
+    def specs(ctx: Context, start: dict[str, Any]) -> list[ParamSpec]:
+        m = ctx.measured.get("frame_drift")
+        pr = _priors(ctx, "frame_drift")
+        if not m:
+            return [ParamSpec("gain_rms_dB", pr["gain_rms_dB"]), ParamSpec("dc_rms_counts", pr["dc_rms_counts"])]
+        g = float(m["gain_rms_dB"])  # the static returns' level spread over frames; the DC's is kept
+        half = DRIFT_GAIN_REL * g if g >= DRIFT_GAIN_MIN_DB else None
+        return [ParamSpec("gain_rms_dB", pr["gain_rms_dB"] if half is None else _around(g, pr["gain_rms_dB"], half=half))]
+
+    return Candidate("frame_drift", specs, starts)
+
+
+DRIFT_GAIN_MIN_DB = 0.15
+"""A drift signature's gain reading (dB RMS) from which it bounds the search (the detector's own threshold)."""
+DRIFT_GAIN_REL = 0.25
+"""How far (a share of the reading) the search may move a drift gain its signature read off the static returns."""
 
 
 MEASURED_GAIN_HALF_DB = 0.25

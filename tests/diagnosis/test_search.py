@@ -354,3 +354,22 @@ def test_an_unlocked_spur_starts_from_its_ridge_reading():
     freq = next(s for s in cand.specs(ctx, start) if s.name == "freq_Hz")
     bin_hz = cfg.sample_rate_Hz / cfg.num_samples_per_chirp
     assert freq.prior.hi - freq.prior.lo == pytest.approx(0.1 * bin_hz)
+
+
+def test_a_drift_gain_its_signature_read_bounds_the_search():
+    """A drift gain read off the static returns bounds the search to +-25 % of it; a reading under 0.15 dB does not."""
+    from radaraug.config import RadarConfig
+    from radaraug.diagnosis.catalog import DRIFT_GAIN_REL, Context, catalog
+
+    cand = next(c for c in catalog() if c.name == "frame_drift")
+    ctx = Context(RadarConfig.bgt60tr13c(), "estimated", [], None, None, None)  # type: ignore[arg-type]
+    for gain, bounded in ((0.67, True), (0.05, False)):
+        ctx.measured = {"frame_drift": {"gain_rms_dB": gain, "dc_rms_mean_counts": 3.9}}
+        (start,) = cand.starts(ctx)
+        (spec,) = cand.specs(ctx, start)  # the DC it measured is kept
+        assert spec.name == "gain_rms_dB"
+        if bounded:
+            assert (spec.prior.lo, spec.prior.hi) == (pytest.approx(gain * (1 - DRIFT_GAIN_REL)),
+                                                      pytest.approx(gain * (1 + DRIFT_GAIN_REL)))
+        else:
+            assert (spec.prior.lo, spec.prior.hi) == (0.0, 3.0)
