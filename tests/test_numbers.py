@@ -117,6 +117,20 @@ def _ie_value(path: str, under: str = "run_results") -> float:
     return node
 
 
+def _against_default(occ: float, occ_gate: float, cnt: float, cnt_gate: float) -> str:
+    """A design variant's suite means "against" the default's (benchmarks/README.md's rows)."""
+    return (f"occupancy {occ:.3f} (+ gate {occ_gate:.3f}), counting {cnt:.3f} (+ gate {cnt_gate:.3f}) against "
+            f"{_ie_value('occupancy/mean'):.3f} ({_ie_value('occupancy/gated_mean'):.3f}) and "
+            f"{_ie_value('counting/mean'):.3f} ({_ie_value('counting/gated_mean'):.3f})")
+
+
+def _from_default(occ: float, occ_gate: float, cnt: float, cnt_gate: float) -> str:
+    """The default's suite means "→" a design variant's (the decision table's rows)."""
+    return (f"occupancy {_ie_value('occupancy/mean'):.3f} → {occ:.3f} (+ gate {_ie_value('occupancy/gated_mean'):.3f} → "
+            f"{occ_gate:.3f}), counting {_ie_value('counting/mean'):.3f} → {cnt:.3f} (+ gate "
+            f"{_ie_value('counting/gated_mean'):.3f} → {cnt_gate:.3f})")
+
+
 def _twice_row(v: Sequence[float]) -> str:
     """The decision table's 1600 x 2 row: the default's means and gated means -> 1600 x 2's, simulated validation gains."""
     base = json.loads((BENCHMARKS / _IE).read_text())["run_results"]
@@ -3184,9 +3198,7 @@ FIGURES: list[Figure] = [
            lambda a, b: f"the person {-a:.2f} and {-b:.2f} dB weaker"),
     Figure("benchmarks/README.md", "occupancy 0.878 (+ gate 0.941), counting 0.661 (+ gate 0.727) against 0.890 (0.965) and "
            "0.665 (0.737)", _WEAK, tuple(f"run_results/{t}/{k}" for t in ("occupancy", "counting") for k in ("mean", "gated_mean")),
-           lambda a, b, c, d: f"occupancy {a:.3f} (+ gate {b:.3f}), counting {c:.3f} (+ gate {d:.3f}) against "
-                              f"{_ie_value('occupancy/mean'):.3f} ({_ie_value('occupancy/gated_mean'):.3f}) and "
-                              f"{_ie_value('counting/mean'):.3f} ({_ie_value('counting/gated_mean'):.3f})"),
+           _against_default),
     Figure("docs/training.md", "| −20…+20 dB | 0.887 (0.715) | 0.964 (0.850) | 0.640 (0.428) | 0.713 (0.539) | 0.895 / 0.702 |",
            _STRONG, _WEAK_ROW_KEYS, lambda *v: "| −20…+20 dB " + _weak_row(*v)),
     Figure("docs/training.md", "lower counting (std over seeds 0.027, + gate 0.030; `design-w06` 0.594 → 0.428)", _STRONG,
@@ -3198,15 +3210,10 @@ FIGURES: list[Figure] = [
            "3 seeds; `benchmarks/heldout_design_strong_people_cpu.json`) | occupancy 0.890 → 0.887 (+ gate 0.965 → 0.964), "
            "counting 0.665 → 0.640 (+ gate 0.737 → 0.713) |", _STRONG,
            tuple(f"run_results/{t}/{k}" for t in ("occupancy", "counting") for k in ("mean", "gated_mean")),
-           lambda a, b, c, d: f"occupancy {_ie_value('occupancy/mean'):.3f} → {a:.3f} (+ gate "
-                              f"{_ie_value('occupancy/gated_mean'):.3f} → {b:.3f}), counting "
-                              f"{_ie_value('counting/mean'):.3f} → {c:.3f} (+ gate {_ie_value('counting/gated_mean'):.3f}"
-                              f" → {d:.3f}) |"),
+           lambda *v: _from_default(*v) + " |"),
     Figure("benchmarks/README.md", "occupancy 0.887 (+ gate 0.964), counting 0.640 (+ gate 0.713) against 0.890 (0.965) and "
            "0.665 (0.737)", _STRONG, tuple(f"run_results/{t}/{k}" for t in ("occupancy", "counting") for k in ("mean", "gated_mean")),
-           lambda a, b, c, d: f"occupancy {a:.3f} (+ gate {b:.3f}), counting {c:.3f} (+ gate {d:.3f}) against "
-                              f"{_ie_value('occupancy/mean'):.3f} ({_ie_value('occupancy/gated_mean'):.3f}) and "
-                              f"{_ie_value('counting/mean'):.3f} ({_ie_value('counting/gated_mean'):.3f})"),
+           _against_default),
     Figure("docs/training.md", "| three frames as channels | 0.892 (0.758) | 0.944 (0.822) | 0.634 (0.506) | 0.698 (0.506) | "
            "0.916 / 0.707 |", _FRAMES3, _WEAK_ROW_KEYS, lambda *v: "| three frames as channels " + _weak_row(*v)),
     Figure("docs/training.md", "| one frame, colour map (default) | 0.890 (0.718) | 0.965 (0.851) | 0.665 (0.533) | 0.737 "
@@ -3238,15 +3245,10 @@ FIGURES: list[Figure] = [
            "0.892 (+ gate 0.965 → 0.944), counting 0.665 → 0.634 (+ gate 0.737 → 0.698); empty frames called occupied 0.6 % → "
            "8.8 % |", _FRAMES3,
            tuple(f"run_results/{t}/{k}" for t in ("occupancy", "counting") for k in ("mean", "gated_mean")),
-           lambda a, b, c, d: f"occupancy {_ie_value('occupancy/mean'):.3f} → {a:.3f} (+ gate "
-                              f"{_ie_value('occupancy/gated_mean'):.3f} → {b:.3f}), counting "
-                              f"{_ie_value('counting/mean'):.3f} → {c:.3f} (+ gate {_ie_value('counting/gated_mean'):.3f}"
-                              f" → {d:.3f})"),
+           _from_default),
     Figure("benchmarks/README.md", "occupancy 0.892 (+ gate 0.944), counting 0.634 (+ gate 0.698) against 0.890 (0.965) and "
            "0.665 (0.737)", _FRAMES3, tuple(f"run_results/{t}/{k}" for t in ("occupancy", "counting") for k in ("mean", "gated_mean")),
-           lambda a, b, c, d: f"occupancy {a:.3f} (+ gate {b:.3f}), counting {c:.3f} (+ gate {d:.3f}) against "
-                              f"{_ie_value('occupancy/mean'):.3f} ({_ie_value('occupancy/gated_mean'):.3f}) and "
-                              f"{_ie_value('counting/mean'):.3f} ({_ie_value('counting/gated_mean'):.3f})"),
+           _against_default),
     Figure("docs/twin_observability.md", "lost on the design suite, counting 0.665 → 0.579", _OBSLAB, "run_results/counting/mean",
            lambda m: f"counting {_ie_value('counting/mean'):.3f} → {m:.3f}"),
     Figure("docs/training.md", "The account ([twin_observability.md](twin_observability.md), section 5) finds 87 of the 210 "
