@@ -781,10 +781,10 @@ FIGURES: list[Figure] = [
             *(f"summary/occupancy_threshold_balanced_accuracy/{c}/balanced_accuracy" for c in ("on", "off", "self_excised"))),
            "empty items over 17 dB {:.1f} % / {:.1f} % / {:.1f} %; invisible people {:.1f} % / {:.1f} %; best "
            "single-threshold occupancy {:.3f} / {:.3f} / {:.3f}", (100.0,) * 5 + (1.0,) * 3),
-    Figure("benchmarks/README.md", "**58.6 s** (323 twin evaluations) = 47.0x the simulation", "diagnose_cpu.json",
+    Figure("benchmarks/README.md", "**66.4 s** (344 twin evaluations) = 51.9x the simulation", "diagnose_cpu.json",
            ("diagnose_s", "evaluations", "ratio_diagnose_to_simulate"),
            "**{:.1f} s** ({:d} twin evaluations) = {:.1f}x the simulation"),
-    Figure("benchmarks/README.md", "held-out error 2.57 -> 0.54 dB", "diagnose_cpu.json",
+    Figure("benchmarks/README.md", "held-out error 2.57 -> 0.55 dB", "diagnose_cpu.json",
            ("error_before_dB", "error_after_dB"), "{:.2f} -> {:.2f} dB"),
     Figure("benchmarks/README.md", "**36 of 36 exactly** at seed 1 (the cases' times summed: 875 s) and seed 2 (718 s); "
            "seed 3 with the physical base bounds: **42 of 42**", "diagnose_generator_b_cpu.json",
@@ -1047,7 +1047,7 @@ FIGURES: list[Figure] = [
     Figure("docs/your_sensor.md", "takes 0.41 s (TorchScript), 5.05 s (ONNX) and 1.64 s (`torch.export`)", "steps_cpu.json",
            ("export_torchscript_s", "export_onnx_s", "export_torch_export_s"),
            "takes {:.2f} s (TorchScript), {:.2f} s (ONNX) and {:.2f} s"),
-    Figure("docs/your_sensor.md", "| 58.62 s (`diagnose_cpu.json`)", "diagnose_cpu.json", ("diagnose_s",),
+    Figure("docs/your_sensor.md", "| 66.41 s (`diagnose_cpu.json`)", "diagnose_cpu.json", ("diagnose_s",),
            "| {:.2f} s (`diagnose_cpu.json`)"),
     Figure("docs/your_sensor.md", "(without: −0.08 occupancy and −0.17 counting on the independent set",
            "reproduce_ablations_cpu.json", (_ABL.format("independent", 4), _ABL.format("independent", 9)),
@@ -1080,7 +1080,7 @@ FIGURES: list[Figure] = [
            ("predict_frames_per_s", "live_one_frame_at_a_time_frames_per_s", "live_vs_sensor_frame_rate"),
            "runs {:.1f} frames/s on a file (in batches) and {:.1f} frames/s one frame at a time as live, {:.2f}× the "
            "sensor's"),
-    Figure("docs/your_sensor.md", "For 100 frames at the paper's config the recorded figure on a 2-core CPU is 58.6 s "
+    Figure("docs/your_sensor.md", "For 100 frames at the paper's config the recorded figure on a 2-core CPU is 66.4 s "
            "(`benchmarks/diagnose_cpu.json`)", "diagnose_cpu.json", ("frames", "diagnose_s"),
            "For {:d} frames at the paper's config the recorded figure on a 2-core CPU is {:.1f} s"),
     Figure("docs/your_sensor.md", "the std over 3 seeds is 0.000–0.234 per method and task", "reproduce_quick_cpu.json",
@@ -1164,12 +1164,12 @@ FIGURES: list[Figure] = [
            "twin_cpu.json", ("frames_per_s_workers", "workers", "frames_per_s_1proc"),
            "{:.1f} frames/s with {:d} workers and {:.1f} in one process"),
     Figure("docs/diagnosis.md",
-           "**58.6 s** on a 2-core CPU (target: at most 2 minutes), 323 twin evaluations, 47.0x the time of "
-           "simulating the capture itself (1.25 s)", "diagnose_cpu.json",
+           "**66.4 s** on a 2-core CPU (target: at most 2 minutes), 344 twin evaluations, 51.9x the time of "
+           "simulating the capture itself (1.28 s)", "diagnose_cpu.json",
            ("diagnose_s", "target_s", "evaluations", "ratio_diagnose_to_simulate", "simulate_capture_s"),
            "**{:.1f} s** on a 2-core CPU (target: at most {:.0f} minutes), {:d} twin evaluations, {:.1f}x the time of "
            "simulating the capture itself ({:.2f} s)", (1.0, 1 / 60, 1, 1.0, 1.0)),
-    Figure("docs/diagnosis.md", "found, held-out error 2.57 -> 0.54 dB (`benchmarks/diagnose_cpu.json`",
+    Figure("docs/diagnosis.md", "found, held-out error 2.57 -> 0.55 dB (`benchmarks/diagnose_cpu.json`",
            "diagnose_cpu.json", ("error_before_dB", "error_after_dB"), "held-out error {:.2f} -> {:.2f} dB"),
     # docs/diagnosis.md: generator B's tables (diagnose_generator_b_cpu.json)
     Figure("docs/diagnosis.md", "(`clipping_gain` in the record, seeds 1–3, 15 of 15 named): 3.7–4.4 → 1.8–1.9 dB at A "
