@@ -520,13 +520,12 @@ def _phase_noise() -> Candidate:
 
     def specs(ctx: Context, start: dict[str, Any]) -> list[ParamSpec]:
         m = ctx.measured.get("phase_noise")
-        prior = _priors(ctx, "phase_noise")["freq_noise_rms_Hz"]
         if not m or "freq_noise_rms_Hz" not in m:
-            return [ParamSpec("freq_noise_rms_Hz", prior)]
+            return plain.specs(ctx, start)
         if float(m["carrier_snr_dB"]) < PHASE_NOISE_SEEN_DB:
             # The skirt is under every cell's floor: the views would trade it against the floor's level.
             return []
-        return [ParamSpec("freq_noise_rms_Hz", _around(float(start["freq_noise_rms_Hz"]), prior, rel=PHASE_NOISE_REL))]
+        return [_narrow(ctx, "phase_noise", start, "freq_noise_rms_Hz", rel=PHASE_NOISE_REL)]
 
     return Candidate("phase_noise", specs, starts)
 
@@ -548,14 +547,14 @@ def _frame_drift() -> Candidate:
         return [{"gain_rms_dB": g, "dc_rms_counts": dc}, {"gain_rms_dB": 0.0, "dc_rms_counts": dc},
                 {"gain_rms_dB": max(g, 0.3), "dc_rms_counts": 0.0}]
 
+    plain = _plain_specs("frame_drift", "gain_rms_dB", "dc_rms_counts", kept=("dc_rms_counts",))
+
     def specs(ctx: Context, start: dict[str, Any]) -> list[ParamSpec]:
         m = ctx.measured.get("frame_drift")
-        pr = _priors(ctx, "frame_drift")
-        if not m:
-            return [ParamSpec("gain_rms_dB", pr["gain_rms_dB"]), ParamSpec("dc_rms_counts", pr["dc_rms_counts"])]
-        g = float(m["gain_rms_dB"])  # the static returns' level spread over frames; the DC's is kept
-        half = DRIFT_GAIN_REL * g if g >= DRIFT_GAIN_MIN_DB else None
-        return [ParamSpec("gain_rms_dB", pr["gain_rms_dB"] if half is None else _around(g, pr["gain_rms_dB"], half=half))]
+        g = float(m["gain_rms_dB"]) if m else 0.0  # the static returns' level spread over frames
+        if g < DRIFT_GAIN_MIN_DB:
+            return plain(ctx, start)
+        return [ParamSpec("gain_rms_dB", _around(g, _priors(ctx, "frame_drift")["gain_rms_dB"], half=DRIFT_GAIN_REL * g))]
 
     return Candidate("frame_drift", specs, starts)
 

@@ -453,7 +453,7 @@ def detect_phase_noise(p: Prepared, config: RadarConfig, guard: int = 5,
               "carrier_snr_dB": snr, "whiteness": whiteness, "alignment": alignment, "z": z,
               "freq_noise_rms_Hz_lower": pn_rms, "declared_skirt_dBc": decl, "excess_dB": excess,
               # the skirt grows as the LO noise's square: the declared stage's RMS scaled to the measured skirt
-              "freq_noise_rms_Hz": _DECLARED_LO_RMS_HZ * 10 ** (excess / 20)}
+              "freq_noise_rms_Hz": _declared_lo_noise()[0] * 10 ** (excess / 20)}
     note = ""
     if min_excess_db is not None and present and excess < min_excess_db:
         present = False
@@ -466,8 +466,12 @@ def detect_phase_noise(p: Prepared, config: RadarConfig, guard: int = 5,
     )
 
 
-_DECLARED_LO_RMS_HZ = 100e3
-"""The declared :class:`~radaraug.sensor.effects.PhaseNoise`'s RMS frequency noise (its default)."""
+def _declared_lo_noise() -> tuple[float, float]:
+    """The declared (default) :class:`~radaraug.sensor.effects.PhaseNoise`'s RMS frequency noise and corner, Hz."""
+    from radaraug.sensor.effects import PhaseNoise
+
+    pn = PhaseNoise()
+    return float(pn.freq_noise_rms_Hz), float(pn.corner_Hz)
 
 
 def declared_skirt_dBc(config: RadarConfig, tau_s: float, offsets: torch.Tensor) -> float:
@@ -476,10 +480,7 @@ def declared_skirt_dBc(config: RadarConfig, tau_s: float, offsets: torch.Tensor)
     The default :class:`~radaraug.sensor.effects.PhaseNoise` in closed form (``docs/diagnosis.md``,
     "Signatures").
     """
-    from radaraug.sensor.effects import PhaseNoise
-
-    pn = PhaseNoise()
-    sigma, fc = float(pn.freq_noise_rms_Hz), float(pn.corner_Hz)
+    sigma, fc = _declared_lo_noise()
     fs, N = config.sample_rate_Hz, config.num_samples_per_chirp
     s0 = sigma**2 / (fc * math.atan(fs / 2 / fc))
     f = offsets.to(torch.float64) * fs / N
